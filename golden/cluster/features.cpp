@@ -1,0 +1,22 @@
+#include "golden/cluster/features.h"
+
+#include <cmath>
+
+namespace evms::golden {
+
+FeatureMatrix packet_features(std::span<const Event> events, SensorSize sensor,
+                              const Params& params) {
+  FeatureMatrix f(4, static_cast<Eigen::Index>(events.size()));
+  if (events.empty()) return f;
+  const TimeUs newest = events.back().t;
+  for (size_t i = 0; i < events.size(); ++i) {
+    const Event& e = events[i];
+    const double dt = static_cast<double>(newest - e.t);
+    f.col(static_cast<Eigen::Index>(i)) << params.scale_xy * e.x / sensor.width,
+        params.scale_xy * e.y / sensor.height, params.scale_p * e.p,
+        params.scale_t * std::exp(-dt / params.tau_us);
+  }
+  return f;
+}
+
+}  // namespace evms::golden

@@ -1,0 +1,34 @@
+// Background-activity filter: a real edge excites neighbouring pixels within a short time,
+// while background-activity noise fires pixels in isolation.
+//
+// Rule: an event at (x, y, t) is kept when at least one of its 8 neighbours fired an event
+// (of either polarity) at a time t' with t - t' <= window. The event's own pixel does not
+// count, so a pixel firing repeatedly on its own is still noise. Neighbours outside the
+// sensor do not exist: a border pixel has 5 neighbours and a corner pixel 3. A pixel that has
+// never fired gives no support, so the very first event of a scene is always noise. Every
+// event, kept or not, records its time at its own pixel and so can support later
+// neighbours. A window of 0 turns the filter off: every event is kept.
+#pragma once
+
+#include <vector>
+
+#include "golden/event.h"
+
+namespace evms::golden {
+
+class BackgroundActivityFilter {
+ public:
+  BackgroundActivityFilter(SensorSize sensor, TimeUs window_us);
+
+  // Records the event and says whether it is supported by a neighbour. Events must come in
+  // non-decreasing time order.
+  bool accept(const Event& e);
+
+ private:
+  static constexpr TimeUs kNever = INT64_MIN;
+  SensorSize sensor_;
+  TimeUs window_us_;
+  std::vector<TimeUs> last_fired_;  // per pixel, row-major
+};
+
+}  // namespace evms::golden

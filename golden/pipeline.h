@@ -1,0 +1,58 @@
+// The whole method in floating point: filter -> packets -> hybrid mean shift -> mode merging
+// -> tracking -> one label per event. This is the reference the fixed-point core is
+// measured against.
+//
+// Events that pass the background-activity filter fill a packet of packet_size events. A
+// full packet (or one that would span more than packet_max_span_us, or the last one at the
+// end of the stream) is clustered and its clusters are tracked; then every event that came
+// in since the previous packet closed, filtered or not, leaves in input order with its
+// label.
+#pragma once
+
+#include <vector>
+
+#include "golden/event.h"
+#include "golden/filter/background_activity_filter.h"
+#include "golden/output.h"
+#include "golden/params.h"
+#include "golden/track/tracker.h"
+
+namespace evms::golden {
+
+struct PipelineStats {
+  std::int64_t events_in = 0;
+  std::int64_t events_kept = 0;     // passed the filter
+  std::int64_t packets = 0;
+  std::int64_t clusters = 0;        // summed over packets
+  std::int64_t iterations = 0;      // mean-shift sweeps, summed over packets
+};
+
+class Pipeline {
+ public:
+  Pipeline(const Params& params, SensorSize sensor);
+
+  void push(const Event& e, OutputSink& out);
+  // Clusters the last, partial packet and flushes every pending event.
+  void finish(OutputSink& out);
+
+  const PipelineStats& stats() const { return stats_; }
+  const MultiTargetTracker& tracker() const { return tracker_; }
+
+ private:
+  void close_packet(OutputSink& out);
+
+  Params params_;
+  SensorSize sensor_;
+  BackgroundActivityFilter filter_;
+  MultiTargetTracker tracker_;
+  std::vector<Event> packet_;
+  struct Pending {
+    Event event;
+    int packet_index;  // index into packet_, or -1 when filtered
+  };
+  std::vector<Pending> pending_;
+  std::vector<TrackUpdate> updates_;
+  PipelineStats stats_;
+};
+
+}  // namespace evms::golden
