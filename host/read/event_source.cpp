@@ -1,0 +1,114 @@
+#include "host/read/event_source.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstring>
+
+namespace evms::read {
+
+FileEventSource::FileEventSource(ByteReader in, std::string format, const SourceOptions& options)
+    : in_(std::move(in)), options_(options) {
+  info_.name = in_.path();
+  info_.format = std::move(format);
+}
+
+void FileEventSource::set_sensor(std::optional<SensorSize> from_header,
+                                 std::optional<SensorSize> fallback, const char* fallback_origin) {
+  if (from_header) {
+    info_.sensor = *from_header;
+    info_.sensor_origin = "header";
+  } else if (options_.width > 0 && options_.height > 0) {
+    info_.sensor = {options_.width, options_.height};
+    info_.sensor_origin = "--width/--height";
+  } else if (fallback) {
+    info_.sensor = *fallback;
+    info_.sensor_origin = fallback_origin;
+  } else {
+    fail(in_.path(), {}, "the file does not say the sensor size: pass --width and --height");
+  }
+  ordering_.emplace(in_.path(), info_.sensor, options_.reorder_us);
+}
+
+size_t FileEventSource::read(std::span<Event> out) {
+  size_t n = 0;
+  for (;;) {
+    n += ordering_->pop(out.subspan(n));
+    if (n == out.size() || exhausted_) return n;
+    if (!decode_more()) {
+      exhausted_ = true;
+      ordering_->finish();
+    }
+  }
+}
+
+double FileEventSource::progress() const {
+  return in_.size() ? static_cast<double>(in_.offset()) / static_cast<double>(in_.size()) : -1.0;
+}
+
+std::vector<std::pair<std::string, std::int64_t>> FileEventSource::skipped() const {
+  return skipped_;
+}
+
+void FileEventSource::count_skipped(const std::string& kind, std::int64_t n) {
+  for (auto& [k, count] : skipped_) {
+    if (k == kind) {
+      count += n;
+      return;
+    }
+  }
+  skipped_.emplace_back(kind, n);
+}
+
+std::optional<SensorSize> sensor_of_model(const std::string& model) {
+  std::string m;
+  for (char c : model) m += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  // Longest names first, so that DAVIS346 does not match a shorter prefix.
+  static const std::array<std::pair<const char*, SensorSize>, 9> kModels = {{
+      {"DVXPLORER_LITE", {320, 240}},
+      {"DVXPLORER", {640, 480}},
+      {"DAVIS346", {346, 260}},
+      {"DAVIS240", {240, 180}},
+      {"DAVIS640", {640, 480}},
+      {"DAVIS128", {128, 128}},
+      {"DVS128", {128, 128}},
+      {"DVS132S", {132, 104}},
+      {"DVS640", {640, 480}},
+  }};
+  for (const auto& [name, size] : kModels) {
+    if (m.find(name) != std::string::npos) return size;
+  }
+  return std::nullopt;
+}
+
+std::unique_ptr<EventSource> open_generated_scene(const std::string& uri, const SourceOptions& o);
+
+std::unique_ptr<EventSource> open_source(const std::string& name, const SourceOptions& options) {
+  if (name.rfind("gen://", 0) == 0) return open_generated_scene(name, options);
+  if (name.find("://") != std::string::npos) {
+    throw InputError(name + ": unknown source scheme (expected a file path or gen://SCENE)");
+  }
+  ByteReader in(name);
+  const std::string_view head = in.peek(64);
+  if (head.empty()) fail(name, InputPosition::byte(0), "empty file");
+  if (head.rfind("#!AER-DAT2", 0) == 0) return open_aedat2(std::move(in), options);
+  if (head.rfind("#!AER-DAT3", 0) == 0) return open_aedat3(std::move(in), options);
+  if (head.rfind("#!AER-DAT4", 0) == 0) return open_aedat4(std::move(in), options);
+  if (head.rfind("#!AER-DAT", 0) == 0) {
+    fail(name, InputPosition::byte(0), "bad header: unsupported AEDAT version '" +
+                                           std::string(head.substr(0, head.find('\r'))) + "'");
+  }
+  if (head[0] == '%') return open_prophesee(std::move(in), options);
+  // Text formats: the first line decides. CSV has commas, the RPG format has spaces.
+  const size_t eol = head.find('\n');
+  const std::string_view first = head.substr(0, eol);
+  bool text = std::all_of(first.begin(), first.end(), [](char c) {
+    return c == '\t' || c == '\r' || (c >= 32 && c < 127);
+  });
+  if (text && first.find(',') != std::string_view::npos) return open_csv(std::move(in), options);
+  if (text) return open_rpg_text(std::move(in), options);
+  fail(name, InputPosition::byte(0),
+       "bad header: not a known event format (events.txt, CSV, AEDAT 2/3/4, EVT 2/3 RAW, DAT)");
+}
+
+}  // namespace evms::read

@@ -1,0 +1,93 @@
+// A source of events: a recorded file, a generated scene, a live camera or a network
+// stream. Every evms subcommand that reads events takes any source by its name:
+//   path/to/file.{txt,csv,aedat,aedat4,raw,dat}   format detected from the header
+//   gen://rotation?seed=1&duration-s=2           a generated labelled scene
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "golden/event.h"
+#include "host/read/byte_reader.h"
+#include "host/read/event_ordering.h"
+
+namespace evms::read {
+
+struct SourceOptions {
+  int width = 0;              // sensor size for formats without one in their header
+  int height = 0;
+  TimeUs reorder_us = 1000;   // out-of-order tolerance, see event_ordering.h
+};
+
+struct SourceInfo {
+  std::string name;           // path or URI as given
+  std::string format;         // e.g. "EVT 3.0", "AEDAT 4.0"
+  SensorSize sensor;
+  std::string sensor_origin;  // where the size came from: "header", "--width/--height", ...
+};
+
+class EventSource {
+ public:
+  virtual ~EventSource() = default;
+  virtual const SourceInfo& info() const = 0;
+  // Fills up to out.size() events in time order; returns how many. 0 means the end.
+  virtual size_t read(std::span<Event> out) = 0;
+  // Fraction of the input consumed, or a negative number when unknown.
+  virtual double progress() const { return -1.0; }
+  // Records that are not polarity events (APS frames, IMU, triggers, ...), by kind.
+  virtual std::vector<std::pair<std::string, std::int64_t>> skipped() const { return {}; }
+  // Events moved back into time order (see event_ordering.h).
+  virtual std::int64_t reordered() const { return 0; }
+};
+
+// Base of every file decoder: owns the byte reader and the ordering stage, and pulls decoded
+// events through it.
+class FileEventSource : public EventSource {
+ public:
+  const SourceInfo& info() const override { return info_; }
+  size_t read(std::span<Event> out) override;
+  double progress() const override;
+  std::vector<std::pair<std::string, std::int64_t>> skipped() const override;
+  std::int64_t reordered() const override { return ordering_ ? ordering_->reordered() : 0; }
+
+ protected:
+  FileEventSource(ByteReader in, std::string format, const SourceOptions& options);
+  // Decodes some more input into ordering_; returns false once the input is exhausted.
+  virtual bool decode_more() = 0;
+  // Fixes the sensor size (from the header, else options, else `fallback`).
+  void set_sensor(std::optional<SensorSize> from_header, std::optional<SensorSize> fallback,
+                  const char* fallback_origin);
+  void emit(TimeUs t, long x, long y, int p, InputPosition where) {
+    ordering_->push(t, x, y, p, where);
+  }
+  void count_skipped(const std::string& kind, std::int64_t n = 1);
+
+  ByteReader in_;
+  SourceInfo info_;
+  SourceOptions options_;
+
+ private:
+  std::optional<EventOrdering> ordering_;
+  std::vector<std::pair<std::string, std::int64_t>> skipped_;
+  bool exhausted_ = false;
+};
+
+std::unique_ptr<EventSource> open_source(const std::string& name, const SourceOptions& options);
+
+// The format decoders (one file each under formats/).
+std::unique_ptr<EventSource> open_rpg_text(ByteReader in, const SourceOptions& o);
+std::unique_ptr<EventSource> open_csv(ByteReader in, const SourceOptions& o);
+std::unique_ptr<EventSource> open_aedat2(ByteReader in, const SourceOptions& o);
+std::unique_ptr<EventSource> open_aedat3(ByteReader in, const SourceOptions& o);
+std::unique_ptr<EventSource> open_aedat4(ByteReader in, const SourceOptions& o);
+std::unique_ptr<EventSource> open_prophesee(ByteReader in, const SourceOptions& o);
+
+// Sensor size of a camera model named in a header ("DAVIS240C", "DVS128", ...).
+std::optional<SensorSize> sensor_of_model(const std::string& model);
+
+}  // namespace evms::read

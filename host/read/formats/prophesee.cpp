@@ -1,0 +1,248 @@
+// Prophesee recordings. Both kinds start with ASCII header lines "% key value".
+//  - RAW (.raw): "% evt 2.0" / "% evt 3.0" or "% format EVT2|EVT3;width=..;height=..",
+//    optionally "% geometry WxH", optionally closed by "% end"; then little-endian words.
+//  - DAT (.dat): "% Version 2" and friends, then two bytes {event type, event size} and
+//    8-byte records {uint32 t_us, uint32 x:14 | y:14 << 14 | p:1 << 28}.
+//
+// EVT 2.0: 32-bit words, type in bits 31..28.
+//   0x0 CD_OFF / 0x1 CD_ON: ts[5:0] in 27..22, x in 21..11, y in 10..0
+//   0x8 EVT_TIME_HIGH: ts[33:6] in 27..0 (wraps at 2^34 us)
+//   0xA external trigger, 0xE others, 0xF continued: not polarity events (counted)
+// EVT 3.0: 16-bit words, type in bits 15..12, decoded with state.
+//   0x0 ADDR_Y (y in 10..0)   0x2 ADDR_X (x in 10..0, polarity bit 11: one event)
+//   0x3 VECT_BASE_X (x, polarity)   0x4 VECT_12 / 0x5 VECT_8: one event per set bit at
+//   base x + i, then base x += 12 / 8   0x6 TIME_LOW / 0x8 TIME_HIGH: 12 bits each of a 24-bit
+//   time that wraps at 2^24 us (a wrap is TIME_HIGH going down; a lone TIME_LOW going down is
+//   not a wrap)   0xA trigger, 0xE others, 0x7 / 0xF continued: counted and skipped
+// In both, CD events before the first TIME_HIGH have no time base and are counted as skipped.
+// Any other word type is reserved and means the file is not what its header says: an error.
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+
+#include "host/read/bytes.h"
+#include "host/read/event_source.h"
+
+namespace evms::read {
+namespace {
+
+struct PropheseeHeader {
+  enum class Kind { kEvt2, kEvt3, kDat, kUnknown } kind = Kind::kUnknown;
+  std::optional<SensorSize> size;
+  std::string plugin;
+  bool dat_markers = false;
+};
+
+std::optional<int> key_int(std::string_view text, std::string_view key) {
+  size_t at = text.find(key);
+  if (at == std::string_view::npos) return std::nullopt;
+  text = text.substr(at + key.size());
+  int v = 0;
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc()) return std::nullopt;
+  return v;
+}
+
+PropheseeHeader read_header(ByteReader& in) {
+  PropheseeHeader h;
+  std::optional<int> width, height;
+  std::string_view line;
+  while (in.peek(1) == "%") {
+    in.next_line(line);
+    std::string_view body = line.substr(1);
+    while (!body.empty() && body.front() == ' ') body.remove_prefix(1);
+    if (body == "end") break;
+    if (body.rfind("evt 2", 0) == 0 || body.find("format EVT2") != std::string_view::npos) h.kind = PropheseeHeader::Kind::kEvt2;
+    if (body.rfind("evt 3", 0) == 0 || body.find("format EVT3") != std::string_view::npos) h.kind = PropheseeHeader::Kind::kEvt3;
+    if (body.rfind("evt ", 0) == 0 && h.kind == PropheseeHeader::Kind::kUnknown) {
+      fail(in.path(), InputPosition::line(in.line()), "bad header: unsupported encoding '" + std::string(body) + "' (EVT 2.0 and 3.0 are supported)");
+    }
+    if (body.rfind("Version", 0) == 0 || body.rfind("Data file", 0) == 0) h.dat_markers = true;
+    if (auto w = key_int(body, "width=")) width = w;
+    if (auto v = key_int(body, "height=")) height = v;
+    if (body.rfind("geometry ", 0) == 0) {
+      int gw = 0, gh = 0;
+      if (std::sscanf(std::string(body).c_str(), "geometry %dx%d", &gw, &gh) == 2) width = gw, height = gh;
+    }
+    if (body.rfind("Width ", 0) == 0) width = key_int(body, "Width ");
+    if (body.rfind("Height ", 0) == 0) height = key_int(body, "Height ");
+    if (body.rfind("plugin_name ", 0) == 0) h.plugin = std::string(body.substr(12));
+  }
+  if (width && height && *width > 0 && *height > 0) h.size = SensorSize{*width, *height};
+  if (h.kind == PropheseeHeader::Kind::kUnknown && h.dat_markers) h.kind = PropheseeHeader::Kind::kDat;
+  return h;
+}
+
+// Cameras whose RAW headers carry no geometry: the plugin names the sensor generation.
+std::optional<SensorSize> size_of_plugin(const std::string& plugin) {
+  if (plugin.find("gen41") != std::string::npos || plugin.find("imx636") != std::string::npos) return SensorSize{1280, 720};
+  if (plugin.find("gen3") != std::string::npos) return SensorSize{640, 480};
+  if (plugin.find("genx320") != std::string::npos) return SensorSize{320, 320};
+  return std::nullopt;
+}
+
+class Evt2Source final : public FileEventSource {
+ public:
+  Evt2Source(ByteReader in, const SourceOptions& o, const PropheseeHeader& h) : FileEventSource(std::move(in), "EVT 2.0 RAW", o) {
+    set_sensor(h.size ? h.size : size_of_plugin(h.plugin), std::nullopt, "");
+    if (!h.size && size_of_plugin(h.plugin) && options_.width == 0) info_.sensor_origin = "plugin name in header";
+  }
+
+ protected:
+  bool decode_more() override {
+    unsigned char w[4];
+    for (int n = 0; n < 8192; ++n) {
+      const std::uint64_t at = in_.offset();
+      const size_t got = in_.read(w, 4);
+      if (got == 0) return false;
+      if (got < 4) fail(in_.path(), InputPosition::byte(at), "truncated word (" + std::to_string(got) + " of 4 bytes)");
+      const std::uint32_t word = le32(w);
+      switch (word >> 28) {
+        case 0x0:
+        case 0x1:
+          if (!have_time_) {
+            count_skipped("CD events before the first TIME_HIGH");
+          } else {
+            emit(time_high_ | ((word >> 22) & 0x3F), (word >> 11) & 0x7FF, word & 0x7FF, word >> 28, InputPosition::byte(at));
+          }
+          break;
+        case 0x8: {
+          const TimeUs high = static_cast<TimeUs>(word & 0x0FFFFFFF) << 6;
+          // A wrap drops from the top of the 34-bit range to its bottom; a small step back is
+          // a real step back in time, for the ordering stage to judge.
+          if (have_time_ && (time_high_ & kMask) - high > (kMask >> 1)) epoch_ += kMask + 1;
+          time_high_ = epoch_ + high;
+          have_time_ = true;
+          break;
+        }
+        case 0xA: count_skipped("external triggers"); break;
+        case 0xE: count_skipped("OTHERS words"); break;
+        case 0xF: count_skipped("CONTINUED words"); break;
+        default: fail(in_.path(), InputPosition::byte(at), "reserved EVT 2.0 word type 0x" + hex(word >> 28));
+      }
+    }
+    return true;
+  }
+
+ private:
+  static constexpr TimeUs kMask = (TimeUs{1} << 34) - 1;
+  static std::string hex(unsigned v) { char b[8]; std::snprintf(b, sizeof b, "%X", v); return b; }
+  bool have_time_ = false;
+  TimeUs time_high_ = 0;
+  TimeUs epoch_ = 0;
+};
+
+class Evt3Source final : public FileEventSource {
+ public:
+  Evt3Source(ByteReader in, const SourceOptions& o, const PropheseeHeader& h) : FileEventSource(std::move(in), "EVT 3.0 RAW", o) {
+    set_sensor(h.size ? h.size : size_of_plugin(h.plugin), std::nullopt, "");
+    if (!h.size && size_of_plugin(h.plugin) && options_.width == 0) info_.sensor_origin = "plugin name in header";
+  }
+
+ protected:
+  bool decode_more() override {
+    unsigned char w[2];
+    for (int n = 0; n < 16384; ++n) {
+      const std::uint64_t at = in_.offset();
+      const size_t got = in_.read(w, 2);
+      if (got == 0) return false;
+      if (got < 2) fail(in_.path(), InputPosition::byte(at), "truncated word (1 of 2 bytes)");
+      const std::uint16_t word = le16(w);
+      const unsigned payload = word & 0x0FFF;
+      switch (word >> 12) {
+        case 0x0: y_ = payload & 0x7FF; break;
+        case 0x2: event(payload & 0x7FF, payload >> 11, at); break;
+        case 0x3: base_x_ = payload & 0x7FF; base_p_ = payload >> 11; break;
+        case 0x4:
+          for (int i = 0; i < 12; ++i) if (payload & (1u << i)) event(base_x_ + i, base_p_, at);
+          base_x_ += 12;
+          break;
+        case 0x5:
+          for (int i = 0; i < 8; ++i) if (payload & (1u << i)) event(base_x_ + i, base_p_, at);
+          base_x_ += 8;
+          break;
+        case 0x6: time_low_ = payload; break;
+        case 0x8:
+          if (have_time_ && payload < time_high_ && time_high_ - payload > 0x800) epoch_ += TimeUs{1} << 24;
+          time_high_ = payload;
+          have_time_ = true;
+          break;
+        case 0xA: count_skipped("external triggers"); break;
+        case 0xE: count_skipped("OTHERS words"); break;
+        case 0x7:
+        case 0xF: count_skipped("CONTINUED words"); break;
+        default: {
+          char b[8];
+          std::snprintf(b, sizeof b, "%X", word >> 12);
+          fail(in_.path(), InputPosition::byte(at), std::string("reserved EVT 3.0 word type 0x") + b);
+        }
+      }
+    }
+    return true;
+  }
+
+ private:
+  void event(unsigned x, unsigned p, std::uint64_t at) {
+    if (!have_time_) {
+      count_skipped("CD events before the first TIME_HIGH");
+      return;
+    }
+    emit(epoch_ + (TimeUs{time_high_} << 12) + time_low_, x, y_, p, InputPosition::byte(at));
+  }
+
+  bool have_time_ = false;
+  unsigned time_high_ = 0, time_low_ = 0, y_ = 0, base_x_ = 0, base_p_ = 0;
+  TimeUs epoch_ = 0;
+};
+
+class DatSource final : public FileEventSource {
+ public:
+  DatSource(ByteReader in, const SourceOptions& o, const PropheseeHeader& h) : FileEventSource(std::move(in), "Prophesee DAT", o) {
+    const std::uint64_t at = in_.offset();
+    unsigned char ts[2];
+    if (in_.read(ts, 2) < 2) fail(in_.path(), InputPosition::byte(at), "bad header: missing event type and size bytes");
+    if ((ts[0] != 0 && ts[0] != 0x0C) || ts[1] != 8) {
+      fail(in_.path(), InputPosition::byte(at), "bad header: event type " + std::to_string(ts[0]) + " of size " + std::to_string(ts[1]) +
+                                                    " (only 8-byte 2D events, type 0 or 12, are supported)");
+    }
+    set_sensor(h.size, SensorSize{304, 240}, "ATIS default for DAT files");
+  }
+
+ protected:
+  bool decode_more() override {
+    unsigned char r[8];
+    for (int n = 0; n < 8192; ++n) {
+      const std::uint64_t at = in_.offset();
+      const size_t got = in_.read(r, 8);
+      if (got == 0) return false;
+      if (got < 8) fail(in_.path(), InputPosition::byte(at), "truncated record (" + std::to_string(got) + " of 8 bytes)");
+      const std::uint32_t t = le32(r), data = le32(r + 4);
+      if (have_last_ && t < last_t_ && last_t_ - t > (1u << 31)) epoch_ += TimeUs{1} << 32;
+      have_last_ = true;
+      last_t_ = t;
+      emit(epoch_ + t, data & 0x3FFF, (data >> 14) & 0x3FFF, (data >> 28) & 1, InputPosition::byte(at));
+    }
+    return true;
+  }
+
+ private:
+  bool have_last_ = false;
+  std::uint32_t last_t_ = 0;
+  TimeUs epoch_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<EventSource> open_prophesee(ByteReader in, const SourceOptions& o) {
+  const PropheseeHeader h = read_header(in);
+  switch (h.kind) {
+    case PropheseeHeader::Kind::kEvt2: return std::make_unique<Evt2Source>(std::move(in), o, h);
+    case PropheseeHeader::Kind::kEvt3: return std::make_unique<Evt3Source>(std::move(in), o, h);
+    case PropheseeHeader::Kind::kDat: return std::make_unique<DatSource>(std::move(in), o, h);
+    case PropheseeHeader::Kind::kUnknown: break;
+  }
+  fail(in.path(), InputPosition::line(in.line()),
+       "bad header: a '%' header without '% evt 2.0', '% evt 3.0' or a DAT '% Version' line");
+}
+
+}  // namespace evms::read

@@ -1,0 +1,30 @@
+// Bad input is reported as one line that names the file, the position and what is wrong:
+//   recording.raw: byte 4096: unknown EVT 3.0 word type 0x9
+//   events.txt: line 17: x=300 is outside the 240x180 sensor (set --width/--height)
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace evms::read {
+
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct InputPosition {
+  enum class Kind { kByte, kLine, kNone };
+  Kind kind = Kind::kNone;
+  std::uint64_t value = 0;
+
+  static InputPosition byte(std::uint64_t offset) { return {Kind::kByte, offset}; }
+  static InputPosition line(std::uint64_t number) { return {Kind::kLine, number}; }
+};
+
+std::string describe(const std::string& path, InputPosition pos);
+
+[[noreturn]] void fail(const std::string& path, InputPosition pos, const std::string& what);
+
+}  // namespace evms::read
