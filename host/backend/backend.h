@@ -1,0 +1,53 @@
+// The backend seam: events in, labelled events and track updates out. Every implementation
+// of the method (the floating-point golden model, the fixed-point core, the Verilated RTL, a
+// board over a serial link) sits behind this one interface, and the CLI only ever names one.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string>
+
+#include "golden/event.h"
+#include "golden/output.h"
+#include "golden/params.h"
+
+namespace evms::backend {
+
+struct BackendStats {
+  std::int64_t events_in = 0;
+  std::int64_t events_kept = 0;        // passed the background-activity filter
+  std::int64_t packets = 0;
+  std::int64_t clusters = 0;           // summed over packets
+  std::int64_t iterations = 0;         // mean-shift sweeps, summed over packets
+  std::int64_t tracks_started = 0;
+  std::int64_t unassigned_clusters = 0;
+};
+
+struct BackendOptions {
+  Params params;
+  SensorSize sensor;
+  std::string device;                  // serial device, for the board backend
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  // Events must be in time order. Outputs may lag the inputs by up to one packet.
+  virtual void push(std::span<const Event> events, OutputSink& out) = 0;
+  // Flushes everything still held.
+  virtual void finish(OutputSink& out) = 0;
+  virtual BackendStats stats() const = 0;
+};
+
+struct BackendInfo {
+  const char* name;
+  const char* description;
+  std::unique_ptr<Backend> (*make)(const BackendOptions&);
+};
+
+// Every backend this build has.
+std::span<const BackendInfo> backends();
+// Throws std::invalid_argument naming the known backends when `name` is not one.
+std::unique_ptr<Backend> make_backend(const std::string& name, const BackendOptions& options);
+
+}  // namespace evms::backend

@@ -1,0 +1,25 @@
+#include "host/backend/registry.h"
+
+#include <array>
+#include <stdexcept>
+
+namespace evms::backend {
+
+namespace {
+const std::array kBackends = {
+    BackendInfo{"golden", "floating-point reference model (Eigen, double)", &make_golden_backend},
+};
+}  // namespace
+
+std::span<const BackendInfo> backends() { return kBackends; }
+
+std::unique_ptr<Backend> make_backend(const std::string& name, const BackendOptions& options) {
+  std::string known;
+  for (const BackendInfo& b : kBackends) {
+    if (name == b.name) return b.make(options);
+    known += (known.empty() ? "" : ", ") + std::string(b.name);
+  }
+  throw std::invalid_argument("unknown backend '" + name + "' (this build has: " + known + ")");
+}
+
+}  // namespace evms::backend

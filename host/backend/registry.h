@@ -1,0 +1,8 @@
+// Factories of the backends this build has; registry.cpp lists them.
+#pragma once
+
+#include "host/backend/backend.h"
+
+namespace evms::backend {
+std::unique_ptr<Backend> make_golden_backend(const BackendOptions& o);
+}  // namespace evms::backend

@@ -1,0 +1,10 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace evms::cli {
+void register_run(CLI::App& app);
+void register_info(CLI::App& app);
+void register_gen(CLI::App& app);
+void register_params(CLI::App& app);
+}  // namespace evms::cli

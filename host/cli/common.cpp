@@ -1,0 +1,82 @@
+#include "host/cli/common.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace evms::cli {
+
+void add_source_options(CLI::App& cmd, read::SourceOptions& o) {
+  cmd.add_option("--width", o.width, "sensor width in px, for files whose header has no size")
+      ->check(CLI::Range(1, 65535));
+  cmd.add_option("--height", o.height, "sensor height in px, for files whose header has no size")
+      ->check(CLI::Range(1, 65535));
+  cmd.add_option("--reorder-us", o.reorder_us,
+                 "events out of time order by up to this much are re-sorted; more is an error")
+      ->default_val(o.reorder_us)
+      ->check(CLI::Range(0, 1000000000));
+}
+
+void add_param_options(CLI::App& cmd, Params& params) {
+  for (const ParamInfo& info : param_table()) {
+    std::string help = std::string(info.help) + " [" + info.unit + "]";
+    cmd.add_option_function<std::string>(
+           std::string("--") + info.name,
+           [&params, &info](const std::string& text) {
+             std::string error = set_param(params, info, text);
+             if (!error.empty()) throw CLI::ValidationError(error);
+           },
+           help)
+        ->default_str(CLI::detail::to_string(param_value(params, info)))
+        ->group("Method parameters");
+  }
+}
+
+std::string grouped(std::int64_t v) {
+  std::string digits = std::to_string(v < 0 ? -v : v);
+  std::string out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return v < 0 ? "-" + out : out;
+}
+
+std::string si(double v) {
+  char b[32];
+  if (v >= 1e9) std::snprintf(b, sizeof b, "%.2f G", v / 1e9);
+  else if (v >= 1e6) std::snprintf(b, sizeof b, "%.2f M", v / 1e6);
+  else if (v >= 1e3) std::snprintf(b, sizeof b, "%.1f k", v / 1e3);
+  else std::snprintf(b, sizeof b, "%.0f ", v);
+  return b;
+}
+
+Progress::Progress(bool enabled)
+    : enabled_(enabled && isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()), last_(start_) {}
+
+Progress::~Progress() { done(); }
+
+void Progress::update(double fraction, std::int64_t events) {
+  if (!enabled_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_ < std::chrono::milliseconds(200)) return;
+  last_ = now;
+  const double secs = std::chrono::duration<double>(now - start_).count();
+  const int width = 30;
+  const int filled = fraction >= 0 ? static_cast<int>(std::lround(std::min(1.0, fraction) * width)) : 0;
+  std::string bar(static_cast<size_t>(filled), '#');
+  bar.resize(width, '.');
+  std::fprintf(stderr, "\r[%s] %3.0f%%  %sevents  %sevents/s ", bar.c_str(),
+               fraction >= 0 ? 100 * fraction : 0.0, si(static_cast<double>(events)).c_str(),
+               si(static_cast<double>(events) / std::max(secs, 1e-9)).c_str());
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+void Progress::done() {
+  if (drawn_) std::fprintf(stderr, "\r%80s\r", "");
+  drawn_ = false;
+}
+
+}  // namespace evms::cli

@@ -1,0 +1,38 @@
+// Pieces every subcommand shares: source and parameter options, the progress bar, and
+// number formatting.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <string>
+
+#include "golden/params.h"
+#include "host/read/event_source.h"
+
+namespace evms::cli {
+
+// --width, --height, --reorder-us.
+void add_source_options(CLI::App& cmd, read::SourceOptions& options);
+// One option per row of the parameter table (golden/params.cpp).
+void add_param_options(CLI::App& cmd, Params& params);
+
+// "1,234,567"
+std::string grouped(std::int64_t v);
+// "1.23 M", "456 k"
+std::string si(double v);
+
+// A one-line progress bar on stderr, drawn only when stderr is a terminal.
+class Progress {
+ public:
+  explicit Progress(bool enabled);
+  ~Progress();
+  void update(double fraction, std::int64_t events);
+  void done();
+
+ private:
+  bool enabled_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+}  // namespace evms::cli
