@@ -1,0 +1,110 @@
+// The evms program end to end: exit codes, one-line errors, outputs and memory.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "tests/support/command.h"
+#include "tests/support/encoders.h"
+
+namespace evms::test {
+namespace {
+
+size_t count_lines(const std::string& path) {
+  std::ifstream in(path);
+  size_t n = 0;
+  std::string line;
+  while (std::getline(in, line)) ++n;
+  return n;
+}
+
+TEST(Cli, EverySubcommandHasHelp) {
+  for (const char* sub : {"", "run", "info", "gen"}) {
+    const auto r = run_command(evms_binary() + " " + sub + " --help");
+    EXPECT_EQ(r.exit_code, 0) << sub;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;
+  }
+}
+
+TEST(Cli, RunWritesOneRowPerEventAndATrackFile) {
+  TempDir dir;
+  const auto events = sample_events(3000, {240, 180});
+  const std::string in = dir.write("in.csv", csv(events));
+  const auto r = run_command(evms_binary() + " run " + in + " --out " + dir.path("out"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(count_lines(dir.path("out/events.csv")), events.size() + 1);
+  std::ifstream tracks(dir.path("out/tracks.csv"));
+  std::string header;
+  std::getline(tracks, header);
+  EXPECT_EQ(header, "t_us,track_id,x,y,vx,vy");
+  EXPECT_NE(r.out.find("events in   3,000"), std::string::npos) << r.out;
+}
+
+TEST(Cli, RunsOnTheEmbeddedDefaultScene) {
+  const auto r = run_command(evms_binary() + " run gen://translation?duration-s=0.2 --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("tracks"), std::string::npos);
+}
+
+TEST(Cli, BadInputIsOneLineNamingFileAndPosition) {
+  TempDir dir;
+  const std::string in = dir.write("bad.txt", "0.1 1 2 1\n0.2 1 2\n");
+  for (const char* sub : {"run", "info"}) {
+    const auto r = run_command(evms_binary() + " " + sub + " " + in);
+    EXPECT_EQ(r.exit_code, 1) << sub;
+    EXPECT_EQ(r.err, "evms: " + in + ": line 2: missing field 'p' (truncated record)\n") << sub;
+  }
+}
+
+TEST(Cli, BadParametersAreRejected) {
+  const auto r = run_command(evms_binary() + " run gen://rotation --bandwidth -1");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("--bandwidth"), std::string::npos) << r.err;
+  const auto b = run_command(evms_binary() + " run gen://rotation?duration-s=0.01 --backend nope");
+  EXPECT_EQ(b.exit_code, 1);
+  EXPECT_NE(b.err.find("unknown backend 'nope'"), std::string::npos) << b.err;
+}
+
+TEST(Cli, GenIsDeterministicOnDisk) {
+  TempDir dir;
+  for (const char* d : {"a", "b"}) {
+    const auto r = run_command(evms_binary() + " gen --scene 6dof --duration-s 0.1 --seed 7 --out " + dir.path(d));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (const char* f : {"events.txt", "labels.csv", "gt_tracks.csv"}) {
+    const auto r = run_command("cmp " + dir.path("a/") + f + " " + dir.path("b/") + f);
+    EXPECT_EQ(r.exit_code, 0) << f;
+  }
+}
+
+TEST(Cli, MemoryIsFlatInTheInputLength) {
+  // The same scene, 8x longer: peak memory must not grow with it. The filter window is
+  // minimal so that almost nothing reaches the clustering and the test stays quick.
+  TempDir dir;
+  auto small = sample_events(100000, {240, 180}, 3), large = sample_events(800000, {240, 180}, 3);
+  const std::string a = dir.write("a.txt", rpg_text(small)), b = dir.write("b.txt", rpg_text(large));
+  small.clear(), large.clear();
+  const std::string cmd = evms_binary() + " run --quiet --filter-window-us 1 --out " + dir.path("o") + " ";
+  const auto ra = run_command(cmd + a), rb = run_command(cmd + b);
+  ASSERT_EQ(ra.exit_code, 0) << ra.err;
+  ASSERT_EQ(rb.exit_code, 0) << rb.err;
+  EXPECT_LT(rb.max_rss_kb, ra.max_rss_kb + 4096) << "peak RSS " << ra.max_rss_kb << " kB for 100k events, " << rb.max_rss_kb << " kB for 800k";
+}
+
+}  // namespace
+}  // namespace evms::test
+
+namespace evms::test {
+namespace {
+
+TEST(Cli, ParameterDocsAreCurrent) {
+  const auto r = run_command(evms_binary() + " params --markdown");
+  ASSERT_EQ(r.exit_code, 0);
+  std::ifstream doc(std::string(EVMS_SOURCE_DIR) + "/docs/parameters.md");
+  std::stringstream ss;
+  ss << doc.rdbuf();
+  EXPECT_EQ(ss.str(), r.out) << "docs/parameters.md is stale: regenerate it with 'evms params --markdown'";
+}
+
+}  // namespace
+}  // namespace evms::test

@@ -1,0 +1,137 @@
+// The method end to end on inputs with known answers.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+#include "golden/pipeline.h"
+#include "tests/support/scenes.h"
+
+namespace evms::golden {
+namespace {
+
+using test::Blob;
+using test::CollectingSink;
+
+constexpr SensorSize kSensor{240, 180};
+
+CollectingSink run(const std::vector<Event>& events, const Params& p) {
+  Pipeline pipeline(p, kSensor);
+  CollectingSink sink;
+  for (const Event& e : events) pipeline.push(e, sink);
+  pipeline.finish(sink);
+  return sink;
+}
+
+TEST(Pipeline, OneLabelledEventPerInputInInputOrder) {
+  std::vector<int> which;
+  const auto events = test::blob_events({{60, 90}, {180, 90}}, 50000, 0, 100000, kSensor, 1, &which);
+  const CollectingSink out = run(events, Params{});
+  ASSERT_EQ(out.events.size(), events.size());
+  for (size_t i = 0; i < events.size(); ++i) ASSERT_EQ(out.events[i].event, events[i]) << i;
+}
+
+TEST(Pipeline, TwoSeparatedBlobsGiveTwoClusters) {
+  std::vector<int> which;
+  const auto events = test::blob_events({{60, 90}, {180, 90}}, 50000, 0, 100000, kSensor, 2, &which);
+  const CollectingSink out = run(events, Params{});
+  for (const PacketSummary& s : out.packets) EXPECT_EQ(s.clusters, 2);
+  // Every non-noise event of a blob carries its blob's label, and the two labels differ.
+  std::map<int, std::set<std::int32_t>> labels;
+  for (size_t i = 0; i < events.size(); ++i) {
+    if (out.events[i].label != kNoiseLabel) labels[which[i]].insert(out.events[i].label);
+  }
+  ASSERT_EQ(labels[0].size(), 1u);
+  ASSERT_EQ(labels[1].size(), 1u);
+  EXPECT_NE(*labels[0].begin(), *labels[1].begin());
+}
+
+TEST(Pipeline, ABlobAtConstantVelocityGivesItsVelocityWithin2Percent) {
+  const double vx = 120.0, vy = -45.0;
+  const auto events = test::blob_events({{40, 150, vx, vy, 2.5}}, 40000, 0, 1500000, kSensor, 3);
+  const CollectingSink out = run(events, Params{});
+  ASSERT_GT(out.tracks.size(), 100u);
+  std::set<std::int32_t> ids;
+  for (const TrackUpdate& u : out.tracks) ids.insert(u.id);
+  EXPECT_EQ(ids.size(), 1u) << "one object, one track";
+  // Converged: the second half of the track.
+  double sx = 0, sy = 0;
+  size_t n = 0;
+  for (size_t i = out.tracks.size() / 2; i < out.tracks.size(); ++i, ++n) sx += out.tracks[i].vx, sy += out.tracks[i].vy;
+  const double speed = std::hypot(vx, vy);
+  EXPECT_LT(std::hypot(sx / n - vx, sy / n - vy) / speed, 0.02);
+  const TrackUpdate& last = out.tracks.back();
+  EXPECT_LT(std::hypot(last.vx - vx, last.vy - vy) / speed, 0.02);
+}
+
+TEST(Pipeline, IsolatedNoiseIsLabelledNoise) {
+  // Scattered single events, far apart in space or time: none has a recent neighbour.
+  std::vector<Event> events;
+  for (int i = 0; i < 500; ++i) {
+    events.push_back({i * 20000, static_cast<std::uint16_t>((i * 37) % 240), static_cast<std::uint16_t>((i * 53) % 180), 1});
+  }
+  const CollectingSink out = run(events, Params{});
+  ASSERT_EQ(out.events.size(), events.size());
+  for (const LabelledEvent& e : out.events) EXPECT_EQ(e.label, kNoiseLabel);
+  EXPECT_TRUE(out.tracks.empty());
+}
+
+TEST(Pipeline, NoiseAmongABlobIsLabelledNoise) {
+  std::vector<int> which;
+  auto events = test::blob_events({{120, 90}}, 40000, 0, 50000, kSensor, 5, &which);
+  std::vector<bool> noise(events.size(), false);
+  for (size_t i = 7; i < events.size(); i += 50) {
+    events[i].x = static_cast<std::uint16_t>(10 + (i * 13) % 40);
+    events[i].y = static_cast<std::uint16_t>(10 + (i * 7) % 30);
+    noise[i] = true;
+  }
+  const CollectingSink out = run(events, Params{});
+  int noise_labelled = 0, noise_total = 0;
+  for (size_t i = 0; i < events.size(); ++i) {
+    if (noise[i]) ++noise_total, noise_labelled += out.events[i].label == kNoiseLabel;
+  }
+  EXPECT_EQ(noise_labelled, noise_total);
+}
+
+TEST(Pipeline, LaterPacketsLabelTheirOwnEvents) {
+  // The authors' code read events of later packets from the wrong index. A blob that jumps
+  // between packets must be labelled where it is, in every packet.
+  Params p;
+  p.packet_size = 200;
+  std::vector<Event> events;
+  auto a = test::blob_events({{40, 40}}, 40000, 0, 20000, kSensor, 7);
+  auto b = test::blob_events({{200, 140}}, 40000, 20000, 20000, kSensor, 8);
+  events.insert(events.end(), a.begin(), a.end());
+  events.insert(events.end(), b.begin(), b.end());
+  const CollectingSink out = run(events, p);
+  ASSERT_GE(out.packets.size(), 6u);
+  for (const TrackUpdate& u : out.tracks) {
+    const bool near_a = std::hypot(u.x - 40, u.y - 40) < 5, near_b = std::hypot(u.x - 200, u.y - 140) < 5;
+    EXPECT_TRUE(near_a || near_b) << "track at " << u.x << "," << u.y;
+  }
+}
+
+TEST(Pipeline, APartialLastPacketMakesNoClusterAtTheOrigin) {
+  // The authors left unfilled feature columns at zero, which formed a cluster at (0, 0).
+  Params p;
+  p.packet_size = 256;
+  p.confirm_hits = 1;
+  p.min_cluster_size = 1;
+  const auto events = test::blob_events({{150, 120}}, 40000, 0, 2000, kSensor, 9);  // 80 events
+  const CollectingSink out = run(events, p);
+  ASSERT_EQ(out.packets.size(), 1u);
+  EXPECT_LT(out.packets[0].events, 256);
+  for (const TrackUpdate& u : out.tracks) EXPECT_GT(std::hypot(u.x, u.y), 100.0);
+}
+
+TEST(Pipeline, PacketSpanLimitClosesPacketsEarly) {
+  Params p;
+  p.packet_max_span_us = 1000;
+  const auto events = test::blob_events({{100, 100}}, 20000, 0, 20000, kSensor, 10);
+  const CollectingSink out = run(events, p);
+  for (const PacketSummary& s : out.packets) EXPECT_LE(s.t_last - s.t_first, 1000);
+  EXPECT_GE(out.packets.size(), 19u);
+}
+
+}  // namespace
+}  // namespace evms::golden

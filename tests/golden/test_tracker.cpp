@@ -1,0 +1,124 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include "golden/track/kalman_filter.h"
+#include "golden/track/tracker.h"
+#include "host/gen/random.h"
+
+namespace evms::golden {
+namespace {
+
+Params tracker_params() {
+  Params p;
+  p.confirm_hits = 2;
+  p.gate_px = 10;
+  p.coast_us = 100000;
+  p.max_tracks = 4;
+  return p;
+}
+
+TEST(KalmanFilter, CovarianceStartsAtP0AndIsUsedByTheFirstUpdate) {
+  // The authors' code set P where predict() overwrote it: P0 had no effect.
+  Params a, b;
+  a.init_sigma_px = 1.0;
+  b.init_sigma_px = 10.0;
+  KalmanFilter fa(0, 0, 0, a), fb(0, 0, 0, b);
+  EXPECT_DOUBLE_EQ(fa.covariance()(0, 0), 1.0);
+  EXPECT_DOUBLE_EQ(fb.covariance()(0, 0), 100.0);
+  fa.predict(1000), fb.predict(1000);
+  fa.update(4, 0), fb.update(4, 0);
+  EXPECT_LT(fa.state()(0), fb.state()(0));  // a confident start moves less towards z
+  EXPECT_GT(fb.state()(0), 3.5);
+}
+
+TEST(KalmanFilter, StaysSymmetricAndPositiveOverManyUpdates) {
+  Params p;
+  KalmanFilter f(10, 10, 0, p);
+  gen::Random rng(4);
+  for (int k = 1; k <= 20000; ++k) {
+    const TimeUs t = k * 1000;
+    f.predict(t);
+    f.update(10 + 0.1 * k + rng.normal(), 10 - 0.05 * k + rng.normal());
+  }
+  const auto& c = f.covariance();
+  EXPECT_LT((c - c.transpose()).cwiseAbs().maxCoeff(), 1e-9 * c.cwiseAbs().maxCoeff());
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(c);
+  EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+}
+
+TEST(KalmanFilter, TheFilteredEstimateIsSmootherThanTheMeasurements) {
+  // The authors computed the filtered estimate and then reported the raw centroid.
+  Params p;
+  p.meas_sigma_px = 2.0;
+  p.accel_psd = 100;
+  KalmanFilter f(0, 0, 0, p);
+  gen::Random rng(9);
+  double raw_error = 0, filtered_error = 0;
+  for (int k = 1; k <= 2000; ++k) {
+    const TimeUs t = k * 2000;
+    const double truth = 100.0 * t * 1e-6;
+    const double z = truth + 2.0 * rng.normal();
+    f.predict(t);
+    f.update(z, 0);
+    if (k > 200) {
+      raw_error += (z - truth) * (z - truth);
+      filtered_error += (f.state()(0) - truth) * (f.state()(0) - truth);
+    }
+  }
+  EXPECT_LT(filtered_error, 0.25 * raw_error);
+}
+
+TEST(Tracker, IdsAreOneToOneAndNeverReused) {
+  MultiTargetTracker tracker(tracker_params());
+  std::vector<TrackUpdate> updates;
+  auto ids = tracker.step(1000, std::vector<Measurement>{{1000, 50, 50}}, updates);
+  ASSERT_EQ(ids[0], 0);
+  // Two clusters near the one track: only the nearer keeps its ID, the other gets a new one
+  // (the authors' many-to-one matching gave both the same ID).
+  ids = tracker.step(2000, std::vector<Measurement>{{2000, 53, 50}, {2000, 51, 50}}, updates);
+  EXPECT_EQ(ids[1], 0);
+  EXPECT_EQ(ids[0], 1);
+  // Track 1 is tentative and misses a packet: it ends, and its ID does not come back.
+  ids = tracker.step(3000, std::vector<Measurement>{{3000, 51, 50}, {3000, 150, 150}}, updates);
+  EXPECT_EQ(ids[0], 0);
+  EXPECT_EQ(ids[1], 2);
+}
+
+TEST(Tracker, ConfirmedTracksCoastThroughMissedPacketsThenEnd) {
+  // The authors' tracks died after one missed packet.
+  MultiTargetTracker tracker(tracker_params());
+  std::vector<TrackUpdate> updates;
+  tracker.step(0, std::vector<Measurement>{{0, 50, 50}}, updates);
+  tracker.step(10000, std::vector<Measurement>{{10000, 50, 50}}, updates);
+  ASSERT_EQ(updates.size(), 1u);  // confirmed at the second hit
+  for (TimeUs t = 20000; t <= 100000; t += 10000) tracker.step(t, {}, updates);
+  EXPECT_EQ(tracker.live_tracks(), 1);
+  auto ids = tracker.step(105000, std::vector<Measurement>{{105000, 51, 50}}, updates);
+  EXPECT_EQ(ids[0], 0);  // the same object, the same ID
+  for (TimeUs t = 110000; t <= 210000; t += 10000) tracker.step(t, {}, updates);
+  EXPECT_EQ(tracker.live_tracks(), 0);
+  ids = tracker.step(220000, std::vector<Measurement>{{220000, 51, 50}}, updates);
+  EXPECT_EQ(ids[0], 1);
+}
+
+TEST(Tracker, MeasurementsBeyondTheGateStartNewTracks) {
+  MultiTargetTracker tracker(tracker_params());
+  std::vector<TrackUpdate> updates;
+  tracker.step(0, std::vector<Measurement>{{0, 50, 50}}, updates);
+  auto ids = tracker.step(1000, std::vector<Measurement>{{1000, 70, 50}}, updates);
+  EXPECT_EQ(ids[0], 1);
+}
+
+TEST(Tracker, FullSlotsLeaveClustersUnassigned) {
+  Params p = tracker_params();
+  p.max_tracks = 2;
+  MultiTargetTracker tracker(p);
+  std::vector<TrackUpdate> updates;
+  auto ids = tracker.step(0, std::vector<Measurement>{{0, 10, 10}, {0, 100, 100}, {0, 200, 150}}, updates);
+  EXPECT_EQ(ids, (std::vector<std::int32_t>{0, 1, kNoiseLabel}));
+  EXPECT_EQ(tracker.unassigned_clusters(), 1);
+}
+
+}  // namespace
+}  // namespace evms::golden

@@ -1,0 +1,130 @@
+// Bad input: one line naming the file, the line or byte offset, and what is wrong. Never a
+// crash, never a silent drop.
+#include <gtest/gtest.h>
+
+#include "tests/support/encoders.h"
+#include "tests/support/read_all.h"
+
+namespace evms::test {
+namespace {
+
+// The error must name the file, the position and the problem, on one line.
+void expect_error(const std::string& path, const std::string& position, const std::string& what,
+                  const read::SourceOptions& o = {}) {
+  const std::string message = read_error(path, o);
+  SCOPED_TRACE(message);
+  const std::string prefix = path + ": " + position;
+  EXPECT_EQ(message.rfind(prefix, 0), 0u) << "expected '" << prefix << "...'";
+  if (position.back() != ' ') {
+    EXPECT_EQ(message.substr(prefix.size(), 2), ": ");
+  }
+  EXPECT_NE(message.find(what), std::string::npos) << "expected the message to say '" << what << "'";
+  EXPECT_EQ(message.find('\n'), std::string::npos);
+}
+
+Bytes truncated(Bytes b, size_t drop) {
+  b.resize(b.size() - drop);
+  return b;
+}
+
+const std::vector<Event> kEvents = sample_events(300, {128, 128});
+
+TEST(BadInput, TruncatedRecords) {
+  TempDir d;
+  {
+    const Bytes b = aedat2_dvs128(kEvents);
+    expect_error(d.write("a2.aedat", truncated(b, 3)), "byte " + std::to_string(b.size() - 8), "truncated record (5 of 8 bytes)");
+  }
+  {
+    const Bytes b = aedat3_davis240(kEvents);
+    expect_error(d.write("a3.aedat", truncated(b, 2)), "byte " + std::to_string(b.size() - 8), "truncated record (6 of 8 bytes)");
+  }
+  {
+    const Bytes b = aedat4(kEvents, {128, 128}, Aedat4Compression::kLz4, 1000);
+    expect_error(d.write("a4.aedat4", truncated(b, 30)), "byte ", "truncated packet");
+  }
+  {
+    const Bytes b = evt2(kEvents, {128, 128});
+    expect_error(d.write("e2.raw", truncated(b, 1)), "byte " + std::to_string(b.size() - 4), "truncated word (3 of 4 bytes)");
+  }
+  {
+    Bytes b = evt3(kEvents, {128, 128});
+    b.push_back(0x12);
+    expect_error(d.write("e3.raw", b), "byte " + std::to_string(b.size() - 1), "truncated word");
+  }
+  {
+    const Bytes b = dat(kEvents);
+    expect_error(d.write("d.dat", truncated(b, 4)), "byte " + std::to_string(b.size() - 8), "truncated record (4 of 8 bytes)");
+  }
+  expect_error(d.write("t.txt", "0.000010000 1 2 1\n0.000020000 3 4\n"), "line 2", "missing field 'p' (truncated record)");
+  expect_error(d.write("c.csv", "t_us,x,y,p\n10,1,2,1\n20,3\n"), "line 3", "missing field 'y' (truncated record)");
+}
+
+TEST(BadInput, BadHeaders) {
+  TempDir d;
+  expect_error(d.write("v5.aedat", "#!AER-DAT5.0\r\n"), "byte 0", "bad header: unsupported AEDAT version");
+  expect_error(d.write("a3.aedat", "#!AER-DAT3.1\r\n#Format: RAW\r\n"), "byte ", "bad header: no '#!END-HEADER' line");
+  expect_error(d.write("a3f.aedat", "#!AER-DAT3.1\r\n#Format: SerializedTS\r\n#!END-HEADER\r\n"), "line 2", "only '#Format: RAW'");
+  {
+    Bytes b = aedat4(kEvents, {128, 128}, Aedat4Compression::kNone);
+    b[20] ^= 0xFF;  // inside the IOHeader flatbuffer's identifier
+    expect_error(d.write("a4.aedat4", b), "byte 18", "bad header: the IOHeader flatbuffer does not verify");
+  }
+  expect_error(d.write("e4.raw", "% evt 4.0\n"), "line 1", "bad header: unsupported encoding 'evt 4.0'");
+  expect_error(d.write("x.raw", "% date 2020\n"), "line 1", "bad header");
+  {
+    Bytes b = dat(kEvents);
+    b[b.size() - kEvents.size() * 8 - 2] = 7;  // event type byte
+    expect_error(d.write("d.dat", b), "byte ", "bad header: event type 7");
+  }
+  expect_error(d.write("c.csv", "time,x,y,p\n1,2,3,1\n"), "line 1", "bad header: expected 't_us,x,y,p'");
+  expect_error(d.write("bin.bin", Bytes{0x00, 0xFF, 0x13, 0x00, 0x42}), "byte 0", "bad header: not a known event format");
+  expect_error(d.write("empty.txt", ""), "byte 0", "empty file");
+}
+
+TEST(BadInput, CoordinatesOutsideTheSensor) {
+  TempDir d;
+  expect_error(d.write("t.txt", "0.000001000 1 2 1\n0.000002000 240 5 0\n"), "line 2", "x=240 y=5 is outside the 240x180 sensor");
+  expect_error(d.write("c.csv", "t_us,x,y,p\n5,7,200,1\n"), "line 2", "x=7 y=200 is outside the 240x180 sensor");
+  // The same CSV is fine on a taller sensor given on the command line.
+  EXPECT_EQ(read_error(d.path("c.csv"), {.width = 240, .height = 260, .reorder_us = 1000}), "");
+  auto wide = kEvents;
+  wide[10].x = 200;
+  const Bytes e3 = evt3(wide, {128, 128});
+  expect_error(d.write("e3.raw", e3), "byte ", "x=200");
+  auto tall = kEvents;
+  tall[5].y = 300;
+  expect_error(d.write("a4.aedat4", aedat4(tall, {128, 128}, Aedat4Compression::kZstd)), "byte ", "y=300 is outside the 128x128 sensor");
+}
+
+TEST(BadInput, TimestampsGoingBackwardsBeyondTheTolerance) {
+  TempDir d;
+  expect_error(d.write("t.txt", "1.000000000 1 2 1\n1.000500000 1 2 1\n0.500000000 3 4 0\n"), "line 3", "goes back 500500 us");
+  auto events = kEvents;
+  events.push_back({events.back().t - 5000, 1, 1, 1});
+  expect_error(d.write("e2.raw", evt2(events, {128, 128})), "byte ", "more than the reorder tolerance");
+  expect_error(d.write("d.dat", dat(events)), "byte " + std::to_string(dat(events).size() - 8), "goes back 5000 us");
+}
+
+TEST(BadInput, MalformedFields) {
+  TempDir d;
+  expect_error(d.write("t.txt", "0.1 1 2 1\nabc 1 2 1\n"), "line 2", "is not a non-negative decimal number of seconds");
+  expect_error(d.write("p.txt", "0.1 1 2 5\n"), "line 1", "polarity 5 is not 0, 1 or -1");
+  expect_error(d.write("f.txt", "0.1 1 2 1 9\n"), "line 1", "more than 4 fields");
+  expect_error(d.write("x.csv", "t_us,x,y,p\n10,1.5,2,1\n"), "line 2", "field 'x' = '1.5' is not an integer");
+  {
+    Bytes b = evt3(kEvents, {128, 128});
+    b.push_back(0x00);
+    b.push_back(0x90);  // word type 0x9 is reserved
+    expect_error(d.write("r.raw", b), "byte " + std::to_string(b.size() - 2), "reserved EVT 3.0 word type 0x9");
+  }
+}
+
+TEST(BadInput, MissingFilesAndUnknownSources) {
+  EXPECT_NE(read_error("/nonexistent/file.raw").find("/nonexistent/file.raw: cannot open"), std::string::npos);
+  EXPECT_NE(read_error("gen://spiral").find("unknown scene 'spiral'"), std::string::npos);
+  EXPECT_NE(read_error("ftp://x").find("unknown source scheme"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace evms::test

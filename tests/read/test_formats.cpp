@@ -1,0 +1,120 @@
+// Each reader decodes what a spec-based encoder wrote, event for event.
+#include <gtest/gtest.h>
+
+#include "tests/support/encoders.h"
+#include "tests/support/read_all.h"
+
+namespace evms::test {
+namespace {
+
+TEST(Formats, RpgTextRoundTrips) {
+  TempDir dir;
+  const auto events = sample_events(5000, {240, 180});
+  EXPECT_EQ(read_all(dir.write("events.txt", rpg_text(events))), events);
+}
+
+TEST(Formats, RpgTextRoundsNanosecondsToTheNearestMicrosecond) {
+  TempDir dir;
+  const auto path = dir.write("e.txt", "0.000001499 1 2 1\n0.000001500 3 4 0\n12.5 5 6 1\n");
+  const auto e = read_all(path);
+  ASSERT_EQ(e.size(), 3u);
+  EXPECT_EQ(e[0].t, 1);
+  EXPECT_EQ(e[1].t, 2);
+  EXPECT_EQ(e[2].t, 12500000);
+}
+
+TEST(Formats, CsvRoundTripsAndAcceptsALabelColumn) {
+  TempDir dir;
+  const auto events = sample_events(3000, {240, 180});
+  EXPECT_EQ(read_all(dir.write("e.csv", csv(events))), events);
+  const auto labelled = read_all(dir.write("l.csv", "t_us,x,y,p,label\n10,1,2,1,-1\n20,3,4,0,7\n"));
+  ASSERT_EQ(labelled.size(), 2u);
+  EXPECT_EQ(labelled[1], (Event{20, 3, 4, 0}));
+}
+
+TEST(Formats, Aedat2Dvs128AndDavisRoundTrip) {
+  TempDir dir;
+  const auto small = sample_events(2000, {128, 128});
+  auto dvs = read::open_source(dir.write("dvs.aedat", aedat2_dvs128(small)), {});
+  EXPECT_EQ(dvs->info().sensor, (SensorSize{128, 128}));
+  EXPECT_EQ(read_all(dir.path("dvs.aedat")), small);
+  const auto davis = sample_events(2000, {240, 180});
+  const auto path = dir.write("davis.aedat", aedat2_davis240(davis));
+  EXPECT_EQ(read_all(path), davis);
+  auto source = read::open_source(path, {});
+  EXPECT_EQ(source->info().sensor, (SensorSize{240, 180}));
+  std::vector<Event> sink(4096);
+  while (source->read(sink)) {
+  }
+  ASSERT_EQ(source->skipped().size(), 1u);
+  EXPECT_EQ(source->skipped()[0].second, 1);  // the APS sample is counted, not dropped silently
+}
+
+TEST(Formats, Aedat3RoundTripsAcrossPackets) {
+  TempDir dir;
+  const auto events = sample_events(1234, {240, 180});
+  EXPECT_EQ(read_all(dir.write("e.aedat", aedat3_davis240(events))), events);
+}
+
+TEST(Formats, Aedat4RoundTripsWithEveryCompression) {
+  TempDir dir;
+  const auto events = sample_events(3210, {346, 260});
+  for (auto c : {Aedat4Compression::kNone, Aedat4Compression::kLz4, Aedat4Compression::kZstd}) {
+    SCOPED_TRACE(static_cast<int>(c));
+    const auto path = dir.write("e.aedat4", aedat4(events, {346, 260}, c));
+    EXPECT_EQ(read_all(path), events);
+    EXPECT_EQ(read::open_source(path, {})->info().sensor, (SensorSize{346, 260}));
+  }
+}
+
+TEST(Formats, Evt2RoundTripsAndSkipsTriggers) {
+  TempDir dir;
+  const auto events = sample_events(4000, {640, 480});
+  EXPECT_EQ(read_all(dir.write("e.raw", evt2(events, {640, 480}))), events);
+}
+
+TEST(Formats, Evt3RoundTripsWithVectorWords) {
+  TempDir dir;
+  auto events = sample_events(3000, {1280, 720});
+  // A row burst: 10 ON events at consecutive x, which the encoder packs into a VECT_12 word.
+  const TimeUs t = events.back().t + 5;
+  for (std::uint16_t i = 0; i < 10; ++i) events.push_back({t, static_cast<std::uint16_t>(100 + i), 50, 1});
+  EXPECT_EQ(read_all(dir.write("e.raw", evt3(events, {1280, 720}))), events);
+}
+
+TEST(Formats, DatRoundTrips) {
+  TempDir dir;
+  const auto events = sample_events(2500, {304, 240});
+  EXPECT_EQ(read_all(dir.write("e.dat", dat(events))), events);
+}
+
+TEST(Formats, GeneratedSceneIsASource) {
+  auto source = read::open_source("gen://translation?duration-s=0.05&seed=3", {});
+  EXPECT_EQ(source->info().sensor, (SensorSize{240, 180}));
+  const auto events = read_all("gen://translation?duration-s=0.05&seed=3");
+  EXPECT_GT(events.size(), 100u);
+  for (size_t i = 1; i < events.size(); ++i) ASSERT_LE(events[i - 1].t, events[i].t);
+}
+
+TEST(Ordering, SmallJitterIsReorderedStably) {
+  TempDir dir;
+  // 30 us out of order, within the default 1000 us tolerance; equal times keep file order.
+  const auto path = dir.write("e.csv", "t_us,x,y,p\n100,1,1,1\n200,2,2,1\n170,3,3,0\n200,4,4,0\n300,5,5,1\n");
+  const auto e = read_all(path);
+  ASSERT_EQ(e.size(), 5u);
+  EXPECT_EQ(e[0].x, 1);
+  EXPECT_EQ(e[1].x, 3);
+  EXPECT_EQ(e[2].x, 2);
+  EXPECT_EQ(e[3].x, 4);
+  EXPECT_EQ(e[4].x, 5);
+}
+
+TEST(Ordering, ReorderingIsBoundedByTheTolerance) {
+  TempDir dir;
+  const auto path = dir.write("e.csv", "t_us,x,y,p\n100,1,1,1\n5000,2,2,1\n4800,3,3,0\n");
+  EXPECT_EQ(read_error(path, {.width = 0, .height = 0, .reorder_us = 1000}), "");
+  EXPECT_NE(read_error(path, {.width = 0, .height = 0, .reorder_us = 100}), "");
+}
+
+}  // namespace
+}  // namespace evms::test

@@ -1,0 +1,246 @@
+#include "tests/support/encoders.h"
+
+#include <flatbuffers/flatbuffers.h>
+#include <lz4frame.h>
+#include <unistd.h>
+#include <zstd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "aedat4_events_generated.h"
+#include "aedat4_io_header_generated.h"
+#include "host/gen/random.h"
+
+namespace evms::test {
+namespace {
+
+void put_be32(Bytes& b, std::uint32_t v) {
+  for (int s = 24; s >= 0; s -= 8) b.push_back(static_cast<std::uint8_t>(v >> s));
+}
+void put_le32(Bytes& b, std::uint32_t v) {
+  for (int s = 0; s < 32; s += 8) b.push_back(static_cast<std::uint8_t>(v >> s));
+}
+void put_le16(Bytes& b, std::uint16_t v) {
+  b.push_back(static_cast<std::uint8_t>(v));
+  b.push_back(static_cast<std::uint8_t>(v >> 8));
+}
+void put_text(Bytes& b, const std::string& s) { b.insert(b.end(), s.begin(), s.end()); }
+
+}  // namespace
+
+std::string rpg_text(const std::vector<Event>& events) {
+  std::string s;
+  char line[96];
+  for (const Event& e : events) {
+    std::snprintf(line, sizeof line, "%lld.%06lld000 %d %d %d\n", static_cast<long long>(e.t / 1000000),
+                  static_cast<long long>(e.t % 1000000), e.x, e.y, e.p);
+    s += line;
+  }
+  return s;
+}
+
+std::string csv(const std::vector<Event>& events) {
+  std::string s = "t_us,x,y,p\n";
+  for (const Event& e : events) {
+    s += std::to_string(e.t) + "," + std::to_string(e.x) + "," + std::to_string(e.y) + "," + std::to_string(e.p) + "\n";
+  }
+  return s;
+}
+
+Bytes aedat2_dvs128(const std::vector<Event>& events) {
+  Bytes b;
+  put_text(b, "#!AER-DAT2.0\r\n# This is a raw AE data file\r\n# AEChip: ch.unizh.ini.jaer.chip.retina.DVS128\r\n");
+  for (const Event& e : events) {
+    put_be32(b, (std::uint32_t{e.y} << 8) | (std::uint32_t{e.x} << 1) | e.p);
+    put_be32(b, static_cast<std::uint32_t>(e.t));
+  }
+  return b;
+}
+
+Bytes aedat2_davis240(const std::vector<Event>& events) {
+  Bytes b;
+  put_text(b, "#!AER-DAT2.0\r\n# AEChip: eu.seebetter.ini.chips.davis.DAVIS240C\r\n");
+  for (const Event& e : events) {
+    put_be32(b, (std::uint32_t{e.y} << 22) | (std::uint32_t{e.x} << 12) | (std::uint32_t{e.p} << 11));
+    put_be32(b, static_cast<std::uint32_t>(e.t));
+  }
+  // An APS sample (type bit set) that the reader must skip.
+  put_be32(b, 0x80000000u | (5u << 22) | (7u << 12) | 300u);
+  put_be32(b, static_cast<std::uint32_t>(events.empty() ? 0 : events.back().t));
+  return b;
+}
+
+Bytes aedat3_davis240(const std::vector<Event>& events) {
+  Bytes b;
+  put_text(b, "#!AER-DAT3.1\r\n#Format: RAW\r\n#Source 1: DAVIS240C\r\n#!END-HEADER\r\n");
+  // A special-event packet first, which the reader must skip.
+  put_le16(b, 0);
+  put_le16(b, 1);
+  put_le32(b, 8), put_le32(b, 4), put_le32(b, 0), put_le32(b, 1), put_le32(b, 1), put_le32(b, 1);
+  put_le32(b, 0x1), put_le32(b, 0);
+  for (size_t start = 0; start < events.size(); start += 50) {
+    const size_t n = std::min<size_t>(50, events.size() - start);
+    const std::int64_t overflow = events[start].t >> 31;
+    put_le16(b, 1);
+    put_le16(b, 1);
+    put_le32(b, 8), put_le32(b, 4), put_le32(b, static_cast<std::uint32_t>(overflow));
+    put_le32(b, static_cast<std::uint32_t>(n)), put_le32(b, static_cast<std::uint32_t>(n)), put_le32(b, static_cast<std::uint32_t>(n));
+    for (size_t i = start; i < start + n; ++i) {
+      const Event& e = events[i];
+      if ((e.t >> 31) != overflow) throw std::logic_error("test encoder: packet spans a timestamp overflow");
+      put_le32(b, (std::uint32_t{e.x} << 17) | (std::uint32_t{e.y} << 2) | (std::uint32_t{e.p} << 1) | 1u);
+      put_le32(b, static_cast<std::uint32_t>(e.t & 0x7FFFFFFF));
+    }
+  }
+  return b;
+}
+
+Bytes aedat4(const std::vector<Event>& events, SensorSize sensor, Aedat4Compression c, size_t per_packet) {
+  const std::string xml =
+      "<dv version=\"2.0\"><node name=\"outInfo\" path=\"/mainloop/Recorder/outInfo/\">"
+      "<node name=\"0\" path=\"/mainloop/Recorder/outInfo/0/\">"
+      "<attr key=\"typeIdentifier\" type=\"string\">EVTS</attr>"
+      "<node name=\"info\" path=\"/mainloop/Recorder/outInfo/0/info/\">"
+      "<attr key=\"sizeX\" type=\"int\">" + std::to_string(sensor.width) + "</attr>"
+      "<attr key=\"sizeY\" type=\"int\">" + std::to_string(sensor.height) + "</attr></node></node>"
+      "<node name=\"1\" path=\"/mainloop/Recorder/outInfo/1/\">"
+      "<attr key=\"typeIdentifier\" type=\"string\">IMUS</attr></node></node></dv>";
+  Bytes b;
+  put_text(b, "#!AER-DAT4.0\r\n");
+  flatbuffers::FlatBufferBuilder hb;
+  auto info = hb.CreateString(xml);
+  hb.FinishSizePrefixed(aedat4::CreateIOHeader(hb, static_cast<aedat4::Compression>(c), -1, info), aedat4::IOHeaderIdentifier());
+  b.insert(b.end(), hb.GetBufferPointer(), hb.GetBufferPointer() + hb.GetSize());
+
+  auto packet = [&](std::int32_t stream, const std::uint8_t* data, size_t size) {
+    Bytes body;
+    if (c == Aedat4Compression::kNone) {
+      body.assign(data, data + size);
+    } else if (c == Aedat4Compression::kLz4) {
+      body.resize(LZ4F_compressFrameBound(size, nullptr));
+      body.resize(LZ4F_compressFrame(body.data(), body.size(), data, size, nullptr));
+    } else {
+      body.resize(ZSTD_compressBound(size));
+      body.resize(ZSTD_compress(body.data(), body.size(), data, size, 3));
+    }
+    put_le32(b, static_cast<std::uint32_t>(stream));
+    put_le32(b, static_cast<std::uint32_t>(body.size()));
+    b.insert(b.end(), body.begin(), body.end());
+  };
+  for (size_t start = 0; start < events.size(); start += per_packet) {
+    std::vector<aedat4::PolarityEvent> v;
+    for (size_t i = start; i < std::min(events.size(), start + per_packet); ++i) {
+      const Event& e = events[i];
+      v.emplace_back(e.t, static_cast<std::int16_t>(e.x), static_cast<std::int16_t>(e.y), e.p != 0);
+    }
+    flatbuffers::FlatBufferBuilder eb;
+    eb.FinishSizePrefixed(aedat4::CreateEventPacket(eb, eb.CreateVectorOfStructs(v)), aedat4::EventPacketIdentifier());
+    packet(0, eb.GetBufferPointer(), eb.GetSize());
+    const std::uint8_t imu[16] = {1, 2, 3};
+    packet(1, imu, sizeof imu);  // an IMU packet the reader must skip
+  }
+  return b;
+}
+
+Bytes evt2(const std::vector<Event>& events, SensorSize sensor) {
+  Bytes b;
+  put_text(b, "% evt 2.0\n% geometry " + std::to_string(sensor.width) + "x" + std::to_string(sensor.height) + "\n% end\n");
+  std::int64_t high = -1;
+  for (const Event& e : events) {
+    if ((e.t >> 6) != high) {
+      high = e.t >> 6;
+      put_le32(b, (0x8u << 28) | static_cast<std::uint32_t>(high & 0x0FFFFFFF));
+    }
+    put_le32(b, (std::uint32_t{e.p} << 28) | (static_cast<std::uint32_t>(e.t & 0x3F) << 22) | (std::uint32_t{e.x} << 11) | e.y);
+  }
+  put_le32(b, 0xAu << 28);  // an external trigger, to be skipped
+  return b;
+}
+
+Bytes evt3(const std::vector<Event>& events, SensorSize sensor) {
+  Bytes b;
+  put_text(b, "% evt 3.0\n% format EVT3;height=" + std::to_string(sensor.height) + ";width=" + std::to_string(sensor.width) + "\n% end\n");
+  std::int64_t high = -1, low = -1;
+  int y = -1;
+  for (size_t i = 0; i < events.size(); ++i) {
+    const Event& e = events[i];
+    if ((e.t >> 12) != high) {
+      high = e.t >> 12;
+      put_le16(b, static_cast<std::uint16_t>((0x8u << 12) | (high & 0xFFF)));
+      low = -1;
+    }
+    if ((e.t & 0xFFF) != low) {
+      low = e.t & 0xFFF;
+      put_le16(b, static_cast<std::uint16_t>((0x6u << 12) | low));
+    }
+    if (e.y != y) {
+      y = e.y;
+      put_le16(b, static_cast<std::uint16_t>(y));
+    }
+    // Runs of events on one row, time and polarity at consecutive x go out as a vector.
+    size_t run = 1;
+    while (i + run < events.size() && run < 12 && events[i + run].t == e.t && events[i + run].y == e.y &&
+           events[i + run].p == e.p && events[i + run].x == e.x + run) {
+      ++run;
+    }
+    if (run >= 3) {
+      put_le16(b, static_cast<std::uint16_t>((0x3u << 12) | (std::uint32_t{e.p} << 11) | e.x));
+      put_le16(b, static_cast<std::uint16_t>((0x4u << 12) | ((1u << run) - 1)));
+      i += run - 1;
+    } else {
+      put_le16(b, static_cast<std::uint16_t>((0x2u << 12) | (std::uint32_t{e.p} << 11) | e.x));
+    }
+  }
+  return b;
+}
+
+Bytes dat(const std::vector<Event>& events) {
+  Bytes b;
+  put_text(b, "% Data file containing Event2D events.\n% Version 2\n");
+  b.push_back(0);
+  b.push_back(8);
+  for (const Event& e : events) {
+    put_le32(b, static_cast<std::uint32_t>(e.t));
+    put_le32(b, std::uint32_t{e.x} | (std::uint32_t{e.y} << 14) | (std::uint32_t{e.p} << 28));
+  }
+  return b;
+}
+
+TempDir::TempDir() {
+  char tmpl[] = "/tmp/evms-test-XXXXXX";
+  if (!mkdtemp(tmpl)) throw std::runtime_error("mkdtemp failed");
+  dir_ = tmpl;
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(dir_, ec);
+}
+
+std::string TempDir::write(const std::string& name, const std::string& text) const {
+  std::ofstream(path(name), std::ios::binary) << text;
+  return path(name);
+}
+
+std::string TempDir::write(const std::string& name, const Bytes& bytes) const {
+  std::ofstream(path(name), std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  return path(name);
+}
+
+std::vector<Event> sample_events(size_t n, SensorSize sensor, std::uint64_t seed) {
+  gen::Random rng(seed);
+  std::vector<Event> out;
+  TimeUs t = 1000;
+  for (size_t i = 0; i < n; ++i) {
+    t += static_cast<TimeUs>(rng.below(40));
+    out.push_back({t, static_cast<std::uint16_t>(rng.below(static_cast<std::uint64_t>(sensor.width))),
+                   static_cast<std::uint16_t>(rng.below(static_cast<std::uint64_t>(sensor.height))),
+                   static_cast<std::uint8_t>(rng.below(2))});
+  }
+  return out;
+}
+
+}  // namespace evms::test

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "host/read/event_source.h"
+
+namespace evms::test {
+
+inline std::vector<Event> read_all(const std::string& path, const read::SourceOptions& o = {}) {
+  auto source = read::open_source(path, o);
+  std::vector<Event> all, batch(1000);
+  while (size_t n = source->read(batch)) all.insert(all.end(), batch.begin(), batch.begin() + static_cast<long>(n));
+  return all;
+}
+
+// The message of the InputError that reading `path` throws, or "" when it reads cleanly.
+inline std::string read_error(const std::string& path, const read::SourceOptions& o = {}) {
+  try {
+    read_all(path, o);
+  } catch (const read::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The folder of real recordings next to the repository, or "" when it is absent.
+std::string shared_data_dir();
+
+}  // namespace evms::test
