@@ -37,6 +37,7 @@ struct TrackUpdate {
   std::int32_t id = 0;     // persistent track ID, never reused
   double x = 0, y = 0;     // px
   double vx = 0, vy = 0;   // px/s
+  double zx = 0, zy = 0;   // the raw measurement (cluster centre of mass) of this update, px
 };
 
 struct SensorSize {

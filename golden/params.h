@@ -1,6 +1,6 @@
-// Every tunable of the method, with its unit and default. The table in params.cpp is the one
-// place that names, documents and bounds them: the CLI builds its options from it and
-// docs/parameters.md is generated from it.
+// Every tunable of the method, with its unit and default. The defaults were chosen from the
+// sweep in docs/sweep.md. The table in params.cpp is the one place that names, documents and
+// bounds them: the CLI builds its options from it and docs/parameters.md is generated from it.
 #pragma once
 
 #include <cstdint>
@@ -27,19 +27,19 @@ struct Params {
   double tau_us = 10000.0;           // time constant of exp(-dt/tau), dt from packet's newest event
 
   // --- mean shift -----------------------------------------------------------------------
-  double bandwidth = 0.1;            // Gaussian kernel bandwidth h on the normalized space
-  int max_iterations = 16;           // iteration cap
+  double bandwidth = 0.08;           // Gaussian kernel bandwidth h on the normalized space
+  int max_iterations = 8;            // iteration cap
   double tolerance = 1e-3;           // stop when no coordinate moves more than this
-  double merge_radius = 0.05;        // modes closer than this are one cluster (default h/2)
+  double merge_radius = 0.04;        // modes closer than this are one cluster (default h/2)
   int min_cluster_size = 8;          // smaller clusters become noise
   int max_clusters = 16;             // modes beyond this many clusters become noise
 
   // --- tracker --------------------------------------------------------------------------
   double gate_px = 20.0;             // association gate around the predicted position
   int confirm_hits = 3;              // measurements before a track is confirmed
-  TimeUs coast_us = 200000;          // a confirmed track ends after this long without a match
-  double accel_psd = 1.0e4;          // white-noise-acceleration spectral density, px^2/s^3
-  double meas_sigma_px = 1.0;        // centroid measurement noise (R = sigma^2 I)
+  TimeUs coast_us = 100000;          // a confirmed track ends after this long without a match
+  double accel_psd = 1000.0;         // white-noise-acceleration spectral density, px^2/s^3
+  double meas_sigma_px = 2.0;        // centroid measurement noise (R = sigma^2 I)
   double init_sigma_px = 2.0;        // initial position uncertainty (P0)
   double init_sigma_vel = 200.0;     // initial velocity uncertainty (P0), px/s
   int max_tracks = 16;               // tracks held at once

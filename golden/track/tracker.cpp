@@ -53,7 +53,7 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
     ids[c.measurement] = track.id;
     if (track.confirmed) {
       const auto& s = track.filter.state();
-      updates.push_back({z.t, track.id, s(0), s(1), s(2), s(3)});
+      updates.push_back({z.t, track.id, s(0), s(1), s(2), s(3), z.x, z.y});
     }
   }
 
@@ -73,7 +73,7 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
     Track& track = **free;
     track.confirmed = params_.confirm_hits <= 1;
     ids[m] = track.id;
-    if (track.confirmed) updates.push_back({z.t, track.id, z.x, z.y, 0.0, 0.0});
+    if (track.confirmed) updates.push_back({z.t, track.id, z.x, z.y, 0.0, 0.0, z.x, z.y});
   }
   return ids;
 }

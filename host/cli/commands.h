@@ -7,4 +7,7 @@ void register_run(CLI::App& app);
 void register_info(CLI::App& app);
 void register_gen(CLI::App& app);
 void register_params(CLI::App& app);
+void register_sweep(CLI::App& app);
+void register_eval(CLI::App& app);
+void register_metrics(CLI::App& app);
 }  // namespace evms::cli

@@ -33,6 +33,17 @@ void add_param_options(CLI::App& cmd, Params& params) {
   }
 }
 
+namespace {
+std::string g_invocation = "evms";
+}
+
+const std::string& invocation() { return g_invocation; }
+
+void set_invocation(int argc, char** argv) {
+  g_invocation = "evms";
+  for (int i = 1; i < argc; ++i) g_invocation += std::string(" ") + argv[i];
+}
+
 std::string grouped(std::int64_t v) {
   std::string digits = std::to_string(v < 0 ? -v : v);
   std::string out;

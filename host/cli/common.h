@@ -16,6 +16,10 @@ void add_source_options(CLI::App& cmd, read::SourceOptions& options);
 // One option per row of the parameter table (golden/params.cpp).
 void add_param_options(CLI::App& cmd, Params& params);
 
+// The command line evms was started with, for reports.
+const std::string& invocation();
+void set_invocation(int argc, char** argv);
+
 // "1,234,567"
 std::string grouped(std::int64_t v);
 // "1.23 M", "456 k"

@@ -3,16 +3,21 @@
 #include <cstdio>
 
 #include "host/cli/commands.h"
+#include "host/cli/common.h"
 #include "host/read/input_error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"evms: real-time clustering and multi-target tracking of event-camera output "
                "(Barranco, Fermuller & Ros, IROS 2018)"};
+  evms::cli::set_invocation(argc, argv);
   app.require_subcommand(1);
   evms::cli::register_run(app);
   evms::cli::register_info(app);
   evms::cli::register_gen(app);
   evms::cli::register_params(app);
+  evms::cli::register_sweep(app);
+  evms::cli::register_eval(app);
+  evms::cli::register_metrics(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

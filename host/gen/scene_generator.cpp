@@ -323,7 +323,7 @@ struct SceneGenerator::Impl {
         const Vec c = to_pixel(object_centre(objects[k], t), p);
         const double r = objects[k].shape.bound / p.zoom;
         if (c.x - r >= 0 && c.y - r >= 0 && c.x + r <= cfg.width - 1 && c.y + r <= cfg.height - 1) {
-          truth.push_back({next_truth_us, static_cast<int>(k), c.x, c.y});
+          truth.push_back({next_truth_us, static_cast<int>(k), c.x, c.y, r});
         }
       }
       next_truth_us += 1000;

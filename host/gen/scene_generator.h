@@ -50,7 +50,8 @@ const char* motion_name(Motion m);
 struct TruthSample {
   TimeUs t;
   int object;
-  double x, y;   // px, sensor coordinates of the pixel centres
+  double x, y;        // px, sensor coordinates of the pixel centres
+  double radius = 0;  // px, radius of a circle around the centre that holds the outline
 };
 
 class SceneGenerator {

@@ -1,0 +1,135 @@
+#include "host/eval/tracking_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <unordered_map>
+
+namespace evms::eval {
+namespace {
+
+class CentreLookup {
+ public:
+  CentreLookup(std::span<const gen::TruthSample> centres, int objects) : per_object_(static_cast<size_t>(objects)) {
+    for (const auto& c : centres) per_object_[static_cast<size_t>(c.object)][c.t / 1000] = {c.x, c.y};
+  }
+  // The centre at time t, interpolated between the neighbouring millisecond samples.
+  std::optional<std::pair<double, double>> at(int object, TimeUs t) const {
+    const auto& m = per_object_[static_cast<size_t>(object)];
+    const TimeUs k = t / 1000;
+    auto a = m.find(k), b = m.find(k + 1);
+    if (a == m.end()) return std::nullopt;
+    if (t % 1000 == 0 || b == m.end()) return t % 1000 == 0 ? std::optional(a->second) : std::nullopt;
+    const double f = static_cast<double>(t % 1000) / 1000.0;
+    return std::pair{a->second.first + f * (b->second.first - a->second.first),
+                     a->second.second + f * (b->second.second - a->second.second)};
+  }
+  // Central difference over +-1 ms, px/s.
+  std::optional<std::pair<double, double>> velocity(int object, TimeUs t) const {
+    const auto a = at(object, t - 1000), b = at(object, t + 1000);
+    if (!a || !b) return std::nullopt;
+    return std::pair{(b->first - a->first) / 2e-3, (b->second - a->second) / 2e-3};
+  }
+  const std::unordered_map<TimeUs, std::pair<double, double>>& samples(int object) const {
+    return per_object_[static_cast<size_t>(object)];
+  }
+
+ private:
+  std::vector<std::unordered_map<TimeUs, std::pair<double, double>>> per_object_;
+};
+
+struct Accumulator {
+  std::vector<double> errors;
+  ErrorStats stats(double tau) const {
+    ErrorStats s;
+    s.samples = static_cast<std::int64_t>(errors.size());
+    if (errors.empty()) return s;
+    double sum = 0, sum2 = 0;
+    for (double e : errors) sum += e, sum2 += e * e, s.within += e <= tau;
+    const double n = static_cast<double>(errors.size());
+    s.mean = sum / n;
+    s.std = std::sqrt(std::max(0.0, sum2 / n - s.mean * s.mean));
+    s.within /= n;
+    return s;
+  }
+};
+
+}  // namespace
+
+TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<const gen::TruthSample> centres, int objects,
+                               double tau_px, double association_radius_px, TimeUs coverage_window_us) {
+  const CentreLookup lookup(centres, objects);
+  std::map<std::int32_t, std::vector<int>> votes;  // track -> votes per object
+  for (const TrackUpdate& u : updates) {
+    int best = -1;
+    double best_d = association_radius_px;
+    for (int o = 0; o < objects; ++o) {
+      const auto c = lookup.at(o, u.t);
+      if (!c) continue;
+      const double d = std::hypot(u.x - c->first, u.y - c->second);
+      if (d <= best_d) best = o, best_d = d;
+    }
+    auto& v = votes[u.id];
+    v.resize(static_cast<size_t>(objects), 0);
+    if (best >= 0) ++v[static_cast<size_t>(best)];
+  }
+  std::map<std::int32_t, int> owner;
+  for (const auto& [id, v] : votes) {
+    const auto it = std::max_element(v.begin(), v.end());
+    owner[id] = (it == v.end() || *it == 0) ? -1 : static_cast<int>(it - v.begin());
+  }
+
+  TrackingReport report;
+  std::vector<Accumulator> kalman(static_cast<size_t>(objects)), raw(static_cast<size_t>(objects));
+  Accumulator all_kalman, all_raw, all_velocity;
+  std::vector<Accumulator> velocity(static_cast<size_t>(objects));
+  std::vector<std::vector<TimeUs>> update_times(static_cast<size_t>(objects));
+  for (const TrackUpdate& u : updates) {
+    const int o = owner[u.id];
+    if (o < 0) {
+      ++report.spurious_updates;
+      continue;
+    }
+    update_times[static_cast<size_t>(o)].push_back(u.t);
+    const auto c = lookup.at(o, u.t);
+    if (!c) continue;
+    const double ek = std::hypot(u.x - c->first, u.y - c->second), er = std::hypot(u.zx - c->first, u.zy - c->second);
+    kalman[static_cast<size_t>(o)].errors.push_back(ek);
+    raw[static_cast<size_t>(o)].errors.push_back(er);
+    all_kalman.errors.push_back(ek);
+    all_raw.errors.push_back(er);
+    if (const auto v = lookup.velocity(o, u.t)) {
+      const double ev = std::hypot(u.vx - v->first, u.vy - v->second);
+      velocity[static_cast<size_t>(o)].errors.push_back(ev);
+      all_velocity.errors.push_back(ev);
+    }
+  }
+  for (int o = 0; o < objects; ++o) {
+    ObjectTracking t;
+    t.object = o;
+    for (const auto& [id, obj] : owner) {
+      if (obj == o) t.tracks.push_back(id);
+    }
+    t.kalman = kalman[static_cast<size_t>(o)].stats(tau_px);
+    t.raw = raw[static_cast<size_t>(o)].stats(tau_px);
+    t.velocity_error = velocity[static_cast<size_t>(o)].stats(0).mean;
+    auto& times = update_times[static_cast<size_t>(o)];
+    std::sort(times.begin(), times.end());
+    std::int64_t covered = 0, total = 0;
+    for (const auto& [ms, xy] : lookup.samples(o)) {
+      ++total;
+      const TimeUs t = ms * 1000;
+      auto it = std::upper_bound(times.begin(), times.end(), t);
+      covered += it != times.begin() && t - *(it - 1) <= coverage_window_us;
+    }
+    t.coverage = total ? static_cast<double>(covered) / static_cast<double>(total) : 0.0;
+    report.objects.push_back(t);
+  }
+  report.all_kalman = all_kalman.stats(tau_px);
+  report.all_raw = all_raw.stats(tau_px);
+  report.velocity_error = all_velocity.stats(0).mean;
+  return report;
+}
+
+}  // namespace evms::eval

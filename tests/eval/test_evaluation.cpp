@@ -1,0 +1,175 @@
+// K-means, chunking, tracking metrics, and the eval/sweep/metrics commands end to end.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+#include <fstream>
+#include <sstream>
+
+#include "host/eval/chunks.h"
+#include "host/eval/evaluation.h"
+#include "host/eval/kmeans.h"
+#include "host/eval/tracking_metrics.h"
+#include "tests/support/command.h"
+#include "tests/support/encoders.h"
+#include "tests/support/scenes.h"
+
+namespace evms::eval {
+namespace {
+
+TEST(Chunks, ByCountAndByTime) {
+  std::vector<Event> e;
+  for (TimeUs t : {0, 10, 20, 30, 35, 100, 101}) e.push_back({t, 0, 0, 0});
+  const auto by_count = chunk_ranges(e, {Chunking::Kind::kEvents, 3});
+  ASSERT_EQ(by_count.size(), 3u);
+  EXPECT_EQ(by_count[2], (std::pair<size_t, size_t>{6, 7}));
+  const auto by_time = chunk_ranges(e, {Chunking::Kind::kTime, 25});
+  ASSERT_EQ(by_time.size(), 3u);  // [0,25) [25,50) [100,125): the empty windows are skipped
+  EXPECT_EQ(by_time[0], (std::pair<size_t, size_t>{0, 3}));
+  EXPECT_EQ(by_time[1], (std::pair<size_t, size_t>{3, 5}));
+  EXPECT_EQ(by_time[2], (std::pair<size_t, size_t>{5, 7}));
+}
+
+TEST(KMeans, SeparatesWellSeparatedGroupsDeterministically) {
+  Eigen::Matrix<double, 4, Eigen::Dynamic> x(4, 9);
+  for (int i = 0; i < 9; ++i) x.col(i) << (i / 3) * 1.0 + 0.01 * (i % 3), 0.5, 0, 1;
+  const auto a = kmeans(x, 3, 7), b = kmeans(x, 3, 7);
+  EXPECT_EQ(a, b);
+  for (int g = 0; g < 3; ++g) {
+    EXPECT_EQ(a[3 * g], a[3 * g + 1]);
+    EXPECT_EQ(a[3 * g], a[3 * g + 2]);
+  }
+  EXPECT_NE(a[0], a[3]);
+  EXPECT_NE(a[3], a[6]);
+  EXPECT_NE(a[0], a[6]);
+}
+
+TEST(KMeans, BaselineUsesTheTrueObjectCountPerChunk) {
+  std::vector<int> which;
+  const auto events = test::blob_events({{40, 40}, {200, 140}}, 40000, 0, 50000, {240, 180}, 3, &which);
+  std::vector<std::int32_t> truth(which.begin(), which.end());
+  const auto labels = kmeans_labels(events, truth, {240, 180}, Params{}, {Chunking::Kind::kEvents, 256});
+  // Two far blobs and k = 2: within every chunk, each blob's kept events share one label,
+  // and the two labels differ. Filtered events are noise.
+  for (const auto& [begin, end] : chunk_ranges(events, {Chunking::Kind::kEvents, 256})) {
+    std::set<std::int32_t> of[2];
+    for (size_t i = begin; i < end; ++i) {
+      if (labels[i] >= 0) of[which[i]].insert(labels[i]);
+    }
+    ASSERT_EQ(of[0].size(), 1u);
+    ASSERT_EQ(of[1].size(), 1u);
+    EXPECT_NE(*of[0].begin(), *of[1].begin());
+  }
+}
+
+TEST(TrackingMetrics, ErrorsWithinTauAndAssociation) {
+  std::vector<gen::TruthSample> centres;
+  for (TimeUs t = 0; t <= 100000; t += 1000) {
+    centres.push_back({t, 0, 50.0 + t * 1e-4, 50, 10});  // object 0 moves at 100 px/s in x
+    centres.push_back({t, 1, 150, 100, 10});
+  }
+  std::vector<TrackUpdate> updates;
+  for (TimeUs t = 5000; t <= 95000; t += 10000) {
+    updates.push_back({t, 7, 50.0 + t * 1e-4 + 3.0, 50, 100, 0, 50.0 + t * 1e-4 + 4.0, 50});  // 3 px off (raw 4)
+    updates.push_back({t + 500, 9, 151, 100, 0, 0, 150, 100});                              // 1 px off (raw 0)
+    updates.push_back({t, 11, 10, 170, 0, 0, 10, 170});                                     // near nothing
+  }
+  const TrackingReport r = tracking_report(updates, centres, 2, 2.5);
+  ASSERT_EQ(r.objects.size(), 2u);
+  EXPECT_EQ(r.objects[0].tracks, (std::vector<std::int32_t>{7}));
+  EXPECT_EQ(r.objects[1].tracks, (std::vector<std::int32_t>{9}));
+  EXPECT_NEAR(r.objects[0].kalman.mean, 3.0, 1e-9);
+  EXPECT_NEAR(r.objects[0].kalman.std, 0.0, 1e-6);
+  EXPECT_DOUBLE_EQ(r.objects[0].kalman.within, 0.0);
+  EXPECT_NEAR(r.objects[0].raw.mean, 4.0, 1e-9);
+  EXPECT_NEAR(r.objects[0].velocity_error, 0.0, 1e-6);
+  EXPECT_NEAR(r.objects[1].kalman.mean, 1.0, 1e-9);
+  EXPECT_DOUBLE_EQ(r.objects[1].kalman.within, 1.0);
+  EXPECT_DOUBLE_EQ(r.objects[1].raw.mean, 0.0);
+  EXPECT_EQ(r.spurious_updates, 10);
+  EXPECT_EQ(r.all_kalman.samples, 20);
+  EXPECT_DOUBLE_EQ(r.all_kalman.within, 0.5);
+}
+
+TEST(Evaluation, OcclusionChunksAreRecognised) {
+  Scene s;
+  for (TimeUs t = 0; t < 4000; t += 10) s.events.push_back({t, 0, 0, 0}), s.truth.push_back(0);
+  for (TimeUs ms = 0; ms < 4; ++ms) {
+    s.centres.push_back({ms * 1000, 0, 10, 10, 5});
+    s.centres.push_back({ms * 1000, 1, ms < 2 ? 30.0 : 18.0, 10, 5});  // overlapping from 2 ms
+  }
+  const auto overlap = overlap_by_ms(s);
+  EXPECT_EQ(overlap, (std::vector<bool>{false, false, true, true}));
+  std::int64_t all = 0, clear = 0;
+  score_chunks(s, s.truth, {Chunking::Kind::kTime, 1000}, &all);
+  score_chunks(s, s.truth, {Chunking::Kind::kTime, 1000}, &clear, true);
+  EXPECT_EQ(all, 4);
+  EXPECT_EQ(clear, 2);
+}
+
+TEST(MetricsCommand, PrintsOneLineOfScores) {
+  test::TempDir dir;
+  std::string truth = "t_us,x,y,p,label\n", pred = truth;
+  const std::vector<int> t = {0, 0, 0, 0, 0, 1, 0, 1, 1, 1, 1, 2, 0, 0, 2, 2, 2};
+  const std::vector<int> p = {0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2};
+  for (size_t i = 0; i < t.size(); ++i) {
+    const std::string row = std::to_string(i * 10) + "," + std::to_string(i) + ",1,1,";
+    truth += row + std::to_string(t[i]) + "\n";
+    pred += row + std::to_string(p[i]) + "\n";
+  }
+  const auto r = test::run_command(test::evms_binary() + " metrics --truth " + dir.write("t.csv", truth) + " --pred " +
+                                   dir.write("p.csv", pred) + " --chunk-events 100");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  double ari, nmi, prec, rec, f;
+  ASSERT_EQ(std::sscanf(r.out.c_str(), "%lf %lf %lf %lf %lf", &ari, &nmi, &prec, &rec, &f), 5) << r.out;
+  EXPECT_NEAR(ari, 1920.0 / 7904.0, 1e-6);
+  EXPECT_NEAR(nmi, 0.36, 0.005);
+  EXPECT_NEAR(prec, 0.5, 1e-6);
+  EXPECT_NEAR(rec, 20.0 / 44.0, 1e-6);
+  EXPECT_NEAR(f, 2 * 0.5 * (20.0 / 44.0) / (0.5 + 20.0 / 44.0), 1e-6);
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1);
+}
+
+TEST(MetricsCommand, MismatchedFilesAreAnError) {
+  test::TempDir dir;
+  const auto a = dir.write("a.csv", "t_us,x,y,p,label\n1,2,3,1,0\n2,2,3,1,0\n");
+  const auto b = dir.write("b.csv", "t_us,x,y,p,label\n1,2,3,1,0\n2,5,3,1,0\n");
+  const auto r = test::run_command(test::evms_binary() + " metrics --truth " + a + " --pred " + b);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(b + ": line 3: event"), std::string::npos) << r.err;
+  const auto c = dir.write("c.csv", "t,x,y,p\n");
+  const auto r2 = test::run_command(test::evms_binary() + " metrics --truth " + c + " --pred " + b);
+  EXPECT_NE(r2.err.find(c + ": line 1: bad header"), std::string::npos) << r2.err;
+}
+
+TEST(EvalCommand, WritesTheReportWithEveryFigure) {
+  test::TempDir dir;
+  const auto r = test::run_command(test::evms_binary() + " eval --scenes translation,rotation --speeds 1,2 --duration-s 0.4 "
+                                   "--bandwidths 0.06,0.08 --real-dir /nonexistent --out " + dir.path("ev"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::stringstream report;
+  report << std::ifstream(dir.path("ev/report.md")).rdbuf();
+  for (const char* section : {"Table I", "KM (true k)", "## Targets", "Clusters over time", "Cost against speed",
+                              "F against bandwidth", "## Tracking", "Share", "Real recordings"}) {
+    EXPECT_NE(report.str().find(section), std::string::npos) << section;
+  }
+  for (const char* fig : {"clusters_translation", "ops_vs_speed", "f_vs_speed", "f_vs_bandwidth", "tracks_rotation",
+                          "within_tau_translation"}) {
+    const auto svg = dir.path(std::string("ev/fig/") + fig + ".svg");
+    ASSERT_TRUE(std::filesystem::exists(svg)) << svg;
+    EXPECT_GT(std::filesystem::file_size(svg), 2000u) << svg;
+  }
+}
+
+TEST(SweepCommand, PrintsATablePerParameter) {
+  const auto r = test::run_command(test::evms_binary() + " sweep --scenes rotation --duration-s 0.3 --vary bandwidth=0.06,0.08 "
+                                   "--vary packet-size=128,256");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("## bandwidth"), std::string::npos);
+  EXPECT_NE(r.out.find("| 0.06 |"), std::string::npos);
+  EXPECT_NE(r.out.find("## packet-size"), std::string::npos);
+  EXPECT_NE(r.out.find("| 128 |"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace evms::eval
