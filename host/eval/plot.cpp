@@ -58,6 +58,12 @@ const char* kStyle =
     "set grid lc rgb '#dddddd'\nset key outside right top box\nset border lc rgb '#555555'\n"
     "set colorsequence podo\n";
 
+std::string terminal(bool png, int width, int height) {
+  const std::string size = " size " + std::to_string(width) + "," + std::to_string(height);
+  return png ? "set terminal pngcairo" + size + " font 'sans,10' background '#ffffff'\n"
+             : "set terminal svg" + size + " dynamic font 'sans,11' background '#ffffff'\n";
+}
+
 }  // namespace
 
 void render(const Plot& p, const std::string& stem) {
@@ -65,8 +71,7 @@ void render(const Plot& p, const std::string& stem) {
   write_series(dat, p.series);
   dat.close();
   std::ofstream gp(stem + ".gp");
-  gp << "set terminal svg size " << p.width << "," << p.height << " dynamic font 'sans,11' background '#ffffff'\n";
-  gp << "set output " << quoted(stem + ".svg") << "\n" << kStyle;
+  gp << terminal(p.png, p.width, p.height) << "set output " << quoted(stem + (p.png ? ".png" : ".svg")) << "\n" << kStyle;
   panel_commands(gp, p, stem + ".dat", 0);
   gp.close();
   run_gnuplot(stem + ".gp");
@@ -84,10 +89,10 @@ void render(const std::vector<Plot>& panels, const std::string& title, const std
   dat.close();
   const int width = panels.empty() ? 760 : panels[0].width;
   const int height = panels.empty() ? 420 : panels[0].height;
+  const bool png = !panels.empty() && panels[0].png;
   std::ofstream gp(stem + ".gp");
-  gp << "set terminal svg size " << width << "," << height * static_cast<int>(panels.size())
-     << " dynamic font 'sans,11' background '#ffffff'\n";
-  gp << "set output " << quoted(stem + ".svg") << "\n" << kStyle;
+  gp << terminal(png, width, height * static_cast<int>(panels.size())) << "set output " << quoted(stem + (png ? ".png" : ".svg"))
+     << "\n" << kStyle;
   gp << "set multiplot layout " << panels.size() << ",1 title " << quoted(title) << "\n";
   for (size_t i = 0; i < panels.size(); ++i) panel_commands(gp, panels[i], stem + ".dat", first[i]);
   gp << "unset multiplot\n";
@@ -107,8 +112,7 @@ void render(const BarChart& c, const std::string& stem) {
   }
   dat.close();
   std::ofstream gp(stem + ".gp");
-  gp << "set terminal svg size 760,420 dynamic font 'sans,11' background '#ffffff'\n";
-  gp << "set output " << quoted(stem + ".svg") << "\n" << kStyle;
+  gp << terminal(false, 760, 420) << "set output " << quoted(stem + ".svg") << "\n" << kStyle;
   gp << "set title " << quoted(c.title) << "\nset ylabel " << quoted(c.ylabel) << "\n";
   if (c.y_range) gp << "set yrange [" << c.y_range->first << ":" << c.y_range->second << "]\n";
   gp << "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"

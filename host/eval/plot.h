@@ -21,6 +21,7 @@ struct Plot {
   bool log_y = false;
   std::optional<std::pair<double, double>> y_range;
   int width = 760, height = 420;
+  bool png = false;  // dense scatter plots: a PNG stays small where an SVG would not
 };
 
 // Grouped bars: one group per category, one bar per series.
@@ -31,7 +32,8 @@ struct BarChart {
   std::optional<std::pair<double, double>> y_range;
 };
 
-// Writes stem.dat, stem.gp and stem.svg; throws std::runtime_error when gnuplot fails.
+// Writes stem.dat, stem.gp and stem.svg (stem.png for `png` plots); throws std::runtime_error
+// when gnuplot fails.
 void render(const Plot& plot, const std::string& stem);
 void render(const BarChart& chart, const std::string& stem);
 // Several plots stacked in one figure.

@@ -153,9 +153,9 @@ TEST(EvalCommand, WritesTheReportWithEveryFigure) {
                               "F against bandwidth", "## Tracking", "Share", "Real recordings"}) {
     EXPECT_NE(report.str().find(section), std::string::npos) << section;
   }
-  for (const char* fig : {"clusters_translation", "ops_vs_speed", "f_vs_speed", "f_vs_bandwidth", "tracks_rotation",
-                          "within_tau_translation"}) {
-    const auto svg = dir.path(std::string("ev/fig/") + fig + ".svg");
+  for (const char* fig : {"clusters_translation.svg", "ops_vs_speed.svg", "f_vs_speed.svg", "f_vs_bandwidth.svg",
+                          "tracks_rotation.png", "within_tau_translation.svg"}) {
+    const auto svg = dir.path(std::string("ev/fig/") + fig);
     ASSERT_TRUE(std::filesystem::exists(svg)) << svg;
     EXPECT_GT(std::filesystem::file_size(svg), 2000u) << svg;
   }
