@@ -1,0 +1,114 @@
+// The evms core: filter -> packets -> features -> hybrid mean shift -> mode merging ->
+// centroids -> tracking -> labels, bit-accurate, for one Shape. rtl/ implements exactly this
+// and sim/ checks every output word against it.
+//
+// Word by word: an event passes the background-activity filter (or is noise), joins the
+// pending queue (every event, in input order) and, when kept, the open packet. A packet closes
+// when it holds packet_size events, when the next kept event is more than packet_max_span_us
+// newer than its first, when the pending queue is full (a hardware bound golden does not
+// have: kPendingDepth = 4 N), or on a flush word. Closing clusters and tracks the packet and
+// then releases every pending event with its label. A noise event that arrives while no packet
+// is open leaves at once.
+#pragma once
+
+#include <cstdint>
+
+#include "hls/cluster/centroid.h"
+#include "hls/cluster/features.h"
+#include "hls/cluster/mean_shift.h"
+#include "hls/cluster/merge.h"
+#include "hls/core/config.h"
+#include "hls/core/shape.h"
+#include "hls/core/words.h"
+#include "hls/filter/ba_filter.h"
+#include "hls/fixed/stream.h"
+#include "hls/track/tracker.h"
+
+namespace evms::hls {
+
+template <class S>
+class Core {
+ public:
+  static constexpr int kLabelDepth = S::kPendingDepth + 1;
+  using LabelStream = Stream<LabelWord, kLabelDepth>;
+  using TrackStream = Stream<TrackWord, S::kClustersMax + 1>;
+  using PacketStream = Stream<PacketWord, 2>;
+
+  void reset(const Config& cfg) {
+    cfg_ = cfg;
+    filter_.reset();
+    tracker_.reset();
+    n_ = 0;
+    pending_n_ = 0;
+  }
+
+  // Consumes one input word. The output streams must have room for what a packet releases
+  // (the host drains them after every word; the RTL holds them in FIFOs of the same depth).
+  void process(const EventWord& in, LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
+    if (in.flush) {
+      close_packet(labels, tracks, packets);
+      return;
+    }
+    const bool kept = filter_.accept(in, cfg_);
+    if (!kept) {
+      pending_[pending_n_++] = {in, -1};
+      if (n_ == 0 || pending_n_ == S::kPendingDepth) close_packet(labels, tracks, packets);
+      return;
+    }
+    if (n_ > 0 && cfg_.packet_max_span_us != 0 && in.t - packet_.t[0] > cfg_.packet_max_span_us) {
+      close_packet(labels, tracks, packets);
+    }
+    pending_[pending_n_++] = {in, static_cast<std::int16_t>(n_)};
+    packet_.x[n_] = in.x, packet_.y[n_] = in.y, packet_.p[n_] = in.p, packet_.t[n_] = in.t;
+    ++n_;
+    if (n_ >= cfg_.packet_size || n_ >= S::kPacketMax || pending_n_ == S::kPendingDepth) close_packet(labels, tracks, packets);
+  }
+
+  const Tracker<S>& tracker() const { return tracker_; }
+
+ private:
+  void close_packet(LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
+    std::int32_t label_of[S::kPacketMax];
+    if (n_ > 0) {
+      Features<S> phi;
+      packet_features(packet_, n_, cfg_, phi);
+      const int sweeps = mean_shift(phi, n_, cfg_);
+      std::int8_t cluster_of[S::kPacketMax];
+      const int clusters = merge_modes(phi, n_, cfg_, cluster_of);
+      Measurement z[S::kClustersMax];
+      centroids(packet_, n_, cluster_of, clusters, z);
+      std::int32_t ids[S::kClustersMax];
+      tracker_.step(packet_.t[n_ - 1], z, clusters, cfg_, ids, tracks);
+      for (int i = 0; i < S::kPacketMax; ++i) {
+        if (i >= n_) break;
+        label_of[i] = cluster_of[i] >= 0 ? ids[cluster_of[i]] : -1;
+      }
+      packets.write({packet_.t[0], packet_.t[n_ - 1], static_cast<std::uint16_t>(n_), static_cast<std::uint8_t>(clusters),
+                     static_cast<std::uint8_t>(sweeps)});
+    }
+  release:
+    for (int k = 0; k < S::kPendingDepth; ++k) {
+#pragma HLS PIPELINE II = 1
+      if (k >= pending_n_) break;
+      const Pending& p = pending_[k];
+      labels.write({p.e.t, p.e.x, p.e.y, p.e.p, p.index < 0 ? -1 : label_of[p.index]});
+    }
+    n_ = 0;
+    pending_n_ = 0;
+  }
+
+  struct Pending {
+    EventWord e;
+    std::int16_t index;  // in the packet, or -1 for a filtered event
+  };
+
+  Config cfg_;
+  BackgroundActivityFilter<S> filter_;
+  Tracker<S> tracker_;
+  PacketEvents<S> packet_;
+  int n_ = 0;
+  Pending pending_[S::kPendingDepth];
+  int pending_n_ = 0;
+};
+
+}  // namespace evms::hls

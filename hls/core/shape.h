@@ -1,0 +1,62 @@
+// The compile-time shape of a core: sizes, loop bounds and word widths. A build of the core
+// (C++ model, RTL, board) is one Shape; the runtime settings are in config.h.
+//
+// Formats (raw integers; "frac" = fraction bits):
+//   feature phi      unsigned, kFeatInt.kFeatFrac, in bandwidth units: the kernel is
+//                    exp(-|phi_i - phi_j|^2), so phi = feature / (h * sqrt 2)
+//   kernel weight    unsigned 1.kWeightFrac (1.0 is representable)
+//   sums             products weight * phi truncated to kSumFrac fraction bits, summed exactly
+//   position (track) signed, kPosFrac fraction bits, px
+//   velocity (track) signed, kPosFrac fraction bits, px per tick; a tick is 2^kTickLog2 us
+//   covariances      kCovFrac fraction bits
+#pragma once
+
+namespace evms::hls {
+
+template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsMax, int ClustersMax, int TracksMax,
+          int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,
+          int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12>
+struct Shape {
+  // Sensor and memories.
+  static constexpr int kMaxWidth = MaxWidth;
+  static constexpr int kMaxHeight = MaxHeight;
+  static constexpr int kTimestampBits = TimestampBits;    // per-pixel timestamp memory word: 16 or 32
+  static constexpr int kTimestampShift = TimestampShift;  // stored time unit: 2^shift us
+  // Packets.
+  static constexpr int kPacketMax = PacketMax;   // N: kept events per packet (the runtime size may be smaller)
+  static constexpr int kPendingDepth = PendingDepth;   // events held until their packet is labelled
+  static constexpr int kLanes = Lanes;           // P: kernel evaluations per clock in the RTL
+  static constexpr int kIterationsMax = IterationsMax;
+  static constexpr int kClustersMax = ClustersMax;
+  static constexpr int kTracksMax = TracksMax;
+  // Mean-shift words.
+  static constexpr int kFeatInt = 5;
+  static constexpr int kFeatFrac = FeatFrac;
+  static constexpr int kFeatBits = kFeatInt + kFeatFrac;
+  static constexpr int kWeightFrac = WeightFrac;
+  static constexpr int kExpTableLog2 = ExpTableLog2;
+  static constexpr int kExpInterpBits = 8;
+  static constexpr int kSumFrac = 16;
+  static constexpr int kRecipTableLog2 = 8;
+  static constexpr int kRecipFrac = 20;
+  static constexpr int kDecayFrac = 32;          // fraction bits of dt * (1 / tau)
+  static constexpr int kCoordScaleFrac = 20;     // fraction bits of the x, y scale registers
+  // Tracker words.
+  static constexpr int kPosFrac = PosFrac;
+  static constexpr int kTickLog2 = 14;           // 16.384 ms
+  static constexpr int kCovFrac = 16;
+  static constexpr int kGainFrac = 20;
+  static constexpr int kNoiseFrac = 32;          // q / 3, q / 2 and q per tick^3
+  static constexpr int kMaxDtLog2 = 20;          // time steps above 2^20 us (1 s) are clamped
+};
+
+// The default board build: a DAVIS240-class sensor, the defaults of docs/sweep.md, and a 16-bit
+// timestamp per pixel in 128 us units (one iCE40 SPRAM word).
+using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
+// The host's fixed-point backend: room for every recording evms reads (up to 1280x720), exact
+// 32-bit microsecond timestamps per pixel (its filter decides exactly as golden's), and a
+// pending queue deep enough that noisy recordings (a third noise, say) never close a packet
+// early, as golden never does.
+using HostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10>;
+
+}  // namespace evms::hls

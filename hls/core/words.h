@@ -1,0 +1,38 @@
+// The words on the core's streams: events in; labelled events, track updates and packet
+// summaries out. Times are microseconds modulo 2^32 (the host keeps the epoch).
+#pragma once
+
+#include <cstdint>
+
+namespace evms::hls {
+
+struct EventWord {
+  std::uint32_t t = 0;
+  std::uint16_t x = 0, y = 0;
+  std::uint8_t p = 0;
+  bool flush = false;   // not an event: close the open packet and flush everything held
+};
+
+struct LabelWord {
+  std::uint32_t t = 0;
+  std::uint16_t x = 0, y = 0;
+  std::uint8_t p = 0;
+  std::int32_t label = -1;
+};
+
+struct TrackWord {
+  std::uint32_t t = 0;      // measurement time
+  std::int32_t id = 0;
+  std::int32_t x = 0, y = 0;    // filtered position, Shape::kPosFrac fraction bits, px
+  std::int32_t vx = 0, vy = 0;  // filtered velocity, kPosFrac fraction bits, px per tick
+  std::int32_t zx = 0, zy = 0;  // the measurement (cluster centre of mass), kPosFrac, px
+};
+
+struct PacketWord {
+  std::uint32_t t_first = 0, t_last = 0;
+  std::uint16_t events = 0;
+  std::uint8_t clusters = 0;
+  std::uint8_t iterations = 0;
+};
+
+}  // namespace evms::hls

@@ -1,0 +1,63 @@
+// Background-activity filter in hardware form: the rule of golden/filter (an event is kept
+// when one of its 8 neighbours fired within the window; its own pixel does not count; pixels
+// outside the sensor do not exist), with a per-pixel timestamp memory of the Shape's width:
+//   32 bits, 1 us units (HostShape): the same decisions as golden, up to the 71-minute wrap;
+//   16 bits, 128 us units (DefaultShape): one iCE40 SPRAM word per pixel, so 240x180 fits the
+//     UP5K's four SPRAMs; the window is then compared in 128 us units.
+// Zero means "never fired" (a time that would store as zero stores as one). Times wrap
+// modulo the word; so that a stale time cannot alias into the window a wrap later, every
+// event also scrubs the next two memory entries, clearing them once older than half the wrap
+// period (4.2 s at 16 bits; at 240x180 a full sweep takes 21,600 events).
+#pragma once
+
+#include <cstdint>
+#include <type_traits>
+
+#include "hls/core/config.h"
+#include "hls/core/words.h"
+
+namespace evms::hls {
+
+template <class S>
+class BackgroundActivityFilter {
+ public:
+  void reset() {
+    for (int i = 0; i < S::kMaxWidth * S::kMaxHeight; ++i) stamp_[i] = 0;
+    scrub_ = 0;
+  }
+
+  bool accept(const EventWord& e, const Config& cfg) {
+    if (!cfg.filter_enabled) return true;
+    if (e.x >= cfg.sensor_width || e.y >= cfg.sensor_height) return false;
+    const Stamp now = static_cast<Stamp>(e.t >> S::kTimestampShift);
+    bool supported = false;
+  neighbours:
+    for (int k = 0; k < 9; ++k) {
+#pragma HLS PIPELINE II = 1
+      const int nx = e.x + k % 3 - 1, ny = e.y + k / 3 - 1;
+      if (k == 4 || nx < 0 || ny < 0 || nx >= cfg.sensor_width || ny >= cfg.sensor_height) continue;
+      const Stamp then = stamp_[ny * S::kMaxWidth + nx];
+      if (then != 0 && static_cast<Stamp>(now - then) <= cfg.filter_window) supported = true;
+    }
+    stamp_[e.y * S::kMaxWidth + e.x] = now == 0 ? 1 : now;
+  scrub:
+    for (int k = 0; k < kScrubPerEvent; ++k) {
+      // Clears entries older than half the wrap period, so that stale times cannot alias
+      // into the window a wrap later.
+      const Stamp then = stamp_[scrub_];
+      if (then != 0 && static_cast<Stamp>(now - then) >= kHalfWrap) stamp_[scrub_] = 0;
+      scrub_ = scrub_ + 1 == S::kMaxWidth * S::kMaxHeight ? 0 : scrub_ + 1;
+    }
+    return supported;
+  }
+
+ private:
+  static_assert(S::kTimestampBits == 16 || S::kTimestampBits == 32, "timestamp memory words are 16 or 32 bits");
+  using Stamp = std::conditional_t<S::kTimestampBits == 16, std::uint16_t, std::uint32_t>;
+  static constexpr Stamp kHalfWrap = static_cast<Stamp>(Stamp{1} << (S::kTimestampBits - 1));
+  static constexpr int kScrubPerEvent = 2;
+  Stamp stamp_[S::kMaxWidth * S::kMaxHeight] = {};
+  int scrub_ = 0;
+};
+
+}  // namespace evms::hls

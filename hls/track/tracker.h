@@ -1,0 +1,141 @@
+// Multi-target tracking in fixed point: the rules of golden/track/tracker.h with slots in a
+// register file. Per packet:
+//  1. confirmed tracks not measured for more than coast_us end;
+//  2. (track, measurement) pairs within the gate of the track's prediction are candidates; the
+//     nearest pair is taken, then the nearest among the rest, and so on (ties: lower slot, then
+//     lower measurement), so association is one-to-one;
+//  3. matched tracks predict to their measurement's time and update; confirmed ones report;
+//  4. unmatched tentative tracks end; unmatched confirmed ones coast;
+//  5. unmatched measurements start tracks in the lowest free slots with new IDs (31-bit
+//     counter, never reused), or, with no slot free, leave their events as noise.
+#pragma once
+
+#include <cstdint>
+
+#include "hls/cluster/centroid.h"
+#include "hls/core/words.h"
+#include "hls/fixed/stream.h"
+#include "hls/track/kalman_axis.h"
+
+namespace evms::hls {
+
+template <class S>
+class Tracker {
+ public:
+  using Axis = KalmanAxis<S>;
+
+  void reset() {
+    for (int s = 0; s < S::kTracksMax; ++s) slot_[s].valid = false;
+    next_id_ = 0;
+    unassigned_ = 0;
+  }
+
+  // Assigns a track ID (or -1) to each measurement and writes the updates of confirmed
+  // tracks to `updates`.
+  template <int Depth>
+  void step(std::uint32_t packet_time, const Measurement z[S::kClustersMax], int m, const Config& cfg, std::int32_t ids[S::kClustersMax],
+            Stream<TrackWord, Depth>& updates) {
+  expire:
+    for (int s = 0; s < S::kTracksMax; ++s) {
+#pragma HLS UNROLL
+      if (slot_[s].valid && static_cast<std::int32_t>(packet_time - slot_[s].t_last) > static_cast<std::int32_t>(cfg.coast_us)) {
+        slot_[s].valid = false;
+      }
+    }
+    bool slot_matched[S::kTracksMax] = {};
+    bool meas_matched[S::kClustersMax] = {};
+    for (int c = 0; c < S::kClustersMax; ++c) ids[c] = -1;
+
+  rounds:
+    for (int round = 0; round < S::kClustersMax; ++round) {
+      int best_s = -1, best_m = -1;
+      std::uint64_t best_d2 = 0;
+    pairs:
+      for (int s = 0; s < S::kTracksMax; ++s) {
+        if (!slot_[s].valid || slot_matched[s] || s >= cfg.max_tracks) continue;
+        for (int k = 0; k < S::kClustersMax; ++k) {
+#pragma HLS PIPELINE II = 1
+          if (k >= m) break;
+          if (meas_matched[k]) continue;
+          const std::uint64_t d2 = distance2(slot_[s], z[k]);
+          if (d2 <= cfg.gate2 && (best_s < 0 || d2 < best_d2)) best_s = s, best_m = k, best_d2 = d2;
+        }
+      }
+      if (best_s < 0) break;
+      slot_matched[best_s] = meas_matched[best_m] = true;
+      Slot& t = slot_[best_s];
+      const std::uint32_t dt = z[best_m].t - t.t_last;
+      Axis::predict(t.ax, dt, cfg);
+      Axis::predict(t.ay, dt, cfg);
+      t.t_last = z[best_m].t;
+      Axis::update(t.ax, z[best_m].x, cfg);
+      Axis::update(t.ay, z[best_m].y, cfg);
+      if (!t.confirmed) t.confirmed = ++t.hits >= cfg.confirm_hits;
+      ids[best_m] = t.id;
+      if (t.confirmed) updates.write({z[best_m].t, t.id, t.ax.pos, t.ay.pos, t.ax.vel, t.ay.vel, z[best_m].x, z[best_m].y});
+    }
+
+  drop_tentative:
+    for (int s = 0; s < S::kTracksMax; ++s) {
+      if (slot_[s].valid && !slot_matched[s] && !slot_[s].confirmed) slot_[s].valid = false;
+    }
+
+  births:
+    for (int k = 0; k < S::kClustersMax; ++k) {
+      if (k >= m) break;
+      if (meas_matched[k]) continue;
+      int free = -1;
+      for (int s = S::kTracksMax - 1; s >= 0; --s) {
+        if (!slot_[s].valid && s < cfg.max_tracks) free = s;
+      }
+      if (free < 0) {
+        ++unassigned_;
+        continue;
+      }
+      Slot& t = slot_[free];
+      t.valid = true;
+      t.id = next_id_;
+      next_id_ = (next_id_ + 1) & 0x7FFFFFFF;
+      t.hits = 1;
+      t.confirmed = cfg.confirm_hits <= 1;
+      t.t_last = z[k].t;
+      t.ax = {z[k].x, 0, cfg.p0_pos, 0, cfg.p0_vel};
+      t.ay = {z[k].y, 0, cfg.p0_pos, 0, cfg.p0_vel};
+      ids[k] = t.id;
+      if (t.confirmed) updates.write({z[k].t, t.id, z[k].x, z[k].y, 0, 0, z[k].x, z[k].y});
+    }
+  }
+
+  std::int32_t tracks_started() const { return next_id_; }
+  std::int64_t unassigned_clusters() const { return unassigned_; }
+  // The covariance of a live slot, for tests.
+  bool slot_state(int s, AxisState& ax, AxisState& ay) const {
+    if (!slot_[s].valid) return false;
+    ax = slot_[s].ax, ay = slot_[s].ay;
+    return true;
+  }
+
+ private:
+  struct Slot {
+    bool valid = false, confirmed = false;
+    std::int32_t id = 0;
+    std::uint8_t hits = 0;
+    std::uint32_t t_last = 0;
+    AxisState ax, ay;
+  };
+
+  static std::uint64_t distance2(const Slot& t, const Measurement& z) {
+    const std::int32_t dt_raw = static_cast<std::int32_t>(z.t - t.t_last);
+    const std::uint32_t dt = dt_raw > 0 ? static_cast<std::uint32_t>(dt_raw) : 0;
+    constexpr std::int64_t kLimit = std::int64_t{4096} << S::kPosFrac;  // px
+    const std::int64_t dx = clamp_sym(std::int64_t{z.x} - Axis::predicted(t.ax, dt), kLimit);
+    const std::int64_t dy = clamp_sym(std::int64_t{z.y} - Axis::predicted(t.ay, dt), kLimit);
+    return static_cast<std::uint64_t>(dx * dx + dy * dy);
+  }
+
+  Slot slot_[S::kTracksMax];
+  std::int32_t next_id_ = 0;
+  std::int64_t unassigned_ = 0;
+};
+
+}  // namespace evms::hls
