@@ -8,6 +8,7 @@ namespace evms::backend {
 namespace {
 const std::array kBackends = {
     BackendInfo{"golden", "floating-point reference model (Eigen, double)", &make_golden_backend},
+    BackendInfo{"fixed", "bit-accurate fixed-point core (hls/), in C++", &make_fixed_backend},
 };
 }  // namespace
 

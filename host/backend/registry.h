@@ -5,4 +5,5 @@
 
 namespace evms::backend {
 std::unique_ptr<Backend> make_golden_backend(const BackendOptions& o);
+std::unique_ptr<Backend> make_fixed_backend(const BackendOptions& o);
 }  // namespace evms::backend

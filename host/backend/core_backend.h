@@ -1,0 +1,64 @@
+// What every backend built on the core shares: mapping evms events to core words (times
+// relative to the first event, modulo 2^32) and core output words back to labelled events and
+// track updates. The fixed backend runs the C++ core; the rtl and board backends run the same
+// words through the Verilated RTL or a serial link.
+#pragma once
+
+#include <deque>
+
+#include "host/backend/backend.h"
+#include "host/backend/core_config.h"
+#include "hls/core/words.h"
+
+namespace evms::backend {
+
+template <class S>
+class CoreWordMapper {
+ public:
+  hls::EventWord to_word(const Event& e) {
+    // Core time starts at 1: the filter's memory reserves 0 for "never fired".
+    if (!started_) base_ = e.t - 1, started_ = true;
+    latest_ = e.t;
+    pending_.push_back(e);
+    return {static_cast<std::uint32_t>(e.t - base_), e.x, e.y, e.p, false};
+  }
+  // The oldest event not yet labelled, with its label; the word must be its echo.
+  LabelledEvent label(const hls::LabelWord& w) {
+    const Event e = pending_.front();
+    pending_.pop_front();
+    if (w.x != e.x || w.y != e.y || w.t != static_cast<std::uint32_t>(e.t - base_)) {
+      throw std::logic_error("core returned labels out of order");
+    }
+    return {e, w.label};
+  }
+  TimeUs to_time(std::uint32_t core_t) const {
+    const std::uint32_t latest = static_cast<std::uint32_t>(latest_ - base_);
+    return latest_ - static_cast<std::int32_t>(latest - core_t);
+  }
+  TrackUpdate track(const hls::TrackWord& w) const {
+    return {to_time(w.t), w.id, core_px<S>(w.x), core_px<S>(w.y), core_px_per_s<S>(w.vx), core_px_per_s<S>(w.vy),
+            core_px<S>(w.zx), core_px<S>(w.zy)};
+  }
+  PacketSummary packet(const hls::PacketWord& w) const {
+    return {to_time(w.t_first), to_time(w.t_last), w.events, w.clusters, w.iterations};
+  }
+  size_t waiting() const { return pending_.size(); }
+
+ private:
+  bool started_ = false;
+  TimeUs base_ = 0, latest_ = 0;
+  std::deque<Event> pending_;
+};
+
+// Statistics every core backend counts from its output words.
+struct CoreStats {
+  BackendStats s;
+  void on_packet(const hls::PacketWord& w) {
+    ++s.packets;
+    s.events_kept += w.events;
+    s.clusters += w.clusters;
+    s.iterations += w.iterations;
+  }
+};
+
+}  // namespace evms::backend

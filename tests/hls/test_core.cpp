@@ -1,0 +1,139 @@
+// The fixed-point core end to end: its behaviour word by word, and its agreement with the
+// golden model on the labelled scenes and the real recordings.
+#include <gtest/gtest.h>
+
+#include "hls/core/core.h"
+#include "host/backend/core_config.h"
+#include "host/eval/agreement.h"
+#include "host/eval/evaluation.h"
+#include "tests/support/read_all.h"
+#include "tests/support/scenes.h"
+
+namespace evms {
+namespace {
+
+using hls::HostShape;
+
+struct CoreRun {
+  std::vector<hls::LabelWord> labels;
+  std::vector<hls::TrackWord> tracks;
+  std::vector<hls::PacketWord> packets;
+  std::vector<size_t> packet_after_word;  // index of the input word that closed each packet
+};
+
+template <class S>
+CoreRun run_core(const std::vector<hls::EventWord>& words, const hls::Config& cfg) {
+  auto core = std::make_unique<hls::Core<S>>();
+  auto labels = std::make_unique<typename hls::Core<S>::LabelStream>();
+  typename hls::Core<S>::TrackStream tracks;
+  typename hls::Core<S>::PacketStream packets;
+  core->reset(cfg);
+  CoreRun r;
+  for (size_t i = 0; i < words.size(); ++i) {
+    core->process(words[i], *labels, tracks, packets);
+    hls::LabelWord l;
+    while (labels->read(l)) r.labels.push_back(l);
+    hls::TrackWord t;
+    while (tracks.read(t)) r.tracks.push_back(t);
+    hls::PacketWord p;
+    while (packets.read(p)) r.packets.push_back(p), r.packet_after_word.push_back(i);
+  }
+  EXPECT_FALSE(labels->overflowed() || tracks.overflowed() || packets.overflowed());
+  return r;
+}
+
+std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {
+  std::vector<hls::EventWord> w;
+  for (const Event& e : events) w.push_back({static_cast<std::uint32_t>(e.t + 1), e.x, e.y, e.p, false});
+  hls::EventWord flush;
+  flush.flush = true;
+  w.push_back(flush);
+  return w;
+}
+
+TEST(Core, OneLabelPerEventInInputOrderAndAFlushEmptiesIt) {
+  const auto events = test::blob_events({{60, 90}, {180, 90}}, 40000, 0, 60000, {240, 180}, 1);
+  const auto r = run_core<HostShape>(words_of(events), backend::core_config<HostShape>(Params{}, {240, 180}));
+  ASSERT_EQ(r.labels.size(), events.size());
+  for (size_t i = 0; i < events.size(); ++i) {
+    ASSERT_EQ(r.labels[i].x, events[i].x);
+    ASSERT_EQ(r.labels[i].t, static_cast<std::uint32_t>(events[i].t + 1));
+  }
+  int two = 0;
+  for (const auto& p : r.packets) two += p.clusters == 2;
+  EXPECT_EQ(two, static_cast<int>(r.packets.size()));
+}
+
+TEST(Core, AFullPendingQueueClosesThePacket) {
+  // A few kept events, then a long stretch of isolated noise: the board core's pending queue
+  // (4 N = 1024 events) fills and the packet closes early, before the flush.
+  using Board = hls::DefaultShape;
+  std::vector<Event> events = test::blob_events({{100, 100}}, 40000, 0, 1000, {240, 180}, 2);
+  const size_t kept_part = events.size();
+  for (int i = 0; i < 2000; ++i) {
+    events.push_back({1000 + i * 50, static_cast<std::uint16_t>((i * 37) % 240), static_cast<std::uint16_t>((i * 91) % 180), 1});
+  }
+  const auto r = run_core<Board>(words_of(events), backend::core_config<Board>(Params{}, {240, 180}));
+  ASSERT_EQ(r.labels.size(), events.size());
+  ASSERT_GE(r.packets.size(), 1u);
+  EXPECT_LT(r.packets[0].events, 256);
+  EXPECT_LT(r.packet_after_word[0], events.size()) << "the packet waited for the flush";
+  EXPECT_GT(r.packet_after_word[0], kept_part + Board::kPendingDepth / 2) << "closed before the queue filled";
+}
+
+TEST(Core, SixteenBitTimestampsScrubStaleEntries) {
+  // A neighbour that fired exactly one 16-bit wrap period (8.4 s) ago must not support: the
+  // scrubber cleared it while other events went by.
+  using Board = hls::DefaultShape;
+  hls::Config cfg = backend::core_config<Board>(Params{}, {240, 180});
+  std::vector<Event> events = {{1000, 50, 50, 1}};
+  const TimeUs wrap = TimeUs{1} << (16 + Board::kTimestampShift);
+  for (int i = 0; i < 30000; ++i) {
+    events.push_back({2000 + i * 200, static_cast<std::uint16_t>(150 + i % 40), static_cast<std::uint16_t>(120 + (i / 40) % 40), 1});
+  }
+  events.push_back({1000 + wrap, 51, 50, 1});
+  const auto r = run_core<Board>(words_of(events), cfg);
+  ASSERT_EQ(r.labels.size(), events.size());
+  EXPECT_EQ(r.labels.back().label, -1) << "a stale time aliased into the window";
+}
+
+// ARI(fixed, golden) >= 0.99 on every scene, F within 0.01 of golden's, and track positions
+// within 0.25 px of golden's (the median update; a borderline gate or merge decision can send
+// one track along another path for a while, which the mean would weigh).
+void expect_agreement(const eval::Scene& scene, const char* what) {
+  SCOPED_TRACE(what);
+  const Params p;
+  const auto golden = eval::run_backend("golden", p, scene.sensor, scene.events);
+  const auto fixed = eval::run_backend("fixed", p, scene.sensor, scene.events);
+  const auto a = eval::agreement(scene.events, golden, fixed, {});
+  EXPECT_GE(a.labels.ari, 0.99);
+  EXPECT_LT(a.track_median_px, 0.25);
+  EXPECT_GT(a.track_matched, 9 * a.track_unmatched);
+  if (!scene.truth.empty()) {
+    const auto fg = eval::score_chunks(scene, golden.labels, {}), ff = eval::score_chunks(scene, fixed.labels, {});
+    EXPECT_NEAR(ff.f, fg.f, 0.01);
+  }
+}
+
+TEST(CoreAgreesWithGolden, OnTheLabelledScenes) {
+  for (auto m : {gen::Motion::kTranslation, gen::Motion::kRotation, gen::Motion::kSixDof}) {
+    gen::SceneConfig c;
+    c.motion = m;
+    c.duration_s = 1.0;
+    expect_agreement(eval::generate_scene(c), gen::motion_name(m));
+  }
+}
+
+TEST(CoreAgreesWithGolden, OnTheRealRecordings) {
+  const std::string dir = test::shared_data_dir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/data/real is absent";
+  for (const char* f : {"dvxplorer_indoor.aedat4", "gen3_moving_blob.evt2.raw", "gen41_dense_scene.evt3.raw", "atis_ncars_sample.dat"}) {
+    eval::Scene s;
+    s.events = test::read_all(dir + "/" + f);
+    s.sensor = read::open_source(dir + "/" + f, {})->info().sensor;
+    expect_agreement(s, f);
+  }
+}
+
+}  // namespace
+}  // namespace evms
