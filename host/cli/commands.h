@@ -10,4 +10,5 @@ void register_params(CLI::App& app);
 void register_sweep(CLI::App& app);
 void register_eval(CLI::App& app);
 void register_metrics(CLI::App& app);
+void register_widths(CLI::App& app);
 }  // namespace evms::cli

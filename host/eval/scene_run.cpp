@@ -33,9 +33,14 @@ struct Collector final : OutputSink {
 }  // namespace
 
 RunResult run_backend(const std::string& backend, const Params& params, SensorSize sensor, std::span<const Event> events) {
+  auto b = backend::make_backend(backend, {params, sensor, ""});
+  return run_backend(*b, events);
+}
+
+RunResult run_backend(backend::Backend& backend, std::span<const Event> events) {
   RunResult r;
   r.labels.reserve(events.size());
-  auto b = backend::make_backend(backend, {params, sensor, ""});
+  backend::Backend* b = &backend;
   Collector sink(&r);
   const auto start = std::chrono::steady_clock::now();
   constexpr size_t kBatch = 4096;
@@ -43,7 +48,7 @@ RunResult run_backend(const std::string& backend, const Params& params, SensorSi
   b->finish(sink);
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.stats = b->stats();
-  if (r.labels.size() != events.size()) throw std::logic_error("backend " + backend + " lost events");
+  if (r.labels.size() != events.size()) throw std::logic_error("a backend lost events");
   return r;
 }
 

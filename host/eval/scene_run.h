@@ -34,5 +34,7 @@ struct RunResult {
 
 RunResult run_backend(const std::string& backend, const Params& params, SensorSize sensor,
                       std::span<const Event> events);
+// The same, on a backend already made (one the registry does not list, say).
+RunResult run_backend(backend::Backend& backend, std::span<const Event> events);
 
 }  // namespace evms::eval

@@ -1,9 +1,9 @@
-// Golden-model throughput on one core, default parameters, events held in memory so that
-// only the method is timed. Real recordings are used when ../shared/data/real is present.
-//   build/bin/bench_golden --benchmark_counters_tabular=true
+// Backend throughput on one core, default parameters, events held in memory so that only the
+// method is timed. Real recordings are used when ../shared/data/real is present.
+//   build/bin/bench_backends --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
-#include "golden/pipeline.h"
+#include "host/backend/backend.h"
 #include "tests/support/read_all.h"
 
 namespace evms {
@@ -15,7 +15,7 @@ struct NullSink final : OutputSink {
   void on_track(const TrackUpdate&) override {}
 };
 
-void run_golden(benchmark::State& state, const std::string& source) {
+void run(benchmark::State& state, const std::string& backend, const std::string& source) {
   std::string path = source;
   if (source.find("://") == std::string::npos) {
     const std::string dir = test::shared_data_dir();
@@ -27,14 +27,14 @@ void run_golden(benchmark::State& state, const std::string& source) {
   }
   const auto events = test::read_all(path);
   const SensorSize sensor = read::open_source(path, {})->info().sensor;
-  golden::PipelineStats stats;
+  backend::BackendStats stats;
   for (auto _ : state) {
-    golden::Pipeline pipeline(Params{}, sensor);
+    auto b = backend::make_backend(backend, {Params{}, sensor, ""});
     NullSink sink;
-    for (const Event& e : events) pipeline.push(e, sink);
-    pipeline.finish(sink);
+    b->push(events, sink);
+    b->finish(sink);
     benchmark::DoNotOptimize(sink.labelled);
-    stats = pipeline.stats();
+    stats = b->stats();
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(events.size()));
   state.counters["events"] = static_cast<double>(events.size());
@@ -44,9 +44,12 @@ void run_golden(benchmark::State& state, const std::string& source) {
                                                    benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-BENCHMARK_CAPTURE(run_golden, dvxplorer_indoor, std::string("dvxplorer_indoor.aedat4"))->Unit(benchmark::kMillisecond)->MinTime(2);
-BENCHMARK_CAPTURE(run_golden, gen3_moving_blob, std::string("gen3_moving_blob.evt2.raw"))->Unit(benchmark::kMillisecond)->MinTime(2);
-BENCHMARK_CAPTURE(run_golden, rotation_2s, std::string("gen://rotation?duration-s=2"))->Unit(benchmark::kMillisecond)->MinTime(2);
+#define EVMS_BENCH(backend)                                                                                                  \
+  BENCHMARK_CAPTURE(run, backend##_dvxplorer_indoor, #backend, "dvxplorer_indoor.aedat4")->Unit(benchmark::kMillisecond)->MinTime(2); \
+  BENCHMARK_CAPTURE(run, backend##_gen3_moving_blob, #backend, "gen3_moving_blob.evt2.raw")->Unit(benchmark::kMillisecond)->MinTime(2); \
+  BENCHMARK_CAPTURE(run, backend##_rotation_2s, #backend, "gen://rotation?duration-s=2")->Unit(benchmark::kMillisecond)->MinTime(2)
+EVMS_BENCH(golden);
+EVMS_BENCH(fixed);
 
 }  // namespace
 }  // namespace evms
