@@ -1,0 +1,157 @@
+// Each cluster's measurement, as hls/cluster/centroid.h: the centre of mass of its events
+// (POS_FRAC fraction bits) at the mean of their timestamps, rounded half up. One pass over the
+// packet accumulates; then each cluster takes three divisions through the reciprocal unit and
+// the shared multiplier.
+module evms_centroid #(
+  parameter int PACKET_MAX   = 256,
+  parameter int CLUSTERS_MAX = 16,
+  parameter int POS_FRAC     = 12,
+  parameter int RECIP_FRAC   = 20
+) (
+  input  logic        clk,
+  input  logic        rst_n,
+  input  logic        start,
+  input  logic [15:0] n,
+  input  logic [7:0]  clusters,
+  input  logic [31:0] t0,                  // the packet's first event
+  // Packet and cluster_of reads (1-cycle latency), by rd_i.
+  output logic [15:0] rd_i,
+  input  logic [15:0] ev_x,
+  input  logic [15:0] ev_y,
+  input  logic [31:0] ev_t,
+  input  logic signed [7:0] ev_cluster,
+  // Shared reciprocal and multiplier.
+  output logic        recip_start,
+  output logic [63:0] recip_x,
+  input  logic        recip_done,
+  input  logic [RECIP_FRAC:0] recip_r,
+  input  logic [6:0]  recip_m,
+  output logic        mul_start,
+  output logic signed [63:0] mul_a,
+  output logic signed [63:0] mul_b,
+  input  logic        mul_done,
+  input  logic signed [63:0] mul_p,
+  // Results, read by cluster index.
+  input  logic [7:0]  z_c,
+  output logic [31:0] z_t,
+  output logic signed [31:0] z_x,
+  output logic signed [31:0] z_y,
+  output logic        done
+);
+  localparam int CW = CLUSTERS_MAX > 1 ? $clog2(CLUSTERS_MAX) : 1;
+  typedef enum logic [3:0] {S_IDLE, S_ACC_READ, S_ACC_WAIT, S_ACC_ADD, S_DIV, S_DIV_RECIP, S_DIV_X, S_DIV_Y, S_DIV_T, S_DIV_STORE,
+                            S_DONE} state_e;
+  state_e state;
+  logic [31:0] sx [CLUSTERS_MAX], sy [CLUSTERS_MAX], count [CLUSTERS_MAX];
+  logic [63:0] st [CLUSTERS_MAX];
+  logic [31:0] out_t [CLUSTERS_MAX];
+  logic signed [31:0] out_x [CLUSTERS_MAX], out_y [CLUSTERS_MAX];
+  logic [15:0] i;
+  logic [7:0]  c;
+  logic        waiting;
+  logic [6:0]  m;
+  logic [RECIP_FRAC:0] r;
+
+  assign z_t = out_t[CW'(z_c)];
+  assign z_x = out_x[CW'(z_c)];
+  assign z_y = out_y[CW'(z_c)];
+  assign rd_i = i;
+  assign recip_x = 64'(count[CW'(c)]);
+
+  // round(p * 2^-(RECIP_FRAC + m - extra)), as Reciprocal::divide
+  function automatic logic [63:0] quotient(input logic [63:0] p, input logic [6:0] mm, input int extra);
+    int shift;
+    shift = RECIP_FRAC + int'(mm) - extra;
+    if (shift <= 0) return p << -shift;
+    return (p + (64'd1 << (shift - 1))) >> shift;
+  endfunction
+
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      state <= S_IDLE;
+      done <= 1'b0;
+      i <= '0;
+      c <= '0;
+      waiting <= 1'b0;
+      m <= '0;
+      r <= '0;
+      recip_start <= 1'b0;
+      mul_start <= 1'b0;
+      mul_a <= '0;
+      mul_b <= '0;
+      for (int q = 0; q < CLUSTERS_MAX; q++) begin
+        {sx[q], sy[q], count[q], st[q]} <= '0;
+        {out_t[q], out_x[q], out_y[q]} <= '0;
+      end
+    end else begin
+      done <= 1'b0;
+      recip_start <= 1'b0;
+      mul_start <= 1'b0;
+      case (state)
+        S_IDLE: if (start) begin
+          for (int q = 0; q < CLUSTERS_MAX; q++) {sx[q], sy[q], count[q], st[q]} <= '0;
+          i <= '0;
+          state <= n == 0 ? S_DIV : S_ACC_READ;
+          c <= '0;
+        end
+        S_ACC_READ: state <= S_ACC_WAIT;
+        S_ACC_WAIT: state <= S_ACC_ADD;
+        S_ACC_ADD: begin
+          if (ev_cluster >= 0) begin
+            sx[CW'(ev_cluster)] <= sx[CW'(ev_cluster)] + 32'(ev_x);
+            sy[CW'(ev_cluster)] <= sy[CW'(ev_cluster)] + 32'(ev_y);
+            st[CW'(ev_cluster)] <= st[CW'(ev_cluster)] + 64'(ev_t - t0);
+            count[CW'(ev_cluster)] <= count[CW'(ev_cluster)] + 1'b1;
+          end
+          if (32'(i) + 1 < 32'(n)) begin
+            i <= i + 1'b1;
+            state <= S_ACC_READ;
+          end else begin
+            c <= '0;
+            state <= S_DIV;
+          end
+        end
+        S_DIV: begin
+          if (c >= clusters) begin
+            state <= S_DONE;
+          end else begin
+            recip_start <= 1'b1;
+            state <= S_DIV_RECIP;
+          end
+        end
+        S_DIV_RECIP: if (recip_done) begin
+          r <= recip_r;
+          m <= recip_m;
+          mul_start <= 1'b1;
+          mul_a <= $signed(64'(sx[CW'(c)]));
+          mul_b <= $signed(64'(recip_r));
+          state <= S_DIV_X;
+        end
+        S_DIV_X: if (mul_done) begin
+          out_x[CW'(c)] <= 32'(quotient(mul_p, m, POS_FRAC));
+          mul_start <= 1'b1;
+          mul_a <= $signed(64'(sy[CW'(c)]));
+          mul_b <= $signed(64'(r));
+          state <= S_DIV_Y;
+        end
+        S_DIV_Y: if (mul_done) begin
+          out_y[CW'(c)] <= 32'(quotient(mul_p, m, POS_FRAC));
+          mul_start <= 1'b1;
+          mul_a <= $signed(st[CW'(c)]);
+          mul_b <= $signed(64'(r));
+          state <= S_DIV_T;
+        end
+        S_DIV_T: if (mul_done) begin
+          out_t[CW'(c)] <= t0 + 32'(quotient(mul_p, m, 0));
+          c <= c + 1'b1;
+          state <= S_DIV;
+        end
+        S_DONE: begin
+          done <= 1'b1;
+          state <= S_IDLE;
+        end
+        default: state <= S_IDLE;
+      endcase
+    end
+  end
+endmodule

@@ -1,0 +1,404 @@
+// The hybrid mean-shift engine, as hls/cluster/mean_shift.h, with LANES kernel evaluations a
+// cycle. Per sweep and point i, every point j contributes
+//   u = (x_i - x0_j)^2 + (y_i - y0_j)^2 + (p_i - p_j)^2 + (t_i - t_j)^2,  w = exp(-u),
+//   sums += w, (w x0_j) >> PS, (w y0_j) >> PS, (w p_j) >> PS, (w t_j) >> PS
+// and the point moves to sums / sum(w) (rounded, through the reciprocal), or stays when
+// sum(w) = 0. Sums are exact, so the lane count cannot change a result.
+//
+// Memories: the original positions x0, y0 and two buffers of (x, y, p, t) that take turns as
+// the current points and the next ones, each split into LANES banks (point j in bank j % LANES
+// at address j / LANES) so that every lane reads its point in the same cycle.
+//
+// Schedule per point: ceil(n / LANES) cycles issuing point pairs, then the lane pipeline drains
+// (LatLanes cycles) and the point's sums go to the divider, which works while the next point's
+// kernel loop runs. A sweep ends when the divider has finished the last point.
+module evms_mean_shift #(
+  parameter int PACKET_MAX     = 256,
+  parameter int LANES          = 8,
+  parameter int ITERATIONS_MAX = 8,
+  parameter int FEAT_BITS      = 16,   // kFeatInt + kFeatFrac
+  parameter int FEAT_FRAC      = 11,
+  parameter int WEIGHT_FRAC    = 16,
+  parameter int SUM_FRAC       = 16,
+  parameter int EXP_LOG2       = 9,
+  parameter int EXP_INTERP     = 8,
+  parameter int RECIP_LOG2     = 8,
+  parameter int RECIP_FRAC     = 20,
+  parameter     EXP_MEM        = "exp_9_16.mem",
+  parameter     RECIP_MEM      = "recip_8_20.mem"
+) (
+  input  logic        clk,
+  input  logic        rst_n,
+  // Loading the packet's features (point i = load_i).
+  input  logic                    load_we,
+  input  logic [15:0]             load_i,
+  input  logic [FEAT_BITS-1:0]    load_x,
+  input  logic [FEAT_BITS-1:0]    load_y,
+  input  logic [FEAT_BITS-1:0]    load_p,
+  input  logic [FEAT_BITS-1:0]    load_t,
+  // Running.
+  input  logic                    start,
+  input  logic [15:0]             n,
+  input  logic [7:0]              cfg_max_iterations,
+  input  logic [31:0]             cfg_tolerance,
+  output logic                    done,
+  output logic [7:0]              sweeps,
+  // Reading the modes after done (1-cycle latency).
+  input  logic [15:0]             rd_i,
+  output logic [FEAT_BITS:0]      rd_x,
+  output logic [FEAT_BITS:0]      rd_y,
+  output logic [FEAT_BITS:0]      rd_p,
+  output logic [FEAT_BITS:0]      rd_t
+);
+  localparam int FW = FEAT_BITS + 1;                          // a mode may round one LSB past the features
+  localparam int Depth = (PACKET_MAX + LANES - 1) / LANES;
+  localparam int AW = Depth > 1 ? $clog2(Depth) : 1;
+  localparam int BW = LANES > 1 ? $clog2(LANES) : 1;
+  localparam int UF = 2 * FEAT_FRAC;
+  localparam int PS = WEIGHT_FRAC + FEAT_FRAC - SUM_FRAC;     // product shift
+  localparam int QF = FEAT_FRAC + WEIGHT_FRAC - SUM_FRAC;     // quotient fraction bits
+  localparam int LatLanes = 6;                                // issue -> accumulated
+  initial if (QF >= RECIP_FRAC + 1) $error("evms_mean_shift: the quotient shift must be positive");
+
+  // ---- memories --------------------------------------------------------------------------
+  logic [FEAT_BITS-1:0] x0 [LANES][Depth];
+  logic [FEAT_BITS-1:0] y0 [LANES][Depth];
+  logic [FW-1:0] bx [2][LANES][Depth];
+  logic [FW-1:0] by [2][LANES][Depth];
+  logic [FW-1:0] bp [2][LANES][Depth];
+  logic [FW-1:0] bt [2][LANES][Depth];
+  logic cur;  // buffer holding the current points
+
+  // Writes: loading (into buffer 0 and x0, y0) or the divider's next values.
+  logic          wr_en;
+  logic [15:0]   wr_i;
+  logic [FW-1:0] wr_x, wr_y, wr_p, wr_t;
+  always_ff @(posedge clk) begin
+    if (load_we) begin
+      x0[BW'(load_i % LANES)][AW'(load_i / LANES)] <= load_x;
+      y0[BW'(load_i % LANES)][AW'(load_i / LANES)] <= load_y;
+      bx[0][BW'(load_i % LANES)][AW'(load_i / LANES)] <= FW'(load_x);
+      by[0][BW'(load_i % LANES)][AW'(load_i / LANES)] <= FW'(load_y);
+      bp[0][BW'(load_i % LANES)][AW'(load_i / LANES)] <= FW'(load_p);
+      bt[0][BW'(load_i % LANES)][AW'(load_i / LANES)] <= FW'(load_t);
+    end else if (wr_en) begin
+      bx[~cur][BW'(wr_i % LANES)][AW'(wr_i / LANES)] <= wr_x;
+      by[~cur][BW'(wr_i % LANES)][AW'(wr_i / LANES)] <= wr_y;
+      bp[~cur][BW'(wr_i % LANES)][AW'(wr_i / LANES)] <= wr_p;
+      bt[~cur][BW'(wr_i % LANES)][AW'(wr_i / LANES)] <= wr_t;
+    end
+  end
+  always_ff @(posedge clk) begin
+    rd_x <= bx[cur][BW'(rd_i % LANES)][AW'(rd_i / LANES)];
+    rd_y <= by[cur][BW'(rd_i % LANES)][AW'(rd_i / LANES)];
+    rd_p <= bp[cur][BW'(rd_i % LANES)][AW'(rd_i / LANES)];
+    rd_t <= bt[cur][BW'(rd_i % LANES)][AW'(rd_i / LANES)];
+  end
+
+  // ---- control ----------------------------------------------------------------------------
+  typedef enum logic [2:0] {S_IDLE, S_POINT, S_ISSUE, S_DRAIN, S_HANDOFF, S_SWEEP_END, S_DONE} state_e;
+  state_e state;
+  logic [7:0]  k;          // sweep
+  logic [15:0] i;          // point
+  logic [AW:0] a;          // chunk address
+  logic [3:0]  drain;
+  logic [7:0]  limit;
+  logic [31:0] max_move;
+  logic        point_loaded;
+  logic        sweep_begin;  // pulses when a sweep starts: the divider restarts its largest move
+
+  // The point i's current coordinates, read at S_POINT.
+  logic signed [FW+1:0] xi, yi, pi_, ti;
+
+  // Lane issue: address a, chunk valid per lane.
+  logic issue;
+  logic [LANES-1:0] lane_valid_issue;
+  always_comb begin
+    for (int l = 0; l < LANES; l++) lane_valid_issue[l] = issue && (32'(a) * LANES + l < 32'(n));
+  end
+
+  // ---- lanes ------------------------------------------------------------------------------
+  // s1: memory data; s2: differences; s3: u; s4..s5: exp; s6: products.
+  logic [LANES-1:0] v1, v2, v3, v4, v5, v6;
+  logic [FEAT_BITS-1:0] m_x0 [LANES], m_y0 [LANES];
+  logic [FW-1:0] m_p [LANES], m_t [LANES];
+  logic [FW-1:0] d_x0 [5][LANES], d_y0 [5][LANES], d_p [5][LANES], d_t [5][LANES];
+  logic signed [FW+1:0] dx [LANES], dy [LANES], dp [LANES], dtt [LANES];
+  logic [63:0] u [LANES];
+  logic [WEIGHT_FRAC:0] w [LANES];
+  logic [WEIGHT_FRAC:0] w6 [LANES];
+  logic [63:0] px6 [LANES], py6 [LANES], pp6 [LANES], pt6 [LANES];
+  logic last1, last2, last3, last4, last5, last6;
+
+  for (genvar l = 0; l < LANES; l++) begin : g_lane
+    always_ff @(posedge clk) begin
+      m_x0[l] <= x0[l][AW'(a)];
+      m_y0[l] <= y0[l][AW'(a)];
+      m_p[l]  <= bp[cur][l][AW'(a)];
+      m_t[l]  <= bt[cur][l][AW'(a)];
+      dx[l]  <= xi - $signed({2'b0, m_x0[l]});
+      dy[l]  <= yi - $signed({2'b0, m_y0[l]});
+      dp[l]  <= pi_ - $signed({1'b0, m_p[l]});
+      dtt[l] <= ti - $signed({1'b0, m_t[l]});
+      // Operands widen before they multiply: a cast of a product would keep its narrow width.
+      u[l] <= 64'($signed(64'(dx[l])) * $signed(64'(dx[l]))) + 64'($signed(64'(dy[l])) * $signed(64'(dy[l]))) +
+              64'($signed(64'(dp[l])) * $signed(64'(dp[l]))) + 64'($signed(64'(dtt[l])) * $signed(64'(dtt[l])));
+      w6[l] <= v5[l] ? w[l] : '0;
+      px6[l] <= (64'(w[l]) * 64'(d_x0[3][l])) >> PS;
+      py6[l] <= (64'(w[l]) * 64'(d_y0[3][l])) >> PS;
+      pp6[l] <= (64'(w[l]) * 64'(d_p[3][l])) >> PS;
+      pt6[l] <= (64'(w[l]) * 64'(d_t[3][l])) >> PS;
+    end
+    // The lane's point, carried along to the product stage.
+    always_ff @(posedge clk) begin
+      d_x0[0][l] <= FW'(m_x0[l]);
+      d_y0[0][l] <= FW'(m_y0[l]);
+      d_p[0][l] <= m_p[l];
+      d_t[0][l] <= m_t[l];
+      for (int s = 1; s < 5; s++) begin
+        d_x0[s][l] <= d_x0[s-1][l];
+        d_y0[s][l] <= d_y0[s-1][l];
+        d_p[s][l] <= d_p[s-1][l];
+        d_t[s][l] <= d_t[s-1][l];
+      end
+    end
+    evms_exp_lut #(.L(EXP_LOG2), .WF(WEIGHT_FRAC), .IB(EXP_INTERP), .UF(UF), .UW(64), .MEM_FILE(EXP_MEM))
+      u_exp (.clk(clk), .u(u[l]), .w(w[l]));
+  end
+
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      {v1, v2, v3, v4, v5, v6} <= '0;
+      {last1, last2, last3, last4, last5, last6} <= '0;
+    end else begin
+      v1 <= lane_valid_issue;
+      v2 <= v1;
+      v3 <= v2;
+      v4 <= v3;
+      v5 <= v4;
+      v6 <= v5;
+      last1 <= issue && (32'(a) + 1) * LANES >= 32'(n);
+      last2 <= last1;
+      last3 <= last2;
+      last4 <= last3;
+      last5 <= last4;
+      last6 <= last5;
+    end
+  end
+
+  // s7: sums of the point, across lanes.
+  logic [63:0] sw, sx, sy, sp, st;
+  logic        sums_ready;
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      {sw, sx, sy, sp, st} <= '0;
+      sums_ready <= 1'b0;
+    end else begin
+      logic [63:0] aw, ax, ay, ap, at;
+      aw = '0;
+      ax = '0;
+      ay = '0;
+      ap = '0;
+      at = '0;
+      for (int l = 0; l < LANES; l++) begin
+        if (v6[l]) begin
+          aw = aw + 64'(w6[l]);
+          ax = ax + px6[l];
+          ay = ay + py6[l];
+          ap = ap + pp6[l];
+          at = at + pt6[l];
+        end
+      end
+      if (state == S_POINT) begin
+        {sw, sx, sy, sp, st} <= '0;
+        sums_ready <= 1'b0;
+      end else begin
+        sw <= sw + aw;
+        sx <= sx + ax;
+        sy <= sy + ay;
+        sp <= sp + ap;
+        st <= st + at;
+        sums_ready <= last6;
+      end
+    end
+  end
+
+  // ---- divider: next = sums / sw, rounded; moves ------------------------------------------
+  logic        job_valid, job_busy;
+  logic [15:0] job_i;
+  logic [63:0] job_sw, job_s [4];
+  logic [FW-1:0] job_cur [4];
+  logic [2:0]  job_dim;
+  logic        recip_start, recip_done;
+  logic [RECIP_FRAC:0] recip_r;
+  logic [6:0]  recip_m;
+  logic [FW-1:0] job_next [4];
+  typedef enum logic [2:0] {D_IDLE, D_RECIP, D_QUOT, D_WRITE} dstate_e;
+  dstate_e dstate;
+
+  evms_recip #(.T(RECIP_LOG2), .RF(RECIP_FRAC), .MEM_FILE(RECIP_MEM)) u_recip (
+    .clk(clk), .rst_n(rst_n), .start(recip_start), .x(job_sw), .done(recip_done), .r(recip_r), .m(recip_m));
+
+  logic [63:0] quot_p;
+  logic [6:0]  quot_shift;
+  assign quot_p = job_s[job_dim[1:0]] * 64'(recip_r);
+  assign quot_shift = 7'(RECIP_FRAC) + recip_m - 7'(QF);
+
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      dstate <= D_IDLE;
+      job_busy <= 1'b0;
+      recip_start <= 1'b0;
+      job_dim <= '0;
+      wr_en <= 1'b0;
+      wr_i <= '0;
+      {wr_x, wr_y, wr_p, wr_t} <= '0;
+      max_move <= '0;
+      for (int d = 0; d < 4; d++) job_next[d] <= '0;
+    end else begin
+      recip_start <= 1'b0;
+      wr_en <= 1'b0;
+      if (sweep_begin) max_move <= '0;
+      case (dstate)
+        D_IDLE: if (job_valid) begin
+          job_busy <= 1'b1;
+          if (job_sw == 0) begin
+            for (int d = 0; d < 4; d++) job_next[d] <= job_cur[d];
+            dstate <= D_WRITE;
+          end else begin
+            recip_start <= 1'b1;
+            dstate <= D_RECIP;
+          end
+        end
+        D_RECIP: if (recip_done) begin
+          job_dim <= '0;
+          dstate <= D_QUOT;
+        end
+        D_QUOT: begin
+          job_next[job_dim[1:0]] <= FW'((quot_p + (64'd1 << (quot_shift - 1))) >> quot_shift);
+          job_dim <= job_dim + 1'b1;
+          if (job_dim == 3) dstate <= D_WRITE;
+        end
+        D_WRITE: begin
+          logic [31:0] mv;
+          mv = max_move;
+          for (int d = 0; d < 4; d++) begin
+            logic [31:0] diff;
+            diff = job_next[d] > job_cur[d] ? 32'(job_next[d] - job_cur[d]) : 32'(job_cur[d] - job_next[d]);
+            if (diff > mv) mv = diff;
+          end
+          max_move <= mv;
+          wr_en <= 1'b1;
+          wr_i <= job_i;
+          {wr_x, wr_y, wr_p, wr_t} <= {job_next[0], job_next[1], job_next[2], job_next[3]};
+          job_busy <= 1'b0;
+          dstate <= D_IDLE;
+        end
+        default: dstate <= D_IDLE;
+      endcase
+    end
+  end
+
+  // ---- sequencing -------------------------------------------------------------------------
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      state <= S_IDLE;
+      done <= 1'b0;
+      sweeps <= '0;
+      cur <= 1'b0;
+      k <= '0;
+      i <= '0;
+      a <= '0;
+      drain <= '0;
+      limit <= '0;
+      issue <= 1'b0;
+      job_valid <= 1'b0;
+      job_i <= '0;
+      job_sw <= '0;
+      for (int d = 0; d < 4; d++) begin
+        job_s[d] <= '0;
+        job_cur[d] <= '0;
+      end
+      {xi, yi, pi_, ti} <= '0;
+      point_loaded <= 1'b0;
+      sweep_begin <= 1'b0;
+    end else begin
+      done <= 1'b0;
+      sweep_begin <= 1'b0;
+      if (job_valid && dstate == D_IDLE) job_valid <= 1'b0;
+      case (state)
+        S_IDLE: if (start) begin
+          cur <= 1'b0;
+          k <= '0;
+          sweeps <= '0;
+          limit <= cfg_max_iterations < 8'(ITERATIONS_MAX) ? cfg_max_iterations : 8'(ITERATIONS_MAX);
+          if (cfg_max_iterations == 0 || n == 0) begin
+            done <= 1'b1;
+          end else begin
+            i <= '0;
+            point_loaded <= 1'b0;
+            sweep_begin <= 1'b1;
+            state <= S_POINT;
+          end
+        end
+        S_POINT: begin
+          // The point's own coordinates (asynchronous read of the current buffer).
+          xi  <= $signed({2'b0, bx[cur][BW'(i % LANES)][AW'(i / LANES)]});
+          yi  <= $signed({2'b0, by[cur][BW'(i % LANES)][AW'(i / LANES)]});
+          pi_ <= $signed({2'b0, bp[cur][BW'(i % LANES)][AW'(i / LANES)]});
+          ti  <= $signed({2'b0, bt[cur][BW'(i % LANES)][AW'(i / LANES)]});
+          a <= '0;
+          issue <= 1'b1;
+          state <= S_ISSUE;
+        end
+        S_ISSUE: begin
+          if ((32'(a) + 1) * LANES >= 32'(n)) begin
+            issue <= 1'b0;
+            drain <= '0;
+            state <= S_DRAIN;
+          end else begin
+            a <= a + 1'b1;
+          end
+        end
+        S_DRAIN: if (sums_ready) state <= S_HANDOFF;
+        S_HANDOFF: if (!job_valid && !job_busy && dstate == D_IDLE) begin
+          job_valid <= 1'b1;
+          job_i <= i;
+          job_sw <= sw;
+          job_s[0] <= sx;
+          job_s[1] <= sy;
+          job_s[2] <= sp;
+          job_s[3] <= st;
+          job_cur[0] <= FW'(xi);
+          job_cur[1] <= FW'(yi);
+          job_cur[2] <= FW'(pi_);
+          job_cur[3] <= FW'(ti);
+          if (32'(i) + 1 < 32'(n)) begin
+            i <= i + 1'b1;
+            state <= S_POINT;
+          end else begin
+            state <= S_SWEEP_END;
+          end
+        end
+        S_SWEEP_END: if (!job_valid && !job_busy && dstate == D_IDLE && !wr_en) begin
+          // The divider has written every next point: they become the current ones.
+          cur <= ~cur;
+          sweeps <= k + 1'b1;
+          if (max_move <= cfg_tolerance || k + 1'b1 >= limit) begin
+            state <= S_DONE;
+          end else begin
+            k <= k + 1'b1;
+            i <= '0;
+            sweep_begin <= 1'b1;
+            state <= S_POINT;
+          end
+        end
+        S_DONE: begin
+          done <= 1'b1;
+          state <= S_IDLE;
+        end
+        default: state <= S_IDLE;
+      endcase
+    end
+  end
+endmodule

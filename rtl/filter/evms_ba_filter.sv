@@ -1,0 +1,150 @@
+// Background-activity filter with its per-pixel timestamp RAM, as hls/filter/ba_filter.h.
+// One event at a time: start with (t, x, y) -> done with kept, about 15 cycles later.
+//   - filter off: kept at once, no memory access;
+//   - outside the configured sensor: noise, no memory access;
+//   - else read the (up to) 8 neighbours inside the sensor, keep when one holds a time t' != 0
+//     with (now - t') mod 2^TS_BITS <= window, where now = t >> TS_SHIFT; write now (or 1 for 0)
+//     to the own pixel; then scrub two entries: clear each whose age is at least half the wrap.
+// After reset the RAM is cleared, one word a cycle; ready stays low until then.
+module evms_ba_filter #(
+  parameter int MAX_WIDTH  = 240,
+  parameter int MAX_HEIGHT = 180,
+  parameter int TS_BITS    = 16,
+  parameter int TS_SHIFT   = 7
+) (
+  input  logic        clk,
+  input  logic        rst_n,
+  input  logic        cfg_enabled,
+  input  logic [15:0] cfg_width,
+  input  logic [15:0] cfg_height,
+  input  logic [31:0] cfg_window,
+  output logic        ready,
+  input  logic        start,
+  input  logic [31:0] t,
+  input  logic [15:0] x,
+  input  logic [15:0] y,
+  output logic        done,
+  output logic        kept
+);
+  localparam int Pixels = MAX_WIDTH * MAX_HEIGHT;
+  localparam int AW = $clog2(Pixels);
+  localparam logic [TS_BITS-1:0] HalfWrap = TS_BITS'(1) << (TS_BITS - 1);
+
+  logic [TS_BITS-1:0] ram [0:Pixels-1];
+  logic [AW-1:0]      addr;
+  logic               we;
+  logic [TS_BITS-1:0] wdata, rdata;
+  always_ff @(posedge clk) begin
+    if (we) ram[addr] <= wdata;
+    rdata <= ram[addr];
+  end
+
+  typedef enum logic [3:0] {S_CLEAR, S_IDLE, S_READ, S_WRITE, S_SCRUB_READ, S_SCRUB_WAIT, S_SCRUB_DECIDE, S_DONE} state_e;
+  state_e state;
+  logic [AW-1:0] clear_addr, scrub;
+  logic [3:0]    k;            // neighbour being addressed (0..8)
+  logic [1:0]    pending_cmp;  // [0]: address registered last cycle; [1]: rdata holds that neighbour
+  logic          supported;
+  logic [TS_BITS-1:0] now;
+  logic [15:0]   ex, ey;
+  logic          scrub_second;
+
+  // Neighbour k of the event, and whether it is inside the sensor (and not the pixel itself).
+  logic signed [17:0] nx, ny;
+  logic               n_inside;
+  assign nx = $signed({2'b00, ex}) + $signed(18'(k % 3)) - 18'sd1;
+  assign ny = $signed({2'b00, ey}) + $signed(18'(k / 3)) - 18'sd1;
+  assign n_inside = k != 4 && nx >= 0 && ny >= 0 && nx < $signed({2'b00, cfg_width}) && ny < $signed({2'b00, cfg_height});
+
+  assign ready = state == S_IDLE;
+
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      state <= S_CLEAR;
+      clear_addr <= '0;
+      scrub <= '0;
+      done <= 1'b0;
+      kept <= 1'b0;
+      we <= 1'b0;
+      addr <= '0;
+      wdata <= '0;
+      k <= '0;
+      pending_cmp <= '0;
+      supported <= 1'b0;
+      now <= '0;
+      ex <= '0;
+      ey <= '0;
+      scrub_second <= 1'b0;
+    end else begin
+      done <= 1'b0;
+      we <= 1'b0;
+      case (state)
+        S_CLEAR: begin
+          we <= 1'b1;
+          addr <= clear_addr;
+          wdata <= '0;
+          clear_addr <= clear_addr + 1'b1;
+          if (32'(clear_addr) == Pixels - 1) state <= S_IDLE;
+        end
+        S_IDLE: if (start) begin
+          if (!cfg_enabled) begin
+            kept <= 1'b1;
+            done <= 1'b1;
+          end else if (x >= cfg_width || y >= cfg_height) begin
+            kept <= 1'b0;
+            done <= 1'b1;
+          end else begin
+            ex <= x;
+            ey <= y;
+            now <= TS_BITS'(t >> TS_SHIFT);
+            k <= '0;
+            pending_cmp <= '0;
+            supported <= 1'b0;
+            state <= S_READ;
+          end
+        end
+        S_READ: begin
+          // Address neighbour k (when inside); the RAM answers two cycles later.
+          if (pending_cmp[1] && rdata != 0 && TS_BITS'(now - rdata) <= cfg_window) supported <= 1'b1;
+          pending_cmp <= {pending_cmp[0], 1'b0};
+          if (k <= 8) begin
+            if (n_inside) begin
+              addr <= AW'(32'(ny) * MAX_WIDTH + 32'(nx));
+              pending_cmp[0] <= 1'b1;
+            end
+            k <= k + 1'b1;
+          end else if (pending_cmp == 2'b00) begin
+            state <= S_WRITE;
+          end
+        end
+        S_WRITE: begin
+          we <= 1'b1;
+          addr <= AW'(32'(ey) * MAX_WIDTH + 32'(ex));
+          wdata <= now == 0 ? TS_BITS'(1) : now;
+          scrub_second <= 1'b0;
+          state <= S_SCRUB_READ;
+        end
+        S_SCRUB_READ: begin
+          addr <= scrub;
+          state <= S_SCRUB_WAIT;
+        end
+        S_SCRUB_WAIT: state <= S_SCRUB_DECIDE;
+        S_SCRUB_DECIDE: begin
+          if (rdata != 0 && TS_BITS'(now - rdata) >= HalfWrap) begin
+            we <= 1'b1;
+            wdata <= '0;
+          end
+          scrub <= 32'(scrub) == Pixels - 1 ? '0 : scrub + 1'b1;
+          scrub_second <= 1'b1;
+          state <= scrub_second ? S_DONE : S_SCRUB_READ;
+        end
+        S_DONE: begin
+          kept <= supported;
+          done <= 1'b1;
+          state <= S_IDLE;
+        end
+        default: state <= S_IDLE;
+      endcase
+    end
+  end
+endmodule

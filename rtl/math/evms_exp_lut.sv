@@ -1,0 +1,39 @@
+// exp(-u) from a table with linear interpolation, as hls/math/exp_table.h: u has UF fraction
+// bits; u >= 16 gives 0; else i = u >> (UF + 4 - L), f = the IB bits below the index, and
+// w = v[i] - ((v[i] - v[i+1]) * f >> IB). The ROM holds v[0..2^L], one word per entry, and is
+// read at i and i+1 through two ports. Latency 2; a new u every cycle.
+module evms_exp_lut #(
+  parameter int    L        = 9,
+  parameter int    WF       = 16,
+  parameter int    IB       = 8,
+  parameter int    UF       = 22,
+  parameter int    UW       = 64,
+  parameter        MEM_FILE = "exp_9_16.mem"
+) (
+  input  logic          clk,
+  input  logic [UW-1:0] u,
+  output logic [WF:0]   w
+);
+  localparam int Below = UF + 4 - L;
+  logic [WF:0] rom [0:(1<<L)];
+  initial $readmemh(MEM_FILE, rom);
+
+  logic          zero_q;
+  logic [L-1:0]  i_q;
+  logic [IB-1:0] f_q, f_qq;
+  logic [WF:0]   v0_q, v1_q;
+  logic          zero_qq;
+
+  always_ff @(posedge clk) begin
+    zero_q  <= (u >> (UF + 4)) != 0;
+    i_q     <= L'(u >> Below);
+    f_q     <= IB'(u >> (Below - IB));
+    v0_q    <= rom[i_q];
+    v1_q    <= rom[32'(i_q) + 1];
+    f_qq    <= f_q;
+    zero_qq <= zero_q;
+  end
+  logic [WF+IB:0] slope;
+  assign slope = (WF+IB+1)'(v0_q - v1_q) * (WF+IB+1)'(f_qq);
+  assign w = zero_qq ? '0 : v0_q - (WF+1)'(slope >> IB);
+endmodule

@@ -1,0 +1,478 @@
+// Multi-target tracking, as hls/track/tracker.h and hls/track/kalman_axis.h, one step at a
+// time through the shared 64-bit multiplier and reciprocal unit:
+//   expire -> rounds of nearest (track, measurement) pairs within the gate, each matched
+//   track predicted and updated (x axis, then y) -> tentative tracks without a match end ->
+//   unmatched measurements start tracks in the lowest free slots.
+// Every arithmetic step is the C++ one: the same products, the same rounding (half up) and
+// the same clamps, so the results are equal bit for bit.
+module evms_tracker #(
+  parameter int CLUSTERS_MAX = 16,
+  parameter int TRACKS_MAX   = 16,
+  parameter int POS_FRAC     = 12,
+  parameter int TICK_LOG2    = 14,
+  parameter int COV_FRAC     = 16,
+  parameter int GAIN_FRAC    = 20,
+  parameter int NOISE_FRAC   = 32,
+  parameter int RECIP_FRAC   = 20
+) (
+  input  logic        clk,
+  input  logic        rst_n,
+  input  logic [63:0] cfg_gate2,
+  input  logic [7:0]  cfg_confirm_hits,
+  input  logic [31:0] cfg_coast_us,
+  input  logic [7:0]  cfg_max_tracks,
+  input  logic signed [63:0] cfg_q_third,
+  input  logic signed [63:0] cfg_q_half,
+  input  logic signed [63:0] cfg_q,
+  input  logic signed [63:0] cfg_r,
+  input  logic signed [63:0] cfg_p0_pos,
+  input  logic signed [63:0] cfg_p0_vel,
+  input  logic        start,
+  input  logic [31:0] packet_time,
+  input  logic [7:0]  m,                 // measurements
+  // Measurement reads (combinational), by index.
+  output logic [7:0]  z_c,
+  input  logic [31:0] z_t,
+  input  logic signed [31:0] z_x,
+  input  logic signed [31:0] z_y,
+  // Track ID given to each measurement (-1: none), by index.
+  input  logic [7:0]  id_c,
+  output logic signed [31:0] id_of,
+  // Track updates.
+  output logic        upd_valid,
+  input  logic        upd_ready,
+  output logic [31:0] upd_t,
+  output logic signed [31:0] upd_id, upd_x, upd_y, upd_vx, upd_vy, upd_zx, upd_zy,
+  // Shared reciprocal and multiplier.
+  output logic        recip_start,
+  output logic [63:0] recip_x,
+  input  logic        recip_done,
+  input  logic [RECIP_FRAC:0] recip_r,
+  input  logic [6:0]  recip_m,
+  output logic        mul_start,
+  output logic signed [63:0] mul_a,
+  output logic signed [63:0] mul_b,
+  input  logic        mul_done,
+  input  logic signed [63:0] mul_p,
+  output logic        done,
+  output logic [31:0] tracks_started,
+  output logic [31:0] unassigned
+);
+  localparam int TW = TRACKS_MAX > 1 ? $clog2(TRACKS_MAX) : 1;
+  localparam int CW = CLUSTERS_MAX > 1 ? $clog2(CLUSTERS_MAX) : 1;
+  localparam logic signed [63:0] CovMax = (64'sd1 <<< 35) - 1;
+  localparam logic signed [63:0] GainMax = (64'sd1 <<< 27) - 1;
+  localparam logic signed [63:0] PosMax = (64'sd1 <<< 31) - 1;
+  localparam logic signed [63:0] DistMax = 64'sd4096 <<< POS_FRAC;
+  localparam logic signed [63:0] MaxDt = 64'sd1 <<< 18;
+
+  function automatic logic signed [63:0] shr_rnd(input logic signed [63:0] v, input int s);
+    if (s <= 0) return v <<< -s;
+    return (v + (64'sd1 <<< (s - 1))) >>> s;
+  endfunction
+  function automatic logic signed [63:0] clamp_sym(input logic signed [63:0] v, input logic signed [63:0] b);
+    return v > b ? b : (v < -b ? -b : v);
+  endfunction
+  // Reciprocal::divide for a non-negative numerator: p = num * r.
+  function automatic logic [63:0] quotient(input logic [63:0] p, input logic [6:0] mm, input int extra);
+    int shift;
+    shift = RECIP_FRAC + int'(mm) - extra;
+    if (shift <= 0) return p << -shift;
+    return (p + (64'd1 << (shift - 1))) >> shift;
+  endfunction
+
+  // ---- slots ------------------------------------------------------------------------------
+  logic                     s_valid [TRACKS_MAX], s_confirmed [TRACKS_MAX];
+  logic signed [31:0]       s_id [TRACKS_MAX];
+  logic [7:0]               s_hits [TRACKS_MAX];
+  logic [31:0]              s_t [TRACKS_MAX];
+  logic signed [31:0]       s_pos [2][TRACKS_MAX], s_vel [2][TRACKS_MAX];
+  logic signed [63:0]       s_p00 [2][TRACKS_MAX], s_p01 [2][TRACKS_MAX], s_p11 [2][TRACKS_MAX];
+  logic [TRACKS_MAX-1:0]    slot_matched;
+  logic [CLUSTERS_MAX-1:0]  meas_matched;
+  logic signed [31:0]       ids [CLUSTERS_MAX];
+  logic signed [31:0]       next_id;
+
+  assign id_of = ids[CW'(id_c)];
+  assign tracks_started = 32'(next_id);
+
+  typedef enum logic [5:0] {
+    S_IDLE, S_EXPIRE, S_ROUND, S_PAIR, S_PAIR_PX, S_PAIR_PY, S_PAIR_DX2, S_PAIR_DY2, S_PAIR_END, S_MATCH,
+    S_DT2, S_DT3, S_AX_BEGIN, S_P_POS, S_P_P00A, S_P_P00B, S_P_P00C, S_P_P01A, S_P_P01B, S_P_P11,
+    S_U_RECIP, S_U_K0, S_U_K1, S_U_POS, S_U_VEL, S_U_P00, S_U_P01, S_U_P11, S_AX_END, S_EMIT, S_DROP, S_BIRTH, S_BIRTH_EMIT,
+    S_DONE
+  } state_e;
+  state_e state;
+
+  logic [7:0]  round_n;
+  logic [TW:0] s;         // slot being scanned or updated
+  logic [7:0]  k;         // measurement being scanned or born
+  logic signed [8:0]  best_s, best_m;
+  logic [63:0] best_d2, d2;
+  logic signed [63:0] dt, dt2, dt3, dpred, dx;
+  logic        axis;
+  // Working copy of the axis being filtered.
+  logic signed [63:0] w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e;
+  logic signed [63:0] acc, k0, k1, p00n, p01n;
+  logic [RECIP_FRAC:0] rr;
+  logic [6:0]  rm;
+  logic [7:0]  born_k;
+
+  logic [TW-1:0] si;
+  assign si = TW'(s);
+  assign z_c = state == S_MATCH ? 8'(best_m) : k;
+
+  // Issues a * b; the product comes back with mul_done.
+`define EVMS_REQUEST(A, B) begin mul_start <= 1'b1; mul_a <= (A); mul_b <= (B); end
+
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      state <= S_IDLE;
+      done <= 1'b0;
+      upd_valid <= 1'b0;
+      {upd_t, upd_id, upd_x, upd_y, upd_vx, upd_vy, upd_zx, upd_zy} <= '0;
+      recip_start <= 1'b0;
+      recip_x <= '0;
+      mul_start <= 1'b0;
+      mul_a <= '0;
+      mul_b <= '0;
+      next_id <= '0;
+      unassigned <= '0;
+      slot_matched <= '0;
+      meas_matched <= '0;
+      round_n <= '0;
+      s <= '0;
+      k <= '0;
+      best_s <= '0;
+      best_m <= '0;
+      best_d2 <= '0;
+      {d2, dt, dt2, dt3, dpred, dx} <= '0;
+      axis <= 1'b0;
+      {w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e, acc, k0, k1, p00n, p01n} <= '0;
+      rr <= '0;
+      rm <= '0;
+      born_k <= '0;
+      for (int q = 0; q < TRACKS_MAX; q++) begin
+        s_valid[q] <= 1'b0;
+        s_confirmed[q] <= 1'b0;
+        s_id[q] <= '0;
+        s_hits[q] <= '0;
+        s_t[q] <= '0;
+        for (int a = 0; a < 2; a++) begin
+          s_pos[a][q] <= '0;
+          s_vel[a][q] <= '0;
+          s_p00[a][q] <= '0;
+          s_p01[a][q] <= '0;
+          s_p11[a][q] <= '0;
+        end
+      end
+      for (int q = 0; q < CLUSTERS_MAX; q++) ids[q] <= -32'sd1;
+    end else begin
+      done <= 1'b0;
+      mul_start <= 1'b0;
+      recip_start <= 1'b0;
+      if (upd_valid && upd_ready) upd_valid <= 1'b0;
+      case (state)
+        S_IDLE: if (start) begin
+          s <= '0;
+          state <= S_EXPIRE;
+        end
+        // 1. Confirmed (and any) tracks not measured for more than coast_us end.
+        S_EXPIRE: begin
+          if (32'(s) >= TRACKS_MAX) begin
+            slot_matched <= '0;
+            meas_matched <= '0;
+            for (int q = 0; q < CLUSTERS_MAX; q++) ids[q] <= -32'sd1;
+            round_n <= '0;
+            state <= S_ROUND;
+          end else begin
+            if (s_valid[si] && $signed(packet_time - s_t[si]) > $signed(cfg_coast_us)) s_valid[si] <= 1'b0;
+            s <= s + 1'b1;
+          end
+        end
+        // 2. Rounds: the nearest remaining pair within the gate.
+        S_ROUND: begin
+          if (32'(round_n) >= CLUSTERS_MAX) begin
+            s <= '0;
+            state <= S_DROP;
+          end else begin
+            best_s <= -9'sd1;
+            best_m <= -9'sd1;
+            best_d2 <= '0;
+            s <= '0;
+            k <= '0;
+            state <= S_PAIR;
+          end
+        end
+        S_PAIR: begin
+          // Skip pairs that cannot be candidates; otherwise predict the slot to the measurement.
+          if (32'(s) >= TRACKS_MAX) begin
+            if (best_s < 0) begin
+              s <= '0;
+              state <= S_DROP;
+            end else begin
+              state <= S_MATCH;
+            end
+          end else if (!s_valid[si] || slot_matched[si] || 32'(s) >= 32'(cfg_max_tracks) || k >= m) begin
+            s <= s + 1'b1;
+            k <= '0;
+          end else if (meas_matched[CW'(k)]) begin
+            k <= k + 1'b1;
+          end else begin
+            logic signed [31:0] raw;
+            raw = $signed(z_t - s_t[si]);
+            dt <= raw > 0 ? (64'(raw) > MaxDt ? MaxDt : 64'(raw)) : 64'sd0;
+            `EVMS_REQUEST(64'(s_vel[0][si]), raw > 0 ? (64'(raw) > MaxDt ? MaxDt : 64'(raw)) : 64'sd0)
+            state <= S_PAIR_PX;
+          end
+        end
+        S_PAIR_PX: if (mul_done) begin
+          dx <= clamp_sym(64'(z_x) - clamp_sym(64'(s_pos[0][si]) + shr_rnd(mul_p, TICK_LOG2), PosMax), DistMax);
+          `EVMS_REQUEST(64'(s_vel[1][si]), dt)
+          state <= S_PAIR_PY;
+        end
+        S_PAIR_PY: if (mul_done) begin
+          dpred <= clamp_sym(64'(z_y) - clamp_sym(64'(s_pos[1][si]) + shr_rnd(mul_p, TICK_LOG2), PosMax), DistMax);
+          `EVMS_REQUEST(dx, dx)
+          state <= S_PAIR_DX2;
+        end
+        S_PAIR_DX2: if (mul_done) begin
+          d2 <= 64'(mul_p);
+          `EVMS_REQUEST(dpred, dpred)
+          state <= S_PAIR_DY2;
+        end
+        S_PAIR_DY2: if (mul_done) begin
+          if (d2 + 64'(mul_p) <= cfg_gate2 && (best_s < 0 || d2 + 64'(mul_p) < best_d2)) begin
+            best_s <= $signed({1'b0, 8'(s)});
+            best_m <= $signed({1'b0, k});
+            best_d2 <= d2 + 64'(mul_p);
+          end
+          k <= k + 1'b1;
+          state <= S_PAIR;
+        end
+        // 3. The match: predict both axes to the measurement's time, then update them.
+        S_MATCH: begin
+          slot_matched[TW'(best_s)] <= 1'b1;
+          meas_matched[CW'(best_m)] <= 1'b1;
+          s <= (TW+1)'(best_s);
+          k <= 8'(best_m);
+          begin
+            logic [31:0] raw;
+            raw = z_t - s_t[TW'(best_s)];
+            dt <= 64'(raw) > MaxDt ? MaxDt : 64'(raw);
+            `EVMS_REQUEST(64'(raw) > MaxDt ? MaxDt : 64'(raw), 64'(raw) > MaxDt ? MaxDt : 64'(raw))
+          end
+          state <= S_DT2;
+        end
+        S_DT2: if (mul_done) begin
+          dt2 <= shr_rnd(mul_p, 2 * TICK_LOG2 - COV_FRAC);
+          `EVMS_REQUEST(shr_rnd(mul_p, 2 * TICK_LOG2 - COV_FRAC), dt)
+          state <= S_DT3;
+        end
+        S_DT3: if (mul_done) begin
+          dt3 <= shr_rnd(mul_p, TICK_LOG2);
+          axis <= 1'b0;
+          state <= S_AX_BEGIN;
+        end
+        S_AX_BEGIN: begin
+          w_pos <= 64'(s_pos[axis][si]);
+          w_vel <= 64'(s_vel[axis][si]);
+          w_p00 <= s_p00[axis][si];
+          w_p01 <= s_p01[axis][si];
+          w_p11 <= s_p11[axis][si];
+          w_z <= axis == 0 ? 64'(z_x) : 64'(z_y);
+          `EVMS_REQUEST(64'(s_vel[axis][si]), dt)
+          state <= S_P_POS;
+        end
+        // predict: pos += vel dt
+        S_P_POS: if (mul_done) begin
+          w_pos <= clamp_sym(w_pos + shr_rnd(mul_p, TICK_LOG2), PosMax);
+          `EVMS_REQUEST(2 * dt, w_p01)
+          state <= S_P_P00A;
+        end
+        S_P_P00A: if (mul_done) begin
+          acc <= w_p00 + shr_rnd(mul_p, TICK_LOG2);
+          `EVMS_REQUEST(dt2, w_p11)
+          state <= S_P_P00B;
+        end
+        S_P_P00B: if (mul_done) begin
+          acc <= acc + shr_rnd(mul_p, COV_FRAC);
+          `EVMS_REQUEST(cfg_q_third, dt3)
+          state <= S_P_P00C;
+        end
+        S_P_P00C: if (mul_done) begin
+          p00n <= clamp_sym(acc + shr_rnd(mul_p, NOISE_FRAC), CovMax);
+          `EVMS_REQUEST(dt, w_p11)
+          state <= S_P_P01A;
+        end
+        S_P_P01A: if (mul_done) begin
+          acc <= w_p01 + shr_rnd(mul_p, TICK_LOG2);
+          `EVMS_REQUEST(cfg_q_half, dt2)
+          state <= S_P_P01B;
+        end
+        S_P_P01B: if (mul_done) begin
+          w_p01 <= clamp_sym(acc + shr_rnd(mul_p, NOISE_FRAC), CovMax);
+          `EVMS_REQUEST(cfg_q, dt)
+          state <= S_P_P11;
+        end
+        S_P_P11: if (mul_done) begin
+          w_p11 <= clamp_sym(w_p11 + shr_rnd(mul_p, NOISE_FRAC + TICK_LOG2 - COV_FRAC), CovMax);
+          w_p00 <= p00n;
+          // update: s = p00 + r, through the reciprocal
+          recip_x <= 64'(p00n + cfg_r);
+          recip_start <= 1'b1;
+          state <= S_U_RECIP;
+        end
+        S_U_RECIP: if (recip_done) begin
+          rr <= recip_r;
+          rm <= recip_m;
+          `EVMS_REQUEST(w_p00, 64'(recip_r))
+          state <= S_U_K0;
+        end
+        S_U_K0: if (mul_done) begin
+          k0 <= $signed(quotient(mul_p, rm, GAIN_FRAC));
+          `EVMS_REQUEST(w_p01 < 0 ? -w_p01 : w_p01, 64'(rr))
+          state <= S_U_K1;
+        end
+        S_U_K1: if (mul_done) begin
+          logic signed [63:0] mag;
+          mag = $signed(quotient(mul_p, rm, GAIN_FRAC));
+          k1 <= clamp_sym(w_p01 < 0 ? -mag : mag, GainMax);
+          w_e <= w_z - w_pos;
+          `EVMS_REQUEST(k0, w_z - w_pos)
+          state <= S_U_POS;
+        end
+        S_U_POS: if (mul_done) begin
+          w_pos <= clamp_sym(w_pos + shr_rnd(mul_p, GAIN_FRAC), PosMax);
+          `EVMS_REQUEST(k1, clamp_sym(w_e, GainMax))
+          state <= S_U_VEL;
+        end
+        S_U_VEL: if (mul_done) begin
+          w_vel <= clamp_sym(w_vel + shr_rnd(mul_p, GAIN_FRAC), PosMax);
+          `EVMS_REQUEST(cfg_r, k0)
+          state <= S_U_P00;
+        end
+        S_U_P00: if (mul_done) begin
+          p00n <= clamp_sym(shr_rnd(mul_p, GAIN_FRAC), CovMax);
+          `EVMS_REQUEST(cfg_r, k1)
+          state <= S_U_P01;
+        end
+        S_U_P01: if (mul_done) begin
+          p01n <= clamp_sym(shr_rnd(mul_p, GAIN_FRAC), CovMax);
+          `EVMS_REQUEST(k1, w_p01)
+          state <= S_U_P11;
+        end
+        S_U_P11: if (mul_done) begin
+          s_pos[axis][si] <= 32'(w_pos);
+          s_vel[axis][si] <= 32'(w_vel);
+          s_p00[axis][si] <= p00n;
+          s_p01[axis][si] <= p01n;
+          s_p11[axis][si] <= clamp_sym(w_p11 - shr_rnd(mul_p, GAIN_FRAC), CovMax);
+          state <= S_AX_END;
+        end
+        S_AX_END: begin
+          if (axis == 0) begin
+            axis <= 1'b1;
+            state <= S_AX_BEGIN;
+          end else begin
+            axis <= 1'b0;
+            s_t[si] <= z_t;
+            ids[CW'(k)] <= s_id[si];
+            if (!s_confirmed[si]) begin
+              s_hits[si] <= s_hits[si] + 1'b1;
+              s_confirmed[si] <= s_hits[si] + 1'b1 >= cfg_confirm_hits;
+            end
+            state <= S_EMIT;
+          end
+        end
+        S_EMIT: begin
+          if (!upd_valid || upd_ready) begin
+            if (s_confirmed[si]) begin
+              upd_valid <= 1'b1;
+              upd_t <= z_t;
+              upd_id <= s_id[si];
+              upd_x <= s_pos[0][si];
+              upd_y <= s_pos[1][si];
+              upd_vx <= s_vel[0][si];
+              upd_vy <= s_vel[1][si];
+              upd_zx <= z_x;
+              upd_zy <= z_y;
+            end
+            round_n <= round_n + 1'b1;
+            state <= S_ROUND;
+          end
+        end
+        // 4. Tentative tracks without a match end.
+        S_DROP: begin
+          if (32'(s) >= TRACKS_MAX) begin
+            k <= '0;
+            state <= S_BIRTH;
+          end else begin
+            if (s_valid[si] && !slot_matched[si] && !s_confirmed[si]) s_valid[si] <= 1'b0;
+            s <= s + 1'b1;
+          end
+        end
+        // 5. Births in the lowest free slots.
+        S_BIRTH: begin
+          if (k >= m) begin
+            state <= S_DONE;
+          end else if (meas_matched[CW'(k)]) begin
+            k <= k + 1'b1;
+          end else begin
+            logic signed [8:0] free;
+            free = -9'sd1;
+            for (int q = TRACKS_MAX - 1; q >= 0; q--) begin
+              if (!s_valid[q] && q < 32'(cfg_max_tracks)) free = 9'(q);
+            end
+            if (free < 0) begin
+              unassigned <= unassigned + 1'b1;
+              k <= k + 1'b1;
+            end else begin
+              s_valid[TW'(free)] <= 1'b1;
+              s_id[TW'(free)] <= next_id;
+              next_id <= (next_id + 1) & 32'h7FFFFFFF;
+              s_hits[TW'(free)] <= 8'd1;
+              s_confirmed[TW'(free)] <= cfg_confirm_hits <= 8'd1;
+              s_t[TW'(free)] <= z_t;
+              s_pos[0][TW'(free)] <= z_x;
+              s_pos[1][TW'(free)] <= z_y;
+              s_vel[0][TW'(free)] <= '0;
+              s_vel[1][TW'(free)] <= '0;
+              for (int a = 0; a < 2; a++) begin
+                s_p00[a][TW'(free)] <= cfg_p0_pos;
+                s_p01[a][TW'(free)] <= '0;
+                s_p11[a][TW'(free)] <= cfg_p0_vel;
+              end
+              ids[CW'(k)] <= next_id;
+              s <= (TW+1)'(free);
+              state <= S_BIRTH_EMIT;
+            end
+          end
+        end
+        S_BIRTH_EMIT: begin
+          if (!upd_valid || upd_ready) begin
+            if (cfg_confirm_hits <= 8'd1) begin
+              upd_valid <= 1'b1;
+              upd_t <= z_t;
+              upd_id <= s_id[si];
+              upd_x <= z_x;
+              upd_y <= z_y;
+              upd_vx <= '0;
+              upd_vy <= '0;
+              upd_zx <= z_x;
+              upd_zy <= z_y;
+            end
+            k <= k + 1'b1;
+            state <= S_BIRTH;
+          end
+        end
+        S_DONE: if (!upd_valid || upd_ready) begin
+          done <= 1'b1;
+          state <= S_IDLE;
+        end
+        default: state <= S_IDLE;
+      endcase
+    end
+  end
+`undef EVMS_REQUEST
+endmodule

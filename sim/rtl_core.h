@@ -1,0 +1,163 @@
+// Drives a Verilated evms_core (one per core build, prefix Vcore_<build>) through its
+// valid/ready streams: words in, labelled events, track updates and packet summaries out.
+// Output readies follow a seeded random pattern (backpressure); with ready_probability 1
+// they are always ready. A trace (FST) is written when a path is given.
+#pragma once
+
+#include <verilated.h>
+#include <verilated_fst_c.h>
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "hls/core/config.h"
+#include "hls/core/words.h"
+
+namespace evms::sim {
+
+template <class V>
+class RtlCore {
+ public:
+  RtlCore(const hls::Config& cfg, std::uint64_t seed = 1, double ready_probability = 1.0, const std::string& trace_path = "")
+      : ctx_(std::make_unique<VerilatedContext>()), rng_(seed | 1), ready_p_(ready_probability) {
+    ctx_->traceEverOn(!trace_path.empty());
+    top_ = std::make_unique<V>(ctx_.get());
+    if (!trace_path.empty()) {
+      trace_ = std::make_unique<VerilatedFstC>();
+      top_->trace(trace_.get(), 99);
+      trace_->open(trace_path.c_str());
+    }
+    configure(cfg);
+    top_->rst_n = 0;
+    top_->clk = 0;
+    for (int i = 0; i < 4; ++i) tick();
+    top_->rst_n = 1;
+    // The filter clears its memory after reset.
+    while (!top_->in_ready) tick();
+  }
+  ~RtlCore() {
+    if (trace_) trace_->close();
+    top_->final();
+  }
+  RtlCore(const RtlCore&) = delete;
+  RtlCore& operator=(const RtlCore&) = delete;
+
+  // Offers a word and ticks until the core takes it, collecting outputs meanwhile.
+  void push(const hls::EventWord& w) {
+    top_->in_valid = 1;
+    top_->in_t = w.t;
+    top_->in_x = w.x;
+    top_->in_y = w.y;
+    top_->in_p = w.p;
+    top_->in_flush = w.flush;
+    accepted_ = false;
+    std::uint64_t guard = 0;
+    while (!accepted_) {
+      tick();
+      if (++guard > kStallLimit) throw std::runtime_error("evms_core did not take an input word for " + std::to_string(kStallLimit) + " cycles");
+    }
+    top_->in_valid = 0;
+  }
+
+  // Ticks until the core is idle with nothing left to send.
+  void settle() {
+    std::uint64_t quiet = 0, guard = 0;
+    while (quiet < 64) {
+      tick();
+      const bool busy = !top_->in_ready || top_->lab_valid || top_->trk_valid || top_->pkt_valid;
+      quiet = busy ? 0 : quiet + 1;
+      if (++guard > kStallLimit) throw std::runtime_error("evms_core did not settle");
+    }
+  }
+
+  std::deque<hls::LabelWord> labels;
+  std::deque<hls::TrackWord> tracks;
+  std::deque<hls::PacketWord> packets;
+  std::uint64_t cycles() const { return cycles_; }
+  std::int32_t tracks_started() const { return static_cast<std::int32_t>(top_->stat_tracks_started); }
+  std::int64_t unassigned() const { return top_->stat_unassigned; }
+
+ private:
+  static constexpr std::uint64_t kStallLimit = 200000000;
+
+  void configure(const hls::Config& c) {
+    top_->cfg_sensor_width = c.sensor_width;
+    top_->cfg_sensor_height = c.sensor_height;
+    top_->cfg_filter_enabled = c.filter_enabled;
+    top_->cfg_filter_window = c.filter_window;
+    top_->cfg_packet_size = c.packet_size;
+    top_->cfg_packet_max_span_us = c.packet_max_span_us;
+    top_->cfg_scale_x = c.scale_x;
+    top_->cfg_scale_y = c.scale_y;
+    top_->cfg_phi_on = c.phi_on;
+    top_->cfg_phi_t_max = c.phi_t_max;
+    top_->cfg_inv_tau = c.inv_tau;
+    top_->cfg_max_iterations = c.max_iterations;
+    top_->cfg_tolerance = c.tolerance;
+    top_->cfg_merge_radius2 = c.merge_radius2;
+    top_->cfg_min_cluster_size = c.min_cluster_size;
+    top_->cfg_max_clusters = c.max_clusters;
+    top_->cfg_gate2 = c.gate2;
+    top_->cfg_confirm_hits = c.confirm_hits;
+    top_->cfg_coast_us = c.coast_us;
+    top_->cfg_max_tracks = c.max_tracks;
+    top_->cfg_q_third = static_cast<std::uint64_t>(c.q_third);
+    top_->cfg_q_half = static_cast<std::uint64_t>(c.q_half);
+    top_->cfg_q = static_cast<std::uint64_t>(c.q);
+    top_->cfg_r = static_cast<std::uint64_t>(c.r);
+    top_->cfg_p0_pos = static_cast<std::uint64_t>(c.p0_pos);
+    top_->cfg_p0_vel = static_cast<std::uint64_t>(c.p0_vel);
+  }
+
+  bool ready_draw() {
+    if (ready_p_ >= 1.0) return true;
+    rng_ ^= rng_ << 13;
+    rng_ ^= rng_ >> 7;
+    rng_ ^= rng_ << 17;
+    return static_cast<double>(rng_ >> 11) * 0x1.0p-53 < ready_p_;
+  }
+
+  // One clock. Handshakes complete at the rising edge: sample them just before it.
+  void tick() {
+    top_->lab_ready = ready_draw();
+    top_->trk_ready = ready_draw();
+    top_->pkt_ready = ready_draw();
+    top_->clk = 0;
+    top_->eval();
+    if (trace_) trace_->dump(ctx_->time());
+    ctx_->timeInc(1);
+    if (top_->in_valid && top_->in_ready) accepted_ = true;
+    if (top_->lab_valid && top_->lab_ready) {
+      labels.push_back({top_->lab_t, static_cast<std::uint16_t>(top_->lab_x), static_cast<std::uint16_t>(top_->lab_y),
+                        static_cast<std::uint8_t>(top_->lab_p), static_cast<std::int32_t>(top_->lab_label)});
+    }
+    if (top_->trk_valid && top_->trk_ready) {
+      tracks.push_back({top_->trk_t, static_cast<std::int32_t>(top_->trk_id), static_cast<std::int32_t>(top_->trk_x),
+                        static_cast<std::int32_t>(top_->trk_y), static_cast<std::int32_t>(top_->trk_vx),
+                        static_cast<std::int32_t>(top_->trk_vy), static_cast<std::int32_t>(top_->trk_zx),
+                        static_cast<std::int32_t>(top_->trk_zy)});
+    }
+    if (top_->pkt_valid && top_->pkt_ready) {
+      packets.push_back({top_->pkt_t_first, top_->pkt_t_last, static_cast<std::uint16_t>(top_->pkt_events),
+                         static_cast<std::uint8_t>(top_->pkt_clusters), static_cast<std::uint8_t>(top_->pkt_iterations)});
+    }
+    top_->clk = 1;
+    top_->eval();
+    if (trace_) trace_->dump(ctx_->time());
+    ctx_->timeInc(1);
+    ++cycles_;
+  }
+
+  std::unique_ptr<VerilatedContext> ctx_;
+  std::unique_ptr<V> top_;
+  std::unique_ptr<VerilatedFstC> trace_;
+  std::uint64_t rng_;
+  double ready_p_;
+  bool accepted_ = false;
+  std::uint64_t cycles_ = 0;
+};
+
+}  // namespace evms::sim

@@ -1,0 +1,215 @@
+// Cosimulation: the RTL core and the C++ core (hls/) take the same words; every output
+// transaction of the RTL must equal the C++ one, stream by stream, under random backpressure.
+// The seed is printed; on a mismatch the run is repeated with an FST trace.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "Vcore_arty.h"
+#include "Vcore_host.h"
+#include "Vcore_ice40.h"
+#include "hls/core/configs.h"
+#include "hls/core/core.h"
+#include "host/backend/core_config.h"
+#include "host/eval/scene_run.h"
+#include "sim/rtl_core.h"
+#include "tests/support/read_all.h"
+#include "tests/support/scenes.h"
+
+namespace evms {
+namespace {
+
+std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {
+  std::vector<hls::EventWord> w;
+  const TimeUs base = events.empty() ? 0 : events.front().t - 1;
+  for (const Event& e : events) w.push_back({static_cast<std::uint32_t>(e.t - base), e.x, e.y, e.p, false});
+  hls::EventWord flush;
+  flush.flush = true;
+  w.push_back(flush);
+  return w;
+}
+
+struct Mismatch {
+  std::string what;
+  bool any() const { return !what.empty(); }
+};
+
+// Runs both cores on `words`; returns the first difference (or nothing) and counts.
+template <class V, class S>
+Mismatch compare(const std::vector<hls::EventWord>& words, const hls::Config& cfg, std::uint64_t seed, double ready_p,
+                 const std::string& trace, std::uint64_t* cycles = nullptr) {
+  auto model = std::make_unique<hls::Core<S>>();
+  auto m_labels = std::make_unique<typename hls::Core<S>::LabelStream>();
+  typename hls::Core<S>::TrackStream m_tracks;
+  typename hls::Core<S>::PacketStream m_packets;
+  model->reset(cfg);
+  sim::RtlCore<V> rtl(cfg, seed, ready_p, trace);
+  std::deque<hls::LabelWord> want_labels;
+  std::deque<hls::TrackWord> want_tracks;
+  std::deque<hls::PacketWord> want_packets;
+  std::uint64_t n_labels = 0, n_tracks = 0, n_packets = 0;
+  auto check = [&]() -> Mismatch {
+    while (!rtl.labels.empty() && !want_labels.empty()) {
+      const auto a = rtl.labels.front(), b = want_labels.front();
+      if (a.t != b.t || a.x != b.x || a.y != b.y || a.p != b.p || a.label != b.label) {
+        return {"label word " + std::to_string(n_labels) + ": rtl (t=" + std::to_string(a.t) + " x=" + std::to_string(a.x) +
+                " label=" + std::to_string(a.label) + ") c++ (t=" + std::to_string(b.t) + " x=" + std::to_string(b.x) +
+                " label=" + std::to_string(b.label) + ")"};
+      }
+      rtl.labels.pop_front(), want_labels.pop_front(), ++n_labels;
+    }
+    while (!rtl.tracks.empty() && !want_tracks.empty()) {
+      const auto a = rtl.tracks.front(), b = want_tracks.front();
+      if (a.t != b.t || a.id != b.id || a.x != b.x || a.y != b.y || a.vx != b.vx || a.vy != b.vy || a.zx != b.zx || a.zy != b.zy) {
+        return {"track word " + std::to_string(n_tracks) + ": rtl (t=" + std::to_string(a.t) + " id=" + std::to_string(a.id) + " x=" +
+                std::to_string(a.x) + " y=" + std::to_string(a.y) + " vx=" + std::to_string(a.vx) + " zx=" + std::to_string(a.zx) +
+                ") c++ (t=" + std::to_string(b.t) + " id=" + std::to_string(b.id) + " x=" + std::to_string(b.x) + " y=" +
+                std::to_string(b.y) + " vx=" + std::to_string(b.vx) + " zx=" + std::to_string(b.zx) + ")"};
+      }
+      rtl.tracks.pop_front(), want_tracks.pop_front(), ++n_tracks;
+    }
+    while (!rtl.packets.empty() && !want_packets.empty()) {
+      const auto a = rtl.packets.front(), b = want_packets.front();
+      if (a.t_first != b.t_first || a.t_last != b.t_last || a.events != b.events || a.clusters != b.clusters ||
+          a.iterations != b.iterations) {
+        return {"packet word " + std::to_string(n_packets) + ": rtl (events=" + std::to_string(a.events) + " clusters=" +
+                std::to_string(a.clusters) + " iterations=" + std::to_string(a.iterations) + ") c++ (events=" + std::to_string(b.events) +
+                " clusters=" + std::to_string(b.clusters) + " iterations=" + std::to_string(b.iterations) + ")"};
+      }
+      rtl.packets.pop_front(), want_packets.pop_front(), ++n_packets;
+    }
+    return {};
+  };
+  for (const auto& w : words) {
+    model->process(w, *m_labels, m_tracks, m_packets);
+    hls::LabelWord l;
+    while (m_labels->read(l)) want_labels.push_back(l);
+    hls::TrackWord t;
+    while (m_tracks.read(t)) want_tracks.push_back(t);
+    hls::PacketWord p;
+    while (m_packets.read(p)) want_packets.push_back(p);
+    rtl.push(w);
+    if (auto m = check(); m.any()) return m;
+  }
+  rtl.settle();
+  if (auto m = check(); m.any()) return m;
+  if (!rtl.labels.empty() || !want_labels.empty() || !rtl.tracks.empty() || !want_tracks.empty() || !rtl.packets.empty() ||
+      !want_packets.empty()) {
+    return {"output counts differ: labels rtl+" + std::to_string(rtl.labels.size()) + "/c++" + std::to_string(want_labels.size()) +
+            ", tracks rtl+" + std::to_string(rtl.tracks.size()) + "/c++" + std::to_string(want_tracks.size()) + ", packets rtl+" +
+            std::to_string(rtl.packets.size()) + "/c++" + std::to_string(want_packets.size())};
+  }
+  if (n_labels + 1 != words.size()) return {"labels out " + std::to_string(n_labels) + " for " + std::to_string(words.size() - 1) + " events in"};
+  if (rtl.tracks_started() != model->tracker().tracks_started()) return {"tracks started differ"};
+  if (cycles) *cycles = rtl.cycles();
+  std::printf("  %llu labels, %llu track updates, %llu packets equal; %llu cycles\n", static_cast<unsigned long long>(n_labels),
+              static_cast<unsigned long long>(n_tracks), static_cast<unsigned long long>(n_packets),
+              static_cast<unsigned long long>(rtl.cycles()));
+  return {};
+}
+
+template <class V, class S>
+void expect_equal(const std::string& name, const std::vector<Event>& events, SensorSize sensor, std::uint64_t seed, double ready_p,
+                  const Params& params = Params{}) {
+  std::printf("cosim %s: %zu events, seed %llu, ready probability %.2f\n", name.c_str(), events.size(),
+              static_cast<unsigned long long>(seed), ready_p);
+  const hls::Config cfg = backend::core_config<S>(params, sensor);
+  const auto words = words_of(events);
+  const Mismatch m = compare<V, S>(words, cfg, seed, ready_p, "");
+  if (m.any()) {
+    const std::string trace = (std::filesystem::temp_directory_path() / ("evms_cosim_" + name + "_" + std::to_string(seed) + ".fst")).string();
+    compare<V, S>(words, cfg, seed, ready_p, trace);
+    ADD_FAILURE() << name << " (seed " << seed << "): " << m.what << "; trace written to " << trace;
+  }
+}
+
+Params small_core_params() {
+  Params p;
+  p.packet_size = hls::Ice40Shape::kPacketMax;
+  p.max_clusters = hls::Ice40Shape::kClustersMax;
+  p.max_tracks = hls::Ice40Shape::kTracksMax;
+  return p;
+}
+
+TEST(Cosim, BlobsUnderRandomBackpressureEveryBuild) {
+  const auto events = test::blob_events({{40, 40, 300, 100}, {100, 90, -200, 50}, {70, 20}}, 60000, 0, 40000, {128, 128}, 7);
+  expect_equal<Vcore_host, hls::HostShape>("blobs_host", events, {128, 128}, 11, 0.6);
+  expect_equal<Vcore_arty, hls::ArtyShape>("blobs_arty", events, {128, 128}, 12, 0.6);
+  expect_equal<Vcore_ice40, hls::Ice40Shape>("blobs_ice40", events, {128, 128}, 13, 0.6, small_core_params());
+}
+
+}  // namespace
+}  // namespace evms
+
+namespace evms {
+namespace {
+
+std::vector<Event> scene_events(gen::Motion m, double duration_s, int width, int height, std::uint64_t seed) {
+  gen::SceneConfig c;
+  c.motion = m;
+  c.duration_s = duration_s;
+  c.width = width;
+  c.height = height;
+  c.seed = seed;
+  return eval::generate_scene(c).events;
+}
+
+TEST(Cosim, LabelledScenesHostBuild) {
+  for (auto m : {gen::Motion::kTranslation, gen::Motion::kRotation, gen::Motion::kSixDof}) {
+    expect_equal<Vcore_host, hls::HostShape>(std::string("scene_host_") + gen::motion_name(m), scene_events(m, 0.25, 240, 180, 3),
+                                             {240, 180}, 21, 0.8);
+  }
+}
+
+}  // namespace
+}  // namespace evms
+
+namespace evms {
+namespace {
+
+TEST(Cosim, LabelledScenesBoardBuilds) {
+  expect_equal<Vcore_arty, hls::ArtyShape>("scene_arty_rotation", scene_events(gen::Motion::kRotation, 0.2, 240, 180, 4), {240, 180}, 31,
+                                           0.7);
+  expect_equal<Vcore_ice40, hls::Ice40Shape>("scene_ice40_6dof", scene_events(gen::Motion::kSixDof, 0.2, 128, 128, 5), {128, 128}, 32,
+                                             0.7, small_core_params());
+}
+
+// Settings that take other paths through the core: packets closed by their span, the filter
+// off, single-hit confirmation, few clusters and tracks, a single sweep, no tolerance.
+TEST(Cosim, ParameterCorners) {
+  const auto events = scene_events(gen::Motion::kTranslation, 0.12, 240, 180, 6);
+  Params span;
+  span.packet_max_span_us = 300;
+  expect_equal<Vcore_host, hls::HostShape>("corner_span", events, {240, 180}, 41, 0.5, span);
+  Params open;
+  open.filter_window_us = 0;
+  open.confirm_hits = 1;
+  open.min_cluster_size = 1;
+  expect_equal<Vcore_host, hls::HostShape>("corner_open", events, {240, 180}, 42, 0.5, open);
+  Params tight;
+  tight.max_clusters = 3;
+  tight.max_tracks = 2;
+  tight.max_iterations = 1;
+  tight.packet_size = 100;
+  expect_equal<Vcore_arty, hls::ArtyShape>("corner_tight", events, {240, 180}, 43, 0.5, tight);
+  Params exact;
+  exact.tolerance = 0;
+  exact.scale_p = 0.3;
+  exact.tau_us = 200;
+  exact.coast_us = 5000;
+  expect_equal<Vcore_host, hls::HostShape>("corner_exact", events, {240, 180}, 44, 0.9, exact);
+}
+
+// The regression over every real recording, on the host build.
+TEST(CosimRegression, RealRecordings) {
+  const std::string dir = test::shared_data_dir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/data/real is absent";
+  for (const char* f : {"atis_ncars_sample.dat", "dvxplorer_indoor.aedat4", "gen41_dense_scene.evt3.raw", "gen3_moving_blob.evt2.raw"}) {
+    const std::string path = dir + "/" + f;
+    expect_equal<Vcore_host, hls::HostShape>(f, test::read_all(path), read::open_source(path, {})->info().sensor, 51, 0.9);
+  }
+}
+
+}  // namespace
+}  // namespace evms
