@@ -61,6 +61,11 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.p0_pos = rnd(p.init_sigma_px * p.init_sigma_px * std::ldexp(1.0, S::kCovFrac));
   c.p0_vel = rnd(std::pow(p.init_sigma_vel * tick_s, 2) * std::ldexp(1.0, S::kCovFrac));
   need(c.r > 0, "--meas-sigma-px is too small for the core's covariance words");
+  // The core's 64-bit products stay exact only below these (docs/hls.md, "Formats").
+  need(c.r < (std::int64_t{1} << 35) && c.p0_pos < (std::int64_t{1} << 35) && c.p0_vel < (std::int64_t{1} << 35),
+       "--meas-sigma-px, --init-sigma-px or --init-sigma-vel is too large for the core's covariance words");
+  need(c.q < (std::int64_t{1} << 31), "--accel-psd is too large for the core (at most 1e5 px^2/s^3)");
+  need(c.inv_tau <= (std::uint64_t{1} << 32), "--tau-us must be at least 1 us for the core");
   return c;
 }
 

@@ -9,6 +9,7 @@ namespace {
 const std::array kBackends = {
     BackendInfo{"golden", "floating-point reference model (Eigen, double)", &make_golden_backend},
     BackendInfo{"fixed", "bit-accurate fixed-point core (hls/), in C++", &make_fixed_backend},
+    BackendInfo{"rtl", "the SystemVerilog core (rtl/), simulated by Verilator", &make_rtl_backend},
 };
 }  // namespace
 

@@ -6,4 +6,5 @@
 namespace evms::backend {
 std::unique_ptr<Backend> make_golden_backend(const BackendOptions& o);
 std::unique_ptr<Backend> make_fixed_backend(const BackendOptions& o);
+std::unique_ptr<Backend> make_rtl_backend(const BackendOptions& o);
 }  // namespace evms::backend

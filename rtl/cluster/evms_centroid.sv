@@ -59,11 +59,13 @@ module evms_centroid #(
   assign recip_x = 64'(count[CW'(c)]);
 
   // round(p * 2^-(RECIP_FRAC + m - extra)), as Reciprocal::divide
-  function automatic logic [63:0] quotient(input logic [63:0] p, input logic [6:0] mm, input int extra);
-    int shift;
-    shift = RECIP_FRAC + int'(mm) - extra;
-    if (shift <= 0) return p << -shift;
-    return (p + (64'd1 << (shift - 1))) >> shift;
+  function automatic [63:0] quotient(input [63:0] p, input [6:0] mm, input integer extra);
+    integer shift;
+    begin
+      shift = RECIP_FRAC + mm - extra;
+      if (shift <= 0) quotient = p << (-shift);
+      else quotient = (p + (64'd1 << (shift - 1))) >> shift;
+    end
   endfunction
 
   always_ff @(posedge clk or negedge rst_n) begin

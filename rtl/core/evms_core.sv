@@ -104,6 +104,7 @@ module evms_core #(
   output logic [7:0]  pkt_clusters,
   output logic [7:0]  pkt_iterations,
   // Status.
+  output logic        idle,                // waiting for a word, nothing held
   output logic [31:0] stat_tracks_started,
   output logic [31:0] stat_unassigned
 );
@@ -280,15 +281,20 @@ module evms_core #(
       mul_b = feat_mul_b;
     end
   end
-  function automatic logic [63:0] clamp_feat(input logic signed [63:0] v);
-    return v < 0 ? 64'd0 : (64'(v) > FeatMax ? FeatMax : 64'(v));
+  function automatic [63:0] clamp_feat(input signed [63:0] v);
+    begin
+      clamp_feat = v < 0 ? 64'd0 : ($unsigned(v) > FeatMax ? FeatMax : $unsigned(v));
+    end
   endfunction
-  function automatic logic signed [63:0] shr_rnd(input logic signed [63:0] v, input int s);
-    if (s <= 0) return v <<< -s;
-    return (v + (64'sd1 <<< (s - 1))) >>> s;
+  function automatic signed [63:0] shr_rnd(input signed [63:0] v, input integer s);
+    begin
+      if (s <= 0) shr_rnd = v <<< (-s);
+      else shr_rnd = (v + (64'sd1 <<< (s - 1))) >>> s;
+    end
   endfunction
 
   assign in_ready = state == C_IDLE && f_ready;
+  assign idle = in_ready && pend_n == 0 && !lab_valid && !trk_valid && !pkt_valid;
   assign f_start = in_valid && in_ready && !in_flush;
   assign id_c = co_rdata >= 0 ? 8'(co_rdata) : 8'd0;
 

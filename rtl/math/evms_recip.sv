@@ -19,9 +19,12 @@ module evms_recip #(
   initial $readmemh(MEM_FILE, table_rom);
 
   // The most significant set bit.
-  function automatic logic [6:0] msb(input logic [63:0] v);
-    msb = 0;
-    for (int k = 0; k < 64; k++) if (v[k]) msb = 7'(k);
+  function automatic [6:0] msb(input [63:0] v);
+    integer k;
+    begin
+      msb = 7'd0;
+      for (k = 0; k < 64; k = k + 1) if (v[k]) msb = k[6:0];
+    end
   endfunction
 
   logic [2:0]  stage;

@@ -66,19 +66,25 @@ module evms_tracker #(
   localparam logic signed [63:0] DistMax = 64'sd4096 <<< POS_FRAC;
   localparam logic signed [63:0] MaxDt = 64'sd1 <<< 18;
 
-  function automatic logic signed [63:0] shr_rnd(input logic signed [63:0] v, input int s);
-    if (s <= 0) return v <<< -s;
-    return (v + (64'sd1 <<< (s - 1))) >>> s;
+  function automatic signed [63:0] shr_rnd(input signed [63:0] v, input integer s);
+    begin
+      if (s <= 0) shr_rnd = v <<< (-s);
+      else shr_rnd = (v + (64'sd1 <<< (s - 1))) >>> s;
+    end
   endfunction
-  function automatic logic signed [63:0] clamp_sym(input logic signed [63:0] v, input logic signed [63:0] b);
-    return v > b ? b : (v < -b ? -b : v);
+  function automatic signed [63:0] clamp_sym(input signed [63:0] v, input signed [63:0] b);
+    begin
+      clamp_sym = v > b ? b : (v < -b ? -b : v);
+    end
   endfunction
   // Reciprocal::divide for a non-negative numerator: p = num * r.
-  function automatic logic [63:0] quotient(input logic [63:0] p, input logic [6:0] mm, input int extra);
-    int shift;
-    shift = RECIP_FRAC + int'(mm) - extra;
-    if (shift <= 0) return p << -shift;
-    return (p + (64'd1 << (shift - 1))) >> shift;
+  function automatic [63:0] quotient(input [63:0] p, input [6:0] mm, input integer extra);
+    integer shift;
+    begin
+      shift = RECIP_FRAC + mm - extra;
+      if (shift <= 0) quotient = p << (-shift);
+      else quotient = (p + (64'd1 << (shift - 1))) >> shift;
+    end
   endfunction
 
   // ---- slots ------------------------------------------------------------------------------

@@ -1,0 +1,61 @@
+// The serial link between the host and the board top (docs/link.md), in C++: frame encoding
+// for the host's side and a decoder for the board's frames. The RTL implements the same
+// protocol in rtl/board/evms_link_rx.sv and evms_link_tx.sv.
+//
+//   frame = 0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
+//   CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF) over TYPE, LEN and PAYLOAD
+//   host -> board: 0x01 event (t u32, x u16, y u16, p u8), 0x02 flush
+//   board -> host: 0x81 labelled event, 0x82 track update, 0x83 packet summary, 0x84 status
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <span>
+#include <vector>
+
+#include "hls/core/words.h"
+
+namespace evms::link {
+
+enum FrameType : std::uint8_t {
+  kEvent = 0x01,
+  kFlush = 0x02,
+  kLabel = 0x81,
+  kTrack = 0x82,
+  kPacket = 0x83,
+  kStatus = 0x84,
+};
+
+std::uint16_t crc16(std::span<const std::uint8_t> bytes);
+
+void append_event(std::vector<std::uint8_t>& out, const hls::EventWord& e);
+void append_flush(std::vector<std::uint8_t>& out);
+
+struct Status {
+  std::uint32_t timestamp_us = 0, events_received = 0, crc_errors = 0, framing_errors = 0, overruns = 0, external_events = 0;
+};
+
+struct Frame {
+  FrameType type;
+  std::vector<std::uint8_t> payload;
+};
+
+// Finds frames in a byte stream, checking length and CRC; bad frames are counted and skipped.
+class FrameDecoder {
+ public:
+  void push(std::span<const std::uint8_t> bytes);
+  bool next(Frame& out);
+  std::uint64_t bad_frames() const { return bad_; }
+
+ private:
+  std::deque<std::uint8_t> buf_;
+  std::deque<Frame> frames_;
+  std::uint64_t bad_ = 0;
+};
+
+hls::LabelWord decode_label(const Frame& f);
+hls::TrackWord decode_track(const Frame& f);
+hls::PacketWord decode_packet(const Frame& f);
+Status decode_status(const Frame& f);
+
+}  // namespace evms::link

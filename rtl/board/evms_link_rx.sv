@@ -1,0 +1,122 @@
+// Host-to-board half of the serial link (docs/link.md): frames
+//   0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
+// with CRC-16/CCITT-FALSE over TYPE, LEN and PAYLOAD. TYPE 0x01 is an event (t u32, x u16,
+// y u16, p u8, little-endian), 0x02 a flush. Good frames go into a FIFO of FIFO_DEPTH words
+// for the core; a frame with a bad check, type or length is dropped and counted, and the
+// parser hunts for the next 0xA5 0x5A. The host keeps at most FIFO_DEPTH events in flight,
+// so the FIFO cannot overrun; if it does anyway, the word is dropped and counted.
+module evms_link_rx import evms_crc16_pkg::*; #(
+  parameter int FIFO_DEPTH = 512
+) (
+  input  logic        clk,
+  input  logic        rst_n,
+  input  logic        byte_valid,
+  input  logic [7:0]  byte_data,
+  output logic        ev_valid,
+  input  logic        ev_ready,
+  output logic [31:0] ev_t,
+  output logic [15:0] ev_x,
+  output logic [15:0] ev_y,
+  output logic        ev_p,
+  output logic        ev_flush,
+  output logic [31:0] crc_errors,
+  output logic [31:0] overruns,
+  output logic [31:0] events_received
+);
+  localparam int AW = $clog2(FIFO_DEPTH);
+  typedef enum logic [2:0] {S_SYNC1, S_SYNC2, S_TYPE, S_LEN, S_PAYLOAD, S_CRC_LO, S_CRC_HI} state_e;
+  state_e state;
+  logic [7:0] ftype, flen, pos;
+  logic [7:0] payload [9];
+  logic [15:0] crc;
+  logic [7:0] crc_lo;
+
+  // FIFO of {flush, p, y, x, t}.
+  localparam int WW = 1 + 1 + 16 + 16 + 32;
+  logic [WW-1:0] fifo [FIFO_DEPTH];
+  logic [AW:0] head, tail;
+  logic push;
+  logic [WW-1:0] push_word;
+  wire full = (tail - head) == (AW+1)'(FIFO_DEPTH);
+  assign ev_valid = head != tail;
+  assign {ev_flush, ev_p, ev_y, ev_x, ev_t} = fifo[AW'(head)];
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      head <= '0;
+      tail <= '0;
+    end else begin
+      if (ev_valid && ev_ready) head <= head + 1'b1;
+      if (push && !full) begin
+        fifo[AW'(tail)] <= push_word;
+        tail <= tail + 1'b1;
+      end
+    end
+  end
+
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      state <= S_SYNC1;
+      ftype <= '0;
+      flen <= '0;
+      pos <= '0;
+      crc <= 16'hFFFF;
+      crc_lo <= '0;
+      crc_errors <= '0;
+      overruns <= '0;
+      events_received <= '0;
+      push <= 1'b0;
+      push_word <= '0;
+      for (int k = 0; k < 9; k++) payload[k] <= '0;
+    end else begin
+      push <= 1'b0;
+      if (push && full) overruns <= overruns + 1'b1;
+      if (byte_valid) begin
+        case (state)
+          S_SYNC1: if (byte_data == 8'hA5) state <= S_SYNC2;
+          S_SYNC2: state <= byte_data == 8'h5A ? S_TYPE : (byte_data == 8'hA5 ? S_SYNC2 : S_SYNC1);
+          S_TYPE: begin
+            ftype <= byte_data;
+            crc <= crc16_byte(16'hFFFF, byte_data);
+            state <= S_LEN;
+          end
+          S_LEN: begin
+            flen <= byte_data;
+            crc <= crc16_byte(crc, byte_data);
+            pos <= '0;
+            if (byte_data > 8'd9) begin
+              crc_errors <= crc_errors + 1'b1;  // no frame of ours is that long: resynchronize
+              state <= S_SYNC1;
+            end else begin
+              state <= byte_data == 0 ? S_CRC_LO : S_PAYLOAD;
+            end
+          end
+          S_PAYLOAD: begin
+            payload[pos[3:0]] <= byte_data;
+            crc <= crc16_byte(crc, byte_data);
+            pos <= pos + 1'b1;
+            if (pos + 1'b1 == flen) state <= S_CRC_LO;
+          end
+          S_CRC_LO: begin
+            crc_lo <= byte_data;
+            state <= S_CRC_HI;
+          end
+          S_CRC_HI: begin
+            if ({byte_data, crc_lo} == crc && ftype == 8'h01 && flen == 8'd9) begin
+              push <= 1'b1;
+              push_word <= {1'b0, payload[8][0], {payload[7], payload[6]}, {payload[5], payload[4]},
+                            {payload[3], payload[2], payload[1], payload[0]}};
+              events_received <= events_received + 1'b1;
+            end else if ({byte_data, crc_lo} == crc && ftype == 8'h02 && flen == 8'd0) begin
+              push <= 1'b1;
+              push_word <= {1'b1, 1'b0, 16'd0, 16'd0, 32'd0};
+            end else begin
+              crc_errors <= crc_errors + 1'b1;
+            end
+            state <= S_SYNC1;
+          end
+          default: state <= S_SYNC1;
+        endcase
+      end
+    end
+  end
+endmodule

@@ -1,0 +1,123 @@
+// Board-to-host half of the serial link (docs/link.md): labelled events (0x81), track
+// updates (0x82), packet summaries (0x83) and status (0x84) as frames
+//   0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
+// (CRC-16/CCITT-FALSE over TYPE, LEN and PAYLOAD; little-endian fields). Streams are served
+// one frame at a time, status first, then packet summaries, track updates, labelled events; a
+// stream waits (its valid stays high) while the UART is busy, so the core sees backpressure
+// and nothing is lost.
+module evms_link_tx import evms_crc16_pkg::*; (
+  input  logic        clk,
+  input  logic        rst_n,
+  // Labelled events.
+  input  logic        lab_valid,
+  output logic        lab_ready,
+  input  logic [31:0] lab_t,
+  input  logic [15:0] lab_x,
+  input  logic [15:0] lab_y,
+  input  logic        lab_p,
+  input  logic [31:0] lab_label,
+  // Track updates.
+  input  logic        trk_valid,
+  output logic        trk_ready,
+  input  logic [255:0] trk_payload,   // t, id, x, y, vx, vy, zx, zy (32 bits each, t lowest)
+  // Packet summaries.
+  input  logic        pkt_valid,
+  output logic        pkt_ready,
+  input  logic [95:0] pkt_payload,    // t_first, t_last, events (16), clusters (8), iterations (8)
+  // Status.
+  input  logic        st_valid,
+  output logic        st_ready,
+  input  logic [191:0] st_payload,    // six 32-bit counters
+  // Bytes to the UART.
+  output logic        byte_valid,
+  input  logic        byte_ready,
+  output logic [7:0]  byte_data
+);
+  typedef enum logic [2:0] {S_IDLE, S_SYNC1, S_SYNC2, S_TYPE, S_LEN, S_PAYLOAD, S_CRC_LO, S_CRC_HI} state_e;
+  state_e state;
+  logic [255:0] payload;
+  logic [7:0] ftype, flen, pos;
+  logic [15:0] crc;
+
+  always_comb begin
+    lab_ready = 1'b0;
+    trk_ready = 1'b0;
+    pkt_ready = 1'b0;
+    st_ready = 1'b0;
+    if (state == S_IDLE) begin
+      if (st_valid) st_ready = 1'b1;
+      else if (pkt_valid) pkt_ready = 1'b1;
+      else if (trk_valid) trk_ready = 1'b1;
+      else if (lab_valid) lab_ready = 1'b1;
+    end
+  end
+
+  always_comb begin
+    byte_data = 8'h00;
+    case (state)
+      S_SYNC1: byte_data = 8'hA5;
+      S_SYNC2: byte_data = 8'h5A;
+      S_TYPE: byte_data = ftype;
+      S_LEN: byte_data = flen;
+      S_PAYLOAD: byte_data = payload[7:0];
+      S_CRC_LO: byte_data = crc[7:0];
+      S_CRC_HI: byte_data = crc[15:8];
+      default: byte_data = 8'h00;
+    endcase
+  end
+  assign byte_valid = state != S_IDLE;
+
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      state <= S_IDLE;
+      payload <= '0;
+      ftype <= '0;
+      flen <= '0;
+      pos <= '0;
+      crc <= 16'hFFFF;
+    end else begin
+      case (state)
+        S_IDLE: begin
+          if (st_valid) begin
+            {ftype, flen, payload} <= {8'h84, 8'd24, 64'd0, st_payload};
+            state <= S_SYNC1;
+          end else if (pkt_valid) begin
+            {ftype, flen, payload} <= {8'h83, 8'd12, 160'd0, pkt_payload};
+            state <= S_SYNC1;
+          end else if (trk_valid) begin
+            {ftype, flen, payload} <= {8'h82, 8'd32, trk_payload};
+            state <= S_SYNC1;
+          end else if (lab_valid) begin
+            {ftype, flen, payload} <= {8'h81, 8'd13, 152'd0, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
+            state <= S_SYNC1;
+          end
+          crc <= 16'hFFFF;
+          pos <= '0;
+        end
+        default: if (byte_ready) begin
+          case (state)
+            S_SYNC1: state <= S_SYNC2;
+            S_SYNC2: state <= S_TYPE;
+            S_TYPE: begin
+              crc <= crc16_byte(crc, ftype);
+              state <= S_LEN;
+            end
+            S_LEN: begin
+              crc <= crc16_byte(crc, flen);
+              state <= S_PAYLOAD;
+            end
+            S_PAYLOAD: begin
+              crc <= crc16_byte(crc, payload[7:0]);
+              payload <= payload >> 8;
+              pos <= pos + 1'b1;
+              if (pos + 1'b1 == flen) state <= S_CRC_LO;
+            end
+            S_CRC_LO: state <= S_CRC_HI;
+            S_CRC_HI: state <= S_IDLE;
+            default: state <= S_IDLE;
+          endcase
+        end
+      endcase
+    end
+  end
+endmodule
