@@ -32,7 +32,7 @@ size_t expected_length(std::uint8_t type) {
     case kLabel: return 13;
     case kTrack: return 32;
     case kPacket: return 12;
-    case kStatus: return 24;
+    case kStatus: return 32;
     default: return 256;  // unknown
   }
 }
@@ -111,7 +111,8 @@ hls::PacketWord decode_packet(const Frame& f) {
 
 Status decode_status(const Frame& f) {
   if (f.type != kStatus) throw std::logic_error("not a status frame");
-  return {get(f.payload, 0, 4), get(f.payload, 4, 4), get(f.payload, 8, 4), get(f.payload, 12, 4), get(f.payload, 16, 4), get(f.payload, 20, 4)};
+  return {get(f.payload, 0, 4),  get(f.payload, 4, 4),  get(f.payload, 8, 4),  get(f.payload, 12, 4),
+          get(f.payload, 16, 4), get(f.payload, 20, 4), get(f.payload, 24, 4), get(f.payload, 28, 4)};
 }
 
 }  // namespace evms::link

@@ -32,7 +32,8 @@ void append_event(std::vector<std::uint8_t>& out, const hls::EventWord& e);
 void append_flush(std::vector<std::uint8_t>& out);
 
 struct Status {
-  std::uint32_t timestamp_us = 0, events_received = 0, crc_errors = 0, framing_errors = 0, overruns = 0, external_events = 0;
+  std::uint32_t timestamp_us = 0, events_received = 0, crc_errors = 0, framing_errors = 0, overruns = 0, external_events = 0,
+                tracks_started = 0, unassigned_clusters = 0;
 };
 
 struct Frame {

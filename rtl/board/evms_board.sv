@@ -7,8 +7,8 @@
 //   UART rx --> evms_link_rx --+   (link events first, then AER)
 //
 // After a flush from the host, once the core has released everything, a status frame
-// (timestamp, events received, check errors, framing errors, overruns, external AER events)
-// tells the host that the flush is complete. Backpressure reaches the AER sender (it waits for
+// (timestamp, events received, check errors, framing errors, overruns, external AER events,
+// tracks started, clusters without a track slot) tells the host that the flush is complete. Backpressure reaches the AER sender (it waits for
 // its acknowledge); the link keeps at most LINK_FIFO_DEPTH events in flight by protocol.
 module evms_board #(
   parameter int CLK_HZ           = 12000000,
@@ -136,7 +136,7 @@ module evms_board #(
     .trk_payload({trk_zy, trk_zx, trk_vy, trk_vx, trk_y, trk_x, trk_id, trk_t}), .pkt_valid(pkt_valid),
     .pkt_ready(pkt_ready), .pkt_payload({pkt_iterations, pkt_clusters, pkt_events, pkt_t_last, pkt_t_first}),
     .st_valid(st_valid), .st_ready(st_ready),
-    .st_payload({external_events, overruns, framing_errors, crc_errors, events_received, timestamp}),
+    .st_payload({unassigned, tracks_started, external_events, overruns, framing_errors, crc_errors, events_received, timestamp}),
     .byte_valid(tx_valid), .byte_ready(tx_ready), .byte_data(tx_data));
   evms_uart_tx #(.CLKS_PER_BIT(CLKS_PER_BIT)) u_uart_tx (
     .clk(clk), .rst_n(rst_n), .valid(tx_valid), .ready(tx_ready), .data(tx_data), .tx(uart_tx));

@@ -27,7 +27,7 @@ module evms_link_tx import evms_crc16_pkg::*; (
   // Status.
   input  logic        st_valid,
   output logic        st_ready,
-  input  logic [191:0] st_payload,    // six 32-bit counters
+  input  logic [255:0] st_payload,    // eight 32-bit counters
   // Bytes to the UART.
   output logic        byte_valid,
   input  logic        byte_ready,
@@ -79,7 +79,7 @@ module evms_link_tx import evms_crc16_pkg::*; (
       case (state)
         S_IDLE: begin
           if (st_valid) begin
-            {ftype, flen, payload} <= {8'h84, 8'd24, 64'd0, st_payload};
+            {ftype, flen, payload} <= {8'h84, 8'd32, st_payload};
             state <= S_SYNC1;
           end else if (pkt_valid) begin
             {ftype, flen, payload} <= {8'h83, 8'd12, 160'd0, pkt_payload};

@@ -3,7 +3,6 @@
 // packet accumulates; then each cluster takes three divisions through the reciprocal unit and
 // the shared multiplier.
 module evms_centroid #(
-  parameter int PACKET_MAX   = 256,
   parameter int CLUSTERS_MAX = 16,
   parameter int POS_FRAC     = 12,
   parameter int RECIP_FRAC   = 20
@@ -48,7 +47,6 @@ module evms_centroid #(
   logic signed [31:0] out_x [CLUSTERS_MAX], out_y [CLUSTERS_MAX];
   logic [15:0] i;
   logic [7:0]  c;
-  logic        waiting;
   logic [6:0]  m;
   logic [RECIP_FRAC:0] r;
 
@@ -56,13 +54,16 @@ module evms_centroid #(
   assign z_x = out_x[CW'(z_c)];
   assign z_y = out_y[CW'(z_c)];
   assign rd_i = i;
+  // Time since the packet's first event, modulo 2^32 like the C++ core's uint32 difference.
+  logic [31:0] age;
+  assign age = ev_t - t0;
   assign recip_x = 64'(count[CW'(c)]);
 
   // round(p * 2^-(RECIP_FRAC + m - extra)), as Reciprocal::divide
   function automatic [63:0] quotient(input [63:0] p, input [6:0] mm, input integer extra);
     integer shift;
     begin
-      shift = RECIP_FRAC + mm - extra;
+      shift = RECIP_FRAC + {25'd0, mm} - extra;
       if (shift <= 0) quotient = p << (-shift);
       else quotient = (p + (64'd1 << (shift - 1))) >> shift;
     end
@@ -74,7 +75,6 @@ module evms_centroid #(
       done <= 1'b0;
       i <= '0;
       c <= '0;
-      waiting <= 1'b0;
       m <= '0;
       r <= '0;
       recip_start <= 1'b0;
@@ -102,7 +102,7 @@ module evms_centroid #(
           if (ev_cluster >= 0) begin
             sx[CW'(ev_cluster)] <= sx[CW'(ev_cluster)] + 32'(ev_x);
             sy[CW'(ev_cluster)] <= sy[CW'(ev_cluster)] + 32'(ev_y);
-            st[CW'(ev_cluster)] <= st[CW'(ev_cluster)] + 64'(ev_t - t0);
+            st[CW'(ev_cluster)] <= st[CW'(ev_cluster)] + 64'(age);
             count[CW'(ev_cluster)] <= count[CW'(ev_cluster)] + 1'b1;
           end
           if (32'(i) + 1 < 32'(n)) begin

@@ -10,7 +10,7 @@
 // at address j / LANES) so that every lane reads its point in the same cycle.
 //
 // Schedule per point: ceil(n / LANES) cycles issuing point pairs, then the lane pipeline drains
-// (LatLanes cycles) and the point's sums go to the divider, which works while the next point's
+// (six cycles) and the point's sums go to the divider, which works while the next point's
 // kernel loop runs. A sweep ends when the divider has finished the last point.
 module evms_mean_shift #(
   parameter int PACKET_MAX     = 256,
@@ -57,8 +57,19 @@ module evms_mean_shift #(
   localparam int UF = 2 * FEAT_FRAC;
   localparam int PS = WEIGHT_FRAC + FEAT_FRAC - SUM_FRAC;     // product shift
   localparam int QF = FEAT_FRAC + WEIGHT_FRAC - SUM_FRAC;     // quotient fraction bits
-  localparam int LatLanes = 6;                                // issue -> accumulated
   initial if (QF >= RECIP_FRAC + 1) $error("evms_mean_shift: the quotient shift must be positive");
+
+  // Point j lives in bank j % LANES at address j / LANES.
+  function automatic [BW-1:0] bank_of(input [15:0] idx);
+    begin
+      bank_of = BW'(32'(idx) % LANES);
+    end
+  endfunction
+  function automatic [AW-1:0] addr_of(input [15:0] idx);
+    begin
+      addr_of = AW'(32'(idx) / LANES);
+    end
+  endfunction
 
   // ---- memories --------------------------------------------------------------------------
   logic [FEAT_BITS-1:0] x0 [LANES][Depth];
@@ -75,24 +86,24 @@ module evms_mean_shift #(
   logic [FW-1:0] wr_x, wr_y, wr_p, wr_t;
   always_ff @(posedge clk) begin
     if (load_we) begin
-      x0[BW'(load_i % LANES)][AW'(load_i / LANES)] <= load_x;
-      y0[BW'(load_i % LANES)][AW'(load_i / LANES)] <= load_y;
-      bx[0][BW'(load_i % LANES)][AW'(load_i / LANES)] <= FW'(load_x);
-      by[0][BW'(load_i % LANES)][AW'(load_i / LANES)] <= FW'(load_y);
-      bp[0][BW'(load_i % LANES)][AW'(load_i / LANES)] <= FW'(load_p);
-      bt[0][BW'(load_i % LANES)][AW'(load_i / LANES)] <= FW'(load_t);
+      x0[bank_of(load_i)][addr_of(load_i)] <= load_x;
+      y0[bank_of(load_i)][addr_of(load_i)] <= load_y;
+      bx[0][bank_of(load_i)][addr_of(load_i)] <= FW'(load_x);
+      by[0][bank_of(load_i)][addr_of(load_i)] <= FW'(load_y);
+      bp[0][bank_of(load_i)][addr_of(load_i)] <= FW'(load_p);
+      bt[0][bank_of(load_i)][addr_of(load_i)] <= FW'(load_t);
     end else if (wr_en) begin
-      bx[~cur][BW'(wr_i % LANES)][AW'(wr_i / LANES)] <= wr_x;
-      by[~cur][BW'(wr_i % LANES)][AW'(wr_i / LANES)] <= wr_y;
-      bp[~cur][BW'(wr_i % LANES)][AW'(wr_i / LANES)] <= wr_p;
-      bt[~cur][BW'(wr_i % LANES)][AW'(wr_i / LANES)] <= wr_t;
+      bx[~cur][bank_of(wr_i)][addr_of(wr_i)] <= wr_x;
+      by[~cur][bank_of(wr_i)][addr_of(wr_i)] <= wr_y;
+      bp[~cur][bank_of(wr_i)][addr_of(wr_i)] <= wr_p;
+      bt[~cur][bank_of(wr_i)][addr_of(wr_i)] <= wr_t;
     end
   end
   always_ff @(posedge clk) begin
-    rd_x <= bx[cur][BW'(rd_i % LANES)][AW'(rd_i / LANES)];
-    rd_y <= by[cur][BW'(rd_i % LANES)][AW'(rd_i / LANES)];
-    rd_p <= bp[cur][BW'(rd_i % LANES)][AW'(rd_i / LANES)];
-    rd_t <= bt[cur][BW'(rd_i % LANES)][AW'(rd_i / LANES)];
+    rd_x <= bx[cur][bank_of(rd_i)][addr_of(rd_i)];
+    rd_y <= by[cur][bank_of(rd_i)][addr_of(rd_i)];
+    rd_p <= bp[cur][bank_of(rd_i)][addr_of(rd_i)];
+    rd_t <= bt[cur][bank_of(rd_i)][addr_of(rd_i)];
   end
 
   // ---- control ----------------------------------------------------------------------------
@@ -101,10 +112,8 @@ module evms_mean_shift #(
   logic [7:0]  k;          // sweep
   logic [15:0] i;          // point
   logic [AW:0] a;          // chunk address
-  logic [3:0]  drain;
   logic [7:0]  limit;
   logic [31:0] max_move;
-  logic        point_loaded;
   logic        sweep_begin;  // pulses when a sweep starts: the divider restarts its largest move
 
   // The point i's current coordinates, read at S_POINT.
@@ -284,7 +293,7 @@ module evms_mean_shift #(
           mv = max_move;
           for (int d = 0; d < 4; d++) begin
             logic [31:0] diff;
-            diff = job_next[d] > job_cur[d] ? 32'(job_next[d] - job_cur[d]) : 32'(job_cur[d] - job_next[d]);
+            diff = job_next[d] > job_cur[d] ? 32'(job_next[d]) - 32'(job_cur[d]) : 32'(job_cur[d]) - 32'(job_next[d]);
             if (diff > mv) mv = diff;
           end
           max_move <= mv;
@@ -309,7 +318,6 @@ module evms_mean_shift #(
       k <= '0;
       i <= '0;
       a <= '0;
-      drain <= '0;
       limit <= '0;
       issue <= 1'b0;
       job_valid <= 1'b0;
@@ -320,7 +328,6 @@ module evms_mean_shift #(
         job_cur[d] <= '0;
       end
       {xi, yi, pi_, ti} <= '0;
-      point_loaded <= 1'b0;
       sweep_begin <= 1'b0;
     end else begin
       done <= 1'b0;
@@ -336,17 +343,16 @@ module evms_mean_shift #(
             done <= 1'b1;
           end else begin
             i <= '0;
-            point_loaded <= 1'b0;
-            sweep_begin <= 1'b1;
+                  sweep_begin <= 1'b1;
             state <= S_POINT;
           end
         end
         S_POINT: begin
           // The point's own coordinates (asynchronous read of the current buffer).
-          xi  <= $signed({2'b0, bx[cur][BW'(i % LANES)][AW'(i / LANES)]});
-          yi  <= $signed({2'b0, by[cur][BW'(i % LANES)][AW'(i / LANES)]});
-          pi_ <= $signed({2'b0, bp[cur][BW'(i % LANES)][AW'(i / LANES)]});
-          ti  <= $signed({2'b0, bt[cur][BW'(i % LANES)][AW'(i / LANES)]});
+          xi  <= $signed({2'b0, bx[cur][bank_of(i)][addr_of(i)]});
+          yi  <= $signed({2'b0, by[cur][bank_of(i)][addr_of(i)]});
+          pi_ <= $signed({2'b0, bp[cur][bank_of(i)][addr_of(i)]});
+          ti  <= $signed({2'b0, bt[cur][bank_of(i)][addr_of(i)]});
           a <= '0;
           issue <= 1'b1;
           state <= S_ISSUE;
@@ -354,8 +360,7 @@ module evms_mean_shift #(
         S_ISSUE: begin
           if ((32'(a) + 1) * LANES >= 32'(n)) begin
             issue <= 1'b0;
-            drain <= '0;
-            state <= S_DRAIN;
+                  state <= S_DRAIN;
           end else begin
             a <= a + 1'b1;
           end

@@ -4,7 +4,6 @@
 // clusters smaller than min_cluster_size become noise and the rest are renumbered in seed
 // order. One cycle per (mode, seed) pair.
 module evms_merge #(
-  parameter int PACKET_MAX   = 256,
   parameter int CLUSTERS_MAX = 16,
   parameter int FW           = 17      // mode width (features + 1)
 ) (

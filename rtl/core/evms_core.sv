@@ -110,8 +110,10 @@ module evms_core #(
 );
   localparam int FEAT_BITS = FEAT_INT + FEAT_FRAC;
   localparam int FW = FEAT_BITS + 1;
-  localparam int PW = $clog2(PENDING_DEPTH + 1);
+  localparam int PW = $clog2(PENDING_DEPTH + 1);   // counts 0..PENDING_DEPTH
   localparam int NW = $clog2(PACKET_MAX + 1);
+  localparam int PI = $clog2(PENDING_DEPTH);       // indexes
+  localparam int NI = $clog2(PACKET_MAX);
   localparam logic [63:0] FeatMax = (64'd1 << FEAT_BITS) - 1;
 
   // ---- memories ---------------------------------------------------------------------------
@@ -151,7 +153,7 @@ module evms_core #(
   // ---- shared multiplier and reciprocal -------------------------------------------------------
   logic feat_mul_start;
   logic signed [63:0] feat_mul_a, feat_mul_b;
-  logic mul_start, mul_busy, mul_done;
+  logic mul_start, mul_busy, mul_done;  // consumers wait for done, so busy is only for lint
   logic signed [63:0] mul_a, mul_b, mul_p;
   evms_mul #(.DIGIT_BITS(MUL_DIGIT_BITS)) u_mul (
     .clk(clk), .rst_n(rst_n), .start(mul_start), .a(mul_a), .b(mul_b), .busy(mul_busy), .done(mul_done), .p(mul_p));
@@ -182,7 +184,7 @@ module evms_core #(
   logic [15:0] mg_rd_i, mg_co_i;
   logic signed [7:0] mg_co_value;
   logic [7:0] clusters;
-  evms_merge #(.PACKET_MAX(PACKET_MAX), .CLUSTERS_MAX(CLUSTERS_MAX), .FW(FW)) u_merge (
+  evms_merge #(.CLUSTERS_MAX(CLUSTERS_MAX), .FW(FW)) u_merge (
     .clk(clk), .rst_n(rst_n), .start(mg_start), .n(16'(n)), .cfg_merge_radius2(cfg_merge_radius2),
     .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_max_clusters(cfg_max_clusters), .rd_i(mg_rd_i), .rd_x(ms_rx),
     .rd_y(ms_ry), .rd_p(ms_rp), .rd_t(ms_rt), .co_we(mg_co_we), .co_i(mg_co_i), .co_value(mg_co_value),
@@ -196,7 +198,7 @@ module evms_core #(
   logic [7:0] z_c;
   logic [31:0] z_t;
   logic signed [31:0] z_x, z_y;
-  evms_centroid #(.PACKET_MAX(PACKET_MAX), .CLUSTERS_MAX(CLUSTERS_MAX), .POS_FRAC(POS_FRAC), .RECIP_FRAC(RECIP_FRAC)) u_centroid (
+  evms_centroid #(.CLUSTERS_MAX(CLUSTERS_MAX), .POS_FRAC(POS_FRAC), .RECIP_FRAC(RECIP_FRAC)) u_centroid (
     .clk(clk), .rst_n(rst_n), .start(ct_start), .n(16'(n)), .clusters(clusters), .t0(t_first), .rd_i(ct_rd_i),
     .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_cluster(co_rdata), .recip_start(ct_recip_start),
     .recip_x(ct_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m), .mul_start(ct_mul_start),
@@ -237,7 +239,7 @@ module evms_core #(
   state_e state;
   logic [15:0] fi;            // feature index
   logic [PW-1:0] ri;          // release index
-  logic [63:0] phi_x, phi_y, phi_p;
+  logic [FEAT_BITS-1:0] phi_x, phi_y, phi_p;
   logic [31:0] rel_t;
   logic [15:0] rel_x, rel_y;
   logic        rel_p;
@@ -245,12 +247,12 @@ module evms_core #(
   logic [7:0]  iterations;
 
   always_ff @(posedge clk) begin
-    rd_pk_x <= pk_x[rd_pk_i];
-    rd_pk_y <= pk_y[rd_pk_i];
-    rd_pk_p <= pk_p[rd_pk_i];
-    rd_pk_t <= pk_t[rd_pk_i];
-    if (mg_co_we) cluster_of[mg_co_i] <= mg_co_value;
-    co_rdata <= cluster_of[co_i];
+    rd_pk_x <= pk_x[NI'(rd_pk_i)];
+    rd_pk_y <= pk_y[NI'(rd_pk_i)];
+    rd_pk_p <= pk_p[NI'(rd_pk_i)];
+    rd_pk_t <= pk_t[NI'(rd_pk_i)];
+    if (mg_co_we) cluster_of[NI'(mg_co_i)] <= mg_co_value;
+    co_rdata <= cluster_of[NI'(co_i)];
   end
   assign rd_pk_i = state == C_CENTROID ? ct_rd_i : fi;
   assign co_i = state == C_MERGE ? mg_co_i : (state == C_CENTROID ? ct_rd_i : 16'(rel_idx));
@@ -345,11 +347,11 @@ module evms_core #(
         end
         C_FILTER: if (f_done) begin
           if (!f_kept) begin
-            pend_t[pend_n] <= e_t;
-            pend_x[pend_n] <= e_x;
-            pend_y[pend_n] <= e_y;
-            pend_p[pend_n] <= e_p;
-            pend_idx[pend_n] <= -16'sd1;
+            pend_t[PI'(pend_n)] <= e_t;
+            pend_x[PI'(pend_n)] <= e_x;
+            pend_y[PI'(pend_n)] <= e_y;
+            pend_p[PI'(pend_n)] <= e_p;
+            pend_idx[PI'(pend_n)] <= -16'sd1;
             pend_n <= pend_n + 1'b1;
             state <= (n == 0 || 32'(pend_n) + 1 == PENDING_DEPTH) ? C_CLOSE : C_IDLE;
           end else if (n > 0 && cfg_packet_max_span_us != 0 && e_t - t_first > cfg_packet_max_span_us) begin
@@ -360,15 +362,15 @@ module evms_core #(
           end
         end
         C_APPEND: begin
-          pend_t[pend_n] <= e_t;
-          pend_x[pend_n] <= e_x;
-          pend_y[pend_n] <= e_y;
-          pend_p[pend_n] <= e_p;
-          pend_idx[pend_n] <= 16'(n);
-          pk_x[n] <= e_x;
-          pk_y[n] <= e_y;
-          pk_p[n] <= e_p;
-          pk_t[n] <= e_t;
+          pend_t[PI'(pend_n)] <= e_t;
+          pend_x[PI'(pend_n)] <= e_x;
+          pend_y[PI'(pend_n)] <= e_y;
+          pend_p[PI'(pend_n)] <= e_p;
+          pend_idx[PI'(pend_n)] <= 16'(n);
+          pk_x[NI'(n)] <= e_x;
+          pk_y[NI'(n)] <= e_y;
+          pk_p[NI'(n)] <= e_p;
+          pk_t[NI'(n)] <= e_t;
           if (n == 0) t_first <= e_t;
           t_last <= e_t;
           n <= n + 1'b1;
@@ -395,19 +397,20 @@ module evms_core #(
           state <= C_FEAT_X;
         end
         C_FEAT_X: if (mul_done) begin
-          phi_x <= clamp_feat(shr_rnd(mul_p, COORD_SCALE_FRAC - FEAT_FRAC));
+          phi_x <= FEAT_BITS'(clamp_feat(shr_rnd(mul_p, COORD_SCALE_FRAC - FEAT_FRAC)));
           feat_mul_start <= 1'b1;
           feat_mul_a <= $signed(64'(rd_pk_y));
           feat_mul_b <= $signed(64'(cfg_scale_y));
           state <= C_FEAT_Y;
         end
         C_FEAT_Y: if (mul_done) begin
-          logic [31:0] age;
-          phi_y <= clamp_feat(shr_rnd(mul_p, COORD_SCALE_FRAC - FEAT_FRAC));
-          phi_p <= rd_pk_p ? clamp_feat($signed(64'(cfg_phi_on))) : 64'd0;
+          logic [31:0] age, age_clamped;
+          phi_y <= FEAT_BITS'(clamp_feat(shr_rnd(mul_p, COORD_SCALE_FRAC - FEAT_FRAC)));
+          phi_p <= rd_pk_p ? FEAT_BITS'(clamp_feat($signed(64'(cfg_phi_on)))) : '0;
           age = t_last - rd_pk_t;
+          age_clamped = age > 32'h7FFFFFFF ? 32'h7FFFFFFF : age;
           feat_mul_start <= 1'b1;
-          feat_mul_a <= $signed(64'(age > 32'h7FFFFFFF ? 32'h7FFFFFFF : age));
+          feat_mul_a <= $signed(64'(age_clamped));
           feat_mul_b <= $signed(cfg_inv_tau);
           state <= C_FEAT_AGE;
         end
@@ -426,9 +429,9 @@ module evms_core #(
         C_FEAT_STORE: if (mul_done) begin
           ms_load_we <= 1'b1;
           ms_load_i <= fi;
-          ms_lx <= FEAT_BITS'(phi_x);
-          ms_ly <= FEAT_BITS'(phi_y);
-          ms_lp <= FEAT_BITS'(phi_p);
+          ms_lx <= phi_x;
+          ms_ly <= phi_y;
+          ms_lp <= phi_p;
           ms_lt <= FEAT_BITS'(clamp_feat(shr_rnd(mul_p, WEIGHT_FRAC)));
           if (32'(fi) + 1 < 32'(n)) begin
             fi <= fi + 1'b1;
@@ -464,11 +467,11 @@ module evms_core #(
         end
         // Release pending event ri with its label.
         C_RELEASE_READ: begin
-          rel_t <= pend_t[ri];
-          rel_x <= pend_x[ri];
-          rel_y <= pend_y[ri];
-          rel_p <= pend_p[ri];
-          rel_idx <= pend_idx[ri];
+          rel_t <= pend_t[PI'(ri)];
+          rel_x <= pend_x[PI'(ri)];
+          rel_y <= pend_y[PI'(ri)];
+          rel_p <= pend_p[PI'(ri)];
+          rel_idx <= pend_idx[PI'(ri)];
           state <= C_RELEASE_WAIT;
         end
         C_RELEASE_WAIT: state <= C_RELEASE_CLUSTER;   // cluster_of[rel_idx] is being read

@@ -52,8 +52,8 @@ module evms_ba_filter #(
   // Neighbour k of the event, and whether it is inside the sensor (and not the pixel itself).
   logic signed [17:0] nx, ny;
   logic               n_inside;
-  assign nx = $signed({2'b00, ex}) + $signed(18'(k % 3)) - 18'sd1;
-  assign ny = $signed({2'b00, ey}) + $signed(18'(k / 3)) - 18'sd1;
+  assign nx = $signed({2'b00, ex}) + $signed(18'(32'(k) % 3)) - 18'sd1;
+  assign ny = $signed({2'b00, ey}) + $signed(18'(32'(k) / 3)) - 18'sd1;
   assign n_inside = k != 4 && nx >= 0 && ny >= 0 && nx < $signed({2'b00, cfg_width}) && ny < $signed({2'b00, cfg_height});
 
   assign ready = state == S_IDLE;
@@ -105,7 +105,7 @@ module evms_ba_filter #(
         end
         S_READ: begin
           // Address neighbour k (when inside); the RAM answers two cycles later.
-          if (pending_cmp[1] && rdata != 0 && TS_BITS'(now - rdata) <= cfg_window) supported <= 1'b1;
+          if (pending_cmp[1] && rdata != 0 && 32'(TS_BITS'(now - rdata)) <= cfg_window) supported <= 1'b1;
           pending_cmp <= {pending_cmp[0], 1'b0};
           if (k <= 8) begin
             if (n_inside) begin

@@ -28,12 +28,12 @@ module evms_exp_lut #(
     zero_q  <= (u >> (UF + 4)) != 0;
     i_q     <= L'(u >> Below);
     f_q     <= IB'(u >> (Below - IB));
-    v0_q    <= rom[i_q];
-    v1_q    <= rom[32'(i_q) + 1];
+    v0_q    <= rom[{1'b0, i_q}];
+    v1_q    <= rom[(L+1)'(i_q) + 1'b1];
     f_qq    <= f_q;
     zero_qq <= zero_q;
   end
   logic [WF+IB:0] slope;
-  assign slope = (WF+IB+1)'(v0_q - v1_q) * (WF+IB+1)'(f_qq);
+  assign slope = ((WF+IB+1)'(v0_q) - (WF+IB+1)'(v1_q)) * (WF+IB+1)'(f_qq);
   assign w = zero_qq ? '0 : v0_q - (WF+1)'(slope >> IB);
 endmodule

@@ -27,6 +27,9 @@ module evms_recip #(
     end
   endfunction
 
+  logic [6:0]  m_x;
+  logic [RF+1:0] two_minus_mr0;
+  assign m_x = msb(x);
   logic [2:0]  stage;
   logic [RF:0] mant, r0;
   logic [2*RF+2:0] mr0_full, r1_full;
@@ -43,8 +46,8 @@ module evms_recip #(
       done <= 1'b0;
       case (stage)
         3'd0: if (start) begin
-          m     <= msb(x);
-          mant  <= msb(x) >= RF ? (RF+1)'(x >> (msb(x) - RF)) : (RF+1)'(x << (RF - msb(x)));
+          m     <= m_x;
+          mant  <= 32'(m_x) >= RF ? (RF+1)'(x >> (32'(m_x) - RF)) : (RF+1)'(x << (RF - 32'(m_x)));
           stage <= 3'd1;
         end
         3'd1: begin
@@ -63,5 +66,6 @@ module evms_recip #(
   end
   assign mr0_full = (2*RF+3)'(mant) * (2*RF+3)'(r0);
   assign mr0 = (RF+2)'(mr0_full >> RF);
-  assign r1_full = (2*RF+3)'(r0) * (2*RF+3)'((RF+2)'(1 << (RF + 1)) - mr0);
+  assign two_minus_mr0 = (RF+2)'(1 << (RF + 1)) - mr0;
+  assign r1_full = (2*RF+3)'(r0) * (2*RF+3)'(two_minus_mr0);
 endmodule

@@ -81,7 +81,7 @@ module evms_tracker #(
   function automatic [63:0] quotient(input [63:0] p, input [6:0] mm, input integer extra);
     integer shift;
     begin
-      shift = RECIP_FRAC + mm - extra;
+      shift = RECIP_FRAC + {25'd0, mm} - extra;
       if (shift <= 0) quotient = p << (-shift);
       else quotient = (p + (64'd1 << (shift - 1))) >> shift;
     end
@@ -113,7 +113,8 @@ module evms_tracker #(
   logic [7:0]  round_n;
   logic [TW:0] s;         // slot being scanned or updated
   logic [7:0]  k;         // measurement being scanned or born
-  logic signed [8:0]  best_s, best_m;
+  logic signed [8:0]  best_s;
+  logic [7:0]  best_m;
   logic [63:0] best_d2, d2;
   logic signed [63:0] dt, dt2, dt3, dpred, dx;
   logic        axis;
@@ -122,11 +123,10 @@ module evms_tracker #(
   logic signed [63:0] acc, k0, k1, p00n, p01n;
   logic [RECIP_FRAC:0] rr;
   logic [6:0]  rm;
-  logic [7:0]  born_k;
 
   logic [TW-1:0] si;
   assign si = TW'(s);
-  assign z_c = state == S_MATCH ? 8'(best_m) : k;
+  assign z_c = state == S_MATCH ? best_m : k;
 
   // Issues a * b; the product comes back with mul_done.
 `define EVMS_REQUEST(A, B) begin mul_start <= 1'b1; mul_a <= (A); mul_b <= (B); end
@@ -157,7 +157,6 @@ module evms_tracker #(
       {w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e, acc, k0, k1, p00n, p01n} <= '0;
       rr <= '0;
       rm <= '0;
-      born_k <= '0;
       for (int q = 0; q < TRACKS_MAX; q++) begin
         s_valid[q] <= 1'b0;
         s_confirmed[q] <= 1'b0;
@@ -203,7 +202,7 @@ module evms_tracker #(
             state <= S_DROP;
           end else begin
             best_s <= -9'sd1;
-            best_m <= -9'sd1;
+            best_m <= '0;
             best_d2 <= '0;
             s <= '0;
             k <= '0;
@@ -250,7 +249,7 @@ module evms_tracker #(
         S_PAIR_DY2: if (mul_done) begin
           if (d2 + 64'(mul_p) <= cfg_gate2 && (best_s < 0 || d2 + 64'(mul_p) < best_d2)) begin
             best_s <= $signed({1'b0, 8'(s)});
-            best_m <= $signed({1'b0, k});
+            best_m <= k;
             best_d2 <= d2 + 64'(mul_p);
           end
           k <= k + 1'b1;
@@ -261,7 +260,7 @@ module evms_tracker #(
           slot_matched[TW'(best_s)] <= 1'b1;
           meas_matched[CW'(best_m)] <= 1'b1;
           s <= (TW+1)'(best_s);
-          k <= 8'(best_m);
+          k <= best_m;
           begin
             logic [31:0] raw;
             raw = z_t - s_t[TW'(best_s)];
