@@ -5,7 +5,7 @@
 // for the core; a frame with a bad check, type or length is dropped and counted, and the
 // parser hunts for the next 0xA5 0x5A. The host keeps at most FIFO_DEPTH events in flight,
 // so the FIFO cannot overrun; if it does anyway, the word is dropped and counted.
-module evms_link_rx import evms_crc16_pkg::*; #(
+module evms_link_rx #(
   parameter int FIFO_DEPTH = 512
 ) (
   input  logic        clk,
@@ -23,7 +23,6 @@ module evms_link_rx import evms_crc16_pkg::*; #(
   output logic [31:0] overruns,
   output logic [31:0] events_received
 );
-  localparam int AW = $clog2(FIFO_DEPTH);
   typedef enum logic [2:0] {S_SYNC1, S_SYNC2, S_TYPE, S_LEN, S_PAYLOAD, S_CRC_LO, S_CRC_HI} state_e;
   state_e state;
   logic [7:0] ftype, flen, pos;
@@ -31,27 +30,13 @@ module evms_link_rx import evms_crc16_pkg::*; #(
   logic [15:0] crc;
   logic [7:0] crc_lo;
 
-  // FIFO of {flush, p, y, x, t}.
+  // FIFO of {flush, p, y, x, t}, in block RAM.
   localparam int WW = 1 + 1 + 16 + 16 + 32;
-  logic [WW-1:0] fifo [FIFO_DEPTH];
-  logic [AW:0] head, tail;
-  logic push;
+  logic push, fifo_ready;
   logic [WW-1:0] push_word;
-  wire full = (tail - head) == (AW+1)'(FIFO_DEPTH);
-  assign ev_valid = head != tail;
-  assign {ev_flush, ev_p, ev_y, ev_x, ev_t} = fifo[AW'(head)];
-  always_ff @(posedge clk or negedge rst_n) begin
-    if (!rst_n) begin
-      head <= '0;
-      tail <= '0;
-    end else begin
-      if (ev_valid && ev_ready) head <= head + 1'b1;
-      if (push && !full) begin
-        fifo[AW'(tail)] <= push_word;
-        tail <= tail + 1'b1;
-      end
-    end
-  end
+  evms_fifo #(.WIDTH(WW), .DEPTH(FIFO_DEPTH)) u_fifo (
+    .clk(clk), .rst_n(rst_n), .in_valid(push), .in_ready(fifo_ready), .in_data(push_word), .out_valid(ev_valid),
+    .out_ready(ev_ready), .out_data({ev_flush, ev_p, ev_y, ev_x, ev_t}));
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
@@ -69,19 +54,19 @@ module evms_link_rx import evms_crc16_pkg::*; #(
       for (int k = 0; k < 9; k++) payload[k] <= '0;
     end else begin
       push <= 1'b0;
-      if (push && full) overruns <= overruns + 1'b1;
+      if (push && !fifo_ready) overruns <= overruns + 1'b1;
       if (byte_valid) begin
         case (state)
           S_SYNC1: if (byte_data == 8'hA5) state <= S_SYNC2;
           S_SYNC2: state <= byte_data == 8'h5A ? S_TYPE : (byte_data == 8'hA5 ? S_SYNC2 : S_SYNC1);
           S_TYPE: begin
             ftype <= byte_data;
-            crc <= crc16_byte(16'hFFFF, byte_data);
+            crc <= evms_crc16_pkg::crc16_byte(16'hFFFF, byte_data);
             state <= S_LEN;
           end
           S_LEN: begin
             flen <= byte_data;
-            crc <= crc16_byte(crc, byte_data);
+            crc <= evms_crc16_pkg::crc16_byte(crc, byte_data);
             pos <= '0;
             if (byte_data > 8'd9) begin
               crc_errors <= crc_errors + 1'b1;  // no frame of ours is that long: resynchronize
@@ -92,7 +77,7 @@ module evms_link_rx import evms_crc16_pkg::*; #(
           end
           S_PAYLOAD: begin
             payload[pos[3:0]] <= byte_data;
-            crc <= crc16_byte(crc, byte_data);
+            crc <= evms_crc16_pkg::crc16_byte(crc, byte_data);
             pos <= pos + 1'b1;
             if (pos + 1'b1 == flen) state <= S_CRC_LO;
           end

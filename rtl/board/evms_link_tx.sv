@@ -5,7 +5,7 @@
 // one frame at a time, status first, then packet summaries, track updates, labelled events; a
 // stream waits (its valid stays high) while the UART is busy, so the core sees backpressure
 // and nothing is lost.
-module evms_link_tx import evms_crc16_pkg::*; (
+module evms_link_tx (
   input  logic        clk,
   input  logic        rst_n,
   // Labelled events.
@@ -99,15 +99,15 @@ module evms_link_tx import evms_crc16_pkg::*; (
             S_SYNC1: state <= S_SYNC2;
             S_SYNC2: state <= S_TYPE;
             S_TYPE: begin
-              crc <= crc16_byte(crc, ftype);
+              crc <= evms_crc16_pkg::crc16_byte(crc, ftype);
               state <= S_LEN;
             end
             S_LEN: begin
-              crc <= crc16_byte(crc, flen);
+              crc <= evms_crc16_pkg::crc16_byte(crc, flen);
               state <= S_PAYLOAD;
             end
             S_PAYLOAD: begin
-              crc <= crc16_byte(crc, payload[7:0]);
+              crc <= evms_crc16_pkg::crc16_byte(crc, payload[7:0]);
               payload <= payload >> 8;
               pos <= pos + 1'b1;
               if (pos + 1'b1 == flen) state <= S_CRC_LO;

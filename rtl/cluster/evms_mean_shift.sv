@@ -72,42 +72,68 @@ module evms_mean_shift #(
   endfunction
 
   // ---- memories --------------------------------------------------------------------------
-  logic [FEAT_BITS-1:0] x0 [LANES][Depth];
-  logic [FEAT_BITS-1:0] y0 [LANES][Depth];
-  logic [FW-1:0] bx [2][LANES][Depth];
-  logic [FW-1:0] by [2][LANES][Depth];
-  logic [FW-1:0] bp [2][LANES][Depth];
-  logic [FW-1:0] bt [2][LANES][Depth];
+  // Per bank: the original positions (x0, y0), and both buffers of points as {x, y} and {p, t},
+  // the buffer index as the top address bit. Each memory has one write port and one registered
+  // read port, so that it maps to block RAM.
   logic cur;  // buffer holding the current points
 
   // Writes: loading (into buffer 0 and x0, y0) or the divider's next values.
   logic          wr_en;
   logic [15:0]   wr_i;
   logic [FW-1:0] wr_x, wr_y, wr_p, wr_t;
-  always_ff @(posedge clk) begin
-    if (load_we) begin
-      x0[bank_of(load_i)][addr_of(load_i)] <= load_x;
-      y0[bank_of(load_i)][addr_of(load_i)] <= load_y;
-      bx[0][bank_of(load_i)][addr_of(load_i)] <= FW'(load_x);
-      by[0][bank_of(load_i)][addr_of(load_i)] <= FW'(load_y);
-      bp[0][bank_of(load_i)][addr_of(load_i)] <= FW'(load_p);
-      bt[0][bank_of(load_i)][addr_of(load_i)] <= FW'(load_t);
-    end else if (wr_en) begin
-      bx[~cur][bank_of(wr_i)][addr_of(wr_i)] <= wr_x;
-      by[~cur][bank_of(wr_i)][addr_of(wr_i)] <= wr_y;
-      bp[~cur][bank_of(wr_i)][addr_of(wr_i)] <= wr_p;
-      bt[~cur][bank_of(wr_i)][addr_of(wr_i)] <= wr_t;
+
+  // Read addresses: lanes read chunk a; a new point reads point i; merging reads rd_i.
+  logic [AW:0]   pt_addr, xy_addr;
+  logic [FW-1:0] bank_x [LANES], bank_y [LANES], bank_p [LANES], bank_t [LANES];
+  logic [FEAT_BITS-1:0] m_x0 [LANES], m_y0 [LANES];
+  logic [FW-1:0] m_p [LANES], m_t [LANES];
+
+  for (genvar b = 0; b < LANES; b++) begin : g_bank
+    logic [FEAT_BITS-1:0] x0 [Depth];
+    logic [FEAT_BITS-1:0] y0 [Depth];
+    logic [2*FW-1:0] xy [2*Depth];
+    logic [2*FW-1:0] pt [2*Depth];
+    logic [2*FW-1:0] xy_q, pt_q;
+    wire load_here = load_we && bank_of(load_i) == BW'(b);
+    wire next_here = wr_en && bank_of(wr_i) == BW'(b);
+    always_ff @(posedge clk) begin
+      if (load_here) begin
+        x0[addr_of(load_i)] <= load_x;
+        y0[addr_of(load_i)] <= load_y;
+      end
+      m_x0[b] <= x0[AW'(a)];
+      m_y0[b] <= y0[AW'(a)];
     end
-  end
-  always_ff @(posedge clk) begin
-    rd_x <= bx[cur][bank_of(rd_i)][addr_of(rd_i)];
-    rd_y <= by[cur][bank_of(rd_i)][addr_of(rd_i)];
-    rd_p <= bp[cur][bank_of(rd_i)][addr_of(rd_i)];
-    rd_t <= bt[cur][bank_of(rd_i)][addr_of(rd_i)];
+    always_ff @(posedge clk) begin
+      if (load_here) begin
+        xy[{1'b0, addr_of(load_i)}] <= {FW'(load_x), FW'(load_y)};
+      end else if (next_here) begin
+        xy[{~cur, addr_of(wr_i)}] <= {wr_x, wr_y};
+      end
+      xy_q <= xy[xy_addr];
+    end
+    always_ff @(posedge clk) begin
+      if (load_here) begin
+        pt[{1'b0, addr_of(load_i)}] <= {FW'(load_p), FW'(load_t)};
+      end else if (next_here) begin
+        pt[{~cur, addr_of(wr_i)}] <= {wr_p, wr_t};
+      end
+      pt_q <= pt[pt_addr];
+    end
+    assign {bank_x[b], bank_y[b]} = xy_q;
+    assign {bank_p[b], bank_t[b]} = pt_q;
+    assign m_p[b] = pt_q[2*FW-1:FW];
+    assign m_t[b] = pt_q[FW-1:0];
   end
 
+  // Merging reads the modes after done; the bank is chosen by the index it presents.
+  assign rd_x = bank_x[bank_of(rd_i)];
+  assign rd_y = bank_y[bank_of(rd_i)];
+  assign rd_p = bank_p[bank_of(rd_i)];
+  assign rd_t = bank_t[bank_of(rd_i)];
+
   // ---- control ----------------------------------------------------------------------------
-  typedef enum logic [2:0] {S_IDLE, S_POINT, S_ISSUE, S_DRAIN, S_HANDOFF, S_SWEEP_END, S_DONE} state_e;
+  typedef enum logic [2:0] {S_IDLE, S_POINT, S_POINT_LOAD, S_ISSUE, S_DRAIN, S_HANDOFF, S_SWEEP_END, S_DONE} state_e;
   state_e state;
   logic [7:0]  k;          // sweep
   logic [15:0] i;          // point
@@ -119,6 +145,9 @@ module evms_mean_shift #(
   // The point i's current coordinates, read at S_POINT.
   logic signed [FW+1:0] xi, yi, pi_, ti;
 
+  assign xy_addr = state == S_POINT ? {cur, addr_of(i)} : {cur, addr_of(rd_i)};
+  assign pt_addr = state == S_POINT ? {cur, addr_of(i)} : (state == S_IDLE ? {cur, addr_of(rd_i)} : {cur, AW'(a)});
+
   // Lane issue: address a, chunk valid per lane.
   logic issue;
   logic [LANES-1:0] lane_valid_issue;
@@ -129,8 +158,6 @@ module evms_mean_shift #(
   // ---- lanes ------------------------------------------------------------------------------
   // s1: memory data; s2: differences; s3: u; s4..s5: exp; s6: products.
   logic [LANES-1:0] v1, v2, v3, v4, v5, v6;
-  logic [FEAT_BITS-1:0] m_x0 [LANES], m_y0 [LANES];
-  logic [FW-1:0] m_p [LANES], m_t [LANES];
   logic [FW-1:0] d_x0 [5][LANES], d_y0 [5][LANES], d_p [5][LANES], d_t [5][LANES];
   logic signed [FW+1:0] dx [LANES], dy [LANES], dp [LANES], dtt [LANES];
   logic [63:0] u [LANES];
@@ -141,10 +168,6 @@ module evms_mean_shift #(
 
   for (genvar l = 0; l < LANES; l++) begin : g_lane
     always_ff @(posedge clk) begin
-      m_x0[l] <= x0[l][AW'(a)];
-      m_y0[l] <= y0[l][AW'(a)];
-      m_p[l]  <= bp[cur][l][AW'(a)];
-      m_t[l]  <= bt[cur][l][AW'(a)];
       dx[l]  <= xi - $signed({2'b0, m_x0[l]});
       dy[l]  <= yi - $signed({2'b0, m_y0[l]});
       dp[l]  <= pi_ - $signed({1'b0, m_p[l]});
@@ -347,12 +370,12 @@ module evms_mean_shift #(
             state <= S_POINT;
           end
         end
-        S_POINT: begin
-          // The point's own coordinates (asynchronous read of the current buffer).
-          xi  <= $signed({2'b0, bx[cur][bank_of(i)][addr_of(i)]});
-          yi  <= $signed({2'b0, by[cur][bank_of(i)][addr_of(i)]});
-          pi_ <= $signed({2'b0, bp[cur][bank_of(i)][addr_of(i)]});
-          ti  <= $signed({2'b0, bt[cur][bank_of(i)][addr_of(i)]});
+        S_POINT: state <= S_POINT_LOAD;  // point i is being read
+        S_POINT_LOAD: begin
+          xi  <= $signed({2'b0, bank_x[bank_of(i)]});
+          yi  <= $signed({2'b0, bank_y[bank_of(i)]});
+          pi_ <= $signed({2'b0, bank_p[bank_of(i)]});
+          ti  <= $signed({2'b0, bank_t[bank_of(i)]});
           a <= '0;
           issue <= 1'b1;
           state <= S_ISSUE;

@@ -117,15 +117,15 @@ module evms_core #(
   localparam logic [63:0] FeatMax = (64'd1 << FEAT_BITS) - 1;
 
   // ---- memories ---------------------------------------------------------------------------
+  // Each has one write port and one registered read port, so that it maps to block RAM.
   // Pending queue: every event since the last release, with its index in the packet or -1.
-  logic [31:0] pend_t [PENDING_DEPTH];
-  logic [15:0] pend_x [PENDING_DEPTH], pend_y [PENDING_DEPTH];
-  logic        pend_p [PENDING_DEPTH];
-  logic signed [15:0] pend_idx [PENDING_DEPTH];
-  // The open packet.
-  logic [15:0] pk_x [PACKET_MAX], pk_y [PACKET_MAX];
-  logic        pk_p [PACKET_MAX];
-  logic [31:0] pk_t [PACKET_MAX];
+  localparam int PendW = 32 + 16 + 16 + 1 + 16;
+  logic [PendW-1:0] pend_mem [PENDING_DEPTH];
+  logic             pend_we;
+  logic [PendW-1:0] pend_wdata, pend_rdata;
+  // The open packet, and each of its events' cluster.
+  logic [64:0] pk_mem [PACKET_MAX];
+  logic [64:0] pk_rdata;
   logic signed [7:0] cluster_of [PACKET_MAX];
 
   // Packet RAM read port (features, centroids) and cluster_of port (merge, centroids, release).
@@ -247,15 +247,20 @@ module evms_core #(
   logic [7:0]  iterations;
 
   always_ff @(posedge clk) begin
-    rd_pk_x <= pk_x[NI'(rd_pk_i)];
-    rd_pk_y <= pk_y[NI'(rd_pk_i)];
-    rd_pk_p <= pk_p[NI'(rd_pk_i)];
-    rd_pk_t <= pk_t[NI'(rd_pk_i)];
+    if (pend_we) pend_mem[PI'(pend_n)] <= pend_wdata;
+    pend_rdata <= pend_mem[PI'(ri)];
+    if (state == C_APPEND) pk_mem[NI'(n)] <= {e_x, e_y, e_p, e_t};
+    pk_rdata <= pk_mem[NI'(rd_pk_i)];
     if (mg_co_we) cluster_of[NI'(mg_co_i)] <= mg_co_value;
     co_rdata <= cluster_of[NI'(co_i)];
   end
+  assign {rd_pk_x, rd_pk_y, rd_pk_p, rd_pk_t} = pk_rdata;
+  // Events join the pending queue when the filter rejects them or when they join the packet.
+  assign pend_we = (state == C_FILTER && f_done && !f_kept) || state == C_APPEND;
+  assign pend_wdata = {e_t, e_x, e_y, e_p, state == C_APPEND ? 16'(n) : 16'hFFFF};
   assign rd_pk_i = state == C_CENTROID ? ct_rd_i : fi;
-  assign co_i = state == C_MERGE ? mg_co_i : (state == C_CENTROID ? ct_rd_i : 16'(rel_idx));
+  assign co_i = state == C_MERGE ? mg_co_i : (state == C_CENTROID ? ct_rd_i :
+                (state == C_RELEASE_WAIT ? pend_rdata[15:0] : 16'(rel_idx)));
   assign ms_rd_i = mg_rd_i;
 
   // The shared units belong to one stage at a time.
@@ -347,11 +352,6 @@ module evms_core #(
         end
         C_FILTER: if (f_done) begin
           if (!f_kept) begin
-            pend_t[PI'(pend_n)] <= e_t;
-            pend_x[PI'(pend_n)] <= e_x;
-            pend_y[PI'(pend_n)] <= e_y;
-            pend_p[PI'(pend_n)] <= e_p;
-            pend_idx[PI'(pend_n)] <= -16'sd1;
             pend_n <= pend_n + 1'b1;
             state <= (n == 0 || 32'(pend_n) + 1 == PENDING_DEPTH) ? C_CLOSE : C_IDLE;
           end else if (n > 0 && cfg_packet_max_span_us != 0 && e_t - t_first > cfg_packet_max_span_us) begin
@@ -362,15 +362,6 @@ module evms_core #(
           end
         end
         C_APPEND: begin
-          pend_t[PI'(pend_n)] <= e_t;
-          pend_x[PI'(pend_n)] <= e_x;
-          pend_y[PI'(pend_n)] <= e_y;
-          pend_p[PI'(pend_n)] <= e_p;
-          pend_idx[PI'(pend_n)] <= 16'(n);
-          pk_x[NI'(n)] <= e_x;
-          pk_y[NI'(n)] <= e_y;
-          pk_p[NI'(n)] <= e_p;
-          pk_t[NI'(n)] <= e_t;
           if (n == 0) t_first <= e_t;
           t_last <= e_t;
           n <= n + 1'b1;
@@ -466,15 +457,11 @@ module evms_core #(
           state <= C_RELEASE_READ;
         end
         // Release pending event ri with its label.
-        C_RELEASE_READ: begin
-          rel_t <= pend_t[PI'(ri)];
-          rel_x <= pend_x[PI'(ri)];
-          rel_y <= pend_y[PI'(ri)];
-          rel_p <= pend_p[PI'(ri)];
-          rel_idx <= pend_idx[PI'(ri)];
-          state <= C_RELEASE_WAIT;
+        C_RELEASE_READ: state <= C_RELEASE_WAIT;       // pending[ri] is being read
+        C_RELEASE_WAIT: begin                           // ... and cluster_of[its index]
+          {rel_t, rel_x, rel_y, rel_p, rel_idx} <= pend_rdata;
+          state <= C_RELEASE_CLUSTER;
         end
-        C_RELEASE_WAIT: state <= C_RELEASE_CLUSTER;   // cluster_of[rel_idx] is being read
         C_RELEASE_CLUSTER: state <= C_RELEASE_SEND;   // ids[cluster] settles
         C_RELEASE_SEND: if (!lab_valid || lab_ready) begin
           lab_valid <= 1'b1;
