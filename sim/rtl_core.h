@@ -7,6 +7,7 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -37,6 +38,7 @@ class RtlCore {
     top_->rst_n = 1;
     // The filter clears its memory after reset.
     while (!top_->in_ready) tick();
+    state_cycles_ = {};
   }
   ~RtlCore() {
     if (trace_) trace_->close();
@@ -77,6 +79,9 @@ class RtlCore {
   std::deque<hls::TrackWord> tracks;
   std::deque<hls::PacketWord> packets;
   std::uint64_t cycles() const { return cycles_; }
+  // Cycles spent in each state of the core's controller (rtl/core/evms_core.sv, state_e); idle
+  // cycles without a word offered are not counted.
+  const std::array<std::uint64_t, 32>& state_cycles() const { return state_cycles_; }
   std::int32_t tracks_started() const { return static_cast<std::int32_t>(top_->stat_tracks_started); }
   std::int64_t unassigned() const { return top_->stat_unassigned; }
 
@@ -128,6 +133,8 @@ class RtlCore {
     top_->clk = 0;
     top_->eval();
     if (trace_) trace_->dump(ctx_->time());
+    const unsigned state = top_->rootp->evms_core__DOT__state;
+    if (state != 0 || top_->in_valid) ++state_cycles_[state & 31];
     ctx_->timeInc(1);
     if (top_->in_valid && top_->in_ready) accepted_ = true;
     if (top_->lab_valid && top_->lab_ready) {
@@ -158,6 +165,7 @@ class RtlCore {
   double ready_p_;
   bool accepted_ = false;
   std::uint64_t cycles_ = 0;
+  std::array<std::uint64_t, 32> state_cycles_{};
 };
 
 }  // namespace evms::sim

@@ -10,17 +10,25 @@
 
 namespace evms::hls {
 
+// What the merging did, for the cycle model (hls/core/schedule.h).
+struct MergeTrace {
+  int seeds = 0;        // clusters opened, before small ones became noise
+  int seed_visits = 0;  // (mode, seed) distances taken
+};
+
 // Writes each point's cluster (or -1) and returns the number of clusters.
 template <class S>
-int merge_modes(const Features<S>& m, int n, const Config& cfg, std::int8_t cluster_of[S::kPacketMax]) {
+int merge_modes(const Features<S>& m, int n, const Config& cfg, std::int8_t cluster_of[S::kPacketMax], MergeTrace& trace) {
   int seed[S::kClustersMax];
   int size[S::kClustersMax];
   int seeds = 0;
+  trace.seed_visits = 0;
 points:
   for (int i = 0; i < S::kPacketMax; ++i) {
     if (i >= n) break;
     int best = -1;
     std::uint64_t best_d2 = ~std::uint64_t{0};
+    trace.seed_visits += seeds;
   seeds_loop:
     for (int c = 0; c < S::kClustersMax; ++c) {
 #pragma HLS PIPELINE II = 1
@@ -40,6 +48,7 @@ points:
     if (best >= 0) ++size[best];
     cluster_of[i] = static_cast<std::int8_t>(best);
   }
+  trace.seeds = seeds;
   std::int8_t renumber[S::kClustersMax];
   int count = 0;
   for (int c = 0; c < S::kClustersMax; ++c) {

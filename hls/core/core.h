@@ -26,7 +26,24 @@
 
 namespace evms::hls {
 
-template <class S>
+// What closing one packet did: the inputs of the cycle model (hls/core/schedule.h).
+struct PacketTrace {
+  int events = 0;      // released: every pending event, kept or not
+  int kept = 0;        // in the packet (0: only noise was released)
+  int sweeps = 0;
+  int clusters = 0;
+  MergeTrace merge;
+  TrackerTrace track;
+};
+
+// Sees every word and every packet closing; the core's results do not depend on it. The
+// default sees nothing and costs nothing.
+struct NoObserver {
+  void on_word(const EventWord&) {}
+  void on_close(const PacketTrace&) {}
+};
+
+template <class S, class Observer = NoObserver>
 class Core {
  public:
   static constexpr int kLabelDepth = S::kPendingDepth + 1;
@@ -45,6 +62,7 @@ class Core {
   // Consumes one input word. The output streams must have room for what a packet releases
   // (the host drains them after every word; the RTL holds them in FIFOs of the same depth).
   void process(const EventWord& in, LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
+    observer_.on_word(in);
     if (in.flush) {
       close_packet(labels, tracks, packets);
       return;
@@ -65,20 +83,27 @@ class Core {
   }
 
   const Tracker<S>& tracker() const { return tracker_; }
+  Observer& observer() { return observer_; }
 
  private:
   void close_packet(LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
     std::int32_t label_of[S::kPacketMax];
+    PacketTrace trace;
+    trace.events = pending_n_;
+    trace.kept = n_;
     if (n_ > 0) {
       Features<S> phi;
       packet_features(packet_, n_, cfg_, phi);
       const int sweeps = mean_shift(phi, n_, cfg_);
       std::int8_t cluster_of[S::kPacketMax];
-      const int clusters = merge_modes(phi, n_, cfg_, cluster_of);
+      const int clusters = merge_modes(phi, n_, cfg_, cluster_of, trace.merge);
       Measurement z[S::kClustersMax];
       centroids(packet_, n_, cluster_of, clusters, z);
       std::int32_t ids[S::kClustersMax];
       tracker_.step(packet_.t[n_ - 1], z, clusters, cfg_, ids, tracks);
+      trace.sweeps = sweeps;
+      trace.clusters = clusters;
+      trace.track = tracker_.last_step();
       for (int i = 0; i < S::kPacketMax; ++i) {
         if (i >= n_) break;
         label_of[i] = cluster_of[i] >= 0 ? ids[cluster_of[i]] : -1;
@@ -86,6 +111,7 @@ class Core {
       packets.write({packet_.t[0], packet_.t[n_ - 1], static_cast<std::uint16_t>(n_), static_cast<std::uint8_t>(clusters),
                      static_cast<std::uint8_t>(sweeps)});
     }
+    observer_.on_close(trace);
   release:
     for (int k = 0; k < S::kPendingDepth; ++k) {
 #pragma HLS PIPELINE II = 1
@@ -109,6 +135,7 @@ class Core {
   int n_ = 0;
   Pending pending_[S::kPendingDepth];
   int pending_n_ = 0;
+  Observer observer_;
 };
 
 }  // namespace evms::hls

@@ -15,7 +15,7 @@ namespace evms::hls {
 
 template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsMax, int ClustersMax, int TracksMax,
           int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,
-          int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12>
+          int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -48,6 +48,9 @@ struct Shape {
   static constexpr int kGainFrac = 20;
   static constexpr int kNoiseFrac = 32;          // q / 3, q / 2 and q per tick^3
   static constexpr int kMaxDtLog2 = 20;          // time steps above 2^20 us (1 s) are clamped
+  // The RTL's shared 64-bit multiplier (features, centroids, tracking): 64 = one product a
+  // clock (DSP cascades), fewer = that many bits of the multiplier a clock (iCE40 LUTs).
+  static constexpr int kMulDigitBits = MulDigitBits;
 };
 
 // The default board build: a DAVIS240-class sensor, the defaults of docs/sweep.md, and a 16-bit

@@ -35,6 +35,8 @@ class Stream {
     return true;
   }
   const T& front() const { return buf_[head_]; }
+  // Drops everything held (a testbench that only counts).
+  void clear() { head_ = count_ = 0; }
   bool overflowed() const { return overflowed_; }
 
  private:

@@ -19,6 +19,16 @@
 
 namespace evms::hls {
 
+// What one step did, for the cycle model (hls/core/schedule.h).
+struct TrackerTrace {
+  int scans = 0;        // passes over the (track, measurement) pairs, one per round
+  int slot_steps = 0;   // measurements visited by those passes, over live unmatched tracks
+  int distances = 0;    // predicted distances taken
+  int matches = 0;
+  bool rounds_capped = false;  // every round matched, up to kClustersMax
+  int births = 0;
+};
+
 template <class S>
 class Tracker {
  public:
@@ -35,6 +45,7 @@ class Tracker {
   template <int Depth>
   void step(std::uint32_t packet_time, const Measurement z[S::kClustersMax], int m, const Config& cfg, std::int32_t ids[S::kClustersMax],
             Stream<TrackWord, Depth>& updates) {
+    trace_ = {};
   expire:
     for (int s = 0; s < S::kTracksMax; ++s) {
 #pragma HLS UNROLL
@@ -46,22 +57,30 @@ class Tracker {
     bool meas_matched[S::kClustersMax] = {};
     for (int c = 0; c < S::kClustersMax; ++c) ids[c] = -1;
 
+    trace_.rounds_capped = true;
   rounds:
     for (int round = 0; round < S::kClustersMax; ++round) {
       int best_s = -1, best_m = -1;
       std::uint64_t best_d2 = 0;
+      ++trace_.scans;
     pairs:
       for (int s = 0; s < S::kTracksMax; ++s) {
         if (!slot_[s].valid || slot_matched[s] || s >= cfg.max_tracks) continue;
+        trace_.slot_steps += m;
         for (int k = 0; k < S::kClustersMax; ++k) {
 #pragma HLS PIPELINE II = 1
           if (k >= m) break;
           if (meas_matched[k]) continue;
+          ++trace_.distances;
           const std::uint64_t d2 = distance2(slot_[s], z[k]);
           if (d2 <= cfg.gate2 && (best_s < 0 || d2 < best_d2)) best_s = s, best_m = k, best_d2 = d2;
         }
       }
-      if (best_s < 0) break;
+      if (best_s < 0) {
+        trace_.rounds_capped = false;
+        break;
+      }
+      ++trace_.matches;
       slot_matched[best_s] = meas_matched[best_m] = true;
       Slot& t = slot_[best_s];
       const std::uint32_t dt = z[best_m].t - t.t_last;
@@ -92,6 +111,7 @@ class Tracker {
         ++unassigned_;
         continue;
       }
+      ++trace_.births;
       Slot& t = slot_[free];
       t.valid = true;
       t.id = next_id_;
@@ -107,6 +127,7 @@ class Tracker {
   }
 
   std::int32_t tracks_started() const { return next_id_; }
+  const TrackerTrace& last_step() const { return trace_; }
   std::int64_t unassigned_clusters() const { return unassigned_; }
   // The covariance of a live slot, for tests.
   bool slot_state(int s, AxisState& ax, AxisState& ay) const {
@@ -136,6 +157,7 @@ class Tracker {
   Slot slot_[S::kTracksMax];
   std::int32_t next_id_ = 0;
   std::int64_t unassigned_ = 0;
+  TrackerTrace trace_;
 };
 
 }  // namespace evms::hls

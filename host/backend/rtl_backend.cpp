@@ -1,6 +1,7 @@
 // The rtl backend: the Verilated RTL of the host core build (sim/, Vcore_host) behind the
 // backend seam. Its output must equal the fixed backend's, file for file.
 #include "Vcore_host.h"
+#include "Vcore_host___024root.h"
 #include "hls/core/shape.h"
 #include "host/backend/core_backend.h"
 #include "host/backend/registry.h"

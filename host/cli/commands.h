@@ -11,4 +11,5 @@ void register_sweep(CLI::App& app);
 void register_eval(CLI::App& app);
 void register_metrics(CLI::App& app);
 void register_widths(CLI::App& app);
+void register_cycles(CLI::App& app);
 }  // namespace evms::cli

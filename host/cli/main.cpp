@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   evms::cli::register_eval(app);
   evms::cli::register_metrics(app);
   evms::cli::register_widths(app);
+  evms::cli::register_cycles(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -236,7 +236,7 @@ module evms_core #(
     C_FEAT_DECAY2, C_FEAT_T, C_FEAT_STORE, C_MEANSHIFT, C_MERGE, C_CENTROID, C_TRACK, C_PACKET, C_RELEASE_READ,
     C_RELEASE_WAIT, C_RELEASE_CLUSTER, C_RELEASE_SEND
   } state_e;
-  state_e state;
+  state_e state /*verilator public_flat_rd*/;  // read by the cycle profile (sim/rtl_core.h)
   logic [15:0] fi;            // feature index
   logic [PW-1:0] ri;          // release index
   logic [FEAT_BITS-1:0] phi_x, phi_y, phi_p;

@@ -25,6 +25,7 @@ localparam int TICK_LOG2 = 14;
 localparam int COV_FRAC = 16;
 localparam int GAIN_FRAC = 20;
 localparam int NOISE_FRAC = 32;
+localparam int MUL_DIGIT_BITS = 64;
 localparam EXP_MEM = "exp_10_16.mem";
 localparam RECIP_MEM = "recip_8_20.mem";
 // Default registers: the method's default parameters (within this build's limits) for a 1280x720 sensor.

@@ -52,7 +52,9 @@ TEST(SceneGenerator, EventsAreOrderedInsideTheSensorAndLabelled) {
   std::map<int, int> per_label;
   for (size_t i = 0; i < s.events.size(); ++i) {
     const Event& e = s.events[i].event;
-    if (i) ASSERT_LE(s.events[i - 1].event.t, e.t);
+    if (i) {
+      ASSERT_LE(s.events[i - 1].event.t, e.t);
+    }
     ASSERT_LT(e.x, 240);
     ASSERT_LT(e.y, 180);
     ++per_label[s.events[i].label];

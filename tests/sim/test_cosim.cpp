@@ -7,13 +7,18 @@
 #include <filesystem>
 
 #include "Vcore_arty.h"
+#include "Vcore_arty___024root.h"
 #include "Vcore_host.h"
+#include "Vcore_host___024root.h"
 #include "Vcore_ice40.h"
+#include "Vcore_ice40___024root.h"
 #include "hls/core/configs.h"
 #include "hls/core/core.h"
+#include "hls/core/schedule.h"
 #include "host/backend/core_config.h"
 #include "host/eval/scene_run.h"
 #include "sim/rtl_core.h"
+#include "sim/rtl_profile.h"
 #include "tests/support/read_all.h"
 #include "tests/support/scenes.h"
 
@@ -209,6 +214,60 @@ TEST(CosimRegression, RealRecordings) {
     const std::string path = dir + "/" + f;
     expect_equal<Vcore_host, hls::HostShape>(f, test::read_all(path), read::open_source(path, {})->info().sensor, 51, 0.9);
   }
+}
+
+}  // namespace
+}  // namespace evms
+
+namespace evms {
+namespace {
+
+// The cycle model (hls/core/schedule.h), fed by the C++ core, against the RTL's own count of
+// cycles in each stage, with every output always ready: they must agree exactly.
+template <class V, class S>
+void expect_schedule(const std::string& name, const std::vector<Event>& events, SensorSize sensor, const Params& params = Params{}) {
+  const hls::Config cfg = backend::core_config<S>(params, sensor);
+  const auto words = words_of(events);
+  using Core = hls::Core<S, hls::ScheduleCounter<S>>;
+  auto model = std::make_unique<Core>();
+  auto labels = std::make_unique<typename Core::LabelStream>();
+  typename Core::TrackStream tracks;
+  typename Core::PacketStream packets;
+  model->reset(cfg);
+  model->observer().configure(cfg);
+  sim::RtlCore<V> rtl(cfg);
+  for (const auto& w : words) {
+    model->process(w, *labels, tracks, packets);
+    labels->clear(), tracks.clear(), packets.clear();
+    rtl.push(w);
+    rtl.labels.clear(), rtl.tracks.clear(), rtl.packets.clear();
+  }
+  rtl.settle();
+  const hls::StageCycles predicted = model->observer().cycles();
+  const hls::StageCycles measured = sim::stage_cycles(rtl.state_cycles());
+  std::printf("schedule %s: %zu events, %.1f cycles/event\n", name.c_str(), events.size(), measured.total() / events.size());
+  for (int s = 0; s < hls::kStageCount; ++s) {
+    EXPECT_EQ(predicted[s], measured[s]) << name << ": stage " << hls::kStageNames[s];
+  }
+  EXPECT_GT(model->observer().packets(), 0);
+}
+
+TEST(Schedule, TheCycleModelCountsEveryStageOfTheRtl) {
+  const auto scene = scene_events(gen::Motion::kRotation, 0.1, 240, 180, 7);
+  expect_schedule<Vcore_host, hls::HostShape>("host_rotation", scene, {240, 180});
+  Params corners;  // span closes, single-hit tracks, few slots so that births fail, a single sweep
+  corners.packet_max_span_us = 400;
+  corners.confirm_hits = 1;
+  corners.max_tracks = 2;
+  corners.max_clusters = 3;
+  corners.max_iterations = 1;
+  corners.packet_size = 100;
+  expect_schedule<Vcore_arty, hls::ArtyShape>("arty_corners", scene, {240, 180}, corners);
+  Params open;
+  open.filter_window_us = 0;
+  expect_schedule<Vcore_arty, hls::ArtyShape>("arty_filter_off", scene, {240, 180}, open);
+  expect_schedule<Vcore_ice40, hls::Ice40Shape>("ice40_6dof", scene_events(gen::Motion::kSixDof, 0.1, 128, 128, 8), {128, 128},
+                                                small_core_params());
 }
 
 }  // namespace

@@ -1,0 +1,163 @@
+// evms cycles SOURCE [--build host|arty|ice40] [--rtl] [--table] : clocks per event of a core
+// build, stage by stage, from the cycle model (hls/core/schedule.h) fed by the C++ core, and,
+// with --rtl, measured on the Verilated RTL beside it.
+#include <cstdio>
+
+#include "Vcore_arty.h"
+#include "Vcore_arty___024root.h"
+#include "Vcore_host.h"
+#include "Vcore_host___024root.h"
+#include "Vcore_ice40.h"
+#include "Vcore_ice40___024root.h"
+#include "hls/core/configs.h"
+#include "hls/core/schedule.h"
+#include "host/backend/core_backend.h"
+#include "host/cli/commands.h"
+#include "host/cli/common.h"
+#include "sim/rtl_core.h"
+#include "sim/rtl_profile.h"
+
+namespace evms::cli {
+namespace {
+
+struct CyclesOptions {
+  std::string source;
+  std::string build = "host";
+  std::int64_t limit = 1000000;
+  bool rtl = false;
+  bool table = false;
+  std::vector<int> lanes = {1, 2, 4, 8, 16, 32, 64};
+  read::SourceOptions source_options;
+  Params params;
+};
+
+std::vector<Event> read_events(const CyclesOptions& o, SensorSize& sensor) {
+  auto source = read::open_source(o.source, o.source_options);
+  sensor = source->info().sensor;
+  std::vector<Event> events, batch(8192);
+  while (static_cast<std::int64_t>(events.size()) < o.limit) {
+    const size_t n = source->read(batch);
+    if (n == 0) break;
+    for (size_t i = 0; i < n && static_cast<std::int64_t>(events.size()) < o.limit; ++i) events.push_back(batch[i]);
+  }
+  return events;
+}
+
+template <class S>
+std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {
+  backend::CoreWordMapper<S> mapper;
+  std::vector<hls::EventWord> words;
+  words.reserve(events.size() + 1);
+  for (const Event& e : events) words.push_back(mapper.to_word(e));
+  hls::EventWord flush;
+  flush.flush = true;
+  words.push_back(flush);
+  return words;
+}
+
+// The C++ core with the schedule counter as its observer.
+template <class S>
+hls::ScheduleCounter<S> model_run(const std::vector<hls::EventWord>& words, const hls::Config& cfg) {
+  using Core = hls::Core<S, hls::ScheduleCounter<S>>;
+  auto core = std::make_unique<Core>();
+  auto labels = std::make_unique<typename Core::LabelStream>();
+  typename Core::TrackStream tracks;
+  typename Core::PacketStream packets;
+  core->reset(cfg);
+  core->observer().configure(cfg);
+  for (const auto& w : words) {
+    core->process(w, *labels, tracks, packets);
+    labels->clear();
+    tracks.clear();
+    packets.clear();
+  }
+  return core->observer();
+}
+
+template <class V>
+hls::StageCycles rtl_run(const std::vector<hls::EventWord>& words, const hls::Config& cfg) {
+  sim::RtlCore<V> core(cfg);
+  Progress progress(true);
+  for (size_t i = 0; i < words.size(); ++i) {
+    core.push(words[i]);
+    core.labels.clear(), core.tracks.clear(), core.packets.clear();
+    if (i % 4096 == 0) progress.update(static_cast<double>(i) / words.size(), static_cast<std::int64_t>(i));
+  }
+  core.settle();
+  progress.done();
+  return sim::stage_cycles(core.state_cycles());
+}
+
+template <class V, class S>
+void cycles(const CyclesOptions& o) {
+  SensorSize sensor;
+  const std::vector<Event> events = read_events(o, sensor);
+  if (events.empty()) throw std::runtime_error(o.source + ": no events");
+  const auto words = words_of<S>(events);
+  if (o.table) {
+    // Cycles per event against packet size, iteration cap and lane count.
+    std::printf("| packet size | iterations cap | mean sweeps |");
+    for (int p : o.lanes) std::printf(" P = %d |", p);
+    std::printf("\n|---|---|---|");
+    for (size_t i = 0; i < o.lanes.size(); ++i) std::printf("---|");
+    std::printf("\n");
+    for (int n : {64, 128, 256}) {
+      if (n > S::kPacketMax) continue;
+      for (int it : {2, 4, 8}) {
+        if (it > S::kIterationsMax) continue;
+        Params p = o.params;
+        p.packet_size = n;
+        p.max_iterations = it;
+        const auto model = model_run<S>(words, backend::core_config<S>(p, sensor));
+        std::printf("| %d | %d | %.2f |", n, it, model.mean_sweeps());
+        for (int lanes : o.lanes) std::printf(" %.0f |", model.cycles(lanes).total() / model.events());
+        std::printf("\n");
+      }
+    }
+    return;
+  }
+  const hls::Config cfg = backend::core_config<S>(o.params, sensor);
+  const auto model = model_run<S>(words, cfg);
+  const double n_events = static_cast<double>(model.events());
+  std::printf("build %s (P = %d, multiplier latency %d): %s events, %s kept, %s packets, %.2f sweeps a packet\n", o.build.c_str(),
+              S::kLanes, hls::multiplier_latency(S::kMulDigitBits), grouped(model.events()).c_str(), grouped(model.kept()).c_str(),
+              grouped(model.packets()).c_str(), model.mean_sweeps());
+  const hls::StageCycles predicted = model.cycles();
+  hls::StageCycles measured;
+  if (o.rtl) measured = rtl_run<V>(words, cfg);
+  std::printf("%-16s %14s %8s", "stage", "model cyc/ev", "share");
+  if (o.rtl) std::printf(" %14s", "rtl cyc/ev");
+  std::printf("\n");
+  for (int s = 0; s < hls::kStageCount; ++s) {
+    std::printf("%-16s %14.2f %7.1f%%", hls::kStageNames[s], predicted[s] / n_events, 100.0 * predicted[s] / predicted.total());
+    if (o.rtl) std::printf(" %14.2f", measured[s] / n_events);
+    std::printf("\n");
+  }
+  std::printf("%-16s %14.2f %8s", "total", predicted.total() / n_events, "");
+  if (o.rtl) std::printf(" %14.2f", measured.total() / n_events);
+  std::printf("\n\nmodel, other lane counts:");
+  for (int lanes : o.lanes) std::printf("  P=%d: %.1f", lanes, model.cycles(lanes).total() / n_events);
+  std::printf(" cycles/event\n");
+}
+
+}  // namespace
+
+void register_cycles(CLI::App& app) {
+  auto o = std::make_shared<CyclesOptions>();
+  auto* cmd = app.add_subcommand("cycles", "Clocks per event of a core build, stage by stage: the cycle model, and the RTL with --rtl");
+  cmd->add_option("source", o->source, "Event file or gen:// scene")->required();
+  cmd->add_option("--build", o->build, "Core build: host, arty or ice40")->check(CLI::IsMember({"host", "arty", "ice40"}));
+  cmd->add_option("--limit", o->limit, "Events to read from the source");
+  cmd->add_flag("--rtl", o->rtl, "Also simulate the Verilated RTL and print its measured cycles");
+  cmd->add_flag("--table", o->table, "Print cycles per event against packet size, iteration cap and lanes (markdown)");
+  cmd->add_option("--lanes", o->lanes, "Lane counts for the model's comparison")->delimiter(',');
+  add_source_options(*cmd, o->source_options);
+  add_param_options(*cmd, o->params);
+  cmd->callback([o] {
+    if (o->build == "host") cycles<Vcore_host, hls::HostShape>(*o);
+    else if (o->build == "arty") cycles<Vcore_arty, hls::ArtyShape>(*o);
+    else cycles<Vcore_ice40, hls::Ice40Shape>(*o);
+  });
+}
+
+}  // namespace evms::cli
