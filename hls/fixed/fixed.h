@@ -28,10 +28,14 @@ using Wide = __int128;
 
 constexpr int max_int(int a, int b) { return a > b ? a : b; }
 
+// v * 2^n. A multiplication, not `v << n`: before C++20 shifting a negative value left is
+// undefined, and the SystemC cross-check builds this header as C++17.
+constexpr Wide scale_up(Wide v, int n) { return v * (Wide{1} << n); }
+
 // v / 2^shift with the rounding of `q`; shift > 0.
 constexpr Wide quantize_right(Wide v, int shift, Quant q) {
   const Wide floor = v >> shift;  // arithmetic shift: rounds toward minus infinity
-  const Wide rem = v - (floor << shift);
+  const Wide rem = v - scale_up(floor, shift);
   const Wide half = Wide{1} << (shift - 1);
   switch (q) {
     case Quant::kTrn: return floor;
@@ -68,7 +72,7 @@ constexpr Wide overflow(Wide v, int w, bool is_signed, Ovf o) {
 
 // raw value of a number with `from_frac` fraction bits, expressed with `to_frac` bits.
 constexpr Wide requantize(Wide raw, int from_frac, int to_frac, Quant q) {
-  if (to_frac >= from_frac) return raw << (to_frac - from_frac);
+  if (to_frac >= from_frac) return scale_up(raw, to_frac - from_frac);
   return quantize_right(raw, from_frac - to_frac, q);
 }
 
@@ -115,7 +119,7 @@ class Fixed {
       if (shift > 60) {
         raw = negative ? -(fixed_detail::Wide{1} << 100) : (fixed_detail::Wide{1} << 100);  // beyond any width: overflow
       } else {
-        raw = mant << shift;
+        raw = fixed_detail::scale_up(mant, shift);
       }
     } else if (-shift >= 110) {
       raw = fixed_detail::quantize_right(mant, 110, Q);
@@ -142,7 +146,7 @@ class Fixed {
   // The integer part, rounded toward minus infinity.
   constexpr std::int64_t to_int() const {
     return frac_bits >= 0 ? static_cast<std::int64_t>(fixed_detail::Wide{raw_} >> frac_bits)
-                          : static_cast<std::int64_t>(fixed_detail::Wide{raw_} << -frac_bits);
+                          : static_cast<std::int64_t>(fixed_detail::scale_up(raw_, -frac_bits));
   }
 
   static constexpr Fixed max_value() { return from_raw(S ? (std::int64_t{1} << (W - 1)) - 1 : static_cast<std::int64_t>((std::uint64_t{1} << W) - 1)); }

@@ -2,7 +2,10 @@
 // the host) or a DVS128 on the AER pins (PMOD JA/JB/JC). The host
 // link runs on the USB UART at 2 Mbaud (50 clocks a bit); LEDs show activity and link errors.
 // Pins: constraints/arty_a7.xdc.
-module evms_arty_top (
+module evms_arty_top #(
+  // The synthesis flow's lane sweep (constraints/flow/synth.sh); 0 keeps the build's LANES.
+  parameter int LANES_OVERRIDE = 0
+) (
   input  logic        CLK,
   input  logic        BTN_N,
   input  logic        RX,
@@ -25,7 +28,7 @@ module evms_arty_top (
   evms_board #(
     .CLK_HZ(100000000), .CLKS_PER_BIT(50), .LINK_FIFO_DEPTH(2048), .MUL_DIGIT_BITS(MUL_DIGIT_BITS),
     .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .TS_BITS(TS_BITS), .TS_SHIFT(TS_SHIFT), .PACKET_MAX(PACKET_MAX),
-    .PENDING_DEPTH(PENDING_DEPTH), .LANES(LANES), .ITERATIONS_MAX(ITERATIONS_MAX), .CLUSTERS_MAX(CLUSTERS_MAX),
+    .PENDING_DEPTH(PENDING_DEPTH), .LANES(LANES_OVERRIDE > 0 ? LANES_OVERRIDE : LANES), .ITERATIONS_MAX(ITERATIONS_MAX), .CLUSTERS_MAX(CLUSTERS_MAX),
     .TRACKS_MAX(TRACKS_MAX), .FEAT_INT(FEAT_INT), .FEAT_FRAC(FEAT_FRAC), .WEIGHT_FRAC(WEIGHT_FRAC), .EXP_LOG2(EXP_LOG2),
     .EXP_INTERP_BITS(EXP_INTERP_BITS), .SUM_FRAC(SUM_FRAC), .RECIP_LOG2(RECIP_LOG2), .RECIP_FRAC(RECIP_FRAC),
     .DECAY_FRAC(DECAY_FRAC), .COORD_SCALE_FRAC(COORD_SCALE_FRAC), .POS_FRAC(POS_FRAC), .TICK_LOG2(TICK_LOG2),

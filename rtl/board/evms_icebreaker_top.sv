@@ -1,7 +1,10 @@
 // iCEBreaker (iCE40 UP5K, 12 MHz) beside a DVS128: AER on PMOD1A/1B/2, the host link on the
 // FT2232H's UART at 3 Mbaud (4 clocks a bit), LEDs for activity and link errors.
 // Pins: constraints/icebreaker.pcf.
-module evms_icebreaker_top (
+module evms_icebreaker_top #(
+  // The synthesis flow's lane sweep (constraints/flow/synth.sh); 0 keeps the build's LANES.
+  parameter int LANES_OVERRIDE = 0
+) (
   input  logic        CLK,
   input  logic        BTN_N,
   input  logic        RX,
@@ -24,7 +27,7 @@ module evms_icebreaker_top (
   evms_board #(
     .CLK_HZ(12000000), .CLKS_PER_BIT(4), .LINK_FIFO_DEPTH(512), .MUL_DIGIT_BITS(MUL_DIGIT_BITS),
     .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .TS_BITS(TS_BITS), .TS_SHIFT(TS_SHIFT), .PACKET_MAX(PACKET_MAX),
-    .PENDING_DEPTH(PENDING_DEPTH), .LANES(LANES), .ITERATIONS_MAX(ITERATIONS_MAX), .CLUSTERS_MAX(CLUSTERS_MAX),
+    .PENDING_DEPTH(PENDING_DEPTH), .LANES(LANES_OVERRIDE > 0 ? LANES_OVERRIDE : LANES), .ITERATIONS_MAX(ITERATIONS_MAX), .CLUSTERS_MAX(CLUSTERS_MAX),
     .TRACKS_MAX(TRACKS_MAX), .FEAT_INT(FEAT_INT), .FEAT_FRAC(FEAT_FRAC), .WEIGHT_FRAC(WEIGHT_FRAC), .EXP_LOG2(EXP_LOG2),
     .EXP_INTERP_BITS(EXP_INTERP_BITS), .SUM_FRAC(SUM_FRAC), .RECIP_LOG2(RECIP_LOG2), .RECIP_FRAC(RECIP_FRAC),
     .DECAY_FRAC(DECAY_FRAC), .COORD_SCALE_FRAC(COORD_SCALE_FRAC), .POS_FRAC(POS_FRAC), .TICK_LOG2(TICK_LOG2),

@@ -1,0 +1,42 @@
+#!/bin/bash
+# Compares a synthesis report (synth.sh) with the committed baseline: prints every resource
+# beside its baseline and fails when one grew by more than the tolerance (default 2 %), or
+# when a configuration that fitted its device no longer does.
+#
+#   constraints/flow/compare.sh REPORT.json [BASELINE.json] [TOLERANCE_PERCENT]
+#
+# After a change that is worth its area, copy the report over baseline.json in the same commit.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+report=${1:?usage: compare.sh REPORT.json [BASELINE.json] [TOLERANCE_PERCENT]}
+baseline=${2:-$here/baseline.json}
+tolerance=${3:-2}
+
+field() {  # field FILE CONFIG KEY
+  grep -E "^ *\"$2\":" "$1" | grep -oE "\"$3\": [^,}]+" | awk '{ print $2 }'
+}
+
+status=0
+printf '%-10s %-8s %10s %10s %8s\n' config resource baseline now change
+for config in $(grep -oE '^ *"[a-z0-9_]+":' "$report" | tr -d ' ":'); do
+  if ! grep -qE "^ *\"$config\":" "$baseline"; then
+    echo "$config: not in the baseline $baseline" >&2
+    status=1
+    continue
+  fi
+  for key in lut ff dsp bram spram fmax_mhz; do
+    was=$(field "$baseline" "$config" $key)
+    now=$(field "$report" "$config" $key)
+    change=$(awk -v a="$was" -v b="$now" 'BEGIN { if (a == "null" || b == "null") print "-"; else if (a == 0) print (b == 0 ? "0.0%" : "new"); else printf "%+.1f%%", 100 * (b - a) / a }')
+    printf '%-10s %-8s %10s %10s %8s\n' "$config" $key "$was" "$now" "$change"
+    if [ $key != fmax_mhz ] && awk -v a="$was" -v b="$now" -v t="$tolerance" 'BEGIN { exit !(b > a * (1 + t / 100) + 0.5) }'; then
+      echo "compare.sh: $config $key grew from $was to $now, more than $tolerance %" >&2
+      status=1
+    fi
+  done
+  if [ "$(field "$baseline" "$config" fits)" = true ] && [ "$(field "$report" "$config" fits)" != true ]; then
+    echo "compare.sh: $config no longer fits its device" >&2
+    status=1
+  fi
+done
+exit $status

@@ -1,0 +1,115 @@
+#!/bin/bash
+# Synthesizes the board tops with Yosys (synth_ice40 for the iCEBreaker's iCE40 UP5K,
+# synth_xilinx for the Arty's XC7A35T), places and routes the iCE40 ones that fit with
+# nextpnr-ice40 over several seeds, and writes one JSON report: LUT, FF, DSP, BRAM and SPRAM
+# use, and the median Fmax. Each top is run at its build's lane count and at P = 1, 2, 4, 8.
+#
+#   constraints/flow/synth.sh [-j JOBS] [-s SEEDS] [-o REPORT.json] [CONFIG ...]
+#
+# CONFIG is ice40_p1 .. ice40_p8 or xc7_p1 .. xc7_p8 (default: all eight). The iCE40 build is
+# P = 1 and the Arty build P = 8: ice40_p1 and xc7_p8 are the default configurations.
+# compare.sh checks a report against baseline.json.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+jobs=2
+seeds=5
+out=$root/build/synth/report.json
+while getopts "j:s:o:" opt; do
+  case $opt in
+    j) jobs=$OPTARG ;;
+    s) seeds=$OPTARG ;;
+    o) out=$OPTARG ;;
+    *) sed -n '2,13p' "$0"; exit 2 ;;
+  esac
+done
+shift $((OPTIND - 1))
+configs=("$@")
+[ ${#configs[@]} -eq 0 ] && configs=(ice40_p1 ice40_p2 ice40_p4 ice40_p8 xc7_p1 xc7_p2 xc7_p4 xc7_p8)
+for tool in yosys nextpnr-ice40; do
+  command -v $tool >/dev/null || { echo "synth.sh: $tool not found (apt install yosys nextpnr-ice40 fpga-icestorm)" >&2; exit 1; }
+done
+
+work=$(dirname "$out")/work
+mkdir -p "$work"
+sources=()
+while read -r f; do sources+=("$root/rtl/$f"); done < <(cat "$root/rtl/core.f" "$root/rtl/board.f")
+
+# The iCE40 UP5K and the XC7A35T, for the "fits" verdict.
+declare -A capacity=([ice40_lut]=5280 [ice40_ff]=5280 [ice40_dsp]=8 [ice40_bram]=30 [ice40_spram]=4
+                     [xc7_lut]=20800 [xc7_ff]=41600 [xc7_dsp]=90 [xc7_bram]=50 [xc7_spram]=0)
+
+count() {  # count FILE CELL-REGEX: the sum of the matching cell counts in a yosys stat -json
+  grep -oE "\"($2)\": [0-9]+" "$1" | awk '{ s += $2 } END { print s + 0 }'
+}
+
+run_config() {
+  local name=$1 family=${1%_p*} lanes=${1#*_p} dir=$work/$1 top
+  mkdir -p "$dir"
+  if [ "$family" = ice40 ]; then
+    top=evms_icebreaker_top
+    synth="synth_ice40 -dsp -spram -top $top -json $dir/netlist.json"
+  else
+    top=evms_arty_top
+    synth="synth_xilinx -family xc7 -flatten -top $top"
+  fi
+  # $readmemh paths in the generated headers are relative to rtl/generated.
+  (cd "$root/rtl/generated" && yosys -q -l "$dir/yosys.log" -p "read_verilog -sv -I. ${sources[*]} $root/rtl/board/$top.sv;
+      hierarchy -top $top -chparam LANES_OVERRIDE $lanes; $synth; tee -q -o $dir/stat.json stat -json") >/dev/null
+  local s=$dir/stat.json lut ff dsp bram spram
+  if [ "$family" = ice40 ]; then
+    lut=$(count "$s" SB_LUT4)
+    ff=$(count "$s" 'SB_DFF[A-Z]*')
+    dsp=$(count "$s" SB_MAC16)
+    bram=$(count "$s" SB_RAM40_4K)
+    spram=$(count "$s" SB_SPRAM256KA)
+  else
+    # LUTs as logic and as distributed RAM (a RAM64M is four LUTs); block RAM in 36 kb tiles.
+    lut=$(( $(count "$s" 'LUT[1-6]') + 4 * $(count "$s" 'RAM64M|RAM32M') + 2 * $(count "$s" 'RAM64X1D|RAM32X1D') + $(count "$s" 'RAM64X1S|RAM32X1S|SRL16E|SRLC32E') ))
+    ff=$(count "$s" 'FD[A-Z]*')
+    dsp=$(count "$s" DSP48E1)
+    bram=$(awk -v a="$(count "$s" RAMB36E1)" -v b="$(count "$s" RAMB18E1)" 'BEGIN { printf "%g", a + b / 2 }')
+    spram=0
+  fi
+  local fits=true
+  for r in lut ff dsp bram spram; do
+    awk -v u="${!r}" -v c="${capacity[${family}_$r]}" 'BEGIN { exit !(u > c) }' && fits=false
+  done
+  local fmax=null
+  if [ "$family" = ice40 ] && [ $fits = true ]; then
+    local f=()
+    for seed in $(seq 1 "$seeds"); do
+      if nextpnr-ice40 --up5k --package sg48 --pcf "$root/constraints/icebreaker.pcf" --json "$dir/netlist.json" --freq 12 \
+           --seed "$seed" --report "$dir/pnr_$seed.json" --asc "$dir/top.asc" -q -l "$dir/pnr_$seed.log" >/dev/null 2>&1; then
+        f+=("$(grep -oE '"achieved": [0-9.]+' "$dir/pnr_$seed.json" | head -1 | awk '{ print $2 }')")
+      fi
+    done
+    if [ ${#f[@]} -gt 0 ]; then
+      fmax=$(printf '%s\n' "${f[@]}" | sort -g | awk '{ v[NR] = $1 } END { printf "%.1f", NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }')
+    else
+      fits=false
+    fi
+  fi
+  printf '  "%s": {"top": "%s", "lanes": %s, "lut": %s, "ff": %s, "dsp": %s, "bram": %s, "spram": %s, "fits": %s, "fmax_mhz": %s}' \
+    "$name" "$top" "$lanes" "$lut" "$ff" "$dsp" "$bram" "$spram" "$fits" "$fmax" > "$dir/entry.json"
+  echo "synth.sh: $name done: $lut LUT, $ff FF, $dsp DSP, $bram BRAM, $spram SPRAM, fits $fits, Fmax $fmax MHz" >&2
+}
+
+for c in "${configs[@]}"; do
+  [[ $c =~ ^(ice40|xc7)_p[0-9]+$ ]] || { echo "synth.sh: unknown configuration '$c'" >&2; exit 2; }
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n; done
+  run_config "$c" &
+done
+wait
+{
+  echo "{"
+  first=true
+  for c in "${configs[@]}"; do
+    $first || echo ","
+    first=false
+    cat "$work/$c/entry.json"
+  done
+  echo
+  echo "}"
+} > "$out"
+echo "synth.sh: wrote $out" >&2

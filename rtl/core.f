@@ -1,0 +1,10 @@
+common/evms_mul.sv
+common/evms_fifo.sv
+math/evms_exp_lut.sv
+math/evms_recip.sv
+filter/evms_ba_filter.sv
+cluster/evms_mean_shift.sv
+cluster/evms_merge.sv
+cluster/evms_centroid.sv
+track/evms_tracker.sv
+core/evms_core.sv
