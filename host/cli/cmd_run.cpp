@@ -1,12 +1,16 @@
 // evms run [SOURCE] : source -> backend -> labelled events and tracks, with a summary.
 #include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <optional>
 
 #include "host/backend/backend.h"
 #include "host/cli/common.h"
 #include "host/cli/commands.h"
+#include "host/eval/latency_histogram.h"
+#include "host/read/live/live_source.h"
 #include "host/write/event_writers.h"
 
 namespace evms::cli {
@@ -32,7 +36,14 @@ class RunSink final : public OutputSink {
       tracks_.emplace(out_dir + "/tracks.csv");
     }
   }
+  // Live sources: the arrival times of the events pushed and not yet labelled, in order.
+  void arrived(std::span<const std::int64_t> ns) { pending_arrivals_.insert(pending_arrivals_.end(), ns.begin(), ns.end()); }
+
   void on_event(const LabelledEvent& e) override {
+    if (!pending_arrivals_.empty()) {
+      latency.add(read::steady_now_ns() - pending_arrivals_.front());
+      pending_arrivals_.pop_front();
+    }
     ++events;
     if (e.label == kNoiseLabel) ++noise;
     if (events_) events_->write(e);
@@ -51,8 +62,10 @@ class RunSink final : public OutputSink {
   }
 
   std::int64_t events = 0, noise = 0, track_rows = 0, confirmed = 0;
+  eval::LatencyHistogram latency;
 
  private:
+  std::deque<std::int64_t> pending_arrivals_;
   std::vector<bool> seen_;  // track IDs with at least one update
   std::optional<write::LabelledEventsCsv> events_;
   std::optional<write::TracksCsv> tracks_;
@@ -66,6 +79,10 @@ void run(const RunOptions& o) {
   RunSink sink(o.out);
   Progress progress(!o.quiet);
 
+  // Ctrl-C ends a live source as if its input had ended, so that the outputs are complete.
+  const bool live = dynamic_cast<read::LiveSource*>(source.get()) != nullptr;
+  if (live) std::signal(SIGINT, [](int) { read::end_live_sources(); std::signal(SIGINT, SIG_DFL); });
+
   std::vector<Event> batch(4096);
   TimeUs t_first = 0, t_last = 0;
   bool any = false;
@@ -75,6 +92,7 @@ void run(const RunOptions& o) {
     if (n == 0) break;
     if (!any) t_first = batch[0].t, any = true;
     t_last = batch[n - 1].t;
+    sink.arrived(source->arrivals());
     backend->push(std::span(batch).first(n), sink);
     progress.update(source->progress(), backend->stats().events_in);
   }
@@ -100,6 +118,13 @@ void run(const RunOptions& o) {
   std::printf("tracks      %s started, %s confirmed, %s track updates\n", grouped(s.tracks_started).c_str(),
               grouped(sink.confirmed).c_str(), grouped(sink.track_rows).c_str());
   if (s.unassigned_clusters) std::printf("            %s clusters found no free track slot (labelled noise)\n", grouped(s.unassigned_clusters).c_str());
+  if (live) {
+    std::printf("live        %s events dropped while the backend was behind", grouped(source->dropped()).c_str());
+    for (const auto& [kind, count] : source->skipped()) std::printf("; %s %s", grouped(count).c_str(), kind.c_str());
+    std::printf("\n");
+    std::printf("latency     arrival to label: p50 %.0f us, p99 %.0f us, max %.0f us over %s events\n", sink.latency.quantile_us(0.5),
+                sink.latency.quantile_us(0.99), static_cast<double>(sink.latency.max_ns()) * 1e-3, grouped(sink.latency.count()).c_str());
+  }
   if (!o.out.empty()) std::printf("outputs     %s/events.csv, %s/tracks.csv\n", o.out.c_str(), o.out.c_str());
 }
 

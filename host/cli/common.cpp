@@ -16,6 +16,13 @@ void add_source_options(CLI::App& cmd, read::SourceOptions& o) {
                  "events out of time order by up to this much are re-sorted; more is an error")
       ->default_val(o.reorder_us)
       ->check(CLI::Range(0, 1000000000));
+  cmd.add_flag("--realtime", o.realtime, "replay a recorded source at the pace of its timestamps; events the backend has no room for are dropped and counted");
+  cmd.add_option("--speed", o.speed, "with --realtime: this many times real time (the paper's speed factor)")
+      ->default_val(o.speed)
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--live-buffer", o.live_buffer_events, "events a live or real-time source holds for a backend that falls behind")
+      ->default_val(o.live_buffer_events)
+      ->check(CLI::Range(1, 1 << 28));
 }
 
 void add_param_options(CLI::App& cmd, Params& params) {

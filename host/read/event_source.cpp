@@ -1,4 +1,5 @@
 #include "host/read/event_source.h"
+#include "host/read/live/live_source.h"
 
 #include <algorithm>
 #include <array>
@@ -83,10 +84,29 @@ std::optional<SensorSize> sensor_of_model(const std::string& model) {
 
 std::unique_ptr<EventSource> open_generated_scene(const std::string& uri, const SourceOptions& o);
 
+std::unique_ptr<EventSource> open_usb_camera(const std::string& uri, const SourceOptions& o);
+std::unique_ptr<EventSource> open_udp_stream(const std::string& uri, const SourceOptions& o);
+
+namespace {
+
+std::unique_ptr<EventSource> open_recorded(const std::string& name, const SourceOptions& options);
+
+}  // namespace
+
 std::unique_ptr<EventSource> open_source(const std::string& name, const SourceOptions& options) {
+  if (name.rfind("usb://", 0) == 0) return open_usb_camera(name, options);
+  if (name.rfind("udp://", 0) == 0) return open_udp_stream(name, options);
+  auto source = open_recorded(name, options);
+  if (!options.realtime) return source;
+  return replay_in_real_time(std::move(source), options.speed, options.live_buffer_events);
+}
+
+namespace {
+
+std::unique_ptr<EventSource> open_recorded(const std::string& name, const SourceOptions& options) {
   if (name.rfind("gen://", 0) == 0) return open_generated_scene(name, options);
   if (name.find("://") != std::string::npos) {
-    throw InputError(name + ": unknown source scheme (expected a file path or gen://SCENE)");
+    throw InputError(name + ": unknown source scheme (expected a file path, gen://SCENE, usb://dvs128, usb://davis or udp://HOST:PORT)");
   }
   ByteReader in(name);
   const std::string_view head = in.peek(64);
@@ -110,5 +130,7 @@ std::unique_ptr<EventSource> open_source(const std::string& name, const SourceOp
   fail(name, InputPosition::byte(0),
        "bad header: not a known event format (events.txt, CSV, AEDAT 2/3/4, EVT 2/3 RAW, DAT)");
 }
+
+}  // namespace
 
 }  // namespace evms::read

@@ -2,6 +2,9 @@
 // stream. Every evms subcommand that reads events takes any source by its name:
 //   path/to/file.{txt,csv,aedat,aedat4,raw,dat}   format detected from the header
 //   gen://rotation?seed=1&duration-s=2           a generated labelled scene
+//   usb://dvs128, usb://davis                    a live camera over libusb (usb_camera.cpp)
+//   udp://HOST:PORT?camera=dvs128|davis          a jAER AEUnicast stream (udp_source.cpp)
+// With SourceOptions::realtime any of them is replayed at its own pace (live_source.h).
 #pragma once
 
 #include <cstdint>
@@ -22,6 +25,9 @@ struct SourceOptions {
   int width = 0;              // sensor size for formats without one in their header
   int height = 0;
   TimeUs reorder_us = 1000;   // out-of-order tolerance, see event_ordering.h
+  bool realtime = false;      // replay at the pace of the timestamps (live sources always are)
+  double speed = 1.0;         // ... times this factor
+  size_t live_buffer_events = 1 << 20;  // a live source's buffer; beyond it events are dropped
 };
 
 struct SourceInfo {
@@ -43,6 +49,11 @@ class EventSource {
   virtual std::vector<std::pair<std::string, std::int64_t>> skipped() const { return {}; }
   // Events moved back into time order (see event_ordering.h).
   virtual std::int64_t reordered() const { return 0; }
+  // Live sources: the host arrival time (steady clock, ns) of each event the last read()
+  // returned; empty for sources that are not live.
+  virtual std::span<const std::int64_t> arrivals() const { return {}; }
+  // Live sources: events that arrived while the buffer was full.
+  virtual std::int64_t dropped() const { return 0; }
 };
 
 // Base of every file decoder: owns the byte reader and the ordering stage, and pulls decoded

@@ -1,13 +1,9 @@
 // AEDAT 2.0 (jAER): '#' header lines ending in CRLF, then 8-byte big-endian records
-// {int32 address, int32 timestamp_us}. The address layout depends on the camera, which the
-// header names in its "# AEChip:" line:
-//   DVS128: bit 15 external, y = bits 14..8, x = bits 7..1, polarity = bit 0 (1 = ON)
-//   DAVIS:  bit 31 type (0 = DVS), y = bits 30..22, x = bits 21..12, bits 11..10 subtype
-//           (00 OFF, 10 ON, x1 external), bits 9..0 APS ADC
-// Coordinates are returned as stored (the origin is the sensor's lower left). The 32-bit
-// timestamp wraps; each wrap adds 2^32 us.
+// {int32 address, int32 timestamp_us}. The address layout (jaer_address.h) depends on the
+// camera, which the header names in its "# AEChip:" line.
 #include "host/read/bytes.h"
 #include "host/read/event_source.h"
+#include "host/read/formats/jaer_address.h"
 
 namespace evms::read {
 namespace {
@@ -45,26 +41,12 @@ class Aedat2Source final : public FileEventSource {
         fail(in_.path(), InputPosition::byte(at),
              "truncated record (" + std::to_string(got) + " of 8 bytes)");
       }
-      const std::uint32_t addr = be32(rec);
-      const std::uint32_t ts = be32(rec + 4);
-      if (have_last_ && ts < last_ts_ && last_ts_ - ts > (1u << 31)) wraps_ += std::int64_t{1} << 32;
-      have_last_ = true;
-      last_ts_ = ts;
-      const TimeUs t = wraps_ + ts;
-      if (davis_) {
-        if (addr >> 31) {
-          count_skipped("APS/IMU records");
-        } else if (addr & (1u << 10)) {
-          count_skipped("external events");
-        } else {
-          emit(t, (addr >> 12) & 0x3FF, (addr >> 22) & 0x1FF, (addr >> 11) & 1, InputPosition::byte(at));
-        }
-      } else {
-        if (addr & (1u << 15)) {
-          count_skipped("external events");
-        } else {
-          emit(t, (addr >> 1) & 0x7F, (addr >> 8) & 0x7F, addr & 1, InputPosition::byte(at));
-        }
+      const JaerAddress a = decode_jaer_address(be32(rec), davis_ ? JaerLayout::kDavis : JaerLayout::kDvs128);
+      const TimeUs t = clock_.extend(be32(rec + 4));
+      switch (a.kind) {
+        case JaerAddress::Kind::kApsOrImu: count_skipped("APS/IMU records"); break;
+        case JaerAddress::Kind::kExternal: count_skipped("external events"); break;
+        case JaerAddress::Kind::kPolarity: emit(t, a.x, a.y, a.p, InputPosition::byte(at)); break;
       }
     }
     return true;
@@ -72,9 +54,7 @@ class Aedat2Source final : public FileEventSource {
 
  private:
   bool davis_ = false;
-  bool have_last_ = false;
-  std::uint32_t last_ts_ = 0;
-  TimeUs wraps_ = 0;
+  JaerClock clock_;
 };
 
 // AEDAT 3.1 (libcaer): '#' header lines up to "#!END-HEADER", then little-endian packets,

@@ -1,0 +1,197 @@
+// udp://HOST:PORT?camera=dvs128|davis[&idle-s=S]: a jAER AEUnicast stream.
+//
+// evms binds HOST:PORT (default port 8991) and receives datagrams of a big-endian int32
+// sequence number followed by 8-byte {int32 address, int32 timestamp_us} records, the layout
+// jAER's AEUnicastOutput sends by default. The addresses are jAER's (jaer_address.h) for the
+// named camera; the sensor is 128x128 for dvs128 and --width/--height (default 240x180, the
+// DAVIS240) for davis. A gap in the sequence numbers counts the datagrams lost in between.
+// The stream ends after S seconds without a datagram when idle-s is given, else on Ctrl-C.
+#include <netdb.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <map>
+
+#include "host/read/bytes.h"
+#include "host/read/formats/jaer_address.h"
+#include "host/read/live/live_source.h"
+
+namespace evms::read {
+namespace {
+
+constexpr size_t kDatagramMax = 65536;  // jAER sends up to 63,000 bytes
+
+std::map<std::string, std::string> query_of(const std::string& uri, std::string& authority) {
+  std::map<std::string, std::string> q;
+  const std::string rest = uri.substr(6);
+  const size_t mark = rest.find('?');
+  authority = rest.substr(0, mark);
+  if (mark == std::string::npos) return q;
+  std::string query = rest.substr(mark + 1);
+  size_t at = 0;
+  while (at <= query.size()) {
+    const size_t amp = std::min(query.find('&', at), query.size());
+    const std::string item = query.substr(at, amp - at);
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos) throw InputError(uri + ": '" + item + "' is not key=value");
+    q[item.substr(0, eq)] = item.substr(eq + 1);
+    at = amp + 1;
+  }
+  return q;
+}
+
+class UdpSource final : public LiveSource {
+ public:
+  UdpSource(const std::string& uri, const SourceOptions& o) : LiveSource(o.live_buffer_events), uri_(uri) {
+    info_.name = uri;
+    std::string authority;
+    auto q = query_of(uri, authority);
+    const std::string camera = q.count("camera") ? q["camera"] : "dvs128";
+    q.erase("camera");
+    if (camera == "dvs128") {
+      layout_ = JaerLayout::kDvs128;
+      info_.sensor = {128, 128};
+      info_.sensor_origin = "DVS128";
+    } else if (camera == "davis") {
+      layout_ = JaerLayout::kDavis;
+      const bool given = o.width > 0 && o.height > 0;
+      info_.sensor = given ? SensorSize{o.width, o.height} : SensorSize{240, 180};
+      info_.sensor_origin = given ? "--width/--height" : "DAVIS240 default";
+    } else {
+      throw InputError(uri + ": unknown camera '" + camera + "' (expected camera=dvs128 or camera=davis)");
+    }
+    if (q.count("idle-s")) {
+      idle_ms_ = static_cast<int>(std::stod(q["idle-s"]) * 1000);
+      q.erase("idle-s");
+    }
+    if (!q.empty()) throw InputError(uri + ": unknown option '" + q.begin()->first + "' (known: camera, idle-s)");
+    info_.format = "jAER AEUnicast over UDP (" + camera + " addresses)";
+    bind_to(authority);
+    start();
+  }
+
+  ~UdpSource() override {
+    stop();
+    if (fd_ >= 0) ::close(fd_);
+  }
+
+  std::vector<std::pair<std::string, std::int64_t>> skipped() const override {
+    auto s = LiveSource::skipped();
+    if (lost_ > 0) s.emplace_back("lost datagrams (sequence gaps)", lost_);
+    return s;
+  }
+  std::int64_t lost_datagrams() const { return lost_; }
+  int port() const { return port_; }
+
+ private:
+  void bind_to(const std::string& authority) {
+    const size_t colon = authority.rfind(':');
+    const std::string host = colon == std::string::npos ? authority : authority.substr(0, colon);
+    const std::string port = colon == std::string::npos ? "8991" : authority.substr(colon + 1);
+    addrinfo hints{};
+    hints.ai_family = AF_UNSPEC;
+    hints.ai_socktype = SOCK_DGRAM;
+    hints.ai_flags = AI_PASSIVE;
+    addrinfo* res = nullptr;
+    if (int rc = getaddrinfo(host.empty() ? nullptr : host.c_str(), port.c_str(), &hints, &res); rc != 0) {
+      throw InputError(uri_ + ": cannot resolve '" + authority + "' (" + gai_strerror(rc) + ")");
+    }
+    std::string why = "no address";
+    for (addrinfo* a = res; a && fd_ < 0; a = a->ai_next) {
+      fd_ = ::socket(a->ai_family, a->ai_socktype, a->ai_protocol);
+      if (fd_ < 0) continue;
+      int big = 4 << 20;
+      setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &big, sizeof big);
+      if (::bind(fd_, a->ai_addr, a->ai_addrlen) == 0) {
+        sockaddr_storage bound{};
+        socklen_t len = sizeof bound;
+        getsockname(fd_, reinterpret_cast<sockaddr*>(&bound), &len);
+        port_ = ntohs(bound.ss_family == AF_INET6 ? reinterpret_cast<sockaddr_in6*>(&bound)->sin6_port
+                                                   : reinterpret_cast<sockaddr_in*>(&bound)->sin_port);
+        break;
+      }
+      why = std::strerror(errno);
+      ::close(fd_);
+      fd_ = -1;
+    }
+    freeaddrinfo(res);
+    if (fd_ < 0) throw InputError(uri_ + ": cannot listen on " + authority + " (" + why + ")");
+    info_.name = uri_;
+  }
+
+  void produce(std::stop_token stop) override {
+    std::vector<unsigned char> datagram(kDatagramMax);
+    std::vector<Event> events;
+    int idle = 0;
+    while (!stop.stop_requested()) {
+      pollfd p{fd_, POLLIN, 0};
+      const int ready = ::poll(&p, 1, 100);
+      if (ready < 0 && errno != EINTR) throw InputError(uri_ + ": poll failed (" + std::strerror(errno) + ")");
+      if (ready <= 0) {
+        idle += 100;
+        if (idle_ms_ > 0 && idle >= idle_ms_) return;
+        continue;
+      }
+      idle = 0;
+      const ssize_t n = ::recv(fd_, datagram.data(), datagram.size(), 0);
+      if (n < 0) throw InputError(uri_ + ": receive failed (" + std::strerror(errno) + ")");
+      const std::int64_t arrival = steady_now_ns();
+      ++datagrams_;
+      if (n < 4 || (n - 4) % 8 != 0) {
+        // A datagram that is not a sequence number and whole records: counted, not decoded.
+        count_skipped("malformed datagrams (length not 4 + 8k bytes)");
+        continue;
+      }
+      const std::uint32_t seq = be32(datagram.data());
+      if (have_seq_ && seq != next_seq_) {
+        if (seq > next_seq_) {
+          lost_ += seq - next_seq_;
+        } else {
+          count_skipped("datagrams out of sequence");
+        }
+      }
+      have_seq_ = true;
+      next_seq_ = seq + 1;
+      events.clear();
+      for (ssize_t at = 4; at < n; at += 8) {
+        const JaerAddress a = decode_jaer_address(be32(datagram.data() + at), layout_);
+        const TimeUs t = clock_.extend(be32(datagram.data() + at + 4));
+        if (a.kind == JaerAddress::Kind::kApsOrImu) {
+          count_skipped("APS/IMU records");
+        } else if (a.kind == JaerAddress::Kind::kExternal) {
+          count_skipped("external events");
+        } else if (a.x >= static_cast<unsigned>(info_.sensor.width) || a.y >= static_cast<unsigned>(info_.sensor.height)) {
+          count_skipped("addresses outside the sensor");
+        } else if (t < last_t_) {
+          count_skipped("events older than their predecessor");
+        } else {
+          last_t_ = t;
+          events.push_back(Event{t, static_cast<std::uint16_t>(a.x), static_cast<std::uint16_t>(a.y), static_cast<std::uint8_t>(a.p)});
+        }
+      }
+      buffer_.push(events, arrival);
+    }
+  }
+
+  std::string uri_;
+  JaerLayout layout_ = JaerLayout::kDvs128;
+  JaerClock clock_;
+  TimeUs last_t_ = 0;
+  int fd_ = -1, port_ = 0, idle_ms_ = 0;
+  bool have_seq_ = false;
+  std::uint32_t next_seq_ = 0;
+  std::int64_t datagrams_ = 0;
+  std::atomic<std::int64_t> lost_{0};
+};
+
+}  // namespace
+
+std::unique_ptr<EventSource> open_udp_stream(const std::string& uri, const SourceOptions& o) {
+  return std::make_unique<UdpSource>(uri, o);
+}
+
+}  // namespace evms::read
