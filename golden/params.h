@@ -43,6 +43,8 @@ struct Params {
   double init_sigma_px = 2.0;        // initial position uncertainty (P0)
   double init_sigma_vel = 200.0;     // initial velocity uncertainty (P0), px/s
   int max_tracks = 16;               // tracks held at once
+
+  friend bool operator==(const Params&, const Params&) = default;
 };
 
 // One row of the parameter table.

@@ -26,8 +26,22 @@ struct BackendStats {
 struct BackendOptions {
   Params params;
   SensorSize sensor;
+  std::string core = "host";           // core build of the fixed and rtl backends: host, arty or ice40
   std::string device;                  // serial device, for the board backend
+  int baud = 3000000;                  // its line rate
 };
+
+// Options for a backend that needs only the method's parameters and the sensor.
+inline BackendOptions options_for(const Params& params, SensorSize sensor) {
+  BackendOptions o;
+  o.params = params;
+  o.sensor = sensor;
+  return o;
+}
+
+// The core builds (hls/core/shape.h) a backend can run: "host", "arty" or "ice40".
+// Throws std::invalid_argument naming them for anything else.
+void check_core_build(const std::string& core);
 
 class Backend {
  public:

@@ -10,8 +10,15 @@ const std::array kBackends = {
     BackendInfo{"golden", "floating-point reference model (Eigen, double)", &make_golden_backend},
     BackendInfo{"fixed", "bit-accurate fixed-point core (hls/), in C++", &make_fixed_backend},
     BackendInfo{"rtl", "the SystemVerilog core (rtl/), simulated by Verilator", &make_rtl_backend},
+    BackendInfo{"board", "an FPGA board (or evms vboard) running the board top, over its serial link (docs/link.md)", &make_board_backend},
 };
 }  // namespace
+
+void check_core_build(const std::string& core) {
+  if (core != "host" && core != "arty" && core != "ice40") {
+    throw std::invalid_argument("unknown core build '" + core + "' (known: host, arty, ice40)");
+  }
+}
 
 std::span<const BackendInfo> backends() { return kBackends; }
 

@@ -1,8 +1,12 @@
-// The rtl backend: the Verilated RTL of the host core build (sim/, Vcore_host) behind the
-// backend seam. Its output must equal the fixed backend's, file for file.
+// The rtl backend: the Verilated RTL of a core build (sim/, Vcore_<build>) behind the backend
+// seam. Its output must equal the fixed backend's of the same build, file for file.
+#include "Vcore_arty.h"
+#include "Vcore_arty___024root.h"
 #include "Vcore_host.h"
 #include "Vcore_host___024root.h"
-#include "hls/core/shape.h"
+#include "Vcore_ice40.h"
+#include "Vcore_ice40___024root.h"
+#include "hls/core/configs.h"
 #include "host/backend/core_backend.h"
 #include "host/backend/registry.h"
 #include "sim/rtl_core.h"
@@ -10,8 +14,7 @@
 namespace evms::backend {
 namespace {
 
-using S = hls::HostShape;
-
+template <class V, class S>
 class RtlBackend final : public Backend {
  public:
   explicit RtlBackend(const BackendOptions& o) : core_(core_config<S>(o.params, o.sensor)) {}
@@ -46,13 +49,18 @@ class RtlBackend final : public Backend {
     }
   }
 
-  sim::RtlCore<Vcore_host> core_;
+  sim::RtlCore<V> core_;
   CoreWordMapper<S> mapper_;
   CoreStats stats_;
 };
 
 }  // namespace
 
-std::unique_ptr<Backend> make_rtl_backend(const BackendOptions& o) { return std::make_unique<RtlBackend>(o); }
+std::unique_ptr<Backend> make_rtl_backend(const BackendOptions& o) {
+  check_core_build(o.core);
+  if (o.core == "arty") return std::make_unique<RtlBackend<Vcore_arty, hls::ArtyShape>>(o);
+  if (o.core == "ice40") return std::make_unique<RtlBackend<Vcore_ice40, hls::Ice40Shape>>(o);
+  return std::make_unique<RtlBackend<Vcore_host, hls::HostShape>>(o);
+}
 
 }  // namespace evms::backend

@@ -21,6 +21,8 @@ struct RunOptions {
   std::string backend = "golden";
   std::string out;
   std::string device;
+  std::string core = "host";
+  int baud = 3000000;
   read::SourceOptions source_options;
   Params params;
   bool quiet = false;
@@ -75,7 +77,7 @@ void run(const RunOptions& o) {
   if (std::string error = validate(o.params); !error.empty()) throw std::invalid_argument(error);
   auto source = read::open_source(o.source, o.source_options);
   const read::SourceInfo& info = source->info();
-  auto backend = backend::make_backend(o.backend, {o.params, info.sensor, o.device});
+  auto backend = backend::make_backend(o.backend, {o.params, info.sensor, o.core, o.device, o.baud});
   RunSink sink(o.out);
   Progress progress(!o.quiet);
 
@@ -138,7 +140,10 @@ void register_run(CLI::App& app) {
   for (const auto& b : backend::backends()) names += std::string(names.empty() ? "" : ", ") + b.name;
   cmd->add_option("--backend", o->backend, "implementation to run: " + names)->default_val(o->backend);
   cmd->add_option("--out", o->out, "directory for events.csv and tracks.csv (not written when absent)");
-  cmd->add_option("--device", o->device, "serial device of the board backend");
+  cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host (1280x720), arty or ice40 (hls/core/shape.h)")
+      ->default_val(o->core);
+  cmd->add_option("--device", o->device, "serial device of the board backend (or the path evms vboard prints)");
+  cmd->add_option("--baud", o->baud, "line rate of the board's serial link")->default_val(o->baud);
   cmd->add_flag("--quiet", o->quiet, "no progress bar");
   add_source_options(*cmd, o->source_options);
   add_param_options(*cmd, o->params);

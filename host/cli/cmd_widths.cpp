@@ -67,7 +67,7 @@ void widths(const WidthsOptions& o) {
   std::vector<Cell> cells(rows.size() * scenes.size());
   eval::parallel_for(cells.size(), o.jobs, [&](size_t k) {
     const size_t r = k / scenes.size(), s = k % scenes.size();
-    auto backend = rows[r].make({params, scenes[s].sensor, ""});
+    auto backend = rows[r].make(backend::options_for(params, scenes[s].sensor));
     const eval::RunResult run = eval::run_backend(*backend, scenes[s].events);
     cells[k].truth = eval::score_chunks(scenes[s], run.labels, {});
     cells[k].vs_golden = eval::agreement(scenes[s].events, golden[s], run, {});

@@ -12,4 +12,5 @@ void register_eval(CLI::App& app);
 void register_metrics(CLI::App& app);
 void register_widths(CLI::App& app);
 void register_cycles(CLI::App& app);
+void register_vboard(CLI::App& app);
 }  // namespace evms::cli

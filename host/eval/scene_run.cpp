@@ -33,7 +33,7 @@ struct Collector final : OutputSink {
 }  // namespace
 
 RunResult run_backend(const std::string& backend, const Params& params, SensorSize sensor, std::span<const Event> events) {
-  auto b = backend::make_backend(backend, {params, sensor, ""});
+  auto b = backend::make_backend(backend, backend::options_for(params, sensor));
   return run_backend(*b, events);
 }
 

@@ -29,6 +29,7 @@ size_t expected_length(std::uint8_t type) {
   switch (type) {
     case kEvent: return 9;
     case kFlush: return 0;
+    case kReset: return 0;
     case kLabel: return 13;
     case kTrack: return 32;
     case kPacket: return 12;
@@ -58,6 +59,7 @@ void append_event(std::vector<std::uint8_t>& out, const hls::EventWord& e) {
 }
 
 void append_flush(std::vector<std::uint8_t>& out) { frame(out, kFlush, {}); }
+void append_reset(std::vector<std::uint8_t>& out) { frame(out, kReset, {}); }
 
 void FrameDecoder::push(std::span<const std::uint8_t> bytes) {
   buf_.insert(buf_.end(), bytes.begin(), bytes.end());

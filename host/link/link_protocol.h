@@ -4,7 +4,7 @@
 //
 //   frame = 0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 //   CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF) over TYPE, LEN and PAYLOAD
-//   host -> board: 0x01 event (t u32, x u16, y u16, p u8), 0x02 flush
+//   host -> board: 0x01 event (t u32, x u16, y u16, p u8), 0x02 flush, 0x03 reset
 //   board -> host: 0x81 labelled event, 0x82 track update, 0x83 packet summary, 0x84 status
 #pragma once
 
@@ -20,6 +20,7 @@ namespace evms::link {
 enum FrameType : std::uint8_t {
   kEvent = 0x01,
   kFlush = 0x02,
+  kReset = 0x03,
   kLabel = 0x81,
   kTrack = 0x82,
   kPacket = 0x83,
@@ -30,6 +31,7 @@ std::uint16_t crc16(std::span<const std::uint8_t> bytes);
 
 void append_event(std::vector<std::uint8_t>& out, const hls::EventWord& e);
 void append_flush(std::vector<std::uint8_t>& out);
+void append_reset(std::vector<std::uint8_t>& out);
 
 struct Status {
   std::uint32_t timestamp_us = 0, events_received = 0, crc_errors = 0, framing_errors = 0, overruns = 0, external_events = 0,

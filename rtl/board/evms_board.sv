@@ -6,7 +6,9 @@
 //                              +--> evms_core (labels, tracks, packets) --+
 //   UART rx --> evms_link_rx --+   (link events first, then AER)
 //
-// After a flush from the host, once the core has released everything, a status frame
+// A reset frame from the host restarts the core and the link's queues (a new run on a board
+// that ran before, or after an aborted one) and is answered by a status frame once the core is
+// idle. After a flush from the host, once the core has released everything, a status frame
 // (timestamp, events received, check errors, framing errors, overruns, external AER events,
 // tracks started, clusters without a track slot) tells the host that the flush is complete. Backpressure reaches the AER sender (it waits for
 // its acknowledge); the link keeps at most LINK_FIFO_DEPTH events in flight by protocol.
@@ -61,12 +63,12 @@ module evms_board #(
   logic [31:0] framing_errors;
   evms_uart_rx #(.CLKS_PER_BIT(CLKS_PER_BIT)) u_uart_rx (
     .clk(clk), .rst_n(rst_n), .rx(uart_rx), .valid(rx_valid), .data(rx_data), .framing_errors(framing_errors));
-  logic lk_valid, lk_ready, lk_p, lk_flush;
+  logic lk_valid, lk_ready, lk_p, lk_flush, soft_reset;
   logic [31:0] lk_t, crc_errors, overruns, events_received;
   logic [15:0] lk_x, lk_y;
   evms_link_rx #(.FIFO_DEPTH(LINK_FIFO_DEPTH)) u_link_rx (
     .clk(clk), .rst_n(rst_n), .byte_valid(rx_valid), .byte_data(rx_data), .ev_valid(lk_valid), .ev_ready(lk_ready),
-    .ev_t(lk_t), .ev_x(lk_x), .ev_y(lk_y), .ev_p(lk_p), .ev_flush(lk_flush), .crc_errors(crc_errors), .overruns(overruns),
+    .ev_t(lk_t), .ev_x(lk_x), .ev_y(lk_y), .ev_p(lk_p), .ev_flush(lk_flush), .soft_reset(soft_reset), .crc_errors(crc_errors), .overruns(overruns),
     .events_received(events_received));
 
   // Link words first (the host owns the stream while it sends), then the sensor.
@@ -77,6 +79,14 @@ module evms_board #(
   assign {in_t, in_x, in_y, in_p, in_flush} = lk_valid ? {lk_t, lk_x, lk_y, lk_p, lk_flush} : {aer_t, aer_x, aer_y, aer_p, 1'b0};
   assign lk_ready = in_ready;
   assign aer_ready = in_ready && !lk_valid;
+
+  // The reset frame's pulse, registered, resets everything behind the link: the core, the
+  // outgoing frames and the status logic. Counters of link errors keep counting.
+  logic run_rst_n;
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) run_rst_n <= 1'b0;
+    else run_rst_n <= !soft_reset;
+  end
 
   // ---- the core ---------------------------------------------------------------------------------
   logic lab_valid, lab_ready, lab_p, trk_valid, trk_ready, pkt_valid, pkt_ready, core_idle;
@@ -93,7 +103,7 @@ module evms_board #(
     .COV_FRAC(COV_FRAC), .GAIN_FRAC(GAIN_FRAC), .NOISE_FRAC(NOISE_FRAC), .MUL_DIGIT_BITS(MUL_DIGIT_BITS),
     .EXP_MEM(EXP_MEM), .RECIP_MEM(RECIP_MEM)
   ) u_core (
-    .clk(clk), .rst_n(rst_n),
+    .clk(clk), .rst_n(run_rst_n),
     .cfg_sensor_width(16'(DEF_SENSOR_WIDTH)), .cfg_sensor_height(16'(DEF_SENSOR_HEIGHT)),
     .cfg_filter_enabled(DEF_FILTER_ENABLED != 0), .cfg_filter_window(32'(DEF_FILTER_WINDOW)),
     .cfg_packet_size(16'(DEF_PACKET_SIZE)), .cfg_packet_max_span_us(32'(DEF_PACKET_MAX_SPAN_US)),
@@ -113,9 +123,9 @@ module evms_board #(
 
   // ---- status after a flush ---------------------------------------------------------------------
   logic flush_pending, st_valid, st_ready;
-  always_ff @(posedge clk or negedge rst_n) begin
-    if (!rst_n) begin
-      flush_pending <= 1'b0;
+  always_ff @(posedge clk or negedge run_rst_n) begin
+    if (!run_rst_n) begin
+      flush_pending <= 1'b1;  // after a reset, a status frame tells the host the board is ready
       st_valid <= 1'b0;
     end else begin
       if (in_valid && in_ready && in_flush) flush_pending <= 1'b1;
@@ -131,7 +141,7 @@ module evms_board #(
   logic tx_valid, tx_ready;
   logic [7:0] tx_data;
   evms_link_tx u_link_tx (
-    .clk(clk), .rst_n(rst_n), .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y),
+    .clk(clk), .rst_n(run_rst_n), .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y),
     .lab_p(lab_p), .lab_label(lab_label), .trk_valid(trk_valid), .trk_ready(trk_ready),
     .trk_payload({trk_zy, trk_zx, trk_vy, trk_vx, trk_y, trk_x, trk_id, trk_t}), .pkt_valid(pkt_valid),
     .pkt_ready(pkt_ready), .pkt_payload({pkt_iterations, pkt_clusters, pkt_events, pkt_t_last, pkt_t_first}),
@@ -139,7 +149,7 @@ module evms_board #(
     .st_payload({unassigned, tracks_started, external_events, overruns, framing_errors, crc_errors, events_received, timestamp}),
     .byte_valid(tx_valid), .byte_ready(tx_ready), .byte_data(tx_data));
   evms_uart_tx #(.CLKS_PER_BIT(CLKS_PER_BIT)) u_uart_tx (
-    .clk(clk), .rst_n(rst_n), .valid(tx_valid), .ready(tx_ready), .data(tx_data), .tx(uart_tx));
+    .clk(clk), .rst_n(run_rst_n), .valid(tx_valid), .ready(tx_ready), .data(tx_data), .tx(uart_tx));
 
   assign led_busy = !core_idle;
   assign led_error = crc_errors != 0 || framing_errors != 0 || overruns != 0;

@@ -1,7 +1,8 @@
 // Host-to-board half of the serial link (docs/link.md): frames
 //   0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 // with CRC-16/CCITT-FALSE over TYPE, LEN and PAYLOAD. TYPE 0x01 is an event (t u32, x u16,
-// y u16, p u8, little-endian), 0x02 a flush. Good frames go into a FIFO of FIFO_DEPTH words
+// y u16, p u8, little-endian), 0x02 a flush, 0x03 a reset: it empties the FIFO at once and
+// pulses soft_reset, with which the board restarts everything behind the link. Good frames go into a FIFO of FIFO_DEPTH words
 // for the core; a frame with a bad check, type or length is dropped and counted, and the
 // parser hunts for the next 0xA5 0x5A. The host keeps at most FIFO_DEPTH events in flight,
 // so the FIFO cannot overrun; if it does anyway, the word is dropped and counted.
@@ -19,6 +20,7 @@ module evms_link_rx #(
   output logic [15:0] ev_y,
   output logic        ev_p,
   output logic        ev_flush,
+  output logic        soft_reset,
   output logic [31:0] crc_errors,
   output logic [31:0] overruns,
   output logic [31:0] events_received
@@ -35,7 +37,7 @@ module evms_link_rx #(
   logic push, fifo_ready;
   logic [WW-1:0] push_word;
   evms_fifo #(.WIDTH(WW), .DEPTH(FIFO_DEPTH)) u_fifo (
-    .clk(clk), .rst_n(rst_n), .in_valid(push), .in_ready(fifo_ready), .in_data(push_word), .out_valid(ev_valid),
+    .clk(clk), .rst_n(rst_n && !soft_reset), .in_valid(push), .in_ready(fifo_ready), .in_data(push_word), .out_valid(ev_valid),
     .out_ready(ev_ready), .out_data({ev_flush, ev_p, ev_y, ev_x, ev_t}));
 
   always_ff @(posedge clk or negedge rst_n) begin
@@ -51,9 +53,11 @@ module evms_link_rx #(
       events_received <= '0;
       push <= 1'b0;
       push_word <= '0;
+      soft_reset <= 1'b0;
       for (int k = 0; k < 9; k++) payload[k] <= '0;
     end else begin
       push <= 1'b0;
+      soft_reset <= 1'b0;
       if (push && !fifo_ready) overruns <= overruns + 1'b1;
       if (byte_valid) begin
         case (state)
@@ -94,6 +98,8 @@ module evms_link_rx #(
             end else if ({byte_data, crc_lo} == crc && ftype == 8'h02 && flen == 8'd0) begin
               push <= 1'b1;
               push_word <= {1'b1, 1'b0, 16'd0, 16'd0, 32'd0};
+            end else if ({byte_data, crc_lo} == crc && ftype == 8'h03 && flen == 8'd0) begin
+              soft_reset <= 1'b1;
             end else begin
               crc_errors <= crc_errors + 1'b1;
             end

@@ -29,7 +29,7 @@ void run(benchmark::State& state, const std::string& backend, const std::string&
   const SensorSize sensor = read::open_source(path, {})->info().sensor;
   backend::BackendStats stats;
   for (auto _ : state) {
-    auto b = backend::make_backend(backend, {Params{}, sensor, ""});
+    auto b = backend::make_backend(backend, backend::options_for(Params{}, sensor));
     NullSink sink;
     b->push(events, sink);
     b->finish(sink);
