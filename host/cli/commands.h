@@ -13,4 +13,5 @@ void register_metrics(CLI::App& app);
 void register_widths(CLI::App& app);
 void register_cycles(CLI::App& app);
 void register_vboard(CLI::App& app);
+void register_view(CLI::App& app);
 }  // namespace evms::cli

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   evms::cli::register_widths(app);
   evms::cli::register_cycles(app);
   evms::cli::register_vboard(app);
+  evms::cli::register_view(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

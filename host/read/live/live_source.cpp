@@ -129,15 +129,21 @@ void LiveSource::count_skipped(const std::string& kind, std::int64_t n) {
 
 namespace {
 
-class RealtimeReplay final : public LiveSource {
+class RealtimeReplay final : public LiveSource, public PlaybackControl {
  public:
   RealtimeReplay(std::unique_ptr<EventSource> inner, double speed, size_t capacity)
-      : LiveSource(capacity), inner_(std::move(inner)), speed_(speed) {
+      : LiveSource(capacity), inner_(std::move(inner)), speed_(speed), requested_speed_(speed) {
     info_ = inner_->info();
     info_.format += ", replayed at " + format_speed(speed) + "x real time";
     start();
   }
   ~RealtimeReplay() override { stop(); }
+
+  void set_speed(double speed) override {
+    if (speed > 0 && std::isfinite(speed)) requested_speed_.store(speed);
+  }
+  double speed() const override { return requested_speed_.load(); }
+  void set_paused(bool paused) override { paused_.store(paused); }
 
  private:
   static std::string format_speed(double s) {
@@ -146,24 +152,30 @@ class RealtimeReplay final : public LiveSource {
     return buf;
   }
 
-  // Hands events over in slices of at most 100 us of (scaled) sensor time, each when the
-  // wall clock reaches its last timestamp.
+  // Hands events over in slices of at most 100 us of sensor time, each when the wall clock
+  // reaches its last timestamp (scaled by the speed). A pause or a change of speed restarts the
+  // pacing from where the replay is.
   void produce(std::stop_token stop) override {
+    using clock = std::chrono::steady_clock;
     std::vector<Event> batch(4096);
     bool started = false;
     TimeUs t0 = 0;
-    std::chrono::steady_clock::time_point wall0;
+    clock::time_point wall0;
     while (!stop.stop_requested()) {
       const size_t n = inner_->read(batch);
       if (n == 0) return;
       size_t from = 0;
       while (from < n && !stop.stop_requested()) {
-        if (!started) t0 = batch[from].t, wall0 = std::chrono::steady_clock::now(), started = true;
+        if (paused_.load() || requested_speed_.load() != speed_) {
+          while (paused_.load() && !stop.stop_requested()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+          speed_ = requested_speed_.load();
+          started = false;
+        }
+        if (!started) t0 = batch[from].t, wall0 = clock::now(), started = true;
         size_t to = from + 1;
         while (to < n && batch[to].t - batch[from].t < 100) ++to;
         const double due_s = static_cast<double>(batch[to - 1].t - t0) * 1e-6 / speed_;
-        std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                  std::chrono::duration<double>(due_s)));
+        std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(due_s)));
         buffer_.push(std::span(batch).subspan(from, to - from), steady_now_ns());
         from = to;
       }
@@ -172,6 +184,8 @@ class RealtimeReplay final : public LiveSource {
 
   std::unique_ptr<EventSource> inner_;
   double speed_;
+  std::atomic<double> requested_speed_;
+  std::atomic<bool> paused_{false};
 };
 
 }  // namespace

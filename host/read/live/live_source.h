@@ -86,6 +86,15 @@ class LiveSource : public EventSource {
   std::jthread thread_;
 };
 
+// The controls a viewer has over a replay: pause it and change its speed.
+class PlaybackControl {
+ public:
+  virtual ~PlaybackControl() = default;
+  virtual void set_speed(double speed) = 0;
+  virtual double speed() const = 0;
+  virtual void set_paused(bool paused) = 0;
+};
+
 // Replays `inner` at `speed` times the pace of its timestamps, from a thread of its own, into
 // a buffer of `capacity` events: the paper's speed-factor runs. Events the consumer has no
 // room for are dropped and counted.

@@ -1,0 +1,210 @@
+// evms view SOURCE [--backend B] : the live viewer (SDL2), or with --headless --frames DIR the
+// same frames as PNG files. Keys: space pauses, + and - double or halve the replay speed,
+// b switches to the next backend, q or Escape quits.
+#include <SDL.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include "host/backend/backend.h"
+#include "host/cli/commands.h"
+#include "host/cli/common.h"
+#include "host/read/live/live_source.h"
+#include "host/show/view_session.h"
+
+namespace evms::cli {
+namespace {
+
+struct ViewOptions {
+  std::string source = "gen://rotation";
+  std::string backend = "golden";
+  std::string core = "host";
+  std::string device;
+  read::SourceOptions source_options;
+  Params params;
+  double fps = 30;
+  bool headless = false;
+  bool no_realtime = false;
+  std::string frames;
+  std::int64_t max_frames = 0;
+  double hold_s = 0;
+  std::vector<int> window_at;
+  int scale = 2;
+};
+
+class SdlWindow {
+ public:
+  SdlWindow(int w, int h, const std::vector<int>& at) {
+    if (SDL_Init(SDL_INIT_VIDEO) != 0) throw std::runtime_error(std::string("cannot open a window: ") + SDL_GetError() + " (use --headless)");
+    const int x = at.size() == 2 ? at[0] : static_cast<int>(SDL_WINDOWPOS_CENTERED);
+    const int y = at.size() == 2 ? at[1] : static_cast<int>(SDL_WINDOWPOS_CENTERED);
+    window_ = SDL_CreateWindow("evms", x, y, w, h, SDL_WINDOW_SHOWN);
+    if (!window_) throw std::runtime_error(std::string("cannot open a window: ") + SDL_GetError());
+    renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
+    texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING, w, h);
+    if (!renderer_ || !texture_) throw std::runtime_error(std::string("cannot draw in the window: ") + SDL_GetError());
+  }
+  ~SdlWindow() {
+    if (texture_) SDL_DestroyTexture(texture_);
+    if (renderer_) SDL_DestroyRenderer(renderer_);
+    if (window_) SDL_DestroyWindow(window_);
+    SDL_Quit();
+  }
+  void show(const show::Canvas& c) {
+    SDL_UpdateTexture(texture_, nullptr, c.pixels().data(), c.width() * 3);
+    SDL_RenderClear(renderer_);
+    SDL_RenderCopy(renderer_, texture_, nullptr, nullptr);
+    SDL_RenderPresent(renderer_);
+  }
+
+ private:
+  SDL_Window* window_ = nullptr;
+  SDL_Renderer* renderer_ = nullptr;
+  SDL_Texture* texture_ = nullptr;
+};
+static_assert(sizeof(show::Rgb) == 3, "the canvas must be packed RGB24 for SDL");
+
+void print_summary(show::ViewSession& session) {
+  const auto& l = session.latency();
+  std::printf("%s: %lld events labelled, %lld dropped", session.backend_name().c_str(), static_cast<long long>(session.events()),
+              static_cast<long long>(session.source().dropped()));
+  if (l.count() > 0) {
+    std::printf("; latency from arrival to label p50 %.0f us, p99 %.0f us, max %.0f us", l.quantile_us(0.5), l.quantile_us(0.99),
+                static_cast<double>(l.max_ns()) * 1e-3);
+  }
+  std::printf("\n");
+}
+
+void view(const ViewOptions& o) {
+  if (std::string error = validate(o.params); !error.empty()) throw std::invalid_argument(error);
+  read::SourceOptions so = o.source_options;
+  // A window shows a recording at its own pace unless told otherwise; headless frames are
+  // computed as fast as possible (they are the same frames either way).
+  if (!o.headless && !o.no_realtime) so.realtime = true;
+  backend::BackendOptions bo;
+  bo.params = o.params;
+  bo.core = o.core;
+  bo.device = o.device;
+  show::ViewStyle style;
+  style.scale = o.scale;
+  show::ViewSession session(read::open_source(o.source, so), o.backend, bo, o.fps, style);
+  show::Canvas canvas = session.make_canvas();
+
+  if (o.headless) {
+    if (o.frames.empty()) throw std::invalid_argument("--headless needs --frames DIR");
+    std::filesystem::create_directories(o.frames);
+    bool more = true;
+    while (more && (o.max_frames == 0 || session.frame() + 1 < o.max_frames)) {
+      more = session.advance();
+      session.render(canvas);
+      char name[32];
+      std::snprintf(name, sizeof name, "/frame_%06lld.png", static_cast<long long>(session.frame()));
+      canvas.save_png(o.frames + name);
+    }
+    std::printf("%lld frames in %s\n", static_cast<long long>(session.frame() + 1), o.frames.c_str());
+    print_summary(session);
+    return;
+  }
+
+  SdlWindow window(canvas.width(), canvas.height(), o.window_at);
+  const std::vector<std::string> cycle = {"golden", "fixed", "rtl"};
+  auto* control = dynamic_cast<read::PlaybackControl*>(&session.source());
+  bool paused = false, quit = false, more = true;
+  while (!quit) {
+    SDL_Event ev;
+    while (SDL_PollEvent(&ev)) {
+      if (ev.type == SDL_QUIT) quit = true;
+      if (ev.type != SDL_KEYDOWN) continue;
+      switch (ev.key.keysym.sym) {
+        case SDLK_q:
+        case SDLK_ESCAPE: quit = true; break;
+        case SDLK_SPACE:
+          paused = !paused;
+          if (control) control->set_paused(paused);
+          break;
+        case SDLK_PLUS:
+        case SDLK_EQUALS:
+        case SDLK_KP_PLUS:
+          if (control) control->set_speed(control->speed() * 2);
+          break;
+        case SDLK_MINUS:
+        case SDLK_KP_MINUS:
+          if (control) control->set_speed(control->speed() / 2);
+          break;
+        case SDLK_b: {
+          size_t i = 0;
+          while (i < cycle.size() && cycle[i] != session.backend_name()) ++i;
+          session.switch_backend(cycle[(i + 1) % cycle.size()]);
+          break;
+        }
+        default: break;
+      }
+    }
+    if (quit) break;
+    if (paused || !more) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      continue;
+    }
+    more = session.advance();
+    session.render(canvas);
+    window.show(canvas);
+    const bool last = !more || (o.max_frames > 0 && session.frame() + 1 >= o.max_frames);
+    if (last) {
+      std::printf("shown frame %lld\n", static_cast<long long>(session.frame()));
+      std::fflush(stdout);
+      // Keep the last frame up (and the window responsive) for --hold-s, then end.
+      const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.hold_s);
+      while (std::chrono::steady_clock::now() < until) {
+        while (SDL_PollEvent(&ev)) {
+        }
+        window.show(canvas);
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+      break;
+    }
+  }
+  print_summary(session);
+}
+
+}  // namespace
+
+namespace {
+
+void add_view_command(CLI::App& app, const char* name, const char* help, bool live) {
+  auto o = std::make_shared<ViewOptions>();
+  CLI::App* cmd = app.add_subcommand(name, help);
+  cmd->add_option("source", o->source, "event file or URI (default: a generated rotation scene)")->default_val(o->source);
+  cmd->add_option("--backend", o->backend, "implementation: golden, fixed, rtl or board (b switches among the first three)")
+      ->default_val(o->backend);
+  cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host, arty or ice40")->default_val(o->core);
+  cmd->add_option("--device", o->device, "serial device of the board backend");
+  cmd->add_option("--fps", o->fps, "frames per second of sensor time")->default_val(o->fps)->check(CLI::Range(1.0, 1000.0));
+  cmd->add_option("--scale", o->scale, "screen pixels per sensor pixel")->default_val(o->scale)->check(CLI::Range(1, 8));
+  cmd->add_flag("--headless", o->headless, "no window: write the frames as PNG files (needs --frames)");
+  cmd->add_option("--frames", o->frames, "directory for the PNG frames of --headless");
+  cmd->add_flag("--no-realtime", o->no_realtime, "in a window, show a recording as fast as it is computed");
+  cmd->add_option("--max-frames", o->max_frames, "stop after this many frames (0: at the end of the source)")->default_val(0);
+  cmd->add_option("--hold-s", o->hold_s, "keep the last frame on screen this long")->default_val(0);
+  cmd->add_option("--window-at", o->window_at, "window position X Y on the screen")->expected(2);
+  add_source_options(*cmd, o->source_options);
+  add_param_options(*cmd, o->params);
+  cmd->callback([o, live] {
+    ViewOptions run = *o;
+    // live: a recording is replayed at its own pace even headless, so that latency means
+    // what it would with a camera.
+    if (live) run.source_options.realtime = run.source_options.realtime || run.source.find("://") == std::string::npos ||
+                                             run.source.rfind("gen://", 0) == 0;
+    view(run);
+  });
+}
+
+}  // namespace
+
+void register_view(CLI::App& app) {
+  add_view_command(app, "view", "watch clusters and tracks: a window (SDL2), or PNG frames with --headless", false);
+  add_view_command(app, "live", "source -> backend -> viewer in real time, measuring each event's latency from arrival to label", true);
+}
+
+}  // namespace evms::cli

@@ -1,0 +1,139 @@
+#include "host/show/view_session.h"
+
+#include <cmath>
+#include <cstdio>
+#include <deque>
+
+#include "host/read/live/live_source.h"
+
+namespace evms::show {
+
+class ViewSession::Sink final : public OutputSink {
+ public:
+  explicit Sink(FrameRenderer& r) : renderer_(r) {}
+  void on_event(const LabelledEvent& e) override {
+    renderer_.add(e);
+    ++events_;
+    if (!arrivals_.empty()) {
+      latency_.add(read::steady_now_ns() - arrivals_.front());
+      arrivals_.pop_front();
+    }
+  }
+  void on_track(const TrackUpdate& u) override { renderer_.add(u); }
+  void on_packet(const PacketSummary& p) override { clusters_ = p.clusters; }
+
+  std::deque<std::int64_t> arrivals_;
+  eval::LatencyHistogram latency_;
+  std::int64_t events_ = 0;
+  int clusters_ = 0;
+
+ private:
+  FrameRenderer& renderer_;
+};
+
+ViewSession::ViewSession(std::unique_ptr<read::EventSource> source, std::string backend, backend::BackendOptions options, double fps,
+                         ViewStyle style)
+    : source_(std::move(source)),
+      backend_name_(std::move(backend)),
+      options_(std::move(options)),
+      renderer_(source_->info().sensor, style),
+      period_us_(static_cast<TimeUs>(std::llround(1e6 / fps))) {
+  options_.sensor = source_->info().sensor;
+  backend_ = backend::make_backend(backend_name_, options_);
+  sink_ = std::make_unique<Sink>(renderer_);
+}
+
+ViewSession::~ViewSession() = default;
+
+void ViewSession::switch_backend(const std::string& name) {
+  auto next = backend::make_backend(name, options_);
+  backend_->finish(*sink_);
+  sink_->arrivals_.clear();
+  backend_ = std::move(next);
+  backend_name_ = name;
+}
+
+// Pushes every pending event with t <= t to the backend, reading more as needed; stops at the
+// first later event (kept pending) or at the end of the source.
+void ViewSession::push_until(TimeUs t) {
+  for (;;) {
+    if (pending_at_ == pending_.size()) {
+      pending_.resize(4096);
+      const size_t n = source_->read(pending_);
+      pending_.resize(n);
+      pending_at_ = 0;
+      const auto arrivals = source_->arrivals();
+      pending_arrival_.assign(arrivals.begin(), arrivals.end());
+      if (n == 0) {
+        ended_ = true;
+        return;
+      }
+      if (!started_) t_first_ = pending_[0].t, started_ = true;
+    }
+    size_t end = pending_at_;
+    while (end < pending_.size() && pending_[end].t <= t) ++end;
+    if (end > pending_at_) {
+      if (!pending_arrival_.empty()) {
+        sink_->arrivals_.insert(sink_->arrivals_.end(), pending_arrival_.begin() + static_cast<std::ptrdiff_t>(pending_at_),
+                                pending_arrival_.begin() + static_cast<std::ptrdiff_t>(end));
+      }
+      backend_->push(std::span(pending_).subspan(pending_at_, end - pending_at_), *sink_);
+      pending_at_ = end;
+    }
+    if (pending_at_ < pending_.size()) return;
+  }
+}
+
+bool ViewSession::advance() {
+  if (ended_) return false;
+  if (!started_) {
+    push_until(-1);  // reads the first batch: the first frame is at the first event's time
+    if (ended_) {
+      backend_->finish(*sink_);
+      ++frame_;
+      return false;
+    }
+  }
+  ++frame_;
+  frame_t_ = t_first_ + frame_ * period_us_;
+  push_until(frame_t_);
+  if (ended_) {
+    backend_->finish(*sink_);
+    return false;
+  }
+  return true;
+}
+
+const eval::LatencyHistogram& ViewSession::latency() const { return sink_->latency_; }
+std::int64_t ViewSession::events() const { return sink_->events_; }
+
+void ViewSession::render(Canvas& canvas) {
+  char line[96];
+  std::vector<std::string> overlay;
+  overlay.push_back("backend " + backend_name_);
+  std::snprintf(line, sizeof line, "t %.2f s", static_cast<double>(frame_t_ - t_first_) * 1e-6);
+  overlay.emplace_back(line);
+  // Events per second over the last second of sensor time.
+  history_.emplace_back(frame_t_, sink_->events_);
+  while (history_.size() > 1 && history_.front().first < frame_t_ - 1000000) history_.pop_front();
+  const double span_s = static_cast<double>(frame_t_ - history_.front().first) * 1e-6;
+  const double rate = span_s > 0 ? static_cast<double>(sink_->events_ - history_.front().second) / span_s : 0.0;
+  std::snprintf(line, sizeof line, "events/s %.0f", rate);
+  overlay.emplace_back(line);
+  std::snprintf(line, sizeof line, "clusters %d", sink_->clusters_);
+  overlay.emplace_back(line);
+  if (sink_->latency_.count() > 0) {
+    std::snprintf(line, sizeof line, "latency p50 %.1f ms p99 %.1f ms", sink_->latency_.quantile_us(0.5) * 1e-3,
+                  sink_->latency_.quantile_us(0.99) * 1e-3);
+    overlay.emplace_back(line);
+  }
+  std::snprintf(line, sizeof line, "dropped %lld", static_cast<long long>(source_->dropped()));
+  overlay.emplace_back(line);
+  if (auto* control = dynamic_cast<read::PlaybackControl*>(source_.get())) {
+    std::snprintf(line, sizeof line, "speed %gx", control->speed());
+    overlay.emplace_back(line);
+  }
+  renderer_.render(frame_t_, canvas, overlay);
+}
+
+}  // namespace evms::show

@@ -1,0 +1,173 @@
+// The viewer: headless frames are deterministic, and the SDL window shows exactly the headless
+// frame. The window test runs the viewer on a virtual X server (Xvfb), takes a screenshot of
+// the screen with Xlib and compares it pixel for pixel with the PNG of the same frame.
+#include <gtest/gtest.h>
+#include <png.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "tests/support/command.h"
+#include "tests/support/encoders.h"
+
+// Xlib last: its macros (None, Status, ...) clash with names in the headers above.
+#include <X11/Xlib.h>
+#include <X11/Xutil.h>
+
+namespace evms::test {
+namespace {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+};
+
+Image read_png(const std::string& path) {
+  Image img;
+  png_image p{};
+  p.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&p, path.c_str())) return img;
+  p.format = PNG_FORMAT_RGB;
+  img.width = static_cast<int>(p.width), img.height = static_cast<int>(p.height);
+  img.rgb.resize(PNG_IMAGE_SIZE(p));
+  if (!png_image_finish_read(&p, nullptr, img.rgb.data(), 0, nullptr)) img = {};
+  return img;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+const char* kScene = "gen://rotation?duration-s=0.3&seed=2";
+
+TEST(Viewer, HeadlessFramesAreDeterministic) {
+  TempDir dir;
+  for (const char* d : {"a", "b"}) {
+    const auto r = run_command(evms_binary() + " view \"" + kScene + "\" --headless --frames " + dir.path(d) + " --max-frames 5");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const std::string a = slurp(dir.path("a/frame_000004.png")), b = slurp(dir.path("b/frame_000004.png"));
+  EXPECT_GT(a.size(), 1000u);
+  EXPECT_EQ(a, b);
+  // Something was drawn: the frame is not all background.
+  const Image img = read_png(dir.path("a/frame_000004.png"));
+  ASSERT_EQ(img.width, 480);
+  size_t lit = 0;
+  for (size_t i = 0; i + 2 < img.rgb.size(); i += 3) lit += (img.rgb[i] + img.rgb[i + 1] + img.rgb[i + 2]) > 120;
+  EXPECT_GT(lit, 500u);
+}
+
+TEST(Viewer, HeadlessNeedsAFramesDirectory) {
+  const auto r = run_command(evms_binary() + " view \"" + kScene + "\" --headless");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("--frames"), std::string::npos) << r.err;
+}
+
+// An Xvfb server on a free display number, for the length of a test.
+class VirtualDisplay {
+ public:
+  VirtualDisplay() {
+    if (access("/usr/bin/Xvfb", X_OK) != 0) return;
+    for (int n = 91; n < 120 && display_.empty(); ++n) {
+      if (std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n)) || std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock")) {
+        continue;
+      }
+      pid_ = fork();
+      if (pid_ == 0) {
+        std::freopen("/dev/null", "w", stderr);
+        const std::string d = ":" + std::to_string(n);
+        execl("/usr/bin/Xvfb", "Xvfb", d.c_str(), "-screen", "0", "640x480x24", "-nolisten", "tcp", static_cast<char*>(nullptr));
+        _exit(127);
+      }
+      for (int i = 0; i < 100; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        if (Display* x = XOpenDisplay((":" + std::to_string(n)).c_str())) {
+          XCloseDisplay(x);
+          display_ = ":" + std::to_string(n);
+          break;
+        }
+      }
+    }
+  }
+  ~VirtualDisplay() {
+    if (pid_ > 0) {
+      kill(pid_, SIGTERM);
+      waitpid(pid_, nullptr, 0);
+    }
+  }
+  const std::string& name() const { return display_; }
+
+ private:
+  std::string display_;
+  pid_t pid_ = -1;
+};
+
+Image screenshot(const std::string& display, int w, int h) {
+  Image img;
+  Display* x = XOpenDisplay(display.c_str());
+  if (!x) return img;
+  XImage* shot = XGetImage(x, DefaultRootWindow(x), 0, 0, static_cast<unsigned>(w), static_cast<unsigned>(h), AllPlanes, ZPixmap);
+  if (shot) {
+    img.width = w, img.height = h;
+    for (int y = 0; y < h; ++y) {
+      for (int xx = 0; xx < w; ++xx) {
+        const unsigned long p = XGetPixel(shot, xx, y);
+        img.rgb.push_back(static_cast<std::uint8_t>((p & shot->red_mask) >> 16));
+        img.rgb.push_back(static_cast<std::uint8_t>((p & shot->green_mask) >> 8));
+        img.rgb.push_back(static_cast<std::uint8_t>(p & shot->blue_mask));
+      }
+    }
+    XDestroyImage(shot);
+  }
+  XCloseDisplay(x);
+  return img;
+}
+
+TEST(Viewer, TheWindowShowsTheHeadlessFrame) {
+  VirtualDisplay display;
+  if (display.name().empty()) GTEST_SKIP() << "Xvfb is not installed (apt install xvfb)";
+  TempDir dir;
+  const auto headless = run_command(evms_binary() + " view \"" + kScene + "\" --headless --frames " + dir.path("h") + " --max-frames 8");
+  ASSERT_EQ(headless.exit_code, 0) << headless.err;
+  const Image want = read_png(dir.path("h/frame_000007.png"));
+  ASSERT_GT(want.width, 0);
+
+  // The same frames in a window at the screen's corner; the last one stays up for 20 s.
+  const std::string cmd = "DISPLAY=" + display.name() + " SDL_VIDEODRIVER=x11 " + evms_binary() + " view \"" + kScene +
+                          "\" --no-realtime --max-frames 8 --hold-s 20 --window-at 0 0 2>&1";
+  std::FILE* viewer = popen(cmd.c_str(), "r");
+  ASSERT_NE(viewer, nullptr);
+  char line[256] = {};
+  std::string said;
+  while (std::fgets(line, sizeof line, viewer)) {
+    said += line;
+    if (said.find("shown frame 7") != std::string::npos) break;
+  }
+  ASSERT_NE(said.find("shown frame 7"), std::string::npos) << said;
+  // The frame is on screen once the X server has drawn it; poll briefly for it.
+  Image got;
+  for (int i = 0; i < 50; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    got = screenshot(display.name(), want.width, want.height);
+    if (got.rgb == want.rgb) break;
+  }
+  ASSERT_EQ(got.width, want.width);
+  size_t differ = 0;
+  for (size_t i = 0; i < want.rgb.size(); ++i) differ += got.rgb[i] != want.rgb[i];
+  EXPECT_EQ(differ, 0u) << "of " << want.rgb.size() << " colour values, " << differ << " differ between the window and the PNG";
+  std::system(("pkill -f -- '--hold-s 20 --window-at 0 0' >/dev/null 2>&1"));
+  pclose(viewer);
+}
+
+}  // namespace
+}  // namespace evms::test
