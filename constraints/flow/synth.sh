@@ -39,8 +39,8 @@ while read -r f; do sources+=("$root/rtl/$f"); done < <(cat "$root/rtl/core.f" "
 declare -A capacity=([ice40_lut]=5280 [ice40_ff]=5280 [ice40_dsp]=8 [ice40_bram]=30 [ice40_spram]=4
                      [xc7_lut]=20800 [xc7_ff]=41600 [xc7_dsp]=90 [xc7_bram]=50 [xc7_spram]=0)
 
-count() {  # count FILE CELL-REGEX: the sum of the matching cell counts in a yosys stat -json
-  grep -oE "\"($2)\": [0-9]+" "$1" | awk '{ s += $2 } END { print s + 0 }'
+count() {  # count FILE CELL-REGEX: the sum of the matching cell counts of the whole design in a yosys stat -json
+  sed -n '/"design":/,$p' "$1" | { grep -oE "\"($2)\": [0-9]+" || true; } | awk '{ s += $2 } END { print s + 0 }'
 }
 
 run_config() {
