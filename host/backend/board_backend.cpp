@@ -24,15 +24,6 @@ using S = hls::Ice40Shape;
 constexpr size_t kLinkWindow = 512;  // LINK_FIFO_DEPTH of the iCEBreaker top
 constexpr int kSilenceMs = 10000;    // no frame for this long while waiting: the board is gone
 
-// The register values the board build starts with (host/tools/rtl_gen: the iCE40 build).
-Params board_params() {
-  Params p;
-  p.packet_size = S::kPacketMax;
-  p.max_clusters = S::kClustersMax;
-  p.max_tracks = S::kTracksMax;
-  return p;
-}
-
 class BoardBackend final : public Backend {
  public:
   explicit BoardBackend(const BackendOptions& o) : port_(check(o), o.baud) {
@@ -94,7 +85,7 @@ class BoardBackend final : public Backend {
  private:
   static const std::string& check(const BackendOptions& o) {
     if (o.device.empty()) throw std::invalid_argument("the board backend needs --device (e.g. /dev/ttyUSB1, or the path evms vboard prints)");
-    if (!(o.params == board_params()) || !(o.sensor == SensorSize{S::kMaxWidth, S::kMaxHeight})) {
+    if (!(o.params == build_default_params<S>()) || !(o.sensor == SensorSize{S::kMaxWidth, S::kMaxHeight})) {
       throw std::invalid_argument("the board runs its build's settings: a " + std::to_string(S::kMaxWidth) + "x" + std::to_string(S::kMaxHeight) +
                                   " sensor, --packet-size " + std::to_string(S::kPacketMax) + " --max-clusters " +
                                   std::to_string(S::kClustersMax) + " --max-tracks " + std::to_string(S::kTracksMax) +

@@ -3,6 +3,7 @@
 // core (fixed, rtl, board) and the RTL generator use this one conversion.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,17 @@
 #include "hls/core/config.h"
 
 namespace evms::backend {
+
+// The method's defaults with the packet size, cluster and track counts cut to what build S
+// holds: the register values a board of that build starts with.
+template <class S>
+Params build_default_params() {
+  Params p;
+  p.packet_size = std::min(p.packet_size, S::kPacketMax);
+  p.max_clusters = std::min(p.max_clusters, S::kClustersMax);
+  p.max_tracks = std::min(p.max_tracks, S::kTracksMax);
+  return p;
+}
 
 template <class S>
 hls::Config core_config(const Params& p, SensorSize sensor) {

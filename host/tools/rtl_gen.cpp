@@ -157,13 +157,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string dir = argv[1];
-  const Params defaults;
-  write_config<hls::HostShape>(dir, "host", {1280, 720}, defaults);
-  write_config<hls::ArtyShape>(dir, "arty", {240, 180}, defaults);
-  Params small = defaults;  // the iCE40 build's limits
-  small.packet_size = hls::Ice40Shape::kPacketMax;
-  small.max_clusters = hls::Ice40Shape::kClustersMax;
-  small.max_tracks = hls::Ice40Shape::kTracksMax;
-  write_config<hls::Ice40Shape>(dir, "ice40", {128, 128}, small);
+  write_config<hls::HostShape>(dir, "host", {1280, 720}, backend::build_default_params<hls::HostShape>());
+  write_config<hls::ArtyShape>(dir, "arty", {240, 180}, backend::build_default_params<hls::ArtyShape>());
+  write_config<hls::Ice40Shape>(dir, "ice40", {128, 128}, backend::build_default_params<hls::Ice40Shape>());
   return 0;
 }

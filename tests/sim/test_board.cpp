@@ -19,14 +19,6 @@ using S = hls::Ice40Shape;
 constexpr int kCpb = 4;
 constexpr int kWindow = 512;  // events in flight: the board's link FIFO
 
-Params board_params() {
-  Params p;
-  p.packet_size = S::kPacketMax;
-  p.max_clusters = S::kClustersMax;
-  p.max_tracks = S::kTracksMax;
-  return p;
-}
-
 struct Expected {
   std::vector<hls::LabelWord> labels;
   std::vector<hls::TrackWord> tracks;
@@ -38,7 +30,7 @@ Expected cxx_core(const std::vector<hls::EventWord>& words) {
   auto labels = std::make_unique<hls::Core<S>::LabelStream>();
   hls::Core<S>::TrackStream tracks;
   hls::Core<S>::PacketStream packets;
-  core->reset(backend::core_config<S>(board_params(), {128, 128}));
+  core->reset(backend::core_config<S>(backend::build_default_params<S>(), {128, 128}));
   Expected e;
   for (const auto& w : words) {
     core->process(w, *labels, tracks, packets);

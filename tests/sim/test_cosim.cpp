@@ -129,19 +129,11 @@ void expect_equal(const std::string& name, const std::vector<Event>& events, Sen
   }
 }
 
-Params small_core_params() {
-  Params p;
-  p.packet_size = hls::Ice40Shape::kPacketMax;
-  p.max_clusters = hls::Ice40Shape::kClustersMax;
-  p.max_tracks = hls::Ice40Shape::kTracksMax;
-  return p;
-}
-
 TEST(Cosim, BlobsUnderRandomBackpressureEveryBuild) {
   const auto events = test::blob_events({{40, 40, 300, 100}, {100, 90, -200, 50}, {70, 20}}, 60000, 0, 40000, {128, 128}, 7);
   expect_equal<Vcore_host, hls::HostShape>("blobs_host", events, {128, 128}, 11, 0.6);
   expect_equal<Vcore_arty, hls::ArtyShape>("blobs_arty", events, {128, 128}, 12, 0.6);
-  expect_equal<Vcore_ice40, hls::Ice40Shape>("blobs_ice40", events, {128, 128}, 13, 0.6, small_core_params());
+  expect_equal<Vcore_ice40, hls::Ice40Shape>("blobs_ice40", events, {128, 128}, 13, 0.6, backend::build_default_params<hls::Ice40Shape>());
 }
 
 }  // namespace
@@ -177,7 +169,7 @@ TEST(Cosim, LabelledScenesBoardBuilds) {
   expect_equal<Vcore_arty, hls::ArtyShape>("scene_arty_rotation", scene_events(gen::Motion::kRotation, 0.2, 240, 180, 4), {240, 180}, 31,
                                            0.7);
   expect_equal<Vcore_ice40, hls::Ice40Shape>("scene_ice40_6dof", scene_events(gen::Motion::kSixDof, 0.2, 128, 128, 5), {128, 128}, 32,
-                                             0.7, small_core_params());
+                                             0.7, backend::build_default_params<hls::Ice40Shape>());
 }
 
 // Settings that take other paths through the core: packets closed by their span, the filter
@@ -267,7 +259,7 @@ TEST(Schedule, TheCycleModelCountsEveryStageOfTheRtl) {
   open.filter_window_us = 0;
   expect_schedule<Vcore_arty, hls::ArtyShape>("arty_filter_off", scene, {240, 180}, open);
   expect_schedule<Vcore_ice40, hls::Ice40Shape>("ice40_6dof", scene_events(gen::Motion::kSixDof, 0.1, 128, 128, 8), {128, 128},
-                                                small_core_params());
+                                                backend::build_default_params<hls::Ice40Shape>());
 }
 
 }  // namespace
