@@ -5,24 +5,18 @@
 #include "host/gen/scene_generator.h"
 #include "host/gen/scene_uri.h"
 #include "host/read/event_source.h"
+#include "host/read/uri.h"
 
 namespace evms::gen {
 
 SceneConfig parse_scene_uri(const std::string& uri) {
   SceneConfig cfg;
-  std::string rest = uri.substr(6);  // after "gen://"
-  const size_t q = rest.find('?');
-  const std::string scene = rest.substr(0, q);
+  const read::SourceUri parts = read::split_source_uri(uri);
+  const std::string& scene = parts.target;
   if (!parse_motion(scene, cfg.motion)) {
     throw read::InputError(uri + ": unknown scene '" + scene + "' (translation, rotation or 6dof)");
   }
-  std::string query = q == std::string::npos ? "" : rest.substr(q + 1);
-  while (!query.empty()) {
-    const size_t amp = query.find('&');
-    const std::string item = query.substr(0, amp);
-    query = amp == std::string::npos ? "" : query.substr(amp + 1);
-    const size_t eq = item.find('=');
-    const std::string key = item.substr(0, eq), value = eq == std::string::npos ? "" : item.substr(eq + 1);
+  for (const auto& [key, value] : parts.query) {
     auto number = [&](auto& out) {
       auto [p, ec] = std::from_chars(value.data(), value.data() + value.size(), out);
       if (ec != std::errc() || p != value.data() + value.size()) {

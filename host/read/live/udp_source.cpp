@@ -14,44 +14,36 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
-#include <map>
+#include <cstdlib>
 
 #include "host/read/bytes.h"
 #include "host/read/formats/jaer_address.h"
 #include "host/read/live/live_source.h"
+#include "host/read/uri.h"
 
 namespace evms::read {
 namespace {
 
 constexpr size_t kDatagramMax = 65536;  // jAER sends up to 63,000 bytes
 
-std::map<std::string, std::string> query_of(const std::string& uri, std::string& authority) {
-  std::map<std::string, std::string> q;
-  const std::string rest = uri.substr(6);
-  const size_t mark = rest.find('?');
-  authority = rest.substr(0, mark);
-  if (mark == std::string::npos) return q;
-  std::string query = rest.substr(mark + 1);
-  size_t at = 0;
-  while (at <= query.size()) {
-    const size_t amp = std::min(query.find('&', at), query.size());
-    const std::string item = query.substr(at, amp - at);
-    const size_t eq = item.find('=');
-    if (eq == std::string::npos) throw InputError(uri + ": '" + item + "' is not key=value");
-    q[item.substr(0, eq)] = item.substr(eq + 1);
-    at = amp + 1;
-  }
-  return q;
-}
-
 class UdpSource final : public LiveSource {
  public:
   UdpSource(const std::string& uri, const SourceOptions& o) : LiveSource(o.live_buffer_events), uri_(uri) {
     info_.name = uri;
-    std::string authority;
-    auto q = query_of(uri, authority);
-    const std::string camera = q.count("camera") ? q["camera"] : "dvs128";
-    q.erase("camera");
+    const SourceUri parts = split_source_uri(uri);
+    std::string camera = "dvs128";
+    for (const auto& [key, value] : parts.query) {
+      if (key == "camera") {
+        camera = value;
+      } else if (key == "idle-s") {
+        char* end = nullptr;
+        const double s = std::strtod(value.c_str(), &end);
+        if (value.empty() || *end != '\0' || !(s > 0)) throw InputError(uri + ": 'idle-s' needs a positive number, got '" + value + "'");
+        idle_ms_ = static_cast<int>(s * 1000);
+      } else {
+        throw InputError(uri + ": unknown option '" + key + "' (known: camera, idle-s)");
+      }
+    }
     if (camera == "dvs128") {
       layout_ = JaerLayout::kDvs128;
       info_.sensor = {128, 128};
@@ -64,13 +56,8 @@ class UdpSource final : public LiveSource {
     } else {
       throw InputError(uri + ": unknown camera '" + camera + "' (expected camera=dvs128 or camera=davis)");
     }
-    if (q.count("idle-s")) {
-      idle_ms_ = static_cast<int>(std::stod(q["idle-s"]) * 1000);
-      q.erase("idle-s");
-    }
-    if (!q.empty()) throw InputError(uri + ": unknown option '" + q.begin()->first + "' (known: camera, idle-s)");
     info_.format = "jAER AEUnicast over UDP (" + camera + " addresses)";
-    bind_to(authority);
+    bind_to(parts.target);
     start();
   }
 
