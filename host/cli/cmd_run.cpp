@@ -2,7 +2,6 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <optional>
 
@@ -38,14 +37,8 @@ class RunSink final : public OutputSink {
       tracks_.emplace(out_dir + "/tracks.csv");
     }
   }
-  // Live sources: the arrival times of the events pushed and not yet labelled, in order.
-  void arrived(std::span<const std::int64_t> ns) { pending_arrivals_.insert(pending_arrivals_.end(), ns.begin(), ns.end()); }
-
   void on_event(const LabelledEvent& e) override {
-    if (!pending_arrivals_.empty()) {
-      latency.add(read::steady_now_ns() - pending_arrivals_.front());
-      pending_arrivals_.pop_front();
-    }
+    latency.labelled();
     ++events;
     if (e.label == kNoiseLabel) ++noise;
     if (events_) events_->write(e);
@@ -64,10 +57,9 @@ class RunSink final : public OutputSink {
   }
 
   std::int64_t events = 0, noise = 0, track_rows = 0, confirmed = 0;
-  eval::LatencyHistogram latency;
+  eval::ArrivalLatency latency;  // live sources: from arrival to label
 
  private:
-  std::deque<std::int64_t> pending_arrivals_;
   std::vector<bool> seen_;  // track IDs with at least one update
   std::optional<write::LabelledEventsCsv> events_;
   std::optional<write::TracksCsv> tracks_;
@@ -94,7 +86,7 @@ void run(const RunOptions& o) {
     if (n == 0) break;
     if (!any) t_first = batch[0].t, any = true;
     t_last = batch[n - 1].t;
-    sink.arrived(source->arrivals());
+    sink.latency.arrived(source->arrivals());
     backend->push(std::span(batch).first(n), sink);
     progress.update(source->progress(), backend->stats().events_in);
   }
@@ -124,8 +116,9 @@ void run(const RunOptions& o) {
     std::printf("live        %s events dropped while the backend was behind", grouped(source->dropped()).c_str());
     for (const auto& [kind, count] : source->skipped()) std::printf("; %s %s", grouped(count).c_str(), kind.c_str());
     std::printf("\n");
-    std::printf("latency     arrival to label: p50 %.0f us, p99 %.0f us, max %.0f us over %s events\n", sink.latency.quantile_us(0.5),
-                sink.latency.quantile_us(0.99), static_cast<double>(sink.latency.max_ns()) * 1e-3, grouped(sink.latency.count()).c_str());
+    const eval::LatencyHistogram& l = sink.latency.histogram();
+    std::printf("latency     arrival to label: p50 %.0f us, p99 %.0f us, max %.0f us over %s events\n", l.quantile_us(0.5),
+                l.quantile_us(0.99), static_cast<double>(l.max_ns()) * 1e-3, grouped(l.count()).c_str());
   }
   if (!o.out.empty()) std::printf("outputs     %s/events.csv, %s/tracks.csv\n", o.out.c_str(), o.out.c_str());
 }

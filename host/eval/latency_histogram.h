@@ -6,6 +6,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <deque>
+#include <span>
+
+#include "host/read/live/live_source.h"
 
 namespace evms::eval {
 
@@ -37,6 +41,26 @@ class LatencyHistogram {
   static constexpr int kBuckets = 2083;           // ln(1e9) / ln(1.01): up to 1000 s
   std::array<std::int64_t, kBuckets> counts_{};
   std::int64_t total_ = 0, max_ns_ = 0;
+};
+
+// Pairs each labelled event with the arrival time of the event pushed in the same order (labels
+// come out in input order) and records the difference. Sources that are not live have no
+// arrival times, and then nothing is recorded.
+class ArrivalLatency {
+ public:
+  void arrived(std::span<const std::int64_t> arrival_ns) { waiting_.insert(waiting_.end(), arrival_ns.begin(), arrival_ns.end()); }
+  void labelled() {
+    if (waiting_.empty()) return;
+    histogram_.add(read::steady_now_ns() - waiting_.front());
+    waiting_.pop_front();
+  }
+  // Events pushed to a backend that is then dropped will not be labelled.
+  void forget_waiting() { waiting_.clear(); }
+  const LatencyHistogram& histogram() const { return histogram_; }
+
+ private:
+  std::deque<std::int64_t> waiting_;
+  LatencyHistogram histogram_;
 };
 
 }  // namespace evms::eval

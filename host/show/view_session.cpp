@@ -14,16 +14,12 @@ class ViewSession::Sink final : public OutputSink {
   void on_event(const LabelledEvent& e) override {
     renderer_.add(e);
     ++events_;
-    if (!arrivals_.empty()) {
-      latency_.add(read::steady_now_ns() - arrivals_.front());
-      arrivals_.pop_front();
-    }
+    latency_.labelled();
   }
   void on_track(const TrackUpdate& u) override { renderer_.add(u); }
   void on_packet(const PacketSummary& p) override { clusters_ = p.clusters; }
 
-  std::deque<std::int64_t> arrivals_;
-  eval::LatencyHistogram latency_;
+  eval::ArrivalLatency latency_;
   std::int64_t events_ = 0;
   int clusters_ = 0;
 
@@ -48,7 +44,7 @@ ViewSession::~ViewSession() = default;
 void ViewSession::switch_backend(const std::string& name) {
   auto next = backend::make_backend(name, options_);
   backend_->finish(*sink_);
-  sink_->arrivals_.clear();
+  sink_->latency_.forget_waiting();
   backend_ = std::move(next);
   backend_name_ = name;
 }
@@ -73,10 +69,7 @@ void ViewSession::push_until(TimeUs t) {
     size_t end = pending_at_;
     while (end < pending_.size() && pending_[end].t <= t) ++end;
     if (end > pending_at_) {
-      if (!pending_arrival_.empty()) {
-        sink_->arrivals_.insert(sink_->arrivals_.end(), pending_arrival_.begin() + static_cast<std::ptrdiff_t>(pending_at_),
-                                pending_arrival_.begin() + static_cast<std::ptrdiff_t>(end));
-      }
+      if (!pending_arrival_.empty()) sink_->latency_.arrived(std::span(pending_arrival_).subspan(pending_at_, end - pending_at_));
       backend_->push(std::span(pending_).subspan(pending_at_, end - pending_at_), *sink_);
       pending_at_ = end;
     }
@@ -104,7 +97,7 @@ bool ViewSession::advance() {
   return true;
 }
 
-const eval::LatencyHistogram& ViewSession::latency() const { return sink_->latency_; }
+const eval::LatencyHistogram& ViewSession::latency() const { return sink_->latency_.histogram(); }
 std::int64_t ViewSession::events() const { return sink_->events_; }
 
 void ViewSession::render(Canvas& canvas) {
@@ -122,9 +115,8 @@ void ViewSession::render(Canvas& canvas) {
   overlay.emplace_back(line);
   std::snprintf(line, sizeof line, "clusters %d", sink_->clusters_);
   overlay.emplace_back(line);
-  if (sink_->latency_.count() > 0) {
-    std::snprintf(line, sizeof line, "latency p50 %.1f ms p99 %.1f ms", sink_->latency_.quantile_us(0.5) * 1e-3,
-                  sink_->latency_.quantile_us(0.99) * 1e-3);
+  if (const auto& l = latency(); l.count() > 0) {
+    std::snprintf(line, sizeof line, "latency p50 %.1f ms p99 %.1f ms", l.quantile_us(0.5) * 1e-3, l.quantile_us(0.99) * 1e-3);
     overlay.emplace_back(line);
   }
   std::snprintf(line, sizeof line, "dropped %lld", static_cast<long long>(source_->dropped()));

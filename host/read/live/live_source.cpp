@@ -23,7 +23,6 @@ LiveBuffer::LiveBuffer(size_t capacity) : events_(std::max<size_t>(capacity, 1))
 void LiveBuffer::push(std::span<const Event> events, std::int64_t arrival_ns) {
   {
     std::lock_guard lock(mutex_);
-    pushed_ += static_cast<std::int64_t>(events.size());
     const size_t room = events_.size() - size_;
     const size_t n = std::min(room, events.size());
     for (size_t i = 0; i < n; ++i) {
@@ -75,11 +74,6 @@ size_t LiveBuffer::pop(std::span<Event> out, std::span<std::int64_t> arrival_ns)
 std::int64_t LiveBuffer::dropped() const {
   std::lock_guard lock(mutex_);
   return dropped_;
-}
-
-std::int64_t LiveBuffer::pushed() const {
-  std::lock_guard lock(mutex_);
-  return pushed_;
 }
 
 LiveSource::LiveSource(size_t capacity) : buffer_(capacity) {}

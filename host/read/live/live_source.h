@@ -43,7 +43,6 @@ class LiveBuffer {
   size_t pop(std::span<Event> out, std::span<std::int64_t> arrival_ns);
 
   std::int64_t dropped() const;
-  std::int64_t pushed() const;
 
  private:
   mutable std::mutex mutex_;
@@ -53,7 +52,7 @@ class LiveBuffer {
   size_t head_ = 0, size_ = 0;
   bool closed_ = false;
   std::string error_;
-  std::int64_t dropped_ = 0, pushed_ = 0;
+  std::int64_t dropped_ = 0;
 };
 
 // Base of every live source: owns the buffer and the producer thread. A subclass starts the

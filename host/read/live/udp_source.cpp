@@ -71,8 +71,6 @@ class UdpSource final : public LiveSource {
     if (lost_ > 0) s.emplace_back("lost datagrams (sequence gaps)", lost_);
     return s;
   }
-  std::int64_t lost_datagrams() const { return lost_; }
-  int port() const { return port_; }
 
  private:
   void bind_to(const std::string& authority) {
@@ -93,21 +91,13 @@ class UdpSource final : public LiveSource {
       if (fd_ < 0) continue;
       int big = 4 << 20;
       setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &big, sizeof big);
-      if (::bind(fd_, a->ai_addr, a->ai_addrlen) == 0) {
-        sockaddr_storage bound{};
-        socklen_t len = sizeof bound;
-        getsockname(fd_, reinterpret_cast<sockaddr*>(&bound), &len);
-        port_ = ntohs(bound.ss_family == AF_INET6 ? reinterpret_cast<sockaddr_in6*>(&bound)->sin6_port
-                                                   : reinterpret_cast<sockaddr_in*>(&bound)->sin_port);
-        break;
-      }
+      if (::bind(fd_, a->ai_addr, a->ai_addrlen) == 0) break;
       why = std::strerror(errno);
       ::close(fd_);
       fd_ = -1;
     }
     freeaddrinfo(res);
     if (fd_ < 0) throw InputError(uri_ + ": cannot listen on " + authority + " (" + why + ")");
-    info_.name = uri_;
   }
 
   void produce(std::stop_token stop) override {
@@ -127,7 +117,6 @@ class UdpSource final : public LiveSource {
       const ssize_t n = ::recv(fd_, datagram.data(), datagram.size(), 0);
       if (n < 0) throw InputError(uri_ + ": receive failed (" + std::strerror(errno) + ")");
       const std::int64_t arrival = steady_now_ns();
-      ++datagrams_;
       if (n < 4 || (n - 4) % 8 != 0) {
         // A datagram that is not a sequence number and whole records: counted, not decoded.
         count_skipped("malformed datagrams (length not 4 + 8k bytes)");
@@ -168,10 +157,9 @@ class UdpSource final : public LiveSource {
   JaerLayout layout_ = JaerLayout::kDvs128;
   JaerClock clock_;
   TimeUs last_t_ = 0;
-  int fd_ = -1, port_ = 0, idle_ms_ = 0;
+  int fd_ = -1, idle_ms_ = 0;
   bool have_seq_ = false;
   std::uint32_t next_seq_ = 0;
-  std::int64_t datagrams_ = 0;
   std::atomic<std::int64_t> lost_{0};
 };
 

@@ -66,7 +66,6 @@ class UsbCamera final : public LiveSource, private DecodedSink {
       if (libusb_get_device_descriptor(list[i], &d) == 0 && d.idVendor == kInivationVid &&
           (d.idProduct == kind_.pids[0] || d.idProduct == kind_.pids[1])) {
         found = list[i];
-        pid_ = d.idProduct;
       }
     }
     if (!found) {
@@ -222,7 +221,6 @@ class UsbCamera final : public LiveSource, private DecodedSink {
   const CameraKind& kind_;
   libusb_context* ctx_ = nullptr;
   libusb_device_handle* handle_ = nullptr;
-  std::uint16_t pid_ = 0;
   Dvs128Decoder dvs128_;
   DavisDecoder davis_;
   std::vector<Event> pending_;
