@@ -2,13 +2,9 @@
 // core of its build, and the board backend, through the virtual board's pseudo-terminal and
 // the framed UART link, equals the fixed-point core of the iCE40 build.
 #include <gtest/gtest.h>
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <fstream>
-#include <sstream>
 #include <thread>
 
 #include "tests/support/command.h"
@@ -17,20 +13,13 @@
 namespace evms::test {
 namespace {
 
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 // Runs `evms run` on one source with one backend and returns (events.csv, tracks.csv).
 std::pair<std::string, std::string> run_backend(const TempDir& dir, const std::string& name, const std::string& source,
                                                 const std::string& options) {
   const std::string out = dir.path(name);
   const auto r = run_command(evms_binary() + " run \"" + source + "\" --quiet --out " + out + " " + options);
   EXPECT_EQ(r.exit_code, 0) << name << ": " << r.err;
-  return {slurp(out + "/events.csv"), slurp(out + "/tracks.csv")};
+  return {read_file(out + "/events.csv"), read_file(out + "/tracks.csv")};
 }
 
 constexpr const char* kIce40Limits = " --packet-size 64 --max-clusters 8 --max-tracks 8";
@@ -60,31 +49,19 @@ TEST(BackendsAgree, ACoreBuildRefusesParametersBeyondItsLimits) {
 // `evms vboard` in the background, for the length of a test.
 class VirtualBoardProcess {
  public:
-  explicit VirtualBoardProcess(const TempDir& dir) : path_file_(dir.path("vboard.path")) {
-    pid_ = fork();
-    if (pid_ == 0) {
-      const std::string bin = evms_binary();
-      std::freopen("/dev/null", "w", stdout);
-      execl(bin.c_str(), bin.c_str(), "vboard", "--path-file", path_file_.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
+  explicit VirtualBoardProcess(const TempDir& dir)
+      : path_file_(dir.path("vboard.path")), process_({evms_binary(), "vboard", "--path-file", path_file_}) {
     for (int i = 0; i < 200 && device_.empty(); ++i) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
       std::ifstream f(path_file_);
       std::getline(f, device_);
     }
   }
-  ~VirtualBoardProcess() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      waitpid(pid_, nullptr, 0);
-    }
-  }
   const std::string& device() const { return device_; }
 
  private:
   std::string path_file_, device_;
-  pid_t pid_ = -1;
+  BackgroundProcess process_;
 };
 
 TEST(BackendsAgree, TheBoardThroughTheVirtualBoardEqualsTheFixedCore) {

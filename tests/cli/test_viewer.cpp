@@ -3,15 +3,12 @@
 // the screen with Xlib and compares it pixel for pixel with the PNG of the same frame.
 #include <gtest/gtest.h>
 #include <png.h>
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <thread>
 
 #include "tests/support/command.h"
@@ -41,13 +38,6 @@ Image read_png(const std::string& path) {
   return img;
 }
 
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 const char* kScene = "gen://rotation?duration-s=0.3&seed=2";
 
 TEST(Viewer, HeadlessFramesAreDeterministic) {
@@ -56,7 +46,7 @@ TEST(Viewer, HeadlessFramesAreDeterministic) {
     const auto r = run_command(evms_binary() + " view \"" + kScene + "\" --headless --frames " + dir.path(d) + " --max-frames 5");
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
-  const std::string a = slurp(dir.path("a/frame_000004.png")), b = slurp(dir.path("b/frame_000004.png"));
+  const std::string a = read_file(dir.path("a/frame_000004.png")), b = read_file(dir.path("b/frame_000004.png"));
   EXPECT_GT(a.size(), 1000u);
   EXPECT_EQ(a, b);
   // Something was drawn: the frame is not all background.
@@ -79,37 +69,25 @@ class VirtualDisplay {
   VirtualDisplay() {
     if (access("/usr/bin/Xvfb", X_OK) != 0) return;
     for (int n = 91; n < 120 && display_.empty(); ++n) {
+      const std::string name = ":" + std::to_string(n);
       if (std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n)) || std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock")) {
         continue;
       }
-      pid_ = fork();
-      if (pid_ == 0) {
-        std::freopen("/dev/null", "w", stderr);
-        const std::string d = ":" + std::to_string(n);
-        execl("/usr/bin/Xvfb", "Xvfb", d.c_str(), "-screen", "0", "640x480x24", "-nolisten", "tcp", static_cast<char*>(nullptr));
-        _exit(127);
-      }
-      for (int i = 0; i < 100; ++i) {
+      server_ = std::make_unique<BackgroundProcess>(std::vector<std::string>{"/usr/bin/Xvfb", name, "-screen", "0", "640x480x24", "-nolisten", "tcp"});
+      for (int i = 0; i < 100 && display_.empty(); ++i) {
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        if (Display* x = XOpenDisplay((":" + std::to_string(n)).c_str())) {
+        if (Display* x = XOpenDisplay(name.c_str())) {
           XCloseDisplay(x);
-          display_ = ":" + std::to_string(n);
-          break;
+          display_ = name;
         }
       }
-    }
-  }
-  ~VirtualDisplay() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      waitpid(pid_, nullptr, 0);
     }
   }
   const std::string& name() const { return display_; }
 
  private:
+  std::unique_ptr<BackgroundProcess> server_;
   std::string display_;
-  pid_t pid_ = -1;
 };
 
 Image screenshot(const std::string& display, int w, int h) {

@@ -2,20 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "tests/support/command.h"
 #include "tests/support/encoders.h"
 
 namespace evms::test {
 namespace {
-
-std::string slurp(const std::filesystem::path& p) {
-  std::stringstream ss;
-  ss << std::ifstream(p).rdbuf();
-  return ss.str();
-}
 
 TEST(RtlGenerated, FilesAreCurrent) {
   TempDir dir;
@@ -27,7 +19,7 @@ TEST(RtlGenerated, FilesAreCurrent) {
     ++files;
     const auto name = e.path().filename();
     ASSERT_TRUE(std::filesystem::exists(committed / name)) << name << " is not committed";
-    EXPECT_EQ(slurp(e.path()), slurp(committed / name)) << "rtl/generated/" << name.string()
+    EXPECT_EQ(read_file(e.path().string()), read_file((committed / name).string())) << "rtl/generated/" << name.string()
                                                       << " is stale: run 'cmake --build build --target rtl-generated'";
   }
   EXPECT_GE(files, 12);

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <string>
+#include <sys/types.h>
+#include <vector>
 
 namespace evms::test {
 
@@ -14,5 +16,20 @@ struct CommandResult {
 CommandResult run_command(const std::string& command);
 // Path of the built evms program.
 std::string evms_binary();
+// A file's whole contents, bytes as they are ("" when it cannot be read).
+std::string read_file(const std::string& path);
+
+// A program running in the background for the length of a test, its output discarded;
+// terminated (SIGTERM) and waited for on destruction.
+class BackgroundProcess {
+ public:
+  explicit BackgroundProcess(const std::vector<std::string>& argv);
+  ~BackgroundProcess();
+  BackgroundProcess(const BackgroundProcess&) = delete;
+  BackgroundProcess& operator=(const BackgroundProcess&) = delete;
+
+ private:
+  pid_t pid_ = -1;
+};
 
 }  // namespace evms::test
