@@ -54,7 +54,7 @@ run_config() {
     synth="synth_xilinx -family xc7 -flatten -top $top"
   fi
   # $readmemh paths in the generated headers are relative to rtl/generated.
-  (cd "$root/rtl/generated" && yosys -q -l "$dir/yosys.log" -p "read_verilog -sv -I. ${sources[*]} $root/rtl/board/$top.sv;
+  (cd "$root/rtl/generated" && yosys -q -l "$dir/yosys.log" -p "read_verilog -sv -I. -I$root/rtl/board ${sources[*]} $root/rtl/board/$top.sv;
       hierarchy -top $top -chparam LANES_OVERRIDE $lanes; $synth; tee -q -o $dir/stat.json stat -json") >/dev/null
   local s=$dir/stat.json lut ff dsp bram spram
   if [ "$family" = ice40 ]; then
