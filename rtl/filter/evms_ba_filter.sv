@@ -34,9 +34,12 @@ module evms_ba_filter #(
   logic [AW-1:0]      addr;
   logic               we;
   logic [TS_BITS-1:0] wdata, rdata;
+  // One port, and no read while writing: the shape of a single-ported RAM whose output holds
+  // during a write (an iCE40 SPRAM, a Xilinx block RAM in NO_CHANGE mode). No state reads
+  // rdata after a write cycle.
   always_ff @(posedge clk) begin
     if (we) ram[addr] <= wdata;
-    rdata <= ram[addr];
+    else rdata <= ram[addr];
   end
 
   typedef enum logic [3:0] {S_CLEAR, S_IDLE, S_READ, S_WRITE, S_SCRUB_READ, S_SCRUB_WAIT, S_SCRUB_DECIDE, S_DONE} state_e;
