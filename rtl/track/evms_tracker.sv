@@ -5,6 +5,14 @@
 //   unmatched measurements start tracks in the lowest free slots.
 // Every arithmetic step is the C++ one: the same products, the same rounding (half up) and
 // the same clamps, so the results are equal bit for bit.
+//
+// Area: the Kalman steps all have the form  clamp(base +- round(product >> shift), bound), one
+// step a state, so they share one adder-and-clamp (the "step unit") whose base, shift and
+// bound the state selects, instead of an adder and two comparators per step. Each slot's
+// filter state (pos, vel, p00, p01, p11) per axis is one word of a memory with one write port
+// and a combinational read (distributed RAM on a Xilinx part), not registers with a write
+// multiplexer each. Covariances are stored in CovBits bits: every stored covariance is clamped
+// to +-(2^35 - 1) or is P0, which host/backend/core_config.h keeps below 2^35.
 module evms_tracker #(
   parameter int CLUSTERS_MAX = 16,
   parameter int TRACKS_MAX   = 16,
@@ -65,13 +73,13 @@ module evms_tracker #(
   localparam logic signed [63:0] PosMax = (64'sd1 <<< 31) - 1;
   localparam logic signed [63:0] DistMax = 64'sd4096 <<< POS_FRAC;
   localparam logic signed [63:0] MaxDt = 64'sd1 <<< 18;
+  localparam int CovBits = 36;
+  initial begin
+    if (TICK_LOG2 < 1 || 2 * TICK_LOG2 - COV_FRAC < 1 || COV_FRAC < 1 || NOISE_FRAC < 1 ||
+        NOISE_FRAC + TICK_LOG2 - COV_FRAC < 1 || GAIN_FRAC < 1)
+      $error("evms_tracker: the step unit rounds right shifts of at least one bit");
+  end
 
-  function automatic signed [63:0] shr_rnd(input signed [63:0] v, input integer s);
-    begin
-      if (s <= 0) shr_rnd = v <<< (-s);
-      else shr_rnd = (v + (64'sd1 <<< (s - 1))) >>> s;
-    end
-  endfunction
   function automatic signed [63:0] clamp_sym(input signed [63:0] v, input signed [63:0] b);
     begin
       clamp_sym = v > b ? b : (v < -b ? -b : v);
@@ -92,8 +100,9 @@ module evms_tracker #(
   logic signed [31:0]       s_id [TRACKS_MAX];
   logic [7:0]               s_hits [TRACKS_MAX];
   logic [31:0]              s_t [TRACKS_MAX];
-  logic signed [31:0]       s_pos [2][TRACKS_MAX], s_vel [2][TRACKS_MAX];
-  logic signed [63:0]       s_p00 [2][TRACKS_MAX], s_p01 [2][TRACKS_MAX], s_p11 [2][TRACKS_MAX];
+  // Filter state of each slot, one memory per axis: {pos, vel, p00, p01, p11}.
+  localparam int KW = 64 + 3 * CovBits;
+  logic [KW-1:0]            kal_x [TRACKS_MAX], kal_y [TRACKS_MAX];
   logic [TRACKS_MAX-1:0]    slot_matched;
   logic [CLUSTERS_MAX-1:0]  meas_matched;
   logic signed [31:0]       ids [CLUSTERS_MAX];
@@ -120,13 +129,89 @@ module evms_tracker #(
   logic        axis;
   // Working copy of the axis being filtered.
   logic signed [63:0] w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e;
-  logic signed [63:0] acc, k0, k1, p00n, p01n;
+  logic signed [63:0] acc, k0, k1, p00n;
+  logic signed [CovBits-1:0] p01n;
   logic [RECIP_FRAC:0] rr;
   logic [6:0]  rm;
 
   logic [TW-1:0] si;
   assign si = TW'(s);
+
+  // The slot being scanned or updated, both axes.
+  logic [KW-1:0]             kx, ky;
+  logic [3*CovBits-1:0]      ka;  // the covariances of the axis being filtered
+  logic signed [31:0]        pos_of [2], vel_of [2];
+  logic signed [CovBits-1:0] p00_of, p01_of, p11_of;
+  assign kx = kal_x[si];
+  assign ky = kal_y[si];
+  assign ka = axis ? ky[3*CovBits-1:0] : kx[3*CovBits-1:0];
+  assign pos_of[0] = kx[KW-1 -: 32];
+  assign pos_of[1] = ky[KW-1 -: 32];
+  assign vel_of[0] = kx[KW-33 -: 32];
+  assign vel_of[1] = ky[KW-33 -: 32];
+  assign {p00_of, p01_of, p11_of} = ka;
   assign z_c = state == S_MATCH ? best_m : k;
+
+  function automatic signed [63:0] cov_word(input signed [CovBits-1:0] v);
+    begin
+      cov_word = {{(64 - CovBits){v[CovBits-1]}}, v};
+    end
+  endfunction
+
+  // ---- the step unit: clamp(base +- round(mul_p >> shift), bound) ---------------------------
+  typedef enum logic [2:0] {SH_TICK, SH_DT2, SH_COV, SH_NOISE, SH_NOISE_P11, SH_GAIN} shift_e;
+  typedef enum logic [1:0] {B_NONE, B_POS, B_COV} bound_e;
+  shift_e             step_shift;
+  bound_e             step_bound;
+  logic               step_negate;
+  logic signed [63:0] step_base, step_half, step_sum, step_bound_value, step, gate_dist;
+  always_comb begin
+    step_shift = SH_TICK;
+    step_bound = B_NONE;
+    step_negate = 1'b0;
+    step_base = '0;
+    case (state)
+      S_PAIR_PX: begin step_base = 64'(pos_of[0]); step_bound = B_POS; end
+      S_PAIR_PY: begin step_base = 64'(pos_of[1]); step_bound = B_POS; end
+      S_DT2:     step_shift = SH_DT2;
+      S_P_POS:   begin step_base = w_pos; step_bound = B_POS; end
+      S_P_P00A:  step_base = w_p00;
+      S_P_P00B:  begin step_base = acc; step_shift = SH_COV; end
+      S_P_P00C,
+      S_P_P01B:  begin step_base = acc; step_shift = SH_NOISE; step_bound = B_COV; end
+      S_P_P01A:  step_base = w_p01;
+      S_P_P11:   begin step_base = w_p11; step_shift = SH_NOISE_P11; step_bound = B_COV; end
+      S_U_POS:   begin step_base = w_pos; step_shift = SH_GAIN; step_bound = B_POS; end
+      S_U_VEL:   begin step_base = w_vel; step_shift = SH_GAIN; step_bound = B_POS; end
+      S_U_P00,
+      S_U_P01:   begin step_shift = SH_GAIN; step_bound = B_COV; end
+      S_U_P11:   begin step_base = w_p11; step_shift = SH_GAIN; step_bound = B_COV; step_negate = 1'b1; end
+      default: ;
+    endcase
+    // (p + 2^(s-1)) >> s  ==  ((p >> (s-1)) + 1) >> 1, with one shifter for every s.
+    case (step_shift)
+      SH_DT2:       step_half = mul_p >>> (2 * TICK_LOG2 - COV_FRAC - 1);
+      SH_COV:       step_half = mul_p >>> (COV_FRAC - 1);
+      SH_NOISE:     step_half = mul_p >>> (NOISE_FRAC - 1);
+      SH_NOISE_P11: step_half = mul_p >>> (NOISE_FRAC + TICK_LOG2 - COV_FRAC - 1);
+      SH_GAIN:      step_half = mul_p >>> (GAIN_FRAC - 1);
+      default:      step_half = mul_p >>> (TICK_LOG2 - 1);
+    endcase
+    step_sum = step_negate ? step_base - ((step_half + 64'sd1) >>> 1) : step_base + ((step_half + 64'sd1) >>> 1);
+    step_bound_value = step_bound == B_POS ? PosMax : CovMax;
+    step = step_bound == B_NONE ? step_sum : clamp_sym(step_sum, step_bound_value);
+    // The gating distance of the predicted position to the measurement.
+    gate_dist = clamp_sym((state == S_PAIR_PX ? 64'(z_x) : 64'(z_y)) - step, DistMax);
+  end
+
+  // The lowest free slot a birth takes (-1: none).
+  logic signed [8:0] free;
+  always_comb begin
+    free = -9'sd1;
+    for (int q = TRACKS_MAX - 1; q >= 0; q--) begin
+      if (!s_valid[q] && q < 32'(cfg_max_tracks)) free = 9'(q);
+    end
+  end
 
   // Issues a * b; the product comes back with mul_done.
 `define EVMS_REQUEST(A, B) begin mul_start <= 1'b1; mul_a <= (A); mul_b <= (B); end
@@ -163,13 +248,6 @@ module evms_tracker #(
         s_id[q] <= '0;
         s_hits[q] <= '0;
         s_t[q] <= '0;
-        for (int a = 0; a < 2; a++) begin
-          s_pos[a][q] <= '0;
-          s_vel[a][q] <= '0;
-          s_p00[a][q] <= '0;
-          s_p01[a][q] <= '0;
-          s_p11[a][q] <= '0;
-        end
       end
       for (int q = 0; q < CLUSTERS_MAX; q++) ids[q] <= -32'sd1;
     end else begin
@@ -227,17 +305,17 @@ module evms_tracker #(
             logic signed [31:0] raw;
             raw = $signed(z_t - s_t[si]);
             dt <= raw > 0 ? (64'(raw) > MaxDt ? MaxDt : 64'(raw)) : 64'sd0;
-            `EVMS_REQUEST(64'(s_vel[0][si]), raw > 0 ? (64'(raw) > MaxDt ? MaxDt : 64'(raw)) : 64'sd0)
+            `EVMS_REQUEST(64'(vel_of[0]), raw > 0 ? (64'(raw) > MaxDt ? MaxDt : 64'(raw)) : 64'sd0)
             state <= S_PAIR_PX;
           end
         end
         S_PAIR_PX: if (mul_done) begin
-          dx <= clamp_sym(64'(z_x) - clamp_sym(64'(s_pos[0][si]) + shr_rnd(mul_p, TICK_LOG2), PosMax), DistMax);
-          `EVMS_REQUEST(64'(s_vel[1][si]), dt)
+          dx <= gate_dist;
+          `EVMS_REQUEST(64'(vel_of[1]), dt)
           state <= S_PAIR_PY;
         end
         S_PAIR_PY: if (mul_done) begin
-          dpred <= clamp_sym(64'(z_y) - clamp_sym(64'(s_pos[1][si]) + shr_rnd(mul_p, TICK_LOG2), PosMax), DistMax);
+          dpred <= gate_dist;
           `EVMS_REQUEST(dx, dx)
           state <= S_PAIR_DX2;
         end
@@ -270,58 +348,58 @@ module evms_tracker #(
           state <= S_DT2;
         end
         S_DT2: if (mul_done) begin
-          dt2 <= shr_rnd(mul_p, 2 * TICK_LOG2 - COV_FRAC);
-          `EVMS_REQUEST(shr_rnd(mul_p, 2 * TICK_LOG2 - COV_FRAC), dt)
+          dt2 <= step;
+          `EVMS_REQUEST(step, dt)
           state <= S_DT3;
         end
         S_DT3: if (mul_done) begin
-          dt3 <= shr_rnd(mul_p, TICK_LOG2);
+          dt3 <= step;
           axis <= 1'b0;
           state <= S_AX_BEGIN;
         end
         S_AX_BEGIN: begin
-          w_pos <= 64'(s_pos[axis][si]);
-          w_vel <= 64'(s_vel[axis][si]);
-          w_p00 <= s_p00[axis][si];
-          w_p01 <= s_p01[axis][si];
-          w_p11 <= s_p11[axis][si];
+          w_pos <= 64'(pos_of[axis]);
+          w_vel <= 64'(vel_of[axis]);
+          w_p00 <= cov_word(p00_of);
+          w_p01 <= cov_word(p01_of);
+          w_p11 <= cov_word(p11_of);
           w_z <= axis == 0 ? 64'(z_x) : 64'(z_y);
-          `EVMS_REQUEST(64'(s_vel[axis][si]), dt)
+          `EVMS_REQUEST(64'(vel_of[axis]), dt)
           state <= S_P_POS;
         end
         // predict: pos += vel dt
         S_P_POS: if (mul_done) begin
-          w_pos <= clamp_sym(w_pos + shr_rnd(mul_p, TICK_LOG2), PosMax);
+          w_pos <= step;
           `EVMS_REQUEST(2 * dt, w_p01)
           state <= S_P_P00A;
         end
         S_P_P00A: if (mul_done) begin
-          acc <= w_p00 + shr_rnd(mul_p, TICK_LOG2);
+          acc <= step;
           `EVMS_REQUEST(dt2, w_p11)
           state <= S_P_P00B;
         end
         S_P_P00B: if (mul_done) begin
-          acc <= acc + shr_rnd(mul_p, COV_FRAC);
+          acc <= step;
           `EVMS_REQUEST(cfg_q_third, dt3)
           state <= S_P_P00C;
         end
         S_P_P00C: if (mul_done) begin
-          p00n <= clamp_sym(acc + shr_rnd(mul_p, NOISE_FRAC), CovMax);
+          p00n <= step;
           `EVMS_REQUEST(dt, w_p11)
           state <= S_P_P01A;
         end
         S_P_P01A: if (mul_done) begin
-          acc <= w_p01 + shr_rnd(mul_p, TICK_LOG2);
+          acc <= step;
           `EVMS_REQUEST(cfg_q_half, dt2)
           state <= S_P_P01B;
         end
         S_P_P01B: if (mul_done) begin
-          w_p01 <= clamp_sym(acc + shr_rnd(mul_p, NOISE_FRAC), CovMax);
+          w_p01 <= step;
           `EVMS_REQUEST(cfg_q, dt)
           state <= S_P_P11;
         end
         S_P_P11: if (mul_done) begin
-          w_p11 <= clamp_sym(w_p11 + shr_rnd(mul_p, NOISE_FRAC + TICK_LOG2 - COV_FRAC), CovMax);
+          w_p11 <= step;
           w_p00 <= p00n;
           // update: s = p00 + r, through the reciprocal
           recip_x <= 64'(p00n + cfg_r);
@@ -348,31 +426,27 @@ module evms_tracker #(
           state <= S_U_POS;
         end
         S_U_POS: if (mul_done) begin
-          w_pos <= clamp_sym(w_pos + shr_rnd(mul_p, GAIN_FRAC), PosMax);
+          w_pos <= step;
           `EVMS_REQUEST(k1, clamp_sym(w_e, GainMax))
           state <= S_U_VEL;
         end
         S_U_VEL: if (mul_done) begin
-          w_vel <= clamp_sym(w_vel + shr_rnd(mul_p, GAIN_FRAC), PosMax);
+          w_vel <= step;
           `EVMS_REQUEST(cfg_r, k0)
           state <= S_U_P00;
         end
         S_U_P00: if (mul_done) begin
-          p00n <= clamp_sym(shr_rnd(mul_p, GAIN_FRAC), CovMax);
+          p00n <= step;
           `EVMS_REQUEST(cfg_r, k1)
           state <= S_U_P01;
         end
         S_U_P01: if (mul_done) begin
-          p01n <= clamp_sym(shr_rnd(mul_p, GAIN_FRAC), CovMax);
+          p01n <= CovBits'(step);
           `EVMS_REQUEST(k1, w_p01)
           state <= S_U_P11;
         end
         S_U_P11: if (mul_done) begin
-          s_pos[axis][si] <= 32'(w_pos);
-          s_vel[axis][si] <= 32'(w_vel);
-          s_p00[axis][si] <= p00n;
-          s_p01[axis][si] <= p01n;
-          s_p11[axis][si] <= clamp_sym(w_p11 - shr_rnd(mul_p, GAIN_FRAC), CovMax);
+          // (the filter state is written by the memory port below)
           state <= S_AX_END;
         end
         S_AX_END: begin
@@ -396,10 +470,10 @@ module evms_tracker #(
               upd_valid <= 1'b1;
               upd_t <= z_t;
               upd_id <= s_id[si];
-              upd_x <= s_pos[0][si];
-              upd_y <= s_pos[1][si];
-              upd_vx <= s_vel[0][si];
-              upd_vy <= s_vel[1][si];
+              upd_x <= pos_of[0];
+              upd_y <= pos_of[1];
+              upd_vx <= vel_of[0];
+              upd_vy <= vel_of[1];
               upd_zx <= z_x;
               upd_zy <= z_y;
             end
@@ -424,11 +498,6 @@ module evms_tracker #(
           end else if (meas_matched[CW'(k)]) begin
             k <= k + 1'b1;
           end else begin
-            logic signed [8:0] free;
-            free = -9'sd1;
-            for (int q = TRACKS_MAX - 1; q >= 0; q--) begin
-              if (!s_valid[q] && q < 32'(cfg_max_tracks)) free = 9'(q);
-            end
             if (free < 0) begin
               unassigned <= unassigned + 1'b1;
               k <= k + 1'b1;
@@ -439,15 +508,6 @@ module evms_tracker #(
               s_hits[TW'(free)] <= 8'd1;
               s_confirmed[TW'(free)] <= cfg_confirm_hits <= 8'd1;
               s_t[TW'(free)] <= z_t;
-              s_pos[0][TW'(free)] <= z_x;
-              s_pos[1][TW'(free)] <= z_y;
-              s_vel[0][TW'(free)] <= '0;
-              s_vel[1][TW'(free)] <= '0;
-              for (int a = 0; a < 2; a++) begin
-                s_p00[a][TW'(free)] <= cfg_p0_pos;
-                s_p01[a][TW'(free)] <= '0;
-                s_p11[a][TW'(free)] <= cfg_p0_vel;
-              end
               ids[CW'(k)] <= next_id;
               s <= (TW+1)'(free);
               state <= S_BIRTH_EMIT;
@@ -480,4 +540,19 @@ module evms_tracker #(
     end
   end
 `undef EVMS_REQUEST
+
+  // ---- the filter-state memories: a birth writes both axes, an update the axis it filtered --
+  logic          birth_now, update_now;
+  logic [TW-1:0] kal_addr;
+  logic [KW-1:0] kal_update;
+  assign birth_now = state == S_BIRTH && k < m && !meas_matched[CW'(k)] && free >= 0;
+  assign update_now = state == S_U_P11 && mul_done;
+  assign kal_addr = birth_now ? TW'(free) : si;
+  assign kal_update = {32'(w_pos), 32'(w_vel), CovBits'(p00n), p01n, CovBits'(step)};
+  always_ff @(posedge clk) begin
+    if (birth_now || (update_now && !axis))
+      kal_x[kal_addr] <= birth_now ? {z_x, 32'd0, CovBits'(cfg_p0_pos), CovBits'(0), CovBits'(cfg_p0_vel)} : kal_update;
+    if (birth_now || (update_now && axis))
+      kal_y[kal_addr] <= birth_now ? {z_y, 32'd0, CovBits'(cfg_p0_pos), CovBits'(0), CovBits'(cfg_p0_vel)} : kal_update;
+  end
 endmodule
