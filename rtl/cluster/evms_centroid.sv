@@ -2,6 +2,11 @@
 // (POS_FRAC fraction bits) at the mean of their timestamps, rounded half up. One pass over the
 // packet accumulates; then each cluster takes three divisions through the reciprocal unit and
 // the shared multiplier.
+//
+// Area: the sums and the results are memories with one write port and a combinational read
+// (distributed RAM on a Xilinx part) instead of registers with a write multiplexer each; a
+// valid bit per cluster clears the sums at once at the start of a packet, so the schedule is
+// the one of registers. The three divisions share one rounding shifter.
 module evms_centroid #(
   parameter int CLUSTERS_MAX = 16,
   parameter int POS_FRAC     = 12,
@@ -41,23 +46,30 @@ module evms_centroid #(
   typedef enum logic [3:0] {S_IDLE, S_ACC_READ, S_ACC_WAIT, S_ACC_ADD, S_DIV, S_DIV_RECIP, S_DIV_X, S_DIV_Y, S_DIV_T, S_DIV_STORE,
                             S_DONE} state_e;
   state_e state;
-  logic [31:0] sx [CLUSTERS_MAX], sy [CLUSTERS_MAX], count [CLUSTERS_MAX];
-  logic [63:0] st [CLUSTERS_MAX];
-  logic [31:0] out_t [CLUSTERS_MAX];
-  logic signed [31:0] out_x [CLUSTERS_MAX], out_y [CLUSTERS_MAX];
+  // Per cluster: {sx, sy, st, count}, valid when the packet has added to it.
+  logic [159:0] sums [CLUSTERS_MAX];
+  logic [CLUSTERS_MAX-1:0] sums_valid;
+  // Per cluster: {t, x, y}, written when its last division ends.
+  logic [95:0]  results [CLUSTERS_MAX];
+  logic signed [31:0] x_q, y_q;  // the cluster's x and y until its t is ready
   logic [15:0] i;
   logic [7:0]  c;
   logic [6:0]  m;
   logic [RECIP_FRAC:0] r;
 
-  assign z_t = out_t[CW'(z_c)];
-  assign z_x = out_x[CW'(z_c)];
-  assign z_y = out_y[CW'(z_c)];
+  assign {z_t, z_x, z_y} = results[CW'(z_c)];
   assign rd_i = i;
+
+  // The sums of the cluster being added to (accumulating) or divided.
+  logic [CW-1:0] sum_c;
+  logic [31:0]   sx, sy, count;
+  logic [63:0]   st;
+  assign sum_c = state == S_ACC_ADD ? CW'(ev_cluster) : CW'(c);
+  assign {sx, sy, st, count} = sums_valid[sum_c] ? sums[sum_c] : 160'd0;
   // Time since the packet's first event, modulo 2^32 like the C++ core's uint32 difference.
   logic [31:0] age;
   assign age = ev_t - t0;
-  assign recip_x = 64'(count[CW'(c)]);
+  assign recip_x = 64'(count);
 
   // round(p * 2^-(RECIP_FRAC + m - extra)), as Reciprocal::divide
   function automatic [63:0] quotient(input [63:0] p, input [6:0] mm, input integer extra);
@@ -81,17 +93,16 @@ module evms_centroid #(
       mul_start <= 1'b0;
       mul_a <= '0;
       mul_b <= '0;
-      for (int q = 0; q < CLUSTERS_MAX; q++) begin
-        {sx[q], sy[q], count[q], st[q]} <= '0;
-        {out_t[q], out_x[q], out_y[q]} <= '0;
-      end
+      sums_valid <= '0;
+      x_q <= '0;
+      y_q <= '0;
     end else begin
       done <= 1'b0;
       recip_start <= 1'b0;
       mul_start <= 1'b0;
       case (state)
         S_IDLE: if (start) begin
-          for (int q = 0; q < CLUSTERS_MAX; q++) {sx[q], sy[q], count[q], st[q]} <= '0;
+          sums_valid <= '0;
           i <= '0;
           state <= n == 0 ? S_DIV : S_ACC_READ;
           c <= '0;
@@ -99,12 +110,7 @@ module evms_centroid #(
         S_ACC_READ: state <= S_ACC_WAIT;
         S_ACC_WAIT: state <= S_ACC_ADD;
         S_ACC_ADD: begin
-          if (ev_cluster >= 0) begin
-            sx[CW'(ev_cluster)] <= sx[CW'(ev_cluster)] + 32'(ev_x);
-            sy[CW'(ev_cluster)] <= sy[CW'(ev_cluster)] + 32'(ev_y);
-            st[CW'(ev_cluster)] <= st[CW'(ev_cluster)] + 64'(age);
-            count[CW'(ev_cluster)] <= count[CW'(ev_cluster)] + 1'b1;
-          end
+          if (ev_cluster >= 0) sums_valid[sum_c] <= 1'b1;
           if (32'(i) + 1 < 32'(n)) begin
             i <= i + 1'b1;
             state <= S_ACC_READ;
@@ -125,26 +131,25 @@ module evms_centroid #(
           r <= recip_r;
           m <= recip_m;
           mul_start <= 1'b1;
-          mul_a <= $signed(64'(sx[CW'(c)]));
+          mul_a <= $signed(64'(sx));
           mul_b <= $signed(64'(recip_r));
           state <= S_DIV_X;
         end
         S_DIV_X: if (mul_done) begin
-          out_x[CW'(c)] <= 32'(quotient(mul_p, m, POS_FRAC));
+          x_q <= q_rounded;
           mul_start <= 1'b1;
-          mul_a <= $signed(64'(sy[CW'(c)]));
+          mul_a <= $signed(64'(sy));
           mul_b <= $signed(64'(r));
           state <= S_DIV_Y;
         end
         S_DIV_Y: if (mul_done) begin
-          out_y[CW'(c)] <= 32'(quotient(mul_p, m, POS_FRAC));
+          y_q <= q_rounded;
           mul_start <= 1'b1;
-          mul_a <= $signed(st[CW'(c)]);
+          mul_a <= $signed(st);
           mul_b <= $signed(64'(r));
           state <= S_DIV_T;
         end
         S_DIV_T: if (mul_done) begin
-          out_t[CW'(c)] <= t0 + 32'(quotient(mul_p, m, 0));
           c <= c + 1'b1;
           state <= S_DIV;
         end
@@ -155,5 +160,15 @@ module evms_centroid #(
         default: state <= S_IDLE;
       endcase
     end
+  end
+
+  // One rounding shifter for the three quotients: x and y have POS_FRAC fraction bits, t none.
+  // (results are 32-bit words, as the C++ core's)
+  logic [31:0] q_rounded;
+  assign q_rounded = 32'(quotient(mul_p, m, state == S_DIV_T ? 0 : POS_FRAC));
+
+  always_ff @(posedge clk) begin
+    if (state == S_ACC_ADD && ev_cluster >= 0) sums[sum_c] <= {sx + 32'(ev_x), sy + 32'(ev_y), st + 64'(age), count + 32'd1};
+    if (state == S_DIV_T && mul_done) results[CW'(c)] <= {t0 + q_rounded, x_q, y_q};
   end
 endmodule
