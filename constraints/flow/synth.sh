@@ -24,6 +24,7 @@ while getopts "j:s:o:" opt; do
   esac
 done
 shift $((OPTIND - 1))
+out=$(realpath -m "$out")   # the runs work inside rtl/generated
 configs=("$@")
 [ ${#configs[@]} -eq 0 ] && configs=(ice40_p1 ice40_p2 ice40_p4 ice40_p8 xc7_p1 xc7_p2 xc7_p4 xc7_p8)
 for tool in yosys nextpnr-ice40; do

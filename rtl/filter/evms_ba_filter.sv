@@ -53,10 +53,14 @@ module evms_ba_filter #(
   logic          scrub_second;
 
   // Neighbour k of the event, and whether it is inside the sensor (and not the pixel itself).
+  // k / 3 and k % 3 by comparison: a '/' or '%' here would synthesize a 32-bit divider.
+  logic [1:0]         k_row, k_col;
   logic signed [17:0] nx, ny;
   logic               n_inside;
-  assign nx = $signed({2'b00, ex}) + $signed(18'(32'(k) % 3)) - 18'sd1;
-  assign ny = $signed({2'b00, ey}) + $signed(18'(32'(k) / 3)) - 18'sd1;
+  assign k_row = k >= 4'd6 ? 2'd2 : (k >= 4'd3 ? 2'd1 : 2'd0);
+  assign k_col = 2'(k - 4'(k_row) * 4'd3);
+  assign nx = $signed({2'b00, ex}) + $signed({16'd0, k_col}) - 18'sd1;
+  assign ny = $signed({2'b00, ey}) + $signed({16'd0, k_row}) - 18'sd1;
   assign n_inside = k != 4 && nx >= 0 && ny >= 0 && nx < $signed({2'b00, cfg_width}) && ny < $signed({2'b00, cfg_height});
 
   assign ready = state == S_IDLE;
