@@ -56,7 +56,7 @@ run_config() {
   fi
   # $readmemh paths in the generated headers are relative to rtl/generated.
   (cd "$root/rtl/generated" && yosys -q -l "$dir/yosys.log" -p "read_verilog -sv -I. -I$root/rtl/board ${sources[*]} $root/rtl/board/$top.sv;
-      hierarchy -top $top -chparam LANES_OVERRIDE $lanes; $synth; tee -q -o $dir/stat.json stat -json") >/dev/null
+      hierarchy -top $top -chparam LANES_OVERRIDE $lanes; $synth; tee -q -o $dir/stat.json stat -json") >/dev/null 2>"$dir/yosys.warnings"
   local s=$dir/stat.json lut ff dsp bram spram
   if [ "$family" = ice40 ]; then
     lut=$(count "$s" SB_LUT4)

@@ -159,7 +159,9 @@ module evms_mean_shift #(
   // s1: memory data; s2: differences; s3: u; s4..s5: exp; s6: products.
   logic [LANES-1:0] v1, v2, v3, v4, v5, v6;
   logic [FW-1:0] d_x0 [5][LANES], d_y0 [5][LANES], d_p [5][LANES], d_t [5][LANES];
-  logic signed [FW+1:0] dx [LANES], dy [LANES], dp [LANES], dtt [LANES];
+  // Differences of two values in [0, 2^FW) fit FW + 1 signed bits: 18 on the Arty build, the
+  // widest operand one DSP48E1 squares (19 bits take two).
+  logic signed [FW:0] dx [LANES], dy [LANES], dp [LANES], dtt [LANES];
   logic [63:0] u [LANES];
   logic [WEIGHT_FRAC:0] w [LANES];
   logic [WEIGHT_FRAC:0] w6 [LANES];
@@ -168,10 +170,10 @@ module evms_mean_shift #(
 
   for (genvar l = 0; l < LANES; l++) begin : g_lane
     always_ff @(posedge clk) begin
-      dx[l]  <= xi - $signed({2'b0, m_x0[l]});
-      dy[l]  <= yi - $signed({2'b0, m_y0[l]});
-      dp[l]  <= pi_ - $signed({1'b0, m_p[l]});
-      dtt[l] <= ti - $signed({1'b0, m_t[l]});
+      dx[l]  <= (FW+1)'(xi - $signed({2'b0, m_x0[l]}));
+      dy[l]  <= (FW+1)'(yi - $signed({2'b0, m_y0[l]}));
+      dp[l]  <= (FW+1)'(pi_ - $signed({1'b0, m_p[l]}));
+      dtt[l] <= (FW+1)'(ti - $signed({1'b0, m_t[l]}));
       // Operands widen before they multiply: a cast of a product would keep its narrow width.
       u[l] <= 64'($signed(64'(dx[l])) * $signed(64'(dx[l]))) + 64'($signed(64'(dy[l])) * $signed(64'(dy[l]))) +
               64'($signed(64'(dp[l])) * $signed(64'(dp[l]))) + 64'($signed(64'(dtt[l])) * $signed(64'(dtt[l])));

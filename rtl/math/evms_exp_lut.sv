@@ -1,7 +1,9 @@
 // exp(-u) from a table with linear interpolation, as hls/math/exp_table.h: u has UF fraction
 // bits; u >= 16 gives 0; else i = u >> (UF + 4 - L), f = the IB bits below the index, and
 // w = v[i] - ((v[i] - v[i+1]) * f >> IB). The ROM holds v[0..2^L], one word per entry, and is
-// read at i and i+1 through two ports. Latency 2; a new u every cycle.
+// read at i and i+1 through two ports. Latency 2; a new u every cycle. The samples never
+// increase (ExpTable.SamplesNeverIncrease), so v[i] - v[i+1] is WF + 1 bits and the slope one
+// narrow product (one DSP48E1 instead of two for 25-bit operands).
 module evms_exp_lut #(
   parameter int    L        = 9,
   parameter int    WF       = 16,
@@ -34,6 +36,8 @@ module evms_exp_lut #(
     zero_qq <= zero_q;
   end
   logic [WF+IB:0] slope;
-  assign slope = ((WF+IB+1)'(v0_q) - (WF+IB+1)'(v1_q)) * (WF+IB+1)'(f_qq);
+  logic [WF:0] step;
+  assign step = v0_q - v1_q;
+  assign slope = (WF+IB+1)'(step) * (WF+IB+1)'(f_qq);
   assign w = zero_qq ? '0 : v0_q - (WF+1)'(slope >> IB);
 endmodule

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "hls/cluster/tables.h"
+#include "hls/core/configs.h"
 #include "hls/core/shape.h"
 #include "hls/fixed/stream.h"
 #include "hls/math/cexp.h"
@@ -54,6 +56,21 @@ TEST(ExpTable, ErrorBoundDecayInputs) {
     worst = std::max(worst, std::abs(got - std::exp(-std::ldexp(static_cast<double>(u), -32))));
   }
   EXPECT_LE(worst, bound);
+}
+
+// evms_exp_lut (rtl/math) takes v[i] - v[i+1] in WF + 1 bits, which holds only while the
+// samples never increase; every build's table is checked.
+template <class S>
+void expect_samples_never_increase(const char* build) {
+  const auto& table = Tables<S>::exp;
+  for (int i = 0; i < table.kEntries; ++i) {
+    ASSERT_GE(table.v[i], table.v[i + 1]) << build << " build, sample " << i;
+  }
+}
+TEST(ExpTable, SamplesNeverIncrease) {
+  expect_samples_never_increase<HostShape>("host");
+  expect_samples_never_increase<ArtyShape>("arty");
+  expect_samples_never_increase<Ice40Shape>("ice40");
 }
 
 // Stated bound: relative error below 2^-(RF - 3) = 2^-17 for T = 8, RF = 20.
