@@ -64,6 +64,8 @@ module evms_centroid #(
   logic [CW-1:0] sum_c;
   logic [31:0]   sx, sy, count;
   logic [63:0]   st;
+  logic          adding;  // this cycle adds the event to its cluster's sums
+  assign adding = state == S_ACC_ADD && ev_cluster >= 0;
   assign sum_c = state == S_ACC_ADD ? CW'(ev_cluster) : CW'(c);
   assign {sx, sy, st, count} = sums_valid[sum_c] ? sums[sum_c] : 160'd0;
   // Time since the packet's first event, modulo 2^32 like the C++ core's uint32 difference.
@@ -110,7 +112,7 @@ module evms_centroid #(
         S_ACC_READ: state <= S_ACC_WAIT;
         S_ACC_WAIT: state <= S_ACC_ADD;
         S_ACC_ADD: begin
-          if (ev_cluster >= 0) sums_valid[sum_c] <= 1'b1;
+          if (adding) sums_valid[sum_c] <= 1'b1;
           if (32'(i) + 1 < 32'(n)) begin
             i <= i + 1'b1;
             state <= S_ACC_READ;
@@ -168,7 +170,7 @@ module evms_centroid #(
   assign q_rounded = 32'(quotient(mul_p, m, state == S_DIV_T ? 0 : POS_FRAC));
 
   always_ff @(posedge clk) begin
-    if (state == S_ACC_ADD && ev_cluster >= 0) sums[sum_c] <= {sx + 32'(ev_x), sy + 32'(ev_y), st + 64'(age), count + 32'd1};
+    if (adding) sums[sum_c] <= {sx + 32'(ev_x), sy + 32'(ev_y), st + 64'(age), count + 32'd1};
     if (state == S_DIV_T && mul_done) results[CW'(c)] <= {t0 + q_rounded, x_q, y_q};
   end
 endmodule

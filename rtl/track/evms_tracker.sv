@@ -549,10 +549,14 @@ module evms_tracker #(
   assign update_now = state == S_U_P11 && mul_done;
   assign kal_addr = birth_now ? TW'(free) : si;
   assign kal_update = {32'(w_pos), 32'(w_vel), CovBits'(p00n), p01n, CovBits'(step)};
+  // A new track's axis: at the measurement, at rest, with the initial covariance.
+  function automatic [KW-1:0] born_at(input signed [31:0] z);
+    begin
+      born_at = {z, 32'd0, CovBits'(cfg_p0_pos), CovBits'(0), CovBits'(cfg_p0_vel)};
+    end
+  endfunction
   always_ff @(posedge clk) begin
-    if (birth_now || (update_now && !axis))
-      kal_x[kal_addr] <= birth_now ? {z_x, 32'd0, CovBits'(cfg_p0_pos), CovBits'(0), CovBits'(cfg_p0_vel)} : kal_update;
-    if (birth_now || (update_now && axis))
-      kal_y[kal_addr] <= birth_now ? {z_y, 32'd0, CovBits'(cfg_p0_pos), CovBits'(0), CovBits'(cfg_p0_vel)} : kal_update;
+    if (birth_now || (update_now && !axis)) kal_x[kal_addr] <= birth_now ? born_at(z_x) : kal_update;
+    if (birth_now || (update_now && axis)) kal_y[kal_addr] <= birth_now ? born_at(z_y) : kal_update;
   end
 endmodule
