@@ -68,30 +68,52 @@ module evms_tracker #(
 );
   localparam int TW = TRACKS_MAX > 1 ? $clog2(TRACKS_MAX) : 1;
   localparam int CW = CLUSTERS_MAX > 1 ? $clog2(CLUSTERS_MAX) : 1;
-  localparam logic signed [63:0] CovMax = (64'sd1 <<< 35) - 1;
-  localparam logic signed [63:0] GainMax = (64'sd1 <<< 27) - 1;
-  localparam logic signed [63:0] PosMax = (64'sd1 <<< 31) - 1;
-  localparam logic signed [63:0] DistMax = 64'sd4096 <<< POS_FRAC;
+  // Bounds: covariances +-(2^35 - 1), gains +-(2^27 - 1), positions +-(2^31 - 1), gating
+  // distances +-2^(12 + POS_FRAC) (4096 px).
+  localparam int CovLog2 = 35, GainLog2 = 27, PosLog2 = 31, DistLog2 = 12 + POS_FRAC;
   localparam logic signed [63:0] MaxDt = 64'sd1 <<< 18;
   localparam int CovBits = 36;
   initial begin
     if (TICK_LOG2 < 1 || 2 * TICK_LOG2 - COV_FRAC < 1 || COV_FRAC < 1 || NOISE_FRAC < 1 ||
         NOISE_FRAC + TICK_LOG2 - COV_FRAC < 1 || GAIN_FRAC < 1)
       $error("evms_tracker: the step unit rounds right shifts of at least one bit");
+    if (RECIP_FRAC < GAIN_FRAC || GainLog2 != 27)
+      $error("evms_tracker: the gains' quotient shifts right (RECIP_FRAC >= GAIN_FRAC) and clamps at 2^27 - 1");
+    if (POS_FRAC > 14)
+      $error("evms_tracker: the gating distance assumes 2^(16 + POS_FRAC) + 2^DistLog2 < 2^31 - 1");
   end
 
-  function automatic signed [63:0] clamp_sym(input signed [63:0] v, input signed [63:0] b);
+  // clamp_sym(v, b) for the bounds the tracker uses, b = 2^n - 1 (ones) and b = 2^n (pow2),
+  // decided from the sign and the high bits instead of two 64-bit comparisons, which are carry
+  // chains (18 ns on an iCE40 UP5K each) on the step unit's path.
+  function automatic logic outside_ones(input signed [63:0] v, input integer n);
+    logic [63:0] hi;
     begin
-      clamp_sym = v > b ? b : (v < -b ? -b : v);
+      hi = 64'(v) >> n;   // bits [63:n]
+      outside_ones = v[63] ? !(hi == ~(64'd0) >> n && 64'(v) << (64 - n) != 0) : hi != 0;
     end
   endfunction
-  // Reciprocal::divide for a non-negative numerator: p = num * r.
-  function automatic [63:0] quotient(input [63:0] p, input [6:0] mm, input integer extra);
-    integer shift;
+  function automatic signed [63:0] clamp_ones(input signed [63:0] v, input integer n);
     begin
-      shift = RECIP_FRAC + {25'd0, mm} - extra;
-      if (shift <= 0) quotient = p << (-shift);
-      else quotient = (p + (64'd1 << (shift - 1))) >> shift;
+      if (!outside_ones(v, n)) clamp_ones = v;
+      else clamp_ones = v[63] ? -((64'sd1 <<< n) - 1) : (64'sd1 <<< n) - 1;
+    end
+  endfunction
+  function automatic signed [63:0] clamp_pow2(input signed [63:0] v, input integer n);
+    logic [63:0] hi;
+    begin
+      hi = 64'(v) >> n;
+      if (!v[63] && ((hi >> 1) != 0 || (hi[0] && 64'(v) << (64 - n) != 0))) clamp_pow2 = 64'sd1 <<< n;
+      else if (v[63] && hi != ~(64'd0) >> n) clamp_pow2 = -(64'sd1 <<< n);
+      else clamp_pow2 = v;
+    end
+  endfunction
+  // Reciprocal::divide for a non-negative numerator: q = p * 2^-shift rounded half up, with
+  // shift = RECIP_FRAC + m - GAIN_FRAC >= 0. As (p + 2^(s-1)) >> s == ((p >> (s-1)) + 1) >> 1,
+  // q = (t + 1) >> 1 with t = {p, 0} >> shift: one shifter by a registered amount, then one add.
+  function automatic [64:0] quotient_t(input [63:0] p, input [7:0] shift);
+    begin
+      quotient_t = {p, 1'b0} >> shift;
     end
   endfunction
 
@@ -132,7 +154,9 @@ module evms_tracker #(
   logic signed [63:0] acc, k0, k1, p00n;
   logic signed [CovBits-1:0] p01n;
   logic [RECIP_FRAC:0] rr;
-  logic [6:0]  rm;
+  logic [7:0]  q_shift;   // the gains' quotient shift, RECIP_FRAC + m - GAIN_FRAC
+  logic [64:0] q_t;
+  assign q_t = quotient_t(mul_p, q_shift);
 
   logic [TW-1:0] si;
   assign si = TW'(s);
@@ -163,8 +187,9 @@ module evms_tracker #(
   typedef enum logic [1:0] {B_NONE, B_POS, B_COV} bound_e;
   shift_e             step_shift;
   bound_e             step_bound;
-  logic               step_negate;
-  logic signed [63:0] step_base, step_half, step_sum, step_bound_value, step, gate_dist;
+  logic               step_negate, step_carry;
+  logic signed [63:0] step_base, step_half, step_hs, step_sum, step, gate_sum, gate_dist;
+  logic signed [63:0] zp [2];   // z - pos of the pair being gated, per axis
   always_comb begin
     step_shift = SH_TICK;
     step_bound = B_NONE;
@@ -197,11 +222,20 @@ module evms_tracker #(
       SH_GAIN:      step_half = mul_p >>> (GAIN_FRAC - 1);
       default:      step_half = mul_p >>> (TICK_LOG2 - 1);
     endcase
-    step_sum = step_negate ? step_base - ((step_half + 64'sd1) >>> 1) : step_base + ((step_half + 64'sd1) >>> 1);
-    step_bound_value = step_bound == B_POS ? PosMax : CovMax;
-    step = step_bound == B_NONE ? step_sum : clamp_sym(step_sum, step_bound_value);
-    // The gating distance of the predicted position to the measurement.
-    gate_dist = clamp_sym((state == S_PAIR_PX ? 64'(z_x) : 64'(z_y)) - step, DistMax);
+    // base +- ((h + 1) >> 1) as one adder with a carry in: (h + 1) >> 1 == (h >> 1) + h[0], and
+    // base - q == base + ~q + 1, so the rounding add and the sum are one carry chain.
+    // (a statement of its own: in an expression with the unsigned carry, >>> would be logical)
+    step_hs = step_half >>> 1;
+    step_carry = step_negate ^ step_half[0];
+    step_sum = step_base + (step_negate ? ~step_hs : step_hs) + 64'(step_carry);
+    step = step_bound == B_POS ? clamp_ones(step_sum, PosLog2) : step_bound == B_COV ? clamp_ones(step_sum, CovLog2) : step_sum;
+    // The gating distance of the predicted position to the measurement, clamp(z - step): from
+    // z - pos (registered when the pair was issued) minus the rounded term, a second carry chain
+    // beside the step's rather than after it. When the prediction saturates at +-(2^31 - 1) the
+    // distance saturates at -+2^DistLog2, as |z| < 2^(16 + POS_FRAC) (pixel coordinates).
+    gate_sum = zp[state == S_PAIR_PX ? 0 : 1] + ~step_hs + 64'(!step_half[0]);
+    if (outside_ones(step_sum, PosLog2)) gate_dist = step_sum[63] ? 64'sd1 <<< DistLog2 : -(64'sd1 <<< DistLog2);
+    else gate_dist = clamp_pow2(gate_sum, DistLog2);
   end
 
   // The lowest free slot a birth takes (-1: none).
@@ -238,10 +272,12 @@ module evms_tracker #(
       best_m <= '0;
       best_d2 <= '0;
       {d2, dt, dt2, dt3, dpred, dx} <= '0;
+      zp[0] <= '0;
+      zp[1] <= '0;
       axis <= 1'b0;
       {w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e, acc, k0, k1, p00n, p01n} <= '0;
       rr <= '0;
-      rm <= '0;
+      q_shift <= '0;
       for (int q = 0; q < TRACKS_MAX; q++) begin
         s_valid[q] <= 1'b0;
         s_confirmed[q] <= 1'b0;
@@ -305,6 +341,8 @@ module evms_tracker #(
             logic signed [31:0] raw;
             raw = $signed(z_t - s_t[si]);
             dt <= raw > 0 ? (64'(raw) > MaxDt ? MaxDt : 64'(raw)) : 64'sd0;
+            zp[0] <= 64'(z_x) - 64'(pos_of[0]);
+            zp[1] <= 64'(z_y) - 64'(pos_of[1]);
             `EVMS_REQUEST(64'(vel_of[0]), raw > 0 ? (64'(raw) > MaxDt ? MaxDt : 64'(raw)) : 64'sd0)
             state <= S_PAIR_PX;
           end
@@ -408,26 +446,28 @@ module evms_tracker #(
         end
         S_U_RECIP: if (recip_done) begin
           rr <= recip_r;
-          rm <= recip_m;
+          q_shift <= 8'(RECIP_FRAC - GAIN_FRAC) + 8'(recip_m);
           `EVMS_REQUEST(w_p00, 64'(recip_r))
           state <= S_U_K0;
         end
         S_U_K0: if (mul_done) begin
-          k0 <= $signed(quotient(mul_p, rm, GAIN_FRAC));
+          k0 <= 64'((q_t + 65'd1) >> 1);
           `EVMS_REQUEST(w_p01 < 0 ? -w_p01 : w_p01, 64'(rr))
           state <= S_U_K1;
         end
         S_U_K1: if (mul_done) begin
-          logic signed [63:0] mag;
-          mag = $signed(quotient(mul_p, rm, GAIN_FRAC));
-          k1 <= clamp_sym(w_p01 < 0 ? -mag : mag, GainMax);
+          logic [27:0] mag;
+          // clamp_sym(+-q, G) == +-min(q, G) for q >= 0; q >= 2^27 exactly when t >= 2^28 - 1,
+          // so the add is 28 bits and the negation 29.
+          mag = q_t >> 28 != 0 || &q_t[27:0] ? 28'((1 << GainLog2) - 1) : 28'(({1'b0, q_t[27:0]} + 29'd1) >> 1);
+          k1 <= 64'($signed(w_p01 < 0 ? -{1'b0, mag} : {1'b0, mag}));
           w_e <= w_z - w_pos;
           `EVMS_REQUEST(k0, w_z - w_pos)
           state <= S_U_POS;
         end
         S_U_POS: if (mul_done) begin
           w_pos <= step;
-          `EVMS_REQUEST(k1, clamp_sym(w_e, GainMax))
+          `EVMS_REQUEST(k1, clamp_ones(w_e, GainLog2))
           state <= S_U_VEL;
         end
         S_U_VEL: if (mul_done) begin
