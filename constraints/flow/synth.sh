@@ -2,7 +2,11 @@
 # Synthesizes the board tops with Yosys (synth_ice40 for the iCEBreaker's iCE40 UP5K,
 # synth_xilinx for the Arty's XC7A35T), places and routes the iCE40 ones that fit with
 # nextpnr-ice40 over several seeds, and writes one JSON report: LUT, FF, DSP, BRAM and SPRAM
-# use, and the median Fmax. Each top is run at its build's lane count and at P = 1, 2, 4, 8.
+# use, the median Fmax, and for every configuration the logic delay of its longest
+# register-to-register path (Yosys sta with the cell delays of Yosys's own cell models: no
+# routing and no DSP or block-RAM delays, so it is a lower bound on the clock period and
+# 1000 / logic_ns an upper bound on Fmax; it also names the path's blocks and source lines).
+# Each top is run at its build's lane count and at P = 1, 2, 4, 8.
 #
 #   constraints/flow/synth.sh [-j JOBS] [-s SEEDS] [-o REPORT.json] [CONFIG ...]
 #
@@ -37,6 +41,14 @@ sources=()
 while read -r f; do sources+=("$root/rtl/$f"); done < <(cat "$root/rtl/core.f" "$root/rtl/board.f")
 
 # The iCE40 UP5K and the XC7A35T, for the "fits" verdict.
+# The cell models with their specify delays, minus the asynchronous set/reset-to-Q arcs, which
+# sta would otherwise chain into the reset tree (a reset is not a clocked path).
+share=$(dirname "$(command -v yosys)")/../share/yosys
+for family in xilinx ice40; do
+  [ -f "$share/$family/cells_sim.v" ] || { echo "synth.sh: $share/$family/cells_sim.v not found (Yosys's cell models)" >&2; exit 1; }
+  sed -E '/\((CLR|PRE|R|S) => Q\)/d' "$share/$family/cells_sim.v" > "$work/timing_$family.v"
+done
+
 declare -A capacity=([ice40_lut]=5280 [ice40_ff]=5280 [ice40_dsp]=8 [ice40_bram]=30 [ice40_spram]=4
                      [xc7_lut]=20800 [xc7_ff]=41600 [xc7_dsp]=90 [xc7_bram]=50 [xc7_spram]=0)
 
@@ -50,13 +62,16 @@ run_config() {
   if [ "$family" = ice40 ]; then
     top=evms_icebreaker_top
     synth="synth_ice40 -dsp -spram -top $top -json $dir/netlist.json"
+    timing="read_verilog -D ICE40_U -lib -specify $work/timing_ice40.v"
   else
     top=evms_arty_top
     synth="synth_xilinx -family xc7 -flatten -top $top"
+    timing="read_verilog -lib -specify $work/timing_xilinx.v"
   fi
   # $readmemh paths in the generated headers are relative to rtl/generated.
   (cd "$root/rtl/generated" && yosys -q -l "$dir/yosys.log" -p "read_verilog -sv -I. -I$root/rtl/board ${sources[*]} $root/rtl/board/$top.sv;
-      hierarchy -top $top -chparam LANES_OVERRIDE $lanes; $synth; tee -q -o $dir/stat.json stat -json") >/dev/null 2>"$dir/yosys.warnings"
+      hierarchy -top $top -chparam LANES_OVERRIDE $lanes; $synth; tee -q -o $dir/stat.json stat -json;
+      $timing; tee -q -o $dir/sta.txt sta") >/dev/null 2>"$dir/yosys.warnings"
   local s=$dir/stat.json lut ff dsp bram spram
   if [ "$family" = ice40 ]; then
     lut=$(count "$s" SB_LUT4)
@@ -72,6 +87,13 @@ run_config() {
     bram=$(awk -v a="$(count "$s" RAMB36E1)" -v b="$(count "$s" RAMB18E1)" 'BEGIN { printf "%g", a + b / 2 }')
     spram=0
   fi
+  # The longest path: its delay, and its blocks and source lines from start to end.
+  local logic_ps logic_ns bound critical
+  logic_ps=$(grep -oE "Latest arrival time in '[^']+' is [0-9]+" "$dir/sta.txt" | awk '{ print $NF }')
+  logic_ns=$(awk -v p="$logic_ps" 'BEGIN { printf "%.2f", p / 1000 }')
+  bound=$(awk -v p="$logic_ps" 'BEGIN { printf "%.1f", 1e6 / p }')
+  critical=$(awk '/Latest arrival/ { on = 1 } on { print } /C->Q\)|Arrival histogram/ { on = 0 }' "$dir/sta.txt" | tr -d '\\' |
+    grep -oE 'u_board(\.u_[a-z0-9_]+)+|[a-z0-9_]+\.sv:[0-9]+' | sed 's/^u_board\.//' | tac | awk '!seen[$0]++' | paste -sd' ')
   local fits=true
   for r in lut ff dsp bram spram; do
     awk -v u="${!r}" -v c="${capacity[${family}_$r]}" 'BEGIN { exit !(u > c) }' && fits=false
@@ -91,9 +113,9 @@ run_config() {
       fits=false
     fi
   fi
-  printf '  "%s": {"top": "%s", "lanes": %s, "lut": %s, "ff": %s, "dsp": %s, "bram": %s, "spram": %s, "fits": %s, "fmax_mhz": %s}' \
-    "$name" "$top" "$lanes" "$lut" "$ff" "$dsp" "$bram" "$spram" "$fits" "$fmax" > "$dir/entry.json"
-  echo "synth.sh: $name done: $lut LUT, $ff FF, $dsp DSP, $bram BRAM, $spram SPRAM, fits $fits, Fmax $fmax MHz" >&2
+  printf '  "%s": {"top": "%s", "lanes": %s, "lut": %s, "ff": %s, "dsp": %s, "bram": %s, "spram": %s, "fits": %s, "fmax_mhz": %s, "logic_ns": %s, "fmax_bound_mhz": %s, "critical": "%s"}' \
+    "$name" "$top" "$lanes" "$lut" "$ff" "$dsp" "$bram" "$spram" "$fits" "$fmax" "$logic_ns" "$bound" "$critical" > "$dir/entry.json"
+  echo "synth.sh: $name done: $lut LUT, $ff FF, $dsp DSP, $bram BRAM, $spram SPRAM, fits $fits, Fmax $fmax MHz, logic path $logic_ns ns (Fmax <= $bound MHz) through $critical" >&2
 }
 
 for c in "${configs[@]}"; do
