@@ -40,7 +40,6 @@ mkdir -p "$work"
 sources=()
 while read -r f; do sources+=("$root/rtl/$f"); done < <(cat "$root/rtl/core.f" "$root/rtl/board.f")
 
-# The iCE40 UP5K and the XC7A35T, for the "fits" verdict.
 # The cell models with their specify delays, minus the asynchronous set/reset-to-Q arcs, which
 # sta would otherwise chain into the reset tree (a reset is not a clocked path).
 share=$(dirname "$(command -v yosys)")/../share/yosys
@@ -49,6 +48,7 @@ for family in xilinx ice40; do
   sed -E '/\((CLR|PRE|R|S) => Q\)/d' "$share/$family/cells_sim.v" > "$work/timing_$family.v"
 done
 
+# The iCE40 UP5K and the XC7A35T, for the "fits" verdict.
 declare -A capacity=([ice40_lut]=5280 [ice40_ff]=5280 [ice40_dsp]=8 [ice40_bram]=30 [ice40_spram]=4
                      [xc7_lut]=20800 [xc7_ff]=41600 [xc7_dsp]=90 [xc7_bram]=50 [xc7_spram]=0)
 
@@ -89,7 +89,8 @@ run_config() {
   fi
   # The longest path: its delay, and its blocks and source lines from start to end.
   local logic_ps logic_ns bound critical
-  logic_ps=$(grep -oE "Latest arrival time in '[^']+' is [0-9]+" "$dir/sta.txt" | awk '{ print $NF }')
+  logic_ps=$({ grep -oE "Latest arrival time in '[^']+' is [0-9]+" "$dir/sta.txt" || true; } | awk '{ print $NF }')
+  [ -n "$logic_ps" ] || { echo "synth.sh: $name: $dir/sta.txt: no latest arrival time from Yosys sta" >&2; return 1; }
   logic_ns=$(awk -v p="$logic_ps" 'BEGIN { printf "%.2f", p / 1000 }')
   bound=$(awk -v p="$logic_ps" 'BEGIN { printf "%.1f", 1e6 / p }')
   critical=$(awk '/Latest arrival/ { on = 1 } on { print } /C->Q\)|Arrival histogram/ { on = 0 }' "$dir/sta.txt" | tr -d '\\' |

@@ -71,7 +71,7 @@ module evms_tracker #(
   // Bounds: covariances +-(2^35 - 1), gains +-(2^27 - 1), positions +-(2^31 - 1), gating
   // distances +-2^(12 + POS_FRAC) (4096 px).
   localparam int CovLog2 = 35, GainLog2 = 27, PosLog2 = 31, DistLog2 = 12 + POS_FRAC;
-  localparam logic signed [63:0] MaxDt = 64'sd1 <<< 18;
+  localparam logic signed [63:0] MaxDt = 64'sd1 <<< 18;   // longer time steps are clamped
   localparam int CovBits = 36;
   initial begin
     if (TICK_LOG2 < 1 || 2 * TICK_LOG2 - COV_FRAC < 1 || COV_FRAC < 1 || NOISE_FRAC < 1 ||
@@ -108,12 +108,9 @@ module evms_tracker #(
       else clamp_pow2 = v;
     end
   endfunction
-  // Reciprocal::divide for a non-negative numerator: q = p * 2^-shift rounded half up, with
-  // shift = RECIP_FRAC + m - GAIN_FRAC >= 0. As (p + 2^(s-1)) >> s == ((p >> (s-1)) + 1) >> 1,
-  // q = (t + 1) >> 1 with t = {p, 0} >> shift: one shifter by a registered amount, then one add.
-  function automatic [64:0] quotient_t(input [63:0] p, input [7:0] shift);
+  function automatic signed [63:0] capped_dt(input [31:0] raw_us);
     begin
-      quotient_t = {p, 1'b0} >> shift;
+      capped_dt = 64'(raw_us) > MaxDt ? MaxDt : 64'(raw_us);
     end
   endfunction
 
@@ -154,9 +151,12 @@ module evms_tracker #(
   logic signed [63:0] acc, k0, k1, p00n;
   logic signed [CovBits-1:0] p01n;
   logic [RECIP_FRAC:0] rr;
-  logic [7:0]  q_shift;   // the gains' quotient shift, RECIP_FRAC + m - GAIN_FRAC
+  // Reciprocal::divide for a non-negative numerator: q = p * 2^-shift rounded half up, with
+  // shift = RECIP_FRAC + m - GAIN_FRAC >= 0. As (p + 2^(s-1)) >> s == ((p >> (s-1)) + 1) >> 1,
+  // q = (t + 1) >> 1 with t = {p, 0} >> shift: one shifter by a registered amount, then one add.
+  logic [7:0]  q_shift;
   logic [64:0] q_t;
-  assign q_t = quotient_t(mul_p, q_shift);
+  assign q_t = {mul_p, 1'b0} >> q_shift;
 
   logic [TW-1:0] si;
   assign si = TW'(s);
@@ -233,7 +233,7 @@ module evms_tracker #(
     // z - pos (registered when the pair was issued) minus the rounded term, a second carry chain
     // beside the step's rather than after it. When the prediction saturates at +-(2^31 - 1) the
     // distance saturates at -+2^DistLog2, as |z| < 2^(16 + POS_FRAC) (pixel coordinates).
-    gate_sum = zp[state == S_PAIR_PX ? 0 : 1] + ~step_hs + 64'(!step_half[0]);
+    gate_sum = zp[state == S_PAIR_PX ? 0 : 1] + ~step_hs + 64'(!step_carry);   // zp - (hs + carry)
     if (outside_ones(step_sum, PosLog2)) gate_dist = step_sum[63] ? 64'sd1 <<< DistLog2 : -(64'sd1 <<< DistLog2);
     else gate_dist = clamp_pow2(gate_sum, DistLog2);
   end
@@ -339,11 +339,13 @@ module evms_tracker #(
             k <= k + 1'b1;
           end else begin
             logic signed [31:0] raw;
+            logic signed [63:0] dt_now;
             raw = $signed(z_t - s_t[si]);
-            dt <= raw > 0 ? (64'(raw) > MaxDt ? MaxDt : 64'(raw)) : 64'sd0;
+            dt_now = raw > 0 ? capped_dt(32'(raw)) : 64'sd0;
+            dt <= dt_now;
             zp[0] <= 64'(z_x) - 64'(pos_of[0]);
             zp[1] <= 64'(z_y) - 64'(pos_of[1]);
-            `EVMS_REQUEST(64'(vel_of[0]), raw > 0 ? (64'(raw) > MaxDt ? MaxDt : 64'(raw)) : 64'sd0)
+            `EVMS_REQUEST(64'(vel_of[0]), dt_now)
             state <= S_PAIR_PX;
           end
         end
@@ -363,10 +365,12 @@ module evms_tracker #(
           state <= S_PAIR_DY2;
         end
         S_PAIR_DY2: if (mul_done) begin
-          if (d2 + 64'(mul_p) <= cfg_gate2 && (best_s < 0 || d2 + 64'(mul_p) < best_d2)) begin
+          logic [63:0] pair_d2;
+          pair_d2 = d2 + 64'(mul_p);
+          if (pair_d2 <= cfg_gate2 && (best_s < 0 || pair_d2 < best_d2)) begin
             best_s <= $signed({1'b0, 8'(s)});
             best_m <= k;
-            best_d2 <= d2 + 64'(mul_p);
+            best_d2 <= pair_d2;
           end
           k <= k + 1'b1;
           state <= S_PAIR;
@@ -380,8 +384,8 @@ module evms_tracker #(
           begin
             logic [31:0] raw;
             raw = z_t - s_t[TW'(best_s)];
-            dt <= 64'(raw) > MaxDt ? MaxDt : 64'(raw);
-            `EVMS_REQUEST(64'(raw) > MaxDt ? MaxDt : 64'(raw), 64'(raw) > MaxDt ? MaxDt : 64'(raw))
+            dt <= capped_dt(raw);
+            `EVMS_REQUEST(capped_dt(raw), capped_dt(raw))
           end
           state <= S_DT2;
         end
