@@ -59,6 +59,7 @@ count() {  # count FILE CELL-REGEX: the sum of the matching cell counts of the w
 run_config() {
   local name=$1 family=${1%_p*} lanes=${1#*_p} dir=$work/$1 top
   mkdir -p "$dir"
+  rm -f "$dir/stat.json" "$dir/sta.txt" "$dir/entry.json"   # a failed run must not leave an earlier run's figures
   if [ "$family" = ice40 ]; then
     top=evms_icebreaker_top
     synth="synth_ice40 -dsp -spram -top $top -json $dir/netlist.json"
@@ -71,7 +72,10 @@ run_config() {
   # $readmemh paths in the generated headers are relative to rtl/generated.
   (cd "$root/rtl/generated" && yosys -q -l "$dir/yosys.log" -p "read_verilog -sv -I. -I$root/rtl/board ${sources[*]} $root/rtl/board/$top.sv;
       hierarchy -top $top -chparam LANES_OVERRIDE $lanes; $synth; tee -q -o $dir/stat.json stat -json;
-      $timing; tee -q -o $dir/sta.txt sta") >/dev/null 2>"$dir/yosys.warnings"
+      $timing; tee -q -o $dir/sta.txt sta") >/dev/null 2>"$dir/yosys.warnings" || {
+    echo "synth.sh: $name: yosys failed: $(grep -m1 'ERROR' "$dir/yosys.warnings" || tail -n 1 "$dir/yosys.warnings")" >&2
+    return 1
+  }
   local s=$dir/stat.json lut ff dsp bram spram
   if [ "$family" = ice40 ]; then
     lut=$(count "$s" SB_LUT4)
@@ -125,6 +129,9 @@ for c in "${configs[@]}"; do
   run_config "$c" &
 done
 wait
+failed=()
+for c in "${configs[@]}"; do [ -f "$work/$c/entry.json" ] || failed+=("$c"); done
+[ ${#failed[@]} -eq 0 ] || { echo "synth.sh: no result for ${failed[*]} (see the messages above); $out not written" >&2; exit 1; }
 {
   echo "{"
   first=true
