@@ -4,19 +4,22 @@
 // below is read off a state machine of the RTL; sim/ checks the model against the Verilated
 // RTL stage by stage (tests/sim/test_schedule.cpp), exactly, when no output is held back.
 //
-// With n events in a packet, P kernel lanes, C = ceil(n / P) and L the multiplier's latency
-// (1 clock for a 64-bit product, ceil(64 / d) + 1 for d bits a clock):
+// With n events in a packet, P kernel lanes, C = ceil(n / P), L the multiplier's latency
+// (3 clocks for a 64-bit product, pipelined over its digit products, ceil(64 / d) + 1 for d bits
+// a clock) and R = 6 the reciprocal's:
 //   accept      1 per input word
 //   filter      19..21 per event (21 inside the sensor, less on its last row and column),
 //               1 when the filter is off or the event is outside the sensor
 //   features    5 + 4 (L + 1) per kept event (three products and the decay table)
-//   mean shift  3 + sweeps (C + 10 + (n - 1) max(C + 10, 12) + 13) per packet: each point
+//   mean shift  3 + sweeps (C + 10 + (n - 1) max(C + 10, R + 10) + R + 11) per packet: each point
 //               issues C chunks, drains the lane pipeline (7), hands its sums to the divider
-//               (12 clocks a point) and the sweep waits for the last division
-//   merge       7 n + (mode, seed) distances + seeds + 4
-//   centroids   3 n + clusters (6 + 3 (L + 1)) + 4
+//               (R + 10 clocks a point) and the sweep waits for the last division
+//   merge       9 n + (mode, seed) distances + seeds + 4 (a mode's distances drain a three-stage
+//               pipeline)
+//   centroids   3 n + clusters (R + 2 + 3 (L + 1)) + 4
 //   tracking    2 T + 6 + m + births + scans (T + 2) + steps + 4 (L + 1) distances
-//               + (16 + 30 (L + 1)) matches (+1 when every round matched)
+//               + (2 R + 8 + 30 (L + 1)) matches (+1 when every round matched; a reciprocal
+//               per axis)
 //   release     4 per event, and 1 + 1 per packet closing and sending its summary
 //   packet control 1 per kept event appended
 // where T is the Shape's track slots and m the packet's clusters. Mean shift is the term that
@@ -48,15 +51,18 @@ struct StageCycles {
   }
 };
 
+constexpr int kRecipLatency = 6;  // clocks from a reciprocal's start to its done
+
 // Clocks from a multiplier start to its result: a state that waits for a product lasts one more.
-constexpr int multiplier_latency(int digit_bits) { return digit_bits >= 64 ? 1 : (64 + digit_bits - 1) / digit_bits + 1; }
+constexpr int multiplier_latency(int digit_bits) { return digit_bits >= 64 ? 3 : (64 + digit_bits - 1) / digit_bits + 1; }
 
 // Clocks of one mean-shift sweep over n points with `lanes` kernel lanes.
 constexpr std::int64_t sweep_cycles(int n, int lanes) {
   const std::int64_t chunks = (n + lanes - 1) / lanes;
   const std::int64_t point = chunks + 10;                       // point, load, issue, drain 7, hand-off
-  const std::int64_t period = point > 12 ? point : 12;          // or the divider's 12 clocks a point
-  return point + (n - 1) * period + 13;                         // the last division, the buffer swap
+  const std::int64_t divider = kRecipLatency + 10;              // the divider's clocks a point
+  const std::int64_t period = point > divider ? point : divider;
+  return point + (n - 1) * period + kRecipLatency + 11;         // the last division, the buffer swap
 }
 
 // Counts what the core did (as its Observer) and turns it into cycles for any lane count.
@@ -109,10 +115,10 @@ class ScheduleCounter {
       }
     }
     c[Stage::kMeanShift] = mean_shift;
-    c[Stage::kMerge] = static_cast<double>(7 * kept_ + seed_visits_ + seeds_ + 4 * packets_);
-    c[Stage::kCentroid] = static_cast<double>(3 * kept_ + clusters_ * (6 + 3 * kMul) + 4 * packets_);
+    c[Stage::kMerge] = static_cast<double>(9 * kept_ + seed_visits_ + seeds_ + 4 * packets_);
+    c[Stage::kCentroid] = static_cast<double>(3 * kept_ + clusters_ * (kRecipLatency + 2 + 3 * kMul) + 4 * packets_);
     c[Stage::kTrack] = static_cast<double>(packets_ * (2 * kSlots + 6) + clusters_ + births_ + scans_ * (kSlots + 2) + slot_steps_ +
-                                           4 * kMul * distances_ + (16 + 30 * kMul) * matches_ + capped_);
+                                           4 * kMul * distances_ + (2 * kRecipLatency + 8 + 30 * kMul) * matches_ + capped_);
     c[Stage::kRelease] = static_cast<double>(4 * released_);
     return c;
   }

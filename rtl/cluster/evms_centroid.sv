@@ -3,6 +3,10 @@
 // packet accumulates; then each cluster takes three divisions through the reciprocal unit and
 // the shared multiplier.
 //
+// Timing: the quotients' shift amounts are registered when the reciprocal is done, and a
+// cluster's time (t0 + its mean age) is added and written the clock after its last product,
+// so that the product's rounding shift is the only logic behind the multiplier's register.
+//
 // Area: the sums and the results are memories with one write port and a combinational read
 // (distributed RAM on a Xilinx part) instead of registers with a write multiplexer each; a
 // valid bit per cluster clears the sums at once at the start of a packet, so the schedule is
@@ -43,7 +47,7 @@ module evms_centroid #(
   output logic        done
 );
   localparam int CW = CLUSTERS_MAX > 1 ? $clog2(CLUSTERS_MAX) : 1;
-  typedef enum logic [3:0] {S_IDLE, S_ACC_READ, S_ACC_WAIT, S_ACC_ADD, S_DIV, S_DIV_RECIP, S_DIV_X, S_DIV_Y, S_DIV_T, S_DIV_STORE,
+  typedef enum logic [3:0] {S_IDLE, S_ACC_READ, S_ACC_WAIT, S_ACC_ADD, S_DIV, S_DIV_RECIP, S_DIV_X, S_DIV_Y, S_DIV_T,
                             S_DONE} state_e;
   state_e state;
   // Per cluster: {sx, sy, st, count}, valid when the packet has added to it.
@@ -54,8 +58,11 @@ module evms_centroid #(
   logic signed [31:0] x_q, y_q;  // the cluster's x and y until its t is ready
   logic [15:0] i;
   logic [7:0]  c;
-  logic [6:0]  m;
+  logic [6:0]  shift_xy_m1, shift_t_m1;  // each quotient's right shift, minus one
   logic [RECIP_FRAC:0] r;
+  logic [31:0] t_q;         // the cluster's mean age, added to t0 and stored the next clock
+  logic        store;
+  logic [CW-1:0] store_c;
 
   assign {z_t, z_x, z_y} = results[CW'(z_c)];
   assign rd_i = i;
@@ -73,15 +80,10 @@ module evms_centroid #(
   assign age = ev_t - t0;
   assign recip_x = 64'(count);
 
-  // round(p * 2^-(RECIP_FRAC + m - extra)), as Reciprocal::divide
-  function automatic [63:0] quotient(input [63:0] p, input [6:0] mm, input integer extra);
-    integer shift;
-    begin
-      shift = RECIP_FRAC + {25'd0, mm} - extra;
-      if (shift <= 0) quotient = p << (-shift);
-      else quotient = (p + (64'd1 << (shift - 1))) >> shift;
-    end
-  endfunction
+  initial begin
+    if (RECIP_FRAC <= POS_FRAC)
+      $error("evms_centroid: the quotients shift right by at least one bit (RECIP_FRAC > POS_FRAC)");
+  end
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
@@ -89,8 +91,12 @@ module evms_centroid #(
       done <= 1'b0;
       i <= '0;
       c <= '0;
-      m <= '0;
+      shift_xy_m1 <= '0;
+      shift_t_m1 <= '0;
       r <= '0;
+      t_q <= '0;
+      store <= 1'b0;
+      store_c <= '0;
       recip_start <= 1'b0;
       mul_start <= 1'b0;
       mul_a <= '0;
@@ -102,6 +108,7 @@ module evms_centroid #(
       done <= 1'b0;
       recip_start <= 1'b0;
       mul_start <= 1'b0;
+      store <= 1'b0;
       case (state)
         S_IDLE: if (start) begin
           sums_valid <= '0;
@@ -131,7 +138,8 @@ module evms_centroid #(
         end
         S_DIV_RECIP: if (recip_done) begin
           r <= recip_r;
-          m <= recip_m;
+          shift_xy_m1 <= 7'(RECIP_FRAC - POS_FRAC - 1) + recip_m;
+          shift_t_m1 <= 7'(RECIP_FRAC - 1) + recip_m;
           mul_start <= 1'b1;
           mul_a <= $signed(64'(sx));
           mul_b <= $signed(64'(recip_r));
@@ -152,6 +160,9 @@ module evms_centroid #(
           state <= S_DIV_T;
         end
         S_DIV_T: if (mul_done) begin
+          t_q <= q_rounded;
+          store <= 1'b1;
+          store_c <= CW'(c);
           c <= c + 1'b1;
           state <= S_DIV;
         end
@@ -164,13 +175,17 @@ module evms_centroid #(
     end
   end
 
-  // One rounding shifter for the three quotients: x and y have POS_FRAC fraction bits, t none.
-  // (results are 32-bit words, as the C++ core's)
+  // One rounding shifter for the three quotients, round(p * 2^-(RECIP_FRAC + m - extra)) as
+  // Reciprocal::divide, with extra = POS_FRAC for x and y and 0 for t. For a shift s >= 1,
+  // (p + 2^(s-1)) >> s = ((p >> (s - 1)) + 1) >> 1, so the rounding add is 33 bits wide, not 64
+  // (the results are 32-bit words, as the C++ core's; p >= 0).
+  logic [32:0] q_half;
   logic [31:0] q_rounded;
-  assign q_rounded = 32'(quotient(mul_p, m, state == S_DIV_T ? 0 : POS_FRAC));
+  assign q_half = 33'(64'(mul_p) >> (state == S_DIV_T ? shift_t_m1 : shift_xy_m1));
+  assign q_rounded = 32'((34'(q_half) + 34'd1) >> 1);
 
   always_ff @(posedge clk) begin
     if (adding) sums[sum_c] <= {sx + 32'(ev_x), sy + 32'(ev_y), st + 64'(age), count + 32'd1};
-    if (state == S_DIV_T && mul_done) results[CW'(c)] <= {t0 + q_rounded, x_q, y_q};
+    if (store) results[store_c] <= {t0 + t_q, x_q, y_q};
   end
 endmodule

@@ -220,7 +220,10 @@ module evms_mean_shift #(
     end
   end
 
-  // s7: sums of the point, across lanes.
+  // s7: sums of the point, across lanes: a balanced tree of adders (log2 P deep, not P) over
+  // the lanes' valid terms, then the running sums. Node k of the tree sums nodes 2k and 2k + 1;
+  // the lanes are the leaves P .. 2P - 1, and node 1 is the total, one per quantity (w, x, y,
+  // p, t).
   logic [63:0] sw, sx, sy, sp, st;
   logic        sums_ready;
   always_ff @(posedge clk or negedge rst_n) begin
@@ -228,21 +231,17 @@ module evms_mean_shift #(
       {sw, sx, sy, sp, st} <= '0;
       sums_ready <= 1'b0;
     end else begin
+      // node k's five sums are bits [320 k +: 320] (a flat vector: Yosys takes no multi-dimensional
+      // variable declared in a block)
+      logic [2*LANES*320-1:0] lane_tree;
       logic [63:0] aw, ax, ay, ap, at;
-      aw = '0;
-      ax = '0;
-      ay = '0;
-      ap = '0;
-      at = '0;
-      for (int l = 0; l < LANES; l++) begin
-        if (v6[l]) begin
-          aw = aw + 64'(w6[l]);
-          ax = ax + px6[l];
-          ay = ay + py6[l];
-          ap = ap + pp6[l];
-          at = at + pt6[l];
-        end
-      end
+      lane_tree = '0;
+      for (int l = 0; l < LANES; l++)
+        if (v6[l]) lane_tree[320*(LANES + l) +: 320] = {64'(w6[l]), px6[l], py6[l], pp6[l], pt6[l]};
+      for (int node = LANES - 1; node >= 1; node--)
+        for (int q = 0; q < 5; q++)
+          lane_tree[320*node + 64*q +: 64] = lane_tree[640*node + 64*q +: 64] + lane_tree[640*node + 320 + 64*q +: 64];
+      {aw, ax, ay, ap, at} = lane_tree[320 +: 320];
       if (state == S_POINT) begin
         {sw, sx, sy, sp, st} <= '0;
         sums_ready <= 1'b0;
@@ -273,10 +272,28 @@ module evms_mean_shift #(
   evms_recip #(.T(RECIP_LOG2), .RF(RECIP_FRAC), .MEM_FILE(RECIP_MEM)) u_recip (
     .clk(clk), .rst_n(rst_n), .start(recip_start), .x(job_sw), .done(recip_done), .r(recip_r), .m(recip_m));
 
+  // The quotients are a three-clock pipeline, one dimension a clock, so that no clock holds
+  // more than one multiply or one wide add: the sum's four 16-bit digits times r (one DSP
+  // each), their sum (the low 64 bits of sum * r) into quot_p, then the rounding shift. For a
+  // shift s >= 1 (QF <= RECIP_FRAC), (p + 2^(s-1)) >> s = ((p >> (s - 1)) + 1) >> 1, so the
+  // rounding add is as wide as the result, not 64 bits.
+  logic [RECIP_FRAC+16:0] quot_pp [4];
   logic [63:0] quot_p;
   logic [6:0]  quot_shift;
-  assign quot_p = job_s[job_dim[1:0]] * 64'(recip_r);
+  logic [FW:0] quot_half;
   assign quot_shift = 7'(RECIP_FRAC) + recip_m - 7'(QF);
+
+  // The sweep's largest move so far, with one more coordinate's move. The quotient pipeline
+  // takes the dimensions' moves one a clock as their quotients land, instead of all four in
+  // series when the point is written.
+  function automatic [31:0] larger_move(input [31:0] so_far, input [FW-1:0] next, input [FW-1:0] now);
+    logic [31:0] diff;
+    begin
+      diff = next > now ? 32'(next) - 32'(now) : 32'(now) - 32'(next);
+      larger_move = diff > so_far ? diff : so_far;
+    end
+  endfunction
+  assign quot_half = (FW+1)'(quot_p >> (quot_shift - 7'd1));
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
@@ -284,6 +301,8 @@ module evms_mean_shift #(
       job_busy <= 1'b0;
       recip_start <= 1'b0;
       job_dim <= '0;
+      quot_p <= '0;
+      for (int g = 0; g < 4; g++) quot_pp[g] <= '0;
       wr_en <= 1'b0;
       wr_i <= '0;
       {wr_x, wr_y, wr_p, wr_t} <= '0;
@@ -309,19 +328,17 @@ module evms_mean_shift #(
           dstate <= D_QUOT;
         end
         D_QUOT: begin
-          job_next[job_dim[1:0]] <= FW'((quot_p + (64'd1 << (quot_shift - 1))) >> quot_shift);
+          if (job_dim < 4)
+            for (int g = 0; g < 4; g++) quot_pp[g] <= (RECIP_FRAC+17)'(job_s[job_dim[1:0]][16*g +: 16]) * (RECIP_FRAC+17)'(recip_r);
+          if (job_dim >= 1 && job_dim <= 4)
+            quot_p <= 64'(quot_pp[0]) + (64'(quot_pp[1]) << 16) + (64'(quot_pp[2]) << 32) + (64'(quot_pp[3]) << 48);
+          if (job_dim >= 2) job_next[2'(job_dim - 3'd2)] <= FW'(((FW+1)'(quot_half) + (FW+1)'(1)) >> 1);
+          if (job_dim >= 3) max_move <= larger_move(max_move, job_next[2'(job_dim - 3'd3)], job_cur[2'(job_dim - 3'd3)]);
           job_dim <= job_dim + 1'b1;
-          if (job_dim == 3) dstate <= D_WRITE;
+          if (job_dim == 5) dstate <= D_WRITE;
         end
         D_WRITE: begin
-          logic [31:0] mv;
-          mv = max_move;
-          for (int d = 0; d < 4; d++) begin
-            logic [31:0] diff;
-            diff = job_next[d] > job_cur[d] ? 32'(job_next[d]) - 32'(job_cur[d]) : 32'(job_cur[d]) - 32'(job_next[d]);
-            if (diff > mv) mv = diff;
-          end
-          max_move <= mv;
+          max_move <= larger_move(max_move, job_next[3], job_cur[3]);
           wr_en <= 1'b1;
           wr_i <= job_i;
           {wr_x, wr_y, wr_p, wr_t} <= {job_next[0], job_next[1], job_next[2], job_next[3]};

@@ -2,7 +2,9 @@
 // (a cluster's first mode, kept here in registers) within the merge radius, ties to the older
 // cluster; or opens a new cluster while fewer than max_clusters are open; or is noise. Then
 // clusters smaller than min_cluster_size become noise and the rest are renumbered in seed
-// order. One cycle per (mode, seed) pair.
+// order. One cycle per (mode, seed) pair, through a three-stage pipeline (the differences to the
+// seed, their squared sum, the comparison), so that no clock holds a multiply and a 64-bit
+// comparison in series: a mode's seeds take seeds + 3 clocks.
 module evms_merge #(
   parameter int CLUSTERS_MAX = 16,
   parameter int FW           = 17      // mode width (features + 1)
@@ -41,15 +43,24 @@ module evms_merge #(
   logic signed [8:0] best;
   logic [63:0]   best_d2;
 
-  // Distance from the mode to seed c.
+  // Distance from the mode to seed c: the differences (stage A), then their squared sum (B),
+  // each with the seed's index and a valid bit; stage C compares.
   logic signed [FW:0] ex, ey, ep, et;
   logic [63:0] d2;
-  assign ex = $signed({1'b0, mx}) - $signed({1'b0, seed_x[CW'(c)]});
-  assign ey = $signed({1'b0, my}) - $signed({1'b0, seed_y[CW'(c)]});
-  assign ep = $signed({1'b0, mp}) - $signed({1'b0, seed_p[CW'(c)]});
-  assign et = $signed({1'b0, mt}) - $signed({1'b0, seed_t[CW'(c)]});
-  assign d2 = 64'($signed(64'(ex)) * $signed(64'(ex))) + 64'($signed(64'(ey)) * $signed(64'(ey))) +
-              64'($signed(64'(ep)) * $signed(64'(ep))) + 64'($signed(64'(et)) * $signed(64'(et)));
+  logic        a_valid, b_valid;
+  logic [7:0]  a_c, b_c;
+  always_ff @(posedge clk) begin
+    if (state == S_SEEDS) begin
+      ex <= $signed({1'b0, mx}) - $signed({1'b0, seed_x[CW'(c)]});
+      ey <= $signed({1'b0, my}) - $signed({1'b0, seed_y[CW'(c)]});
+      ep <= $signed({1'b0, mp}) - $signed({1'b0, seed_p[CW'(c)]});
+      et <= $signed({1'b0, mt}) - $signed({1'b0, seed_t[CW'(c)]});
+      a_c <= c;
+      d2 <= 64'($signed(64'(ex)) * $signed(64'(ex))) + 64'($signed(64'(ey)) * $signed(64'(ey))) +
+            64'($signed(64'(ep)) * $signed(64'(ep))) + 64'($signed(64'(et)) * $signed(64'(et)));
+      b_c <= a_c;
+    end
+  end
 
   assign rd_i = i;
 
@@ -67,6 +78,8 @@ module evms_merge #(
       count <= '0;
       best <= '0;
       best_d2 <= '0;
+      a_valid <= 1'b0;
+      b_valid <= 1'b0;
       {mx, my, mp, mt} <= '0;
       for (int q = 0; q < CLUSTERS_MAX; q++) begin
         size[q] <= '0;
@@ -91,15 +104,14 @@ module evms_merge #(
           state <= S_SEEDS;
         end
         S_SEEDS: begin
-          if (c >= seeds) begin
-            state <= S_DECIDE;
-          end else begin
-            if (d2 <= cfg_merge_radius2 && d2 < best_d2) begin
-              best <= $signed({1'b0, c});
-              best_d2 <= d2;
-            end
-            c <= c + 1'b1;
+          a_valid <= c < seeds;
+          b_valid <= a_valid;
+          if (b_valid && d2 <= cfg_merge_radius2 && d2 < best_d2) begin
+            best <= $signed({1'b0, b_c});
+            best_d2 <= d2;
           end
+          c <= c + 1'b1;
+          if (9'(c) >= 9'(seeds) + 9'd2) state <= S_DECIDE;
         end
         S_DECIDE: begin
           logic signed [8:0] b;

@@ -1,6 +1,6 @@
 // Signed 64 x 64 multiplier, low 64 bits, for the core's sequential stages (features, merging,
 // centroids, tracking), which the core keeps below 2^63 so that the low bits are the product.
-//   DIGIT_BITS = 64: one cycle (FPGAs with DSP cascades, and simulation);
+//   DIGIT_BITS = 64: pipelined over three clocks (FPGAs with DSP blocks, and simulation);
 //   DIGIT_BITS < 64: DIGIT_BITS bits of |b| a cycle (iCE40: a few hundred LUTs, no DSP).
 // start is taken in any cycle in which busy is low; done pulses with p valid, and p holds until
 // the next start.
@@ -16,14 +16,41 @@ module evms_mul #(
   output logic               done,
   output logic signed [63:0] p
 );
-  if (DIGIT_BITS >= 64) begin : g_single
+  if (DIGIT_BITS >= 64) begin : g_pipelined
+    // The low 64 bits of a two's-complement product are those of the unsigned product, so the
+    // operands split into four 16-bit digits, and only the ten digit products with i + j <= 3
+    // reach the low half. Each is one DSP multiply with a register behind it (no cascade, so
+    // no chain of DSP adders in one clock); the next clock sums each diagonal i + j, the last
+    // the four diagonals.
+    logic [31:0] pp [4][4];
+    logic [31:0] diag0, diag2;
+    logic [32:0] diag1;
+    logic [15:0] diag3;
+    logic [1:0]  valid;
     always_ff @(posedge clk or negedge rst_n) begin
       if (!rst_n) begin
-        done <= 1'b0;
-        p    <= '0;
+        valid <= '0;
+        done  <= 1'b0;
+        p     <= '0;
+        diag0 <= '0;
+        diag1 <= '0;
+        diag2 <= '0;
+        diag3 <= '0;
+        for (int i = 0; i < 4; i++) for (int j = 0; j < 4; j++) pp[i][j] <= '0;
       end else begin
-        done <= start;
-        if (start) p <= a * b;
+        valid <= {valid[0], start};
+        done  <= valid[1];
+        if (start) begin
+          for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4 - i; j++) pp[i][j] <= 32'(a[16*i +: 16]) * 32'(b[16*j +: 16]);
+        end
+        if (valid[0]) begin
+          diag0 <= pp[0][0];
+          diag1 <= 33'(pp[0][1]) + 33'(pp[1][0]);
+          diag2 <= pp[0][2] + pp[1][1] + pp[2][0];
+          diag3 <= 16'(pp[0][3]) + 16'(pp[1][2]) + 16'(pp[2][1]) + 16'(pp[3][0]);
+        end
+        if (valid[1]) p <= $signed(64'(diag0) + {15'd0, diag1, 16'd0} + {diag2, 32'd0} + {diag3, 48'd0});
       end
     end
     assign busy = 1'b0;

@@ -1,9 +1,11 @@
 // exp(-u) from a table with linear interpolation, as hls/math/exp_table.h: u has UF fraction
 // bits; u >= 16 gives 0; else i = u >> (UF + 4 - L), f = the IB bits below the index, and
 // w = v[i] - ((v[i] - v[i+1]) * f >> IB). The ROM holds v[0..2^L], one word per entry, and is
-// read at i and i+1 through two ports. Latency 2; a new u every cycle. The samples never
-// increase (ExpTable.SamplesNeverIncrease), so v[i] - v[i+1] is WF + 1 bits and the slope one
-// narrow product (one DSP48E1 instead of two for 25-bit operands).
+// read at i and i+1 through two ports. Latency 2; a new u every cycle: the first clock reads
+// the table, the second the slope's product into a register, so that the product is not in
+// series with the consumer's own multiply (the mean-shift lanes weight by w in the next clock).
+// The samples never increase (ExpTable.SamplesNeverIncrease), so v[i] - v[i+1] is WF + 1 bits
+// and the slope one narrow product (one DSP48E1 instead of two for 25-bit operands).
 module evms_exp_lut #(
   parameter int    L        = 9,
   parameter int    WF       = 16,
@@ -20,24 +22,23 @@ module evms_exp_lut #(
   logic [WF:0] rom [0:(1<<L)];
   initial $readmemh(MEM_FILE, rom);
 
-  logic          zero_q;
-  logic [L-1:0]  i_q;
-  logic [IB-1:0] f_q, f_qq;
-  logic [WF:0]   v0_q, v1_q;
-  logic          zero_qq;
+  logic [L-1:0]   i;
+  logic           zero_q, zero_qq;
+  logic [IB-1:0]  f_q;
+  logic [WF:0]    v0_q, v1_q, v0_qq;
+  logic [WF+IB:0] slope_q;
+  logic [WF:0]    step;
+  assign i = L'(u >> Below);
+  assign step = v0_q - v1_q;
 
   always_ff @(posedge clk) begin
     zero_q  <= (u >> (UF + 4)) != 0;
-    i_q     <= L'(u >> Below);
     f_q     <= IB'(u >> (Below - IB));
-    v0_q    <= rom[{1'b0, i_q}];
-    v1_q    <= rom[(L+1)'(i_q) + 1'b1];
-    f_qq    <= f_q;
+    v0_q    <= rom[{1'b0, i}];
+    v1_q    <= rom[(L+1)'(i) + 1'b1];
+    slope_q <= (WF+IB+1)'(step) * (WF+IB+1)'(f_q);
+    v0_qq   <= v0_q;
     zero_qq <= zero_q;
   end
-  logic [WF+IB:0] slope;
-  logic [WF:0] step;
-  assign step = v0_q - v1_q;
-  assign slope = (WF+IB+1)'(step) * (WF+IB+1)'(f_qq);
-  assign w = zero_qq ? '0 : v0_q - (WF+1)'(slope >> IB);
+  assign w = zero_qq ? '0 : v0_qq - (WF+1)'(slope_q >> IB);
 endmodule

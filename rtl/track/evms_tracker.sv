@@ -185,34 +185,47 @@ module evms_tracker #(
   // ---- the step unit: clamp(base +- round(mul_p >> shift), bound) ---------------------------
   typedef enum logic [2:0] {SH_TICK, SH_DT2, SH_COV, SH_NOISE, SH_NOISE_P11, SH_GAIN} shift_e;
   typedef enum logic [1:0] {B_NONE, B_POS, B_COV} bound_e;
-  shift_e             step_shift;
-  bound_e             step_bound;
-  logic               step_negate, step_carry;
-  logic signed [63:0] step_base, step_half, step_hs, step_sum, step, gate_sum, gate_dist;
+  // The state's operands are chosen a clock ahead and registered: a step's state waits at least
+  // one clock for its product (the multiplier's latency), and its base was written when the
+  // state was entered, so the registered choice is the state's own when the product arrives,
+  // and the choice's multiplexers are off the path from the product to the step.
+  shift_e             sel_shift, step_shift;
+  bound_e             sel_bound, step_bound;
+  logic               sel_negate, step_negate, step_carry, step_axis;
+  logic signed [63:0] sel_base, step_base, step_half, step_hs, step_sum, step, gate_sum, gate_dist;
   logic signed [63:0] zp [2];   // z - pos of the pair being gated, per axis
   always_comb begin
-    step_shift = SH_TICK;
-    step_bound = B_NONE;
-    step_negate = 1'b0;
-    step_base = '0;
+    sel_shift = SH_TICK;
+    sel_bound = B_NONE;
+    sel_negate = 1'b0;
+    sel_base = '0;
     case (state)
-      S_PAIR_PX: begin step_base = 64'(pos_of[0]); step_bound = B_POS; end
-      S_PAIR_PY: begin step_base = 64'(pos_of[1]); step_bound = B_POS; end
-      S_DT2:     step_shift = SH_DT2;
-      S_P_POS:   begin step_base = w_pos; step_bound = B_POS; end
-      S_P_P00A:  step_base = w_p00;
-      S_P_P00B:  begin step_base = acc; step_shift = SH_COV; end
+      S_PAIR_PX: begin sel_base = 64'(pos_of[0]); sel_bound = B_POS; end
+      S_PAIR_PY: begin sel_base = 64'(pos_of[1]); sel_bound = B_POS; end
+      S_DT2:     sel_shift = SH_DT2;
+      S_P_POS:   begin sel_base = w_pos; sel_bound = B_POS; end
+      S_P_P00A:  sel_base = w_p00;
+      S_P_P00B:  begin sel_base = acc; sel_shift = SH_COV; end
       S_P_P00C,
-      S_P_P01B:  begin step_base = acc; step_shift = SH_NOISE; step_bound = B_COV; end
-      S_P_P01A:  step_base = w_p01;
-      S_P_P11:   begin step_base = w_p11; step_shift = SH_NOISE_P11; step_bound = B_COV; end
-      S_U_POS:   begin step_base = w_pos; step_shift = SH_GAIN; step_bound = B_POS; end
-      S_U_VEL:   begin step_base = w_vel; step_shift = SH_GAIN; step_bound = B_POS; end
+      S_P_P01B:  begin sel_base = acc; sel_shift = SH_NOISE; sel_bound = B_COV; end
+      S_P_P01A:  sel_base = w_p01;
+      S_P_P11:   begin sel_base = w_p11; sel_shift = SH_NOISE_P11; sel_bound = B_COV; end
+      S_U_POS:   begin sel_base = w_pos; sel_shift = SH_GAIN; sel_bound = B_POS; end
+      S_U_VEL:   begin sel_base = w_vel; sel_shift = SH_GAIN; sel_bound = B_POS; end
       S_U_P00,
-      S_U_P01:   begin step_shift = SH_GAIN; step_bound = B_COV; end
-      S_U_P11:   begin step_base = w_p11; step_shift = SH_GAIN; step_bound = B_COV; step_negate = 1'b1; end
+      S_U_P01:   begin sel_shift = SH_GAIN; sel_bound = B_COV; end
+      S_U_P11:   begin sel_base = w_p11; sel_shift = SH_GAIN; sel_bound = B_COV; sel_negate = 1'b1; end
       default: ;
     endcase
+  end
+  always_ff @(posedge clk) begin
+    step_shift <= sel_shift;
+    step_bound <= sel_bound;
+    step_negate <= sel_negate;
+    step_base <= sel_base;
+    step_axis <= state != S_PAIR_PX;
+  end
+  always_comb begin
     // (p + 2^(s-1)) >> s  ==  ((p >> (s-1)) + 1) >> 1, with one shifter for every s.
     case (step_shift)
       SH_DT2:       step_half = mul_p >>> (2 * TICK_LOG2 - COV_FRAC - 1);
@@ -233,7 +246,7 @@ module evms_tracker #(
     // z - pos (registered when the pair was issued) minus the rounded term, a second carry chain
     // beside the step's rather than after it. When the prediction saturates at +-(2^31 - 1) the
     // distance saturates at -+2^DistLog2, as |z| < 2^(16 + POS_FRAC) (pixel coordinates).
-    gate_sum = zp[state == S_PAIR_PX ? 0 : 1] + ~step_hs + 64'(!step_carry);   // zp - (hs + carry)
+    gate_sum = zp[step_axis] + ~step_hs + 64'(!step_carry);   // zp - (hs + carry)
     if (outside_ones(step_sum, PosLog2)) gate_dist = step_sum[63] ? 64'sd1 <<< DistLog2 : -(64'sd1 <<< DistLog2);
     else gate_dist = clamp_pow2(gate_sum, DistLog2);
   end
