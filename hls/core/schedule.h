@@ -14,7 +14,7 @@
 //   mean shift  3 + sweeps (C + 10 + (n - 1) max(C + 10, R + 10) + R + 11) per packet: each point
 //               issues C chunks, drains the lane pipeline (7), hands its sums to the divider
 //               (R + 10 clocks a point) and the sweep waits for the last division
-//   merge       9 n + (mode, seed) distances + seeds + 4 (a mode's distances drain a three-stage
+//   merge       8 n + (mode, seed) distances + seeds + 4 (a mode's distances drain a three-stage
 //               pipeline)
 //   centroids   3 n + clusters (R + 2 + 3 (L + 1)) + 4
 //   tracking    2 T + 6 + m + births + scans (T + 2) + steps + 4 (L + 1) distances
@@ -115,7 +115,7 @@ class ScheduleCounter {
       }
     }
     c[Stage::kMeanShift] = mean_shift;
-    c[Stage::kMerge] = static_cast<double>(9 * kept_ + seed_visits_ + seeds_ + 4 * packets_);
+    c[Stage::kMerge] = static_cast<double>(8 * kept_ + seed_visits_ + seeds_ + 4 * packets_);
     c[Stage::kCentroid] = static_cast<double>(3 * kept_ + clusters_ * (kRecipLatency + 2 + 3 * kMul) + 4 * packets_);
     c[Stage::kTrack] = static_cast<double>(packets_ * (2 * kSlots + 6) + clusters_ + births_ + scans_ * (kSlots + 2) + slot_steps_ +
                                            4 * kMul * distances_ + (2 * kRecipLatency + 8 + 30 * kMul) * matches_ + capped_);

@@ -4,7 +4,7 @@
 // clusters smaller than min_cluster_size become noise and the rest are renumbered in seed
 // order. One cycle per (mode, seed) pair, through a three-stage pipeline (the differences to the
 // seed, their squared sum, the comparison), so that no clock holds a multiply and a 64-bit
-// comparison in series: a mode's seeds take seeds + 3 clocks.
+// comparison in series: a mode's seeds take seeds + 2 clocks.
 module evms_merge #(
   parameter int CLUSTERS_MAX = 16,
   parameter int FW           = 17      // mode width (features + 1)
@@ -111,7 +111,7 @@ module evms_merge #(
             best_d2 <= d2;
           end
           c <= c + 1'b1;
-          if (9'(c) >= 9'(seeds) + 9'd2) state <= S_DECIDE;
+          if (9'(c) >= 9'(seeds) + 9'd1) state <= S_DECIDE;  // the last seed is compared in this clock
         end
         S_DECIDE: begin
           logic signed [8:0] b;
