@@ -3,7 +3,7 @@
 //   DIGIT_BITS = 64: pipelined over three clocks (FPGAs with DSP blocks, and simulation);
 //   DIGIT_BITS < 64: DIGIT_BITS bits of |b| a cycle (iCE40: a few hundred LUTs, no DSP).
 // start is taken in any cycle in which busy is low; done pulses with p valid, and p holds until
-// the next start.
+// the next product is done.
 module evms_mul #(
   parameter int DIGIT_BITS = 64
 ) (
