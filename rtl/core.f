@@ -1,5 +1,6 @@
 common/evms_mul.sv
 common/evms_fifo.sv
+math/evms_round_pkg.sv
 math/evms_exp_lut.sv
 math/evms_recip.sv
 filter/evms_ba_filter.sv

@@ -3,9 +3,10 @@
 # synth_xilinx for the Arty's XC7A35T), places and routes the iCE40 ones that fit with
 # nextpnr-ice40 over several seeds, and writes one JSON report: LUT, FF, DSP, BRAM and SPRAM
 # use, the median Fmax, and for every configuration the logic delay of its longest
-# register-to-register path (Yosys sta with the cell delays of Yosys's own cell models: no
-# routing and no DSP or block-RAM delays, so it is a lower bound on the clock period and
-# 1000 / logic_ns an upper bound on Fmax; it also names the path's blocks and source lines).
+# register-to-register path (Yosys sta with the cell delays of Yosys's own cell models, which
+# on the XC7 include the DSP48E1's and block RAM's; no routing, so it is a lower bound on the
+# clock period and 1000 / logic_ns an upper bound on Fmax; it also names the path's blocks and
+# source lines).
 # Each top is run at its build's lane count and at P = 1, 2, 4, 8.
 #
 #   constraints/flow/synth.sh [-j JOBS] [-s SEEDS] [-o REPORT.json] [CONFIG ...]

@@ -176,13 +176,10 @@ module evms_centroid #(
   end
 
   // One rounding shifter for the three quotients, round(p * 2^-(RECIP_FRAC + m - extra)) as
-  // Reciprocal::divide, with extra = POS_FRAC for x and y and 0 for t. For a shift s >= 1,
-  // (p + 2^(s-1)) >> s = ((p >> (s - 1)) + 1) >> 1, so the rounding add is 33 bits wide, not 64
-  // (the results are 32-bit words, as the C++ core's; p >= 0).
-  logic [32:0] q_half;
+  // Reciprocal::divide, with extra = POS_FRAC for x and y and 0 for t (the results are 32-bit
+  // words, as the C++ core's).
   logic [31:0] q_rounded;
-  assign q_half = 33'(64'(mul_p) >> (state == S_DIV_T ? shift_t_m1 : shift_xy_m1));
-  assign q_rounded = 32'((34'(q_half) + 34'd1) >> 1);
+  assign q_rounded = 32'(evms_round_pkg::round_shift(64'(mul_p), state == S_DIV_T ? shift_t_m1 : shift_xy_m1));
 
   always_ff @(posedge clk) begin
     if (adding) sums[sum_c] <= {sx + 32'(ev_x), sy + 32'(ev_y), st + 64'(age), count + 32'd1};

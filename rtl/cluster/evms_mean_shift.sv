@@ -274,13 +274,11 @@ module evms_mean_shift #(
 
   // The quotients are a three-clock pipeline, one dimension a clock, so that no clock holds
   // more than one multiply or one wide add: the sum's four 16-bit digits times r (one DSP
-  // each), their sum (the low 64 bits of sum * r) into quot_p, then the rounding shift. For a
-  // shift s >= 1 (QF <= RECIP_FRAC), (p + 2^(s-1)) >> s = ((p >> (s - 1)) + 1) >> 1, so the
-  // rounding add is as wide as the result, not 64 bits.
+  // each), their sum (the low 64 bits of sum * r) into quot_p, then the rounding shift (by at
+  // least one bit: QF <= RECIP_FRAC).
   logic [RECIP_FRAC+16:0] quot_pp [4];
   logic [63:0] quot_p;
   logic [6:0]  quot_shift;
-  logic [FW:0] quot_half;
   assign quot_shift = 7'(RECIP_FRAC) + recip_m - 7'(QF);
 
   // The sweep's largest move so far, with one more coordinate's move. The quotient pipeline
@@ -293,7 +291,6 @@ module evms_mean_shift #(
       larger_move = diff > so_far ? diff : so_far;
     end
   endfunction
-  assign quot_half = (FW+1)'(quot_p >> (quot_shift - 7'd1));
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
@@ -332,7 +329,7 @@ module evms_mean_shift #(
             for (int g = 0; g < 4; g++) quot_pp[g] <= (RECIP_FRAC+17)'(job_s[job_dim[1:0]][16*g +: 16]) * (RECIP_FRAC+17)'(recip_r);
           if (job_dim >= 1 && job_dim <= 4)
             quot_p <= 64'(quot_pp[0]) + (64'(quot_pp[1]) << 16) + (64'(quot_pp[2]) << 32) + (64'(quot_pp[3]) << 48);
-          if (job_dim >= 2) job_next[2'(job_dim - 3'd2)] <= FW'(((FW+1)'(quot_half) + (FW+1)'(1)) >> 1);
+          if (job_dim >= 2) job_next[2'(job_dim - 3'd2)] <= FW'(evms_round_pkg::round_shift(quot_p, quot_shift - 7'd1));
           if (job_dim >= 3) max_move <= larger_move(max_move, job_next[2'(job_dim - 3'd3)], job_cur[2'(job_dim - 3'd3)]);
           job_dim <= job_dim + 1'b1;
           if (job_dim == 5) dstate <= D_WRITE;

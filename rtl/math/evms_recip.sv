@@ -46,6 +46,8 @@ module evms_recip #(
   logic [2*RF+1:0] mr0_full;
   logic [2*RF+2:0] r1_full;
   logic [5:0]      step;  // one-hot position in the pipeline
+  logic            take;  // a start the pipeline accepts
+  assign take = start && step == 0;
   assign mr0_full = (2*RF+2)'(mant) * (2*RF+2)'(r0);
   assign r1_full = (2*RF+3)'(r0) * (2*RF+3)'(two_minus_mr0);
   always_ff @(posedge clk or negedge rst_n) begin
@@ -59,9 +61,9 @@ module evms_recip #(
       r0 <= '0;
       two_minus_mr0 <= '0;
     end else begin
-      step <= {step[4:0], start && step == 0};
+      step <= {step[4:0], take};
       done <= step[4];
-      if (start && step == 0) x_q <= x;
+      if (take) x_q <= x;
       if (step[0]) lead <= msb(x_q);
       if (step[1]) mant <= (RF+1)'((x_q << (6'd63 - lead)) >> (63 - RF));  // the leading one to bit RF
       if (step[2]) r0 <= table_rom[T'(mant >> (RF - T))];
