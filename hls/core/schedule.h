@@ -11,9 +11,10 @@
 //   filter      19..21 per event (21 inside the sensor, less on its last row and column),
 //               1 when the filter is off or the event is outside the sensor
 //   features    5 + 4 (L + 1) per kept event (three products and the decay table)
-//   mean shift  3 + sweeps (C + 10 + (n - 1) max(C + 10, R + 10) + R + 11) per packet: each point
-//               issues C chunks, drains the lane pipeline (7), hands its sums to the divider
-//               (R + 10 clocks a point) and the sweep waits for the last division
+//   mean shift  3 + sweeps ((n - 1) max(C + 1, R + 10) + C + R + 19) per packet: each point is
+//               read (1) and issues C chunks while the previous one's terms drain through the
+//               lanes; its sums go to the divider (R + 10 clocks a point), so points start at
+//               least R + 10 apart; the sweep waits for the last point's drain and division
 //   merge       8 n + (mode, seed) distances + seeds + 4 (a mode's distances drain a three-stage
 //               pipeline)
 //   centroids   3 n + clusters (R + 2 + 3 (L + 1)) + 4
@@ -23,7 +24,7 @@
 //   release     4 per event, and 1 + 1 per packet closing and sending its summary
 //   packet control 1 per kept event appended
 // where T is the Shape's track slots and m the packet's clusters. Mean shift is the term that
-// grows with n: per event it is about sweeps (n / P + 10).
+// grows with n: per event it is about sweeps max(n / P + 1, 16).
 #pragma once
 
 #include <cstdint>
@@ -59,10 +60,13 @@ constexpr int multiplier_latency(int digit_bits) { return digit_bits >= 64 ? 3 :
 // Clocks of one mean-shift sweep over n points with `lanes` kernel lanes.
 constexpr std::int64_t sweep_cycles(int n, int lanes) {
   const std::int64_t chunks = (n + lanes - 1) / lanes;
-  const std::int64_t point = chunks + 10;                       // point, load, issue, drain 7, hand-off
   const std::int64_t divider = kRecipLatency + 10;              // the divider's clocks a point
-  const std::int64_t period = point > divider ? point : divider;
-  return point + (n - 1) * period + kRecipLatency + 11;         // the last division, the buffer swap
+  // A point reads its coordinates (1) and issues its chunks; the next point follows at once,
+  // but no sooner than a division after the previous one started.
+  const std::int64_t period = chunks + 1 > divider ? chunks + 1 : divider;
+  // The last point: read, issue, its terms drain (6) and are summed (1), then the division
+  // (R + 10) and the buffer swap (1).
+  return (n - 1) * period + 1 + chunks + 7 + divider + 1;
 }
 
 // Counts what the core did (as its Observer) and turns it into cycles for any lane count.

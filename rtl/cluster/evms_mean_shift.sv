@@ -9,9 +9,12 @@
 // the current points and the next ones, each split into LANES banks (point j in bank j % LANES
 // at address j / LANES) so that every lane reads its point in the same cycle.
 //
-// Schedule per point: ceil(n / LANES) cycles issuing point pairs, then the lane pipeline drains
-// (six cycles) and the point's sums go to the divider, which works while the next point's
-// kernel loop runs. A sweep ends when the divider has finished the last point.
+// Schedule per point: one clock reading the point, then ceil(n / LANES) clocks issuing point
+// pairs; the next point is read in the clock after the last issue, so the points' kernel loops
+// follow each other while each one's terms still drain through the lanes (seven clocks). A
+// point's sums go to the divider when its last terms are in; the divider takes R + 10 clocks a
+// point, so points start at least that far apart. A sweep ends when the divider has finished
+// the last point.
 module evms_mean_shift #(
   parameter int PACKET_MAX     = 256,
   parameter int LANES          = 8,
@@ -133,7 +136,7 @@ module evms_mean_shift #(
   assign rd_t = bank_t[bank_of(rd_i)];
 
   // ---- control ----------------------------------------------------------------------------
-  typedef enum logic [2:0] {S_IDLE, S_POINT, S_POINT_LOAD, S_ISSUE, S_DRAIN, S_HANDOFF, S_SWEEP_END, S_DONE} state_e;
+  typedef enum logic [2:0] {S_IDLE, S_POINT, S_ISSUE, S_SWEEP_END, S_DONE} state_e;
   state_e state;
   logic [7:0]  k;          // sweep
   logic [15:0] i;          // point
@@ -142,14 +145,23 @@ module evms_mean_shift #(
   logic [31:0] max_move;
   logic        sweep_begin;  // pulses when a sweep starts: the divider restarts its largest move
 
-  // The point i's current coordinates, read at S_POINT.
+  // The point i's current coordinates, read at S_POINT and taken in its first issue clock.
   logic signed [FW+1:0] xi, yi, pi_, ti;
+  // The point whose terms drain through the lanes, until its sums go to the divider.
+  logic [15:0]   drain_i;
+  logic [FW-1:0] drain_cur [4];
+  logic          drain_pending;
+  // Clocks until the next point may start: points start R + 10 clocks apart at least, so that
+  // the divider has finished the previous point when the next one's sums are in.
+  localparam int PointSpacing = 6 + 10;   // evms_recip's latency + the divider's own clocks
+  logic [4:0]    spacing;
 
   assign xy_addr = state == S_POINT ? {cur, addr_of(i)} : {cur, addr_of(rd_i)};
   assign pt_addr = state == S_POINT ? {cur, addr_of(i)} : (state == S_IDLE ? {cur, addr_of(rd_i)} : {cur, AW'(a)});
 
   // Lane issue: address a, chunk valid per lane.
   logic issue;
+  assign issue = state == S_ISSUE;
   logic [LANES-1:0] lane_valid_issue;
   always_comb begin
     for (int l = 0; l < LANES; l++) lane_valid_issue[l] = issue && (32'(a) * LANES + l < 32'(n));
@@ -242,17 +254,15 @@ module evms_mean_shift #(
         for (int q = 0; q < 5; q++)
           lane_tree[320*node + 64*q +: 64] = lane_tree[640*node + 64*q +: 64] + lane_tree[640*node + 320 + 64*q +: 64];
       {aw, ax, ay, ap, at} = lane_tree[320 +: 320];
-      if (state == S_POINT) begin
-        {sw, sx, sy, sp, st} <= '0;
-        sums_ready <= 1'b0;
-      end else begin
-        sw <= sw + aw;
-        sx <= sx + ax;
-        sy <= sy + ay;
-        sp <= sp + ap;
-        st <= st + at;
-        sums_ready <= last6;
-      end
+      // A point's sums are complete the clock after its last terms (last6); they go to the
+      // divider in that clock and the next point's sums start from zero (its first terms
+      // arrive a clock later at the earliest).
+      sw <= (sums_ready ? 64'd0 : sw) + aw;
+      sx <= (sums_ready ? 64'd0 : sx) + ax;
+      sy <= (sums_ready ? 64'd0 : sy) + ay;
+      sp <= (sums_ready ? 64'd0 : sp) + ap;
+      st <= (sums_ready ? 64'd0 : st) + at;
+      sums_ready <= last6;
     end
   end
 
@@ -358,20 +368,49 @@ module evms_mean_shift #(
       i <= '0;
       a <= '0;
       limit <= '0;
-      issue <= 1'b0;
+      spacing <= '0;
       job_valid <= 1'b0;
       job_i <= '0;
       job_sw <= '0;
+      drain_i <= '0;
+      drain_pending <= 1'b0;
       for (int d = 0; d < 4; d++) begin
         job_s[d] <= '0;
         job_cur[d] <= '0;
+        drain_cur[d] <= '0;
       end
       {xi, yi, pi_, ti} <= '0;
       sweep_begin <= 1'b0;
     end else begin
       done <= 1'b0;
       sweep_begin <= 1'b0;
+      if (spacing != 0) spacing <= spacing - 1'b1;
       if (job_valid && dstate == D_IDLE) job_valid <= 1'b0;
+      if (sums_ready) begin
+        // (the point spacing keeps the divider free here: it took the previous point at least
+        // R + 10 clocks ago)
+        job_valid <= 1'b1;
+        job_i <= drain_i;
+        job_sw <= sw;
+        job_s[0] <= sx;
+        job_s[1] <= sy;
+        job_s[2] <= sp;
+        job_s[3] <= st;
+        for (int d = 0; d < 4; d++) job_cur[d] <= drain_cur[d];
+        drain_pending <= 1'b0;
+      end
+      // The draining point: named at its last issue, its coordinates the clock after (when a
+      // one-chunk point has taken them too), handed to the divider when its sums are in.
+      if (issue && (32'(a) + 1) * LANES >= 32'(n)) begin
+        drain_i <= i;
+        drain_pending <= 1'b1;   // (points are PointSpacing apart: never in a hand-off clock)
+      end
+      if (last1) begin
+        drain_cur[0] <= FW'(xi);
+        drain_cur[1] <= FW'(yi);
+        drain_cur[2] <= FW'(pi_);
+        drain_cur[3] <= FW'(ti);
+      end
       case (state)
         S_IDLE: if (start) begin
           cur <= 1'b0;
@@ -382,49 +421,36 @@ module evms_mean_shift #(
             done <= 1'b1;
           end else begin
             i <= '0;
-                  sweep_begin <= 1'b1;
+            sweep_begin <= 1'b1;
             state <= S_POINT;
           end
         end
-        S_POINT: state <= S_POINT_LOAD;  // point i is being read
-        S_POINT_LOAD: begin
-          xi  <= $signed({2'b0, bank_x[bank_of(i)]});
-          yi  <= $signed({2'b0, bank_y[bank_of(i)]});
-          pi_ <= $signed({2'b0, bank_p[bank_of(i)]});
-          ti  <= $signed({2'b0, bank_t[bank_of(i)]});
+        // Point i is being read; its kernel loop starts once the previous point started
+        // PointSpacing clocks ago.
+        S_POINT: if (spacing == 0) begin
+          spacing <= 5'(PointSpacing - 1);
           a <= '0;
-          issue <= 1'b1;
           state <= S_ISSUE;
         end
         S_ISSUE: begin
+          if (a == 0) begin
+            xi  <= $signed({2'b0, bank_x[bank_of(i)]});
+            yi  <= $signed({2'b0, bank_y[bank_of(i)]});
+            pi_ <= $signed({2'b0, bank_p[bank_of(i)]});
+            ti  <= $signed({2'b0, bank_t[bank_of(i)]});
+          end
           if ((32'(a) + 1) * LANES >= 32'(n)) begin
-            issue <= 1'b0;
-                  state <= S_DRAIN;
+            if (32'(i) + 1 < 32'(n)) begin
+              i <= i + 1'b1;
+              state <= S_POINT;
+            end else begin
+              state <= S_SWEEP_END;
+            end
           end else begin
             a <= a + 1'b1;
           end
         end
-        S_DRAIN: if (sums_ready) state <= S_HANDOFF;
-        S_HANDOFF: if (!job_valid && !job_busy && dstate == D_IDLE) begin
-          job_valid <= 1'b1;
-          job_i <= i;
-          job_sw <= sw;
-          job_s[0] <= sx;
-          job_s[1] <= sy;
-          job_s[2] <= sp;
-          job_s[3] <= st;
-          job_cur[0] <= FW'(xi);
-          job_cur[1] <= FW'(yi);
-          job_cur[2] <= FW'(pi_);
-          job_cur[3] <= FW'(ti);
-          if (32'(i) + 1 < 32'(n)) begin
-            i <= i + 1'b1;
-            state <= S_POINT;
-          end else begin
-            state <= S_SWEEP_END;
-          end
-        end
-        S_SWEEP_END: if (!job_valid && !job_busy && dstate == D_IDLE && !wr_en) begin
+        S_SWEEP_END: if (!drain_pending && !job_valid && !job_busy && dstate == D_IDLE && !wr_en) begin
           // The divider has written every next point: they become the current ones.
           cur <= ~cur;
           sweeps <= k + 1'b1;
@@ -445,4 +471,11 @@ module evms_mean_shift #(
       endcase
     end
   end
+
+`ifndef SYNTHESIS
+  // The divider must be free when a point's sums are in (the point spacing guarantees it).
+  always_ff @(posedge clk)
+    if (sums_ready && (job_valid || job_busy || dstate != D_IDLE))
+      $error("evms_mean_shift: point %0d's sums are in while the divider is busy", drain_i);
+`endif
 endmodule
