@@ -25,10 +25,8 @@ module evms_mean_shift #(
   parameter int SUM_FRAC       = 16,
   parameter int EXP_LOG2       = 9,
   parameter int EXP_INTERP     = 8,
-  parameter int RECIP_LOG2     = 8,
   parameter int RECIP_FRAC     = 20,
-  parameter     EXP_MEM        = "exp_9_16.mem",
-  parameter     RECIP_MEM      = "recip_8_20.mem"
+  parameter     EXP_MEM        = "exp_9_16.mem"
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -51,7 +49,13 @@ module evms_mean_shift #(
   output logic [FEAT_BITS:0]      rd_x,
   output logic [FEAT_BITS:0]      rd_y,
   output logic [FEAT_BITS:0]      rd_p,
-  output logic [FEAT_BITS:0]      rd_t
+  output logic [FEAT_BITS:0]      rd_t,
+  // The core's reciprocal unit (math/evms_recip), which no other stage uses while mean shift runs.
+  output logic                    recip_start,
+  output logic [63:0]             recip_x,
+  input  logic                    recip_done,
+  input  logic [RECIP_FRAC:0]     recip_r,
+  input  logic [6:0]              recip_m
 );
   localparam int FW = FEAT_BITS + 1;                          // a mode may round one LSB past the features
   localparam int Depth = (PACKET_MAX + LANES - 1) / LANES;
@@ -272,15 +276,11 @@ module evms_mean_shift #(
   logic [63:0] job_sw, job_s [4];
   logic [FW-1:0] job_cur [4];
   logic [2:0]  job_dim;
-  logic        recip_start, recip_done;
-  logic [RECIP_FRAC:0] recip_r;
-  logic [6:0]  recip_m;
   logic [FW-1:0] job_next [4];
   typedef enum logic [2:0] {D_IDLE, D_RECIP, D_QUOT, D_WRITE} dstate_e;
   dstate_e dstate;
 
-  evms_recip #(.T(RECIP_LOG2), .RF(RECIP_FRAC), .MEM_FILE(RECIP_MEM)) u_recip (
-    .clk(clk), .rst_n(rst_n), .start(recip_start), .x(job_sw), .done(recip_done), .r(recip_r), .m(recip_m));
+  assign recip_x = job_sw;
 
   // The quotients are a three-clock pipeline, one dimension a clock, so that no clock holds
   // more than one multiply or one wide add: the sum's four 16-bit digits times r (one DSP

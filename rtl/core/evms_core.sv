@@ -170,14 +170,17 @@ module evms_core #(
   logic [FEAT_BITS-1:0] ms_lx, ms_ly, ms_lp, ms_lt;
   logic [7:0] ms_sweeps;
   logic [FW-1:0] ms_rx, ms_ry, ms_rp, ms_rt;
+  logic ms_recip_start;
+  logic [63:0] ms_recip_x;
   evms_mean_shift #(
     .PACKET_MAX(PACKET_MAX), .LANES(LANES), .ITERATIONS_MAX(ITERATIONS_MAX), .FEAT_BITS(FEAT_BITS), .FEAT_FRAC(FEAT_FRAC),
     .WEIGHT_FRAC(WEIGHT_FRAC), .SUM_FRAC(SUM_FRAC), .EXP_LOG2(EXP_LOG2), .EXP_INTERP(EXP_INTERP_BITS),
-    .RECIP_LOG2(RECIP_LOG2), .RECIP_FRAC(RECIP_FRAC), .EXP_MEM(EXP_MEM), .RECIP_MEM(RECIP_MEM)
+    .RECIP_FRAC(RECIP_FRAC), .EXP_MEM(EXP_MEM)
   ) u_mean_shift (
     .clk(clk), .rst_n(rst_n), .load_we(ms_load_we), .load_i(ms_load_i), .load_x(ms_lx), .load_y(ms_ly), .load_p(ms_lp),
     .load_t(ms_lt), .start(ms_start), .n(16'(n)), .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance),
-    .done(ms_done), .sweeps(ms_sweeps), .rd_i(ms_rd_i), .rd_x(ms_rx), .rd_y(ms_ry), .rd_p(ms_rp), .rd_t(ms_rt));
+    .done(ms_done), .sweeps(ms_sweeps), .rd_i(ms_rd_i), .rd_x(ms_rx), .rd_y(ms_ry), .rd_p(ms_rp), .rd_t(ms_rt),
+    .recip_start(ms_recip_start), .recip_x(ms_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m));
 
   // ---- merging ----------------------------------------------------------------------------------
   logic mg_start, mg_done, mg_co_we;
@@ -283,9 +286,12 @@ module evms_core #(
       recip_start = tk_recip_start;
       recip_x = tk_recip_x;
     end else begin
+      // features (the multiplier) and mean shift (the reciprocal)
       mul_start = feat_mul_start;
       mul_a = feat_mul_a;
       mul_b = feat_mul_b;
+      recip_start = ms_recip_start;
+      recip_x = ms_recip_x;
     end
   end
   function automatic [63:0] clamp_feat(input signed [63:0] v);
