@@ -12,7 +12,7 @@
 #   constraints/flow/synth.sh [-j JOBS] [-s SEEDS] [-o REPORT.json] [CONFIG ...]
 #
 # CONFIG is ice40_p1 .. ice40_p8 or xc7_p1 .. xc7_p8 (default: all eight). The iCE40 build is
-# P = 1 and the Arty build P = 4: ice40_p1 and xc7_p4 are the default configurations.
+# P = 1 and the Arty build P = 8: ice40_p1 and xc7_p8 are the default configurations.
 # compare.sh checks a report against baseline.json.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)

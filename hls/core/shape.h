@@ -54,9 +54,9 @@ struct Shape {
 };
 
 // The default board build: a DAVIS240-class sensor, the defaults of docs/sweep.md, a 16-bit
-// timestamp per pixel in 128 us units (one iCE40 SPRAM word), and four kernel lanes: eight need
-// 104 DSP48E1 and an XC7A35T has 90 (docs/rtl.md, "Area").
-using DefaultShape = Shape<240, 180, 256, 4, 8, 16, 16>;
+// timestamp per pixel in 128 us units (one iCE40 SPRAM word), and eight kernel lanes: 88 of an
+// XC7A35T's 90 DSP48E1 (docs/rtl.md, "Area").
+using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // The host's fixed-point backend: room for every recording evms reads (up to 1280x720), exact
 // 32-bit microsecond timestamps per pixel (its filter decides exactly as golden's), and a
 // pending queue deep enough that noisy recordings (a third noise, say) never close a packet
