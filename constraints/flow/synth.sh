@@ -9,10 +9,15 @@
 # source lines).
 # Each top is run at its build's lane count and at P = 1, 2, 4, 8.
 #
-#   constraints/flow/synth.sh [-j JOBS] [-s SEEDS] [-o REPORT.json] [CONFIG ...]
+#   constraints/flow/synth.sh [-j JOBS] [-s SEEDS] [-o REPORT.json] [-b] [CONFIG ...]
 #
 # CONFIG is ice40_p1 .. ice40_p8 or xc7_p1 .. xc7_p8 (default: all eight). The iCE40 build is
 # P = 1 and the Arty build P = 8: ice40_p1 and xc7_p8 are the default configurations.
+# -b also synthesizes each configuration with the core's blocks kept apart (keep_hierarchy on
+# the filter, mean shift, merge, centroids, tracker, multiplier and reciprocal; the rest of the
+# core and of the board top counted as theirs) and writes their resources to
+# <work>/<config>/blocks.txt. Keeping them apart stops optimization across their ports, so
+# their sum is a little above the flat figures of the report.
 # compare.sh checks a report against baseline.json.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -20,12 +25,14 @@ root=$(cd "$here/../.." && pwd)
 jobs=2
 seeds=5
 out=$root/build/synth/report.json
-while getopts "j:s:o:" opt; do
+blocks=false
+while getopts "j:s:o:b" opt; do
   case $opt in
     j) jobs=$OPTARG ;;
     s) seeds=$OPTARG ;;
     o) out=$OPTARG ;;
-    *) sed -n '2,13p' "$0"; exit 2 ;;
+    b) blocks=true ;;
+    *) sed -n '2,19p' "$0"; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
@@ -53,44 +60,63 @@ done
 declare -A capacity=([ice40_lut]=5280 [ice40_ff]=5280 [ice40_dsp]=8 [ice40_bram]=30 [ice40_spram]=4
                      [xc7_lut]=20800 [xc7_ff]=41600 [xc7_dsp]=90 [xc7_bram]=50 [xc7_spram]=0)
 
-count() {  # count FILE CELL-REGEX: the sum of the matching cell counts of the whole design in a yosys stat -json
-  sed -n '/"design":/,$p' "$1" | { grep -oE "\"($2)\": [0-9]+" || true; } | awk '{ s += $2 } END { print s + 0 }'
+count() {  # count FILE SECTION CELL-REGEX: the sum of the matching cell counts of SECTION ("design",
+           # the whole design, or a module's name as yosys stat -json spells it) in a yosys stat -json
+  # (the key through the environment: awk -v would take the backslashes of escaped names as escapes)
+  key="\"$2\": {" awk 'index($0, ENVIRON["key"]) { on = 1 } on { print } on && /^ *}/ { exit }' "$1" |
+    { grep -oE "\"($3)\": [0-9]+" || true; } | awk '{ s += $2 } END { print s + 0 }'
+}
+
+resources() {  # resources FAMILY FILE SECTION: "LUT FF DSP BRAM SPRAM" of SECTION in a yosys stat -json
+  local f=$2 m=$3
+  if [ "$1" = ice40 ]; then
+    echo "$(count "$f" "$m" SB_LUT4) $(count "$f" "$m" 'SB_DFF[A-Z]*') $(count "$f" "$m" SB_MAC16) $(count "$f" "$m" SB_RAM40_4K) $(count "$f" "$m" SB_SPRAM256KA)"
+  else
+    # LUTs as logic and as distributed RAM (a RAM64M is four LUTs); block RAM in 36 kb tiles.
+    echo "$(( $(count "$f" "$m" 'LUT[1-6]') + 4 * $(count "$f" "$m" 'RAM64M|RAM32M') + 2 * $(count "$f" "$m" 'RAM64X1D|RAM32X1D') + $(count "$f" "$m" 'RAM64X1S|RAM32X1S|SRL16E|SRLC32E') ))" \
+      "$(count "$f" "$m" 'FD[A-Z]*') $(count "$f" "$m" DSP48E1)" \
+      "$(awk -v a="$(count "$f" "$m" RAMB36E1)" -v b="$(count "$f" "$m" RAMB18E1)" 'BEGIN { printf "%g", a + b / 2 }') 0"
+  fi
 }
 
 run_config() {
-  local name=$1 family=${1%_p*} lanes=${1#*_p} dir=$work/$1 top
+  local name=$1 family=${1%_p*} lanes=${1#*_p} dir=$work/$1 top synth netlist timing
   mkdir -p "$dir"
   rm -f "$dir/stat.json" "$dir/sta.txt" "$dir/entry.json"   # a failed run must not leave an earlier run's figures
   if [ "$family" = ice40 ]; then
     top=evms_icebreaker_top
-    synth="synth_ice40 -dsp -spram -top $top -json $dir/netlist.json"
+    synth="synth_ice40 -dsp -spram -top $top"
+    netlist="write_json $dir/netlist.json"   # for nextpnr
     timing="read_verilog -D ICE40_U -lib -specify $work/timing_ice40.v"
   else
     top=evms_arty_top
     synth="synth_xilinx -family xc7 -flatten -top $top"
+    netlist=""
     timing="read_verilog -lib -specify $work/timing_xilinx.v"
   fi
-  # $readmemh paths in the generated headers are relative to rtl/generated.
-  (cd "$root/rtl/generated" && yosys -q -l "$dir/yosys.log" -p "read_verilog -sv -I. -I$root/rtl/board ${sources[*]} $root/rtl/board/$top.sv;
-      hierarchy -top $top -chparam LANES_OVERRIDE $lanes; $synth; tee -q -o $dir/stat.json stat -json;
-      $timing; tee -q -o $dir/sta.txt sta") >/dev/null 2>"$dir/yosys.warnings" || {
-    echo "synth.sh: $name: yosys failed: $(grep -m1 'ERROR' "$dir/yosys.warnings" || tail -n 1 "$dir/yosys.warnings")" >&2
-    return 1
+  # yosys_on RUN SCRIPT: the top elaborated at this lane count, then SCRIPT; logs in $dir/RUN.*
+  yosys_on() {
+    # $readmemh paths in the generated headers are relative to rtl/generated.
+    (cd "$root/rtl/generated" && yosys -q -l "$dir/$1.log" -p "read_verilog -sv -I. -I$root/rtl/board ${sources[*]} $root/rtl/board/$top.sv;
+        hierarchy -top $top -chparam LANES_OVERRIDE $lanes; $2") >/dev/null 2>"$dir/$1.warnings" || {
+      echo "synth.sh: $name: yosys failed ($1 run): $(grep -m1 'ERROR' "$dir/$1.warnings" || tail -n 1 "$dir/$1.warnings")" >&2
+      return 1
+    }
   }
-  local s=$dir/stat.json lut ff dsp bram spram
-  if [ "$family" = ice40 ]; then
-    lut=$(count "$s" SB_LUT4)
-    ff=$(count "$s" 'SB_DFF[A-Z]*')
-    dsp=$(count "$s" SB_MAC16)
-    bram=$(count "$s" SB_RAM40_4K)
-    spram=$(count "$s" SB_SPRAM256KA)
-  else
-    # LUTs as logic and as distributed RAM (a RAM64M is four LUTs); block RAM in 36 kb tiles.
-    lut=$(( $(count "$s" 'LUT[1-6]') + 4 * $(count "$s" 'RAM64M|RAM32M') + 2 * $(count "$s" 'RAM64X1D|RAM32X1D') + $(count "$s" 'RAM64X1S|RAM32X1S|SRL16E|SRLC32E') ))
-    ff=$(count "$s" 'FD[A-Z]*')
-    dsp=$(count "$s" DSP48E1)
-    bram=$(awk -v a="$(count "$s" RAMB36E1)" -v b="$(count "$s" RAMB18E1)" 'BEGIN { printf "%g", a + b / 2 }')
-    spram=0
+  yosys_on yosys "$synth; $netlist; tee -q -o $dir/stat.json stat -json; $timing; tee -q -o $dir/sta.txt sta" || return 1
+  local lut ff dsp bram spram
+  read -r lut ff dsp bram spram < <(resources "$family" "$dir/stat.json" design)
+  if $blocks; then
+    # Every kept module has one instance in the tops, so a module's stat is its block's.
+    yosys_on blocks "setattr -mod -set keep_hierarchy 1 *evms_ba_filter *evms_mean_shift *evms_merge *evms_centroid *evms_tracker *evms_mul* \
+        *evms_recip *evms_core *evms_board; $synth; tee -q -o $dir/blocks_stat.json stat -json" || return 1
+    {
+      printf '%-11s %7s %7s %5s %5s %5s\n' block LUT FF DSP BRAM SPRAM
+      { grep -oE '^      "[^"]+": \{' "$dir/blocks_stat.json" | grep -v '"design"' | sed -E 's/^ *"(.*)": \{$/\1/'; echo design; } | while read -r m; do
+        printf '%-11s %7s %7s %5s %5s %5s\n' "$(echo "$m" | sed -E 's/^.*\\evms_([a-z0-9_]+).*$/\1/; s/^(icebreaker|arty)_top$/top/; s/^design$/total/')" \
+          $(resources "$family" "$dir/blocks_stat.json" "$m")
+      done
+    } > "$dir/blocks.txt"
   fi
   # The longest path: its delay, and its blocks and source lines from start to end.
   local logic_ps logic_ns bound critical
