@@ -7,7 +7,7 @@
 // The samples never increase (ExpTable.SamplesNeverIncrease), so v[i] - v[i+1] is WF + 1 bits.
 // The slope's product by the IB-bit fraction is a sum of shifted copies in fabric, not a
 // multiplier: Yosys would give every product a DSP, and the lanes' DSPs are what limits their
-// count on the XC7A35T (eight lanes: 93 DSP48E1 with this product in fabric, 101 without).
+// count on the XC7A35T (a DSP48E1 a lane; docs/rtl.md, "Area").
 module evms_exp_lut #(
   parameter int    L        = 9,
   parameter int    WF       = 16,
