@@ -154,7 +154,7 @@ module evms_mean_shift #(
   // The point whose terms drain through the lanes, until its sums go to the divider.
   logic [15:0]   drain_i;
   logic [FW-1:0] drain_cur [4];
-  logic          drain_pending;
+  logic          draining;
   // Clocks until the next point may start: points start R + 10 clocks apart at least, so that
   // the divider has finished the previous point when the next one's sums are in.
   localparam int PointSpacing = 6 + 10;   // evms_recip's latency + the divider's own clocks
@@ -164,8 +164,9 @@ module evms_mean_shift #(
   assign pt_addr = state == S_POINT ? {cur, addr_of(i)} : (state == S_IDLE ? {cur, addr_of(rd_i)} : {cur, AW'(a)});
 
   // Lane issue: address a, chunk valid per lane.
-  logic issue;
+  logic issue, last_chunk;
   assign issue = state == S_ISSUE;
+  assign last_chunk = (32'(a) + 1) * LANES >= 32'(n);
   logic [LANES-1:0] lane_valid_issue;
   always_comb begin
     for (int l = 0; l < LANES; l++) lane_valid_issue[l] = issue && (32'(a) * LANES + l < 32'(n));
@@ -227,7 +228,7 @@ module evms_mean_shift #(
       v4 <= v3;
       v5 <= v4;
       v6 <= v5;
-      last1 <= issue && (32'(a) + 1) * LANES >= 32'(n);
+      last1 <= issue && last_chunk;
       last2 <= last1;
       last3 <= last2;
       last4 <= last3;
@@ -242,6 +243,8 @@ module evms_mean_shift #(
   // p, t).
   logic [63:0] sw, sx, sy, sp, st;
   logic        sums_ready;
+  // A point's terms are in the lanes from its last issue until its sums are handed off.
+  assign draining = last1 | last2 | last3 | last4 | last5 | last6 | sums_ready;
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
       {sw, sx, sy, sp, st} <= '0;
@@ -373,7 +376,6 @@ module evms_mean_shift #(
       job_i <= '0;
       job_sw <= '0;
       drain_i <= '0;
-      drain_pending <= 1'b0;
       for (int d = 0; d < 4; d++) begin
         job_s[d] <= '0;
         job_cur[d] <= '0;
@@ -397,14 +399,10 @@ module evms_mean_shift #(
         job_s[2] <= sp;
         job_s[3] <= st;
         for (int d = 0; d < 4; d++) job_cur[d] <= drain_cur[d];
-        drain_pending <= 1'b0;
       end
       // The draining point: named at its last issue, its coordinates the clock after (when a
       // one-chunk point has taken them too), handed to the divider when its sums are in.
-      if (issue && (32'(a) + 1) * LANES >= 32'(n)) begin
-        drain_i <= i;
-        drain_pending <= 1'b1;   // (points are PointSpacing apart: never in a hand-off clock)
-      end
+      if (issue && last_chunk) drain_i <= i;
       if (last1) begin
         drain_cur[0] <= FW'(xi);
         drain_cur[1] <= FW'(yi);
@@ -439,7 +437,7 @@ module evms_mean_shift #(
             pi_ <= $signed({2'b0, bank_p[bank_of(i)]});
             ti  <= $signed({2'b0, bank_t[bank_of(i)]});
           end
-          if ((32'(a) + 1) * LANES >= 32'(n)) begin
+          if (last_chunk) begin
             if (32'(i) + 1 < 32'(n)) begin
               i <= i + 1'b1;
               state <= S_POINT;
@@ -450,7 +448,7 @@ module evms_mean_shift #(
             a <= a + 1'b1;
           end
         end
-        S_SWEEP_END: if (!drain_pending && !job_valid && !job_busy && dstate == D_IDLE && !wr_en) begin
+        S_SWEEP_END: if (!draining && !job_valid && !job_busy && dstate == D_IDLE && !wr_en) begin
           // The divider has written every next point: they become the current ones.
           cur <= ~cur;
           sweeps <= k + 1'b1;
