@@ -1,7 +1,10 @@
 // gen://SCENE?seed=S&speed=F&duration-s=D : a generated labelled scene as an event source,
-// so that every subcommand can run without a file. SCENE is translation, rotation or 6dof.
+// so that every subcommand can run without a file. SCENE is one of the paper's scenes
+// (translation, rotation or 6dof: the shapes poster), or family/TYPE, a member of the scene
+// family (host/gen/family.h) drawn from the seed.
 #include <charconv>
 
+#include "host/gen/family.h"
 #include "host/gen/scene_generator.h"
 #include "host/gen/scene_uri.h"
 #include "host/read/event_source.h"
@@ -10,29 +13,51 @@
 namespace evms::gen {
 
 SceneConfig parse_scene_uri(const std::string& uri) {
-  SceneConfig cfg;
   const read::SourceUri parts = read::split_source_uri(uri);
   const std::string& scene = parts.target;
-  if (!parse_motion(scene, cfg.motion)) {
-    throw read::InputError(uri + ": unknown scene '" + scene + "' (translation, rotation or 6dof)");
+  auto number = [&](const std::string& key, const std::string& value, auto& out) {
+    auto [p, ec] = std::from_chars(value.data(), value.data() + value.size(), out);
+    if (ec != std::errc() || p != value.data() + value.size()) {
+      throw read::InputError(uri + ": '" + key + "' needs a number, got '" + value + "'");
+    }
+  };
+  SceneConfig cfg;
+  const std::string family_prefix = "family/";
+  if (scene.rfind(family_prefix, 0) == 0) {
+    const std::string type = scene.substr(family_prefix.size());
+    if (!is_family_type(type)) {
+      throw read::InputError(uri + ": unknown scene type '" + type + "' (still, translation, rotation, zoom, 6dof, shake or crossing)");
+    }
+    std::uint64_t seed = 1;
+    double duration_s = 0;
+    for (const auto& [key, value] : parts.query) {
+      if (key == "seed") number(key, value, seed);
+      else if (key == "duration-s") number(key, value, duration_s);
+      else throw read::InputError(uri + ": unknown setting '" + key + "' of a family scene (seed, duration-s)");
+    }
+    cfg = family_scene(type, seed);
+    if (duration_s != 0) cfg.duration_s = duration_s;
+    if (!(cfg.duration_s > 0)) throw read::InputError(uri + ": duration-s must be positive");
+    return cfg;
   }
+  Motion motion;
+  if (!parse_motion(scene, motion) || !(motion == Motion::kTranslation || motion == Motion::kRotation || motion == Motion::kSixDof)) {
+    throw read::InputError(uri + ": unknown scene '" + scene + "' (translation, rotation, 6dof, or family/TYPE)");
+  }
+  cfg.motion = motion;
   for (const auto& [key, value] : parts.query) {
-    auto number = [&](auto& out) {
-      auto [p, ec] = std::from_chars(value.data(), value.data() + value.size(), out);
-      if (ec != std::errc() || p != value.data() + value.size()) {
-        throw read::InputError(uri + ": '" + key + "' needs a number, got '" + value + "'");
-      }
-    };
-    if (key == "seed") number(cfg.seed);
-    else if (key == "speed") number(cfg.speed);
-    else if (key == "duration-s") number(cfg.duration_s);
-    else if (key == "noise-hz") number(cfg.noise_hz);
-    else if (key == "width") number(cfg.width);
-    else if (key == "height") number(cfg.height);
-    else throw read::InputError(uri + ": unknown setting '" + key + "' (seed, speed, duration-s, noise-hz, width, height)");
+    if (key == "seed") number(key, value, cfg.seed);
+    else if (key == "speed") number(key, value, cfg.speed);
+    else if (key == "duration-s") number(key, value, cfg.duration_s);
+    else if (key == "noise-hz") number(key, value, cfg.noise_hz);
+    else if (key == "width") number(key, value, cfg.width);
+    else if (key == "height") number(key, value, cfg.height);
+    else if (key == "movers") number(key, value, cfg.movers);
+    else throw read::InputError(uri + ": unknown setting '" + key + "' (seed, speed, duration-s, noise-hz, width, height, movers)");
   }
-  if (!(cfg.speed > 0) || !(cfg.duration_s > 0) || cfg.width < 64 || cfg.height < 64 || cfg.width > 4096 || cfg.height > 4096) {
-    throw read::InputError(uri + ": speed and duration-s must be positive and the sensor between 64 and 4096 px");
+  if (!(cfg.speed > 0) || !(cfg.duration_s > 0) || cfg.width < 64 || cfg.height < 64 || cfg.width > 4096 || cfg.height > 4096 ||
+      cfg.movers < 0 || cfg.movers > 9) {
+    throw read::InputError(uri + ": speed and duration-s must be positive, the sensor between 64 and 4096 px, and movers 0 to 9");
   }
   return cfg;
 }

@@ -23,12 +23,12 @@ Vec rotate(Vec v, double a) {
 }
 
 // A shape in its own frame, centred on its geometric centre. Signed distance is negative
-// inside. Polygons are exact; the ellipse is the usual first-order approximation, which only
-// shapes the one-pixel anti-aliasing ramp.
+// inside. Polygons (convex or not) are exact; the ellipse is the usual first-order
+// approximation, which only shapes the one-pixel anti-aliasing ramp.
 struct Shape {
-  enum class Kind { kCircle, kEllipse, kPolygon } kind;
+  enum class Kind { kCircle, kEllipse, kRing, kPolygon } kind;
   std::string name;
-  double a = 0, b = 0;            // radius, or ellipse half-axes
+  double a = 0, b = 0;            // radius, ellipse half-axes, or ring radius and half-width
   std::vector<Vec> vertices;      // polygon, counter-clockwise
   double bound = 0;               // radius of a circle that holds the shape
 
@@ -39,6 +39,7 @@ struct Shape {
         const double k = std::hypot(p.x / a, p.y / b);
         return (k - 1.0) * std::min(a, b);
       }
+      case Kind::kRing: return std::abs(p.norm() - a) - b;
       case Kind::kPolygon: break;
     }
     double d2 = 1e300;
@@ -55,13 +56,31 @@ struct Shape {
     }
     return inside ? -std::sqrt(d2) : std::sqrt(d2);
   }
+
+  void scale(double s) {
+    for (Vec& v : vertices) v = v * s;
+    a *= s;
+    b *= s;
+    bound *= s;
+  }
 };
 
 Shape circle(double r) { return {Shape::Kind::kCircle, "circle", r, r, {}, r}; }
 Shape ellipse(double a, double b) { return {Shape::Kind::kEllipse, "ellipse", a, b, {}, std::max(a, b)}; }
+Shape ring(double r, double half_width) { return {Shape::Kind::kRing, "ring", r, half_width, {}, r + half_width}; }
 Shape polygon(std::string name, std::vector<Vec> v) {
+  // Centre on the outline's centroid (the edges' midpoints weighted by their lengths): the
+  // centre of mass of the events a uniformly firing outline gives, and the truth centre.
+  Vec centroid;
+  double perimeter = 0;
+  for (size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
+    const double length = (v[i] - v[j]).norm();
+    centroid = centroid + (v[i] + v[j]) * (0.5 * length);
+    perimeter += length;
+  }
+  centroid = centroid * (1.0 / perimeter);
   double bound = 0;
-  for (Vec p : v) bound = std::max(bound, p.norm());
+  for (Vec& p : v) p = p - centroid, bound = std::max(bound, p.norm());
   return {Shape::Kind::kPolygon, std::move(name), 0, 0, std::move(v), bound};
 }
 Shape regular(std::string name, int n, double r, double phase = M_PI / 2) {
@@ -77,33 +96,75 @@ Shape star(double r_out, double r_in) {
 Shape box(std::string name, double hx, double hy) {
   return polygon(std::move(name), {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}});
 }
+// Concave shapes, each about 2r across.
+Shape ell(double r) {
+  const double t = 0.4 * r;
+  return polygon("L", {{-r, -r}, {r, -r}, {r, -r + t}, {-r + t, -r + t}, {-r + t, r}, {-r, r}});
+}
+Shape cross(double r) {
+  const double t = 0.3 * r;
+  return polygon("cross", {{-t, -r}, {t, -r}, {t, -t}, {r, -t}, {r, t}, {t, t}, {t, r}, {-t, r}, {-t, t}, {-r, t}, {-r, -t}, {-t, -t}});
+}
+Shape chevron(double r) {
+  const double t = 0.45 * r;
+  return polygon("chevron", {{-r, -r}, {-r + t, -r}, {r, 0}, {-r + t, r}, {-r, r}, {r - t, 0}});
+}
+
+// A shape of the scattered layout with diameter d: the nine poster shapes, a thin bar, and
+// the concave L, cross, ring and chevron.
+Shape any_shape(int kind, double d, Random& rng) {
+  const double r = d / 2;
+  switch (kind) {
+    case 0: return circle(r);
+    case 1: return ellipse(r, r * rng.uniform(0.4, 0.7));
+    case 2: return regular("triangle", 3, r);
+    case 3: return box("square", r * 0.75, r * 0.75);
+    case 4: return box("rectangle", r, r * 0.5);
+    case 5: return regular("pentagon", 5, r);
+    case 6: return regular("hexagon", 6, r);
+    case 7: return star(r, r * 0.42);
+    case 8: return regular("diamond", 4, r, 0);
+    case 9: return box("bar", r, std::max(1.0, rng.uniform(1.0, 1.6)));
+    case 10: return ell(r * 0.75);
+    case 11: return cross(r * 0.75);
+    case 12: return ring(r * 0.8, std::max(1.0, r * rng.uniform(0.1, 0.2)));
+    default: return chevron(r * 0.75);
+  }
+}
+constexpr int kShapeKinds = 14;
 
 struct Object {
   Shape shape;
   Vec home;           // poster position of the centre
   double angle;       // orientation on the poster
   double intensity;   // reflectance on a white (1.0) poster
-  bool mover = false; // slides across the poster
-  Vec slide;          // displacement amplitude of a mover
-  double slide_hz = 0;
-  double slide_phase = 0;
+  bool mover = false; // moves on its own
+  Vec amplitude;      // a mover's displacement amplitude, per axis
+  double hz_x = 0, hz_y = 0;
+  double phase_x = 0, phase_y = 0;
 };
 
 }  // namespace
 
 bool parse_motion(const std::string& name, Motion& out) {
-  if (name == "translation") out = Motion::kTranslation;
+  if (name == "still") out = Motion::kStill;
+  else if (name == "translation") out = Motion::kTranslation;
   else if (name == "rotation") out = Motion::kRotation;
+  else if (name == "zoom") out = Motion::kZoom;
   else if (name == "6dof") out = Motion::kSixDof;
+  else if (name == "shake") out = Motion::kShake;
   else return false;
   return true;
 }
 
 const char* motion_name(Motion m) {
   switch (m) {
+    case Motion::kStill: return "still";
     case Motion::kTranslation: return "translation";
     case Motion::kRotation: return "rotation";
+    case Motion::kZoom: return "zoom";
     case Motion::kSixDof: return "6dof";
+    case Motion::kShake: return "shake";
   }
   return "?";
 }
@@ -113,7 +174,7 @@ struct SceneGenerator::Impl {
   Random rng;
   std::vector<Object> objects;
   Vec centre;           // sensor centre, px
-  double motion_phase[4];
+  double motion_phase[8];
 
   // Per-pixel sensor state.
   std::vector<double> log_ref, log_prev, th_on, th_off;
@@ -121,6 +182,12 @@ struct SceneGenerator::Impl {
   std::vector<std::int8_t> owner;
   std::vector<std::uint32_t> visited;
   std::uint32_t step = 0;
+
+  struct HotPixel {
+    int x, y;
+    double next_s;
+  };
+  std::vector<HotPixel> hot;
 
   double t_s = 0;                  // simulated time reached, s
   double next_noise_s = 0;
@@ -130,7 +197,9 @@ struct SceneGenerator::Impl {
 
   explicit Impl(const SceneConfig& c) : cfg(c), rng(c.seed) {
     centre = {(cfg.width - 1) / 2.0, (cfg.height - 1) / 2.0};
-    build_poster();
+    if (cfg.layout == Layout::kPoster) build_poster();
+    else build_scattered();
+    add_movers();
     for (double& p : motion_phase) p = rng.uniform(0, 2 * M_PI);
     const size_t n = static_cast<size_t>(cfg.width) * cfg.height;
     log_ref.resize(n);
@@ -154,15 +223,20 @@ struct SceneGenerator::Impl {
       }
     }
     next_noise_s = cfg.noise_hz > 0 ? rng.exponential(cfg.noise_hz * n) : 1e300;
+    for (int k = 0; k < cfg.hot_pixels; ++k) {
+      hot.push_back({static_cast<int>(rng.below(static_cast<std::uint64_t>(cfg.width))),
+                     static_cast<int>(rng.below(static_cast<std::uint64_t>(cfg.height))), rng.exponential(cfg.hot_pixel_hz)});
+    }
   }
 
   size_t index(int x, int y) const { return static_cast<size_t>(y) * cfg.width + x; }
+  double size_scale() const { return std::min(cfg.width / 240.0, cfg.height / 180.0); }
 
   // Nine shapes on a jittered 3x3 grid that spans more than the field of view, with random
-  // size, orientation and contrast. Two of them slide in front of their neighbours.
+  // size, orientation and contrast.
   void build_poster() {
     const double sx = cfg.width / 240.0, sy = cfg.height / 180.0;
-    const double s = std::min(sx, sy);
+    const double s = size_scale();
     std::vector<Shape> shapes = {
         circle(15 * s),           ellipse(19 * s, 11 * s),     regular("triangle", 3, 19 * s),
         box("square", 13 * s, 13 * s), box("rectangle", 20 * s, 10 * s), regular("pentagon", 5, 16 * s),
@@ -172,12 +246,8 @@ struct SceneGenerator::Impl {
     for (size_t i = shapes.size() - 1; i > 0; --i) std::swap(shapes[i], shapes[rng.below(i + 1)]);
     for (int gy = 0; gy < 3; ++gy) {
       for (int gx = 0; gx < 3; ++gx) {
-        Object o{shapes[static_cast<size_t>(gy * 3 + gx)], {}, 0, 0, false, {}, 0, 0};
-        const double size_scale = rng.uniform(0.85, 1.15);
-        for (Vec& v : o.shape.vertices) v = v * size_scale;
-        o.shape.a *= size_scale;
-        o.shape.b *= size_scale;
-        o.shape.bound *= size_scale;
+        Object o{shapes[static_cast<size_t>(gy * 3 + gx)], {}, 0, 0};
+        o.shape.scale(rng.uniform(0.85, 1.15));
         o.home = {cfg.width * (0.5 + (gx - 1) * 0.36) + rng.uniform(-7, 7) * sx,
                   cfg.height * (0.5 + (gy - 1) * 0.36) + rng.uniform(-6, 6) * sy};
         o.angle = rng.uniform(0, 2 * M_PI);
@@ -185,16 +255,58 @@ struct SceneGenerator::Impl {
         objects.push_back(std::move(o));
       }
     }
-    // Movers: the centre-row outer shapes slide towards (and over) the middle one, and the
-    // top-middle one slides down over it. Drawn last, so they are in front.
-    const int mover_index[2] = {3, 1};
-    const Vec slide_dir[2] = {{0.36 * cfg.width * 0.9, 0}, {0, 0.36 * cfg.height * 0.9}};
-    for (int m = 0; m < 2; ++m) {
-      Object& o = objects[static_cast<size_t>(mover_index[m])];
+  }
+
+  // `objects` shapes of any kind and size, apart from each other, on a poster that reaches
+  // beyond the field of view when the camera moves (so that shapes leave and enter it).
+  void build_scattered() {
+    const double margin = cfg.motion == Motion::kStill ? -0.05 : 0.15;
+    const Vec lo{-margin * cfg.width, -margin * cfg.height}, hi{(1 + margin) * cfg.width, (1 + margin) * cfg.height};
+    for (int k = 0; k < cfg.objects; ++k) {
+      const double d = cfg.size_min_px * std::pow(cfg.size_max_px / cfg.size_min_px, rng.uniform());
+      Object o{any_shape(static_cast<int>(rng.below(kShapeKinds)), d, rng), {}, rng.uniform(0, 2 * M_PI), 0};
+      o.intensity = rng.uniform() < cfg.low_contrast_share ? rng.uniform(0.55, 0.75) : rng.uniform(0.04, 0.35);
+      // Apart from the shapes placed so far, by a gap of 3 px or more; shrink when crowded.
+      for (int attempt = 0;; ++attempt) {
+        const double r = o.shape.bound;
+        o.home = {rng.uniform(lo.x + r, hi.x - r), rng.uniform(lo.y + r, hi.y - r)};
+        bool clear = true;
+        for (const Object& p : objects) clear = clear && (o.home - p.home).norm() > r + p.shape.bound + 3;
+        if (clear) break;
+        if (attempt % 40 == 39) o.shape.scale(0.85);
+      }
+      objects.push_back(std::move(o));
+    }
+  }
+
+  // Movers: the last `movers` shapes move on their own and are drawn in front. Crossing ones
+  // slide to and fro across another shape's place; the others wander on Lissajous paths.
+  void add_movers() {
+    const int movers = std::min<int>(cfg.movers, static_cast<int>(objects.size()));
+    const double w = cfg.width, h = cfg.height;
+    for (int m = 0; m < movers; ++m) {
+      Object& o = objects[objects.size() - 1 - static_cast<size_t>(m)];
       o.mover = true;
-      o.slide = slide_dir[m];
-      o.slide_hz = rng.uniform(0.15, 0.25);
-      o.slide_phase = rng.uniform(0, 2 * M_PI);
+      if (cfg.crossing && objects.size() > 1) {
+        const size_t others = objects.size() - static_cast<size_t>(movers);
+        const Object& target = objects[others > 0 ? rng.below(others) : 0];
+        // Through the target, from one side of it to the other.
+        const double a = rng.uniform(0, 2 * M_PI);
+        const double reach = target.shape.bound + o.shape.bound + rng.uniform(0.1, 0.25) * std::min(w, h);
+        o.home = target.home;
+        o.amplitude = {reach * std::cos(a), reach * std::sin(a)};
+        const double hz = cfg.mover_speed_px_s * rng.uniform(0.6, 1.4) / (4 * reach);
+        o.hz_x = o.hz_y = hz;
+        o.phase_x = o.phase_y = rng.uniform(0, 2 * M_PI);
+      } else {
+        o.amplitude = {rng.uniform(0.1, 0.3) * w, rng.uniform(0.1, 0.3) * h};
+        o.home = {std::clamp(o.home.x, o.amplitude.x + o.shape.bound, w - o.amplitude.x - o.shape.bound),
+                  std::clamp(o.home.y, o.amplitude.y + o.shape.bound, h - o.amplitude.y - o.shape.bound)};
+        o.hz_x = cfg.mover_speed_px_s * rng.uniform(0.5, 1.5) / (4 * o.amplitude.x);
+        o.hz_y = cfg.mover_speed_px_s * rng.uniform(0.5, 1.5) / (4 * o.amplitude.y);
+        o.phase_x = rng.uniform(0, 2 * M_PI);
+        o.phase_y = rng.uniform(0, 2 * M_PI);
+      }
     }
     std::stable_partition(objects.begin(), objects.end(), [](const Object& o) { return !o.mover; });
   }
@@ -209,19 +321,31 @@ struct SceneGenerator::Impl {
     const double u = t * cfg.speed;
     const double* ph = motion_phase;
     const double w = cfg.width / 240.0;
+    auto wave = [&](double amplitude, double hz, int k) { return amplitude * std::sin(2 * M_PI * hz * u + ph[k]); };
     Pose p;
     switch (cfg.motion) {
+      case Motion::kStill: break;
       case Motion::kTranslation:
-        p.d = {45 * w * std::sin(2 * M_PI * 0.45 * u + ph[0]), 32 * w * std::sin(2 * M_PI * 0.31 * u + ph[1])};
+        p.d = {wave(45 * w, 0.45, 0), wave(32 * w, 0.31, 1)};
         break;
       case Motion::kRotation:
-        p.theta = 0.75 * std::sin(2 * M_PI * 0.30 * u + ph[2]);
-        p.d = {6 * w * std::sin(2 * M_PI * 0.2 * u + ph[0]), 5 * w * std::sin(2 * M_PI * 0.17 * u + ph[1])};
+        p.theta = wave(0.75, 0.30, 2);
+        p.d = {wave(6 * w, 0.2, 0), wave(5 * w, 0.17, 1)};
+        break;
+      case Motion::kZoom:
+        p.zoom = std::exp(wave(0.35, 0.25, 3));
+        p.d = {wave(5 * w, 0.2, 0), wave(4 * w, 0.17, 1)};
         break;
       case Motion::kSixDof:
-        p.d = {30 * w * std::sin(2 * M_PI * 0.37 * u + ph[0]), 22 * w * std::sin(2 * M_PI * 0.29 * u + ph[1])};
-        p.theta = 0.35 * std::sin(2 * M_PI * 0.23 * u + ph[2]);
-        p.zoom = std::exp(0.22 * std::sin(2 * M_PI * 0.21 * u + ph[3]));
+        p.d = {wave(30 * w, 0.37, 0), wave(22 * w, 0.29, 1)};
+        p.theta = wave(0.35, 0.23, 2);
+        p.zoom = std::exp(wave(0.22, 0.21, 3));
+        break;
+      case Motion::kShake:
+        // A hand holding the camera: a few small, faster tremors on top of a slow drift.
+        p.d = {wave(4 * w, 1.7, 0) + wave(2.5 * w, 3.1, 4) + wave(1.5 * w, 5.3, 5) + wave(8 * w, 0.3, 6),
+               wave(3 * w, 2.3, 1) + wave(2 * w, 3.7, 7) + wave(6 * w, 0.23, 2)};
+        p.theta = wave(0.03, 1.3, 3);
         break;
     }
     return p;
@@ -231,7 +355,8 @@ struct SceneGenerator::Impl {
 
   Vec object_centre(const Object& o, double t) const {
     if (!o.mover) return o.home;
-    return o.home + o.slide * std::sin(2 * M_PI * o.slide_hz * t * cfg.speed + o.slide_phase);
+    const double u = t * cfg.speed;
+    return o.home + Vec{o.amplitude.x * std::sin(2 * M_PI * o.hz_x * u + o.phase_x), o.amplitude.y * std::sin(2 * M_PI * o.hz_y * u + o.phase_y)};
   }
 
   // Intensity seen by pixel (x, y) at time t, and the topmost object covering it.
@@ -314,6 +439,9 @@ struct SceneGenerator::Impl {
       const auto pixel = rng.below(static_cast<std::uint64_t>(cfg.width) * cfg.height);
       emit(next_noise_s, int(pixel % cfg.width), int(pixel / cfg.width), rng.uniform() < 0.5, kNoiseLabel);
       next_noise_s += rng.exponential(cfg.noise_hz * cfg.width * cfg.height);
+    }
+    for (HotPixel& hp : hot) {
+      for (; hp.next_s <= t1; hp.next_s += rng.exponential(cfg.hot_pixel_hz)) emit(hp.next_s, hp.x, hp.y, rng.uniform() < 0.5, kNoiseLabel);
     }
 
     while (next_truth_us <= static_cast<TimeUs>(t1 * 1e6)) {
