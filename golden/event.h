@@ -31,13 +31,22 @@ struct LabelledEvent {
   friend bool operator==(const LabelledEvent&, const LabelledEvent&) = default;
 };
 
-// The filtered Kalman estimate of one track after a measurement update.
+// A track is tentative until it has been measured confirm-hits times, then confirmed.
+enum class TrackState : std::uint8_t { kTentative, kConfirmed };
+
+// The filtered Kalman estimate of one track after a measurement update, and the cluster that
+// measured it.
 struct TrackUpdate {
   TimeUs t = 0;            // time of the measurement (mean timestamp of the cluster's events)
   std::int32_t id = 0;     // persistent track ID, never reused
   double x = 0, y = 0;     // px
   double vx = 0, vy = 0;   // px/s
   double zx = 0, zy = 0;   // the raw measurement (cluster centre of mass) of this update, px
+  TrackState state = TrackState::kConfirmed;
+  std::int32_t events = 0;                   // events of the cluster (labelled with this ID)
+  std::int32_t x_min = 0, y_min = 0;         // the cluster's bounding box, px (inclusive)
+  std::int32_t x_max = 0, y_max = 0;
+  double var_x = 0, cov_xy = 0, var_y = 0;   // the estimate's position covariance, px^2
 };
 
 struct SensorSize {

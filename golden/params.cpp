@@ -11,18 +11,32 @@ namespace {
 
 constexpr double kBig = 1e15;
 
+constexpr std::array<const char*, 3> kKernelNames = {"gaussian", "flat", "epanechnikov"};
+constexpr std::array<const char*, 3> kSeedingNames = {"every", "events", "grid"};
+constexpr std::array<const char*, 3> kLabellingNames = {"votes", "nearest", "first"};
+constexpr std::array<const char*, 2> kXyScaleNames = {"axes", "isotropic"};
+constexpr std::array<const char*, 2> kMeasureNames = {"centroid", "box-centre"};
+constexpr std::array<const char*, 3> kAssociationNames = {"kalman", "nearest-centre", "last-measurement"};
+
 const std::array kTable = {
     ParamInfo{"filter-window-us", "us",
               "background-activity window: an event is kept when one of its 8 neighbours "
               "fired within this time; 0 turns the filter off",
               &Params::filter_window_us, 0, 1e9},
+    ParamInfo{"filter-support", "neighbours", "neighbours that must have fired within the window for an event to be kept",
+              &Params::filter_support, 1, 8},
+    ParamInfo{"packet-support", "neighbours", "when a packet closes, its events of which fewer than this many neighbours "
+              "fired while it was open (before or after them) are noise; 0 = off",
+              &Params::packet_support, 0, 8},
     ParamInfo{"packet-size", "events", "events (after the filter) per mean-shift packet",
               &Params::packet_size, 2, 4096},
     ParamInfo{"packet-max-span-us", "us",
               "close a packet early when the next event is this much newer than its first; "
               "0 = only close full packets",
               &Params::packet_max_span_us, 0, 1e12},
-    ParamInfo{"scale-xy", "1", "weight of the position dimensions x/W and y/H",
+    ParamInfo{"xy-scale", "", "position features: x/W and y/H (axes), or both over the larger side (isotropic)",
+              &Params::xy_scale, 0, 0, {kXyScaleNames}},
+    ParamInfo{"scale-xy", "1", "weight of the position dimensions",
               &Params::scale_xy, 0, 100},
     ParamInfo{"scale-p", "1", "weight of the polarity dimension; 0 switches polarity off",
               &Params::scale_p, 0, 100},
@@ -30,7 +44,21 @@ const std::array kTable = {
               &Params::scale_t, 0, 100},
     ParamInfo{"tau-us", "us", "time constant of the decay exp(-dt/tau)", &Params::tau_us, 1,
               1e12},
-    ParamInfo{"bandwidth", "1", "Gaussian kernel bandwidth h on the normalized feature space",
+    ParamInfo{"kernel", "", "mean-shift kernel profile: gaussian exp(-u/2), flat (1 inside the ball of radius h), "
+              "epanechnikov (1 - u inside it); u = d^2/h^2",
+              &Params::kernel, 0, 0, {kKernelNames}},
+    ParamInfo{"seeding", "", "which points climb: every event; events (the first event no climb reached yet, "
+              "until every event was reached); grid (one seed per occupied h-sized cell)",
+              &Params::seeding, 0, 0, {kSeedingNames}},
+    ParamInfo{"labelling", "", "with seeded climbs, an event's cluster: votes (the cluster whose climbs reached it "
+              "most often), nearest (the nearest mode within label-reach, else noise) or first (the cluster of the first "
+              "climb that reached it)",
+              &Params::labelling, 0, 0, {kLabellingNames}},
+    ParamInfo{"label-reach", "h", "with labelling nearest, events farther than this many bandwidths from every mode "
+              "are noise", &Params::label_reach, 0.1, 100},
+    ParamInfo{"warm-start", "", "with seeded climbs, the previous packet's modes seed the first climbs",
+              &Params::warm_start, 0, 1},
+    ParamInfo{"bandwidth", "1", "kernel bandwidth h on the normalized feature space",
               &Params::bandwidth, 1e-4, 10},
     ParamInfo{"max-iterations", "iterations", "mean-shift iteration cap",
               &Params::max_iterations, 1, 1000},
@@ -41,15 +69,39 @@ const std::array kTable = {
               &Params::merge_radius, 0, 10},
     ParamInfo{"min-cluster-size", "events", "clusters with fewer events become noise (-1)",
               &Params::min_cluster_size, 1, 4096},
+    ParamInfo{"min-density", "1", "with seeded climbs, a mode whose ball of radius h holds fewer than this many times "
+              "the events a uniform spread of the packet over the sensor would put there is noise, and so are its events; "
+              "0 = off",
+              &Params::min_density, 0, 1000},
+    ParamInfo{"link-px", "px", "with seeded climbs, clusters that have events within this distance of each other "
+              "become one (an outline split by a small kernel joins again); 0 = off",
+              &Params::link_px, 0, 100},
+    ParamInfo{"join-boxes", "", "with seeded climbs, clusters whose bounding boxes overlap become one",
+              &Params::join_boxes, 0, 1},
     ParamInfo{"max-clusters", "clusters",
               "clusters per packet; modes that would open a further one become noise",
               &Params::max_clusters, 1, 256},
+    ParamInfo{"measure", "", "a cluster's position: the centroid of its events, or the centre of their bounding box",
+              &Params::measure, 0, 0, {kMeasureNames}},
+    ParamInfo{"association", "", "cluster IDs across packets: kalman (one-to-one against each track's "
+              "Kalman prediction), last-measurement (one-to-one against each track's last cluster centre) or "
+              "nearest-centre (the previous packet's nearest cluster, as the authors' code)",
+              &Params::association, 0, 0, {kAssociationNames}},
     ParamInfo{"gate-px", "px", "association gate around a track's predicted position",
               &Params::gate_px, 0, 1e6},
+    ParamInfo{"gate-spread", "1", "the gate widens to this many times the cluster's spread (RMS radius of "
+              "its events) when that is larger; 0 = gate-px only",
+              &Params::gate_spread, 0, 100},
     ParamInfo{"confirm-hits", "packets", "measurements before a track is confirmed",
               &Params::confirm_hits, 1, 1000},
     ParamInfo{"coast-us", "us", "a confirmed track ends after this long without a measurement",
               &Params::coast_us, 0, 1e12},
+    ParamInfo{"coast-packets", "packets", "a confirmed track also ends after missing this many packets in a row "
+              "(coasting relative to the event rate); 0 = no limit",
+              &Params::coast_packets, 0, 1e6},
+    ParamInfo{"evict-stale", "", "with every track slot taken, a new cluster takes the slot of the unmatched "
+              "track measured longest ago",
+              &Params::evict_stale, 0, 1},
     ParamInfo{"accel-psd", "px^2/s^3",
               "process noise: spectral density of the white-noise acceleration",
               &Params::accel_psd, 0, kBig},
@@ -62,41 +114,91 @@ const std::array kTable = {
     ParamInfo{"max-tracks", "tracks", "tracks held at once", &Params::max_tracks, 1, 256},
 };
 
+template <class T>
+constexpr bool kIsEnum = std::is_enum_v<T>;
+
 }  // namespace
 
 std::span<const ParamInfo> param_table() { return kTable; }
+
+const ParamInfo* find_param(const std::string& name) {
+  for (const ParamInfo& info : kTable) {
+    if (name == info.name) return &info;
+  }
+  return nullptr;
+}
 
 double param_value(const Params& p, const ParamInfo& info) {
   return std::visit([&](auto member) { return static_cast<double>(p.*member); }, info.member);
 }
 
+std::string param_text(const Params& p, const ParamInfo& info) {
+  return std::visit(
+      [&](auto member) -> std::string {
+        using T = std::remove_cvref_t<decltype(p.*member)>;
+        if constexpr (kIsEnum<T>) {
+          return info.choices.names[static_cast<size_t>(p.*member)];
+        } else if constexpr (std::is_same_v<T, bool>) {
+          return p.*member ? "true" : "false";
+        } else if constexpr (std::is_floating_point_v<T>) {
+          std::ostringstream os;
+          os << p.*member;
+          return os.str();
+        } else {
+          return std::to_string(p.*member);
+        }
+      },
+      info.member);
+}
+
 std::string set_param(Params& p, const ParamInfo& info, const std::string& text) {
   const char* first = text.data();
   const char* last = text.data() + text.size();
-  auto bad = [&] { return "--" + std::string(info.name) + ": '" + text + "' is not a number"; };
+  const std::string option = "--" + std::string(info.name);
+  auto bad = [&] { return option + ": '" + text + "' is not a number"; };
   return std::visit(
       [&](auto member) -> std::string {
         using T = std::remove_reference_t<decltype(p.*member)>;
-        T value{};
-        auto [ptr, ec] = std::from_chars(first, last, value);
-        if (ec != std::errc() || ptr != last) return bad();
-        if constexpr (std::is_floating_point_v<T>) {
-          if (!std::isfinite(value)) return bad();
+        if constexpr (kIsEnum<T>) {
+          std::string known;
+          for (size_t i = 0; i < info.choices.names.size(); ++i) {
+            if (text == info.choices.names[i]) {
+              p.*member = static_cast<T>(i);
+              return {};
+            }
+            known += std::string(i ? ", " : "") + info.choices.names[i];
+          }
+          return option + ": '" + text + "' is not one of " + known;
+        } else if constexpr (std::is_same_v<T, bool>) {
+          if (text == "true" || text == "1" || text == "on") p.*member = true;
+          else if (text == "false" || text == "0" || text == "off") p.*member = false;
+          else return option + ": '" + text + "' is not true or false";
+          return {};
+        } else {
+          T value{};
+          auto [ptr, ec] = std::from_chars(first, last, value);
+          if (ec != std::errc() || ptr != last) return bad();
+          if constexpr (std::is_floating_point_v<T>) {
+            if (!std::isfinite(value)) return bad();
+          }
+          if (value < info.min || value > info.max) {
+            std::ostringstream os;
+            os << option << ": " << text << " is outside [" << info.min << ", " << info.max << "] " << info.unit;
+            return os.str();
+          }
+          p.*member = value;
+          return {};
         }
-        if (value < info.min || value > info.max) {
-          std::ostringstream os;
-          os << "--" << info.name << ": " << text << " is outside [" << info.min << ", "
-             << info.max << "] " << info.unit;
-          return os.str();
-        }
-        p.*member = value;
-        return {};
       },
       info.member);
 }
 
 std::string validate(const Params& p) {
   for (const ParamInfo& info : kTable) {
+    if (!info.choices.names.empty()) {
+      if (param_value(p, info) >= static_cast<double>(info.choices.names.size())) return std::string(info.name) + " is out of range";
+      continue;
+    }
     double v = param_value(p, info);
     if (!(v >= info.min && v <= info.max)) {
       std::ostringstream os;

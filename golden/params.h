@@ -1,50 +1,100 @@
-// Every tunable of the method, with its unit and default. The defaults were chosen from the
-// sweep in docs/sweep.md. The table in params.cpp is the one place that names, documents and
-// bounds them: the CLI builds its options from it and docs/parameters.md is generated from it.
+// Every tunable of the method, with its unit and default. The defaults were chosen on the scene
+// family's tuning split (docs/sweep.md). The table in params.cpp is the one place that names,
+// documents and bounds them: the CLI builds its options from it and docs/parameters.md is
+// generated from it.
 #pragma once
 
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include "golden/event.h"
 
 namespace evms {
 
+// The kernel's profile k(u) of u = |f_i - f_j|^2 / h^2 (golden/cluster/kernel.h).
+enum class Kernel : std::uint8_t { kGaussian, kFlat, kEpanechnikov };
+// Which points climb to a mode, and how an event finds its cluster (golden/cluster/).
+enum class Seeding : std::uint8_t {
+  kEvery,   // every event climbs; its own mode is its cluster (the paper's text)
+  kEvents,  // the first event no climb has reached yet seeds the next climb (the authors' code)
+  kGrid,    // one seed per occupied cell of a grid on (x, y), most populated first
+};
+enum class Labelling : std::uint8_t {
+  kVotes,    // the cluster whose climbs reached the event most often (the authors' code)
+  kNearest,  // the nearest mode within label_reach bandwidths, else noise
+  kFirst,    // the cluster of the first climb that reached the event
+};
+// How x and y are normalized: x/W and y/H (the paper), or both by the larger side.
+enum class XyScale : std::uint8_t { kAxes, kIsotropic };
+// Where a cluster is: the centre of mass of its events, or the centre of their bounding box.
+enum class Measure : std::uint8_t { kCentroid, kBoxCentre };
+// How clusters get their IDs across packets.
+enum class Association : std::uint8_t {
+  kKalman,         // one-to-one, nearest first, against each track's Kalman prediction
+  kNearestCentre,  // the nearest previous cluster centre within the gate (the authors' code)
+  kLastMeasurement,  // one-to-one, nearest first, against each track's last measurement
+};
+
 struct Params {
   // --- background-activity filter -------------------------------------------------------
-  TimeUs filter_window_us = 10000;  // neighbour support window; 0 turns the filter off
+  TimeUs filter_window_us = 30000;  // neighbour support window; 0 turns the filter off
+  int filter_support = 1;            // neighbours that must have fired within the window
+  int packet_support = 0;            // neighbours that must have fired while the packet was open
 
   // --- packets --------------------------------------------------------------------------
-  int packet_size = 256;             // events (that passed the filter) per mean-shift packet
-  TimeUs packet_max_span_us = 0;     // close a packet early once it spans this long; 0 = never
+  int packet_size = 3000;            // events (that passed the filter) per mean-shift packet
+  TimeUs packet_max_span_us = 33333; // close a packet early once it spans this long; 0 = never
 
   // --- features [x/W, y/H, p, exp(-dt/tau)], each scaled --------------------------------
+  XyScale xy_scale = XyScale::kAxes;
   double scale_xy = 1.0;             // weight of the two position dimensions
   double scale_p = 0.0;              // weight of polarity; 0 switches it off
-  double scale_t = 1.0;              // weight of the time decay; 0 switches it off
+  double scale_t = 0.0;              // weight of the time decay; 0 switches it off
   double tau_us = 10000.0;           // time constant of exp(-dt/tau), dt from packet's newest event
 
   // --- mean shift -----------------------------------------------------------------------
-  double bandwidth = 0.08;           // Gaussian kernel bandwidth h on the normalized space
+  Kernel kernel = Kernel::kFlat;
+  Seeding seeding = Seeding::kEvents;
+  Labelling labelling = Labelling::kFirst;  // for seeded climbs (not kEvery)
+  bool warm_start = true;            // the previous packet's modes seed the first climbs
+  double label_reach = 1.0;          // labelling nearest: events this many h from every mode are noise
+  double bandwidth = 0.04;           // kernel bandwidth h on the normalized feature space
   int max_iterations = 8;            // iteration cap
-  double tolerance = 1e-3;           // stop when no coordinate moves more than this
-  double merge_radius = 0.04;        // modes closer than this are one cluster (default h/2)
+  double tolerance = 4e-5;           // stop when no coordinate moves more than this (h / 1000)
+  double merge_radius = 0.03;        // modes closer than this are one cluster
   int min_cluster_size = 8;          // smaller clusters become noise
-  int max_clusters = 16;             // modes beyond this many clusters become noise
+  double min_density = 0;            // seeded climbs: a mode whose ball holds fewer than this many
+                                     // times the events a uniform spread would put there is noise
+  double link_px = 4;                // seeded climbs: clusters with events this close become one
+  bool join_boxes = false;           // seeded climbs: clusters whose bounding boxes overlap become one
+  int max_clusters = 128;            // modes beyond this many clusters become noise
 
   // --- tracker --------------------------------------------------------------------------
+  Measure measure = Measure::kCentroid;
+  Association association = Association::kLastMeasurement;
   double gate_px = 20.0;             // association gate around the predicted position
+  double gate_spread = 0.0;          // ... widened to this many times the cluster's spread
   int confirm_hits = 3;              // measurements before a track is confirmed
   TimeUs coast_us = 100000;          // a confirmed track ends after this long without a match
-  double accel_psd = 1000.0;         // white-noise-acceleration spectral density, px^2/s^3
+  int coast_packets = 0;             // ... or after missing this many packets; 0 = no limit
+  bool evict_stale = true;           // with every slot taken, a new cluster takes the stalest
+                                     // unmatched track's slot
+  double accel_psd = 100000.0;       // white-noise-acceleration spectral density, px^2/s^3
   double meas_sigma_px = 2.0;        // centroid measurement noise (R = sigma^2 I)
   double init_sigma_px = 2.0;        // initial position uncertainty (P0)
   double init_sigma_vel = 200.0;     // initial velocity uncertainty (P0), px/s
-  int max_tracks = 16;               // tracks held at once
+  int max_tracks = 128;              // tracks held at once
 
   friend bool operator==(const Params&, const Params&) = default;
+};
+
+// The spellings of an enumerated parameter's values, in the enum's order.
+struct Choices {
+  std::span<const char* const> names;
 };
 
 // One row of the parameter table.
@@ -52,18 +102,43 @@ struct ParamInfo {
   const char* name;      // CLI spelling without the leading dashes
   const char* unit;
   const char* help;
-  std::variant<double Params::*, int Params::*, TimeUs Params::*> member;
-  double min;            // inclusive bounds checked by validate()
+  std::variant<double Params::*, int Params::*, TimeUs Params::*, bool Params::*, Kernel Params::*, Seeding Params::*,
+               Labelling Params::*, XyScale Params::*, Association Params::*, Measure Params::*>
+      member;
+  double min;            // inclusive bounds checked by validate() (numbers only)
   double max;
+  Choices choices = {};  // enumerated parameters: the value names
 };
 
 std::span<const ParamInfo> param_table();
+const ParamInfo* find_param(const std::string& name);
 
-// Reads a parameter as a double (for reports and docs).
+// Reads a parameter as a double (an enumerated one as its index; for reports and comparisons).
 double param_value(const Params& p, const ParamInfo& info);
+// Reads a parameter as text: a number, "true"/"false", or a value name.
+std::string param_text(const Params& p, const ParamInfo& info);
 // Sets a parameter from text; returns an error message, or an empty string on success.
 std::string set_param(Params& p, const ParamInfo& info, const std::string& text);
 // Checks every parameter against its bounds; returns an error message or an empty string.
 std::string validate(const Params& p);
+
+// Named settings of the whole method (golden/presets.cpp): "evms" (the defaults), "paper"
+// (the authors' published code), "gaussian" (the paper's text: the method the RTL implements).
+std::span<const char* const> preset_names();
+// Throws std::invalid_argument naming the presets for an unknown name. `sensor` picks the
+// packet size where a preset ties it to the sensor (the authors' 1500 or 1800 events).
+Params preset(const std::string& name, SensorSize sensor = {240, 180});
+
+// A preset and the parameters set on top of it, as a command line gives them: the settings
+// override the preset whatever their order. Resolved once the sensor is known.
+struct Method {
+  std::string preset = "evms";
+  std::vector<std::pair<std::string, std::string>> settings;  // parameter name, value text
+
+  // Throws std::invalid_argument with the offending option's message.
+  Params resolve(SensorSize sensor) const;
+  // "--preset paper --bandwidth 0.1", for reports.
+  std::string describe() const;
+};
 
 }  // namespace evms

@@ -1,15 +1,18 @@
 #include "golden/pipeline.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "golden/cluster/clustering.h"
 #include "golden/cluster/features.h"
-#include "golden/cluster/mean_shift.h"
 
 namespace evms::golden {
 
 Pipeline::Pipeline(const Params& params, SensorSize sensor)
     : params_(params),
       sensor_(sensor),
-      filter_(sensor, params.filter_window_us),
-      tracker_(params) {
+      filter_(sensor, params.filter_window_us, params.filter_support),
+      tracker_(make_tracker(params)) {
   packet_.reserve(static_cast<size_t>(params.packet_size));
 }
 
@@ -35,47 +38,66 @@ void Pipeline::finish(OutputSink& out) { close_packet(out); }
 void Pipeline::close_packet(OutputSink& out) {
   std::vector<std::int32_t> label_of_packet_event(packet_.size(), kNoiseLabel);
   if (!packet_.empty()) {
-    const FeatureMatrix features = packet_features(packet_, sensor_, params_);
-    const MeanShiftResult shifted = hybrid_mean_shift(features, params_);
-    const ModeClusters clusters = merge_modes(shifted.modes, params_);
-
-    // Centre of mass and mean time of each cluster's events are its measurement.
-    std::vector<Measurement> measurements(static_cast<size_t>(clusters.count));
-    std::vector<double> sum_t(measurements.size(), 0.0);
-    std::vector<int> members(measurements.size(), 0);
-    const TimeUs t0 = packet_.front().t;
+    // Events whose neighbours stayed quiet while the packet was open are noise.
+    std::vector<Event> supported;
+    std::vector<int> index_of;  // in packet_, per supported event
     for (size_t i = 0; i < packet_.size(); ++i) {
+      if (params_.packet_support == 0 ||
+          filter_.neighbours_fired_since(packet_[i].x, packet_[i].y, packet_.front().t) >= params_.packet_support) {
+        supported.push_back(packet_[i]);
+        index_of.push_back(static_cast<int>(i));
+      }
+    }
+    const FeatureMatrix features = packet_features(supported, sensor_, params_);
+    const PacketClusters clusters = cluster_packet(supported, features, params_, modes_, feature_area(sensor_, params_));
+    modes_ = clusters.modes;
+
+    // A cluster's measurement: the centre of mass of its events, timed at their mean
+    // timestamp, with their count, spread and bounding box.
+    std::vector<Measurement> measurements(static_cast<size_t>(clusters.count));
+    std::vector<double> sum_t(measurements.size(), 0.0), sum_r2(measurements.size(), 0.0);
+    const TimeUs t0 = packet_.front().t;
+    for (size_t i = 0; i < supported.size(); ++i) {
       const int c = clusters.cluster_of[i];
       if (c < 0) continue;
       auto& m = measurements[static_cast<size_t>(c)];
-      m.x += packet_[i].x;
-      m.y += packet_[i].y;
-      sum_t[static_cast<size_t>(c)] += static_cast<double>(packet_[i].t - t0);
-      ++members[static_cast<size_t>(c)];
+      const Event& e = supported[i];
+      if (m.events == 0) m.x_min = m.x_max = e.x, m.y_min = m.y_max = e.y;
+      m.x_min = std::min<int>(m.x_min, e.x), m.x_max = std::max<int>(m.x_max, e.x);
+      m.y_min = std::min<int>(m.y_min, e.y), m.y_max = std::max<int>(m.y_max, e.y);
+      m.x += e.x;
+      m.y += e.y;
+      sum_r2[static_cast<size_t>(c)] += static_cast<double>(e.x) * e.x + static_cast<double>(e.y) * e.y;
+      sum_t[static_cast<size_t>(c)] += static_cast<double>(e.t - t0);
+      ++m.events;
     }
     for (size_t c = 0; c < measurements.size(); ++c) {
-      measurements[c].x /= members[c];
-      measurements[c].y /= members[c];
-      measurements[c].t = t0 + static_cast<TimeUs>(sum_t[c] / members[c] + 0.5);
+      Measurement& m = measurements[c];
+      m.x /= m.events;
+      m.y /= m.events;
+      m.spread = std::sqrt(std::max(0.0, sum_r2[c] / m.events - m.x * m.x - m.y * m.y));
+      if (params_.measure == Measure::kBoxCentre) m.x = (m.x_min + m.x_max) / 2.0, m.y = (m.y_min + m.y_max) / 2.0;
+      m.t = t0 + static_cast<TimeUs>(sum_t[c] / m.events + 0.5);
     }
 
     updates_.clear();
-    const std::vector<std::int32_t> ids = tracker_.step(packet_.back().t, measurements, updates_);
-    for (size_t i = 0; i < packet_.size(); ++i) {
+    const std::vector<std::int32_t> ids = tracker_->step(packet_.back().t, measurements, updates_);
+    for (size_t i = 0; i < supported.size(); ++i) {
       const int c = clusters.cluster_of[i];
-      if (c >= 0) label_of_packet_event[i] = ids[static_cast<size_t>(c)];
+      if (c >= 0) label_of_packet_event[static_cast<size_t>(index_of[i])] = ids[static_cast<size_t>(c)];
     }
 
     ++stats_.packets;
     stats_.clusters += clusters.count;
-    stats_.iterations += shifted.iterations;
+    stats_.iterations += clusters.iterations;
+    stats_.kernel_evaluations += clusters.kernel_evaluations;
     for (const Pending& p : pending_) {
       out.on_event({p.event, p.packet_index < 0 ? kNoiseLabel
                                                 : label_of_packet_event[static_cast<size_t>(p.packet_index)]});
     }
     for (const TrackUpdate& u : updates_) out.on_track(u);
     out.on_packet({packet_.front().t, packet_.back().t, static_cast<int>(packet_.size()),
-                   clusters.count, shifted.iterations});
+                   clusters.count, clusters.iterations});
   } else {
     for (const Pending& p : pending_) out.on_event({p.event, kNoiseLabel});
   }

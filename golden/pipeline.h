@@ -1,6 +1,5 @@
-// The whole method in floating point: filter -> packets -> hybrid mean shift -> mode merging
-// -> tracking -> one label per event. This is the reference the fixed-point core is
-// measured against.
+// The whole method in floating point: filter -> packets -> mean shift -> clusters -> tracking
+// -> one label per event. This is the reference the fixed-point core is measured against.
 //
 // Events that pass the background-activity filter fill a packet of packet_size events. A
 // full packet (or one that would span more than packet_max_span_us, or the last one at the
@@ -9,7 +8,10 @@
 // label.
 #pragma once
 
+#include <memory>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "golden/event.h"
 #include "golden/filter/background_activity_filter.h"
@@ -24,7 +26,8 @@ struct PipelineStats {
   std::int64_t events_kept = 0;     // passed the filter
   std::int64_t packets = 0;
   std::int64_t clusters = 0;        // summed over packets
-  std::int64_t iterations = 0;      // mean-shift sweeps, summed over packets
+  std::int64_t iterations = 0;      // mean-shift sweeps or climb steps, summed over packets
+  std::int64_t kernel_evaluations = 0;  // point-to-point distances the mean shift took
 };
 
 class Pipeline {
@@ -36,7 +39,7 @@ class Pipeline {
   void finish(OutputSink& out);
 
   const PipelineStats& stats() const { return stats_; }
-  const MultiTargetTracker& tracker() const { return tracker_; }
+  const Tracker& tracker() const { return *tracker_; }
 
  private:
   void close_packet(OutputSink& out);
@@ -44,7 +47,8 @@ class Pipeline {
   Params params_;
   SensorSize sensor_;
   BackgroundActivityFilter filter_;
-  MultiTargetTracker tracker_;
+  std::unique_ptr<Tracker> tracker_;
+  std::vector<Eigen::Vector4d> modes_;   // the previous packet's, for warm starts
   std::vector<Event> packet_;
   struct Pending {
     Event event;

@@ -1,19 +1,34 @@
 #include "golden/cluster/features.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace evms::golden {
+
+Eigen::Vector2d feature_pixels(SensorSize sensor, const Params& params) {
+  if (params.xy_scale == XyScale::kIsotropic) {
+    const double side = std::max(sensor.width, sensor.height);
+    return {side, side};
+  }
+  return {static_cast<double>(sensor.width), static_cast<double>(sensor.height)};
+}
+
+double feature_area(SensorSize sensor, const Params& params) {
+  const Eigen::Vector2d px = feature_pixels(sensor, params);
+  return params.scale_xy * sensor.width / px.x() * params.scale_xy * sensor.height / px.y();
+}
 
 FeatureMatrix packet_features(std::span<const Event> events, SensorSize sensor,
                               const Params& params) {
   FeatureMatrix f(4, static_cast<Eigen::Index>(events.size()));
   if (events.empty()) return f;
+  const Eigen::Vector2d px = feature_pixels(sensor, params);
   const TimeUs newest = events.back().t;
   for (size_t i = 0; i < events.size(); ++i) {
     const Event& e = events[i];
     const double dt = static_cast<double>(newest - e.t);
-    f.col(static_cast<Eigen::Index>(i)) << params.scale_xy * e.x / sensor.width,
-        params.scale_xy * e.y / sensor.height, params.scale_p * e.p,
+    f.col(static_cast<Eigen::Index>(i)) << params.scale_xy * e.x / px.x(),
+        params.scale_xy * e.y / px.y(), params.scale_p * e.p,
         params.scale_t * std::exp(-dt / params.tau_us);
   }
   return f;

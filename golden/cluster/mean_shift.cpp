@@ -3,15 +3,10 @@
 #include <limits>
 
 namespace evms::golden {
-namespace {
-
-using Matrix = Eigen::MatrixXd;
-
-}  // namespace
 
 MeanShiftResult hybrid_mean_shift(const FeatureMatrix& features, const Params& params) {
   const Eigen::Index n = features.cols();
-  const double inv_two_h2 = 1.0 / (2.0 * params.bandwidth * params.bandwidth);
+  const double inv_h2 = 1.0 / (params.bandwidth * params.bandwidth);
   // The reference set: original positions, and the appearance of the previous iteration.
   const Eigen::ArrayXd x0 = features.row(0).transpose().array();
   const Eigen::ArrayXd y0 = features.row(1).transpose().array();
@@ -25,9 +20,13 @@ MeanShiftResult hybrid_mean_shift(const FeatureMatrix& features, const Params& p
   for (int k = 0; k < params.max_iterations && n > 0; ++k) {
     for (Eigen::Index i = 0; i < n; ++i) {
       const auto c = current.col(i);
-      w = (-inv_two_h2 * ((x0 - c(0)).square() + (y0 - c(1)).square() + (p - c(2)).square() +
-                          (f - c(3)).square()))
-              .exp();
+      const Eigen::ArrayXd u =
+          inv_h2 * ((x0 - c(0)).square() + (y0 - c(1)).square() + (p - c(2)).square() + (f - c(3)).square());
+      switch (params.kernel) {
+        case Kernel::kGaussian: w = (-0.5 * u).exp(); break;
+        case Kernel::kFlat: w = (u < 1.0).cast<double>(); break;
+        case Kernel::kEpanechnikov: w = (1.0 - u).max(0.0); break;
+      }
       const double norm = w.sum();
       if (norm > 0) {
         next.col(i) << (w * x0).sum() / norm, (w * y0).sum() / norm, (w * p).sum() / norm,
@@ -41,6 +40,7 @@ MeanShiftResult hybrid_mean_shift(const FeatureMatrix& features, const Params& p
     p = current.row(2).transpose().array();
     f = current.row(3).transpose().array();
     result.iterations = k + 1;
+    result.kernel_evaluations += static_cast<std::int64_t>(n) * n;
     if (shift <= params.tolerance) break;
   }
   result.modes = std::move(current);

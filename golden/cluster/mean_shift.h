@@ -4,7 +4,7 @@
 // time). All points move together (a Jacobi sweep). In iteration k:
 //
 //   d2_ij  = |y_i^k - y_j^0|^2 + |q_i^k - q_j^k|^2
-//   w_ij   = exp(-d2_ij / (2 h^2))                        (Gaussian kernel, bandwidth h)
+//   w_ij   = k(d2_ij / h^2)                               (kernel profile, golden/cluster/kernel.h)
 //   y_i^k+1 = sum_j w_ij y_j^0 / sum_j w_ij               (position against the original,
 //                                                          unmoved positions: Fukunaga)
 //   q_i^k+1 = sum_j w_ij q_j^k / sum_j w_ij               (polarity and time against the
@@ -23,6 +23,7 @@ namespace evms::golden {
 struct MeanShiftResult {
   FeatureMatrix modes;
   int iterations = 0;       // sweeps performed
+  std::int64_t kernel_evaluations = 0;
 };
 
 MeanShiftResult hybrid_mean_shift(const FeatureMatrix& features, const Params& params);

@@ -1,8 +1,8 @@
 // Background-activity filter: a real edge excites neighbouring pixels within a short time,
 // while background-activity noise fires pixels in isolation.
 //
-// Rule: an event at (x, y, t) is kept when at least one of its 8 neighbours fired an event
-// (of either polarity) at a time t' with t - t' <= window. The event's own pixel does not
+// Rule: an event at (x, y, t) is kept when at least `support` of its 8 neighbours (one, by
+// default) fired an event (of either polarity) at a time t' with t - t' <= window. The event's own pixel does not
 // count, so a pixel firing repeatedly on its own is still noise. Neighbours outside the
 // sensor do not exist: a border pixel has 5 neighbours and a corner pixel 3. A pixel that has
 // never fired gives no support, so the very first event of a scene is always noise. Every
@@ -18,16 +18,20 @@ namespace evms::golden {
 
 class BackgroundActivityFilter {
  public:
-  BackgroundActivityFilter(SensorSize sensor, TimeUs window_us);
+  BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support = 1);
 
   // Records the event and says whether it is supported by a neighbour. Events must come in
   // non-decreasing time order.
   bool accept(const Event& e);
 
+  // How many of (x, y)'s 8 neighbours fired at or after `since` (their latest event).
+  int neighbours_fired_since(int x, int y, TimeUs since) const;
+
  private:
   static constexpr TimeUs kNever = INT64_MIN;
   SensorSize sensor_;
   TimeUs window_us_;
+  int support_;
   std::vector<TimeUs> last_fired_;  // per pixel, row-major
 };
 

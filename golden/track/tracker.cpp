@@ -1,9 +1,16 @@
 #include "golden/track/tracker.h"
 
 #include <algorithm>
+#include <limits>
+#include <memory>
 #include <tuple>
 
 namespace evms::golden {
+
+std::unique_ptr<Tracker> make_tracker(const Params& params) {
+  if (params.association == Association::kNearestCentre) return std::make_unique<NearestCentreIds>(params);
+  return std::make_unique<MultiTargetTracker>(params);
+}
 
 MultiTargetTracker::MultiTargetTracker(const Params& params)
     : params_(params), slots_(static_cast<size_t>(params.max_tracks)) {}
@@ -13,11 +20,38 @@ int MultiTargetTracker::live_tracks() const {
                                         [](const auto& s) { return s.has_value(); }));
 }
 
+double MultiTargetTracker::gate(const Measurement& z) const {
+  return std::max(params_.gate_px, params_.gate_spread * z.spread);
+}
+
+void MultiTargetTracker::report(const Track& track, const Measurement& z, std::vector<TrackUpdate>& updates) const {
+  const auto& s = track.filter.state();
+  const auto& p = track.filter.covariance();
+  updates.push_back({z.t, track.id, s(0), s(1), s(2), s(3), z.x, z.y,
+                     track.confirmed ? TrackState::kConfirmed : TrackState::kTentative, z.events, z.x_min, z.y_min, z.x_max,
+                     z.y_max, p(0, 0), p(0, 1), p(1, 1)});
+}
+
+std::optional<size_t> MultiTargetTracker::slot_for_new_track(const std::vector<bool>& matched) const {
+  auto free = std::find_if(slots_.begin(), slots_.end(), [](const auto& s) { return !s; });
+  if (free != slots_.end()) return static_cast<size_t>(free - slots_.begin());
+  if (!params_.evict_stale) return std::nullopt;
+  std::optional<size_t> stalest;
+  for (size_t s = 0; s < slots_.size(); ++s) {
+    if (matched[s]) continue;
+    if (!stalest || slots_[s]->filter.time() < slots_[*stalest]->filter.time()) stalest = s;
+  }
+  return stalest;
+}
+
 std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
                                                    std::span<const Measurement> measurements,
                                                    std::vector<TrackUpdate>& updates) {
   for (auto& slot : slots_) {
-    if (slot && packet_time - slot->filter.time() > params_.coast_us) slot.reset();
+    if (!slot) continue;
+    const bool too_old = packet_time - slot->filter.time() > params_.coast_us;
+    const bool too_many_missed = params_.coast_packets > 0 && slot->missed >= params_.coast_packets;
+    if (too_old || too_many_missed) slot.reset();
   }
 
   struct Candidate {
@@ -30,8 +64,10 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
     if (!slots_[s]) continue;
     for (size_t m = 0; m < measurements.size(); ++m) {
       const Measurement& z = measurements[m];
-      const double d = (slots_[s]->filter.predicted_position(z.t) - Eigen::Vector2d(z.x, z.y)).norm();
-      if (d <= params_.gate_px) candidates.push_back({d, s, m});
+      const Eigen::Vector2d from = params_.association == Association::kLastMeasurement ? slots_[s]->last_z
+                                                                                         : slots_[s]->filter.predicted_position(z.t);
+      const double d = (from - Eigen::Vector2d(z.x, z.y)).norm();
+      if (d <= gate(z)) candidates.push_back({d, s, m});
     }
   }
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
@@ -50,31 +86,50 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
     track.filter.predict(z.t);
     track.filter.update(z.x, z.y);
     track.confirmed = track.confirmed || ++track.hits >= params_.confirm_hits;
+    track.missed = 0;
+    track.last_z = {z.x, z.y};
     ids[c.measurement] = track.id;
-    if (track.confirmed) {
-      const auto& s = track.filter.state();
-      updates.push_back({z.t, track.id, s(0), s(1), s(2), s(3), z.x, z.y});
-    }
+    report(track, z, updates);
   }
 
   for (size_t s = 0; s < slots_.size(); ++s) {
-    if (slots_[s] && !slot_matched[s] && !slots_[s]->confirmed) slots_[s].reset();
+    if (!slots_[s] || slot_matched[s]) continue;
+    if (slots_[s]->confirmed) ++slots_[s]->missed;
+    else slots_[s].reset();
   }
 
   for (size_t m = 0; m < measurements.size(); ++m) {
     if (measurement_matched[m]) continue;
-    auto free = std::find_if(slots_.begin(), slots_.end(), [](const auto& s) { return !s; });
-    if (free == slots_.end()) {
+    const std::optional<size_t> slot = slot_for_new_track(slot_matched);
+    if (!slot) {
       ++unassigned_clusters_;
       continue;
     }
     const Measurement& z = measurements[m];
-    free->emplace(Track{next_id_++, KalmanFilter(z.x, z.y, z.t, params_), 1, false});
-    Track& track = **free;
-    track.confirmed = params_.confirm_hits <= 1;
-    ids[m] = track.id;
-    if (track.confirmed) updates.push_back({z.t, track.id, z.x, z.y, 0.0, 0.0, z.x, z.y});
+    slots_[*slot].emplace(Track{next_id_++, KalmanFilter(z.x, z.y, z.t, params_), 1, params_.confirm_hits <= 1, 0, {z.x, z.y}});
+    slot_matched[*slot] = true;
+    ids[m] = slots_[*slot]->id;
+    report(*slots_[*slot], z, updates);
   }
+  return ids;
+}
+
+std::vector<std::int32_t> NearestCentreIds::step(TimeUs, std::span<const Measurement> measurements,
+                                                 std::vector<TrackUpdate>& updates) {
+  std::vector<std::int32_t> ids(measurements.size(), kNoiseLabel);
+  for (size_t m = 0; m < measurements.size(); ++m) {
+    const Measurement& z = measurements[m];
+    double best = params_.gate_px * params_.gate_px;
+    for (size_t k = 0; k < previous_.size(); ++k) {
+      const double d2 = (z.x - previous_[k].x) * (z.x - previous_[k].x) + (z.y - previous_[k].y) * (z.y - previous_[k].y);
+      if (d2 < best) best = d2, ids[m] = previous_ids_[k];
+    }
+    if (ids[m] == kNoiseLabel) ids[m] = next_id_++;
+    updates.push_back({z.t, ids[m], z.x, z.y, 0, 0, z.x, z.y, TrackState::kConfirmed, z.events, z.x_min, z.y_min, z.x_max, z.y_max,
+                       0, 0, 0});
+  }
+  previous_.assign(measurements.begin(), measurements.end());
+  previous_ids_ = ids;
   return ids;
 }
 

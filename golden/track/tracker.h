@@ -1,19 +1,29 @@
-// Multi-target tracking of cluster centres.
+// Identities across packets: each packet's clusters are measurements, and each gets the ID of a
+// track (or none, and its events become noise).
 //
-// Each packet's clusters are measurements. Per packet:
-//  1. Tracks whose last measurement is older than coast_us at the packet's newest event end.
+// MultiTargetTracker (association kalman), per packet:
+//  1. Confirmed tracks whose last measurement is older than coast_us at the packet's newest
+//     event, or that missed more than coast_packets packets in a row (when set), end.
 //  2. Every (track, measurement) pair whose distance between the measurement and the track's
-//     prediction at the measurement's time is within the gate is a candidate. Pairs are
-//     taken greedily, nearest first (ties: lower track slot, then lower measurement), each
-//     track and each measurement at most once, so no two clusters share an ID.
-//  3. A matched track is predicted to its measurement's time and updated. After confirm_hits
-//     measurements it is confirmed, and every update of a confirmed track is reported.
+//     prediction at the measurement's time is within the gate is a candidate. The gate is
+//     gate_px, or gate_spread times the measurement's spread (the RMS distance of its events
+//     from their centre) when that is larger. Pairs are taken greedily, nearest first (ties:
+//     lower track slot, then lower measurement), each track and each measurement at most
+//     once, so no two clusters share an ID.
+//  3. A matched track is predicted to its measurement's time and updated, and reported. After
+//     confirm_hits measurements it is confirmed.
 //  4. An unmatched tentative track ends at once; an unmatched confirmed track coasts.
 //  5. Each unmatched measurement starts a tentative track in the lowest free slot, with a new
-//     ID from a counter that never repeats. With every slot taken, the measurement gets no
-//     track and its events are labelled noise (counted in unassigned_clusters).
+//     ID from a counter that never repeats, and is reported. With every slot taken, it takes
+//     the slot of the unmatched track measured longest ago when evict_stale is set; otherwise
+//     it gets no track and its events are labelled noise (counted in unassigned_clusters).
+//
+// NearestCentreIds (association nearest-centre) is the authors' rule: each cluster takes the
+// ID of the nearest cluster of the previous packet within gate_px (several may take the same
+// one), or a new ID. It has no filter: a track's estimate is its cluster's centre.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -25,22 +35,37 @@
 namespace evms::golden {
 
 struct Measurement {
-  TimeUs t = 0;        // mean timestamp of the cluster's events
-  double x = 0, y = 0; // centre of mass of the cluster's events, px
+  TimeUs t = 0;         // mean timestamp of the cluster's events
+  double x = 0, y = 0;  // centre of mass of the cluster's events, px
+  int events = 0;
+  double spread = 0;    // RMS distance of the events from (x, y), px
+  int x_min = 0, y_min = 0, x_max = 0, y_max = 0;
 };
 
-class MultiTargetTracker {
+// What every identity rule does with a packet's measurements.
+class Tracker {
+ public:
+  virtual ~Tracker() = default;
+  // Returns the ID given to each measurement (kNoiseLabel when none) and appends the updates
+  // to report to `updates`.
+  virtual std::vector<std::int32_t> step(TimeUs packet_time, std::span<const Measurement> measurements,
+                                         std::vector<TrackUpdate>& updates) = 0;
+  virtual std::int32_t tracks_started() const = 0;
+  virtual std::int64_t unassigned_clusters() const { return 0; }
+};
+
+std::unique_ptr<Tracker> make_tracker(const Params& params);
+
+class MultiTargetTracker final : public Tracker {
  public:
   explicit MultiTargetTracker(const Params& params);
 
-  // Returns the track ID assigned to each measurement (kNoiseLabel when none) and appends
-  // the updates of confirmed tracks to `updates`.
   std::vector<std::int32_t> step(TimeUs packet_time, std::span<const Measurement> measurements,
-                                 std::vector<TrackUpdate>& updates);
+                                 std::vector<TrackUpdate>& updates) override;
 
   int live_tracks() const;
-  std::int64_t unassigned_clusters() const { return unassigned_clusters_; }
-  std::int32_t tracks_started() const { return next_id_; }
+  std::int64_t unassigned_clusters() const override { return unassigned_clusters_; }
+  std::int32_t tracks_started() const override { return next_id_; }
 
  private:
   struct Track {
@@ -48,12 +73,32 @@ class MultiTargetTracker {
     KalmanFilter filter;
     int hits;
     bool confirmed;
+    int missed = 0;  // packets in a row without a measurement
+    Eigen::Vector2d last_z;  // the last measurement's position
   };
+
+  double gate(const Measurement& z) const;
+  std::optional<size_t> slot_for_new_track(const std::vector<bool>& matched) const;
+  void report(const Track& track, const Measurement& z, std::vector<TrackUpdate>& updates) const;
 
   Params params_;
   std::vector<std::optional<Track>> slots_;
   std::int32_t next_id_ = 0;
   std::int64_t unassigned_clusters_ = 0;
+};
+
+class NearestCentreIds final : public Tracker {
+ public:
+  explicit NearestCentreIds(const Params& params) : params_(params) {}
+  std::vector<std::int32_t> step(TimeUs packet_time, std::span<const Measurement> measurements,
+                                 std::vector<TrackUpdate>& updates) override;
+  std::int32_t tracks_started() const override { return next_id_; }
+
+ private:
+  Params params_;
+  std::vector<Measurement> previous_;
+  std::vector<std::int32_t> previous_ids_;
+  std::int32_t next_id_ = 0;
 };
 
 }  // namespace evms::golden

@@ -21,6 +21,7 @@ struct BackendStats {
   std::int64_t iterations = 0;         // mean-shift sweeps, summed over packets
   std::int64_t tracks_started = 0;
   std::int64_t unassigned_clusters = 0;
+  std::int64_t kernel_evaluations = 0; // point-to-point distances the mean shift took
 };
 
 struct BackendOptions {

@@ -13,15 +13,31 @@
 
 namespace evms::backend {
 
-// The method's defaults with the packet size, cluster and track counts cut to what build S
-// holds: the register values a board of that build starts with.
+// The method the RTL core implements (the "gaussian" preset) with the packet size, cluster and
+// track counts cut to what build S holds: the register values a board of that build starts
+// with.
 template <class S>
 Params build_default_params() {
-  Params p;
+  Params p = preset("gaussian");
   p.packet_size = std::min(p.packet_size, S::kPacketMax);
   p.max_clusters = std::min(p.max_clusters, S::kClustersMax);
   p.max_tracks = std::min(p.max_tracks, S::kTracksMax);
   return p;
+}
+
+// The first setting of `p` that the core does not implement, as the one-line message a backend
+// built on it refuses it with; empty when the core implements every setting.
+inline std::string core_unsupported(const Params& p) {
+  const Params core = preset("gaussian");
+  for (const char* name : {"kernel", "seeding", "xy-scale", "filter-support", "packet-support", "link-px", "join-boxes",
+                           "min-density", "measure", "association", "gate-spread", "coast-packets", "evict-stale"}) {
+    const ParamInfo& info = *find_param(name);
+    if (param_value(p, info) != param_value(core, info)) {
+      return "the fixed-point core does not implement --" + std::string(name) + " " + param_text(p, info) + " (it implements --" +
+             name + " " + param_text(core, info) + "; --preset gaussian gives every setting it implements)";
+    }
+  }
+  return {};
 }
 
 template <class S>
@@ -29,6 +45,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   auto need = [](bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument(what);
   };
+  if (std::string unsupported = core_unsupported(p); !unsupported.empty()) throw std::invalid_argument(unsupported);
   need(sensor.width <= S::kMaxWidth && sensor.height <= S::kMaxHeight,
        "the core is built for sensors up to " + std::to_string(S::kMaxWidth) + "x" + std::to_string(S::kMaxHeight) + ", not " +
            std::to_string(sensor.width) + "x" + std::to_string(sensor.height));

@@ -15,7 +15,7 @@ class GoldenBackend final : public Backend {
   BackendStats stats() const override {
     const auto& s = pipeline_.stats();
     return {s.events_in, s.events_kept, s.packets, s.clusters, s.iterations,
-            pipeline_.tracker().tracks_started(), pipeline_.tracker().unassigned_clusters()};
+            pipeline_.tracker().tracks_started(), pipeline_.tracker().unassigned_clusters(), s.kernel_evaluations};
   }
 
  private:
