@@ -28,7 +28,7 @@ struct CyclesOptions {
   bool table = false;
   std::vector<int> lanes = {1, 2, 4, 8, 16, 32, 64};
   read::SourceOptions source_options;
-  Params params;
+  Method method;
 };
 
 std::vector<Event> read_events(const CyclesOptions& o, SensorSize& sensor) {
@@ -105,7 +105,7 @@ void cycles(const CyclesOptions& o) {
       if (n > S::kPacketMax) continue;
       for (int it : {2, 4, 8}) {
         if (it > S::kIterationsMax) continue;
-        Params p = o.params;
+        Params p = o.method.resolve(sensor);
         p.packet_size = n;
         p.max_iterations = it;
         const auto model = model_run<S>(words, backend::core_config<S>(p, sensor));
@@ -116,7 +116,7 @@ void cycles(const CyclesOptions& o) {
     }
     return;
   }
-  const hls::Config cfg = backend::core_config<S>(o.params, sensor);
+  const hls::Config cfg = backend::core_config<S>(o.method.resolve(sensor), sensor);
   const auto model = model_run<S>(words, cfg);
   const double n_events = static_cast<double>(model.events());
   std::printf("build %s (P = %d, multiplier latency %d): %s events, %s kept, %s packets, %.2f sweeps a packet\n", o.build.c_str(),
@@ -152,7 +152,7 @@ void register_cycles(CLI::App& app) {
   cmd->add_flag("--table", o->table, "Print cycles per event against packet size, iteration cap and lanes (markdown)");
   cmd->add_option("--lanes", o->lanes, "Lane counts for the model's comparison")->delimiter(',');
   add_source_options(*cmd, o->source_options);
-  add_param_options(*cmd, o->params);
+  add_method_options(*cmd, o->method);
   cmd->callback([o] {
     if (o->build == "host") cycles<Vcore_host, hls::HostShape>(*o);
     else if (o->build == "arty") cycles<Vcore_arty, hls::ArtyShape>(*o);

@@ -23,9 +23,8 @@ void register_eval(CLI::App& app) {
   cmd->add_option("--real-dir", o->real_dir, "folder of real recordings to include (default ../shared/data/real when present)");
   cmd->add_option("--jobs", o->jobs, "threads")->default_val(o->jobs)->check(CLI::Range(1, 64));
   cmd->add_option("--out", o->out, "output directory")->required();
-  add_param_options(*cmd, o->params);
+  add_method_options(*cmd, o->method);
   cmd->callback([o] {
-    if (std::string e = validate(o->params); !e.empty()) throw std::invalid_argument(e);
     eval::EvalOptions opts = *o;
     if (opts.real_dir.empty() && std::filesystem::exists("../shared/data/real")) opts.real_dir = "../shared/data/real";
     opts.command_line = invocation();

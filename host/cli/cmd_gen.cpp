@@ -1,9 +1,11 @@
-// evms gen --scene S --out DIR : a labelled scene on disk.
+// evms gen --scene S --out DIR : a labelled scene on disk (one of the paper's scenes, or with
+// --family TYPE a member of the scene family, host/gen/family.h).
 #include <cstdio>
 #include <filesystem>
 
 #include "host/cli/common.h"
 #include "host/cli/commands.h"
+#include "host/gen/family.h"
 #include "host/gen/scene_generator.h"
 #include "host/write/event_writers.h"
 
@@ -12,17 +14,26 @@ namespace {
 
 struct GenOptions {
   std::string scene = "rotation";
+  std::string family;
   std::string out;
   gen::SceneConfig config;
 };
 
 void generate(GenOptions o) {
-  if (!gen::parse_motion(o.scene, o.config.motion)) {
-    throw std::invalid_argument("--scene: '" + o.scene + "' is not translation, rotation or 6dof");
+  if (!o.family.empty()) {
+    const double duration = o.config.duration_s;
+    o.config = gen::family_scene(o.family, o.config.seed);
+    if (duration > 0) o.config.duration_s = duration;
+  } else if (!gen::parse_motion(o.scene, o.config.motion) ||
+             !(o.config.motion == gen::Motion::kTranslation || o.config.motion == gen::Motion::kRotation ||
+               o.config.motion == gen::Motion::kSixDof)) {
+    throw std::invalid_argument("--scene: '" + o.scene + "' is not translation, rotation or 6dof (other motions: --family TYPE)");
   }
+  if (o.config.duration_s <= 0) o.config.duration_s = 5.0;
   std::filesystem::create_directories(o.out);
-  write::RpgEventsTxt events(o.out + "/events.txt");
-  write::LabelledEventsCsv labels(o.out + "/labels.csv");
+  const SensorSize sensor{o.config.width, o.config.height};
+  write::RpgEventsTxt events(o.out + "/events.txt", sensor);
+  write::LabelledEventsCsv labels(o.out + "/labels.csv", sensor);
   write::TruthCsv truth(o.out + "/gt_tracks.csv");
   gen::SceneGenerator generator(o.config);
   Progress progress(true);
@@ -45,8 +56,8 @@ void generate(GenOptions o) {
   labels.close();
   truth.close();
   progress.done();
-  std::printf("scene       %s, speed %.2f, seed %llu, %.2f s, %dx%d\n", gen::motion_name(o.config.motion), o.config.speed,
-              static_cast<unsigned long long>(o.config.seed), o.config.duration_s, o.config.width, o.config.height);
+  std::printf("scene       %s%s, seed %llu\n", o.family.empty() ? "" : "family: ", gen::describe(o.config).c_str(),
+              static_cast<unsigned long long>(o.config.seed));
   std::printf("objects     ");
   for (int i = 0; i < generator.object_count(); ++i) std::printf("%d=%s ", i, generator.object_name(i).c_str());
   std::printf("\nevents      %s (%s background noise)\n", grouped(count).c_str(), grouped(noise).c_str());
@@ -57,17 +68,22 @@ void generate(GenOptions o) {
 
 void register_gen(CLI::App& app) {
   auto o = std::make_shared<GenOptions>();
+  o->config.duration_s = 0;  // unset: 5 s, or the family member's own
   CLI::App* cmd = app.add_subcommand("gen", "generate a labelled shapes scene: events.txt, labels.csv, gt_tracks.csv");
-  cmd->add_option("--scene", o->scene, "camera motion: translation, rotation or 6dof")->default_val(o->scene);
+  cmd->add_option("--scene", o->scene, "one of the paper's scenes (the shapes poster): translation, rotation or 6dof")
+      ->default_val(o->scene);
+  cmd->add_option("--family", o->family, "instead, a member of the scene family drawn from --seed: still, translation, rotation, "
+                  "zoom, 6dof, shake or crossing (seeds from 1000 are the validation split)");
   cmd->add_option("--speed", o->config.speed, "time scale of the motion (the paper's speed factor)")
       ->default_val(o->config.speed)->check(CLI::Range(0.01, 100.0));
   cmd->add_option("--seed", o->config.seed, "random seed: the same seed gives the same bytes")->default_val(o->config.seed);
   cmd->add_option("--duration-s", o->config.duration_s, "length of the scene in seconds")
-      ->default_val(o->config.duration_s)->check(CLI::Range(0.001, 3600.0));
+      ->default_str("5, or the family member's")->check(CLI::Range(0.001, 3600.0));
   cmd->add_option("--noise-hz", o->config.noise_hz, "background activity per pixel, events/s")
       ->default_val(o->config.noise_hz)->check(CLI::Range(0.0, 1000.0));
   cmd->add_option("--width", o->config.width, "sensor width, px")->default_val(o->config.width)->check(CLI::Range(64, 4096));
   cmd->add_option("--height", o->config.height, "sensor height, px")->default_val(o->config.height)->check(CLI::Range(64, 4096));
+  cmd->add_option("--movers", o->config.movers, "shapes of the poster that move on their own")->default_val(0)->check(CLI::Range(0, 9));
   cmd->add_option("--out", o->out, "output directory")->required();
   cmd->callback([o] { generate(*o); });
 }

@@ -15,7 +15,7 @@ std::string parameters_markdown() {
       "`evms params --markdown`; a test keeps this file equal to that output.\n\n"
       "| option | default | unit | meaning |\n|---|---|---|---|\n";
   for (const ParamInfo& info : param_table()) {
-    s += std::string("| `--") + info.name + "` | " + CLI::detail::to_string(param_value(defaults, info)) + " | " + info.unit +
+    s += std::string("| `--") + info.name + "` | " + param_text(defaults, info) + " | " + info.unit +
          " | " + info.help + " |\n";
   }
   return s;
@@ -32,7 +32,7 @@ void register_params(CLI::App& app) {
     }
     const Params defaults;
     for (const ParamInfo& info : param_table()) {
-      std::printf("--%-20s %-12s %-10s %s\n", info.name, CLI::detail::to_string(param_value(defaults, info)).c_str(), info.unit,
+      std::printf("--%-20s %-12s %-10s %s\n", info.name, param_text(defaults, info).c_str(), info.unit,
                   info.help);
     }
   });

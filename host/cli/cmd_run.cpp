@@ -23,17 +23,17 @@ struct RunOptions {
   std::string core = "host";
   int baud = 3000000;
   read::SourceOptions source_options;
-  Params params;
+  Method method;
   bool quiet = false;
 };
 
 // Writes the outputs (when asked) and counts what the summary reports.
 class RunSink final : public OutputSink {
  public:
-  explicit RunSink(const std::string& out_dir) {
+  RunSink(const std::string& out_dir, SensorSize sensor) {
     if (!out_dir.empty()) {
       std::filesystem::create_directories(out_dir);
-      events_.emplace(out_dir + "/events.csv");
+      events_.emplace(out_dir + "/events.csv", sensor);
       tracks_.emplace(out_dir + "/tracks.csv");
     }
   }
@@ -46,8 +46,10 @@ class RunSink final : public OutputSink {
   void on_track(const TrackUpdate& u) override {
     ++track_rows;
     const auto id = static_cast<size_t>(u.id);
-    if (id >= seen_.size()) seen_.resize(id + 1, false);
-    if (!seen_[id]) seen_[id] = true, ++confirmed;
+    if (u.state == TrackState::kConfirmed) {
+      if (id >= seen_.size()) seen_.resize(id + 1, false);
+      if (!seen_[id]) seen_[id] = true, ++confirmed;
+    }
     if (tracks_) tracks_->write(u);
   }
   void on_packet(const PacketSummary&) override {}
@@ -60,17 +62,17 @@ class RunSink final : public OutputSink {
   eval::ArrivalLatency latency;  // live sources: from arrival to label
 
  private:
-  std::vector<bool> seen_;  // track IDs with at least one update
+  std::vector<bool> seen_;  // track IDs with at least one confirmed update
   std::optional<write::LabelledEventsCsv> events_;
   std::optional<write::TracksCsv> tracks_;
 };
 
 void run(const RunOptions& o) {
-  if (std::string error = validate(o.params); !error.empty()) throw std::invalid_argument(error);
   auto source = read::open_source(o.source, o.source_options);
   const read::SourceInfo& info = source->info();
-  auto backend = backend::make_backend(o.backend, {o.params, info.sensor, o.core, o.device, o.baud});
-  RunSink sink(o.out);
+  const Params params = o.method.resolve(info.sensor);
+  auto backend = backend::make_backend(o.backend, {params, info.sensor, o.core, o.device, o.baud});
+  RunSink sink(o.out, info.sensor);
   Progress progress(!o.quiet);
 
   // Ctrl-C ends a live source as if its input had ended, so that the outputs are complete.
@@ -101,7 +103,7 @@ void run(const RunOptions& o) {
                            grouped(s.events_in) + " inputs");
   }
   const double span_s = static_cast<double>(t_last - t_first) * 1e-6;
-  std::printf("source      %s (%s, %dx%d)\n", info.name.c_str(), info.format.c_str(), info.sensor.width, info.sensor.height);
+  std::printf("source      %s (%s, %s)\n", info.name.c_str(), info.format.c_str(), sensor_text(info).c_str());
   std::printf("backend     %s\n", o.backend.c_str());
   std::printf("events in   %s over %.3f s of sensor time (%s labelled noise)\n", grouped(s.events_in).c_str(), span_s,
               grouped(sink.noise).c_str());
@@ -139,7 +141,7 @@ void register_run(CLI::App& app) {
   cmd->add_option("--baud", o->baud, "line rate of the board's serial link")->default_val(o->baud);
   cmd->add_flag("--quiet", o->quiet, "no progress bar");
   add_source_options(*cmd, o->source_options);
-  add_param_options(*cmd, o->params);
+  add_method_options(*cmd, o->method);
   cmd->callback([o] { run(*o); });
 }
 

@@ -23,7 +23,7 @@ struct ViewOptions {
   std::string core = "host";
   std::string device;
   read::SourceOptions source_options;
-  Params params;
+  Method method;
   double fps = 30;
   bool headless = false;
   bool no_realtime = false;
@@ -78,18 +78,18 @@ void print_summary(show::ViewSession& session) {
 }
 
 void view(const ViewOptions& o) {
-  if (std::string error = validate(o.params); !error.empty()) throw std::invalid_argument(error);
   read::SourceOptions so = o.source_options;
   // A window shows a recording at its own pace unless told otherwise; headless frames are
   // computed as fast as possible (they are the same frames either way).
   if (!o.headless && !o.no_realtime) so.realtime = true;
+  auto source = read::open_source(o.source, so);
   backend::BackendOptions bo;
-  bo.params = o.params;
+  bo.params = o.method.resolve(source->info().sensor);
   bo.core = o.core;
   bo.device = o.device;
   show::ViewStyle style;
   style.scale = o.scale;
-  show::ViewSession session(read::open_source(o.source, so), o.backend, bo, o.fps, style);
+  show::ViewSession session(std::move(source), o.backend, bo, o.fps, style);
   show::Canvas canvas = session.make_canvas();
 
   if (o.headless) {
@@ -189,7 +189,7 @@ void add_view_command(CLI::App& app, const char* name, const char* help, bool li
   cmd->add_option("--hold-s", o->hold_s, "keep the last frame on screen this long")->default_val(0);
   cmd->add_option("--window-at", o->window_at, "window position X Y on the screen")->expected(2);
   add_source_options(*cmd, o->source_options);
-  add_param_options(*cmd, o->params);
+  add_method_options(*cmd, o->method);
   cmd->callback([o, live] {
     ViewOptions run = *o;
     // live: a recording is replayed at its own pace even headless, so that latency means

@@ -25,19 +25,42 @@ void add_source_options(CLI::App& cmd, read::SourceOptions& o) {
       ->check(CLI::Range(1, 1 << 28));
 }
 
-void add_param_options(CLI::App& cmd, Params& params) {
+void add_method_options(CLI::App& cmd, Method& method) {
+  std::string presets;
+  for (const char* name : preset_names()) presets += std::string(presets.empty() ? "" : ", ") + name;
+  cmd.add_option("--preset", method.preset,
+                 "named settings the parameters below start from: evms (the defaults), paper (the authors' published "
+                 "code), gaussian (the paper's text; what the RTL implements)")
+      ->default_val(method.preset)
+      ->check(CLI::IsMember(std::vector<std::string>(preset_names().begin(), preset_names().end())))
+      ->group("Method parameters");
+  const Params defaults;
   for (const ParamInfo& info : param_table()) {
-    std::string help = std::string(info.help) + " [" + info.unit + "]";
+    std::string help = std::string(info.help);
+    if (!info.choices.names.empty()) {
+      std::string names;
+      for (const char* n : info.choices.names) names += std::string(names.empty() ? "" : "|") + n;
+      help += " [" + names + "]";
+    } else if (*info.unit) {
+      help += " [" + std::string(info.unit) + "]";
+    }
     cmd.add_option_function<std::string>(
            std::string("--") + info.name,
-           [&params, &info](const std::string& text) {
-             std::string error = set_param(params, info, text);
-             if (!error.empty()) throw CLI::ValidationError(error);
+           [&method, &info](const std::string& text) {
+             Params scratch;
+             if (std::string error = set_param(scratch, info, text); !error.empty()) throw CLI::ValidationError(error);
+             method.settings.emplace_back(info.name, text);
            },
            help)
-        ->default_str(CLI::detail::to_string(param_value(params, info)))
+        ->default_str(param_text(defaults, info))
         ->group("Method parameters");
   }
+}
+
+std::string sensor_text(const read::SourceInfo& info) {
+  std::string s = std::to_string(info.sensor.width) + "x" + std::to_string(info.sensor.height);
+  if (info.sensor_origin.rfind("assumed", 0) == 0) s += " " + info.sensor_origin;
+  return s;
 }
 
 namespace {

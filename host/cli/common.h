@@ -13,8 +13,12 @@ namespace evms::cli {
 
 // --width, --height, --reorder-us.
 void add_source_options(CLI::App& cmd, read::SourceOptions& options);
-// One option per row of the parameter table (golden/params.cpp).
-void add_param_options(CLI::App& cmd, Params& params);
+// --preset and one option per row of the parameter table (golden/params.cpp). Values are
+// checked as they are parsed; Method::resolve applies them over the preset.
+void add_method_options(CLI::App& cmd, Method& method);
+
+// "240x180", or "240x180 assumed: ..." when the source does not say its sensor size.
+std::string sensor_text(const read::SourceInfo& info);
 
 // The command line evms was started with, for reports.
 const std::string& invocation();

@@ -96,7 +96,7 @@ Curve bin_visible(const Scene& s) {
 
 RunSummary summarise(const Scene& scene, const std::string& name, double speed, const std::string& backend, const EvalOptions& o,
                      bool with_km) {
-  const Evaluation e = evaluate(scene, o.params, backend, o.chunking, o.tau_px);
+  const Evaluation e = evaluate(scene, o.method.resolve(scene.sensor), backend, o.chunking, o.tau_px);
   RunSummary r;
   r.scene = name, r.backend = backend, r.speed = speed;
   r.ems = e.scores, r.ems_clear = e.scores_clear, r.chunks = e.chunks, r.chunks_clear = e.chunks_clear;
@@ -114,7 +114,7 @@ RunSummary summarise(const Scene& scene, const std::string& name, double speed, 
   r.visible_over_time = bin_visible(scene);
   if (speed == 1) r.tracks = e.run.tracks;
   if (with_km) {
-    const auto km = kmeans_labels(scene.events, scene.truth, scene.sensor, o.params, o.chunking, o.seed);
+    const auto km = kmeans_labels(scene.events, scene.truth, scene.sensor, o.method.resolve(scene.sensor), o.chunking, o.seed);
     r.km = score_chunks(scene, km, o.chunking);
     r.km_clear = score_chunks(scene, km, o.chunking, nullptr, true);
     r.has_km = true;
@@ -139,7 +139,7 @@ RealSummary run_real(const std::string& path, const EvalOptions& o, const std::s
   r.sensor = source->info().sensor;
   std::vector<Event> events, batch(8192);
   while (size_t n = source->read(batch)) events.insert(events.end(), batch.begin(), batch.begin() + static_cast<long>(n));
-  const RunResult run = run_backend("golden", o.params, r.sensor, events);
+  const RunResult run = run_backend("golden", o.method.resolve(r.sensor), r.sensor, events);
   r.events = static_cast<std::int64_t>(events.size());
   r.kept = run.stats.events_kept;
   r.wall_s = run.wall_s;
@@ -271,7 +271,7 @@ std::string write_report(const EvalOptions& o) {
         runs.push_back(std::move(r));
       }
     } else if (t.kind == Task::kBandwidth) {
-      Params p = o.params;
+      Params p = o.method.resolve(base[t.scene].sensor);
       p.bandwidth = t.value;
       p.merge_radius = t.value / 2;
       const Evaluation e = evaluate(base[t.scene], p, o.backends[0], o.chunking, o.tau_px);

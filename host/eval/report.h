@@ -21,7 +21,7 @@ struct EvalOptions {
   std::string out;
   std::string real_dir;   // empty: no real recordings
   int jobs = 2;
-  Params params;
+  Method method;
   Chunking chunking;
   std::string command_line;
 };

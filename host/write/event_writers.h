@@ -1,8 +1,13 @@
 // The files evms writes:
 //   labelled events   t_us,x,y,p,label          one row per input event, in input order
-//   tracks            t_us,track_id,x,y,vx,vy   filtered estimate (px, px/s), one row per update
+//   tracks            t_us,track_id,state,x,y,vx,vy,events,x_min,y_min,x_max,y_max,var_x,cov_xy,var_y
+//                                               one row per update: the filtered estimate (px,
+//                                               px/s), the cluster's event count and bounding
+//                                               box, and the estimate's covariance (px^2)
 //   events.txt        t x y p                   RPG format, t in seconds with 9 decimals
 //   ground truth      t_us,object,x,y           object centres (px)
+// The event files start with a comment line "# sensor WxH", which evms's readers take as the
+// sensor size (other tools skip '#' lines).
 #pragma once
 
 #include <string>
@@ -12,9 +17,16 @@
 
 namespace evms::write {
 
+inline void write_sensor_comment(TextWriter& out, SensorSize sensor) {
+  out.text("# sensor ").integer(sensor.width).ch('x').integer(sensor.height).ch('\n');
+}
+
 class LabelledEventsCsv {
  public:
-  explicit LabelledEventsCsv(const std::string& path) : out_(path) { out_.text("t_us,x,y,p,label\n"); }
+  LabelledEventsCsv(const std::string& path, SensorSize sensor) : out_(path) {
+    write_sensor_comment(out_, sensor);
+    out_.text("t_us,x,y,p,label\n");
+  }
   void write(const LabelledEvent& e) {
     out_.integer(e.event.t).ch(',').integer(e.event.x).ch(',').integer(e.event.y).ch(',');
     out_.integer(e.event.p).ch(',').integer(e.label).ch('\n');
@@ -27,10 +39,14 @@ class LabelledEventsCsv {
 
 class TracksCsv {
  public:
-  explicit TracksCsv(const std::string& path) : out_(path) { out_.text("t_us,track_id,x,y,vx,vy\n"); }
+  explicit TracksCsv(const std::string& path) : out_(path) {
+    out_.text("t_us,track_id,state,x,y,vx,vy,events,x_min,y_min,x_max,y_max,var_x,cov_xy,var_y\n");
+  }
   void write(const TrackUpdate& u) {
-    out_.integer(u.t).ch(',').integer(u.id).ch(',').fixed(u.x, 3).ch(',').fixed(u.y, 3).ch(',');
-    out_.fixed(u.vx, 3).ch(',').fixed(u.vy, 3).ch('\n');
+    out_.integer(u.t).ch(',').integer(u.id).ch(',').text(u.state == TrackState::kConfirmed ? "confirmed" : "tentative").ch(',');
+    out_.fixed(u.x, 3).ch(',').fixed(u.y, 3).ch(',').fixed(u.vx, 3).ch(',').fixed(u.vy, 3).ch(',').integer(u.events).ch(',');
+    out_.integer(u.x_min).ch(',').integer(u.y_min).ch(',').integer(u.x_max).ch(',').integer(u.y_max).ch(',');
+    out_.fixed(u.var_x, 4).ch(',').fixed(u.cov_xy, 4).ch(',').fixed(u.var_y, 4).ch('\n');
   }
   void close() { out_.close(); }
 
@@ -40,7 +56,7 @@ class TracksCsv {
 
 class RpgEventsTxt {
  public:
-  explicit RpgEventsTxt(const std::string& path) : out_(path) {}
+  RpgEventsTxt(const std::string& path, SensorSize sensor) : out_(path) { write_sensor_comment(out_, sensor); }
   void write(const Event& e) {
     char frac[8];
     const auto us = static_cast<int>(e.t % 1000000);

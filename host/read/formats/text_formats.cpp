@@ -4,8 +4,11 @@
 //    by spaces or tabs. The dataset's DAVIS240C is 240x180, the default size.
 //  - CSV "t_us,x,y,p" with an optional header line and an optional fifth column (a label,
 //    ignored here), as evms itself writes.
-// Blank lines and lines starting with '#' are skipped. p may also be -1 for OFF.
+// Blank lines and lines starting with '#' are skipped. p may also be -1 for OFF. A first line
+// "# sensor WxH" (evms writes one) gives the sensor size; without it the size comes from
+// --width/--height, else the DAVIS240C's 240x180 is assumed, and said.
 #include <charconv>
+#include <optional>
 #include <string_view>
 
 #include "host/read/event_source.h"
@@ -19,7 +22,7 @@ class TextSource final : public FileEventSource {
  public:
   TextSource(ByteReader in, const SourceOptions& o, bool csv)
       : FileEventSource(std::move(in), csv ? "CSV t_us,x,y,p" : "RPG events.txt", o), csv_(csv) {
-    set_sensor(std::nullopt, kDavis240, "default for text files (DAVIS240C)");
+    set_sensor(sensor_comment(), kDavis240, "assumed: the file does not say (DAVIS240C); pass --width and --height");
   }
 
  protected:
@@ -33,6 +36,22 @@ class TextSource final : public FileEventSource {
   }
 
  private:
+  // "# sensor WxH" on the first line.
+  std::optional<SensorSize> sensor_comment() {
+    const std::string_view head = in_.peek(64);
+    const std::string_view tag = "# sensor ";
+    if (head.substr(0, tag.size()) != tag) return std::nullopt;
+    const std::string_view rest = head.substr(tag.size(), head.find('\n') == std::string_view::npos ? std::string_view::npos : head.find('\n') - tag.size());
+    int w = 0, h = 0;
+    auto [p, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), w);
+    if (ec == std::errc() && p < rest.data() + rest.size() && *p == 'x') {
+      auto [q, ec2] = std::from_chars(p + 1, rest.data() + rest.size(), h);
+      const bool tail_ok = q == rest.data() + rest.size() || *q == '\r';
+      if (ec2 == std::errc() && tail_ok && w > 0 && h > 0 && w <= 65535 && h <= 65535) return SensorSize{w, h};
+    }
+    fail(in_.path(), InputPosition::line(1), "bad sensor comment: expected '# sensor WxH'");
+  }
+
   [[noreturn]] void bad(const std::string& what) const {
     fail(in_.path(), InputPosition::line(in_.line()), what);
   }
@@ -85,7 +104,7 @@ class TextSource final : public FileEventSource {
   void parse(std::string_view line) {
     size_t first = line.find_first_not_of(" \t");
     if (first == std::string_view::npos || line[first] == '#') return;
-    if (csv_ && in_.line() == 1 && std::isalpha(static_cast<unsigned char>(line[first]))) {
+    if (csv_ && !records_ && std::isalpha(static_cast<unsigned char>(line[first]))) {
       if (line.substr(first).rfind("t_us,x,y,p", 0) != 0) {
         bad("bad header: expected 't_us,x,y,p' (optionally ',label')");
       }
@@ -105,10 +124,12 @@ class TextSource final : public FileEventSource {
     } else if (!rest.empty()) {
       bad("more than 5 fields");
     }
+    records_ = true;
     emit(t, x, y, p == 1, InputPosition::line(in_.line()));
   }
 
   bool csv_;
+  bool records_ = false;  // a record was read (a header may only come before)
 };
 
 }  // namespace
