@@ -22,13 +22,14 @@ std::pair<std::string, std::string> run_backend(const TempDir& dir, const std::s
   return {read_file(out + "/events.csv"), read_file(out + "/tracks.csv")};
 }
 
-constexpr const char* kIce40Limits = " --packet-size 64 --max-clusters 8 --max-tracks 8";
+// The cores implement the method of --preset gaussian (host/backend/core_config.h).
+constexpr const char* kIce40Limits = " --preset gaussian --packet-size 64 --max-clusters 8 --max-tracks 8";
 
 TEST(BackendsAgree, RtlEqualsFixedFileForFile) {
   TempDir dir;
   const std::string scene = "gen://translation?duration-s=0.15&seed=8";
-  const auto fixed = run_backend(dir, "fixed", scene, "--backend fixed");
-  const auto rtl = run_backend(dir, "rtl", scene, "--backend rtl");
+  const auto fixed = run_backend(dir, "fixed", scene, "--backend fixed --preset gaussian");
+  const auto rtl = run_backend(dir, "rtl", scene, "--backend rtl --preset gaussian");
   EXPECT_GT(fixed.first.size(), 1000u);
   EXPECT_EQ(rtl.first, fixed.first) << "events.csv differs";
   EXPECT_EQ(rtl.second, fixed.second) << "tracks.csv differs";
@@ -38,10 +39,10 @@ TEST(BackendsAgree, RtlEqualsFixedFileForFile) {
 }
 
 TEST(BackendsAgree, ACoreBuildRefusesParametersBeyondItsLimits) {
-  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --core ice40 --quiet");
+  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --core ice40 --preset gaussian --quiet");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("128x128"), std::string::npos) << r.err;
-  const auto bad = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --core zynq --quiet");
+  const auto bad = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --core zynq --preset gaussian --quiet");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("unknown core build 'zynq'"), std::string::npos) << bad.err;
 }
@@ -87,7 +88,7 @@ TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {
                                    kIce40Limits);
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_NE(missing.err.find("/dev/evms-no-such-tty: cannot open the serial device"), std::string::npos) << missing.err;
-  const auto params = run_command(evms_binary() + " run gen://rotation?width=128\\&height=128 --backend board --device /dev/null --quiet");
+  const auto params = run_command(evms_binary() + " run gen://rotation?width=128\\&height=128 --backend board --device /dev/null --preset gaussian --quiet");
   EXPECT_NE(params.exit_code, 0);
   EXPECT_NE(params.err.find("the board runs its build's settings"), std::string::npos) << params.err;
 }

@@ -32,11 +32,16 @@ TEST(Cli, RunWritesOneRowPerEventAndATrackFile) {
   const std::string in = dir.write("in.csv", csv(events));
   const auto r = run_command(evms_binary() + " run " + in + " --out " + dir.path("out"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(count_lines(dir.path("out/events.csv")), events.size() + 1);
+  // The sensor comment, the header and one row per event.
+  EXPECT_EQ(count_lines(dir.path("out/events.csv")), events.size() + 2);
+  std::ifstream labelled(dir.path("out/events.csv"));
+  std::string sensor;
+  std::getline(labelled, sensor);
+  EXPECT_EQ(sensor, "# sensor 240x180");
   std::ifstream tracks(dir.path("out/tracks.csv"));
   std::string header;
   std::getline(tracks, header);
-  EXPECT_EQ(header, "t_us,track_id,x,y,vx,vy");
+  EXPECT_EQ(header, "t_us,track_id,state,x,y,vx,vy,events,x_min,y_min,x_max,y_max,var_x,cov_xy,var_y");
   EXPECT_NE(r.out.find("events in   3,000"), std::string::npos) << r.out;
 }
 

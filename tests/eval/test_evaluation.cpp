@@ -162,13 +162,23 @@ TEST(EvalCommand, WritesTheReportWithEveryFigure) {
 }
 
 TEST(SweepCommand, PrintsATablePerParameter) {
-  const auto r = test::run_command(test::evms_binary() + " sweep --scenes rotation --duration-s 0.3 --vary bandwidth=0.06,0.08 "
-                                   "--vary packet-size=128,256");
+  const auto r = test::run_command(test::evms_binary() + " sweep --types rotation,still --seeds 1 --vary bandwidth=0.04,0.06 "
+                                   "--vary packet-size=1000,3000");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("## bandwidth"), std::string::npos);
-  EXPECT_NE(r.out.find("| 0.06 |"), std::string::npos);
+  EXPECT_NE(r.out.find("| 0.04 |"), std::string::npos);
   EXPECT_NE(r.out.find("## packet-size"), std::string::npos);
-  EXPECT_NE(r.out.find("| 128 |"), std::string::npos);
+  EXPECT_NE(r.out.find("| 1000 |"), std::string::npos);
+  EXPECT_NE(r.out.find("| packet-size | rotation | still | mean F |"), std::string::npos) << r.out;
+}
+
+TEST(SweepCommand, UnknownTypesAndParametersAreOneLine) {
+  const auto type = test::run_command(test::evms_binary() + " sweep --types spin --seeds 1");
+  EXPECT_NE(type.exit_code, 0);
+  EXPECT_NE(type.err.find("unknown scene type 'spin'"), std::string::npos) << type.err;
+  const auto param = test::run_command(test::evms_binary() + " sweep --types rotation --seeds 1 --vary bandwith=0.1");
+  EXPECT_NE(param.exit_code, 0);
+  EXPECT_NE(param.err.find("unknown parameter 'bandwith'"), std::string::npos) << param.err;
 }
 
 }  // namespace

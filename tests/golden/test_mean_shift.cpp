@@ -9,7 +9,7 @@ namespace evms::golden {
 namespace {
 
 TEST(Features, NormalizedScaledAndDecayedFromTheNewestEvent) {
-  Params p;
+  Params p = preset("gaussian");
   p.scale_xy = 2.0, p.scale_p = 0.5, p.scale_t = 3.0, p.tau_us = 1000;
   const std::vector<Event> events = {{0, 24, 18, 1}, {1000, 120, 90, 0}};
   const FeatureMatrix f = packet_features(events, {240, 180}, p);
@@ -24,7 +24,7 @@ TEST(Features, NormalizedScaledAndDecayedFromTheNewestEvent) {
 // One sweep on two points, computed by hand: positions move against the original positions,
 // appearance against the previous iteration's appearance.
 TEST(HybridMeanShift, OneSweepMatchesTheDefinition) {
-  Params p;
+  Params p = preset("gaussian");
   p.bandwidth = 0.1;
   p.max_iterations = 1;
   FeatureMatrix f(4, 2);
@@ -40,7 +40,7 @@ TEST(HybridMeanShift, OneSweepMatchesTheDefinition) {
 }
 
 TEST(HybridMeanShift, SecondSweepComparesPositionsWithTheOriginalPoints) {
-  Params p;
+  Params p = preset("gaussian");
   p.bandwidth = 0.1;
   p.max_iterations = 2;
   p.tolerance = 0;
@@ -64,7 +64,7 @@ TEST(HybridMeanShift, SecondSweepComparesPositionsWithTheOriginalPoints) {
 }
 
 TEST(HybridMeanShift, StopsAtTheToleranceOrTheCap) {
-  Params p;
+  Params p = preset("gaussian");
   FeatureMatrix f(4, 3);
   f.col(0) << 0.5, 0.5, 0, 1;
   f.col(1) << 0.5, 0.5, 0, 1;
@@ -77,7 +77,7 @@ TEST(HybridMeanShift, StopsAtTheToleranceOrTheCap) {
 }
 
 TEST(MergeModes, NearModesJoinSmallClustersBecomeNoise) {
-  Params p;
+  Params p = preset("gaussian");
   p.merge_radius = 0.05;
   p.min_cluster_size = 2;
   FeatureMatrix m(4, 5);
@@ -92,7 +92,7 @@ TEST(MergeModes, NearModesJoinSmallClustersBecomeNoise) {
 }
 
 TEST(MergeModes, ModesBeyondMaxClustersAreNoise) {
-  Params p;
+  Params p = preset("gaussian");
   p.min_cluster_size = 1;
   p.max_clusters = 2;
   FeatureMatrix m(4, 3);
@@ -103,7 +103,7 @@ TEST(MergeModes, ModesBeyondMaxClustersAreNoise) {
 }
 
 TEST(MergeModes, AModeJoinsTheNearestSeed) {
-  Params p;
+  Params p = preset("gaussian");
   p.min_cluster_size = 1;
   p.merge_radius = 0.05;
   FeatureMatrix m(4, 3);

@@ -49,7 +49,10 @@ TEST(Pipeline, TwoSeparatedBlobsGiveTwoClusters) {
 TEST(Pipeline, ABlobAtConstantVelocityGivesItsVelocityWithin2Percent) {
   const double vx = 120.0, vy = -45.0;
   const auto events = test::blob_events({{40, 150, vx, vy, 2.5}}, 40000, 0, 1500000, kSensor, 3);
-  const CollectingSink out = run(events, Params{});
+  Params p;
+  p.packet_size = 256;  // many updates, so that the velocity converges
+  p.accel_psd = 1000;   // a smooth filter: the last estimate too is within 2 %
+  const CollectingSink out = run(events, p);
   ASSERT_GT(out.tracks.size(), 100u);
   std::set<std::int32_t> ids;
   for (const TrackUpdate& u : out.tracks) ids.insert(u.id);

@@ -10,7 +10,7 @@ namespace evms::golden {
 namespace {
 
 Params tracker_params() {
-  Params p;
+  Params p = preset("gaussian");
   p.confirm_hits = 2;
   p.gate_px = 10;
   p.coast_us = 100000;
@@ -33,7 +33,7 @@ TEST(KalmanFilter, CovarianceStartsAtP0AndIsUsedByTheFirstUpdate) {
 }
 
 TEST(KalmanFilter, StaysSymmetricAndPositiveOverManyUpdates) {
-  Params p;
+  Params p = preset("gaussian");
   KalmanFilter f(10, 10, 0, p);
   gen::Random rng(4);
   for (int k = 1; k <= 20000; ++k) {
@@ -49,7 +49,7 @@ TEST(KalmanFilter, StaysSymmetricAndPositiveOverManyUpdates) {
 
 TEST(KalmanFilter, TheFilteredEstimateIsSmootherThanTheMeasurements) {
   // The authors computed the filtered estimate and then reported the raw centroid.
-  Params p;
+  Params p = preset("gaussian");
   p.meas_sigma_px = 2.0;
   p.accel_psd = 100;
   KalmanFilter f(0, 0, 0, p);
@@ -91,7 +91,9 @@ TEST(Tracker, ConfirmedTracksCoastThroughMissedPacketsThenEnd) {
   std::vector<TrackUpdate> updates;
   tracker.step(0, std::vector<Measurement>{{0, 50, 50}}, updates);
   tracker.step(10000, std::vector<Measurement>{{10000, 50, 50}}, updates);
-  ASSERT_EQ(updates.size(), 1u);  // confirmed at the second hit
+  ASSERT_EQ(updates.size(), 2u);  // tentative at the first hit, confirmed at the second
+  EXPECT_EQ(updates[0].state, TrackState::kTentative);
+  EXPECT_EQ(updates[1].state, TrackState::kConfirmed);
   for (TimeUs t = 20000; t <= 100000; t += 10000) tracker.step(t, {}, updates);
   EXPECT_EQ(tracker.live_tracks(), 1);
   auto ids = tracker.step(105000, std::vector<Measurement>{{105000, 51, 50}}, updates);

@@ -53,7 +53,7 @@ std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {
 
 TEST(Core, OneLabelPerEventInInputOrderAndAFlushEmptiesIt) {
   const auto events = test::blob_events({{60, 90}, {180, 90}}, 40000, 0, 60000, {240, 180}, 1);
-  const auto r = run_core<HostShape>(words_of(events), backend::core_config<HostShape>(Params{}, {240, 180}));
+  const auto r = run_core<HostShape>(words_of(events), backend::core_config<HostShape>(preset("gaussian"), {240, 180}));
   ASSERT_EQ(r.labels.size(), events.size());
   for (size_t i = 0; i < events.size(); ++i) {
     ASSERT_EQ(r.labels[i].x, events[i].x);
@@ -73,7 +73,7 @@ TEST(Core, AFullPendingQueueClosesThePacket) {
   for (int i = 0; i < 2000; ++i) {
     events.push_back({1000 + i * 50, static_cast<std::uint16_t>((i * 37) % 240), static_cast<std::uint16_t>((i * 91) % 180), 1});
   }
-  const auto r = run_core<Board>(words_of(events), backend::core_config<Board>(Params{}, {240, 180}));
+  const auto r = run_core<Board>(words_of(events), backend::core_config<Board>(preset("gaussian"), {240, 180}));
   ASSERT_EQ(r.labels.size(), events.size());
   ASSERT_GE(r.packets.size(), 1u);
   EXPECT_LT(r.packets[0].events, 256);
@@ -85,7 +85,7 @@ TEST(Core, SixteenBitTimestampsScrubStaleEntries) {
   // A neighbour that fired exactly one 16-bit wrap period (8.4 s) ago must not support: the
   // scrubber cleared it while other events went by.
   using Board = hls::DefaultShape;
-  hls::Config cfg = backend::core_config<Board>(Params{}, {240, 180});
+  hls::Config cfg = backend::core_config<Board>(preset("gaussian"), {240, 180});
   std::vector<Event> events = {{1000, 50, 50, 1}};
   const TimeUs wrap = TimeUs{1} << (16 + Board::kTimestampShift);
   for (int i = 0; i < 30000; ++i) {
@@ -102,7 +102,7 @@ TEST(Core, SixteenBitTimestampsScrubStaleEntries) {
 // one track along another path for a while, which the mean would weigh).
 void expect_agreement(const eval::Scene& scene, const char* what) {
   SCOPED_TRACE(what);
-  const Params p;
+  const Params p = preset("gaussian");
   const auto golden = eval::run_backend("golden", p, scene.sensor, scene.events);
   const auto fixed = eval::run_backend("fixed", p, scene.sensor, scene.events);
   const auto a = eval::agreement(scene.events, golden, fixed, {});

@@ -36,7 +36,7 @@ struct AxisDouble {
 };
 
 TEST(KalmanSplit, TwoAxisFiltersEqualTheFourStateFilter) {
-  Params p;
+  Params p = preset("gaussian");
   gen::Random rng(11);
   golden::KalmanFilter four(30, 40, 0, p);
   const double sp2 = p.init_sigma_px * p.init_sigma_px, sv2 = p.init_sigma_vel * p.init_sigma_vel;
@@ -68,7 +68,7 @@ TEST(KalmanSplit, TwoAxisFiltersEqualTheFourStateFilter) {
 }
 
 TEST(KalmanAxisFixed, FollowsTheDoubleFilter) {
-  Params p;
+  Params p = preset("gaussian");
   const Config cfg = backend::core_config<S>(p, {240, 180});
   const double tick = std::ldexp(1.0, S::kTickLog2) * 1e-6, pos_unit = std::ldexp(1.0, -S::kPosFrac);
   gen::Random rng(12);
@@ -97,7 +97,7 @@ TEST(KalmanAxisFixed, FollowsTheDoubleFilter) {
 // Symmetric by construction (one p01 per axis); positive definite over 10^6 updates with
 // steps from 100 us to 60 ms, including long coasts.
 TEST(KalmanAxisFixed, CovarianceStaysPositiveOverAMillionUpdates) {
-  Params p;
+  Params p = preset("gaussian");
   const Config cfg = backend::core_config<S>(p, {240, 180});
   gen::Random rng(13);
   AxisState a{0, 0, cfg.p0_pos, 0, cfg.p0_vel};

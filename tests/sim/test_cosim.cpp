@@ -116,7 +116,7 @@ Mismatch compare(const std::vector<hls::EventWord>& words, const hls::Config& cf
 
 template <class V, class S>
 void expect_equal(const std::string& name, const std::vector<Event>& events, SensorSize sensor, std::uint64_t seed, double ready_p,
-                  const Params& params = Params{}) {
+                  const Params& params = preset("gaussian")) {
   std::printf("cosim %s: %zu events, seed %llu, ready probability %.2f\n", name.c_str(), events.size(),
               static_cast<unsigned long long>(seed), ready_p);
   const hls::Config cfg = backend::core_config<S>(params, sensor);
@@ -176,21 +176,21 @@ TEST(Cosim, LabelledScenesBoardBuilds) {
 // off, single-hit confirmation, few clusters and tracks, a single sweep, no tolerance.
 TEST(Cosim, ParameterCorners) {
   const auto events = scene_events(gen::Motion::kTranslation, 0.12, 240, 180, 6);
-  Params span;
+  Params span = preset("gaussian");
   span.packet_max_span_us = 300;
   expect_equal<Vcore_host, hls::HostShape>("corner_span", events, {240, 180}, 41, 0.5, span);
-  Params open;
+  Params open = preset("gaussian");
   open.filter_window_us = 0;
   open.confirm_hits = 1;
   open.min_cluster_size = 1;
   expect_equal<Vcore_host, hls::HostShape>("corner_open", events, {240, 180}, 42, 0.5, open);
-  Params tight;
+  Params tight = preset("gaussian");
   tight.max_clusters = 3;
   tight.max_tracks = 2;
   tight.max_iterations = 1;
   tight.packet_size = 100;
   expect_equal<Vcore_arty, hls::ArtyShape>("corner_tight", events, {240, 180}, 43, 0.5, tight);
-  Params exact;
+  Params exact = preset("gaussian");
   exact.tolerance = 0;
   exact.scale_p = 0.3;
   exact.tau_us = 200;
@@ -217,7 +217,7 @@ namespace {
 // The cycle model (hls/core/schedule.h), fed by the C++ core, against the RTL's own count of
 // cycles in each stage, with every output always ready: they must agree exactly.
 template <class V, class S>
-void expect_schedule(const std::string& name, const std::vector<Event>& events, SensorSize sensor, const Params& params = Params{}) {
+void expect_schedule(const std::string& name, const std::vector<Event>& events, SensorSize sensor, const Params& params = preset("gaussian")) {
   const hls::Config cfg = backend::core_config<S>(params, sensor);
   const auto words = words_of(events);
   using Core = hls::Core<S, hls::ScheduleCounter<S>>;
@@ -247,7 +247,7 @@ void expect_schedule(const std::string& name, const std::vector<Event>& events, 
 TEST(Schedule, TheCycleModelCountsEveryStageOfTheRtl) {
   const auto scene = scene_events(gen::Motion::kRotation, 0.1, 240, 180, 7);
   expect_schedule<Vcore_host, hls::HostShape>("host_rotation", scene, {240, 180});
-  Params corners;  // span closes, single-hit tracks, few slots so that births fail, a single sweep
+  Params corners = preset("gaussian");  // span closes, single-hit tracks, few slots so that births fail, a single sweep
   corners.packet_max_span_us = 400;
   corners.confirm_hits = 1;
   corners.max_tracks = 2;
@@ -255,7 +255,7 @@ TEST(Schedule, TheCycleModelCountsEveryStageOfTheRtl) {
   corners.max_iterations = 1;
   corners.packet_size = 100;
   expect_schedule<Vcore_arty, hls::ArtyShape>("arty_corners", scene, {240, 180}, corners);
-  Params open;
+  Params open = preset("gaussian");
   open.filter_window_us = 0;
   expect_schedule<Vcore_arty, hls::ArtyShape>("arty_filter_off", scene, {240, 180}, open);
   expect_schedule<Vcore_ice40, hls::Ice40Shape>("ice40_6dof", scene_events(gen::Motion::kSixDof, 0.1, 128, 128, 8), {128, 128},
