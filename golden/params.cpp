@@ -54,6 +54,10 @@ const std::array kTable = {
               "most often), nearest (the nearest mode within label-reach, else noise) or first (the cluster of the first "
               "climb that reached it)",
               &Params::labelling, 0, 0, {kLabellingNames}},
+    ParamInfo{"warm-scale", "1", "with --warm-start, a previous mode climbs with bandwidth max(h, this times its "
+              "cluster's spread), so that a tracked object keeps a kernel its size; 0 = h", &Params::warm_scale, 0, 100},
+    ParamInfo{"warm-max-bandwidth", "1", "the largest bandwidth --warm-scale gives a previous mode",
+              &Params::warm_max_bandwidth, 0, 10},
     ParamInfo{"label-reach", "h", "with labelling nearest, events farther than this many bandwidths from every mode "
               "are noise", &Params::label_reach, 0.1, 100},
     ParamInfo{"warm-start", "", "with seeded climbs, the previous packet's modes seed the first climbs",
@@ -94,6 +98,8 @@ const std::array kTable = {
               &Params::gate_spread, 0, 100},
     ParamInfo{"confirm-hits", "packets", "measurements before a track is confirmed",
               &Params::confirm_hits, 1, 1000},
+    ParamInfo{"report-tentative", "", "tentative tracks report their updates too (state tentative in tracks.csv), so that "
+              "every label is a track of tracks.csv", &Params::report_tentative, 0, 1},
     ParamInfo{"coast-us", "us", "a confirmed track ends after this long without a measurement",
               &Params::coast_us, 0, 1e12},
     ParamInfo{"coast-packets", "packets", "a confirmed track also ends after missing this many packets in a row "

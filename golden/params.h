@@ -61,15 +61,17 @@ struct Params {
   Seeding seeding = Seeding::kEvents;
   Labelling labelling = Labelling::kFirst;  // for seeded climbs (not kEvery)
   bool warm_start = true;            // the previous packet's modes seed the first climbs
+  double warm_scale = 1.5;           // ... each with bandwidth max(h, this times its cluster's spread)
+  double warm_max_bandwidth = 0.12;  // ... but at most this
   double label_reach = 1.0;          // labelling nearest: events this many h from every mode are noise
   double bandwidth = 0.04;           // kernel bandwidth h on the normalized feature space
   int max_iterations = 8;            // iteration cap
   double tolerance = 4e-5;           // stop when no coordinate moves more than this (h / 1000)
-  double merge_radius = 0.03;        // modes closer than this are one cluster
+  double merge_radius = 0.02;        // modes closer than this are one cluster
   int min_cluster_size = 8;          // smaller clusters become noise
   double min_density = 0;            // seeded climbs: a mode whose ball holds fewer than this many
                                      // times the events a uniform spread would put there is noise
-  double link_px = 4;                // seeded climbs: clusters with events this close become one
+  double link_px = 6;                // seeded climbs: clusters with events this close become one
   bool join_boxes = false;           // seeded climbs: clusters whose bounding boxes overlap become one
   int max_clusters = 128;            // modes beyond this many clusters become noise
 
@@ -79,6 +81,7 @@ struct Params {
   double gate_px = 20.0;             // association gate around the predicted position
   double gate_spread = 0.0;          // ... widened to this many times the cluster's spread
   int confirm_hits = 3;              // measurements before a track is confirmed
+  bool report_tentative = true;      // tentative tracks report their updates (state tentative)
   TimeUs coast_us = 100000;          // a confirmed track ends after this long without a match
   int coast_packets = 0;             // ... or after missing this many packets; 0 = no limit
   bool evict_stale = true;           // with every slot taken, a new cluster takes the stalest

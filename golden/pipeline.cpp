@@ -49,8 +49,9 @@ void Pipeline::close_packet(OutputSink& out) {
       }
     }
     const FeatureMatrix features = packet_features(supported, sensor_, params_);
-    const PacketClusters clusters = cluster_packet(supported, features, params_, modes_, feature_area(sensor_, params_));
+    const PacketClusters clusters = cluster_packet(supported, features, params_, modes_, spreads_, feature_area(sensor_, params_));
     modes_ = clusters.modes;
+    spreads_ = clusters.spreads;
 
     // A cluster's measurement: the centre of mass of its events, timed at their mean
     // timestamp, with their count, spread and bounding box.

@@ -49,6 +49,7 @@ class Pipeline {
   BackgroundActivityFilter filter_;
   std::unique_ptr<Tracker> tracker_;
   std::vector<Eigen::Vector4d> modes_;   // the previous packet's, for warm starts
+  std::vector<double> spreads_;          // ... and their clusters' spreads
   std::vector<Event> packet_;
   struct Pending {
     Event event;

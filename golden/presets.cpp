@@ -27,6 +27,8 @@ Params gaussian() {
   p.seeding = Seeding::kEvery;
   p.labelling = Labelling::kVotes;
   p.warm_start = false;
+  p.warm_scale = 0;
+  p.warm_max_bandwidth = 0;
   p.bandwidth = 0.08;
   p.max_iterations = 8;
   p.tolerance = 1e-3;
@@ -45,6 +47,7 @@ Params gaussian() {
   p.coast_us = 100000;
   p.coast_packets = 0;
   p.evict_stale = false;
+  p.report_tentative = false;
   p.accel_psd = 1000.0;
   p.meas_sigma_px = 2.0;
   p.init_sigma_px = 2.0;

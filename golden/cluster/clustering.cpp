@@ -32,16 +32,16 @@ class PointGrid {
     for (Eigen::Index i = 0; i < n; ++i) members_[static_cast<size_t>(fill[static_cast<size_t>(index(f(0, i), f(1, i)))]++)] = static_cast<int>(i);
   }
 
-  // Calls visit(j) for every event that may lie within h of m.
+  // Calls visit(j) for every event that may lie within `reach` (at least h) of m.
   template <class Visit>
-  void near(const Point& m, Visit&& visit) const {
+  void near(const Point& m, double reach, Visit&& visit) const {
     if (!finite_) {
       for (Eigen::Index j = 0; j < f_.cols(); ++j) visit(static_cast<int>(j));
       return;
     }
-    const long cx = cell(m.x()), cy = cell(m.y());
-    for (long y = std::max(0L, cy - 1); y <= std::min(ny_ - 1, cy + 1); ++y) {
-      for (long x = std::max(0L, cx - 1); x <= std::min(nx_ - 1, cx + 1); ++x) {
+    const long cx = cell(m.x()), cy = cell(m.y()), r = static_cast<long>(std::ceil(reach / h_ - 1e-12));
+    for (long y = std::max(0L, cy - r); y <= std::min(ny_ - 1, cy + r); ++y) {
+      for (long x = std::max(0L, cx - r); x <= std::min(nx_ - 1, cx + r); ++x) {
         const size_t c = static_cast<size_t>(y * nx_ + x);
         for (int k = start_[c]; k < start_[c + 1]; ++k) visit(members_[static_cast<size_t>(k)]);
       }
@@ -83,16 +83,17 @@ class SeededClimbs {
         first_(static_cast<size_t>(f.cols()), -1),
         steps_inside_(static_cast<size_t>(f.cols()), 0) {}
 
-  // Climbs from `seed` to a mode and records the climb's votes under it.
-  void climb(Point m) {
-    const double inv_h2 = 1.0 / (p_.bandwidth * p_.bandwidth);
+  // Climbs from `seed` to a mode with the kernel's bandwidth h (the packet's, or a warm seed's
+  // own) and records the climb's votes under it.
+  void climb(Point m, double h) {
+    const double inv_h2 = 1.0 / (h * h);
     touched_.clear();
     int inside = 0;  // events in the ball at the climb's last step
     for (int step = 0; step < p_.max_iterations; ++step) {
       double sum_w = 0;
       inside = 0;
       Point sum = Point::Zero();
-      grid_.near(m, [&](int j) {
+      grid_.near(m, h, [&](int j) {
         ++result_.kernel_evaluations;
         const double u = (f_.col(j) - m).squaredNorm() * inv_h2;
         if (u < 1.0) {
@@ -121,7 +122,7 @@ class SeededClimbs {
 
   void seed_from_events() {
     for (Eigen::Index i = 0; i < f_.cols(); ++i) {
-      if (!reached_[static_cast<size_t>(i)]) climb(f_.col(i));
+      if (!reached_[static_cast<size_t>(i)]) climb(f_.col(i), p_.bandwidth);
     }
   }
 
@@ -130,7 +131,7 @@ class SeededClimbs {
       if (std::all_of(cell.begin(), cell.end(), [&](int j) { return reached_[static_cast<size_t>(j)]; })) continue;
       Point centroid = Point::Zero();
       for (int j : cell) centroid += f_.col(j);
-      climb(centroid / static_cast<double>(cell.size()));
+      climb(centroid / static_cast<double>(cell.size()), p_.bandwidth);
     }
   }
 
@@ -181,6 +182,20 @@ class SeededClimbs {
     }
     result_.cluster_of.resize(n);
     for (size_t j = 0; j < n; ++j) result_.cluster_of[j] = raw[j] < 0 ? -1 : renumber[static_cast<size_t>(raw[j])];
+    // Each cluster's spread: the RMS distance of its events from their mean, in feature units.
+    std::vector<Point> mean(static_cast<size_t>(result_.count), Point::Zero());
+    std::vector<double> sq(static_cast<size_t>(result_.count), 0.0), count(static_cast<size_t>(result_.count), 0.0);
+    for (size_t j = 0; j < n; ++j) {
+      const int c = result_.cluster_of[j];
+      if (c < 0) continue;
+      mean[static_cast<size_t>(c)] += f_.col(static_cast<Eigen::Index>(j));
+      sq[static_cast<size_t>(c)] += f_.col(static_cast<Eigen::Index>(j)).squaredNorm();
+      count[static_cast<size_t>(c)] += 1;
+    }
+    for (size_t c = 0; c < mean.size(); ++c) {
+      const Point m = mean[c] / count[c];
+      result_.spreads.push_back(std::sqrt(std::max(0.0, sq[c] / count[c] - m.squaredNorm())));
+    }
     return std::move(result_);
   }
 
@@ -314,11 +329,15 @@ PacketClusters every_event(const FeatureMatrix& features, const Params& params) 
 }  // namespace
 
 PacketClusters cluster_packet(std::span<const Event> events, const FeatureMatrix& features, const Params& params,
-                              const std::vector<Eigen::Vector4d>& warm_modes, double sensor_area) {
+                              const std::vector<Eigen::Vector4d>& warm_modes, const std::vector<double>& warm_spreads,
+                              double sensor_area) {
   if (params.seeding == Seeding::kEvery) return every_event(features, params);
   SeededClimbs climbs(features, events, params, sensor_area);
   if (params.warm_start) {
-    for (const Point& m : warm_modes) climbs.climb(m);
+    for (size_t k = 0; k < warm_modes.size(); ++k) {
+      const double own = k < warm_spreads.size() ? params.warm_scale * warm_spreads[k] : 0.0;
+      climbs.climb(warm_modes[k], std::clamp(own, params.bandwidth, std::max(params.bandwidth, params.warm_max_bandwidth)));
+    }
   }
   if (params.seeding == Seeding::kGrid) climbs.seed_from_grid();
   climbs.seed_from_events();  // after grid seeds: only events no climb reached, if any

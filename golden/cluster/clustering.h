@@ -37,6 +37,7 @@ struct PacketClusters {
   std::vector<int> cluster_of;           // per event: cluster index, or -1
   int count = 0;
   std::vector<Eigen::Vector4d> modes;    // per cluster
+  std::vector<double> spreads;           // per cluster (seeded climbs): RMS distance of its events from their mean
   int iterations = 0;                    // sweeps (every) or climb steps, summed (seeded)
   std::int64_t kernel_evaluations = 0;   // point-to-point distances taken
 };
@@ -45,6 +46,7 @@ struct PacketClusters {
 // `sensor_area`: the sensor's area in (x, y) feature units (feature_pixels' reciprocals times
 // the sensor size, times scale_xy squared).
 PacketClusters cluster_packet(std::span<const Event> events, const FeatureMatrix& features, const Params& params,
-                              const std::vector<Eigen::Vector4d>& warm_modes, double sensor_area);
+                              const std::vector<Eigen::Vector4d>& warm_modes, const std::vector<double>& warm_spreads,
+                              double sensor_area);
 
 }  // namespace evms::golden

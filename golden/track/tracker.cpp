@@ -25,6 +25,7 @@ double MultiTargetTracker::gate(const Measurement& z) const {
 }
 
 void MultiTargetTracker::report(const Track& track, const Measurement& z, std::vector<TrackUpdate>& updates) const {
+  if (!track.confirmed && !params_.report_tentative) return;
   const auto& s = track.filter.state();
   const auto& p = track.filter.covariance();
   updates.push_back({z.t, track.id, s(0), s(1), s(2), s(3), z.x, z.y,

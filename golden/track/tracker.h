@@ -10,11 +10,12 @@
 //     from their centre) when that is larger. Pairs are taken greedily, nearest first (ties:
 //     lower track slot, then lower measurement), each track and each measurement at most
 //     once, so no two clusters share an ID.
-//  3. A matched track is predicted to its measurement's time and updated, and reported. After
-//     confirm_hits measurements it is confirmed.
+//  3. A matched track is predicted to its measurement's time and updated, and reported (a
+//     tentative one only with report_tentative). After confirm_hits measurements it is
+//     confirmed.
 //  4. An unmatched tentative track ends at once; an unmatched confirmed track coasts.
 //  5. Each unmatched measurement starts a tentative track in the lowest free slot, with a new
-//     ID from a counter that never repeats, and is reported. With every slot taken, it takes
+//     ID from a counter that never repeats, and is reported as in 3. With every slot taken, it takes
 //     the slot of the unmatched track measured longest ago when evict_stale is set; otherwise
 //     it gets no track and its events are labelled noise (counted in unassigned_clusters).
 //
