@@ -1,5 +1,7 @@
 // Each cluster's measurement: the centre of mass of its events' pixel positions (kPosFrac
-// fraction bits, rounded) timed at the rounded mean of their timestamps.
+// fraction bits, rounded) timed at the rounded mean of their timestamps; with its event count,
+// its bounding box, and its spread squared (the mean squared distance of its events from their
+// centre, px^2 with kSpreadFrac fraction bits, exact then rounded half up).
 #pragma once
 
 #include <cstdint>
@@ -9,16 +11,24 @@
 
 namespace evms::hls {
 
+inline constexpr int kSpreadFrac = 8;
+
 struct Measurement {
   std::uint32_t t = 0;
   std::int32_t x = 0, y = 0;  // kPosFrac fraction bits, px
+  std::uint32_t events = 0;
+  std::uint16_t x_min = 0, y_min = 0, x_max = 0, y_max = 0;
+  std::uint64_t spread2 = 0;  // px^2, kSpreadFrac fraction bits
 };
 
+// `exact`: divide exactly (integer division, rounded half up) instead of through the reciprocal
+// table; the seeded path does, the RTL's path (the Gaussian one) does not.
 template <class S>
 void centroids(const PacketEvents<S>& ev, int n, const std::int8_t cluster_of[S::kPacketMax], int clusters,
-               Measurement out[S::kClustersMax]) {
+               Measurement out[S::kClustersMax], bool exact = false) {
   std::uint32_t sx[S::kClustersMax] = {}, sy[S::kClustersMax] = {}, count[S::kClustersMax] = {};
-  std::uint64_t st[S::kClustersMax] = {};
+  std::uint64_t st[S::kClustersMax] = {}, s2[S::kClustersMax] = {};
+  std::uint16_t x0[S::kClustersMax], y0[S::kClustersMax], x1[S::kClustersMax], y1[S::kClustersMax];
   const std::uint32_t t0 = ev.t[0];
 accumulate:
   for (int i = 0; i < S::kPacketMax; ++i) {
@@ -26,17 +36,34 @@ accumulate:
     if (i >= n) break;
     const int c = cluster_of[i];
     if (c < 0) continue;
+    if (count[c] == 0) x0[c] = x1[c] = ev.x[i], y0[c] = y1[c] = ev.y[i];
+    x0[c] = ev.x[i] < x0[c] ? ev.x[i] : x0[c], x1[c] = ev.x[i] > x1[c] ? ev.x[i] : x1[c];
+    y0[c] = ev.y[i] < y0[c] ? ev.y[i] : y0[c], y1[c] = ev.y[i] > y1[c] ? ev.y[i] : y1[c];
     sx[c] += ev.x[i];
     sy[c] += ev.y[i];
+    s2[c] += std::uint64_t{ev.x[i]} * ev.x[i] + std::uint64_t{ev.y[i]} * ev.y[i];
     st[c] += ev.t[i] - t0;
     ++count[c];
   }
 divide:
   for (int c = 0; c < S::kClustersMax; ++c) {
     if (c >= clusters) break;
-    out[c].x = static_cast<std::int32_t>(Tables<S>::recip.template divide<S::kPosFrac>(sx[c], count[c]));
-    out[c].y = static_cast<std::int32_t>(Tables<S>::recip.template divide<S::kPosFrac>(sy[c], count[c]));
-    out[c].t = t0 + static_cast<std::uint32_t>(Tables<S>::recip.template divide<0>(st[c], count[c]));
+    if (exact) {
+      const std::uint64_t n = count[c];
+      out[c].x = static_cast<std::int32_t>(((std::uint64_t{sx[c]} << (S::kPosFrac + 1)) + n) / (2 * n));
+      out[c].y = static_cast<std::int32_t>(((std::uint64_t{sy[c]} << (S::kPosFrac + 1)) + n) / (2 * n));
+      out[c].t = t0 + static_cast<std::uint32_t>((2 * st[c] + n) / (2 * n));
+    } else {
+      out[c].x = static_cast<std::int32_t>(Tables<S>::recip.template divide<S::kPosFrac>(sx[c], count[c]));
+      out[c].y = static_cast<std::int32_t>(Tables<S>::recip.template divide<S::kPosFrac>(sy[c], count[c]));
+      out[c].t = t0 + static_cast<std::uint32_t>(Tables<S>::recip.template divide<0>(st[c], count[c]));
+    }
+    out[c].events = count[c];
+    out[c].x_min = x0[c], out[c].y_min = y0[c], out[c].x_max = x1[c], out[c].y_max = y1[c];
+    // n^2 var = n S2 - Sx^2 - Sy^2, exact; then var = that / n^2.
+    const std::uint64_t n = count[c];
+    const std::uint64_t n2var = n * s2[c] - std::uint64_t{sx[c]} * sx[c] - std::uint64_t{sy[c]} * sy[c];
+    out[c].spread2 = ((n2var << (kSpreadFrac + 1)) / (n * n) + 1) >> 1;
   }
 }
 

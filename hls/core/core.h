@@ -15,8 +15,10 @@
 
 #include "hls/cluster/centroid.h"
 #include "hls/cluster/features.h"
+#include "hls/cluster/link.h"
 #include "hls/cluster/mean_shift.h"
 #include "hls/cluster/merge.h"
+#include "hls/cluster/seeded_climbs.h"
 #include "hls/core/config.h"
 #include "hls/core/shape.h"
 #include "hls/core/words.h"
@@ -30,9 +32,10 @@ namespace evms::hls {
 struct PacketTrace {
   int events = 0;      // released: every pending event, kept or not
   int kept = 0;        // in the packet (0: only noise was released)
-  int sweeps = 0;
+  int sweeps = 0;       // Gaussian sweeps, or seeded climb steps
   int clusters = 0;
   MergeTrace merge;
+  ClimbTrace climbs;
   TrackerTrace track;
 };
 
@@ -55,6 +58,8 @@ class Core {
     cfg_ = cfg;
     filter_.reset();
     tracker_.reset();
+    links_.reset();
+    warm_.count = 0;
     n_ = 0;
     pending_n_ = 0;
   }
@@ -93,12 +98,24 @@ class Core {
     trace.kept = n_;
     if (n_ > 0) {
       Features<S> phi;
-      packet_features(packet_, n_, cfg_, phi);
-      const int sweeps = mean_shift(phi, n_, cfg_);
       std::int8_t cluster_of[S::kPacketMax];
-      const int clusters = merge_modes(phi, n_, cfg_, cluster_of, trace.merge);
+      int sweeps = 0, clusters = 0;
+      if (cfg_.seeded) {
+        climb_features(packet_, n_, cfg_, phi);
+        std::int16_t mode_of[S::kPacketMax];
+        Modes<S> modes;
+        climbs_.run(phi, n_, cfg_, warm_, mode_of, modes, trace.climbs);
+        links_.run(packet_, n_, modes.count, cfg_, mode_of);
+        clusters = keep_clusters(mode_of, modes, cluster_of);
+        warm_balls(phi, cluster_of);
+        sweeps = trace.climbs.steps;
+      } else {
+        packet_features(packet_, n_, cfg_, phi);
+        sweeps = mean_shift(phi, n_, cfg_);
+        clusters = merge_modes(phi, n_, cfg_, cluster_of, trace.merge);
+      }
       Measurement z[S::kClustersMax];
-      centroids(packet_, n_, cluster_of, clusters, z);
+      centroids(packet_, n_, cluster_of, clusters, z, cfg_.seeded);
       std::int32_t ids[S::kClustersMax];
       tracker_.step(packet_.t[n_ - 1], z, clusters, cfg_, ids, tracks);
       trace.sweeps = sweeps;
@@ -109,7 +126,7 @@ class Core {
         label_of[i] = cluster_of[i] >= 0 ? ids[cluster_of[i]] : -1;
       }
       packets.write({packet_.t[0], packet_.t[n_ - 1], static_cast<std::uint16_t>(n_), static_cast<std::uint8_t>(clusters),
-                     static_cast<std::uint8_t>(sweeps)});
+                     static_cast<std::uint16_t>(sweeps < 0xFFFF ? sweeps : 0xFFFF)});
     }
     observer_.on_close(trace);
   release:
@@ -123,6 +140,80 @@ class Core {
     pending_n_ = 0;
   }
 
+  // Seeded climbs: modes (after linking) with at least min_cluster_size events become clusters,
+  // the first max_clusters of them in the order they opened; their modes seed the next packet.
+  int keep_clusters(const std::int16_t mode_of[S::kPacketMax], const Modes<S>& modes, std::int8_t cluster_of[S::kPacketMax]) {
+    int size[S::kModesMax];
+  count:
+    for (int c = 0; c < S::kModesMax; ++c) {
+      if (c >= modes.count) break;
+      size[c] = 0;
+    }
+  sizes:
+    for (int j = 0; j < S::kPacketMax; ++j) {
+      if (j >= n_) break;
+      if (mode_of[j] >= 0) ++size[mode_of[j]];
+    }
+    std::int16_t renumber[S::kModesMax];
+    int kept = 0;
+  survivors:
+    for (int c = 0; c < S::kModesMax; ++c) {
+      if (c >= modes.count) break;
+      renumber[c] = -1;
+      if (size[c] >= cfg_.min_cluster_size && kept < cfg_.max_clusters && kept < S::kClustersMax) {
+        renumber[c] = static_cast<std::int16_t>(kept);
+        warm_.x[kept] = modes.x[c], warm_.y[kept] = modes.y[c], warm_.p[kept] = modes.p[c], warm_.t[kept] = modes.t[c];
+        ++kept;
+      }
+    }
+    warm_.count = kept;
+  relabel:
+    for (int j = 0; j < S::kPacketMax; ++j) {
+      if (j >= n_) break;
+      cluster_of[j] = static_cast<std::int8_t>(mode_of[j] < 0 ? -1 : renumber[mode_of[j]]);
+    }
+    return kept;
+  }
+
+  // The ball each kept cluster's mode climbs with in the next packet: radius^2 = warm_scale2
+  // times the variance of its events' features, clamped to [h^2, warm_ball2_max]. The sums run
+  // about the mode (warm_), so that they stay within 64 bits; var = S2 / n - (S1 / n)^2, each
+  // quotient rounded.
+  void warm_balls(const Features<S>& phi, const std::int8_t cluster_of[S::kPacketMax]) {
+    std::int64_t s1[4][S::kClustersMax], count[S::kClustersMax];
+    std::uint64_t s2[4][S::kClustersMax];  // a cluster across a 1280 px sensor reaches 2^63
+  clear:
+    for (int c = 0; c < S::kClustersMax; ++c) {
+      count[c] = 0;
+      for (int d = 0; d < 4; ++d) s1[d][c] = s2[d][c] = 0;
+    }
+  accumulate:
+    for (int j = 0; j < S::kPacketMax; ++j) {
+#pragma HLS PIPELINE II = 1
+      if (j >= n_) break;
+      const int c = cluster_of[j];
+      if (c < 0) continue;
+      const std::int64_t v[4] = {phi.x[j] - warm_.x[c], phi.y[j] - warm_.y[c], phi.p[j] - warm_.p[c], phi.t[j] - warm_.t[c]};
+      for (int d = 0; d < 4; ++d) s1[d][c] += v[d], s2[d][c] += static_cast<std::uint64_t>(v[d] * v[d]);
+      ++count[c];
+    }
+    constexpr std::uint64_t kOne = SeededClimbs<S>::kOne;
+    const std::uint64_t top = cfg_.warm_ball2_max > kOne ? cfg_.warm_ball2_max : kOne;
+  balls:
+    for (int c = 0; c < S::kClustersMax; ++c) {
+      if (c >= warm_.count) break;
+      std::int64_t var = 0;
+      for (int d = 0; d < 4; ++d) {
+        const std::int64_t mean = s1[d][c] >= 0 ? (2 * s1[d][c] + count[c]) / (2 * count[c]) : -((-2 * s1[d][c] + count[c]) / (2 * count[c]));
+        const auto n = static_cast<std::uint64_t>(count[c]);
+        var += static_cast<std::int64_t>(s2[d][c] / n + (s2[d][c] % n >= (n + 1) / 2 ? 1 : 0)) - mean * mean;
+      }
+      const auto v = static_cast<std::uint64_t>(var > 0 ? var : 0);
+      const std::uint64_t ball2 = (std::uint64_t{cfg_.warm_scale2} * v + (std::uint64_t{1} << (kSpreadFrac - 1))) >> kSpreadFrac;
+      warm_.ball2[c] = ball2 < kOne ? kOne : (ball2 > top ? top : ball2);
+    }
+  }
+
   struct Pending {
     EventWord e;
     std::int16_t index;  // in the packet, or -1 for a filtered event
@@ -131,6 +222,9 @@ class Core {
   Config cfg_;
   BackgroundActivityFilter<S> filter_;
   Tracker<S> tracker_;
+  SeededClimbs<S> climbs_;
+  ModeLinks<S> links_;
+  Modes<S> warm_;                // the previous packet's cluster modes
   PacketEvents<S> packet_;
   int n_ = 0;
   Pending pending_[S::kPendingDepth];

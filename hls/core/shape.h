@@ -15,7 +15,7 @@ namespace evms::hls {
 
 template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsMax, int ClustersMax, int TracksMax,
           int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,
-          int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64>
+          int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -29,6 +29,8 @@ struct Shape {
   static constexpr int kIterationsMax = IterationsMax;
   static constexpr int kClustersMax = ClustersMax;
   static constexpr int kTracksMax = TracksMax;
+  static constexpr int kModesMax = ModesMax;     // seeded climbs: modes a packet can open
+  static constexpr int kLinkMax = LinkMax;       // seeded climbs: the largest link distance, px
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;
@@ -58,9 +60,14 @@ struct Shape {
 // XC7A35T's 90 DSP48E1 (docs/rtl.md, "Area").
 using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // The host's fixed-point backend: room for every recording evms reads (up to 1280x720), exact
-// 32-bit microsecond timestamps per pixel (its filter decides exactly as golden's), and a
-// pending queue deep enough that noisy recordings (a third noise, say) never close a packet
-// early, as golden never does.
-using HostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10>;
+// 32-bit microsecond timestamps per pixel (its filter decides exactly as golden's), the
+// method's default packets (3,000 events), clusters and tracks (128 each), and a pending queue
+// deep enough that noisy recordings (a third noise, say) never close a packet early, as golden
+// never does.
+using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8>;
+// The RTL's host-simulation build: HostShape's sensor, words and tables with the packet, cluster
+// and track sizes of the method the RTL implements (--preset gaussian). For those settings the
+// two give the same words.
+using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10>;
 
 }  // namespace evms::hls

@@ -1,6 +1,7 @@
 // Background-activity filter in hardware form: the rule of golden/filter (an event is kept
-// when one of its 8 neighbours fired within the window; its own pixel does not count; pixels
-// outside the sensor do not exist), with a per-pixel timestamp memory of the Shape's width:
+// when filter_support of its 8 neighbours fired within the window; its own pixel does not
+// count; pixels outside the sensor do not exist), with a per-pixel timestamp memory of the
+// Shape's width:
 //   32 bits, 1 us units (HostShape): the same decisions as golden, up to the 71-minute wrap;
 //   16 bits, 128 us units (DefaultShape): one iCE40 SPRAM word per pixel, so 240x180 fits the
 //     UP5K's four SPRAMs; the window is then compared in 128 us units.
@@ -30,14 +31,14 @@ class BackgroundActivityFilter {
     if (!cfg.filter_enabled) return true;
     if (e.x >= cfg.sensor_width || e.y >= cfg.sensor_height) return false;
     const Stamp now = static_cast<Stamp>(e.t >> S::kTimestampShift);
-    bool supported = false;
+    int supporters = 0;
   neighbours:
     for (int k = 0; k < 9; ++k) {
 #pragma HLS PIPELINE II = 1
       const int nx = e.x + k % 3 - 1, ny = e.y + k / 3 - 1;
       if (k == 4 || nx < 0 || ny < 0 || nx >= cfg.sensor_width || ny >= cfg.sensor_height) continue;
       const Stamp then = stamp_[ny * S::kMaxWidth + nx];
-      if (then != 0 && static_cast<Stamp>(now - then) <= cfg.filter_window) supported = true;
+      if (then != 0 && static_cast<Stamp>(now - then) <= cfg.filter_window) ++supporters;
     }
     stamp_[e.y * S::kMaxWidth + e.x] = now == 0 ? 1 : now;
   scrub:
@@ -48,7 +49,7 @@ class BackgroundActivityFilter {
       if (then != 0 && static_cast<Stamp>(now - then) >= kHalfWrap) stamp_[scrub_] = 0;
       scrub_ = scrub_ + 1 == S::kMaxWidth * S::kMaxHeight ? 0 : scrub_ + 1;
     }
-    return supported;
+    return supporters >= cfg.filter_support;
   }
 
  private:

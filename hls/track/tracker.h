@@ -1,13 +1,18 @@
 // Multi-target tracking in fixed point: the rules of golden/track/tracker.h with slots in a
 // register file. Per packet:
-//  1. confirmed tracks not measured for more than coast_us end;
-//  2. (track, measurement) pairs within the gate of the track's prediction are candidates; the
-//     nearest pair is taken, then the nearest among the rest, and so on (ties: lower slot, then
-//     lower measurement), so association is one-to-one;
-//  3. matched tracks predict to their measurement's time and update; confirmed ones report;
+//  1. confirmed tracks not measured for more than coast_us, or that missed coast_packets
+//     packets in a row (when set), end;
+//  2. (track, measurement) pairs within the gate of the track's prediction (or, with
+//     associate_last, of its last measurement) are candidates; the gate is gate2, widened to
+//     gate_spread2 times the measurement's spread squared when that is larger. The nearest pair
+//     is taken, then the nearest among the rest, and so on (ties: lower slot, then lower
+//     measurement), so association is one-to-one;
+//  3. matched tracks predict to their measurement's time and update; they report (tentative
+//     ones only with report_tentative);
 //  4. unmatched tentative tracks end; unmatched confirmed ones coast;
 //  5. unmatched measurements start tracks in the lowest free slots with new IDs (31-bit
-//     counter, never reused), or, with no slot free, leave their events as noise.
+//     counter, never reused) and report as in 3; with no slot free they take the slot of the
+//     unmatched track measured longest ago (evict_stale), or leave their events as noise.
 #pragma once
 
 #include <cstdint>
@@ -40,8 +45,8 @@ class Tracker {
     unassigned_ = 0;
   }
 
-  // Assigns a track ID (or -1) to each measurement and writes the updates of confirmed
-  // tracks to `updates`.
+  // Assigns a track ID (or -1) to each measurement and writes the updates to report to
+  // `updates`.
   template <int Depth>
   void step(std::uint32_t packet_time, const Measurement z[S::kClustersMax], int m, const Config& cfg, std::int32_t ids[S::kClustersMax],
             Stream<TrackWord, Depth>& updates) {
@@ -49,13 +54,17 @@ class Tracker {
   expire:
     for (int s = 0; s < S::kTracksMax; ++s) {
 #pragma HLS UNROLL
-      if (slot_[s].valid && static_cast<std::int32_t>(packet_time - slot_[s].t_last) > static_cast<std::int32_t>(cfg.coast_us)) {
-        slot_[s].valid = false;
-      }
+      const bool too_old = static_cast<std::int32_t>(packet_time - slot_[s].t_last) > static_cast<std::int32_t>(cfg.coast_us);
+      const bool too_many_missed = cfg.coast_packets != 0 && slot_[s].missed >= cfg.coast_packets;
+      if (slot_[s].valid && (too_old || too_many_missed)) slot_[s].valid = false;
     }
     bool slot_matched[S::kTracksMax] = {};
     bool meas_matched[S::kClustersMax] = {};
-    for (int c = 0; c < S::kClustersMax; ++c) ids[c] = -1;
+    std::uint64_t gate2[S::kClustersMax];
+    for (int c = 0; c < S::kClustersMax; ++c) {
+      ids[c] = -1;
+      if (c < m) gate2[c] = gate_of(z[c], cfg);
+    }
 
     trace_.rounds_capped = true;
   rounds:
@@ -72,8 +81,8 @@ class Tracker {
           if (k >= m) break;
           if (meas_matched[k]) continue;
           ++trace_.distances;
-          const std::uint64_t d2 = distance2(slot_[s], z[k]);
-          if (d2 <= cfg.gate2 && (best_s < 0 || d2 < best_d2)) best_s = s, best_m = k, best_d2 = d2;
+          const std::uint64_t d2 = cfg.associate_last ? last_distance2(slot_[s], z[k]) : distance2(slot_[s], z[k]);
+          if (d2 <= gate2[k] && (best_s < 0 || d2 < best_d2)) best_s = s, best_m = k, best_d2 = d2;
         }
       }
       if (best_s < 0) {
@@ -90,39 +99,43 @@ class Tracker {
       Axis::update(t.ax, z[best_m].x, cfg);
       Axis::update(t.ay, z[best_m].y, cfg);
       if (!t.confirmed) t.confirmed = ++t.hits >= cfg.confirm_hits;
+      t.missed = 0;
+      t.zx = z[best_m].x, t.zy = z[best_m].y;
       ids[best_m] = t.id;
-      if (t.confirmed) updates.write({z[best_m].t, t.id, t.ax.pos, t.ay.pos, t.ax.vel, t.ay.vel, z[best_m].x, z[best_m].y});
+      report(t, z[best_m], cfg, updates);
     }
 
-  drop_tentative:
+  end_or_coast:
     for (int s = 0; s < S::kTracksMax; ++s) {
-      if (slot_[s].valid && !slot_matched[s] && !slot_[s].confirmed) slot_[s].valid = false;
+      if (!slot_[s].valid || slot_matched[s]) continue;
+      if (slot_[s].confirmed) ++slot_[s].missed;
+      else slot_[s].valid = false;
     }
 
   births:
     for (int k = 0; k < S::kClustersMax; ++k) {
       if (k >= m) break;
       if (meas_matched[k]) continue;
-      int free = -1;
-      for (int s = S::kTracksMax - 1; s >= 0; --s) {
-        if (!slot_[s].valid && s < cfg.max_tracks) free = s;
-      }
-      if (free < 0) {
+      const int slot = slot_for_new_track(cfg, slot_matched);
+      if (slot < 0) {
         ++unassigned_;
         continue;
       }
       ++trace_.births;
-      Slot& t = slot_[free];
+      Slot& t = slot_[slot];
+      slot_matched[slot] = true;
       t.valid = true;
       t.id = next_id_;
       next_id_ = (next_id_ + 1) & 0x7FFFFFFF;
       t.hits = 1;
       t.confirmed = cfg.confirm_hits <= 1;
+      t.missed = 0;
       t.t_last = z[k].t;
+      t.zx = z[k].x, t.zy = z[k].y;
       t.ax = {z[k].x, 0, cfg.p0_pos, 0, cfg.p0_vel};
       t.ay = {z[k].y, 0, cfg.p0_pos, 0, cfg.p0_vel};
       ids[k] = t.id;
-      if (t.confirmed) updates.write({z[k].t, t.id, z[k].x, z[k].y, 0, 0, z[k].x, z[k].y});
+      report(t, z[k], cfg, updates);
     }
   }
 
@@ -141,9 +154,57 @@ class Tracker {
     bool valid = false, confirmed = false;
     std::int32_t id = 0;
     std::uint8_t hits = 0;
+    std::uint32_t missed = 0;        // packets in a row without a measurement
     std::uint32_t t_last = 0;
+    std::int32_t zx = 0, zy = 0;     // the last measurement, kPosFrac
     AxisState ax, ay;
   };
+
+  // gate2, or gate_spread2 times the spread squared when that is larger (both 2 kPosFrac
+  // fraction bits).
+  static std::uint64_t gate_of(const Measurement& z, const Config& cfg) {
+    constexpr int kShift = 2 * S::kPosFrac - 2 * kSpreadFrac;
+    const std::uint64_t product = std::uint64_t{cfg.gate_spread2} * z.spread2;
+    std::uint64_t spread_gate = product;
+    if constexpr (kShift >= 0) spread_gate = product << kShift;
+    else spread_gate = product >> -kShift;
+    return spread_gate > cfg.gate2 ? spread_gate : cfg.gate2;
+  }
+
+  // The lowest free slot; with none, the unmatched slot measured longest ago (evict_stale,
+  // ties to the lower slot); -1 when neither.
+  int slot_for_new_track(const Config& cfg, const bool slot_matched[S::kTracksMax]) const {
+    int free = -1;
+    for (int s = S::kTracksMax - 1; s >= 0; --s) {
+      if (!slot_[s].valid && s < cfg.max_tracks) free = s;
+    }
+    if (free >= 0 || !cfg.evict_stale) return free;
+    int stalest = -1;
+    for (int s = 0; s < S::kTracksMax; ++s) {
+      if (s >= cfg.max_tracks || slot_matched[s]) continue;
+      if (stalest < 0 || static_cast<std::int32_t>(slot_[s].t_last - slot_[stalest].t_last) < 0) stalest = s;
+    }
+    return stalest;
+  }
+
+  template <int Depth>
+  static void report(const Slot& t, const Measurement& z, const Config& cfg, Stream<TrackWord, Depth>& updates) {
+    if (!t.confirmed && !cfg.report_tentative) return;
+    TrackWord w;
+    w.t = z.t;
+    w.id = t.id;
+    w.x = t.ax.pos, w.y = t.ay.pos, w.vx = t.ax.vel, w.vy = t.ay.vel;
+    w.zx = z.x, w.zy = z.y;
+    w.confirmed = t.confirmed;
+    // The RTL's track words end at zy: in the RTL's method (not seeded) the core leaves the
+    // rest at its defaults, so that the two stay equal word for word.
+    if (cfg.seeded) {
+      w.events = z.events;
+      w.x_min = z.x_min, w.y_min = z.y_min, w.x_max = z.x_max, w.y_max = z.y_max;
+      w.var_x = t.ax.p00, w.var_y = t.ay.p00;
+    }
+    updates.write(w);
+  }
 
   static std::uint64_t distance2(const Slot& t, const Measurement& z) {
     const std::int32_t dt_raw = static_cast<std::int32_t>(z.t - t.t_last);
@@ -151,6 +212,11 @@ class Tracker {
     constexpr std::int64_t kLimit = std::int64_t{4096} << S::kPosFrac;  // px
     const std::int64_t dx = clamp_sym(std::int64_t{z.x} - Axis::predicted(t.ax, dt), kLimit);
     const std::int64_t dy = clamp_sym(std::int64_t{z.y} - Axis::predicted(t.ay, dt), kLimit);
+    return static_cast<std::uint64_t>(dx * dx + dy * dy);
+  }
+
+  static std::uint64_t last_distance2(const Slot& t, const Measurement& z) {
+    const std::int64_t dx = std::int64_t{z.x} - t.zx, dy = std::int64_t{z.y} - t.zy;
     return static_cast<std::uint64_t>(dx * dx + dy * dy);
   }
 

@@ -4,6 +4,7 @@
 // words through the Verilated RTL or a serial link.
 #pragma once
 
+#include <cmath>
 #include <deque>
 
 #include "host/backend/backend.h"
@@ -36,8 +37,11 @@ class CoreWordMapper {
     return latest_ - static_cast<std::int32_t>(latest - core_t);
   }
   TrackUpdate track(const hls::TrackWord& w) const {
+    const double cov = std::ldexp(1.0, -S::kCovFrac);
     return {to_time(w.t), w.id, core_px<S>(w.x), core_px<S>(w.y), core_px_per_s<S>(w.vx), core_px_per_s<S>(w.vy),
-            core_px<S>(w.zx), core_px<S>(w.zy)};
+            core_px<S>(w.zx), core_px<S>(w.zy), w.confirmed ? TrackState::kConfirmed : TrackState::kTentative,
+            static_cast<std::int32_t>(w.events), w.x_min, w.y_min, w.x_max, w.y_max, static_cast<double>(w.var_x) * cov, 0.0,
+            static_cast<double>(w.var_y) * cov};
   }
   PacketSummary packet(const hls::PacketWord& w) const {
     return {to_time(w.t_first), to_time(w.t_last), w.events, w.clusters, w.iterations};

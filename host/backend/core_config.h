@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 
 #include "golden/params.h"
+#include "hls/cluster/centroid.h"
+#include "hls/cluster/seeded_climbs.h"
 #include "hls/core/config.h"
 
 namespace evms::backend {
@@ -25,17 +28,52 @@ Params build_default_params() {
   return p;
 }
 
-// The first setting of `p` that the core does not implement, as the one-line message a backend
-// built on it refuses it with; empty when the core implements every setting.
-inline std::string core_unsupported(const Params& p) {
-  const Params core = preset("gaussian");
-  for (const char* name : {"kernel", "seeding", "xy-scale", "filter-support", "packet-support", "link-px", "join-boxes",
-                           "min-density", "measure", "association", "gate-spread", "coast-packets", "evict-stale"}) {
+namespace detail {
+
+// "--name value": how a refusal names a setting.
+inline std::string setting(const Params& p, const char* name) { return std::string("--") + name + " " + param_text(p, *find_param(name)); }
+
+// The first of `names` on which `p` differs from `reference`, or nullptr.
+inline const char* first_difference(const Params& p, const Params& reference, std::initializer_list<const char*> names) {
+  for (const char* name : names) {
     const ParamInfo& info = *find_param(name);
-    if (param_value(p, info) != param_value(core, info)) {
-      return "the fixed-point core does not implement --" + std::string(name) + " " + param_text(p, info) + " (it implements --" +
-             name + " " + param_text(core, info) + "; --preset gaussian gives every setting it implements)";
-    }
+    if (param_value(p, info) != param_value(reference, info)) return name;
+  }
+  return nullptr;
+}
+
+}  // namespace detail
+
+// The first setting of `p` that the C++ core (hls/) does not implement, as the one line a
+// backend built on it refuses it with; empty when it implements every setting. It implements
+// both mean shifts: every event with the Gaussian kernel, and seeded climbs with the flat kernel
+// labelled by the first climb to reach an event.
+inline std::string core_unsupported(const Params& p) {
+  const bool seeded = p.seeding != Seeding::kEvery;
+  if (seeded && p.kernel != Kernel::kFlat) return "the fixed-point core climbs from seeds with the flat kernel only, not " + detail::setting(p, "kernel");
+  if (!seeded && p.kernel != Kernel::kGaussian) return "the fixed-point core shifts every event with the Gaussian kernel only, not " + detail::setting(p, "kernel");
+  if (p.seeding == Seeding::kGrid) return "the fixed-point core seeds from events, not " + detail::setting(p, "seeding");
+  if (seeded && p.labelling != Labelling::kFirst) return "the fixed-point core labels an event by the first climb that reached it, not " + detail::setting(p, "labelling");
+  const Params off = preset("gaussian");
+  if (const char* name = detail::first_difference(p, off, {"packet-support", "min-density", "join-boxes", "measure"})) {
+    return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
+  }
+  if (p.association == Association::kNearestCentre) return "the fixed-point core does not implement " + detail::setting(p, "association");
+  if (!seeded && (p.link_px > 0 || p.warm_start)) return "the fixed-point core links clusters and warm-starts only with seeded climbs (--seeding events)";
+  if (seeded && (p.scale_p != 0 || p.scale_t != 0)) return "the fixed-point core's seeded climbs use position only (--scale-p 0 --scale-t 0)";
+  if (seeded && (p.bandwidth < 0.01 || p.scale_xy != 1)) return "the fixed-point core's seeded climbs need --bandwidth 0.01 or more and --scale-xy 1";
+  return {};
+}
+
+// The first setting of `p` that the RTL core (rtl/, and a board built from it) does not
+// implement: it implements the method of --preset gaussian, with any numbers.
+inline std::string rtl_unsupported(const Params& p) {
+  if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
+  const Params rtl = preset("gaussian");
+  if (const char* name = detail::first_difference(p, rtl, {"kernel", "seeding", "xy-scale", "filter-support", "link-px", "warm-start", "warm-scale",
+                                                           "association", "gate-spread", "coast-packets", "evict-stale",
+                                                           "report-tentative"})) {
+    return "the RTL core does not implement " + detail::setting(p, name) + " (it implements the method of --preset gaussian)";
   }
   return {};
 }
@@ -56,7 +94,14 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   need(p.coast_us <= (1 << 18), "the core predicts at most 262 ms ahead (--coast-us)");
   need(p.confirm_hits <= 255 && p.min_cluster_size <= 65535, "confirm-hits or min-cluster-size too large for the core");
 
-  const double unit = p.bandwidth * std::sqrt(2.0);  // one phi unit in normalized feature space
+  need(p.link_px < S::kLinkMax + 1, "the core links clusters at most " + std::to_string(S::kLinkMax) + " px apart (--link-px)");
+  need(p.filter_support <= 8, "--filter-support is at most 8");
+  const bool seeded = p.seeding != Seeding::kEvery;
+  // One phi unit in normalized feature space: h for the flat ball (|dphi|^2 < 1), h sqrt(2)
+  // for the Gaussian (exp(-|dphi|^2)).
+  const double unit = seeded ? p.bandwidth : p.bandwidth * std::sqrt(2.0);
+  const double side_x = p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.width;
+  const double side_y = p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.height;
   const double feat = std::ldexp(1.0, S::kFeatFrac);
   const double tick_s = std::ldexp(1.0, S::kTickLog2) * 1e-6;
   auto rnd = [](double v) { return static_cast<std::int64_t>(std::llround(v)); };
@@ -66,22 +111,39 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.sensor_height = static_cast<std::uint16_t>(sensor.height);
   c.filter_enabled = p.filter_window_us > 0;
   c.filter_window = static_cast<std::uint32_t>(p.filter_window_us >> S::kTimestampShift);
+  c.filter_support = static_cast<std::uint8_t>(p.filter_support);
   c.packet_size = static_cast<std::uint16_t>(p.packet_size);
   c.packet_max_span_us = static_cast<std::uint32_t>(std::min<TimeUs>(p.packet_max_span_us, 0xFFFFFFFF));
-  c.scale_x = static_cast<std::uint32_t>(rnd(p.scale_xy / (sensor.width * unit) * std::ldexp(1.0, S::kCoordScaleFrac)));
-  c.scale_y = static_cast<std::uint32_t>(rnd(p.scale_xy / (sensor.height * unit) * std::ldexp(1.0, S::kCoordScaleFrac)));
+  c.scale_x = static_cast<std::uint32_t>(rnd(p.scale_xy / (side_x * unit) * std::ldexp(1.0, S::kCoordScaleFrac)));
+  c.scale_y = static_cast<std::uint32_t>(rnd(p.scale_xy / (side_y * unit) * std::ldexp(1.0, S::kCoordScaleFrac)));
   c.phi_on = static_cast<std::uint32_t>(rnd(p.scale_p / unit * feat));
   c.phi_t_max = static_cast<std::uint32_t>(rnd(p.scale_t / unit * feat));
   c.inv_tau = static_cast<std::uint64_t>(rnd(std::ldexp(1.0, S::kDecayFrac) / p.tau_us));
+  // Seeded climbs' features and positions carry kClimbFrac more fraction bits.
+  const double climb = seeded ? feat * std::ldexp(1.0, hls::kClimbFrac) : feat;
+  if (seeded) {
+    c.climb_scale_x = static_cast<std::uint64_t>(rnd(p.scale_xy / (side_x * unit) * std::ldexp(1.0, hls::kClimbScaleFrac)));
+    c.climb_scale_y = static_cast<std::uint64_t>(rnd(p.scale_xy / (side_y * unit) * std::ldexp(1.0, hls::kClimbScaleFrac)));
+  }
+  c.seeded = seeded;
+  c.warm_start = p.warm_start;
+  c.warm_scale2 = static_cast<std::uint32_t>(rnd(p.warm_scale * p.warm_scale * std::ldexp(1.0, hls::kSpreadFrac)));
+  c.warm_ball2_max = static_cast<std::uint64_t>(rnd(std::pow(std::max(p.bandwidth, p.warm_max_bandwidth) / unit * climb, 2)));
+  c.link2 = static_cast<std::uint32_t>(std::floor(p.link_px * p.link_px));
   c.max_iterations = static_cast<std::uint8_t>(p.max_iterations);
-  c.tolerance = static_cast<std::uint32_t>(rnd(p.tolerance / unit * feat));
-  c.merge_radius2 = static_cast<std::uint64_t>(rnd(std::pow(p.merge_radius / unit * feat, 2)));
+  c.tolerance = static_cast<std::uint32_t>(rnd(p.tolerance / unit * climb));
+  c.merge_radius2 = static_cast<std::uint64_t>(rnd(std::pow(p.merge_radius / unit * climb, 2)));
   c.min_cluster_size = static_cast<std::uint16_t>(p.min_cluster_size);
   c.max_clusters = static_cast<std::uint8_t>(p.max_clusters);
   c.gate2 = static_cast<std::uint64_t>(rnd(std::pow(std::ldexp(p.gate_px, S::kPosFrac), 2)));
   c.confirm_hits = static_cast<std::uint8_t>(p.confirm_hits);
   c.coast_us = static_cast<std::uint32_t>(p.coast_us);
   c.max_tracks = static_cast<std::uint8_t>(p.max_tracks);
+  c.associate_last = p.association == Association::kLastMeasurement;
+  c.gate_spread2 = static_cast<std::uint32_t>(rnd(p.gate_spread * p.gate_spread * std::ldexp(1.0, hls::kSpreadFrac)));
+  c.coast_packets = static_cast<std::uint32_t>(p.coast_packets);
+  c.evict_stale = p.evict_stale;
+  c.report_tentative = p.report_tentative;
   const double q_tick = p.accel_psd * tick_s * tick_s * tick_s;  // px^2 / tick^3
   c.q_third = rnd(q_tick / 3 * std::ldexp(1.0, S::kNoiseFrac));
   c.q_half = rnd(q_tick / 2 * std::ldexp(1.0, S::kNoiseFrac));

@@ -58,9 +58,10 @@ class RtlBackend final : public Backend {
 
 std::unique_ptr<Backend> make_rtl_backend(const BackendOptions& o) {
   check_core_build(o.core);
+  if (std::string unsupported = rtl_unsupported(o.params); !unsupported.empty()) throw std::invalid_argument(unsupported);
   if (o.core == "arty") return std::make_unique<RtlBackend<Vcore_arty, hls::ArtyShape>>(o);
   if (o.core == "ice40") return std::make_unique<RtlBackend<Vcore_ice40, hls::Ice40Shape>>(o);
-  return std::make_unique<RtlBackend<Vcore_host, hls::HostShape>>(o);
+  return std::make_unique<RtlBackend<Vcore_host, hls::RtlHostShape>>(o);
 }
 
 }  // namespace evms::backend

@@ -92,6 +92,10 @@ template <class V, class S>
 void cycles(const CyclesOptions& o) {
   SensorSize sensor;
   const std::vector<Event> events = read_events(o, sensor);
+  // The cycle model is the RTL's: it counts the method the RTL implements.
+  if (std::string unsupported = backend::rtl_unsupported(o.method.resolve(sensor)); !unsupported.empty()) {
+    throw std::invalid_argument(unsupported + "; the cycle model counts the RTL's method: add --preset gaussian");
+  }
   if (events.empty()) throw std::runtime_error(o.source + ": no events");
   const auto words = words_of<S>(events);
   if (o.table) {
@@ -154,7 +158,7 @@ void register_cycles(CLI::App& app) {
   add_source_options(*cmd, o->source_options);
   add_method_options(*cmd, o->method);
   cmd->callback([o] {
-    if (o->build == "host") cycles<Vcore_host, hls::HostShape>(*o);
+    if (o->build == "host") cycles<Vcore_host, hls::RtlHostShape>(*o);
     else if (o->build == "arty") cycles<Vcore_arty, hls::ArtyShape>(*o);
     else cycles<Vcore_ice40, hls::Ice40Shape>(*o);
   });

@@ -157,7 +157,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string dir = argv[1];
-  write_config<hls::HostShape>(dir, "host", {1280, 720}, backend::build_default_params<hls::HostShape>());
+  write_config<hls::RtlHostShape>(dir, "host", {1280, 720}, backend::build_default_params<hls::RtlHostShape>());
   write_config<hls::ArtyShape>(dir, "arty", {240, 180}, backend::build_default_params<hls::ArtyShape>());
   write_config<hls::Ice40Shape>(dir, "ice40", {128, 128}, backend::build_default_params<hls::Ice40Shape>());
   return 0;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "host/eval/clustering_metrics.h"
+#include "host/eval/identity_metrics.h"
 
 namespace evms::eval {
 namespace {
@@ -93,6 +94,56 @@ TEST(ClusteringMetrics, AveragesChunksEqually) {
   EXPECT_DOUBLE_EQ(m.ari, 0.5);
   EXPECT_DOUBLE_EQ(m.f, 0.6);
   EXPECT_EQ(avg.chunks(), 2);
+}
+
+}  // namespace
+}  // namespace evms::eval
+
+namespace evms::eval {
+namespace {
+
+std::vector<Event> events_at(std::initializer_list<TimeUs> times) {
+  std::vector<Event> e;
+  for (TimeUs t : times) e.push_back({t, 0, 0, 1});
+  return e;
+}
+
+TEST(IdentityScores, OneIdPerObjectIsPerfect) {
+  const auto events = events_at({0, 1000, 20000, 21000, 40000});
+  const std::vector<std::int32_t> truth = {0, 1, 0, 1, 0}, pred = {7, 9, 7, 9, 7};
+  const IdentityScores s = identity_scores(events, truth, pred);
+  EXPECT_DOUBLE_EQ(s.idf1, 1.0);
+  EXPECT_EQ(s.id_switches, 0);
+  EXPECT_EQ(s.fragmentations, 0);
+  EXPECT_EQ(s.objects, 2);
+}
+
+TEST(IdentityScores, ASwitchHalvesTheMatchedEvents) {
+  // Object 0 carries ID 5 for two frames, then ID 6 for two: IDTP 2 of 4.
+  const auto events = events_at({0, 10000, 20000, 30000});
+  const std::vector<std::int32_t> truth = {0, 0, 0, 0}, pred = {5, 5, 6, 6};
+  const IdentityScores s = identity_scores(events, truth, pred);
+  EXPECT_DOUBLE_EQ(s.idf1, 0.5);
+  EXPECT_EQ(s.id_switches, 1);
+  EXPECT_EQ(s.fragmentations, 0);
+}
+
+TEST(IdentityScores, NoiseBetweenTheSameIdIsAFragmentation) {
+  const auto events = events_at({0, 10000, 20000, 30000});
+  const std::vector<std::int32_t> truth = {0, 0, 0, 0}, pred = {5, -1, 5, 5};
+  const IdentityScores s = identity_scores(events, truth, pred);
+  EXPECT_EQ(s.id_switches, 0);
+  EXPECT_EQ(s.fragmentations, 1);
+  EXPECT_DOUBLE_EQ(s.id_recall, 0.75);
+  EXPECT_DOUBLE_EQ(s.id_precision, 1.0);
+}
+
+TEST(IdentityScores, OneIdOnTwoObjectsMatchesOnlyOne) {
+  const auto events = events_at({0, 1000, 2000, 3000, 4000});
+  const std::vector<std::int32_t> truth = {0, 0, 0, 1, 1}, pred = {3, 3, 3, 3, 3};
+  const IdentityScores s = identity_scores(events, truth, pred);
+  // ID 3 matches object 0 (3 events); object 1's 2 events and ID 3's 2 others are misses.
+  EXPECT_DOUBLE_EQ(s.idf1, 2.0 * 3 / (2 * 3 + 2 + 2));
 }
 
 }  // namespace

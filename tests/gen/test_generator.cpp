@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
+#include <set>
 
+#include "host/gen/family.h"
 #include "host/gen/scene_generator.h"
 
 namespace evms::gen {
@@ -88,6 +91,97 @@ TEST(SceneGenerator, SpeedScalesTheMotion) {
   fast.noise_hz = slow.noise_hz = 0;
   // Faster motion crosses more edges per second: more events in the same time.
   EXPECT_GT(generate(fast).events.size(), 2 * generate(slow).events.size());
+}
+
+TEST(SceneFamily, AMemberIsItsTypeAndSeedAndNothingElse) {
+  const SceneConfig a = family_scene("crossing", 7), b = family_scene("crossing", 7);
+  EXPECT_EQ(a.seed, b.seed);
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.objects, b.objects);
+  EXPECT_NE(family_scene("crossing", 8).seed, a.seed);
+  EXPECT_NE(family_scene("rotation", 7).seed, a.seed) << "seed 7 of two types are unrelated scenes";
+  EXPECT_THROW(family_scene("spin", 1), std::invalid_argument);
+}
+
+TEST(SceneFamily, TheSplitsAreDisjointBySeed) {
+  EXPECT_EQ(split_of(split_seed(Split::kTuning, 0)), Split::kTuning);
+  EXPECT_EQ(split_of(split_seed(Split::kTuning, 998)), Split::kTuning);
+  EXPECT_EQ(split_of(split_seed(Split::kValidation, 0)), Split::kValidation);
+}
+
+TEST(SceneFamily, MembersSpanWhatTheFamilyPromises) {
+  std::set<int> widths, counts;
+  double speed_lo = 1e9, speed_hi = 0, noise_lo = 1e9, noise_hi = 0;
+  int hot = 0, moving = 0, crossing = 0, low_contrast = 0;
+  for (const char* type : family_types()) {
+    for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+      const SceneConfig c = family_scene(type, seed);
+      widths.insert(c.width);
+      counts.insert(c.objects);
+      speed_lo = std::min(speed_lo, c.speed), speed_hi = std::max(speed_hi, c.speed);
+      noise_lo = std::min(noise_lo, c.noise_hz), noise_hi = std::max(noise_hi, c.noise_hz);
+      hot += c.hot_pixels > 0, moving += c.movers > 0, crossing += c.crossing, low_contrast += c.low_contrast_share > 0;
+      EXPECT_GE(c.objects, 1);
+      EXPECT_LE(c.objects, 12);
+      if (std::string(type) == "still") EXPECT_GE(c.movers, 1);
+    }
+  }
+  EXPECT_EQ(widths, (std::set<int>{128, 240, 346, 640}));
+  EXPECT_GE(counts.size(), 11u);
+  EXPECT_LT(speed_lo, 0.1) << "crossing drifts slowly";
+  EXPECT_GT(speed_hi, 3.0);
+  EXPECT_LT(noise_lo, 0.1);
+  EXPECT_GT(noise_hi, 1.5);
+  EXPECT_GT(hot, 100);
+  EXPECT_GT(moving, 60);
+  EXPECT_EQ(crossing, 40);
+  EXPECT_EQ(low_contrast, 280);
+}
+
+TEST(SceneFamily, ShapesOfEveryKindAppearAndHotPixelsFireNoise) {
+  std::set<std::string> kinds;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    SceneConfig c = family_scene("still", seed);
+    c.duration_s = 0.001;
+    SceneGenerator g(c);
+    for (int i = 0; i < g.object_count(); ++i) kinds.insert(g.object_name(i));
+  }
+  for (const char* kind : {"bar", "L", "cross", "ring", "chevron", "circle", "star"}) EXPECT_TRUE(kinds.count(kind)) << kind;
+  // One hot pixel at 500 Hz and no background activity: about 150 noise events on one pixel
+  // in 0.3 s (the faint rims of shapes give the few other events labelled -1).
+  SceneConfig c = short_scene(Motion::kTranslation, 9);
+  c.noise_hz = 0;
+  c.hot_pixels = 1;
+  c.hot_pixel_hz = 500;
+  const Scene s = generate(c);
+  std::map<std::pair<int, int>, int> noise_pixels;
+  int noise = 0;
+  for (const LabelledEvent& e : s.events) {
+    if (e.label != kNoiseLabel) continue;
+    ++noise;
+    ++noise_pixels[{e.event.x, e.event.y}];
+  }
+  const auto hot = std::max_element(noise_pixels.begin(), noise_pixels.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  EXPECT_NEAR(hot->second, 0.3 * 500, 40);
+  EXPECT_LT(noise - hot->second, hot->second);
+}
+
+TEST(SceneFamily, CrossingMoversPassOverOtherShapes) {
+  // Some millisecond has two objects' true centres closer than their radii (240x180 members).
+  for (std::uint64_t seed : {1001, 1003, 1004}) {
+    const SceneConfig c = family_scene("crossing", seed);
+    ASSERT_EQ(c.width, 240);
+    const Scene s = generate(c);
+    bool overlap = false;
+    std::map<TimeUs, std::vector<TruthSample>> by_ms;
+    for (const TruthSample& t : s.truth) by_ms[t.t].push_back(t);
+    for (const auto& [t, v] : by_ms) {
+      for (size_t a = 0; a < v.size(); ++a) {
+        for (size_t b = a + 1; b < v.size(); ++b) overlap |= std::hypot(v[a].x - v[b].x, v[a].y - v[b].y) < v[a].radius + v[b].radius;
+      }
+    }
+    EXPECT_TRUE(overlap) << "seed " << seed;
+  }
 }
 
 }  // namespace

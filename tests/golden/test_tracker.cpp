@@ -11,6 +11,7 @@ namespace {
 
 Params tracker_params() {
   Params p = preset("gaussian");
+  p.report_tentative = true;
   p.confirm_hits = 2;
   p.gate_px = 10;
   p.coast_us = 100000;
@@ -120,6 +121,100 @@ TEST(Tracker, FullSlotsLeaveClustersUnassigned) {
   auto ids = tracker.step(0, std::vector<Measurement>{{0, 10, 10}, {0, 100, 100}, {0, 200, 150}}, updates);
   EXPECT_EQ(ids, (std::vector<std::int32_t>{0, 1, kNoiseLabel}));
   EXPECT_EQ(tracker.unassigned_clusters(), 1);
+}
+
+TEST(Tracker, TentativeUpdatesAreReportedOnlyWhenAsked) {
+  Params p = tracker_params();
+  p.report_tentative = false;
+  MultiTargetTracker tracker(p);
+  std::vector<TrackUpdate> updates;
+  const auto ids = tracker.step(0, std::vector<Measurement>{{0, 50, 50}}, updates);
+  EXPECT_EQ(ids[0], 0);
+  EXPECT_TRUE(updates.empty());
+}
+
+TEST(Tracker, LastMeasurementAssociationFollowsWhatTheFilterLagsBehind) {
+  // A target that turns sharply: the Kalman prediction overshoots beyond the gate, the last
+  // measurement does not.
+  Params kalman = tracker_params();
+  kalman.gate_px = 5;
+  kalman.accel_psd = 1;
+  Params last = kalman;
+  last.association = Association::kLastMeasurement;
+  for (const Params& p : {kalman, last}) {
+    MultiTargetTracker tracker(p);
+    std::vector<TrackUpdate> updates;
+    std::vector<std::int32_t> ids;
+    // Along x at 400 px/s, 4 px a packet ...
+    for (int k = 0; k < 10; ++k) ids = tracker.step(k * 10000, std::vector<Measurement>{{k * 10000, 10.0 + 4 * k, 50}}, updates);
+    ASSERT_EQ(ids[0], 0);
+    // ... then straight up from (46, 50).
+    for (int k = 1; k <= 5; ++k) ids = tracker.step((9 + k) * 10000, std::vector<Measurement>{{(9 + k) * 10000, 46, 50.0 + 4 * k}}, updates);
+    if (p.association == Association::kLastMeasurement) {
+      EXPECT_EQ(ids[0], 0) << "one target, one ID";
+    } else {
+      EXPECT_NE(ids[0], 0) << "the prediction ran on along x and lost the target";
+    }
+  }
+}
+
+TEST(Tracker, WithEverySlotTakenANewClusterTakesTheStalestUnmatchedSlot) {
+  Params p = tracker_params();
+  p.max_tracks = 2;
+  p.confirm_hits = 1;
+  p.evict_stale = true;
+  MultiTargetTracker tracker(p);
+  std::vector<TrackUpdate> updates;
+  tracker.step(0, std::vector<Measurement>{{0, 10, 10}}, updates);       // ID 0, measured at 0
+  tracker.step(1000, std::vector<Measurement>{{1000, 100, 100}}, updates);  // ID 1, measured at 1000
+  // A third object while 0 and 1 coast: it takes the slot of 0, measured longest ago.
+  auto ids = tracker.step(2000, std::vector<Measurement>{{2000, 200, 150}}, updates);
+  EXPECT_EQ(ids[0], 2);
+  EXPECT_EQ(tracker.unassigned_clusters(), 0);
+  ids = tracker.step(3000, std::vector<Measurement>{{3000, 10, 10}, {3000, 100, 100}}, updates);
+  EXPECT_EQ(ids[0], 3) << "track 0 was evicted: its object gets a new ID";
+  EXPECT_EQ(ids[1], 1) << "track 1 kept its slot";
+}
+
+TEST(Tracker, CoastingCanEndAfterMissedPackets) {
+  Params p = tracker_params();
+  p.coast_packets = 3;
+  MultiTargetTracker tracker(p);
+  std::vector<TrackUpdate> updates;
+  tracker.step(0, std::vector<Measurement>{{0, 50, 50}}, updates);
+  tracker.step(100, std::vector<Measurement>{{100, 50, 50}}, updates);
+  for (TimeUs t = 200; t <= 400; t += 100) tracker.step(t, {}, updates);  // three misses, well inside coast-us
+  EXPECT_EQ(tracker.live_tracks(), 1);
+  tracker.step(500, {}, updates);
+  EXPECT_EQ(tracker.live_tracks(), 0);
+}
+
+TEST(Tracker, TheGateWidensWithTheClusterSpread) {
+  Params p = tracker_params();
+  p.gate_px = 10;
+  p.gate_spread = 2;
+  p.association = Association::kLastMeasurement;
+  MultiTargetTracker tracker(p);
+  std::vector<TrackUpdate> updates;
+  Measurement big{0, 50, 50};
+  big.spread = 12;
+  tracker.step(0, std::vector<Measurement>{big}, updates);
+  big.t = 1000, big.x = 70;  // 20 px: outside 10 px, inside 2 x 12 px
+  EXPECT_EQ(tracker.step(1000, std::vector<Measurement>{big}, updates)[0], 0);
+  Measurement small{2000, 90, 50};
+  small.spread = 2;  // 20 px again, but the gate is 10 px
+  EXPECT_EQ(tracker.step(2000, std::vector<Measurement>{small}, updates)[0], 1);
+}
+
+TEST(NearestCentreIds, ClustersTakeTheNearestPreviousCentreEvenTwice) {
+  Params p = preset("paper");
+  NearestCentreIds ids_of(p);
+  std::vector<TrackUpdate> updates;
+  EXPECT_EQ(ids_of.step(0, std::vector<Measurement>{{0, 50, 50}, {0, 150, 50}}, updates), (std::vector<std::int32_t>{0, 1}));
+  // Two clusters near the first centre both take its ID (the authors' many-to-one rule); one
+  // beyond sqrt(500) px of every centre gets a new one.
+  EXPECT_EQ(ids_of.step(1000, std::vector<Measurement>{{1000, 55, 50}, {1000, 45, 52}, {1000, 100, 120}}, updates),
+            (std::vector<std::int32_t>{0, 0, 2}));
 }
 
 }  // namespace

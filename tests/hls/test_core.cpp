@@ -5,6 +5,7 @@
 #include "hls/core/core.h"
 #include "host/backend/core_config.h"
 #include "host/eval/agreement.h"
+#include "host/eval/family_eval.h"
 #include "host/eval/evaluation.h"
 #include "tests/support/read_all.h"
 #include "tests/support/scenes.h"
@@ -112,6 +113,46 @@ void expect_agreement(const eval::Scene& scene, const char* what) {
   if (!scene.truth.empty()) {
     const auto fg = eval::score_chunks(scene, golden.labels, {}), ff = eval::score_chunks(scene, fixed.labels, {});
     EXPECT_NEAR(ff.f, fg.f, 0.01);
+  }
+}
+
+// The default method (seeded climbs): every 10 ms chunk's ARI between the fixed core's labels
+// and golden's at least 0.99.
+void expect_chunk_agreement(const eval::Scene& scene, const std::string& what) {
+  SCOPED_TRACE(what);
+  const Params p;
+  const auto golden = eval::run_backend("golden", p, scene.sensor, scene.events);
+  const auto fixed = eval::run_backend("fixed", p, scene.sensor, scene.events);
+  double worst = 1;
+  std::int64_t chunks = 0;
+  for (const auto& [begin, end] : eval::chunk_ranges(scene.events, eval::kFamilyChunking)) {
+    if (end - begin < 2) continue;
+    const auto g = std::span(golden.labels).subspan(begin, end - begin), f = std::span(fixed.labels).subspan(begin, end - begin);
+    worst = std::min(worst, eval::score(g, f).ari);
+    ++chunks;
+  }
+  EXPECT_GE(chunks, 1);
+  EXPECT_GE(worst, 0.99) << "the least agreeing 10 ms chunk";
+}
+
+TEST(CoreAgreesWithGolden, TheDefaultMethodOnTheFamilysValidationSplit) {
+  for (const char* type : gen::family_types()) {
+    const std::uint64_t seed = gen::split_seed(gen::Split::kValidation, 0);
+    expect_chunk_agreement(eval::generate_scene(gen::family_scene(type, seed)), std::string(type) + " " + std::to_string(seed));
+  }
+  for (const std::string& type : eval::kPaperSceneTypes) {
+    expect_chunk_agreement(eval::generate_scene(eval::member_scene(type, gen::split_seed(gen::Split::kValidation, 0))), type);
+  }
+}
+
+TEST(CoreAgreesWithGolden, TheDefaultMethodOnTheRealRecordings) {
+  const std::string dir = test::shared_data_dir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/data/real is absent";
+  for (const char* f : {"dvxplorer_indoor.aedat4", "gen3_moving_blob.evt2.raw", "gen41_dense_scene.evt3.raw", "atis_ncars_sample.dat"}) {
+    eval::Scene s;
+    s.events = test::read_all(dir + "/" + f);
+    s.sensor = read::open_source(dir + "/" + f, {})->info().sensor;
+    expect_chunk_agreement(s, f);
   }
 }
 

@@ -131,7 +131,7 @@ void expect_equal(const std::string& name, const std::vector<Event>& events, Sen
 
 TEST(Cosim, BlobsUnderRandomBackpressureEveryBuild) {
   const auto events = test::blob_events({{40, 40, 300, 100}, {100, 90, -200, 50}, {70, 20}}, 60000, 0, 40000, {128, 128}, 7);
-  expect_equal<Vcore_host, hls::HostShape>("blobs_host", events, {128, 128}, 11, 0.6);
+  expect_equal<Vcore_host, hls::RtlHostShape>("blobs_host", events, {128, 128}, 11, 0.6);
   expect_equal<Vcore_arty, hls::ArtyShape>("blobs_arty", events, {128, 128}, 12, 0.6);
   expect_equal<Vcore_ice40, hls::Ice40Shape>("blobs_ice40", events, {128, 128}, 13, 0.6, backend::build_default_params<hls::Ice40Shape>());
 }
@@ -154,7 +154,7 @@ std::vector<Event> scene_events(gen::Motion m, double duration_s, int width, int
 
 TEST(Cosim, LabelledScenesHostBuild) {
   for (auto m : {gen::Motion::kTranslation, gen::Motion::kRotation, gen::Motion::kSixDof}) {
-    expect_equal<Vcore_host, hls::HostShape>(std::string("scene_host_") + gen::motion_name(m), scene_events(m, 0.25, 240, 180, 3),
+    expect_equal<Vcore_host, hls::RtlHostShape>(std::string("scene_host_") + gen::motion_name(m), scene_events(m, 0.25, 240, 180, 3),
                                              {240, 180}, 21, 0.8);
   }
 }
@@ -178,12 +178,12 @@ TEST(Cosim, ParameterCorners) {
   const auto events = scene_events(gen::Motion::kTranslation, 0.12, 240, 180, 6);
   Params span = preset("gaussian");
   span.packet_max_span_us = 300;
-  expect_equal<Vcore_host, hls::HostShape>("corner_span", events, {240, 180}, 41, 0.5, span);
+  expect_equal<Vcore_host, hls::RtlHostShape>("corner_span", events, {240, 180}, 41, 0.5, span);
   Params open = preset("gaussian");
   open.filter_window_us = 0;
   open.confirm_hits = 1;
   open.min_cluster_size = 1;
-  expect_equal<Vcore_host, hls::HostShape>("corner_open", events, {240, 180}, 42, 0.5, open);
+  expect_equal<Vcore_host, hls::RtlHostShape>("corner_open", events, {240, 180}, 42, 0.5, open);
   Params tight = preset("gaussian");
   tight.max_clusters = 3;
   tight.max_tracks = 2;
@@ -195,7 +195,7 @@ TEST(Cosim, ParameterCorners) {
   exact.scale_p = 0.3;
   exact.tau_us = 200;
   exact.coast_us = 5000;
-  expect_equal<Vcore_host, hls::HostShape>("corner_exact", events, {240, 180}, 44, 0.9, exact);
+  expect_equal<Vcore_host, hls::RtlHostShape>("corner_exact", events, {240, 180}, 44, 0.9, exact);
 }
 
 // The regression over every real recording, on the host build.
@@ -204,7 +204,7 @@ TEST(CosimRegression, RealRecordings) {
   if (dir.empty()) GTEST_SKIP() << "../shared/data/real is absent";
   for (const char* f : {"atis_ncars_sample.dat", "dvxplorer_indoor.aedat4", "gen41_dense_scene.evt3.raw", "gen3_moving_blob.evt2.raw"}) {
     const std::string path = dir + "/" + f;
-    expect_equal<Vcore_host, hls::HostShape>(f, test::read_all(path), read::open_source(path, {})->info().sensor, 51, 0.9);
+    expect_equal<Vcore_host, hls::RtlHostShape>(f, test::read_all(path), read::open_source(path, {})->info().sensor, 51, 0.9);
   }
 }
 
@@ -246,7 +246,7 @@ void expect_schedule(const std::string& name, const std::vector<Event>& events, 
 
 TEST(Schedule, TheCycleModelCountsEveryStageOfTheRtl) {
   const auto scene = scene_events(gen::Motion::kRotation, 0.1, 240, 180, 7);
-  expect_schedule<Vcore_host, hls::HostShape>("host_rotation", scene, {240, 180});
+  expect_schedule<Vcore_host, hls::RtlHostShape>("host_rotation", scene, {240, 180});
   Params corners = preset("gaussian");  // span closes, single-hit tracks, few slots so that births fail, a single sweep
   corners.packet_max_span_us = 400;
   corners.confirm_hits = 1;

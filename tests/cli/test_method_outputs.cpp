@@ -1,0 +1,138 @@
+// What the method's outputs promise a user, end to end through evms: every label is a track of
+// tracks.csv, the sensor size survives evms's own files, presets and refusals are one line.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "tests/support/command.h"
+#include "tests/support/encoders.h"
+#include "tests/support/read_all.h"
+
+namespace evms::test {
+namespace {
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#' || !std::isdigit(static_cast<unsigned char>(line[0]))) continue;
+    std::vector<std::string> row;
+    std::stringstream fields(line);
+    for (std::string f; std::getline(fields, f, ',');) row.push_back(f);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Runs evms on `source` and checks that every label of events.csv is -1 or a track of tracks.csv
+// with a row in the same packet's time range; returns the number of labelled events.
+std::int64_t expect_labels_are_tracks(const TempDir& dir, const std::string& source, const std::string& options = "") {
+  const std::string out = dir.path("out" + std::to_string(std::hash<std::string>{}(source + options)));
+  const auto r = run_command(evms_binary() + " run \"" + source + "\" --quiet --out " + out + " " + options);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::set<std::int64_t> track_ids;
+  for (const auto& row : csv_rows(out + "/tracks.csv")) {
+    EXPECT_TRUE(row[2] == "tentative" || row[2] == "confirmed") << row[2];
+    track_ids.insert(std::stoll(row[1]));
+  }
+  std::int64_t labelled = 0;
+  std::set<std::int64_t> missing;
+  for (const auto& row : csv_rows(out + "/events.csv")) {
+    const std::int64_t label = std::stoll(row[4]);
+    if (label < 0) continue;
+    ++labelled;
+    if (!track_ids.count(label)) missing.insert(label);
+  }
+  EXPECT_TRUE(missing.empty()) << source << ": " << missing.size() << " labels have no row in tracks.csv, e.g. " << *missing.begin();
+  return labelled;
+}
+
+TEST(MethodOutputs, EveryLabelIsATrackOfTracksCsv) {
+  TempDir dir;
+  EXPECT_GT(expect_labels_are_tracks(dir, "gen://family/crossing?seed=1000"), 1000);
+  EXPECT_GT(expect_labels_are_tracks(dir, "gen://rotation?duration-s=0.3"), 1000);
+}
+
+TEST(MethodOutputs, EveryLabelIsATrackOnTheRealRecordings) {
+  const std::string real = shared_data_dir();
+  if (real.empty()) GTEST_SKIP() << "../shared/data/real is absent";
+  TempDir dir;
+  for (const char* f : {"dvxplorer_indoor.aedat4", "gen3_moving_blob.evt2.raw", "gen41_dense_scene.evt3.raw", "atis_ncars_sample.dat"}) {
+    EXPECT_GT(expect_labels_are_tracks(dir, real + "/" + f), 0) << f;
+  }
+}
+
+TEST(MethodOutputs, TheSingleBlobOfTheGen3RecordingKeepsOneId) {
+  const std::string real = shared_data_dir();
+  if (real.empty()) GTEST_SKIP() << "../shared/data/real is absent";
+  TempDir dir;
+  const auto r = run_command(evms_binary() + " run " + real + "/gen3_moving_blob.evt2.raw --quiet --out " + dir.path("o"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // In every 4 ms of the 50 ms recording the ID most events carry is the same one.
+  std::map<std::int64_t, std::map<std::int64_t, std::int64_t>> votes;  // window -> id -> events
+  std::int64_t t0 = -1;
+  for (const auto& row : csv_rows(dir.path("o/events.csv"))) {
+    const std::int64_t t = std::stoll(row[0]), label = std::stoll(row[4]);
+    if (t0 < 0) t0 = t;
+    if (label >= 0) ++votes[(t - t0) / 4000][label];
+  }
+  std::set<std::int64_t> dominant;
+  for (const auto& [window, ids] : votes) {
+    dominant.insert(std::max_element(ids.begin(), ids.end(), [](const auto& a, const auto& b) { return a.second < b.second; })->first);
+  }
+  EXPECT_GE(votes.size(), 12u);
+  EXPECT_EQ(dominant.size(), 1u) << "the blob changed its ID";
+}
+
+TEST(MethodOutputs, TheSensorSizeSurvivesEvmssOwnFiles) {
+  TempDir dir;
+  // A 346x260 family member: written with its size, read back with it.
+  const auto gen = run_command(evms_binary() + " gen --family translation --seed 2 --duration-s 0.1 --out " + dir.path("g"));
+  ASSERT_EQ(gen.exit_code, 0) << gen.err;
+  ASSERT_NE(gen.out.find("346x260"), std::string::npos) << gen.out;
+  const auto first = run_command(evms_binary() + " run " + dir.path("g/events.txt") + " --quiet --out " + dir.path("a"));
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_NE(first.out.find("(RPG events.txt, 346x260)"), std::string::npos) << first.out;
+  const auto again = run_command(evms_binary() + " run " + dir.path("a/events.csv") + " --quiet --out " + dir.path("b"));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("346x260)"), std::string::npos) << again.out;
+  EXPECT_EQ(read_file(dir.path("a/events.csv")), read_file(dir.path("b/events.csv"))) << "the same size, the same labels";
+}
+
+TEST(MethodOutputs, ATextFileWithoutASizeSaysWhatWasAssumed) {
+  TempDir dir;
+  const std::string in = dir.write("plain.txt", "0.000001 10 10 1\n0.000002 11 10 1\n");
+  const auto r = run_command(evms_binary() + " run " + in + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("240x180 assumed: the file does not say"), std::string::npos) << r.out;
+  const auto bad = run_command(evms_binary() + " run " + dir.write("bad.txt", "# sensor 240by180\n0.1 1 1 1\n") + " --quiet");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("line 1: bad sensor comment"), std::string::npos) << bad.err;
+}
+
+TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
+  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --quiet");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("the RTL core does not implement --kernel flat"), std::string::npos) << r.err;
+  const auto fixed = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --kernel epanechnikov --quiet");
+  EXPECT_EQ(fixed.exit_code, 1);
+  EXPECT_NE(fixed.err.find("flat kernel only"), std::string::npos) << fixed.err;
+}
+
+TEST(MethodOutputs, ThePaperPresetRunsTheAuthorsRule) {
+  TempDir dir;
+  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.2 --preset paper --quiet --out " + dir.path("p"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The authors' code keeps every cluster, however small, and confirms every ID at once.
+  for (const auto& row : csv_rows(dir.path("p/tracks.csv"))) EXPECT_EQ(row[2], "confirmed");
+  const auto unknown = run_command(evms_binary() + " run gen://rotation --preset fast --quiet");
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_NE(unknown.err.find("--preset"), std::string::npos) << unknown.err;
+}
+
+}  // namespace
+}  // namespace evms::test
