@@ -67,7 +67,6 @@ SceneConfig family_scene(const std::string& type, std::uint64_t seed) {
     c.objects = std::max(c.objects, 4);
     c.movers = 2 + static_cast<int>(rng.below(3));
     c.crossing = true;
-    c.mover_speed_px_s *= 4;  // ... at the drift's speed scale
   } else {
     parse_motion(type, c.motion);
   }

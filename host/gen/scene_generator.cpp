@@ -295,9 +295,12 @@ struct SceneGenerator::Impl {
         const double reach = target.shape.bound + o.shape.bound + rng.uniform(0.1, 0.25) * std::min(w, h);
         o.home = target.home;
         o.amplitude = {reach * std::cos(a), reach * std::sin(a)};
-        const double hz = cfg.mover_speed_px_s * rng.uniform(0.6, 1.4) / (4 * reach);
+        // Over the target once or twice in the scene, the first time near its middle: a period
+        // of 0.6 to 1.2 scene lengths (in motion time, t * speed), in phase at mid-scene.
+        const double u_length = cfg.duration_s * cfg.speed;
+        const double hz = 1.0 / (u_length * rng.uniform(0.6, 1.2));
         o.hz_x = o.hz_y = hz;
-        o.phase_x = o.phase_y = rng.uniform(0, 2 * M_PI);
+        o.phase_x = o.phase_y = -2 * M_PI * hz * u_length / 2 + rng.uniform(-0.5, 0.5);
       } else {
         o.amplitude = {rng.uniform(0.1, 0.3) * w, rng.uniform(0.1, 0.3) * h};
         o.home = {std::clamp(o.home.x, o.amplitude.x + o.shape.bound, w - o.amplitude.x - o.shape.bound),

@@ -119,9 +119,11 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
                                            std::string(head.substr(0, head.find('\r'))) + "'");
   }
   if (head[0] == '%') return open_prophesee(std::move(in), options);
-  // Text formats: the first line decides. CSV has commas, the RPG format has spaces.
-  const size_t eol = head.find('\n');
-  const std::string_view first = head.substr(0, eol);
+  // Text formats: the first line that is not a comment ('#', such as the "# sensor WxH" evms
+  // writes) decides. CSV has commas, the RPG format has spaces.
+  std::string_view lines = in.peek(512);
+  while (!lines.empty() && lines[0] == '#' && lines.find('\n') != std::string_view::npos) lines.remove_prefix(lines.find('\n') + 1);
+  const std::string_view first = lines.substr(0, lines.find('\n'));
   bool text = std::all_of(first.begin(), first.end(), [](char c) {
     return c == '\t' || c == '\r' || (c >= 32 && c < 127);
   });
