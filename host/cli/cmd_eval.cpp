@@ -18,8 +18,12 @@ void register_eval(CLI::App& app) {
   cmd->add_option("--backends", o->backends, "implementations to evaluate side by side")->delimiter(',')->default_str("golden");
   cmd->add_option("--duration-s", o->duration_s, "length of each generated scene")->default_val(o->duration_s)->check(CLI::Range(0.2, 600.0));
   cmd->add_option("--seed", o->seed, "scene seed")->default_val(o->seed);
-  cmd->add_option("--chunk-events", o->chunking.size, "clustering scores per chunk of this many events")->default_val(o->chunking.size)
+  cmd->add_option_function<std::int64_t>(
+         "--chunk-events", [o](std::int64_t n) { o->chunking = {eval::Chunking::Kind::kEvents, n}; },
+         "score clustering per chunk of this many events (default: per 10 ms)")
       ->check(CLI::Range(2, 10000000));
+  cmd->add_option("--family-seeds", o->family_seeds, "validation members of each scene family type (0: none)")
+      ->default_val(o->family_seeds)->check(CLI::Range(0, 100));
   cmd->add_option("--real-dir", o->real_dir, "folder of real recordings to include (default ../shared/data/real when present)");
   cmd->add_option("--jobs", o->jobs, "threads")->default_val(o->jobs)->check(CLI::Range(1, 64));
   cmd->add_option("--out", o->out, "output directory")->required();

@@ -23,6 +23,7 @@ struct SweepOptions {
   std::vector<std::string> vary;
   bool search = false;
   bool per_scene = false;
+  std::string split = "tuning";   // of --vary
   int rounds = 3;
   std::string backend = "golden";
   Method method;
@@ -155,7 +156,9 @@ void compare_presets(const SweepOptions& o, const std::vector<std::string>& type
 }
 
 void one_at_a_time(const SweepOptions& o, const std::vector<std::string>& types) {
-  const auto family = eval::generate_family(gen::Split::kTuning, o.seeds, types, o.jobs);
+  const gen::Split split = o.split == "validation" ? gen::Split::kValidation : gen::Split::kTuning;
+  std::printf("\n%s split, %d seeds a type.\n", o.split.c_str(), o.seeds);
+  const auto family = eval::generate_family(split, o.seeds, types, o.jobs);
   for (const auto& [name, values] : parse_grid(o.vary)) {
     std::printf("\n## %s (around %s)\n\n", name.c_str(), o.method.describe().c_str());
     print_header(types, name.c_str());
@@ -229,6 +232,9 @@ void register_sweep(CLI::App& app) {
   cmd->add_option("--jobs", o->jobs, "threads")->default_val(o->jobs)->check(CLI::Range(1, 64));
   cmd->add_option("--vary", o->vary, "NAME=V1,V2,... (repeatable): one table per parameter, or the grid of --search");
   cmd->add_flag("--search", o->search, "coordinate ascent over the grid on the tuning split, checked on the validation split");
+  cmd->add_option("--split", o->split, "the split --vary measures on (the search tunes on tuning and checks on validation)")
+      ->default_val(o->split)
+      ->check(CLI::IsMember({"tuning", "validation"}));
   cmd->add_flag("--per-scene", o->per_scene, "every member's F too (presets and --vary)");
   cmd->add_option("--rounds", o->rounds, "passes of --search over the grid")->default_val(o->rounds)->check(CLI::Range(1, 20));
   cmd->add_option("--backend", o->backend, "implementation to measure")->default_val(o->backend);

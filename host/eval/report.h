@@ -7,6 +7,7 @@
 
 #include "golden/params.h"
 #include "host/eval/chunks.h"
+#include "host/eval/family_eval.h"
 
 namespace evms::eval {
 
@@ -22,7 +23,8 @@ struct EvalOptions {
   std::string real_dir;   // empty: no real recordings
   int jobs = 2;
   Method method;
-  Chunking chunking;
+  Chunking chunking{Chunking::Kind::kTime, 10000};
+  int family_seeds = 4;   // validation members of each family type in the report
   std::string command_line;
 };
 
