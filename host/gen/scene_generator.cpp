@@ -139,7 +139,7 @@ struct Object {
   double angle;       // orientation on the poster
   double intensity;   // reflectance on a white (1.0) poster
   bool mover = false; // moves on its own
-  Vec amplitude;      // a mover's displacement amplitude, per axis
+  Vec amplitude{};    // a mover's displacement amplitude, per axis
   double hz_x = 0, hz_y = 0;
   double phase_x = 0, phase_y = 0;
 };

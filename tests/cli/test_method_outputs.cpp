@@ -52,7 +52,7 @@ std::int64_t expect_labels_are_tracks(const TempDir& dir, const std::string& sou
 
 TEST(MethodOutputs, EveryLabelIsATrackOfTracksCsv) {
   TempDir dir;
-  EXPECT_GT(expect_labels_are_tracks(dir, "gen://family/crossing?seed=1000"), 1000);
+  EXPECT_GT(expect_labels_are_tracks(dir, "gen://family/crossing?seed=1006"), 1000);
   EXPECT_GT(expect_labels_are_tracks(dir, "gen://rotation?duration-s=0.3"), 1000);
 }
 
