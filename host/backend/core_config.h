@@ -73,7 +73,7 @@ inline std::string rtl_unsupported(const Params& p) {
   if (const char* name = detail::first_difference(p, rtl, {"kernel", "seeding", "xy-scale", "filter-support", "link-px", "warm-start", "warm-scale",
                                                            "association", "gate-spread", "coast-packets", "evict-stale",
                                                            "report-tentative"})) {
-    return "the RTL core does not implement " + detail::setting(p, name) + " (it implements the method of --preset gaussian)";
+    return "the RTL core does not implement " + detail::setting(p, name) + " (it implements the method of --preset gaussian: add --preset gaussian)";
   }
   return {};
 }

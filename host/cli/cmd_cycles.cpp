@@ -94,7 +94,7 @@ void cycles(const CyclesOptions& o) {
   const std::vector<Event> events = read_events(o, sensor);
   // The cycle model is the RTL's: it counts the method the RTL implements.
   if (std::string unsupported = backend::rtl_unsupported(o.method.resolve(sensor)); !unsupported.empty()) {
-    throw std::invalid_argument(unsupported + "; the cycle model counts the RTL's method: add --preset gaussian");
+    throw std::invalid_argument(unsupported + "; the cycle model counts the RTL's method");
   }
   if (events.empty()) throw std::runtime_error(o.source + ": no events");
   const auto words = words_of<S>(events);

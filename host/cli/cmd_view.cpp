@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "host/backend/backend.h"
+#include "host/backend/core_config.h"
 #include "host/cli/commands.h"
 #include "host/cli/common.h"
 #include "host/read/live/live_source.h"
@@ -109,7 +110,11 @@ void view(const ViewOptions& o) {
   }
 
   SdlWindow window(canvas.width(), canvas.height(), o.window_at);
-  const std::vector<std::string> cycle = {"golden", "fixed", "rtl"};
+  // b cycles through the backends that implement the method being shown (the RTL implements
+  // --preset gaussian only, host/backend/core_config.h).
+  std::vector<std::string> cycle = {"golden"};
+  if (backend::core_unsupported(bo.params).empty()) cycle.push_back("fixed");
+  if (backend::rtl_unsupported(bo.params).empty()) cycle.push_back("rtl");
   auto* control = dynamic_cast<read::PlaybackControl*>(&session.source());
   bool paused = false, quit = false, more = true;
   while (!quit) {
@@ -176,7 +181,7 @@ void add_view_command(CLI::App& app, const char* name, const char* help, bool li
   auto o = std::make_shared<ViewOptions>();
   CLI::App* cmd = app.add_subcommand(name, help);
   cmd->add_option("source", o->source, "event file or URI (default: a generated rotation scene)")->default_val(o->source);
-  cmd->add_option("--backend", o->backend, "implementation: golden, fixed, rtl or board (b switches among the first three)")
+  cmd->add_option("--backend", o->backend, "implementation: golden, fixed, rtl or board (b switches among the first three that implement the method)")
       ->default_val(o->backend);
   cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host, arty or ice40")->default_val(o->core);
   cmd->add_option("--device", o->device, "serial device of the board backend");
