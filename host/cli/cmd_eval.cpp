@@ -24,6 +24,9 @@ void register_eval(CLI::App& app) {
       ->check(CLI::Range(2, 10000000));
   cmd->add_option("--family-seeds", o->family_seeds, "validation members of each scene family type (0: none)")
       ->default_val(o->family_seeds)->check(CLI::Range(0, 100));
+  cmd->add_option("--family-types", o->family_types, "scene family types to include (default: every type)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(std::vector<std::string>(gen::family_types().begin(), gen::family_types().end())));
   cmd->add_option("--real-dir", o->real_dir, "folder of real recordings to include (default ../shared/data/real when present)");
   cmd->add_option("--jobs", o->jobs, "threads")->default_val(o->jobs)->check(CLI::Range(1, 64));
   cmd->add_option("--out", o->out, "output directory")->required();

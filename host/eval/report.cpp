@@ -292,7 +292,8 @@ std::string write_report(const EvalOptions& o) {
   std::vector<ClusteringScores> family_km;
   double family_km_mean = 0;
   if (o.family_seeds > 0) {
-    const std::vector<std::string> types(gen::family_types().begin(), gen::family_types().end());
+    std::vector<std::string> types = o.family_types;
+    if (types.empty()) types.assign(gen::family_types().begin(), gen::family_types().end());
     family = generate_family(gen::Split::kValidation, o.family_seeds, types, o.jobs);
     family_results = evaluate_family(family, {o.method, Method{"paper", {}}}, o.backends[0], o.jobs);
     family_km.resize(family.size());

@@ -25,6 +25,7 @@ struct EvalOptions {
   Method method;
   Chunking chunking{Chunking::Kind::kTime, 10000};
   int family_seeds = 4;   // validation members of each family type in the report
+  std::vector<std::string> family_types;   // empty: every type of the family
   std::string command_line;
 };
 

@@ -145,12 +145,12 @@ TEST(MetricsCommand, MismatchedFilesAreAnError) {
 TEST(EvalCommand, WritesTheReportWithEveryFigure) {
   test::TempDir dir;
   const auto r = test::run_command(test::evms_binary() + " eval --scenes translation,rotation --speeds 1,2 --duration-s 0.4 "
-                                   "--bandwidths 0.06,0.08 --real-dir /nonexistent --out " + dir.path("ev"));
+                                   "--bandwidths 0.06,0.08 --family-seeds 1 --family-types still --real-dir /nonexistent --out " + dir.path("ev"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::stringstream report;
   report << std::ifstream(dir.path("ev/report.md")).rdbuf();
   for (const char* section : {"Table I", "KM (true k)", "## Targets", "Clusters over time", "Cost against speed",
-                              "F against bandwidth", "## Tracking", "Share", "Real recordings"}) {
+                              "F against bandwidth", "## Tracking", "Share", "Real recordings", "## The scene family", "| still |"}) {
     EXPECT_NE(report.str().find(section), std::string::npos) << section;
   }
   for (const char* fig : {"clusters_translation.svg", "ops_vs_speed.svg", "f_vs_speed.svg", "f_vs_bandwidth.svg",
