@@ -71,7 +71,7 @@ struct Params {
   int min_cluster_size = 8;          // smaller clusters become noise
   double min_density = 0;            // seeded climbs: a mode whose ball holds fewer than this many
                                      // times the events a uniform spread would put there is noise
-  double link_px = 6;                // seeded climbs: clusters with events this close become one
+  double link_px = 4;                // seeded climbs: clusters with events this close become one
   bool join_boxes = false;           // seeded climbs: clusters whose bounding boxes overlap become one
   int max_clusters = 128;            // modes beyond this many clusters become noise
 

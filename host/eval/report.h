@@ -24,7 +24,7 @@ struct EvalOptions {
   int jobs = 2;
   Method method;
   Chunking chunking{Chunking::Kind::kTime, 10000};
-  int family_seeds = 4;   // validation members of each family type in the report
+  int family_seeds = 8;   // validation members of each family type in the report
   std::vector<std::string> family_types;   // empty: every type of the family
   std::string command_line;
 };
