@@ -62,19 +62,15 @@ Params gaussian() {
 // 1800-event packets at 240x180 and 1500 otherwise, cut at the driver's 30 Hz messages, seeds
 // taken from the events no climb has reached yet, labels by votes, modes within h/2 merged,
 // and IDs from the nearest previous cluster centre within sqrt(500) px.
+// It shares the paper's text's filter (10 ms), features on (x/W, y/H) without polarity, vote
+// labels and cold starts, and differs in what follows.
 Params paper(SensorSize sensor) {
   Params p = gaussian();
-  p.filter_window_us = 10000;
   p.packet_size = sensor.width == 240 ? 1800 : 1500;
   p.packet_max_span_us = 33333;
-  p.xy_scale = XyScale::kAxes;
-  p.scale_xy = 1.0;
-  p.scale_p = 0.0;
   p.scale_t = 0.0;
   p.kernel = Kernel::kFlat;
   p.seeding = Seeding::kEvents;
-  p.labelling = Labelling::kVotes;
-  p.warm_start = false;
   p.bandwidth = 0.15;
   p.max_iterations = 1000;
   p.tolerance = 1e-3 * p.bandwidth;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 
 #include "hls/core/core.h"
 #include "host/backend/core_config.h"
@@ -153,15 +154,22 @@ TEST(CoreAgreesWithGolden, TheDefaultMethodOnTheFamilysValidationSplit) {
   }
 }
 
+constexpr const char* kRealRecordings[] = {"dvxplorer_indoor.aedat4", "gen3_moving_blob.evt2.raw", "gen41_dense_scene.evt3.raw",
+                                           "atis_ncars_sample.dat"};
+
+// A real recording as an unlabelled scene: its first `max_events` events and its sensor.
+eval::Scene real_recording(const std::string& dir, const char* name, size_t max_events) {
+  eval::Scene s;
+  s.events = test::read_all(dir + "/" + name);
+  s.events.resize(std::min(s.events.size(), max_events));
+  s.sensor = read::open_source(dir + "/" + name, {})->info().sensor;
+  return s;
+}
+
 TEST(CoreAgreesWithGolden, TheDefaultMethodOnTheRealRecordings) {
   const std::string dir = test::shared_data_dir();
   if (dir.empty()) GTEST_SKIP() << "../shared/data/real is absent";
-  for (const char* f : {"dvxplorer_indoor.aedat4", "gen3_moving_blob.evt2.raw", "gen41_dense_scene.evt3.raw", "atis_ncars_sample.dat"}) {
-    eval::Scene s;
-    s.events = test::read_all(dir + "/" + f);
-    s.sensor = read::open_source(dir + "/" + f, {})->info().sensor;
-    expect_chunk_agreement(s, f);
-  }
+  for (const char* f : kRealRecordings) expect_chunk_agreement(real_recording(dir, f, SIZE_MAX), f);
 }
 
 // The gaussian preset (every event climbs) costs about 1,800 kernel evaluations an event, so
@@ -178,13 +186,7 @@ TEST(CoreAgreesWithGolden, OnTheLabelledScenes) {
 TEST(CoreAgreesWithGolden, OnTheRealRecordings) {
   const std::string dir = test::shared_data_dir();
   if (dir.empty()) GTEST_SKIP() << "../shared/data/real is absent";
-  for (const char* f : {"dvxplorer_indoor.aedat4", "gen3_moving_blob.evt2.raw", "gen41_dense_scene.evt3.raw", "atis_ncars_sample.dat"}) {
-    eval::Scene s;
-    s.events = test::read_all(dir + "/" + f);
-    s.events.resize(std::min<size_t>(s.events.size(), 200000));
-    s.sensor = read::open_source(dir + "/" + f, {})->info().sensor;
-    expect_agreement(s, f);
-  }
+  for (const char* f : kRealRecordings) expect_agreement(real_recording(dir, f, 200000), f);
 }
 
 }  // namespace
