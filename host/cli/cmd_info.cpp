@@ -33,7 +33,7 @@ void info(const InfoOptions& o) {
       on += e.p;
       xmin = std::min<int>(xmin, e.x), xmax = std::max<int>(xmax, e.x);
       ymin = std::min<int>(ymin, e.y), ymax = std::max<int>(ymax, e.y);
-      while (e.t - window_start >= kWindow) window_start += kWindow, in_window = 0;
+      if (e.t - window_start >= kWindow) window_start += (e.t - window_start) / kWindow * kWindow, in_window = 0;
       peak = std::max(peak, ++in_window);
     }
     progress.update(source->progress(), count);

@@ -9,9 +9,9 @@ namespace evms::cli {
 
 void add_source_options(CLI::App& cmd, read::SourceOptions& o) {
   cmd.add_option("--width", o.width, "sensor width in px, for files whose header has no size")
-      ->check(CLI::Range(1, 65535));
+      ->check(CLI::Range(1, read::kMaxSensorSide));
   cmd.add_option("--height", o.height, "sensor height in px, for files whose header has no size")
-      ->check(CLI::Range(1, 65535));
+      ->check(CLI::Range(1, read::kMaxSensorSide));
   cmd.add_option("--reorder-us", o.reorder_us,
                  "events out of time order by up to this much are re-sorted; more is an error")
       ->default_val(o.reorder_us)

@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const std::exception& e) {
     std::fflush(stdout);
-    std::fprintf(stderr, "evms: %s\n", e.what());
+    std::fprintf(stderr, "evms: %s\n", evms::read::printable(e.what()).c_str());
     return 1;
   }
   return 0;

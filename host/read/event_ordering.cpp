@@ -14,6 +14,12 @@ void EventOrdering::push(TimeUs t, long x, long y, int p, InputPosition where) {
              std::to_string(sensor_.width) + "x" + std::to_string(sensor_.height) +
              " sensor (set --width/--height if the size is wrong)");
   }
+  // Timestamps are microseconds from the recording's (or the epoch's) start: negative ones and
+  // ones beyond 2^62 us (146,000 years) are corrupt, and bounding them keeps every difference
+  // of two timestamps from overflowing.
+  if (t < 0 || t > kMaxTimestampUs) {
+    fail(path_, where, "timestamp " + std::to_string(t) + " us is " + (t < 0 ? "negative" : "beyond 2^62 us"));
+  }
   const Event e{t, static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y),
                 static_cast<std::uint8_t>(p != 0)};
   if (newest_ != INT64_MIN && t < newest_ && newest_ - t > tolerance_us_) {
@@ -22,23 +28,21 @@ void EventOrdering::push(TimeUs t, long x, long y, int p, InputPosition where) {
              " us, more than the reorder tolerance of " + std::to_string(tolerance_us_) +
              " us (--reorder-us)");
   }
-  if (held_.empty() || t >= held_.back().t) {
-    held_.push_back(e);
-  } else {
-    auto at = std::upper_bound(held_.begin(), held_.end(), t,
-                               [](TimeUs v, const Event& h) { return v < h.t; });
-    held_.insert(at, e);
-    ++reordered_;
+  if (held_.size() >= kMaxHeldEvents) {
+    fail(path_, where,
+         "more than " + std::to_string(kMaxHeldEvents) + " events within the reorder tolerance of " + std::to_string(tolerance_us_) +
+             " us (--reorder-us)");
   }
+  if (newest_ != INT64_MIN && t < newest_) ++reordered_;
+  held_.push({t, arrivals_++, e});
   newest_ = std::max(newest_, t);
 }
 
 size_t EventOrdering::pop(std::span<Event> out) {
   size_t n = 0;
-  while (n < out.size() && !held_.empty() &&
-         (finished_ || newest_ - held_.front().t > tolerance_us_)) {
-    out[n++] = held_.front();
-    held_.pop_front();
+  while (n < out.size() && !held_.empty() && (finished_ || newest_ - held_.top().t > tolerance_us_)) {
+    out[n++] = held_.top().event;
+    held_.pop();
   }
   return n;
 }

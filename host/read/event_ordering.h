@@ -6,10 +6,15 @@
 //    transfers interleave rows); they are re-sorted, stably, so equal timestamps keep their
 //    file order. An event older than the newest seen so far by more than the tolerance is an
 //    error: it means a timestamp reset, a corrupt record or a concatenated file.
-//  - Memory is bounded by the events that arrive within one tolerance window.
+//  - Timestamps lie in [0, 2^62] us; anything else is an error.
+//  - Memory is bounded by the events that arrive within one tolerance window, and at most
+//    kMaxHeldEvents of them (more is an error).
 #pragma once
 
-#include <deque>
+#include <cstdint>
+#include <functional>
+#include <queue>
+#include <vector>
 #include <span>
 #include <string>
 
@@ -17,6 +22,13 @@
 #include "host/read/input_error.h"
 
 namespace evms::read {
+
+// Events held at once for re-sorting: 16 M (384 MiB), far beyond the densest sensor's events in
+// a tolerance window (25 M events/s x 1 ms = 25 k).
+inline constexpr size_t kMaxHeldEvents = size_t{1} << 24;
+
+// The largest timestamp a reader accepts, in microseconds.
+inline constexpr TimeUs kMaxTimestampUs = TimeUs{1} << 62;
 
 class EventOrdering {
  public:
@@ -34,7 +46,16 @@ class EventOrdering {
   std::string path_;
   SensorSize sensor_;
   TimeUs tolerance_us_;
-  std::deque<Event> held_;   // sorted by time
+  // Events not yet final, earliest first; the arrival number keeps equal timestamps in file
+  // order. A heap, so that an event arriving late costs log(held) and not a shift of the rest.
+  struct Held {
+    TimeUs t;
+    std::uint64_t arrival;
+    Event event;
+    bool operator>(const Held& o) const { return t != o.t ? t > o.t : arrival > o.arrival; }
+  };
+  std::priority_queue<Held, std::vector<Held>, std::greater<>> held_;
+  std::uint64_t arrivals_ = 0;
   TimeUs newest_ = INT64_MIN;
   bool finished_ = false;
   std::int64_t reordered_ = 0;

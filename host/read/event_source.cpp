@@ -28,6 +28,13 @@ void FileEventSource::set_sensor(std::optional<SensorSize> from_header,
   } else {
     fail(in_.path(), {}, "the file does not say the sensor size: pass --width and --height");
   }
+  // Coordinates are 16-bit and the filter keeps a timestamp per pixel: a larger size is a
+  // corrupt header, not a sensor.
+  if (info_.sensor.width < 1 || info_.sensor.height < 1 || info_.sensor.width > kMaxSensorSide || info_.sensor.height > kMaxSensorSide) {
+    fail(in_.path(), info_.sensor_origin == std::string("header") ? InputPosition::byte(0) : InputPosition{},
+         "a sensor of " + std::to_string(info_.sensor.width) + "x" + std::to_string(info_.sensor.height) + " (from the " +
+             info_.sensor_origin + ") is outside 1x1 to " + std::to_string(kMaxSensorSide) + "x" + std::to_string(kMaxSensorSide));
+  }
   ordering_.emplace(in_.path(), info_.sensor, options_.reorder_us);
 }
 

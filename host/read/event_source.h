@@ -21,6 +21,10 @@
 
 namespace evms::read {
 
+// The largest sensor side evms accepts, from a header or --width/--height (the largest event
+// sensors are 1280x720 and 1280x960).
+inline constexpr int kMaxSensorSide = 4096;
+
 struct SourceOptions {
   int width = 0;              // sensor size for formats without one in their header
   int height = 0;

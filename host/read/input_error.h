@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace evms::read {
 
@@ -26,5 +27,10 @@ struct InputPosition {
 std::string describe(const std::string& path, InputPosition pos);
 
 [[noreturn]] void fail(const std::string& path, InputPosition pos, const std::string& what);
+
+// `text` safe to print on a terminal: control bytes, DEL and bytes that are not part of a
+// well-formed UTF-8 sequence become \xNN, so that a file cannot put escape sequences on the
+// screen through an error message that quotes it.
+std::string printable(std::string_view text);
 
 }  // namespace evms::read

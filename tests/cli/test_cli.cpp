@@ -61,6 +61,26 @@ TEST(Cli, BadInputIsOneLineNamingFileAndPosition) {
   }
 }
 
+// A file cannot put terminal escapes on the screen through an error message that quotes it.
+TEST(Cli, ErrorMessagesEscapeTheInputsControlBytes) {
+  TempDir dir;
+  const std::string in = dir.write("esc.csv", "t_us,x,y,p\n10,\x1b[2J\x07,2,1\n");
+  const auto r = run_command(evms_binary() + " info " + in);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("\\x1b[2J\\x07"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos);
+  EXPECT_EQ(r.err.find('\x07'), std::string::npos);
+}
+
+// Peak rate windows step over a gap of any length at once.
+TEST(Cli, InfoStepsOverAGapOfCenturies) {
+  TempDir dir;
+  const std::string in = dir.write("gap.csv", "t_us,x,y,p\n0,1,1,1\n4611686018427387904,1,1,1\n");
+  const auto r = run_command(evms_binary() + " info " + in + " --reorder-us 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("events      2"), std::string::npos) << r.out;
+}
+
 TEST(Cli, BadParametersAreRejected) {
   const auto r = run_command(evms_binary() + " run gen://rotation --bandwidth -1");
   EXPECT_NE(r.exit_code, 0);

@@ -1,9 +1,13 @@
 // Bad input: one line naming the file, the line or byte offset, and what is wrong. Never a
 // crash, never a silent drop.
 #include <gtest/gtest.h>
+#include <zstd.h>
+
+#include <cstdint>
 
 #include "tests/support/encoders.h"
 #include "tests/support/read_all.h"
+#include "host/read/input_error.h"
 
 namespace evms::test {
 namespace {
@@ -124,6 +128,50 @@ TEST(BadInput, MissingFilesAndUnknownSources) {
   EXPECT_NE(read_error("/nonexistent/file.raw").find("/nonexistent/file.raw: cannot open"), std::string::npos);
   EXPECT_NE(read_error("gen://spiral").find("unknown scene 'spiral'"), std::string::npos);
   EXPECT_NE(read_error("ftp://x").find("unknown source scheme"), std::string::npos);
+}
+
+TEST(BadInput, TimestampsOutsideTheirRange) {
+  TempDir d;
+  // 2^63 - 1 followed by -1 would overflow a difference of the two.
+  expect_error(d.write("max.csv", "t_us,x,y,p\n9223372036854775807,0,0,0\n-1,0,0,0\n"), "line 2",
+               "timestamp 9223372036854775807 us is beyond 2^62 us");
+  expect_error(d.write("neg.csv", "t_us,x,y,p\n0,1,1,1\n-5,1,1,1\n"), "line 3", "timestamp -5 us is negative");
+}
+
+TEST(BadInput, HeaderSensorSizesBeyondTheLargestSensor) {
+  TempDir d;
+  expect_error(d.write("huge.raw", "% evt 3.0\n% format EVT3;height=70000;width=70000\n% end\n"), "byte 0",
+               "a sensor of 70000x70000 (from the header) is outside 1x1 to 4096x4096");
+  expect_error(d.write("huge.aedat4", aedat4(kEvents, {70000, 70000}, Aedat4Compression::kNone)), "byte 0",
+               "a sensor of 70000x70000 (from the header)");
+}
+
+// A 33 kB ZSTD frame that expands to 129 MiB is refused when its output reaches the 128 MiB
+// cap, with a message that says so.
+TEST(BadInput, ADecompressionBombIsRefusedAtTheCap) {
+  Bytes b = aedat4({}, {128, 128}, Aedat4Compression::kZstd);
+  const size_t at = b.size();
+  const std::vector<std::uint8_t> zeros((size_t{129} << 20), 0);
+  Bytes frame(ZSTD_compressBound(zeros.size()));
+  frame.resize(ZSTD_compress(frame.data(), frame.size(), zeros.data(), zeros.size(), 1));
+  for (std::uint32_t v : {std::uint32_t{0}, static_cast<std::uint32_t>(frame.size())}) {
+    for (int k = 0; k < 4; ++k) b.push_back(static_cast<std::uint8_t>(v >> (8 * k)));
+  }
+  b.insert(b.end(), frame.begin(), frame.end());
+  TempDir d;
+  expect_error(d.write("bomb.aedat4", b), "byte " + std::to_string(at),
+               "packet of more than 128 MiB, stored or decompressed (a corrupt frame or a decompression bomb)");
+}
+
+TEST(ErrorMessages, ControlAndMalformedUtf8BytesAreEscaped) {
+  EXPECT_EQ(read::printable("plain text, 1.5 us"), "plain text, 1.5 us");
+  EXPECT_EQ(read::printable("a\x1b[2Jb"), "a\\x1b[2Jb");
+  EXPECT_EQ(read::printable("\x7f\n\t"), "\\x7f\\x0a\\x09");
+  EXPECT_EQ(read::printable("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80"), "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80");  // é, €, an emoji
+  EXPECT_EQ(read::printable("\xff\xc3"), "\\xff\\xc3");              // not UTF-8; a lead byte at the end
+  EXPECT_EQ(read::printable("\xc0\xaf"), "\\xc0\\xaf");              // an overlong '/'
+  EXPECT_EQ(read::printable("\xed\xa0\x80"), "\\xed\\xa0\\x80");  // a surrogate
+  EXPECT_EQ(read::printable(std::string("a\0b", 3)), "a\\x00b");
 }
 
 }  // namespace

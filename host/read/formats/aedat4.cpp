@@ -21,7 +21,10 @@
 namespace evms::read {
 namespace {
 
-constexpr std::uint32_t kMaxPacketBytes = 1u << 30;
+// A header or a packet, stored or decompressed, is at most 128 MiB: DV writes packets of a few
+// MiB (10 ms of the densest sensor is 4 MiB), and a frame that would expand further is a
+// decompression bomb or corrupt, refused before its buffer grows past the cap.
+constexpr std::uint32_t kMaxPacketBytes = 1u << 27;
 
 struct StreamInfo {
   std::string type;
@@ -141,7 +144,8 @@ class Aedat4Source final : public FileEventSource {
     if (got < 8) fail(in_.path(), InputPosition::byte(at), "truncated packet header (" + std::to_string(got) + " of 8 bytes)");
     const std::int32_t stream = static_cast<std::int32_t>(le32(h));
     const std::uint32_t size = le32(h + 4);
-    if (size > kMaxPacketBytes || at + 8 + size > in_.size()) {
+    if (size > kMaxPacketBytes) too_large(at);
+    if (at + 8 + size > in_.size()) {
       fail(in_.path(), InputPosition::byte(at), "truncated packet: body of " + std::to_string(size) + " bytes runs past the end of the file");
     }
     auto it = streams_.find(stream);
@@ -187,8 +191,11 @@ class Aedat4Source final : public FileEventSource {
           fail(in_.path(), InputPosition::byte(at), "LZ4 frame does not decompress (" + why + ")");
         }
         in_pos += in_size;
+        if (plain_.size() + out_size > kMaxPacketBytes) {
+          LZ4F_freeDecompressionContext(ctx);
+          too_large(at);
+        }
         plain_.insert(plain_.end(), chunk.begin(), chunk.begin() + static_cast<long>(out_size));
-        if (plain_.size() > kMaxPacketBytes) break;
       }
       LZ4F_freeDecompressionContext(ctx);
       if (hint != 0) fail(in_.path(), InputPosition::byte(at), "truncated LZ4 frame");
@@ -206,14 +213,22 @@ class Aedat4Source final : public FileEventSource {
           ZSTD_freeDStream(ds);
           fail(in_.path(), InputPosition::byte(at), "ZSTD frame does not decompress (" + why + ")");
         }
+        if (plain_.size() + output.pos > kMaxPacketBytes) {
+          ZSTD_freeDStream(ds);
+          too_large(at);
+        }
         plain_.insert(plain_.end(), chunk.begin(), chunk.begin() + static_cast<long>(output.pos));
         if (input.pos == input.size && output.pos < output.size && ret != 0) break;
-        if (plain_.size() > kMaxPacketBytes) break;
       }
       ZSTD_freeDStream(ds);
       if (ret != 0) fail(in_.path(), InputPosition::byte(at), "truncated ZSTD frame");
     }
     return plain_;
+  }
+
+  [[noreturn]] void too_large(std::uint64_t at) const {
+    fail(in_.path(), InputPosition::byte(at),
+         "packet of more than " + std::to_string(kMaxPacketBytes >> 20) + " MiB, stored or decompressed (a corrupt frame or a decompression bomb)");
   }
 
   aedat4::Compression compression_ = aedat4::Compression::NONE;
