@@ -173,12 +173,12 @@ TEST(CoreAgreesWithGolden, TheDefaultMethodOnTheRealRecordings) {
 }
 
 // The gaussian preset (every event climbs) costs about 1,800 kernel evaluations an event, so
-// these scenes and recordings are cut short: 0.4 s, and a recording's first 200,000 events.
+// these scenes and recordings are cut short: 0.25 s, and a recording's first 200,000 events.
 TEST(CoreAgreesWithGolden, OnTheLabelledScenes) {
   for (auto m : {gen::Motion::kTranslation, gen::Motion::kRotation, gen::Motion::kSixDof}) {
     gen::SceneConfig c;
     c.motion = m;
-    c.duration_s = 0.4;
+    c.duration_s = 0.25;
     expect_agreement(eval::generate_scene(c), gen::motion_name(m));
   }
 }
