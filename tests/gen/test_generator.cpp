@@ -123,7 +123,9 @@ TEST(SceneFamily, MembersSpanWhatTheFamilyPromises) {
       hot += c.hot_pixels > 0, moving += c.movers > 0, crossing += c.crossing, low_contrast += c.low_contrast_share > 0;
       EXPECT_GE(c.objects, 1);
       EXPECT_LE(c.objects, 12);
-      if (std::string(type) == "still") EXPECT_GE(c.movers, 1);
+      if (std::string(type) == "still") {
+        EXPECT_GE(c.movers, 1);
+      }
     }
   }
   EXPECT_EQ(widths, (std::set<int>{128, 240, 346, 640}));
