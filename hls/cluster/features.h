@@ -45,4 +45,10 @@ features:
   }
 }
 
+// The squared distance of two feature points from their differences per dimension, which every
+// kernel, ball and merge test compares.
+inline std::uint64_t squared_distance(std::int64_t dx, std::int64_t dy, std::int64_t dp, std::int64_t dt) {
+  return static_cast<std::uint64_t>(dx * dx + dy * dy + dp * dp + dt * dt);
+}
+
 }  // namespace evms::hls

@@ -53,7 +53,7 @@ iterations:
 #pragma HLS UNROLL factor = S::kLanes
         if (j >= n) break;
         const std::int64_t dx = xi - x0[j], dy = yi - y0[j], dp = pi - phi.p[j], dt = ti - phi.t[j];
-        const auto u = static_cast<std::uint64_t>(dx * dx + dy * dy + dp * dp + dt * dt);
+        const std::uint64_t u = squared_distance(dx, dy, dp, dt);
         const std::uint64_t w = Tables<S>::exp.template lookup<2 * S::kFeatFrac>(u);
         sw += w;
         sx += (w * x0[j]) >> kProductShift;

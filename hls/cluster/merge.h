@@ -36,7 +36,7 @@ points:
       const int s = seed[c];
       const std::int64_t dx = std::int64_t{m.x[i]} - m.x[s], dy = std::int64_t{m.y[i]} - m.y[s];
       const std::int64_t dp = std::int64_t{m.p[i]} - m.p[s], dt = std::int64_t{m.t[i]} - m.t[s];
-      const auto d2 = static_cast<std::uint64_t>(dx * dx + dy * dy + dp * dp + dt * dt);
+      const std::uint64_t d2 = squared_distance(dx, dy, dp, dt);
       if (d2 <= cfg.merge_radius2 && d2 < best_d2) best = c, best_d2 = d2;
     }
     if (best < 0 && seeds < cfg.max_clusters && seeds < S::kClustersMax) {

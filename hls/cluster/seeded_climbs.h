@@ -115,7 +115,7 @@ class SeededClimbs {
 #pragma HLS UNROLL factor = S::kLanes
         if (j >= n) break;
         const std::int64_t dx = mx - phi.x[j], dy = my - phi.y[j], dp = mp - phi.p[j], dt = mt - phi.t[j];
-        if (static_cast<std::uint64_t>(dx * dx + dy * dy + dp * dp + dt * dt) < ball2) {
+        if (squared_distance(dx, dy, dp, dt) < ball2) {
           reached_[j] = true;
           in_climb_[j] = true;
           sx += phi.x[j], sy += phi.y[j], sp += phi.p[j], st += phi.t[j];
@@ -153,7 +153,7 @@ class SeededClimbs {
 #pragma HLS PIPELINE II = 1
       if (c >= modes.count) break;
       const std::int64_t dx = mx - modes.x[c], dy = my - modes.y[c], dp = mp - modes.p[c], dt = mt - modes.t[c];
-      const auto d2 = static_cast<std::uint64_t>(dx * dx + dy * dy + dp * dp + dt * dt);
+      const std::uint64_t d2 = squared_distance(dx, dy, dp, dt);
       if (d2 <= cfg.merge_radius2 && (best < 0 || d2 < best_d2)) best = c, best_d2 = d2;
     }
     if (best >= 0) return best;
