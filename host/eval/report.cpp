@@ -34,10 +34,10 @@ struct Curve {
 struct RunSummary {
   std::string scene, backend;
   double speed = 1;
-  ClusteringScores ems, ems_clear, km, km_clear, paper, paper_clear;
+  ClusteringScores ems, km, paper;
   bool has_km = false;
   IdentityScores identity, paper_identity;
-  std::int64_t chunks = 0, chunks_clear = 0;
+  std::int64_t chunks = 0;
   TrackingReport tracking;
   double events_per_s = 0, kept_per_s = 0, kernel_per_s = 0, wall_s = 0, iterations = 0, clusters = 0;
   std::int64_t events = 0;
@@ -48,7 +48,7 @@ struct RunSummary {
 struct BandwidthPoint {
   std::string scene;
   double h = 0;
-  double f = 0, f_clear = 0;
+  double f = 0;
 };
 
 struct RealSummary {
@@ -100,7 +100,7 @@ RunSummary summarise(const Scene& scene, const std::string& name, double speed, 
   const Evaluation e = evaluate(scene, o.method.resolve(scene.sensor), backend, o.chunking, o.tau_px);
   RunSummary r;
   r.scene = name, r.backend = backend, r.speed = speed;
-  r.ems = e.scores, r.ems_clear = e.scores_clear, r.chunks = e.chunks, r.chunks_clear = e.chunks_clear;
+  r.ems = e.scores, r.chunks = e.chunks;
   r.tracking = e.tracking;
   r.identity = identity_scores(scene.events, scene.truth, e.run.labels);
   r.events = static_cast<std::int64_t>(scene.events.size());
@@ -116,11 +116,9 @@ RunSummary summarise(const Scene& scene, const std::string& name, double speed, 
   if (with_km) {
     const auto km = kmeans_labels(scene.events, scene.truth, scene.sensor, o.method.resolve(scene.sensor), o.chunking, o.seed);
     r.km = score_chunks(scene, km, o.chunking);
-    r.km_clear = score_chunks(scene, km, o.chunking, nullptr, true);
     r.has_km = true;
     const RunResult paper = run_backend("golden", preset("paper", scene.sensor), scene.sensor, scene.events);
     r.paper = score_chunks(scene, paper.labels, o.chunking);
-    r.paper_clear = score_chunks(scene, paper.labels, o.chunking, nullptr, true);
     r.paper_identity = identity_scores(scene.events, scene.truth, paper.labels);
   }
   return r;
@@ -280,7 +278,7 @@ std::string write_report(const EvalOptions& o) {
       p.bandwidth = t.value;
       const Evaluation e = evaluate(base[t.scene], p, o.backends[0], o.chunking, o.tau_px);
       std::lock_guard lock(mutex);
-      bandwidth_points.push_back({o.scenes[t.scene], t.value, e.scores.f, e.scores_clear.f});
+      bandwidth_points.push_back({o.scenes[t.scene], t.value, e.scores.f});
     } else {
       reals[t.real] = run_real(real_files[t.real], o, fig_dir);
     }
