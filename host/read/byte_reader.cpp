@@ -16,6 +16,8 @@ std::string describe(const std::string& path, InputPosition pos) {
   switch (pos.kind) {
     case InputPosition::Kind::kByte: return path + ": byte " + std::to_string(pos.value);
     case InputPosition::Kind::kLine: return path + ": line " + std::to_string(pos.value);
+    case InputPosition::Kind::kMessage:
+      return path + ": message " + std::to_string(pos.value) + ", byte " + std::to_string(pos.byte_in_message);
     case InputPosition::Kind::kNone: break;
   }
   return path;

@@ -5,6 +5,7 @@
 #include <array>
 #include <cctype>
 #include <cstring>
+#include <filesystem>
 
 namespace evms::read {
 
@@ -115,9 +116,18 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
   if (name.find("://") != std::string::npos) {
     throw InputError(name + ": unknown source scheme (expected a file path, gen://SCENE, usb://dvs128, usb://davis or udp://HOST:PORT)");
   }
-  ByteReader in(name);
+  // A ROS 2 bag is a folder or an sqlite3 file, and may name its topic after a '?'.
+  const size_t query = name.find("?topic=");
+  const std::string path = query == std::string::npos ? name : name.substr(0, query);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return open_ros2_bag(name, path, query == std::string::npos ? "" : name.substr(query + 7), options);
+  ByteReader in(path);
   const std::string_view head = in.peek(64);
-  if (head.empty()) fail(name, InputPosition::byte(0), "empty file");
+  if (head.empty()) fail(path, InputPosition::byte(0), "empty file");
+  if (head.substr(0, 16) == std::string_view("SQLite format 3\0", 16)) {
+    return open_ros2_bag(name, path, query == std::string::npos ? "" : name.substr(query + 7), options);
+  }
+  if (query != std::string::npos) fail(name, {}, "?topic= applies to ROS 2 bags only");
   if (head.rfind("#!AER-DAT2", 0) == 0) return open_aedat2(std::move(in), options);
   if (head.rfind("#!AER-DAT3", 0) == 0) return open_aedat3(std::move(in), options);
   if (head.rfind("#!AER-DAT4", 0) == 0) return open_aedat4(std::move(in), options);
@@ -137,7 +147,7 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
   if (text && first.find(',') != std::string_view::npos) return open_csv(std::move(in), options);
   if (text) return open_rpg_text(std::move(in), options);
   fail(name, InputPosition::byte(0),
-       "bad header: not a known event format (events.txt, CSV, AEDAT 2/3/4, EVT 2/3 RAW, DAT)");
+       "bad header: not a known event format (events.txt, CSV, AEDAT 2/3/4, EVT 2/3 RAW, DAT, ROS 2 bag)");
 }
 
 }  // namespace

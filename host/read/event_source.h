@@ -1,6 +1,7 @@
 // A source of events: a recorded file, a generated scene, a live camera or a network
 // stream. Every evms subcommand that reads events takes any source by its name:
 //   path/to/file.{txt,csv,aedat,aedat4,raw,dat}   format detected from the header
+//   path/to/bag[/file.db3][?topic=/events]       a ROS 2 bag (formats/ros2_bag.cpp)
 //   gen://rotation?seed=1&duration-s=2           a generated labelled scene
 //   usb://dvs128, usb://davis                    a live camera over libusb (usb_camera.cpp)
 //   udp://HOST:PORT?camera=dvs128|davis          a jAER AEUnicast stream (udp_source.cpp)
@@ -101,6 +102,9 @@ std::unique_ptr<EventSource> open_aedat2(ByteReader in, const SourceOptions& o);
 std::unique_ptr<EventSource> open_aedat3(ByteReader in, const SourceOptions& o);
 std::unique_ptr<EventSource> open_aedat4(ByteReader in, const SourceOptions& o);
 std::unique_ptr<EventSource> open_prophesee(ByteReader in, const SourceOptions& o);
+// A ROS 2 bag folder or one of its .db3 files; `topic` empty picks the first event topic.
+std::unique_ptr<EventSource> open_ros2_bag(const std::string& name, const std::string& path, const std::string& topic,
+                                          const SourceOptions& o);
 
 // Sensor size of a camera model named in a header ("DAVIS240C", "DVS128", ...).
 std::optional<SensorSize> sensor_of_model(const std::string& model);

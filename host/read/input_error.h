@@ -16,12 +16,15 @@ class InputError : public std::runtime_error {
 };
 
 struct InputPosition {
-  enum class Kind { kByte, kLine, kNone };
+  // kMessage: a record of a container (a ROS 2 bag's message), and a byte offset inside it.
+  enum class Kind { kByte, kLine, kMessage, kNone };
   Kind kind = Kind::kNone;
   std::uint64_t value = 0;
+  std::uint64_t byte_in_message = 0;
 
-  static InputPosition byte(std::uint64_t offset) { return {Kind::kByte, offset}; }
-  static InputPosition line(std::uint64_t number) { return {Kind::kLine, number}; }
+  static InputPosition byte(std::uint64_t offset) { return {Kind::kByte, offset, 0}; }
+  static InputPosition line(std::uint64_t number) { return {Kind::kLine, number, 0}; }
+  static InputPosition message(std::uint64_t number, std::uint64_t offset) { return {Kind::kMessage, number, offset}; }
 };
 
 std::string describe(const std::string& path, InputPosition pos);

@@ -2,9 +2,11 @@
 
 #include <flatbuffers/flatbuffers.h>
 #include <lz4frame.h>
+#include <sqlite3.h>
 #include <unistd.h>
 #include <zstd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -195,6 +197,130 @@ Bytes evt3(const std::vector<Event>& events, SensorSize sensor) {
     }
   }
   return b;
+}
+
+Bytes evt3_words(const std::vector<Event>& events) {
+  Bytes b = evt3(events, {1, 1});
+  const std::string end = "% end\n";
+  const auto at = std::search(b.begin(), b.end(), end.begin(), end.end());
+  b.erase(b.begin(), at + static_cast<long>(end.size()));
+  return b;
+}
+
+namespace {
+
+// CDR, little endian: primitives aligned to their size from the end of the 4-byte header.
+class CdrWriter {
+ public:
+  CdrWriter() : b_{0x00, 0x01, 0x00, 0x00} {}
+  template <class T>
+  void put(T v) {
+    while ((b_.size() - 4) % sizeof(T)) b_.push_back(0);
+    for (size_t i = 0; i < sizeof(T); ++i) b_.push_back(static_cast<std::uint8_t>(static_cast<std::uint64_t>(v) >> (8 * i)));
+  }
+  void string(const std::string& s) {
+    put<std::uint32_t>(static_cast<std::uint32_t>(s.size() + 1));
+    b_.insert(b_.end(), s.begin(), s.end());
+    b_.push_back(0);
+  }
+  void header() {
+    put<std::int32_t>(1702309120);
+    put<std::uint32_t>(5000);
+    string("camera");
+  }
+  Bytes bytes() const { return b_; }
+  Bytes b_;
+};
+
+}  // namespace
+
+Bytes event_packet_cdr(const std::string& encoding, std::uint64_t time_base_ns, SensorSize sensor, const Bytes& events) {
+  CdrWriter w;
+  w.header();
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(sensor.height));
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(sensor.width));
+  w.put<std::uint64_t>(7);  // seq
+  w.put<std::uint64_t>(time_base_ns);
+  w.string(encoding);
+  w.put<std::uint8_t>(0);  // is_bigendian
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(events.size()));
+  w.b_.insert(w.b_.end(), events.begin(), events.end());
+  return w.bytes();
+}
+
+Bytes libcaer_events(const std::vector<Event>& events) {
+  Bytes b;
+  for (const Event& e : events) {
+    put_le32(b, 1u | (std::uint32_t{e.p} << 1) | (std::uint32_t{e.y} << 2) | (std::uint32_t{e.x} << 17));
+    put_le32(b, static_cast<std::uint32_t>(e.t));
+  }
+  return b;
+}
+
+Bytes mono_events(const std::vector<Event>& events, std::uint64_t time_base_ns) {
+  Bytes b;
+  for (const Event& e : events) {
+    const std::uint64_t dt = static_cast<std::uint64_t>(e.t) * 1000 - time_base_ns;
+    const std::uint64_t word = (dt & 0xFFFFFFFFu) | (std::uint64_t{e.x} << 32) | (std::uint64_t{e.y} << 48) | (std::uint64_t{e.p} << 63);
+    put_le32(b, static_cast<std::uint32_t>(word));
+    put_le32(b, static_cast<std::uint32_t>(word >> 32));
+  }
+  return b;
+}
+
+Bytes dvs_event_array_cdr(const std::vector<Event>& events, SensorSize sensor) {
+  CdrWriter w;
+  w.header();
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(sensor.height));
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(sensor.width));
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(events.size()));
+  for (const Event& e : events) {
+    w.put<std::uint16_t>(e.x);
+    w.put<std::uint16_t>(e.y);
+    w.put<std::int32_t>(static_cast<std::int32_t>(e.t / 1000000));
+    w.put<std::uint32_t>(static_cast<std::uint32_t>(e.t % 1000000 * 1000));
+    w.put<std::uint8_t>(e.p);
+  }
+  return w.bytes();
+}
+
+void write_db3(const std::string& db3, const std::vector<BagTopic>& topics) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open(db3.c_str(), &db) != SQLITE_OK) throw std::runtime_error("sqlite3_open " + db3);
+  const char* schema =
+      "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, serialization_format TEXT NOT NULL,"
+      " offered_qos_profiles TEXT NOT NULL);"
+      "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL, data BLOB NOT NULL);";
+  if (sqlite3_exec(db, schema, nullptr, nullptr, nullptr) != SQLITE_OK) throw std::runtime_error(sqlite3_errmsg(db));
+  std::int64_t stamp = 1702309120000000000;
+  for (size_t t = 0; t < topics.size(); ++t) {
+    sqlite3_stmt* s = nullptr;
+    sqlite3_prepare_v2(db, "INSERT INTO topics VALUES (?, ?, ?, 'cdr', '')", -1, &s, nullptr);
+    sqlite3_bind_int64(s, 1, static_cast<std::int64_t>(t + 1));
+    sqlite3_bind_text(s, 2, topics[t].name.c_str(), -1, SQLITE_TRANSIENT);
+    sqlite3_bind_text(s, 3, topics[t].type.c_str(), -1, SQLITE_TRANSIENT);
+    sqlite3_step(s);
+    sqlite3_finalize(s);
+    for (const Bytes& m : topics[t].messages) {
+      sqlite3_prepare_v2(db, "INSERT INTO messages (topic_id, timestamp, data) VALUES (?, ?, ?)", -1, &s, nullptr);
+      sqlite3_bind_int64(s, 1, static_cast<std::int64_t>(t + 1));
+      sqlite3_bind_int64(s, 2, stamp += 1000000);
+      sqlite3_bind_blob(s, 3, m.data(), static_cast<int>(m.size()), SQLITE_TRANSIENT);
+      if (sqlite3_step(s) != SQLITE_DONE) throw std::runtime_error(sqlite3_errmsg(db));
+      sqlite3_finalize(s);
+    }
+  }
+  sqlite3_close(db);
+}
+
+std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& topics) {
+  std::filesystem::create_directories(dir);
+  const std::string name = std::filesystem::path(dir).filename().string();
+  write_db3(dir + "/" + name + "_0.db3", topics);
+  std::ofstream(dir + "/metadata.yaml") << "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
+                                           "  compression_format: \"\"\n  compression_mode: \"\"\n  relative_file_paths:\n    - "
+                                        << name << "_0.db3\n";
+  return dir;
 }
 
 Bytes dat(const std::vector<Event>& events) {

@@ -24,6 +24,21 @@ Bytes evt2(const std::vector<Event>& events, SensorSize sensor);
 Bytes evt3(const std::vector<Event>& events, SensorSize sensor);
 Bytes dat(const std::vector<Event>& events);
 
+// ROS 2 messages in CDR (little endian), and bags that hold them.
+Bytes evt3_words(const std::vector<Event>& events);  // the words of evt3() without its header
+Bytes event_packet_cdr(const std::string& encoding, std::uint64_t time_base_ns, SensorSize sensor, const Bytes& events);
+Bytes libcaer_events(const std::vector<Event>& events);  // t relative to the packet's time base
+Bytes mono_events(const std::vector<Event>& events, std::uint64_t time_base_ns);
+Bytes dvs_event_array_cdr(const std::vector<Event>& events, SensorSize sensor);
+struct BagTopic {
+  std::string name, type;
+  std::vector<Bytes> messages;
+};
+// Writes the sqlite3 storage file `db3` of a bag with these topics, messages 1 ms apart.
+void write_db3(const std::string& db3, const std::vector<BagTopic>& topics);
+// A bag folder `dir` with metadata.yaml and dir/NAME_0.db3; returns the folder.
+std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& topics);
+
 // A temporary directory removed at the end of the test.
 class TempDir {
  public:

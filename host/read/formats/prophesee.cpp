@@ -8,13 +8,8 @@
 //   0x0 CD_OFF / 0x1 CD_ON: ts[5:0] in 27..22, x in 21..11, y in 10..0
 //   0x8 EVT_TIME_HIGH: ts[33:6] in 27..0 (wraps at 2^34 us)
 //   0xA external trigger, 0xE others, 0xF continued: not polarity events (counted)
-// EVT 3.0: 16-bit words, type in bits 15..12, decoded with state.
-//   0x0 ADDR_Y (y in 10..0)   0x2 ADDR_X (x in 10..0, polarity bit 11: one event)
-//   0x3 VECT_BASE_X (x, polarity)   0x4 VECT_12 / 0x5 VECT_8: one event per set bit at
-//   base x + i, then base x += 12 / 8   0x6 TIME_LOW / 0x8 TIME_HIGH: 12 bits each of a 24-bit
-//   time that wraps at 2^24 us (a wrap is TIME_HIGH going down; a lone TIME_LOW going down is
-//   not a wrap)   0xA trigger, 0xE others, 0x7 / 0xF continued: counted and skipped
-// In both, CD events before the first TIME_HIGH have no time base and are counted as skipped.
+// EVT 3.0: 16-bit words, decoded with state (evt3_decoder.h).
+// In EVT 2.0, CD events before the first TIME_HIGH have no time base and are counted as skipped.
 // Any other word type is reserved and means the file is not what its header says: an error.
 #include <charconv>
 #include <cstdio>
@@ -22,6 +17,7 @@
 
 #include "host/read/bytes.h"
 #include "host/read/event_source.h"
+#include "host/read/formats/evt3_decoder.h"
 
 namespace evms::read {
 namespace {
@@ -143,56 +139,28 @@ class Evt3Source final : public FileEventSource {
   bool decode_more() override {
     unsigned char w[2];
     for (int n = 0; n < 16384; ++n) {
-      const std::uint64_t at = in_.offset();
+      sink_.at = in_.offset();
       const size_t got = in_.read(w, 2);
       if (got == 0) return false;
-      if (got < 2) fail(in_.path(), InputPosition::byte(at), "truncated word (1 of 2 bytes)");
-      const std::uint16_t word = le16(w);
-      const unsigned payload = word & 0x0FFF;
-      switch (word >> 12) {
-        case 0x0: y_ = payload & 0x7FF; break;
-        case 0x2: event(payload & 0x7FF, payload >> 11, at); break;
-        case 0x3: base_x_ = payload & 0x7FF; base_p_ = payload >> 11; break;
-        case 0x4:
-          for (int i = 0; i < 12; ++i) if (payload & (1u << i)) event(base_x_ + i, base_p_, at);
-          base_x_ += 12;
-          break;
-        case 0x5:
-          for (int i = 0; i < 8; ++i) if (payload & (1u << i)) event(base_x_ + i, base_p_, at);
-          base_x_ += 8;
-          break;
-        case 0x6: time_low_ = payload; break;
-        case 0x8:
-          if (have_time_ && payload < time_high_ && time_high_ - payload > 0x800) epoch_ += TimeUs{1} << 24;
-          time_high_ = payload;
-          have_time_ = true;
-          break;
-        case 0xA: count_skipped("external triggers"); break;
-        case 0xE: count_skipped("OTHERS words"); break;
-        case 0x7:
-        case 0xF: count_skipped("CONTINUED words"); break;
-        default: {
-          char b[8];
-          std::snprintf(b, sizeof b, "%X", word >> 12);
-          fail(in_.path(), InputPosition::byte(at), std::string("reserved EVT 3.0 word type 0x") + b);
-        }
+      if (got < 2) fail(in_.path(), InputPosition::byte(sink_.at), "truncated word (1 of 2 bytes)");
+      if (!decoder_.word(le16(w), sink_)) {
+        char b[8];
+        std::snprintf(b, sizeof b, "%X", le16(w) >> 12);
+        fail(in_.path(), InputPosition::byte(sink_.at), std::string("reserved EVT 3.0 word type 0x") + b);
       }
     }
     return true;
   }
 
  private:
-  void event(unsigned x, unsigned p, std::uint64_t at) {
-    if (!have_time_) {
-      count_skipped("CD events before the first TIME_HIGH");
-      return;
-    }
-    emit(epoch_ + (TimeUs{time_high_} << 12) + time_low_, x, y_, p, InputPosition::byte(at));
-  }
-
-  bool have_time_ = false;
-  unsigned time_high_ = 0, time_low_ = 0, y_ = 0, base_x_ = 0, base_p_ = 0;
-  TimeUs epoch_ = 0;
+  struct Sink {
+    Evt3Source& source;
+    std::uint64_t at = 0;  // the word being decoded
+    void event(TimeUs t, unsigned x, unsigned y, int p) { source.emit(t, x, y, p, InputPosition::byte(at)); }
+    void skipped(const char* kind) { source.count_skipped(kind); }
+  };
+  Evt3Decoder decoder_;
+  Sink sink_{*this};
 };
 
 class DatSource final : public FileEventSource {

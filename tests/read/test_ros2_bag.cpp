@@ -1,0 +1,186 @@
+// ROS 2 bags: every encoding of event_camera_msgs/EventPacket and dvs_msgs/EventArray decodes to
+// the events encoded, the shared recording to the figures in its README, and a bad bag to one
+// line that names the file and the message.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "host/read/event_source.h"
+#include "tests/support/encoders.h"
+#include "tests/support/read_all.h"
+
+namespace evms::test {
+namespace {
+
+constexpr SensorSize kSensor{346, 260};
+constexpr const char* kPacket = "event_camera_msgs/msg/EventPacket";
+
+// `events` cut into `parts` messages by `encode`.
+template <class Encode>
+std::vector<Bytes> packets(const std::vector<Event>& events, size_t parts, Encode encode) {
+  std::vector<Bytes> out;
+  for (size_t k = 0; k < parts; ++k) {
+    const auto a = events.begin() + static_cast<long>(events.size() * k / parts);
+    const auto b = events.begin() + static_cast<long>(events.size() * (k + 1) / parts);
+    out.push_back(encode(std::vector<Event>(a, b)));
+  }
+  return out;
+}
+
+std::vector<Event> shifted(std::vector<Event> events, TimeUs by) {
+  for (Event& e : events) e.t += by;
+  return events;
+}
+
+TEST(Ros2Bag, EveryEncodingDecodesToTheEventsEncoded) {
+  TempDir d;
+  const std::vector<Event> events = sample_events(900, kSensor);
+  const std::uint64_t base_ns = 1702309120000000000;  // ROS time of the driver's start
+  const TimeUs base_us = static_cast<TimeUs>(base_ns / 1000);
+  struct Case {
+    const char* name;
+    std::vector<Bytes> messages;
+    std::vector<Event> expected;
+    std::string type = kPacket;
+  };
+  const std::vector<Case> cases = {
+      {"evt3", packets(events, 3, [](const std::vector<Event>& p) { return event_packet_cdr("evt3", 0, kSensor, evt3_words(p)); }), events},
+      {"libcaer", packets(events, 3, [&](const std::vector<Event>& p) { return event_packet_cdr("libcaer", base_ns, kSensor, libcaer_events(p)); }),
+       shifted(events, base_us)},
+      {"mono", packets(events, 3, [&](const std::vector<Event>& p) { return event_packet_cdr("mono", base_ns, kSensor, mono_events(shifted(p, base_us), base_ns)); }),
+       shifted(events, base_us)},
+      {"dvs", packets(events, 3, [&](const std::vector<Event>& p) { return dvs_event_array_cdr(shifted(p, base_us), kSensor); }),
+       shifted(events, base_us), "dvs_msgs/msg/EventArray"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string bag = write_ros2_bag(d.path(c.name), {{"/events", c.type, c.messages}});
+    auto source = read::open_source(bag, {});
+    EXPECT_EQ(source->info().sensor, kSensor);
+    EXPECT_NE(source->info().format.find(c.type), std::string::npos) << source->info().format;
+    EXPECT_EQ(read_all(bag), c.expected);
+    // The storage file alone reads the same.
+    EXPECT_EQ(read_all(bag + "/" + c.name + "_0.db3"), c.expected);
+  }
+}
+
+TEST(Ros2Bag, LibcaerTimestampsRollOverInsideAPacket) {
+  TempDir d;
+  std::vector<Event> events = {{(TimeUs{1} << 31) - 3, 5, 6, 1}, {(TimeUs{1} << 31) - 1, 7, 8, 0}};
+  Bytes words = libcaer_events(events);
+  const Bytes after = libcaer_events({{2, 9, 10, 1}});  // the 31-bit counter wrapped
+  words.insert(words.end(), after.begin(), after.end());
+  const std::string bag = write_ros2_bag(d.path("rollover"), {{"/events", kPacket, {event_packet_cdr("libcaer", 0, kSensor, words)}}});
+  events.push_back({(TimeUs{1} << 31) + 2, 9, 10, 1});
+  EXPECT_EQ(read_all(bag), events);
+}
+
+TEST(Ros2Bag, TriggerPacketsAreCountedAndSkipped) {
+  TempDir d;
+  const std::vector<Event> events = sample_events(50, kSensor);
+  const std::string bag = write_ros2_bag(
+      d.path("trig"), {{"/triggers", kPacket, {event_packet_cdr("trigger", 0, kSensor, Bytes(8 * 4, 0))}},
+                       {"/events", kPacket, {event_packet_cdr("evt3", 0, kSensor, evt3_words(events))}}});
+  // The first event topic is the trigger topic: it has no events, and says so.
+  auto source = read::open_source(bag, {});
+  std::vector<Event> out(100);
+  EXPECT_EQ(source->read(out), 0u);
+  ASSERT_EQ(source->skipped().size(), 1u);
+  EXPECT_EQ(source->skipped()[0], std::make_pair(std::string("trigger events"), std::int64_t{4}));
+  EXPECT_EQ(read_all(bag + "?topic=/events"), events);
+}
+
+TEST(Ros2Bag, TheFirstEventTopicIsTheDefaultAndQueryChoosesAnother) {
+  TempDir d;
+  const std::vector<Event> a = sample_events(40, kSensor, 1), b = sample_events(60, kSensor, 2);
+  const std::string bag = write_ros2_bag(d.path("two"), {{"/imu", "sensor_msgs/msg/Imu", {Bytes{0, 1, 0, 0}}},
+                                                         {"/left/events", kPacket, {event_packet_cdr("evt3", 0, kSensor, evt3_words(a))}},
+                                                         {"/right/events", kPacket, {event_packet_cdr("evt3", 0, kSensor, evt3_words(b))}}});
+  EXPECT_EQ(read_all(bag), a);
+  EXPECT_EQ(read_all(bag + "?topic=/right/events"), b);
+  const std::string missing = read_error(bag + "?topic=/nope");
+  EXPECT_NE(missing.find("no topic '/nope'"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("/left/events (event_camera_msgs/msg/EventPacket)"), std::string::npos) << missing;
+  const std::string not_events = read_error(bag + "?topic=/imu");
+  EXPECT_NE(not_events.find("sensor_msgs/msg/Imu, not an event type"), std::string::npos) << not_events;
+}
+
+// One line, naming the storage file (or folder) and, inside a message, the message and byte.
+void expect_bag_error(const std::string& name, const std::string& prefix, const std::string& what) {
+  const std::string message = read_error(name);
+  SCOPED_TRACE(message);
+  EXPECT_EQ(message.rfind(prefix, 0), 0u) << "expected '" << prefix << "...'";
+  EXPECT_NE(message.find(what), std::string::npos);
+  EXPECT_EQ(message.find('\n'), std::string::npos);
+}
+
+TEST(Ros2Bag, BadBagsGetOneLineThatSaysWhereAndWhat) {
+  TempDir d;
+  const std::vector<Event> events = sample_events(3000, kSensor);
+  {
+    const std::string bag = write_ros2_bag(d.path("enc"), {{"/e", kPacket, {event_packet_cdr("evt5", 0, kSensor, Bytes(16, 0))}}});
+    expect_bag_error(bag, bag + "/enc_0.db3: message 1, byte ", "encoding 'evt5' is not supported");
+  }
+  {
+    Bytes cut = event_packet_cdr("libcaer", 0, kSensor, libcaer_events(events));
+    cut.resize(cut.size() - 5);
+    const std::string bag = write_ros2_bag(d.path("cut"), {{"/e", kPacket, {cut}}});
+    expect_bag_error(bag, bag + "/cut_0.db3: message 1, byte 6", "runs past the end of the message");
+  }
+  {
+    const std::string bag = write_ros2_bag(d.path("odd"), {{"/e", kPacket, {event_packet_cdr("libcaer", 0, kSensor, Bytes(12, 0))}}});
+    expect_bag_error(bag, bag + "/odd_0.db3: message 1, byte ", "not whole 8-byte events");
+  }
+  {
+    std::filesystem::create_directories(d.path("nometa"));
+    write_db3(d.path("nometa/x_0.db3"), {{"/e", kPacket, {event_packet_cdr("evt3", 0, kSensor, evt3_words(events))}}});
+    expect_bag_error(d.path("nometa"), d.path("nometa") + ": ", "without metadata.yaml");
+  }
+  {
+    // A storage file cut short: sqlite finds its pages missing.
+    std::vector<Bytes> many = packets(events, 30, [](const std::vector<Event>& p) { return event_packet_cdr("libcaer", 0, kSensor, libcaer_events(p)); });
+    const std::string bag = write_ros2_bag(d.path("trunc"), {{"/e", kPacket, many}});
+    const std::string db3 = bag + "/trunc_0.db3";
+    std::filesystem::resize_file(db3, std::filesystem::file_size(db3) / 2);
+    expect_bag_error(db3, db3 + ": ", "not a readable sqlite3 bag file");
+  }
+  {
+    const std::string bag = write_ros2_bag(d.path("lost"), {{"/e", kPacket, {}}});
+    std::filesystem::remove(bag + "/lost_0.db3");
+    expect_bag_error(bag, bag + "/lost_0.db3: ", "no such file");
+  }
+  {
+    const std::string bag = write_ros2_bag(d.path("empty"), {{"/e", kPacket, {}}});
+    expect_bag_error(bag, bag + ": ", "has no messages");
+  }
+}
+
+TEST(Ros2Bag, TheSharedRecordingMatchesItsReadme) {
+  const std::string dir = shared_data_dir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/data/real is absent: the shared ROS 2 bag is not checked";
+  const std::string bag = dir + "/ros2/libcaer_rollover";
+  auto source = read::open_source(bag, {});
+  EXPECT_EQ(source->info().sensor, (SensorSize{640, 480}));
+  EXPECT_NE(source->info().format.find("libcaer"), std::string::npos);
+  std::int64_t n = 0, sum_x = 0, sum_y = 0, on = 0;
+  TimeUs last = 0;
+  bool ordered = true;
+  std::vector<Event> batch(4096);
+  while (size_t got = source->read(batch)) {
+    for (size_t i = 0; i < got; ++i) {
+      ++n, sum_x += batch[i].x, sum_y += batch[i].y, on += batch[i].p;
+      ordered = ordered && batch[i].t >= last;
+      last = batch[i].t;
+    }
+  }
+  // README.md of ../shared/data/real: 334,331 events, sums of x and y, ON count.
+  EXPECT_EQ(n, 334331);
+  EXPECT_EQ(sum_x, 111651612);
+  EXPECT_EQ(sum_y, 82801007);
+  EXPECT_EQ(on, 181908);
+  EXPECT_TRUE(ordered) << "the roll-over must not send time backwards";
+}
+
+}  // namespace
+}  // namespace evms::test
