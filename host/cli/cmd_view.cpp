@@ -194,6 +194,7 @@ void add_view_command(CLI::App& app, const char* name, const char* help, bool li
   cmd->add_option("--hold-s", o->hold_s, "keep the last frame on screen this long")->default_val(0);
   cmd->add_option("--window-at", o->window_at, "window position X Y on the screen")->expected(2);
   add_source_options(*cmd, o->source_options);
+  add_replay_options(*cmd, o->source_options);
   add_method_options(*cmd, o->method);
   cmd->callback([o, live] {
     ViewOptions run = *o;

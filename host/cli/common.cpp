@@ -16,6 +16,9 @@ void add_source_options(CLI::App& cmd, read::SourceOptions& o) {
                  "events out of time order by up to this much are re-sorted; more is an error")
       ->default_val(o.reorder_us)
       ->check(CLI::Range(0, 1000000000));
+}
+
+void add_replay_options(CLI::App& cmd, read::SourceOptions& o) {
   cmd.add_flag("--realtime", o.realtime, "replay a recorded source at the pace of its timestamps; events the backend has no room for are dropped and counted");
   cmd.add_option("--speed", o.speed, "with --realtime: this many times real time (the paper's speed factor)")
       ->default_val(o.speed)

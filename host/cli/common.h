@@ -13,6 +13,8 @@ namespace evms::cli {
 
 // --width, --height, --reorder-us.
 void add_source_options(CLI::App& cmd, read::SourceOptions& options);
+// --realtime, --speed, --live-buffer: for the subcommands that feed a backend as events come.
+void add_replay_options(CLI::App& cmd, read::SourceOptions& options);
 // --preset and one option per row of the parameter table (golden/params.cpp). Values are
 // checked as they are parsed; Method::resolve applies them over the preset.
 void add_method_options(CLI::App& cmd, Method& method);

@@ -1,16 +1,69 @@
 // evms: event-based mean-shift clustering and tracking, from files, cameras or generated
 // scenes, on the golden model, the fixed-point core, the simulated RTL or an FPGA board.
 #include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
 
+#include "evms_version.h"
+#include "hls/core/configs.h"
 #include "host/cli/commands.h"
 #include "host/cli/common.h"
 #include "host/read/input_error.h"
+
+namespace {
+
+// The number of single-character edits that turn a into b.
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+template <class S>
+std::string shape_text(const char* name) {
+  return std::string(name) + " " + std::to_string(S::kMaxWidth) + "x" + std::to_string(S::kMaxHeight) + ", packets of " +
+         std::to_string(S::kPacketMax) + ", " + std::to_string(S::kClustersMax) + " clusters, " + std::to_string(S::kTracksMax) +
+         " tracks, " + std::to_string(S::kLanes) + " lane" + (S::kLanes > 1 ? "s" : "");
+}
+
+void print_version() {
+  std::printf("evms %s\ncore builds:\n  %s\n  %s\n  %s\n", EVMS_VERSION, shape_text<evms::hls::HostShape>("host ").c_str(),
+              shape_text<evms::hls::ArtyShape>("arty ").c_str(), shape_text<evms::hls::Ice40Shape>("ice40").c_str());
+}
+
+// "cannot create directories: No such file or directory [/x]" -> "/x: cannot create directories: ..."
+std::string describe(const std::filesystem::filesystem_error& e) {
+  std::string what = e.code().message();
+  std::string text = e.what();
+  const std::string prefix = "filesystem error: ";
+  if (text.rfind(prefix, 0) == 0) text = text.substr(prefix.size());
+  if (const size_t bracket = text.find(" ["); bracket != std::string::npos) text = text.substr(0, bracket);
+  return e.path1().empty() ? text : e.path1().string() + ": " + text;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"evms: real-time clustering and multi-target tracking of event-camera output "
                "(Barranco, Fermuller & Ros, IROS 2018)"};
   evms::cli::set_invocation(argc, argv);
   app.require_subcommand(1);
+  // Handled before parsing, which would first ask for a subcommand; listed for --help.
+  app.add_flag_callback("--version", [] {}, "print the version (git describe) and the core builds, and exit");
+  if (argc > 1 && std::string(argv[1]) == "--version") {
+    print_version();
+    return 0;
+  }
   evms::cli::register_run(app);
   evms::cli::register_info(app);
   evms::cli::register_gen(app);
@@ -22,10 +75,31 @@ int main(int argc, char** argv) {
   evms::cli::register_cycles(app);
   evms::cli::register_vboard(app);
   evms::cli::register_view(app);
+  // A first word that is no subcommand is named, with the nearest one.
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string given = argv[1];
+    std::string nearest;
+    size_t best = 3;  // suggest only what a typo or two away
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+      known = known || sub->get_name() == given;
+      const size_t d = edit_distance(given, sub->get_name());
+      if (d < best) best = d, nearest = sub->get_name();
+    }
+    if (!known) {
+      std::fprintf(stderr, "evms: unknown command '%s'%s (evms --help lists them)\n", evms::read::printable(given).c_str(),
+                   nearest.empty() ? "" : ("; did you mean '" + nearest + "'?").c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "evms: %s\n", evms::read::printable(describe(e)).c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "evms: %s\n", evms::read::printable(e.what()).c_str());

@@ -1,6 +1,7 @@
 // The evms program end to end: exit codes, one-line errors, outputs and memory.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -88,6 +89,34 @@ TEST(Cli, BadParametersAreRejected) {
   const auto b = run_command(evms_binary() + " run gen://rotation?duration-s=0.01 --backend nope");
   EXPECT_EQ(b.exit_code, 1);
   EXPECT_NE(b.err.find("unknown backend 'nope'"), std::string::npos) << b.err;
+}
+
+TEST(Cli, VersionNamesTheCommitAndTheCoreBuilds) {
+  const auto r = run_command(evms_binary() + " --version");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("evms ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.substr(5, r.out.find('\n') - 5), "") << r.out;
+  for (const char* build : {"host ", "arty ", "ice40"}) EXPECT_NE(r.out.find(build), std::string::npos) << r.out;
+}
+
+TEST(Cli, AMistypedCommandIsNamedWithTheNearestOne) {
+  const auto r = run_command(evms_binary() + " runn gen://rotation");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "evms: unknown command 'runn'; did you mean 'run'? (evms --help lists them)\n");
+  const auto far = run_command(evms_binary() + " frobnicate");
+  EXPECT_EQ(far.exit_code, 2);
+  EXPECT_EQ(far.err, "evms: unknown command 'frobnicate' (evms --help lists them)\n");
+}
+
+TEST(Cli, FilesystemErrorsAreOneLineNamingThePath) {
+  TempDir dir;
+  const std::string file = dir.write("plain", std::string("x"));
+  // A folder cannot be made under a plain file.
+  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.01 --out " + file + "/out");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.rfind("evms: " + file + "/out: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find("filesystem error"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
 TEST(Cli, GenIsDeterministicOnDisk) {

@@ -243,9 +243,32 @@ TEST(UdpSource, ReceivesAeUnicastOverLoopbackAndCountsLostDatagrams) {
 }
 
 TEST(UdpSource, BadUrisAreOneLineErrors) {
-  EXPECT_THROW(open_source("udp://127.0.0.1:0?camera=atis", {}), InputError);
-  EXPECT_THROW(open_source("udp://127.0.0.1:0?colour=red", {}), InputError);
+  const std::string local = "udp://127.0.0.1:" + std::to_string(free_udp_port());
+  EXPECT_THROW(open_source(local + "?camera=atis", {}), InputError);
+  EXPECT_THROW(open_source(local + "?colour=red", {}), InputError);
   EXPECT_THROW(open_source("udp://no-such-host.invalid:8991", {}), InputError);
+  // A port no sender can reach is refused, never a listener on a random port.
+  for (const char* port : {":99999", ":70000", ":0", ":", ":http", ":-5"}) {
+    const std::string uri = std::string("udp://0.0.0.0") + port;
+    try {
+      open_source(uri, {});
+      ADD_FAILURE() << uri << " was accepted";
+    } catch (const InputError& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(m.rfind(uri + ": port '", 0), 0u) << m;
+      EXPECT_NE(m.find("is not a number from 1 to 65535"), std::string::npos) << m;
+    }
+  }
+}
+
+TEST(UdpSource, SaysWhereItListens) {
+  const int port = free_udp_port();
+  testing::internal::CaptureStderr();
+  {
+    auto source = open_source("udp://127.0.0.1:" + std::to_string(port) + "?idle-s=0.1", {});
+  }
+  const std::string said = testing::internal::GetCapturedStderr();
+  EXPECT_NE(said.find("listening on 127.0.0.1:" + std::to_string(port) + " (UDP)"), std::string::npos) << said;
 }
 
 TEST(UsbCamera, NoCameraIsAClearErrorNamingTheSource) {

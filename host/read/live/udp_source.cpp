@@ -13,6 +13,8 @@
 
 #include <atomic>
 #include <cerrno>
+#include <charconv>
+#include <cstdio>
 #include <cstring>
 #include <cstdlib>
 
@@ -77,6 +79,13 @@ class UdpSource final : public LiveSource {
     const size_t colon = authority.rfind(':');
     const std::string host = colon == std::string::npos ? authority : authority.substr(0, colon);
     const std::string port = colon == std::string::npos ? "8991" : authority.substr(colon + 1);
+    // getaddrinfo takes "99999" and "0" (any free port) without a word: a listener that no
+    // sender can find.
+    int number = 0;
+    const auto [end, ec] = std::from_chars(port.data(), port.data() + port.size(), number);
+    if (port.empty() || ec != std::errc() || end != port.data() + port.size() || number < 1 || number > 65535) {
+      throw InputError(uri_ + ": port '" + printable(port) + "' is not a number from 1 to 65535");
+    }
     addrinfo hints{};
     hints.ai_family = AF_UNSPEC;
     hints.ai_socktype = SOCK_DGRAM;
@@ -98,6 +107,7 @@ class UdpSource final : public LiveSource {
     }
     freeaddrinfo(res);
     if (fd_ < 0) throw InputError(uri_ + ": cannot listen on " + authority + " (" + why + ")");
+    std::fprintf(stderr, "listening on %s:%s (UDP)\n", host.empty() ? "0.0.0.0" : host.c_str(), port.c_str());
   }
 
   void produce(std::stop_token stop) override {
