@@ -10,6 +10,7 @@
 #include "host/cli/commands.h"
 #include "host/eval/latency_histogram.h"
 #include "host/read/live/live_source.h"
+#include "host/write/binary_writers.h"
 #include "host/write/event_writers.h"
 
 namespace evms::cli {
@@ -19,6 +20,7 @@ struct RunOptions {
   std::string source = "gen://rotation";
   std::string backend = "golden";
   std::string out;
+  std::string format = "csv";
   std::string device;
   std::string core = "host";
   int baud = 3000000;
@@ -30,18 +32,32 @@ struct RunOptions {
 // Writes the outputs (when asked) and counts what the summary reports.
 class RunSink final : public OutputSink {
  public:
-  RunSink(const std::string& out_dir, SensorSize sensor) {
-    if (!out_dir.empty()) {
-      std::filesystem::create_directories(out_dir);
-      events_.emplace(out_dir + "/events.csv", sensor);
-      tracks_.emplace(out_dir + "/tracks.csv");
+  // `out_dir` "-": CSV rows on standard output, and no tracks file.
+  RunSink(const std::string& out_dir, const std::string& format, SensorSize sensor) {
+    if (out_dir == "-") {
+      if (format != "csv") throw std::invalid_argument("--out - writes CSV only (--format " + format + " needs a folder)");
+      csv_.emplace("-", sensor);
+      return;
     }
+    if (out_dir.empty()) return;
+    std::filesystem::create_directories(out_dir);
+    if (format == "csv") csv_.emplace(out_dir + "/events.csv", sensor), files.push_back(out_dir + "/events.csv");
+    if (format == "npy") npy_.emplace(out_dir + "/events.npy"), files.push_back(out_dir + "/events.npy");
+    if (format == "evt3") {
+      evt3_.emplace(out_dir + "/events.raw", out_dir + "/labels.csv", sensor);
+      files.push_back(out_dir + "/events.raw");
+      files.push_back(out_dir + "/labels.csv");
+    }
+    tracks_.emplace(out_dir + "/tracks.csv");
+    files.push_back(out_dir + "/tracks.csv");
   }
   void on_event(const LabelledEvent& e) override {
     latency.labelled();
     ++events;
     if (e.label == kNoiseLabel) ++noise;
-    if (events_) events_->write(e);
+    if (csv_) csv_->write(e);
+    if (npy_) npy_->write(e);
+    if (evt3_) evt3_->write(e);
   }
   void on_track(const TrackUpdate& u) override {
     ++track_rows;
@@ -54,16 +70,21 @@ class RunSink final : public OutputSink {
   }
   void on_packet(const PacketSummary&) override {}
   void close() {
-    if (events_) events_->close();
+    if (csv_) csv_->close();
+    if (npy_) npy_->close();
+    if (evt3_) evt3_->close();
     if (tracks_) tracks_->close();
   }
 
+  std::vector<std::string> files;  // written, for the summary
   std::int64_t events = 0, noise = 0, track_rows = 0, confirmed = 0;
   eval::ArrivalLatency latency;  // live sources: from arrival to label
 
  private:
   std::vector<bool> seen_;  // track IDs with at least one confirmed update
-  std::optional<write::LabelledEventsCsv> events_;
+  std::optional<write::LabelledEventsCsv> csv_;
+  std::optional<write::LabelledEventsNpy> npy_;
+  std::optional<write::Evt3Events> evt3_;
   std::optional<write::TracksCsv> tracks_;
 };
 
@@ -72,7 +93,7 @@ void run(const RunOptions& o) {
   const read::SourceInfo& info = source->info();
   const Params params = o.method.resolve(info.sensor);
   auto backend = backend::make_backend(o.backend, {params, info.sensor, o.core, o.device, o.baud});
-  RunSink sink(o.out, info.sensor);
+  RunSink sink(o.out, o.format, info.sensor);
   Progress progress(!o.quiet);
 
   // Ctrl-C ends a live source as if its input had ended, so that the outputs are complete.
@@ -102,27 +123,33 @@ void run(const RunOptions& o) {
     throw std::logic_error("backend '" + o.backend + "' returned " + grouped(sink.events) + " labelled events for " +
                            grouped(s.events_in) + " inputs");
   }
+  // With the rows on standard output, the summary goes to standard error.
+  std::FILE* summary = o.out == "-" ? stderr : stdout;
   const double span_s = static_cast<double>(t_last - t_first) * 1e-6;
-  std::printf("source      %s (%s, %s)\n", info.name.c_str(), info.format.c_str(), sensor_text(info).c_str());
-  std::printf("backend     %s\n", o.backend.c_str());
-  std::printf("events in   %s over %.3f s of sensor time (%s labelled noise)\n", grouped(s.events_in).c_str(), span_s,
+  std::fprintf(summary, "source      %s (%s, %s)\n", info.name.c_str(), info.format.c_str(), sensor_text(info).c_str());
+  std::fprintf(summary, "backend     %s\n", o.backend.c_str());
+  std::fprintf(summary, "events in   %s over %.3f s of sensor time (%s labelled noise)\n", grouped(s.events_in).c_str(), span_s,
               grouped(sink.noise).c_str());
-  std::printf("throughput  %sevents/s (%.2f s wall clock, reading included)\n", si(s.events_in / std::max(wall, 1e-9)).c_str(), wall);
-  std::printf("packets     %s, %.1f mean-shift iterations each\n", grouped(s.packets).c_str(),
+  std::fprintf(summary, "throughput  %sevents/s (%.2f s wall clock, reading included)\n", si(s.events_in / std::max(wall, 1e-9)).c_str(), wall);
+  std::fprintf(summary, "packets     %s, %.1f mean-shift iterations each\n", grouped(s.packets).c_str(),
               s.packets ? static_cast<double>(s.iterations) / s.packets : 0.0);
-  std::printf("clusters    %.2f per packet on average\n", s.packets ? static_cast<double>(s.clusters) / s.packets : 0.0);
-  std::printf("tracks      %s started, %s confirmed, %s track updates\n", grouped(s.tracks_started).c_str(),
+  std::fprintf(summary, "clusters    %.2f per packet on average\n", s.packets ? static_cast<double>(s.clusters) / s.packets : 0.0);
+  std::fprintf(summary, "tracks      %s started, %s confirmed, %s track updates\n", grouped(s.tracks_started).c_str(),
               grouped(sink.confirmed).c_str(), grouped(sink.track_rows).c_str());
-  if (s.unassigned_clusters) std::printf("            %s clusters found no free track slot (labelled noise)\n", grouped(s.unassigned_clusters).c_str());
+  if (s.unassigned_clusters) std::fprintf(summary, "            %s clusters found no free track slot (labelled noise)\n", grouped(s.unassigned_clusters).c_str());
   if (live) {
-    std::printf("live        %s events dropped while the backend was behind", grouped(source->dropped()).c_str());
-    for (const auto& [kind, count] : source->skipped()) std::printf("; %s %s", grouped(count).c_str(), kind.c_str());
-    std::printf("\n");
+    std::fprintf(summary, "live        %s events dropped while the backend was behind", grouped(source->dropped()).c_str());
+    for (const auto& [kind, count] : source->skipped()) std::fprintf(summary, "; %s %s", grouped(count).c_str(), kind.c_str());
+    std::fprintf(summary, "\n");
     const eval::LatencyHistogram& l = sink.latency.histogram();
-    std::printf("latency     arrival to label: p50 %.0f us, p99 %.0f us, max %.0f us over %s events\n", l.quantile_us(0.5),
+    std::fprintf(summary, "latency     arrival to label: p50 %.0f us, p99 %.0f us, max %.0f us over %s events\n", l.quantile_us(0.5),
                 l.quantile_us(0.99), static_cast<double>(l.max_ns()) * 1e-3, grouped(l.count()).c_str());
   }
-  if (!o.out.empty()) std::printf("outputs     %s/events.csv, %s/tracks.csv\n", o.out.c_str(), o.out.c_str());
+  if (!sink.files.empty()) {
+    std::string listed;
+    for (const std::string& f : sink.files) listed += (listed.empty() ? "" : ", ") + f;
+    std::fprintf(summary, "outputs     %s\n", listed.c_str());
+  }
 }
 
 }  // namespace
@@ -134,7 +161,11 @@ void register_run(CLI::App& app) {
   std::string names;
   for (const auto& b : backend::backends()) names += std::string(names.empty() ? "" : ", ") + b.name;
   cmd->add_option("--backend", o->backend, "implementation to run: " + names)->default_val(o->backend);
-  cmd->add_option("--out", o->out, "directory for events.csv and tracks.csv (not written when absent)");
+  cmd->add_option("--out", o->out, "directory for the labelled events and tracks.csv (not written when absent); - writes the CSV rows to standard output and the summary to standard error");
+  cmd->add_option("--format", o->format, "labelled events as csv (events.csv), npy (events.npy, a NumPy structured array) or evt3 "
+                                         "(events.raw, EVT 3.0, and labels.csv, one label per event)")
+      ->default_val(o->format)
+      ->check(CLI::IsMember({"csv", "npy", "evt3"}));
   cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host (1280x720), arty or ice40 (hls/core/shape.h)")
       ->default_val(o->core);
   cmd->add_option("--device", o->device, "serial device of the board backend (or the path evms vboard prints)");

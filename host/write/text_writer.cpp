@@ -6,8 +6,8 @@
 
 namespace evms::write {
 
-TextWriter::TextWriter(const std::string& path) : path_(path) {
-  file_ = std::fopen(path.c_str(), "wb");
+TextWriter::TextWriter(const std::string& path) : path_(path == "-" ? "standard output" : path) {
+  file_ = path == "-" ? stdout : std::fopen(path.c_str(), "wb");
   if (!file_) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
   buffer_.reserve(kFlushAt + 4096);
 }
@@ -15,7 +15,7 @@ TextWriter::TextWriter(const std::string& path) : path_(path) {
 TextWriter::~TextWriter() {
   if (file_) {
     std::fwrite(buffer_.data(), 1, buffer_.size(), file_);
-    std::fclose(file_);
+    if (file_ != stdout) std::fclose(file_);
   }
 }
 
@@ -29,7 +29,7 @@ void TextWriter::flush() {
 void TextWriter::close() {
   if (!file_) return;
   flush();
-  const bool ok = std::fclose(file_) == 0;
+  const bool ok = file_ == stdout ? std::fflush(file_) == 0 : std::fclose(file_) == 0;
   file_ = nullptr;
   if (!ok) throw std::runtime_error(path_ + ": write failed: " + std::strerror(errno));
 }

@@ -1,5 +1,5 @@
-// Buffered text output with exact integer and fixed-decimal formatting (std::to_chars), for
-// the CSV and events.txt writers. A failed write throws with the file's name.
+// Buffered output with exact integer and fixed-decimal formatting (std::to_chars), for the CSV,
+// events.txt, npy and EVT 3.0 writers. A failed write throws with the file's name.
 #pragma once
 
 #include <charconv>
@@ -13,6 +13,7 @@ namespace evms::write {
 
 class TextWriter {
  public:
+  // "-" is standard output.
   explicit TextWriter(const std::string& path);
   ~TextWriter();
   TextWriter(const TextWriter&) = delete;
@@ -38,6 +39,7 @@ class TextWriter {
     auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, decimals);
     return text({b, static_cast<size_t>(r.ptr - b)});
   }
+  TextWriter& bytes(const void* data, size_t n) { return text({static_cast<const char*>(data), n}); }
   // Closes the file; throws if anything failed.
   void close();
 

@@ -119,6 +119,102 @@ TEST(Cli, FilesystemErrorsAreOneLineNamingThePath) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
+// The rows of an events.csv without its two header lines, each split at the last comma:
+// "t,x,y,p" and the label.
+std::vector<std::pair<std::string, std::string>> csv_rows(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::getline(in, line);
+  std::vector<std::pair<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    const size_t comma = line.rfind(',');
+    rows.emplace_back(line.substr(0, comma), line.substr(comma + 1));
+  }
+  return rows;
+}
+
+TEST(Cli, NpyOutputHoldsTheSameRowsAsCsv) {
+  TempDir dir;
+  const std::string scene = " run 'gen://family/crossing?seed=3&duration-s=0.1' --quiet";
+  ASSERT_EQ(run_command(evms_binary() + scene + " --out " + dir.path("csv")).exit_code, 0);
+  const auto r = run_command(evms_binary() + scene + " --format npy --out " + dir.path("npy"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = csv_rows(dir.path("csv/events.csv"));
+  const std::string npy = read_file(dir.path("npy/events.npy"));
+  // NPY 1.0: magic, version, a little-endian header length, the header dict, then the data.
+  ASSERT_GT(npy.size(), 10u);
+  ASSERT_EQ(npy.substr(0, 8), std::string("\x93NUMPY\x01\x00", 8));
+  const size_t header = 10 + static_cast<unsigned char>(npy[8]) + 256 * static_cast<unsigned char>(npy[9]);
+  EXPECT_EQ(header % 64, 0u);
+  const std::string dict = npy.substr(10, header - 10);
+  EXPECT_NE(dict.find("'descr': [('t', '<i8'), ('x', '<u2'), ('y', '<u2'), ('p', 'u1'), ('label', '<i4')]"), std::string::npos) << dict;
+  EXPECT_NE(dict.find("'shape': (" + std::to_string(rows.size()) + ",)"), std::string::npos) << dict;
+  ASSERT_EQ(npy.size(), header + 17 * rows.size());
+  const auto le = [&](size_t at, int bytes) {
+    std::int64_t v = 0;
+    for (int i = 0; i < bytes; ++i) v |= static_cast<std::int64_t>(static_cast<unsigned char>(npy[at + static_cast<size_t>(i)])) << (8 * i);
+    return bytes == 4 ? static_cast<std::int64_t>(static_cast<std::int32_t>(v)) : v;
+  };
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const size_t at = header + 17 * i;
+    const std::string event = std::to_string(le(at, 8)) + "," + std::to_string(le(at + 8, 2)) + "," + std::to_string(le(at + 10, 2)) +
+                              "," + std::to_string(le(at + 12, 1));
+    ASSERT_EQ(event, rows[i].first) << "row " << i;
+    ASSERT_EQ(std::to_string(le(at + 13, 4)), rows[i].second) << "row " << i;
+  }
+  // numpy itself, where it is installed.
+  const auto numpy = run_command("python3 -c \"import numpy; a = numpy.load('" + dir.path("npy/events.npy") +
+                                 "'); print(len(a), int(a['label'].max()), int(a['t'][-1]))\"");
+  if (numpy.exit_code == 0) {
+    int max_label = -1;
+    for (const auto& row : rows) max_label = std::max(max_label, std::stoi(row.second));
+    EXPECT_EQ(numpy.out, std::to_string(rows.size()) + " " + std::to_string(max_label) + " " +
+                             rows.back().first.substr(0, rows.back().first.find(',')) + "\n");
+  }
+}
+
+TEST(Cli, Evt3OutputReadsBackToTheSameEventsWithTheirLabelsBeside) {
+  TempDir dir;
+  // Timestamps far above EVT 3.0's 24 bits, and a gap longer than a 2^24 us epoch.
+  std::vector<Event> events = sample_events(2000, {240, 180});
+  for (size_t i = 0; i < events.size(); ++i) events[i].t += 1605537493718345 + (i >= 1000 ? 40000000 : 0);
+  const std::string in = dir.write("in.csv", csv(events));
+  ASSERT_EQ(run_command(evms_binary() + " run " + in + " --quiet --out " + dir.path("csv")).exit_code, 0);
+  const auto r = run_command(evms_binary() + " run " + in + " --quiet --format evt3 --out " + dir.path("evt3"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto again = run_command(evms_binary() + " run " + dir.path("evt3/events.raw") + " --quiet --out " + dir.path("again"));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  const auto original = csv_rows(dir.path("csv/events.csv")), decoded = csv_rows(dir.path("again/events.csv"));
+  ASSERT_EQ(original.size(), events.size());
+  ASSERT_EQ(decoded.size(), original.size());
+  std::ifstream labels(dir.path("evt3/labels.csv"));
+  std::string line;
+  std::getline(labels, line);
+  EXPECT_EQ(line.rfind("# one label per event of ", 0), 0u);
+  std::getline(labels, line);
+  EXPECT_EQ(line, "label");
+  for (size_t i = 0; i < original.size(); ++i) {
+    ASSERT_EQ(decoded[i].first, original[i].first) << "event " << i;
+    ASSERT_TRUE(std::getline(labels, line));
+    ASSERT_EQ(line, original[i].second) << "label " << i;
+  }
+  EXPECT_FALSE(std::getline(labels, line));
+}
+
+TEST(Cli, OutDashWritesTheRowsToStandardOutput) {
+  TempDir dir;
+  const std::string scene = " run gen://rotation?duration-s=0.05 --quiet";
+  ASSERT_EQ(run_command(evms_binary() + scene + " --out " + dir.path("file")).exit_code, 0);
+  const auto r = run_command(evms_binary() + scene + " --out -");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, read_file(dir.path("file/events.csv")));
+  EXPECT_NE(r.err.find("events in"), std::string::npos) << r.err;
+  const auto npy = run_command(evms_binary() + scene + " --out - --format npy");
+  EXPECT_EQ(npy.exit_code, 1);
+  EXPECT_EQ(npy.err, "evms: --out - writes CSV only (--format npy needs a folder)\n");
+}
+
 TEST(Cli, GenIsDeterministicOnDisk) {
   TempDir dir;
   for (const char* d : {"a", "b"}) {

@@ -18,6 +18,9 @@ namespace evms::read {
 
 class Evt3Decoder {
  public:
+  // `time_base_us`: added to every time (a multiple of 2^24 us that the words cannot hold).
+  explicit Evt3Decoder(TimeUs time_base_us = 0) : epoch_(time_base_us) {}
+
   // Decodes one word. `sink` takes event(t_us, x, y, p) and skipped(const char* kind). Returns
   // false for a reserved word type, which the caller reports with its position.
   template <class Sink>

@@ -27,6 +27,7 @@ struct PropheseeHeader {
   std::optional<SensorSize> size;
   std::string plugin;
   bool dat_markers = false;
+  TimeUs time_base_us = 0;  // "% evms_time_base_us N", which evms's EVT 3.0 writer adds
 };
 
 std::optional<int> key_int(std::string_view text, std::string_view key) {
@@ -63,6 +64,13 @@ PropheseeHeader read_header(ByteReader& in) {
     if (body.rfind("Width ", 0) == 0) width = key_int(body, "Width ");
     if (body.rfind("Height ", 0) == 0) height = key_int(body, "Height ");
     if (body.rfind("plugin_name ", 0) == 0) h.plugin = std::string(body.substr(12));
+    if (body.rfind("evms_time_base_us ", 0) == 0) {
+      const std::string_view v = body.substr(18);
+      const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), h.time_base_us);
+      if (ec != std::errc() || end != v.data() + v.size() || h.time_base_us < 0 || h.time_base_us % (TimeUs{1} << 24) != 0) {
+        fail(in.path(), InputPosition::line(in.line()), "bad header: evms_time_base_us must be a multiple of 2^24 us");
+      }
+    }
   }
   if (width && height && *width > 0 && *height > 0) h.size = SensorSize{*width, *height};
   if (h.kind == PropheseeHeader::Kind::kUnknown && h.dat_markers) h.kind = PropheseeHeader::Kind::kDat;
@@ -130,7 +138,8 @@ class Evt2Source final : public FileEventSource {
 
 class Evt3Source final : public FileEventSource {
  public:
-  Evt3Source(ByteReader in, const SourceOptions& o, const PropheseeHeader& h) : FileEventSource(std::move(in), "EVT 3.0 RAW", o) {
+  Evt3Source(ByteReader in, const SourceOptions& o, const PropheseeHeader& h)
+      : FileEventSource(std::move(in), "EVT 3.0 RAW", o), decoder_(h.time_base_us) {
     set_sensor(h.size ? h.size : size_of_plugin(h.plugin), std::nullopt, "");
     if (!h.size && size_of_plugin(h.plugin) && options_.width == 0) info_.sensor_origin = "plugin name in header";
   }
