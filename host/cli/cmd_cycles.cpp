@@ -23,7 +23,6 @@ namespace {
 struct CyclesOptions {
   std::string source;
   std::string build = "host";
-  std::int64_t limit = 1000000;
   bool rtl = false;
   bool table = false;
   std::vector<int> lanes = {1, 2, 4, 8, 16, 32, 64};
@@ -35,11 +34,7 @@ std::vector<Event> read_events(const CyclesOptions& o, SensorSize& sensor) {
   auto source = read::open_source(o.source, o.source_options);
   sensor = source->info().sensor;
   std::vector<Event> events, batch(8192);
-  while (static_cast<std::int64_t>(events.size()) < o.limit) {
-    const size_t n = source->read(batch);
-    if (n == 0) break;
-    for (size_t i = 0; i < n && static_cast<std::int64_t>(events.size()) < o.limit; ++i) events.push_back(batch[i]);
-  }
+  while (const size_t n = source->read(batch)) events.insert(events.end(), batch.begin(), batch.begin() + static_cast<long>(n));
   return events;
 }
 
@@ -151,10 +146,10 @@ void register_cycles(CLI::App& app) {
   auto* cmd = app.add_subcommand("cycles", "Clocks per event of a core build, stage by stage: the cycle model, and the RTL with --rtl");
   cmd->add_option("source", o->source, "Event file or gen:// scene")->required();
   cmd->add_option("--build", o->build, "Core build: host, arty or ice40")->check(CLI::IsMember({"host", "arty", "ice40"}));
-  cmd->add_option("--limit", o->limit, "Events to read from the source");
   cmd->add_flag("--rtl", o->rtl, "Also simulate the Verilated RTL and print its measured cycles");
   cmd->add_flag("--table", o->table, "Print cycles per event against packet size, iteration cap and lanes (markdown)");
   cmd->add_option("--lanes", o->lanes, "Lane counts for the model's comparison")->delimiter(',');
+  o->source_options.window.limit = 1000000;  // the cycle model holds every event it measures
   add_source_options(*cmd, o->source_options);
   add_method_options(*cmd, o->method);
   cmd->callback([o] {

@@ -137,6 +137,11 @@ void run(const RunOptions& o) {
   std::fprintf(summary, "tracks      %s started, %s confirmed, %s track updates\n", grouped(s.tracks_started).c_str(),
               grouped(sink.confirmed).c_str(), grouped(sink.track_rows).c_str());
   if (s.unassigned_clusters) std::fprintf(summary, "            %s clusters found no free track slot (labelled noise)\n", grouped(s.unassigned_clusters).c_str());
+  if (!live && !source->skipped().empty()) {
+    std::fprintf(summary, "skipped    ");
+    for (const auto& [kind, count] : source->skipped()) std::fprintf(summary, " %s %s;", grouped(count).c_str(), kind.c_str());
+    std::fprintf(summary, "\n");
+  }
   if (live) {
     std::fprintf(summary, "live        %s events dropped while the backend was behind", grouped(source->dropped()).c_str());
     for (const auto& [kind, count] : source->skipped()) std::fprintf(summary, "; %s %s", grouped(count).c_str(), kind.c_str());

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "host/read/source_window.h"
+
 namespace evms::cli {
 
 void add_source_options(CLI::App& cmd, read::SourceOptions& o) {
@@ -16,6 +18,18 @@ void add_source_options(CLI::App& cmd, read::SourceOptions& o) {
                  "events out of time order by up to this much are re-sorted; more is an error")
       ->default_val(o.reorder_us)
       ->check(CLI::Range(0, 1000000000));
+  read::SourceWindow& w = o.window;
+  cmd.add_option("--start-us", w.start_us, "take events from the first event's time plus this on")->check(CLI::Range(TimeUs{0}, read::kMaxTimestampUs));
+  cmd.add_option("--duration-us", w.duration_us, "take this much time from the start (0: to the end)")
+      ->check(CLI::Range(TimeUs{0}, read::kMaxTimestampUs));
+  cmd.add_option("--limit", w.limit, "take at most this many events (0: all)")->check(CLI::Range(std::int64_t{0}, std::int64_t{1} << 62));
+  cmd.add_option_function<std::string>("--roi", [&w](const std::string& text) { w.roi = read::parse_roi(text); },
+                                       "X,Y,W,H: only events inside this rectangle, moved to its corner (the sensor becomes WxH)");
+  cmd.add_option("--hot-pixels", w.hot_pixels, "mask the pixels listed in FILE (x,y a line), or 'auto': those firing more than "
+                                                "--hot-factor times the median active pixel and their neighbours' mean (a first pass over the recording)");
+  cmd.add_option("--hot-factor", w.hot_factor, "with --hot-pixels auto: the multiple of the median pixel's event count that is hot")
+      ->default_val(w.hot_factor)
+      ->check(CLI::Range(1.0, 1e9));
 }
 
 void add_replay_options(CLI::App& cmd, read::SourceOptions& o) {

@@ -26,6 +26,21 @@ namespace evms::read {
 // sensors are 1280x720 and 1280x960).
 inline constexpr int kMaxSensorSide = 4096;
 
+struct Roi {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+// What of a source a run takes (source_window.h).
+struct SourceWindow {
+  TimeUs start_us = 0;
+  TimeUs duration_us = 0;
+  std::int64_t limit = 0;
+  std::optional<Roi> roi;
+  std::string hot_pixels;    // a file, "auto" or empty
+  double hot_factor = 20.0;  // auto: times the median active pixel's event count
+  bool active() const { return start_us > 0 || duration_us > 0 || limit > 0 || roi || !hot_pixels.empty(); }
+};
+
 struct SourceOptions {
   int width = 0;              // sensor size for formats without one in their header
   int height = 0;
@@ -33,6 +48,7 @@ struct SourceOptions {
   bool realtime = false;      // replay at the pace of the timestamps (live sources always are)
   double speed = 1.0;         // ... times this factor
   size_t live_buffer_events = 1 << 20;  // a live source's buffer; beyond it events are dropped
+  SourceWindow window;
 };
 
 struct SourceInfo {

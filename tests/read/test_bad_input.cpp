@@ -91,7 +91,7 @@ TEST(BadInput, CoordinatesOutsideTheSensor) {
   expect_error(d.write("t.txt", "0.000001000 1 2 1\n0.000002000 240 5 0\n"), "line 2", "x=240 y=5 is outside the 240x180 sensor");
   expect_error(d.write("c.csv", "t_us,x,y,p\n5,7,200,1\n"), "line 2", "x=7 y=200 is outside the 240x180 sensor");
   // The same CSV is fine on a taller sensor given on the command line.
-  EXPECT_EQ(read_error(d.path("c.csv"), {.width = 240, .height = 260, .reorder_us = 1000}), "");
+  EXPECT_EQ(read_error(d.path("c.csv"), sized(240, 260, 1000)), "");
   auto wide = kEvents;
   wide[10].x = 200;
   const Bytes e3 = evt3(wide, {128, 128});

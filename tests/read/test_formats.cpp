@@ -112,8 +112,8 @@ TEST(Ordering, SmallJitterIsReorderedStably) {
 TEST(Ordering, ReorderingIsBoundedByTheTolerance) {
   TempDir dir;
   const auto path = dir.write("e.csv", "t_us,x,y,p\n100,1,1,1\n5000,2,2,1\n4800,3,3,0\n");
-  EXPECT_EQ(read_error(path, {.width = 0, .height = 0, .reorder_us = 1000}), "");
-  EXPECT_NE(read_error(path, {.width = 0, .height = 0, .reorder_us = 100}), "");
+  EXPECT_EQ(read_error(path, sized(0, 0, 1000)), "");
+  EXPECT_NE(read_error(path, sized(0, 0, 100)), "");
 }
 
 }  // namespace

@@ -7,6 +7,13 @@
 
 namespace evms::test {
 
+// Options with a sensor size and an out-of-order tolerance, the rest at their defaults.
+inline read::SourceOptions sized(int width, int height, TimeUs reorder_us) {
+  read::SourceOptions o;
+  o.width = width, o.height = height, o.reorder_us = reorder_us;
+  return o;
+}
+
 inline std::vector<Event> read_all(const std::string& path, const read::SourceOptions& o = {}) {
   auto source = read::open_source(path, o);
   std::vector<Event> all, batch(1000);
