@@ -23,9 +23,15 @@ std::string parameters_markdown() {
 
 void register_params(CLI::App& app) {
   auto markdown = std::make_shared<bool>(false);
+  auto config = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("params", "list the method's parameters with units and defaults");
   cmd->add_flag("--markdown", *markdown, "print the table as Markdown (docs/parameters.md)");
-  cmd->callback([markdown] {
+  cmd->add_flag("--config", *config, "print a YAML configuration file with every default, for --config");
+  cmd->callback([markdown, config] {
+    if (*config) {
+      std::fputs(config_yaml().c_str(), stdout);
+      return;
+    }
     if (*markdown) {
       std::fputs(parameters_markdown().c_str(), stdout);
       return;

@@ -215,6 +215,40 @@ TEST(Cli, OutDashWritesTheRowsToStandardOutput) {
   EXPECT_EQ(npy.err, "evms: --out - writes CSV only (--format npy needs a folder)\n");
 }
 
+TEST(Cli, ConfigFilesSetParametersAndTheCommandLineWins) {
+  TempDir dir;
+  const std::string scene = " run 'gen://rotation?duration-s=0.15' --quiet --out ";
+  const auto run_to = [&](const std::string& name, const std::string& options) {
+    const auto r = run_command(evms_binary() + scene + dir.path(name) + " " + options);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return read_file(dir.path(name + "/events.csv"));
+  };
+  // Every default, written by params --config, changes nothing.
+  const auto defaults = run_command(evms_binary() + " params --config");
+  ASSERT_EQ(defaults.exit_code, 0);
+  EXPECT_EQ(run_to("all", "--config " + dir.write("all.yaml", defaults.out)), run_to("none", ""));
+  // A preset and a value from the file act as they do on the command line.
+  const std::string paper = dir.write("paper.yaml", std::string("# the authors' settings, wider\npreset: paper\nbandwidth: 0.2\n"));
+  const std::string by_file = run_to("file", "--config " + paper);
+  EXPECT_EQ(by_file, run_to("flags", "--preset paper --bandwidth 0.2"));
+  EXPECT_NE(by_file, run_to("paper", "--preset paper"));
+  // The command line wins, before or after --config.
+  EXPECT_EQ(run_to("after", "--config " + paper + " --bandwidth 0.15"), run_to("plain", "--preset paper --bandwidth 0.15"));
+  EXPECT_EQ(run_to("before", "--preset evms --config " + paper), run_to("evms", "--bandwidth 0.2"));
+  // Bad files: one line, the file, the line, what is wrong.
+  for (const auto& [text, said] : std::vector<std::pair<std::string, std::string>>{
+           {"bandwidth: 0.1\nbandwith: 0.2\n", ": line 2: unknown parameter 'bandwith'"},
+           {"kernel: round\n", ": line 1: --kernel: 'round' is not one of"},
+           {"preset: fast\n", ": line 1: unknown preset 'fast'"},
+           {"a: [1,\n", ": line 2: bad YAML"}}) {
+    const std::string path = dir.write("bad.yaml", text);
+    const auto r = run_command(evms_binary() + scene + dir.path("bad") + " --config " + path);
+    EXPECT_EQ(r.exit_code, 1) << text;
+    EXPECT_EQ(r.err.rfind("evms: " + path + said, 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
 TEST(Cli, GenIsDeterministicOnDisk) {
   TempDir dir;
   for (const char* d : {"a", "b"}) {
