@@ -5,7 +5,9 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <thread>
 
 #include "host/backend/backend.h"
@@ -35,10 +37,25 @@ struct ViewOptions {
   int scale = 2;
 };
 
+// There is no screen to show a window on.
+struct NoDisplay : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 class SdlWindow {
  public:
   SdlWindow(int w, int h, const std::vector<int>& at) {
-    if (SDL_Init(SDL_INIT_VIDEO) != 0) throw std::runtime_error(std::string("cannot open a window: ") + SDL_GetError() + " (use --headless)");
+    if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY") && !std::getenv("SDL_VIDEODRIVER")) {
+      throw NoDisplay("no display to open a window on (DISPLAY and WAYLAND_DISPLAY are not set)");
+    }
+    if (SDL_Init(SDL_INIT_VIDEO) != 0) throw NoDisplay(std::string("no display to open a window on (") + SDL_GetError() + ")");
+    // Without a display SDL falls back to drivers that draw nowhere; only a user who asks for
+    // one by SDL_VIDEODRIVER gets it.
+    const std::string driver = SDL_GetCurrentVideoDriver() ? SDL_GetCurrentVideoDriver() : "";
+    if ((driver == "dummy" || driver == "offscreen" || driver == "evdev") && !std::getenv("SDL_VIDEODRIVER")) {
+      SDL_Quit();
+      throw NoDisplay("no display to open a window on (SDL reached none and fell back to '" + driver + "')");
+    }
     const int x = at.size() == 2 ? at[0] : static_cast<int>(SDL_WINDOWPOS_CENTERED);
     const int y = at.size() == 2 ? at[1] : static_cast<int>(SDL_WINDOWPOS_CENTERED);
     window_ = SDL_CreateWindow("evms", x, y, w, h, SDL_WINDOW_SHOWN);
@@ -90,26 +107,39 @@ void view(const ViewOptions& o) {
   bo.device = o.device;
   show::ViewStyle style;
   style.scale = o.scale;
+  style.track_fade_us = bo.params.coast_us;  // as long as the tracker coasts a track it lost
   show::ViewSession session(std::move(source), o.backend, bo, o.fps, style);
   show::Canvas canvas = session.make_canvas();
 
-  if (o.headless) {
-    if (o.frames.empty()) throw std::invalid_argument("--headless needs --frames DIR");
-    std::filesystem::create_directories(o.frames);
+  if (o.headless && o.frames.empty()) throw std::invalid_argument("--headless needs --frames DIR");
+  if (!o.frames.empty()) std::filesystem::create_directories(o.frames);
+  const auto save_frame = [&] {
+    if (o.frames.empty()) return;
+    char name[32];
+    std::snprintf(name, sizeof name, "/frame_%06lld.png", static_cast<long long>(session.frame()));
+    canvas.save_png(o.frames + name);
+  };
+  const auto write_frames = [&] {
     bool more = true;
     while (more && (o.max_frames == 0 || session.frame() + 1 < o.max_frames)) {
       more = session.advance();
       session.render(canvas);
-      char name[32];
-      std::snprintf(name, sizeof name, "/frame_%06lld.png", static_cast<long long>(session.frame()));
-      canvas.save_png(o.frames + name);
+      save_frame();
     }
     std::printf("%lld frames in %s\n", static_cast<long long>(session.frame() + 1), o.frames.c_str());
     print_summary(session);
-    return;
-  }
+  };
+  if (o.headless) return write_frames();
 
-  SdlWindow window(canvas.width(), canvas.height(), o.window_at);
+  std::optional<SdlWindow> opened;
+  try {
+    opened.emplace(canvas.width(), canvas.height(), o.window_at);
+  } catch (const NoDisplay& e) {
+    if (o.frames.empty()) throw std::runtime_error(std::string(e.what()) + ": use --headless --frames DIR");
+    std::fprintf(stderr, "evms: %s: writing the frames to %s without a window\n", e.what(), o.frames.c_str());
+    return write_frames();
+  }
+  SdlWindow& window = *opened;
   // b cycles through the backends that implement the method being shown (the RTL implements
   // --preset gaussian only, host/backend/core_config.h).
   std::vector<std::string> cycle = {"golden"};
@@ -155,6 +185,7 @@ void view(const ViewOptions& o) {
     more = session.advance();
     session.render(canvas);
     window.show(canvas);
+    save_frame();
     const bool last = !more || (o.max_frames > 0 && session.frame() + 1 >= o.max_frames);
     if (last) {
       std::printf("shown frame %lld\n", static_cast<long long>(session.frame()));
@@ -188,7 +219,8 @@ void add_view_command(CLI::App& app, const char* name, const char* help, bool li
   cmd->add_option("--fps", o->fps, "frames per second of sensor time")->default_val(o->fps)->check(CLI::Range(1.0, 1000.0));
   cmd->add_option("--scale", o->scale, "screen pixels per sensor pixel")->default_val(o->scale)->check(CLI::Range(1, 8));
   cmd->add_flag("--headless", o->headless, "no window: write the frames as PNG files (needs --frames)");
-  cmd->add_option("--frames", o->frames, "directory for the PNG frames of --headless");
+  cmd->add_option("--frames", o->frames, "directory for the frames as PNG files, from the window or --headless (without a display, "
+                                         "they are written headless)");
   cmd->add_flag("--no-realtime", o->no_realtime, "in a window, show a recording as fast as it is computed");
   cmd->add_option("--max-frames", o->max_frames, "stop after this many frames (0: at the end of the source)")->default_val(0);
   cmd->add_option("--hold-s", o->hold_s, "keep the last frame on screen this long")->default_val(0);

@@ -157,6 +157,7 @@ RealSummary run_real(const std::string& path, const EvalOptions& o, const std::s
   show::ViewStyle style;
   style.scale = r.sensor.width >= 640 ? 1 : (r.sensor.width >= 320 ? 2 : 3);
   style.event_window_us = std::max<TimeUs>(20000, static_cast<TimeUs>(r.duration_s * 1e6 * 0.02));
+  style.track_fade_us = style.trail_us;  // the summary keeps every track of its last second
   show::FrameRenderer renderer(r.sensor, style);
   const TimeUs end = events.empty() ? 0 : events.back().t;
   for (size_t i = 0; i < events.size(); ++i) {

@@ -35,7 +35,8 @@ void FrameRenderer::prune(TimeUs now) {
   for (auto it = trails_.begin(); it != trails_.end();) {
     auto& trail = it->second;
     while (!trail.empty() && now - trail.front().t > style_.trail_us) trail.pop_front();
-    it = trail.empty() ? trails_.erase(it) : std::next(it);
+    const bool faded = !trail.empty() && now - trail.back().t >= style_.track_fade_us;
+    it = trail.empty() || faded ? trails_.erase(it) : std::next(it);
   }
 }
 
@@ -51,23 +52,40 @@ void FrameRenderer::render(TimeUs now, Canvas& canvas, const std::vector<std::st
     canvas.fill_rect(e.event.x * s, e.event.y * s, s, s, shade(label_colour(e.label), f));
   }
   for (const auto& [id, trail] : trails_) {
+    // The newest update at or before `now` says how long the track has gone without one.
+    size_t shown = trail.size();
+    while (shown > 0 && trail[shown - 1].t > now) --shown;
+    if (shown == 0) continue;
+    const TrackUpdate& last = trail[shown - 1];
+    const double fade = 1.0 - static_cast<double>(now - last.t) / static_cast<double>(std::max<TimeUs>(1, style_.track_fade_us));
+    if (fade <= 0) continue;
     const Rgb c = label_colour(id);
-    for (size_t i = 1; i < trail.size(); ++i) {
-      if (trail[i].t > now) break;
-      const double a = 0.35 + 0.65 * static_cast<double>(i) / trail.size();
+    for (size_t i = 1; i < shown; ++i) {
+      const double a = (0.35 + 0.65 * static_cast<double>(i) / static_cast<double>(shown)) * fade;
       canvas.line((trail[i - 1].x + 0.5) * s, (trail[i - 1].y + 0.5) * s, (trail[i].x + 0.5) * s, (trail[i].y + 0.5) * s, c, a);
     }
-    const TrackUpdate& last = trail.back();
-    if (last.t > now) continue;
     const double x = (last.x + 0.5) * s, y = (last.y + 0.5) * s;
-    canvas.circle(x, y, 3.0 * s, {255, 255, 255});
-    canvas.line(x, y, x + last.vx * style_.arrow_s * s, y + last.vy * style_.arrow_s * s, {255, 255, 255});
-    canvas.text(static_cast<int>(x) + 4 * s, static_cast<int>(y) - 4 * s, std::to_string(id), c, std::max(1, s / 2));
+    canvas.circle(x, y, 3.0 * s, shade({255, 255, 255}, fade));
+    // The arrow: where the track will be in arrow_s, cut to arrow_max_px and to the frame.
+    double dx = last.vx * style_.arrow_s * s, dy = last.vy * style_.arrow_s * s;
+    double keep = 1.0;
+    const double length = std::hypot(dx, dy), longest = style_.arrow_max_px * s;
+    if (length > longest) keep = longest / length;
+    const auto limit = [&keep](double from, double d, double hi) {
+      if (from + keep * d > hi) keep = std::max(0.0, (hi - from) / d);
+      if (from + keep * d < 0) keep = std::max(0.0, -from / d);
+    };
+    limit(x, dx, canvas.width() - 1.0);
+    limit(y, dy, canvas.height() - 1.0);
+    canvas.line(x, y, x + keep * dx, y + keep * dy, shade({255, 255, 255}, fade));
+    canvas.text(static_cast<int>(x) + 4 * s, static_cast<int>(y) - 4 * s, std::to_string(id), shade(c, fade), std::max(1, s / 2));
   }
-  int line_y = 4;
+  // The overlay grows with the frame, so that it stays readable on a large sensor.
+  const int text_scale = std::max(1, canvas.width() / 640);
+  int line_y = 4 * text_scale;
   for (const std::string& line : overlay) {
-    canvas.text(4, line_y, line, kText, 1);
-    line_y += 10;
+    canvas.text(4 * text_scale, line_y, line, kText, text_scale);
+    line_y += 10 * text_scale;
   }
 }
 

@@ -1,5 +1,7 @@
 // Draws what a user sees: recent events coloured by track ID (shaded by polarity), each
 // track's trail over the last second, its ID and a velocity arrow, and an overlay of figures.
+// A track that stops being updated fades out over track_fade_us (the tracker's coasting time:
+// after it, the tracker has ended the track), and so does its trail.
 // The live viewer, its headless PNG frames and the evaluation pictures share it.
 #pragma once
 
@@ -17,7 +19,9 @@ struct ViewStyle {
   TimeUs event_window_us = 20000;    // events shown: the last 20 ms
   TimeUs trail_us = 1000000;         // trails: the last second
   int scale = 2;                     // screen pixels per sensor pixel
-  double arrow_s = 0.1;              // a velocity arrow shows where the track will be in 0.1 s
+  double arrow_s = 0.1;              // a velocity arrow shows where the track will be in 0.1 s,
+  double arrow_max_px = 40;          // ... at most this many sensor pixels long, inside the frame
+  TimeUs track_fade_us = 100000;     // a track without updates fades out over this long
 };
 
 class FrameRenderer {

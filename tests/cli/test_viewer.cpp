@@ -11,6 +11,7 @@
 #include <fstream>
 #include <thread>
 
+#include "host/show/frame_renderer.h"
 #include "tests/support/command.h"
 #include "tests/support/encoders.h"
 
@@ -55,6 +56,70 @@ TEST(Viewer, HeadlessFramesAreDeterministic) {
   size_t lit = 0;
   for (size_t i = 0; i + 2 < img.rgb.size(); i += 3) lit += (img.rgb[i] + img.rgb[i + 1] + img.rgb[i + 2]) > 120;
   EXPECT_GT(lit, 500u);
+}
+
+TEST(Viewer, WithoutADisplayItSaysSoAndFailsOrWritesTheFrames) {
+  TempDir dir;
+  const std::string no_display = "env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER " + evms_binary() + " view \"" + kScene + "\"";
+  const auto r = run_command(no_display + " --max-frames 3");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "evms: no display to open a window on (DISPLAY and WAYLAND_DISPLAY are not set): use --headless --frames DIR\n");
+  EXPECT_EQ(r.out.find("shown frame"), std::string::npos) << r.out;
+  // With --frames it writes them as --headless would, and says so.
+  const auto f = run_command(no_display + " --no-realtime --max-frames 3 --frames " + dir.path("f"));
+  EXPECT_EQ(f.exit_code, 0) << f.err;
+  EXPECT_NE(f.err.find("writing the frames to " + dir.path("f") + " without a window"), std::string::npos) << f.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.path("f/frame_000002.png")));
+}
+
+// The brightest pixel of a canvas region, as the sum of its channels.
+int brightest(const show::Canvas& c, int x0, int y0, int x1, int y1) {
+  int best = 0;
+  for (int y = std::max(0, y0); y <= std::min(c.height() - 1, y1); ++y) {
+    for (int x = std::max(0, x0); x <= std::min(c.width() - 1, x1); ++x) {
+      const show::Rgb p = c.get(x, y);
+      best = std::max(best, p.r + p.g + p.b);
+    }
+  }
+  return best;
+}
+
+TEST(Viewer, EndedTracksFadeWithinTheCoastingTimeAndArrowsStayShort) {
+  show::ViewStyle style;
+  style.scale = 2;
+  style.track_fade_us = 100000;
+  show::FrameRenderer renderer({240, 180}, style);
+  TrackUpdate u;
+  u.t = 1000, u.id = 3, u.x = 100, u.y = 90, u.vx = 1e6, u.vy = 0;  // absurdly fast: its arrow would cross the frame
+  renderer.add(u);
+  show::Canvas canvas = renderer.make_canvas();
+  const auto marker = [&] { return brightest(canvas, 2 * 100 - 8, 2 * 90 - 8, 2 * 100 + 8, 2 * 90 + 8); };
+  renderer.render(1000, canvas);
+  const int fresh = marker();
+  EXPECT_GE(fresh, 3 * 250);
+  // The arrow ends style.arrow_max_px (40 px) from the track: drawn at 30 px, not at 60 px.
+  EXPECT_GT(brightest(canvas, 2 * 130, 2 * 90 - 1, 2 * 130 + 1, 2 * 90 + 1), 300);
+  EXPECT_LT(brightest(canvas, 2 * 160, 2 * 90 - 1, 2 * 160 + 1, 2 * 90 + 1), 100);
+  renderer.render(51000, canvas);
+  const int half = marker();
+  EXPECT_LT(half, fresh * 3 / 4);
+  EXPECT_GT(half, fresh / 4);
+  renderer.render(101000, canvas);
+  EXPECT_LT(marker(), 100) << "an ended track is gone after the coasting time";
+}
+
+TEST(Viewer, TheOverlayGrowsWithTheSensor) {
+  for (const int width : {240, 1280}) {
+    show::ViewStyle style;
+    style.scale = 2;
+    show::FrameRenderer renderer({width, 180}, style);
+    show::Canvas canvas = renderer.make_canvas();
+    renderer.render(0, canvas, {"8888"});
+    // The glyphs' height: rows with text in the top-left corner.
+    int rows = 0;
+    for (int y = 0; y < 60; ++y) rows += brightest(canvas, 0, y, 80, y) > 300;
+    EXPECT_EQ(rows, 7 * std::max(1, canvas.width() / 640)) << width;
+  }
 }
 
 TEST(Viewer, HeadlessNeedsAFramesDirectory) {
