@@ -67,16 +67,20 @@ std::string fmt(const char* f, double v) {
   return b;
 }
 
-Curve bin_clusters(const std::vector<PacketSummary>& packets, TimeUs t0) {
+Curve bin_clusters(const std::vector<PacketSummary>& packets, TimeUs t0, double bin_s = kBinS) {
   std::map<long, std::pair<double, int>> bins;
   for (const PacketSummary& p : packets) {
-    auto& b = bins[static_cast<long>(static_cast<double>(p.t_last - t0) * 1e-6 / kBinS)];
+    auto& b = bins[static_cast<long>(static_cast<double>(p.t_last - t0) * 1e-6 / bin_s)];
     b.first += p.clusters, b.second += 1;
   }
   Curve c;
-  for (const auto& [k, v] : bins) c.t.push_back((k + 0.5) * kBinS), c.v.push_back(v.first / v.second);
+  for (const auto& [k, v] : bins) c.t.push_back((k + 0.5) * bin_s), c.v.push_back(v.first / v.second);
   return c;
 }
+
+// A real recording's bins: 50 ms, or a 25th of a shorter recording (at least 1 ms), so that
+// each curve has points enough to show a trend.
+double real_bin_s(double duration_s) { return std::clamp(duration_s / 25.0, 0.001, kBinS); }
 
 // Objects with at least 2 % of a bin's object events are visible in it.
 Curve bin_visible(const Scene& s) {
@@ -151,7 +155,7 @@ RealSummary run_real(const std::string& path, const EvalOptions& o, const std::s
   r.tracks_confirmed = static_cast<std::int64_t>(confirmed.size());
   r.tracks_started = run.stats.tracks_started;
   r.noise = std::count(run.labels.begin(), run.labels.end(), kNoiseLabel);
-  r.clusters_over_time = bin_clusters(run.packets, events.empty() ? 0 : events.front().t);
+  r.clusters_over_time = bin_clusters(run.packets, events.empty() ? 0 : events.front().t, real_bin_s(r.duration_s));
   // The picture: the last 20 ms of events (at least 2 % of the recording) and the last second
   // of trails, at the end of the recording.
   show::ViewStyle style;
@@ -234,13 +238,31 @@ std::string write_report(const EvalOptions& o) {
   parallel_for(base.size(), o.jobs, [&](size_t i) { base[i] = make_scene(o.scenes[i], 1.0, o); });
 
   // Phase 2: everything else, in parallel.
+  // Every recording of the folder, ROS 2 bag folders included; what is not one is named with
+  // the reason, never passed over in silence.
   std::vector<std::string> real_files;
+  std::vector<std::pair<std::string, std::string>> real_skipped;  // name, why
   if (!o.real_dir.empty() && fs::is_directory(o.real_dir)) {
+    const std::set<std::string> event_files = {".aedat4", ".aedat", ".raw", ".dat", ".txt", ".csv", ".db3"};
     for (const auto& entry : fs::directory_iterator(o.real_dir)) {
-      const std::string ext = entry.path().extension().string();
-      if (ext == ".aedat4" || ext == ".aedat" || ext == ".raw" || ext == ".dat") real_files.push_back(entry.path().string());
+      const std::string name = entry.path().filename().string();
+      if (entry.is_directory()) {
+        // A bag, or a folder of bags (as ros2/NAME/).
+        std::vector<std::string> bags;
+        if (fs::exists(entry.path() / "metadata.yaml")) bags.push_back(entry.path().string());
+        for (const auto& inner : fs::directory_iterator(entry.path())) {
+          if (inner.is_directory() && fs::exists(inner.path() / "metadata.yaml")) bags.push_back(inner.path().string());
+        }
+        if (bags.empty()) real_skipped.emplace_back(name + "/", "a folder that holds no ROS 2 bag (metadata.yaml)");
+        real_files.insert(real_files.end(), bags.begin(), bags.end());
+      } else if (event_files.count(entry.path().extension().string())) {
+        real_files.push_back(entry.path().string());
+      } else {
+        real_skipped.emplace_back(name, "not an event file (" + std::string(entry.path().has_extension() ? "extension " + entry.path().extension().string() : "no extension") + ")");
+      }
     }
     std::sort(real_files.begin(), real_files.end());
+    std::sort(real_skipped.begin(), real_skipped.end());
   }
   struct Task {
     enum Kind { kSpeed, kBandwidth, kReal } kind;
@@ -281,9 +303,17 @@ std::string write_report(const EvalOptions& o) {
       std::lock_guard lock(mutex);
       bandwidth_points.push_back({o.scenes[t.scene], t.value, e.scores.f});
     } else {
-      reals[t.real] = run_real(real_files[t.real], o, fig_dir);
+      try {
+        reals[t.real] = run_real(real_files[t.real], o, fig_dir);
+      } catch (const read::InputError& e) {
+        std::lock_guard lock(mutex);
+        real_skipped.emplace_back(fs::path(real_files[t.real]).filename().string(), e.what());
+      }
     }
   });
+  // Recordings that could not be read are reported with the others that were skipped.
+  reals.erase(std::remove_if(reals.begin(), reals.end(), [](const RealSummary& r) { return r.file.empty(); }), reals.end());
+  for (const auto& [name, why] : real_skipped) std::fprintf(stderr, "eval: skipped %s: %s\n", name.c_str(), why.c_str());
 
   // The scene family's validation split: the method, the paper preset and K-means.
   std::vector<FamilyScene> family;
@@ -360,7 +390,9 @@ std::string write_report(const EvalOptions& o) {
     Plot py{"y", "time (s)", "y (px)", {}, false, std::nullopt, 900, 360, true};
     const TimeUs t0 = scene.events.empty() ? 0 : scene.events.front().t;
     for (size_t obj = 0; obj < scene.object_names.size(); ++obj) {
-      const std::string lc = " lc " + std::to_string(obj + 1);
+      // One colour per object, as the viewer gives tracks (gnuplot's own list repeats after 8).
+      const show::Rgb rgb = show::label_colour(static_cast<std::int32_t>(obj));
+      const std::string lc = " lc rgb '" + fmt("#%06x", (rgb.r << 16) | (rgb.g << 8) | rgb.b) + "'";
       Series gx{std::to_string(obj) + " " + scene.object_names[obj], {}, {}, "lines dt 2 lw 1.5" + lc};
       Series gy = gx;
       TimeUs last = -1;
@@ -400,7 +432,8 @@ std::string write_report(const EvalOptions& o) {
     render(share, fig_dir + "/within_tau_" + o.scenes[s]);
   }
   if (!reals.empty()) {
-    Plot c{"Clusters over time, real recordings", "time (s)", "clusters per packet", {}, false, std::nullopt};
+    Plot c{"Clusters over time, real recordings (bins of a 25th of each recording, at most 50 ms)", "time (s)", "clusters per packet", {},
+           false, std::nullopt};
     for (const RealSummary& r : reals) c.series.push_back({r.file, r.clusters_over_time.t, r.clusters_over_time.v, "lines lw 2"});
     render(c, fig_dir + "/clusters_real");
   }
@@ -572,6 +605,11 @@ std::string write_report(const EvalOptions& o) {
     }
     md << "\n![clusters real](fig/clusters_real.svg)\n\n";
     for (const RealSummary& r : reals) md << "![" << r.file << "](fig/" << fs::path(r.picture).filename().string() << ")\n\n";
+  }
+  if (!real_skipped.empty()) {
+    md << "Skipped in `" << o.real_dir << "`:\n\n";
+    for (const auto& [name, why] : real_skipped) md << "- " << name << ": " << why << "\n";
+    md << "\n";
   }
   const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   md << "\n---\nThe evaluation took " << fmt("%.0f", took) << " s with " << o.jobs << " threads.\n";

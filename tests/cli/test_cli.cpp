@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -247,6 +248,26 @@ TEST(Cli, ConfigFilesSetParametersAndTheCommandLineWins) {
     EXPECT_EQ(r.err.rfind("evms: " + path + said, 0), 0u) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+}
+
+TEST(Cli, EvalNamesTheRecordingsItSkipsAndWhy) {
+  TempDir dir;
+  const auto events = sample_events(4000, {240, 180});
+  std::filesystem::create_directories(dir.path("real"));
+  dir.write("real/dots.csv", "# sensor 240x180\n" + csv(events));
+  dir.write("real/notes.txt", std::string("GNU GENERAL PUBLIC LICENSE\n"));
+  dir.write("real/README.md", std::string("# recordings\n"));
+  write_ros2_bag(dir.path("real/ros2/bag"), {{"/events", "event_camera_msgs/msg/EventPacket",
+                                             {event_packet_cdr("evt3", 0, {240, 180}, evt3_words(events))}}});
+  const auto r = run_command(evms_binary() + " eval --out " + dir.path("eval") + " --real-dir " + dir.path("real") +
+                             " --family-seeds 0 --speeds 1 --duration-s 0.3 --scenes rotation --bandwidths 0.04");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string report = read_file(dir.path("eval/report.md"));
+  EXPECT_NE(report.find("| dots.csv | CSV"), std::string::npos) << report;
+  EXPECT_NE(report.find("| bag | ROS 2 bag"), std::string::npos) << report;
+  EXPECT_NE(report.find("- README.md: not an event file (extension .md)"), std::string::npos) << report;
+  EXPECT_NE(report.find("- notes.txt: " + dir.path("real/notes.txt") + ": line 1: "), std::string::npos) << report;
+  EXPECT_NE(r.err.find("eval: skipped notes.txt: "), std::string::npos) << r.err;
 }
 
 TEST(Cli, GenIsDeterministicOnDisk) {
