@@ -81,61 +81,66 @@ BagLayout layout_of_folder(const std::string& folder) {
   return layout;
 }
 
-// One .db3 file, read-only, with the chosen topic's messages in receive order.
+// One .db3 file, read-only, with the chosen topic's messages in receive order. The handle and
+// statements are released however a read ends, errors included.
 class Db3 {
  public:
   explicit Db3(const std::string& path) : path_(path) {
     if (!fs::exists(path)) fail(path, {}, "cannot open: no such file (listed in the bag's metadata.yaml)");
-    if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) error("cannot open");
+    sqlite3* db = nullptr;
+    const int rc = sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+    db_.reset(db);  // sqlite allocates a handle even when opening fails
+    if (rc != SQLITE_OK) error("cannot open");
   }
-  ~Db3() {
-    sqlite3_finalize(messages_);
-    sqlite3_close(db_);
-  }
-  Db3(const Db3&) = delete;
-  Db3& operator=(const Db3&) = delete;
 
   struct Topic {
     std::int64_t id;
     std::string name, type, serialization;
   };
   std::vector<Topic> topics() {
-    sqlite3_stmt* s = prepare("SELECT id, name, type, serialization_format FROM topics ORDER BY id");
+    Statement s = prepare("SELECT id, name, type, serialization_format FROM topics ORDER BY id");
     std::vector<Topic> out;
-    while (step(s)) out.push_back({sqlite3_column_int64(s, 0), text(s, 1), text(s, 2), text(s, 3)});
-    sqlite3_finalize(s);
+    while (step(s.get())) out.push_back({sqlite3_column_int64(s.get(), 0), text(s.get(), 1), text(s.get(), 2), text(s.get(), 3)});
     return out;
   }
   std::int64_t count(std::int64_t topic) {
-    sqlite3_stmt* s = prepare("SELECT COUNT(*) FROM messages WHERE topic_id = ?");
-    sqlite3_bind_int64(s, 1, topic);
-    const std::int64_t n = step(s) ? sqlite3_column_int64(s, 0) : 0;
-    sqlite3_finalize(s);
-    return n;
+    Statement s = prepare("SELECT COUNT(*) FROM messages WHERE topic_id = ?");
+    sqlite3_bind_int64(s.get(), 1, topic);
+    return step(s.get()) ? sqlite3_column_int64(s.get(), 0) : 0;
   }
   void select(std::int64_t topic) {
     messages_ = prepare("SELECT id, data FROM messages WHERE topic_id = ? ORDER BY timestamp, id");
-    sqlite3_bind_int64(messages_, 1, topic);
+    sqlite3_bind_int64(messages_.get(), 1, topic);
   }
   // The next message's row id and bytes (valid until the next call); false at the end.
   bool next(std::int64_t& id, std::span<const unsigned char>& data) {
-    if (!step(messages_)) return false;
-    id = sqlite3_column_int64(messages_, 0);
-    const void* blob = sqlite3_column_blob(messages_, 1);
-    const int n = sqlite3_column_bytes(messages_, 1);
+    if (!step(messages_.get())) return false;
+    id = sqlite3_column_int64(messages_.get(), 0);
+    const void* blob = sqlite3_column_blob(messages_.get(), 1);
+    const int n = sqlite3_column_bytes(messages_.get(), 1);
     data = {static_cast<const unsigned char*>(blob), static_cast<size_t>(n)};
     return true;
   }
   const std::string& path() const { return path_; }
 
  private:
+  struct CloseDb {
+    void operator()(sqlite3* db) const { sqlite3_close(db); }
+  };
+  struct Finalize {
+    void operator()(sqlite3_stmt* s) const { sqlite3_finalize(s); }
+  };
+  using Statement = std::unique_ptr<sqlite3_stmt, Finalize>;
+
   [[noreturn]] void error(const char* what) const {
-    fail(path_, {}, std::string(what) + ": " + (db_ ? sqlite3_errmsg(db_) : "out of memory") + " (not a readable sqlite3 bag file)");
+    fail(path_, {}, std::string(what) + ": " + (db_ ? sqlite3_errmsg(db_.get()) : "out of memory") + " (not a readable sqlite3 bag file)");
   }
-  sqlite3_stmt* prepare(const char* sql) {
+  Statement prepare(const char* sql) {
     sqlite3_stmt* s = nullptr;
-    if (sqlite3_prepare_v2(db_, sql, -1, &s, nullptr) != SQLITE_OK) error("cannot read the bag's tables");
-    return s;
+    const int rc = sqlite3_prepare_v2(db_.get(), sql, -1, &s, nullptr);
+    Statement owned(s);
+    if (rc != SQLITE_OK) error("cannot read the bag's tables");
+    return owned;
   }
   bool step(sqlite3_stmt* s) {
     const int rc = sqlite3_step(s);
@@ -149,8 +154,8 @@ class Db3 {
   }
 
   std::string path_;
-  sqlite3* db_ = nullptr;
-  sqlite3_stmt* messages_ = nullptr;
+  std::unique_ptr<sqlite3, CloseDb> db_;
+  Statement messages_;
 };
 
 class Ros2BagSource final : public EventSource {

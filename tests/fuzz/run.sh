@@ -1,0 +1,50 @@
+#!/bin/sh
+# Runs the libFuzzer targets of tests/fuzz: `tests/fuzz/run.sh [SECONDS] [TARGET...]` (default
+# 20 s each, every target). Builds them in build-fuzz with clang when needed. Seed corpora are
+# cut from ../shared/data/real at run time when it is there (never committed); the dictionaries
+# hold each format's magic words. Limits: 5 s an input, 1 GiB an allocation. Prints the runs
+# and coverage per target; what a target finds is kept in build-fuzz/finds/TARGET and makes the
+# script fail. For hours by hand: tests/fuzz/run.sh 3600.
+set -eu
+cd "$(dirname "$0")/../.."
+seconds=${1:-20}
+[ $# -gt 0 ] && shift
+targets=${*:-"aedat2 aedat3 aedat4 evt2 evt3 dat csv text ros2 streams"}
+command -v clang++ >/dev/null || { echo "fuzz: clang++ is not installed (apt install clang)"; exit 1; }
+if [ ! -f build-fuzz/CMakeCache.txt ]; then
+  cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DEVMS_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+fi
+cmake --build build-fuzz -j2 --target fuzz_all >/dev/null
+real=../shared/data/real
+# The bytes of a shared recording after its first N bytes (the header the harness writes), or nothing.
+cut_from() {  # file skip count out
+  [ -f "$real/$1" ] && tail -c +"$(($2 + 1))" "$real/$1" | head -c "$3" >"$4" || true
+}
+# The offset just past a Prophesee header's "% end" line.
+after_end() { grep -abo '% end' "$real/$1" 2>/dev/null | head -1 | cut -d: -f1 | awk '{print $1 + 6}'; }
+failed=0
+for t in $targets; do
+  corpus=build-fuzz/corpus/$t finds=build-fuzz/finds/$t
+  mkdir -p "$corpus" "$finds"
+  case $t in
+    aedat4) cut_from dvxplorer_indoor.aedat4 14 65536 "$corpus/shared" ;;
+    evt2) [ -f "$real/gen3_moving_blob.evt2.raw" ] && cut_from gen3_moving_blob.evt2.raw "$(after_end gen3_moving_blob.evt2.raw)" 8192 "$corpus/shared" ;;
+    evt3) [ -f "$real/gen41_dense_scene.evt3.raw" ] && cut_from gen41_dense_scene.evt3.raw "$(after_end gen41_dense_scene.evt3.raw)" 8192 "$corpus/shared" ;;
+    dat) printf '\000\010' >"$corpus/seed" ;;
+    ros2) cut_from ros2/libcaer_rollover/libcaer_rollover_0.db3 16 65536 "$corpus/shared" ;;
+    csv) printf '10,1,2,1\n20,3,4,0\n' >"$corpus/seed" ;;
+    text) printf '0.000010 1 2 1\n0.000020 3 4 0\n' >"$corpus/seed" ;;
+  esac
+  dict=""
+  [ -f "tests/fuzz/dict/$t.dict" ] && dict="-dict=tests/fuzz/dict/$t.dict"
+  log=build-fuzz/fuzz_$t.log
+  if build-fuzz/bin/fuzz_$t "$corpus" $dict -max_total_time="$seconds" -timeout=5 -malloc_limit_mb=1024 -rss_limit_mb=2048 \
+      -artifact_prefix="$finds/" -print_final_stats=1 >"$log" 2>&1; then
+    echo "fuzz_$t: $(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$') runs in ${seconds} s, $(grep -o 'cov: [0-9]*' "$log" | tail -1), no finds"
+  else
+    echo "fuzz_$t: FOUND A BUG (input kept in $finds; log $log):"
+    grep -E 'ERROR|SUMMARY|Test unit written' "$log" | head -5
+    failed=1
+  fi
+done
+exit $failed
