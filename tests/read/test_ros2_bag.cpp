@@ -3,6 +3,7 @@
 // line that names the file and the message.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -143,6 +144,15 @@ TEST(Ros2Bag, BadBagsGetOneLineThatSaysWhereAndWhat) {
     const std::string bag = write_ros2_bag(d.path("trunc"), {{"/e", kPacket, many}});
     const std::string db3 = bag + "/trunc_0.db3";
     std::filesystem::resize_file(db3, std::filesystem::file_size(db3) / 2);
+    expect_bag_error(db3, db3 + ": ", "not a readable sqlite3 bag file");
+  }
+  {
+    // sqlite's magic and then nothing it can use (fuzz_ros2 found that this leaked the handle).
+    Bytes junk(4096, 0xFF);
+    const std::string magic = "SQLite format 3";
+    std::copy(magic.begin(), magic.end(), junk.begin());
+    junk[15] = 0;
+    const std::string db3 = d.write("junk.db3", junk);
     expect_bag_error(db3, db3 + ": ", "not a readable sqlite3 bag file");
   }
   {
