@@ -28,21 +28,41 @@ void EventOrdering::push(TimeUs t, long x, long y, int p, InputPosition where) {
              " us, more than the reorder tolerance of " + std::to_string(tolerance_us_) +
              " us (--reorder-us)");
   }
-  if (held_.size() >= kMaxHeldEvents) {
+  if (held() >= kMaxHeldEvents) {
     fail(path_, where,
          "more than " + std::to_string(kMaxHeldEvents) + " events within the reorder tolerance of " + std::to_string(tolerance_us_) +
              " us (--reorder-us)");
   }
-  if (newest_ != INT64_MIN && t < newest_) ++reordered_;
-  held_.push({t, arrivals_++, e});
-  newest_ = std::max(newest_, t);
+  if (newest_ != INT64_MIN && t < newest_) {
+    ++reordered_;
+    held_.push({t, arrivals_++, e});
+    return;
+  }
+  in_order_.push_back({t, arrivals_++, e});
+  newest_ = t;
 }
 
 size_t EventOrdering::pop(std::span<Event> out) {
   size_t n = 0;
-  while (n < out.size() && !held_.empty() && (finished_ || newest_ - held_.top().t > tolerance_us_)) {
-    out[n++] = held_.top().event;
-    held_.pop();
+  const auto final = [this](const Held& h) { return finished_ || newest_ - h.t > tolerance_us_; };
+  while (n < out.size()) {
+    const bool fifo = in_order_head_ < in_order_.size();
+    // The earlier of the two fronts, (t, arrival) order: equal times leave in file order.
+    if (fifo && (held_.empty() || held_.top() > in_order_[in_order_head_])) {
+      if (!final(in_order_[in_order_head_])) break;
+      out[n++] = in_order_[in_order_head_++].event;
+    } else if (!held_.empty()) {
+      if (!final(held_.top())) break;
+      out[n++] = held_.top().event;
+      held_.pop();
+    } else {
+      break;
+    }
+  }
+  // Drop what left the FIFO once it is most of the buffer, so that memory follows what is held.
+  if (in_order_head_ > 4096 && in_order_head_ * 2 > in_order_.size()) {
+    in_order_.erase(in_order_.begin(), in_order_.begin() + static_cast<long>(in_order_head_));
+    in_order_head_ = 0;
   }
   return n;
 }

@@ -9,6 +9,8 @@
 //  - Timestamps lie in [0, 2^62] us; anything else is an error.
 //  - Memory is bounded by the events that arrive within one tolerance window, and at most
 //    kMaxHeldEvents of them (more is an error).
+//  - Events that arrive in time order (almost all) wait in a FIFO, at O(1) each; only late ones
+//    go to a heap, and the two are merged on the way out.
 #pragma once
 
 #include <cstdint>
@@ -54,7 +56,10 @@ class EventOrdering {
     Event event;
     bool operator>(const Held& o) const { return t != o.t ? t > o.t : arrival > o.arrival; }
   };
-  std::priority_queue<Held, std::vector<Held>, std::greater<>> held_;
+  std::priority_queue<Held, std::vector<Held>, std::greater<>> held_;  // late events
+  std::vector<Held> in_order_;  // events in time order from in_order_head_ on
+  size_t in_order_head_ = 0;
+  size_t held() const { return held_.size() + in_order_.size() - in_order_head_; }
   std::uint64_t arrivals_ = 0;
   TimeUs newest_ = INT64_MIN;
   bool finished_ = false;

@@ -22,6 +22,9 @@
 namespace evms::read {
 namespace {
 
+// Words are decoded a block at a time from the reader's buffer.
+constexpr size_t kBlockBytes = 1 << 16;
+
 struct PropheseeHeader {
   enum class Kind { kEvt2, kEvt3, kDat, kUnknown } kind = Kind::kUnknown;
   std::optional<SensorSize> size;
@@ -94,13 +97,16 @@ class Evt2Source final : public FileEventSource {
 
  protected:
   bool decode_more() override {
-    unsigned char w[4];
-    for (int n = 0; n < 8192; ++n) {
-      const std::uint64_t at = in_.offset();
-      const size_t got = in_.read(w, 4);
-      if (got == 0) return false;
-      if (got < 4) fail(in_.path(), InputPosition::byte(at), "truncated word (" + std::to_string(got) + " of 4 bytes)");
-      const std::uint32_t word = le32(w);
+    // A block of whole words at a time, straight from the reader's buffer.
+    const std::uint64_t base = in_.offset();
+    const std::string_view block = in_.peek(kBlockBytes);
+    if (block.empty()) return false;
+    if (block.size() < 4) fail(in_.path(), InputPosition::byte(base), "truncated word (" + std::to_string(block.size()) + " of 4 bytes)");
+    const size_t words = block.size() / 4;
+    const auto* bytes = reinterpret_cast<const unsigned char*>(block.data());
+    for (size_t i = 0; i < words; ++i) {
+      const std::uint64_t at = base + 4 * i;
+      const std::uint32_t word = le32(bytes + 4 * i);
       switch (word >> 28) {
         case 0x0:
         case 0x1:
@@ -125,6 +131,7 @@ class Evt2Source final : public FileEventSource {
         default: fail(in_.path(), InputPosition::byte(at), "reserved EVT 2.0 word type 0x" + hex(word >> 28));
       }
     }
+    in_.skip(words * 4);
     return true;
   }
 
@@ -146,18 +153,21 @@ class Evt3Source final : public FileEventSource {
 
  protected:
   bool decode_more() override {
-    unsigned char w[2];
-    for (int n = 0; n < 16384; ++n) {
-      sink_.at = in_.offset();
-      const size_t got = in_.read(w, 2);
-      if (got == 0) return false;
-      if (got < 2) fail(in_.path(), InputPosition::byte(sink_.at), "truncated word (1 of 2 bytes)");
-      if (!decoder_.word(le16(w), sink_)) {
+    const std::uint64_t base = in_.offset();
+    const std::string_view block = in_.peek(kBlockBytes);
+    if (block.empty()) return false;
+    if (block.size() < 2) fail(in_.path(), InputPosition::byte(base), "truncated word (1 of 2 bytes)");
+    const size_t words = block.size() / 2;
+    const auto* bytes = reinterpret_cast<const unsigned char*>(block.data());
+    for (size_t i = 0; i < words; ++i) {
+      sink_.at = base + 2 * i;
+      if (!decoder_.word(le16(bytes + 2 * i), sink_)) {
         char b[8];
-        std::snprintf(b, sizeof b, "%X", le16(w) >> 12);
+        std::snprintf(b, sizeof b, "%X", le16(bytes + 2 * i) >> 12);
         fail(in_.path(), InputPosition::byte(sink_.at), std::string("reserved EVT 3.0 word type 0x") + b);
       }
     }
+    in_.skip(words * 2);
     return true;
   }
 

@@ -1,0 +1,76 @@
+// Reading and writing throughput on one core: each reader decoding a recording from the page
+// cache to events in time order, and each writer of evms run writing labelled events to a file.
+// Real recordings are used when ../shared/data/real is present.
+//   build/bin/bench_io --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "host/write/binary_writers.h"
+#include "host/write/event_writers.h"
+#include "tests/support/encoders.h"
+#include "tests/support/read_all.h"
+
+namespace evms {
+namespace {
+
+void read_file(benchmark::State& state, const std::string& name) {
+  const std::string dir = test::shared_data_dir();
+  if (dir.empty()) {
+    state.SkipWithError("../shared/data/real is absent");
+    return;
+  }
+  const std::string path = dir + "/" + name;
+  std::int64_t events = 0;
+  std::vector<Event> batch(1 << 14);
+  for (auto _ : state) {
+    auto source = read::open_source(path, {});
+    events = 0;
+    while (const size_t n = source->read(batch)) events += static_cast<std::int64_t>(n);
+    benchmark::DoNotOptimize(batch.data());
+  }
+  state.SetItemsProcessed(state.iterations() * events);
+  state.counters["events"] = static_cast<double>(events);
+}
+BENCHMARK_CAPTURE(read_file, evt2_gen3_moving_blob, "gen3_moving_blob.evt2.raw")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_CAPTURE(read_file, evt3_gen41_dense_scene, "gen41_dense_scene.evt3.raw")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_CAPTURE(read_file, aedat4_dvxplorer_indoor, "dvxplorer_indoor.aedat4")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_CAPTURE(read_file, ros2_libcaer_rollover, "ros2/libcaer_rollover")->Unit(benchmark::kMillisecond)->MinTime(1);
+
+template <class Writer>
+Writer make(const std::string& base);
+template <>
+write::LabelledEventsCsv make(const std::string& base) { return write::LabelledEventsCsv(base + ".csv", {640, 480}); }
+template <>
+write::LabelledEventsNpy make(const std::string& base) { return write::LabelledEventsNpy(base + ".npy"); }
+template <>
+write::Evt3Events make(const std::string& base) { return write::Evt3Events(base + ".raw", base + ".labels", {640, 480}); }
+
+template <class Writer>
+void write_events(benchmark::State& state) {
+  const std::vector<Event> events = test::sample_events(1 << 20, {640, 480});
+  char dir[] = "/tmp/evms-bench-XXXXXX";
+  if (!mkdtemp(dir)) {
+    state.SkipWithError("mkdtemp failed");
+    return;
+  }
+  const std::string base = std::string(dir) + "/events";
+  for (auto _ : state) {
+    Writer w = make<Writer>(base);
+    std::int32_t label = 0;
+    for (const Event& e : events) w.write(LabelledEvent{e, (label = (label + 1) & 15) - 1});
+    w.close();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(events.size()));
+  std::remove((base + ".csv").c_str()), std::remove((base + ".npy").c_str());
+  std::remove((base + ".raw").c_str()), std::remove((base + ".labels").c_str()), rmdir(dir);
+}
+BENCHMARK_TEMPLATE(write_events, write::LabelledEventsCsv)->Name("write/csv")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_TEMPLATE(write_events, write::LabelledEventsNpy)->Name("write/npy")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_TEMPLATE(write_events, write::Evt3Events)->Name("write/evt3")->Unit(benchmark::kMillisecond)->MinTime(1);
+
+}  // namespace
+}  // namespace evms
+
+BENCHMARK_MAIN();
