@@ -6,6 +6,7 @@
 // named camera; the sensor is 128x128 for dvs128 and --width/--height (default 240x180, the
 // DAVIS240) for davis. A gap in the sequence numbers counts the datagrams lost in between.
 // The stream ends after S seconds without a datagram when idle-s is given, else on Ctrl-C.
+// The datagrams' layout is decoded by jaer_datagram.h.
 #include <netdb.h>
 #include <poll.h>
 #include <sys/socket.h>
@@ -17,9 +18,10 @@
 #include <cstdio>
 #include <cstring>
 #include <cstdlib>
+#include <optional>
 
-#include "host/read/bytes.h"
 #include "host/read/formats/jaer_address.h"
+#include "host/read/live/jaer_datagram.h"
 #include "host/read/live/live_source.h"
 #include "host/read/uri.h"
 
@@ -59,6 +61,7 @@ class UdpSource final : public LiveSource {
       throw InputError(uri + ": unknown camera '" + camera + "' (expected camera=dvs128 or camera=davis)");
     }
     info_.format = "jAER AEUnicast over UDP (" + camera + " addresses)";
+    decoder_.emplace(layout_, info_.sensor);
     bind_to(parts.target);
     start();
   }
@@ -127,49 +130,17 @@ class UdpSource final : public LiveSource {
       const ssize_t n = ::recv(fd_, datagram.data(), datagram.size(), 0);
       if (n < 0) throw InputError(uri_ + ": receive failed (" + std::strerror(errno) + ")");
       const std::int64_t arrival = steady_now_ns();
-      if (n < 4 || (n - 4) % 8 != 0) {
-        // A datagram that is not a sequence number and whole records: counted, not decoded.
-        count_skipped("malformed datagrams (length not 4 + 8k bytes)");
-        continue;
-      }
-      const std::uint32_t seq = be32(datagram.data());
-      if (have_seq_ && seq != next_seq_) {
-        if (seq > next_seq_) {
-          lost_ += seq - next_seq_;
-        } else {
-          count_skipped("datagrams out of sequence");
-        }
-      }
-      have_seq_ = true;
-      next_seq_ = seq + 1;
       events.clear();
-      for (ssize_t at = 4; at < n; at += 8) {
-        const JaerAddress a = decode_jaer_address(be32(datagram.data() + at), layout_);
-        const TimeUs t = clock_.extend(be32(datagram.data() + at + 4));
-        if (a.kind == JaerAddress::Kind::kApsOrImu) {
-          count_skipped("APS/IMU records");
-        } else if (a.kind == JaerAddress::Kind::kExternal) {
-          count_skipped("external events");
-        } else if (a.x >= static_cast<unsigned>(info_.sensor.width) || a.y >= static_cast<unsigned>(info_.sensor.height)) {
-          count_skipped("addresses outside the sensor");
-        } else if (t < last_t_) {
-          count_skipped("events older than their predecessor");
-        } else {
-          last_t_ = t;
-          events.push_back(Event{t, static_cast<std::uint16_t>(a.x), static_cast<std::uint16_t>(a.y), static_cast<std::uint8_t>(a.p)});
-        }
-      }
+      decoder_->decode(std::span(datagram.data(), static_cast<size_t>(n)), events, [this](const char* kind) { count_skipped(kind); });
+      lost_ = decoder_->lost();
       buffer_.push(events, arrival);
     }
   }
 
   std::string uri_;
   JaerLayout layout_ = JaerLayout::kDvs128;
-  JaerClock clock_;
-  TimeUs last_t_ = 0;
+  std::optional<JaerDatagramDecoder> decoder_;
   int fd_ = -1, idle_ms_ = 0;
-  bool have_seq_ = false;
-  std::uint32_t next_seq_ = 0;
   std::atomic<std::int64_t> lost_{0};
 };
 
