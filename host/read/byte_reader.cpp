@@ -9,6 +9,7 @@
 namespace evms::read {
 namespace {
 constexpr size_t kChunk = 1 << 20;
+constexpr size_t kMinChunk = 1 << 16;
 constexpr size_t kMaxLine = 1 << 20;
 }  // namespace
 
@@ -74,7 +75,9 @@ ByteReader::ByteReader(const std::string& path) : path_(path) {
   file_ = std::fopen(path.c_str(), "rb");
   if (!file_) fail(path, {}, std::string("cannot open: ") + std::strerror(errno));
   size_ = static_cast<std::uint64_t>(st.st_size);
-  buffer_.resize(kChunk);
+  // A small file gets a small buffer (it grows when a reader asks for more): opening many
+  // small files, as the fuzz targets do, then costs no megabyte each.
+  buffer_.resize(static_cast<size_t>(std::clamp<std::uint64_t>(size_ + 1, kMinChunk, kChunk)));
 }
 
 ByteReader::~ByteReader() {
@@ -99,7 +102,7 @@ bool ByteReader::refill(size_t want) {
     end_ -= pos_;
     pos_ = 0;
   }
-  if (buffer_.size() < want) buffer_.resize(want);
+  if (buffer_.size() < want) buffer_.resize(std::max(want, 2 * buffer_.size()));
   while (end_ < want) {
     size_t got = std::fread(buffer_.data() + end_, 1, buffer_.size() - end_, file_);
     if (got == 0) {
