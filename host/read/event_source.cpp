@@ -37,10 +37,10 @@ void FileEventSource::set_sensor(std::optional<SensorSize> from_header,
          "a sensor of " + std::to_string(info_.sensor.width) + "x" + std::to_string(info_.sensor.height) + " (from the " +
              info_.sensor_origin + ") is outside 1x1 to " + std::to_string(kMaxSensorSide) + "x" + std::to_string(kMaxSensorSide));
   }
-  ordering_.emplace(in_.path(), info_.sensor, options_.reorder_us);
+  start_ordering(in_.path(), options_.reorder_us);
 }
 
-size_t FileEventSource::read(std::span<Event> out) {
+size_t DecodedEventSource::read(std::span<Event> out) {
   size_t n = 0;
   for (;;) {
     n += ordering_->pop(out.subspan(n));
@@ -56,11 +56,7 @@ double FileEventSource::progress() const {
   return in_.size() ? static_cast<double>(in_.offset()) / static_cast<double>(in_.size()) : -1.0;
 }
 
-std::vector<std::pair<std::string, std::int64_t>> FileEventSource::skipped() const {
-  return skipped_;
-}
-
-void FileEventSource::count_skipped(const std::string& kind, std::int64_t n) {
+void DecodedEventSource::count_skipped(const std::string& kind, std::int64_t n) {
   for (auto& [k, count] : skipped_) {
     if (k == kind) {
       count += n;
@@ -120,13 +116,14 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
   // A ROS 2 bag is a folder or an sqlite3 file, and may name its topic after a '?'.
   const size_t query = name.find("?topic=");
   const std::string path = query == std::string::npos ? name : name.substr(0, query);
+  const std::string topic = query == std::string::npos ? "" : name.substr(query + 7);
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return open_ros2_bag(name, path, query == std::string::npos ? "" : name.substr(query + 7), options);
+  if (std::filesystem::is_directory(path, ec)) return open_ros2_bag(name, path, topic, options);
   ByteReader in(path);
   const std::string_view head = in.peek(64);
   if (head.empty()) fail(path, InputPosition::byte(0), "empty file");
   if (head.substr(0, 16) == std::string_view("SQLite format 3\0", 16)) {
-    return open_ros2_bag(name, path, query == std::string::npos ? "" : name.substr(query + 7), options);
+    return open_ros2_bag(name, path, topic, options);
   }
   if (query != std::string::npos) fail(name, {}, "?topic= applies to ROS 2 bags only");
   if (head.rfind("#!AER-DAT2", 0) == 0) return open_aedat2(std::move(in), options);

@@ -77,36 +77,45 @@ class EventSource {
   virtual std::int64_t dropped() const { return 0; }
 };
 
-// Base of every file decoder: owns the byte reader and the ordering stage, and pulls decoded
-// events through it.
-class FileEventSource : public EventSource {
+// Base of every decoder of recorded input (files, bags): decodes on demand into the ordering
+// stage and pulls events through it, and counts what is not a polarity event.
+class DecodedEventSource : public EventSource {
  public:
   const SourceInfo& info() const override { return info_; }
   size_t read(std::span<Event> out) override;
-  double progress() const override;
-  std::vector<std::pair<std::string, std::int64_t>> skipped() const override;
+  std::vector<std::pair<std::string, std::int64_t>> skipped() const override { return skipped_; }
   std::int64_t reordered() const override { return ordering_ ? ordering_->reordered() : 0; }
 
  protected:
-  FileEventSource(ByteReader in, std::string format, const SourceOptions& options);
-  // Decodes some more input into ordering_; returns false once the input is exhausted.
+  // Decodes some more input into the ordering stage; returns false once the input is exhausted.
   virtual bool decode_more() = 0;
-  // Fixes the sensor size (from the header, else options, else `fallback`).
-  void set_sensor(std::optional<SensorSize> from_header, std::optional<SensorSize> fallback,
-                  const char* fallback_origin);
-  void emit(TimeUs t, long x, long y, int p, InputPosition where) {
-    ordering_->push(t, x, y, p, where);
-  }
+  // Starts the ordering stage once info_.sensor is known; `path` names the input in errors.
+  void start_ordering(const std::string& path, TimeUs reorder_us) { ordering_.emplace(path, info_.sensor, reorder_us); }
+  void emit(TimeUs t, long x, long y, int p, InputPosition where) { ordering_->push(t, x, y, p, where); }
   void count_skipped(const std::string& kind, std::int64_t n = 1);
 
-  ByteReader in_;
   SourceInfo info_;
-  SourceOptions options_;
 
  private:
   std::optional<EventOrdering> ordering_;
   std::vector<std::pair<std::string, std::int64_t>> skipped_;
   bool exhausted_ = false;
+};
+
+// Base of every file decoder: owns the byte reader.
+class FileEventSource : public DecodedEventSource {
+ public:
+  double progress() const override;
+
+ protected:
+  FileEventSource(ByteReader in, std::string format, const SourceOptions& options);
+  // Fixes the sensor size (from the header, else options, else `fallback`) and starts the
+  // ordering stage.
+  void set_sensor(std::optional<SensorSize> from_header, std::optional<SensorSize> fallback,
+                  const char* fallback_origin);
+
+  ByteReader in_;
+  SourceOptions options_;
 };
 
 std::unique_ptr<EventSource> open_source(const std::string& name, const SourceOptions& options);

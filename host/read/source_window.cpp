@@ -23,7 +23,8 @@ class WindowedSource final : public EventSource {
       info_.sensor_origin += ", cropped by --roi";
     }
     const SensorSize full = inner_->info().sensor;
-    masked_.assign(static_cast<size_t>(full.width) * static_cast<size_t>(full.height), false);
+    full_width_ = static_cast<size_t>(full.width);
+    if (!hot.empty()) masked_.assign(static_cast<size_t>(full.width) * static_cast<size_t>(full.height), false);
     for (const auto& [x, y] : hot) {
       if (x < 0 || y < 0 || x >= full.width || y >= full.height) {
         throw std::invalid_argument("--hot-pixels: pixel (" + std::to_string(x) + "," + std::to_string(y) + ") is outside the " +
@@ -69,8 +70,7 @@ class WindowedSource final : public EventSource {
           done_ = true;
           break;
         }
-        if (!masked_.empty() &&
-            masked_[static_cast<size_t>(e.y) * static_cast<size_t>(inner_->info().sensor.width) + static_cast<size_t>(e.x)]) {
+        if (!masked_.empty() && masked_[static_cast<size_t>(e.y) * full_width_ + e.x]) {
           ++hot_masked_;
           continue;
         }
@@ -96,7 +96,8 @@ class WindowedSource final : public EventSource {
   std::unique_ptr<EventSource> inner_;
   SourceWindow window_;
   SourceInfo info_;
-  std::vector<bool> masked_;
+  std::vector<bool> masked_;  // per pixel of the inner source's sensor
+  size_t full_width_ = 0;
   std::string hot_kind_;
   std::vector<Event> buffer_;
   std::vector<std::int64_t> arrivals_;

@@ -44,9 +44,9 @@ class TextWriter {
   // many were used. For the writers' hot loops: one bounds check a row, not one a field.
   char* reserve(size_t n) {
     if (buffer_.size() + n > kFlushAt) flush();
-    used_ = buffer_.size();
-    buffer_.resize(used_ + n);
-    return buffer_.data() + used_;
+    const size_t used = buffer_.size();
+    buffer_.resize(used + n);
+    return buffer_.data() + used;
   }
   void commit(char* end) { buffer_.resize(static_cast<size_t>(end - buffer_.data())); }
   // Closes the file; throws if anything failed.
@@ -58,7 +58,6 @@ class TextWriter {
   std::string path_;
   std::FILE* file_ = nullptr;
   std::vector<char> buffer_;
-  size_t used_ = 0;
 };
 
 }  // namespace evms::write

@@ -158,7 +158,7 @@ class Db3 {
   Statement messages_;
 };
 
-class Ros2BagSource final : public EventSource {
+class Ros2BagSource final : public DecodedEventSource {
  public:
   Ros2BagSource(const std::string& name, BagLayout layout, const std::string& topic, const SourceOptions& options)
       : layout_(std::move(layout)), options_(options) {
@@ -180,29 +180,19 @@ class Ros2BagSource final : public EventSource {
                                                              std::to_string(info_.sensor.height) + " is larger than " +
                                                              std::to_string(kMaxSensorSide) + "x" + std::to_string(kMaxSensorSide));
     }
-    ordering_.emplace(db_->path(), info_.sensor, options_.reorder_us);
+    start_ordering(db_->path(), options_.reorder_us);
     decode_current();
   }
 
-  const SourceInfo& info() const override { return info_; }
-  size_t read(std::span<Event> out) override {
-    size_t n = 0;
-    for (;;) {
-      n += ordering_->pop(out.subspan(n));
-      if (n == out.size() || exhausted_) return n;
-      if (next_message()) {
-        decode_current();
-      } else {
-        exhausted_ = true;
-        ordering_->finish();
-      }
-    }
-  }
   double progress() const override { return total_ ? static_cast<double>(decoded_) / static_cast<double>(total_) : -1.0; }
-  std::vector<std::pair<std::string, std::int64_t>> skipped() const override { return skipped_; }
-  std::int64_t reordered() const override { return ordering_ ? ordering_->reordered() : 0; }
 
  private:
+  bool decode_more() override {
+    if (!next_message()) return false;
+    decode_current();
+    return true;
+  }
+
   void choose_topic(const std::string& wanted) {
     db_ = std::make_unique<Db3>(layout_.files[0]);
     const std::vector<Db3::Topic> topics = db_->topics();
@@ -226,7 +216,10 @@ class Ros2BagSource final : public EventSource {
     }
     topic_ = chosen->name;
     type_ = chosen->type;
-    for (size_t f = 0; f < layout_.files.size(); ++f) {
+    for (const Db3::Topic& t : topics) {
+      if (t.name == topic_) total_ += db_->count(t.id);
+    }
+    for (size_t f = 1; f < layout_.files.size(); ++f) {
       Db3 db(layout_.files[f]);
       for (const Db3::Topic& t : db.topics()) {
         if (t.name == topic_) total_ += db.count(t.id);
@@ -314,17 +307,8 @@ class Ros2BagSource final : public EventSource {
     }
   }
 
-  void emit(TimeUs t, std::uint64_t x, std::uint64_t y, int p, std::uint64_t at) {
-    ordering_->push(t, static_cast<long>(x), static_cast<long>(y), p, InputPosition::message(static_cast<std::uint64_t>(message_id_), at));
-  }
-  void count_skipped(const std::string& kind, std::int64_t n = 1) {
-    for (auto& [k, count] : skipped_) {
-      if (k == kind) {
-        count += n;
-        return;
-      }
-    }
-    skipped_.emplace_back(kind, n);
+  void emit_at(TimeUs t, std::uint64_t x, std::uint64_t y, int p, std::uint64_t at) {
+    emit(t, static_cast<long>(x), static_cast<long>(y), p, InputPosition::message(static_cast<std::uint64_t>(message_id_), at));
   }
 
   // Times in ns become us; a time that does not fit is corrupt input.
@@ -349,7 +333,7 @@ class Ros2BagSource final : public EventSource {
       struct Sink {
         Ros2BagSource& source;
         std::uint64_t at;
-        void event(TimeUs t, unsigned x, unsigned y, int p) { source.emit(t, x, y, p, at); }
+        void event(TimeUs t, unsigned x, unsigned y, int p) { source.emit_at(t, x, y, p, at); }
         void skipped(const char* kind) { source.count_skipped(kind); }
       } sink{*this, start};
       for (size_t i = 0; i < n; i += 2, sink.at += 2) {
@@ -363,21 +347,22 @@ class Ros2BagSource final : public EventSource {
         count_skipped("trigger events", n / 8);
         return;
       }
+      const bool libcaer = encoding == "libcaer";
       std::uint64_t high = time_base;  // libcaer: ns, raised by 2^31 us at each roll-over
       std::uint32_t last_low = 0;
       for (size_t i = 0; i < n; i += 8) {
         const std::uint64_t at = start + i;
-        if (encoding == "libcaer") {
+        if (libcaer) {
           const std::uint32_t address = le32(&events[i]);
           const std::int32_t low = static_cast<std::int32_t>(le32(&events[i + 4]));
           if (low < 0) fail_message(at + 4, "a negative libcaer timestamp (" + std::to_string(low) + ")");
           if (static_cast<std::uint32_t>(low) < last_low) high += (std::uint64_t{1} << 31) * 1000;
           last_low = static_cast<std::uint32_t>(low);
-          emit(us_of_ns(static_cast<unsigned __int128>(high) + static_cast<unsigned __int128>(low) * 1000, at), (address >> 17) & 0x7FFF,
+          emit_at(us_of_ns(static_cast<unsigned __int128>(high) + static_cast<unsigned __int128>(low) * 1000, at), (address >> 17) & 0x7FFF,
                (address >> 2) & 0x7FFF, static_cast<int>((address >> 1) & 1), at);
         } else {
           const std::uint64_t word = std::uint64_t{le32(&events[i])} | (std::uint64_t{le32(&events[i + 4])} << 32);
-          emit(us_of_ns(static_cast<unsigned __int128>(time_base) + (word & 0xFFFFFFFFu), at), (word >> 32) & 0xFFFF,
+          emit_at(us_of_ns(static_cast<unsigned __int128>(time_base) + (word & 0xFFFFFFFFu), at), (word >> 32) & 0xFFFF,
                (word >> 48) & 0x7FFF, static_cast<int>(word >> 63), at);
         }
       }
@@ -396,13 +381,12 @@ class Ros2BagSource final : public EventSource {
       const std::uint32_t nanosec = r.u32();
       const bool polarity = r.boolean();
       if (sec < 0 || nanosec >= 1000000000u) fail_message(at, "a bad event time (" + std::to_string(sec) + " s, " + std::to_string(nanosec) + " ns)");
-      emit(static_cast<TimeUs>(sec) * 1000000 + nanosec / 1000, x, y, polarity ? 1 : 0, at);
+      emit_at(static_cast<TimeUs>(sec) * 1000000 + nanosec / 1000, x, y, polarity ? 1 : 0, at);
     }
   }
 
   BagLayout layout_;
   SourceOptions options_;
-  SourceInfo info_;
   std::string topic_, type_;
   std::unique_ptr<Db3> db_;
   size_t file_ = 0;
@@ -411,10 +395,7 @@ class Ros2BagSource final : public EventSource {
   std::span<const unsigned char> message_;
   std::vector<unsigned char> unpacked_;
   std::int64_t total_ = 0, decoded_ = 0;
-  std::optional<EventOrdering> ordering_;
   Evt3Decoder evt3_;
-  std::vector<std::pair<std::string, std::int64_t>> skipped_;
-  bool exhausted_ = false;
 };
 
 }  // namespace
