@@ -177,7 +177,7 @@ void register_run(CLI::App& app) {
   cmd->add_option("--baud", o->baud, "line rate of the board's serial link")->default_val(o->baud);
   cmd->add_flag("--quiet", o->quiet, "no progress bar");
   add_source_options(*cmd, o->source_options);
-  add_replay_options(*cmd, o->source_options);
+  add_replay_options(*cmd, o->source_options, Pacing::kRealtimeFlag);
   add_method_options(*cmd, o->method);
   cmd->callback([o] { run(*o); });
 }

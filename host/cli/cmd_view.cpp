@@ -29,7 +29,7 @@ struct ViewOptions {
   Method method;
   double fps = 30;
   bool headless = false;
-  bool no_realtime = false;
+  int paced = -1;  // --realtime 1, --no-realtime 0, neither -1: in a window yes, headless no
   std::string frames;
   std::int64_t max_frames = 0;
   double hold_s = 0;
@@ -99,7 +99,7 @@ void view(const ViewOptions& o) {
   read::SourceOptions so = o.source_options;
   // A window shows a recording at its own pace unless told otherwise; headless frames are
   // computed as fast as possible (they are the same frames either way).
-  if (!o.headless && !o.no_realtime) so.realtime = true;
+  so.realtime = o.paced == -1 ? !o.headless : o.paced == 1;
   auto source = read::open_source(o.source, so);
   backend::BackendOptions bo;
   bo.params = o.method.resolve(source->info().sensor);
@@ -221,19 +221,23 @@ void add_view_command(CLI::App& app, const char* name, const char* help, bool li
   cmd->add_flag("--headless", o->headless, "no window: write the frames as PNG files (needs --frames)");
   cmd->add_option("--frames", o->frames, "directory for the frames as PNG files, from the window or --headless (without a display, "
                                          "they are written headless)");
-  cmd->add_flag("--no-realtime", o->no_realtime, "in a window, show a recording as fast as it is computed");
   cmd->add_option("--max-frames", o->max_frames, "stop after this many frames (0: at the end of the source)")->default_val(0);
   cmd->add_option("--hold-s", o->hold_s, "keep the last frame on screen this long")->default_val(0);
   cmd->add_option("--window-at", o->window_at, "window position X Y on the screen")->expected(2);
+  if (!live) {
+    cmd->add_flag_callback("--realtime", [o] { o->paced = 1; }, "show a recording at the pace of its timestamps (the default in a window)")
+        ->group("Replay");
+    cmd->add_flag_callback("--no-realtime", [o] { o->paced = 0; }, "show a recording as fast as it is computed (the default headless)")
+        ->group("Replay");
+  }
   add_source_options(*cmd, o->source_options);
-  add_replay_options(*cmd, o->source_options);
+  add_replay_options(*cmd, o->source_options, live ? Pacing::kAlwaysRealtime : Pacing::kChosenByCommand);
   add_method_options(*cmd, o->method);
   cmd->callback([o, live] {
     ViewOptions run = *o;
     // live: a recording is replayed at its own pace even headless, so that latency means
     // what it would with a camera.
-    if (live) run.source_options.realtime = run.source_options.realtime || run.source.find("://") == std::string::npos ||
-                                             run.source.rfind("gen://", 0) == 0;
+    if (live) run.paced = 1;
     view(run);
   });
 }

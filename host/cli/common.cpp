@@ -12,36 +12,57 @@
 namespace evms::cli {
 
 void add_source_options(CLI::App& cmd, read::SourceOptions& o) {
+  const char* group = "Input";
   cmd.add_option("--width", o.width, "sensor width in px, for files whose header has no size")
-      ->check(CLI::Range(1, read::kMaxSensorSide));
+      ->check(CLI::Range(1, read::kMaxSensorSide))
+      ->group(group);
   cmd.add_option("--height", o.height, "sensor height in px, for files whose header has no size")
-      ->check(CLI::Range(1, read::kMaxSensorSide));
+      ->check(CLI::Range(1, read::kMaxSensorSide))
+      ->group(group);
   cmd.add_option("--reorder-us", o.reorder_us,
                  "events out of time order by up to this much are re-sorted; more is an error")
       ->default_val(o.reorder_us)
-      ->check(CLI::Range(0, 1000000000));
+      ->check(CLI::Range(0, 1000000000))
+      ->group(group);
   read::SourceWindow& w = o.window;
-  cmd.add_option("--start-us", w.start_us, "take events from the first event's time plus this on")->check(CLI::Range(TimeUs{0}, read::kMaxTimestampUs));
+  cmd.add_option("--start-us", w.start_us, "take events from the first event's time plus this on")
+      ->check(CLI::Range(TimeUs{0}, read::kMaxTimestampUs))
+      ->group(group);
   cmd.add_option("--duration-us", w.duration_us, "take this much time from the start (0: to the end)")
-      ->check(CLI::Range(TimeUs{0}, read::kMaxTimestampUs));
-  cmd.add_option("--limit", w.limit, "take at most this many events (0: all)")->check(CLI::Range(std::int64_t{0}, std::int64_t{1} << 62));
+      ->check(CLI::Range(TimeUs{0}, read::kMaxTimestampUs))
+      ->group(group);
+  cmd.add_option("--limit", w.limit, "take at most this many events (0: all)")
+      ->check(CLI::Range(std::int64_t{0}, std::int64_t{1} << 62))
+      ->group(group);
   cmd.add_option_function<std::string>("--roi", [&w](const std::string& text) { w.roi = read::parse_roi(text); },
-                                       "X,Y,W,H: only events inside this rectangle, moved to its corner (the sensor becomes WxH)");
+                                       "X,Y,W,H: only events inside this rectangle, moved to its corner (the sensor becomes WxH)")
+      ->group(group);
   cmd.add_option("--hot-pixels", w.hot_pixels, "mask the pixels listed in FILE (x,y a line), or 'auto': those firing more than "
-                                                "--hot-factor times the median active pixel and their neighbours' mean (a first pass over the recording)");
+                                                "--hot-factor times the median active pixel and their neighbours' mean (a first pass over the recording)")
+      ->group(group);
   cmd.add_option("--hot-factor", w.hot_factor, "with --hot-pixels auto: the multiple of the median pixel's event count that is hot")
       ->default_val(w.hot_factor)
-      ->check(CLI::Range(1.0, 1e9));
+      ->check(CLI::Range(1.0, 1e9))
+      ->group(group);
 }
 
-void add_replay_options(CLI::App& cmd, read::SourceOptions& o) {
-  cmd.add_flag("--realtime", o.realtime, "replay a recorded source at the pace of its timestamps; events the backend has no room for are dropped and counted");
-  cmd.add_option("--speed", o.speed, "with --realtime: this many times real time (the paper's speed factor)")
+void add_replay_options(CLI::App& cmd, read::SourceOptions& o, Pacing pacing) {
+  const char* group = "Replay";
+  if (pacing == Pacing::kRealtimeFlag) {
+    cmd.add_flag("--realtime", o.realtime,
+                 "replay a recorded source at the pace of its timestamps; events the backend has no room for are dropped and counted")
+        ->group(group);
+  }
+  cmd.add_option("--speed", o.speed,
+                 pacing == Pacing::kAlwaysRealtime ? "replay a recording at this many times real time (the paper's speed factor)"
+                                                   : "when paced: this many times real time (the paper's speed factor)")
       ->default_val(o.speed)
-      ->check(CLI::PositiveNumber);
-  cmd.add_option("--live-buffer", o.live_buffer_events, "events a live or real-time source holds for a backend that falls behind")
+      ->check(CLI::PositiveNumber)
+      ->group(group);
+  cmd.add_option("--live-buffer", o.live_buffer_events, "events a live or paced source holds for a backend that falls behind")
       ->default_val(o.live_buffer_events)
-      ->check(CLI::Range(1, 1 << 28));
+      ->check(CLI::Range(1, 1 << 28))
+      ->group(group);
 }
 
 void add_method_options(CLI::App& cmd, Method& method) {

@@ -11,10 +11,15 @@
 
 namespace evms::cli {
 
-// --width, --height, --reorder-us.
+// --width, --height, --reorder-us and the window (--start-us, --duration-us, --limit, --roi,
+// --hot-pixels), under the heading "Input".
 void add_source_options(CLI::App& cmd, read::SourceOptions& options);
-// --realtime, --speed, --live-buffer: for the subcommands that feed a backend as events come.
-void add_replay_options(CLI::App& cmd, read::SourceOptions& options);
+// How a subcommand paces a recording: run takes --realtime; view chooses its own default and
+// takes --realtime or --no-realtime; live always replays at the recording's pace.
+enum class Pacing { kRealtimeFlag, kChosenByCommand, kAlwaysRealtime };
+// --speed, --live-buffer and, with Pacing::kRealtimeFlag, --realtime: for the subcommands that
+// feed a backend as events come, under the heading "Replay".
+void add_replay_options(CLI::App& cmd, read::SourceOptions& options, Pacing pacing);
 // --preset and one option per row of the parameter table (golden/params.cpp). Values are
 // checked as they are parsed; Method::resolve applies them over the preset.
 void add_method_options(CLI::App& cmd, Method& method);

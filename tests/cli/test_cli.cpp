@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "tests/support/command.h"
 #include "tests/support/encoders.h"
@@ -26,6 +27,46 @@ TEST(Cli, EverySubcommandHasHelp) {
     EXPECT_EQ(r.exit_code, 0) << sub;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;
   }
+}
+
+// An option a subcommand lists is one it acts on: pacing means nothing to info or cycles, live
+// always paces a recording, and view chooses its default and takes either flag.
+TEST(Cli, SubcommandsListOnlyTheOptionsTheyUse) {
+  struct Expect {
+    const char* sub;
+    std::vector<std::string> listed;
+    std::vector<std::string> absent;
+  };
+  const std::vector<Expect> table = {
+      {"run", {"--realtime", "--speed", "--live-buffer", "--format", "--baud"}, {"--no-realtime", "--fps", "--headless"}},
+      {"view", {"--realtime", "--no-realtime", "--speed", "--fps", "--headless"}, {"--format", "--baud"}},
+      {"live", {"--speed", "--live-buffer", "--fps"}, {"--realtime", "--no-realtime", "--format"}},
+      {"info", {"--width", "--roi", "--hot-pixels"}, {"--realtime", "--speed", "--live-buffer", "--preset", "--backend"}},
+      {"cycles", {"--build", "--preset", "--limit"}, {"--realtime", "--speed", "--live-buffer", "--backend"}},
+      {"gen", {"--family", "--seed"}, {"--preset", "--realtime", "--backend"}},
+      {"metrics", {"--truth", "--pred"}, {"--preset", "--realtime", "--limit"}},
+  };
+  for (const Expect& e : table) {
+    const auto r = run_command(evms_binary() + " " + e.sub + " --help");
+    ASSERT_EQ(r.exit_code, 0) << e.sub;
+    std::vector<std::string> options;
+    std::istringstream lines(r.out);
+    for (std::string line; std::getline(lines, line);) {
+      const size_t at = line.find("--");
+      if (at == std::string::npos || line.find_first_not_of(' ') != at) continue;
+      options.push_back(line.substr(at, line.find_first_of(" ,", at) - at));
+    }
+    const auto has = [&](const std::string& o) { return std::find(options.begin(), options.end(), o) != options.end(); };
+    for (const auto& o : e.listed) EXPECT_TRUE(has(o)) << e.sub << " --help does not list " << o;
+    for (const auto& o : e.absent) EXPECT_FALSE(has(o)) << e.sub << " --help lists " << o;
+  }
+  // The help groups its options under headings, the method's last.
+  const auto run = run_command(evms_binary() + " run --help");
+  const size_t input = run.out.find("\nInput:"), replay = run.out.find("\nReplay:"), method = run.out.find("\nMethod parameters:");
+  ASSERT_NE(input, std::string::npos);
+  ASSERT_NE(replay, std::string::npos);
+  ASSERT_NE(method, std::string::npos);
+  EXPECT_LT(replay, method);
 }
 
 TEST(Cli, RunWritesOneRowPerEventAndATrackFile) {
