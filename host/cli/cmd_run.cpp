@@ -48,6 +48,11 @@ class RunSink final : public OutputSink {
       files.push_back(out_dir + "/events.raw");
       files.push_back(out_dir + "/labels.csv");
     }
+    if (format == "aedat4") {
+      aedat4_.emplace(out_dir + "/events.aedat4", out_dir + "/labels.csv", sensor);
+      files.push_back(out_dir + "/events.aedat4");
+      files.push_back(out_dir + "/labels.csv");
+    }
     tracks_.emplace(out_dir + "/tracks.csv");
     files.push_back(out_dir + "/tracks.csv");
   }
@@ -58,6 +63,7 @@ class RunSink final : public OutputSink {
     if (csv_) csv_->write(e);
     if (npy_) npy_->write(e);
     if (evt3_) evt3_->write(e);
+    if (aedat4_) aedat4_->write(e);
   }
   void on_track(const TrackUpdate& u) override {
     ++track_rows;
@@ -73,6 +79,7 @@ class RunSink final : public OutputSink {
     if (csv_) csv_->close();
     if (npy_) npy_->close();
     if (evt3_) evt3_->close();
+    if (aedat4_) aedat4_->close();
     if (tracks_) tracks_->close();
   }
 
@@ -85,6 +92,7 @@ class RunSink final : public OutputSink {
   std::optional<write::LabelledEventsCsv> csv_;
   std::optional<write::LabelledEventsNpy> npy_;
   std::optional<write::Evt3Events> evt3_;
+  std::optional<write::Aedat4Events> aedat4_;
   std::optional<write::TracksCsv> tracks_;
 };
 
@@ -138,8 +146,11 @@ void run(const RunOptions& o) {
               grouped(sink.confirmed).c_str(), grouped(sink.track_rows).c_str());
   if (s.unassigned_clusters) std::fprintf(summary, "            %s clusters found no free track slot (labelled noise)\n", grouped(s.unassigned_clusters).c_str());
   if (!live && !source->skipped().empty()) {
-    std::fprintf(summary, "skipped    ");
-    for (const auto& [kind, count] : source->skipped()) std::fprintf(summary, " %s %s;", grouped(count).c_str(), kind.c_str());
+    const char* separator = "skipped     ";
+    for (const auto& [kind, count] : source->skipped()) {
+      std::fprintf(summary, "%s%s %s", separator, grouped(count).c_str(), kind.c_str());
+      separator = "; ";
+    }
     std::fprintf(summary, "\n");
   }
   if (live) {
@@ -167,10 +178,10 @@ void register_run(CLI::App& app) {
   for (const auto& b : backend::backends()) names += std::string(names.empty() ? "" : ", ") + b.name;
   cmd->add_option("--backend", o->backend, "implementation to run: " + names)->default_val(o->backend);
   cmd->add_option("--out", o->out, "directory for the labelled events and tracks.csv (not written when absent); - writes the CSV rows to standard output and the summary to standard error");
-  cmd->add_option("--format", o->format, "labelled events as csv (events.csv), npy (events.npy, a NumPy structured array) or evt3 "
-                                         "(events.raw, EVT 3.0, and labels.csv, one label per event)")
+  cmd->add_option("--format", o->format, "labelled events as csv (events.csv), npy (events.npy, a NumPy structured array), evt3 "
+                                         "(events.raw, EVT 3.0) or aedat4 (events.aedat4, AEDAT 4.0); evt3 and aedat4 put the labels in labels.csv, one per event")
       ->default_val(o->format)
-      ->check(CLI::IsMember({"csv", "npy", "evt3"}));
+      ->check(CLI::IsMember({"csv", "npy", "evt3", "aedat4"}));
   cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host (1280x720), arty or ice40 (hls/core/shape.h)")
       ->default_val(o->core);
   cmd->add_option("--device", o->device, "serial device of the board backend (or the path evms vboard prints)");

@@ -5,6 +5,11 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <lz4frame.h>
+
+#include "aedat4_events_generated.h"
+#include "aedat4_io_header_generated.h"
+
 namespace evms::write {
 namespace {
 
@@ -65,13 +70,73 @@ void LabelledEventsNpy::close() {
   if (!ok) throw std::runtime_error(path_ + ": cannot write the npy header: " + std::strerror(errno));
 }
 
+LabelsSideFile::LabelsSideFile(const std::string& path, const std::string& events_path) : out_(path) {
+  out_.text("# one label per event of " + events_path + ", in its order\nlabel\n");
+}
+
+Aedat4Events::Aedat4Events(const std::string& path, const std::string& labels_path, SensorSize sensor)
+    : out_(path), labels_(labels_path, path) {
+  // The stream description as DV writes it: outInfo/<stream id>/ with the type, and its info/
+  // node with the sensor size.
+  const std::string xml =
+      "<dv version=\"2.0\">\n"
+      "  <node name=\"outInfo\" path=\"/outInfo/\">\n"
+      "    <node name=\"0\" path=\"/outInfo/0/\">\n"
+      "      <attr key=\"compression\" type=\"string\">LZ4</attr>\n"
+      "      <attr key=\"originalModuleName\" type=\"string\">evms</attr>\n"
+      "      <attr key=\"originalOutputName\" type=\"string\">events</attr>\n"
+      "      <attr key=\"typeDescription\" type=\"string\">Array of events (polarity ON/OFF).</attr>\n"
+      "      <attr key=\"typeIdentifier\" type=\"string\">EVTS</attr>\n"
+      "      <node name=\"info\" path=\"/outInfo/0/info/\">\n"
+      "        <attr key=\"sizeX\" type=\"int\">" + std::to_string(sensor.width) + "</attr>\n"
+      "        <attr key=\"sizeY\" type=\"int\">" + std::to_string(sensor.height) + "</attr>\n"
+      "        <attr key=\"source\" type=\"string\">evms</attr>\n"
+      "      </node>\n"
+      "    </node>\n"
+      "  </node>\n"
+      "</dv>\n";
+  flatbuffers::FlatBufferBuilder header;
+  header.FinishSizePrefixed(aedat4::CreateIOHeader(header, aedat4::Compression::LZ4, -1, header.CreateString(xml)),
+                            aedat4::IOHeaderIdentifier());
+  out_.text("#!AER-DAT4.0\r\n");
+  out_.bytes(header.GetBufferPointer(), header.GetSize());
+  packet_.reserve(kEventsPerPacket);
+}
+
+void Aedat4Events::write(const LabelledEvent& e) {
+  packet_.push_back(e.event);
+  labels_.write(e.label);
+  if (packet_.size() == kEventsPerPacket) write_packet();
+}
+
+void Aedat4Events::write_packet() {
+  std::vector<aedat4::PolarityEvent> elements;
+  elements.reserve(packet_.size());
+  for (const Event& e : packet_) elements.emplace_back(e.t, static_cast<std::int16_t>(e.x), static_cast<std::int16_t>(e.y), e.p != 0);
+  flatbuffers::FlatBufferBuilder body(16 * packet_.size() + 64);
+  body.FinishSizePrefixed(aedat4::CreateEventPacket(body, body.CreateVectorOfStructs(elements)),
+                          aedat4::EventPacketIdentifier());
+  compressed_.resize(LZ4F_compressFrameBound(body.GetSize(), nullptr));
+  const size_t size = LZ4F_compressFrame(compressed_.data(), compressed_.size(), body.GetBufferPointer(), body.GetSize(), nullptr);
+  if (LZ4F_isError(size)) throw std::runtime_error(std::string("AEDAT 4.0 output: LZ4 compression failed: ") + LZ4F_getErrorName(size));
+  put_le<std::int32_t>(out_, 0);  // the stream
+  put_le<std::int32_t>(out_, static_cast<std::int32_t>(size));
+  out_.bytes(compressed_.data(), size);
+  packet_.clear();
+}
+
+void Aedat4Events::close() {
+  if (!packet_.empty()) write_packet();
+  out_.close();
+  labels_.close();
+}
+
 Evt3Events::Evt3Events(const std::string& raw_path, const std::string& labels_path, SensorSize sensor)
-    : raw_path_(raw_path), raw_(raw_path), labels_(labels_path) {
+    : raw_path_(raw_path), raw_(raw_path), labels_(labels_path, raw_path) {
   if (sensor.width > 2048 || sensor.height > 2048) {
     throw std::runtime_error(raw_path + ": EVT 3.0 holds coordinates up to 2047; this sensor is " + std::to_string(sensor.width) + "x" +
                              std::to_string(sensor.height));
   }
-  labels_.text("# one label per event of " + raw_path + ", in its order\nlabel\n");
   raw_.text("% evt 3.0\n% format EVT3;height=").integer(sensor.height).text(";width=").integer(sensor.width);
   raw_.text("\n% geometry ").integer(sensor.width).ch('x').integer(sensor.height).ch('\n');
 }
@@ -103,7 +168,7 @@ void Evt3Events::write(const LabelledEvent& e) {
   time_to(e.event.t);
   if (e.event.y != y_) word(0x0, e.event.y), y_ = e.event.y;
   word(0x2, (static_cast<unsigned>(e.event.p & 1) << 11) | e.event.x);
-  labels_.integer(e.label).ch('\n');
+  labels_.write(e.label);
 }
 
 void Evt3Events::close() {

@@ -7,9 +7,13 @@
 //         of the events). EVT 3.0 keeps 24 bits of time; the header line
 //         "% evms_time_base_us N" says which multiple of 2^24 us its first event lies in, and
 //         evms's reader adds it back, so that a round trip gives the same timestamps.
+//   aedat4  the events as an iniVation AEDAT 4.0 file (events.aedat4, which DV, dv-processing
+//         and evms read): one EVTS stream of the sensor's size, packets of up to 4,096 events,
+//         each an LZ4 frame, no data table; the labels in the same side file as evt3.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "golden/event.h"
 #include "host/write/text_writer.h"
@@ -29,6 +33,33 @@ class LabelledEventsNpy {
   std::int64_t count_ = 0;
 };
 
+// labels.csv beside a camera file: one label a line, in the order of the file's events.
+class LabelsSideFile {
+ public:
+  LabelsSideFile(const std::string& path, const std::string& events_path);
+  void write(std::int32_t label) { out_.integer(label).ch('\n'); }
+  void close() { out_.close(); }
+
+ private:
+  TextWriter out_;
+};
+
+class Aedat4Events {
+ public:
+  static constexpr size_t kEventsPerPacket = 4096;
+  Aedat4Events(const std::string& path, const std::string& labels_path, SensorSize sensor);
+  void write(const LabelledEvent& e);
+  void close();
+
+ private:
+  void write_packet();
+
+  TextWriter out_;
+  LabelsSideFile labels_;
+  std::vector<Event> packet_;
+  std::vector<std::uint8_t> compressed_;
+};
+
 class Evt3Events {
  public:
   // Throws when the sensor is wider or taller than EVT 3.0's 11-bit coordinates hold.
@@ -41,7 +72,8 @@ class Evt3Events {
   void time_to(TimeUs t);
 
   std::string raw_path_;
-  TextWriter raw_, labels_;
+  TextWriter raw_;
+  LabelsSideFile labels_;
   bool started_ = false;
   TimeUs base_ = 0;       // the multiple of 2^24 us below the first event
   TimeUs ticks_ = -1;     // t >> 12 of the last TIME_HIGH written (relative to base_)

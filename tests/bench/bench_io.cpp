@@ -46,6 +46,8 @@ template <>
 write::LabelledEventsNpy make(const std::string& base) { return write::LabelledEventsNpy(base + ".npy"); }
 template <>
 write::Evt3Events make(const std::string& base) { return write::Evt3Events(base + ".raw", base + ".labels", {640, 480}); }
+template <>
+write::Aedat4Events make(const std::string& base) { return write::Aedat4Events(base + ".aedat4", base + ".labels", {640, 480}); }
 
 template <class Writer>
 void write_events(benchmark::State& state) {
@@ -64,11 +66,12 @@ void write_events(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(events.size()));
   std::remove((base + ".csv").c_str()), std::remove((base + ".npy").c_str());
-  std::remove((base + ".raw").c_str()), std::remove((base + ".labels").c_str()), rmdir(dir);
+  std::remove((base + ".raw").c_str()), std::remove((base + ".aedat4").c_str()), std::remove((base + ".labels").c_str()), rmdir(dir);
 }
 BENCHMARK_TEMPLATE(write_events, write::LabelledEventsCsv)->Name("write/csv")->Unit(benchmark::kMillisecond)->MinTime(1);
 BENCHMARK_TEMPLATE(write_events, write::LabelledEventsNpy)->Name("write/npy")->Unit(benchmark::kMillisecond)->MinTime(1);
 BENCHMARK_TEMPLATE(write_events, write::Evt3Events)->Name("write/evt3")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_TEMPLATE(write_events, write::Aedat4Events)->Name("write/aedat4")->Unit(benchmark::kMillisecond)->MinTime(1);
 
 }  // namespace
 }  // namespace evms

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 #include "tests/support/command.h"
@@ -216,32 +217,43 @@ TEST(Cli, NpyOutputHoldsTheSameRowsAsCsv) {
   }
 }
 
-TEST(Cli, Evt3OutputReadsBackToTheSameEventsWithTheirLabelsBeside) {
+// The camera-file outputs: evms reads each back to the same events, and labels.csv beside it
+// holds their labels in order.
+TEST(Cli, CameraFileOutputsReadBackToTheSameEventsWithTheirLabelsBeside) {
   TempDir dir;
-  // Timestamps far above EVT 3.0's 24 bits, and a gap longer than a 2^24 us epoch.
-  std::vector<Event> events = sample_events(2000, {240, 180});
-  for (size_t i = 0; i < events.size(); ++i) events[i].t += 1605537493718345 + (i >= 1000 ? 40000000 : 0);
+  // Timestamps far above EVT 3.0's 24 bits, a gap longer than a 2^24 us epoch, and more events
+  // than an AEDAT 4.0 packet holds.
+  std::vector<Event> events = sample_events(10000, {240, 180});
+  for (size_t i = 0; i < events.size(); ++i) events[i].t += 1605537493718345 + (i >= 5000 ? 40000000 : 0);
   const std::string in = dir.write("in.csv", csv(events));
   ASSERT_EQ(run_command(evms_binary() + " run " + in + " --quiet --out " + dir.path("csv")).exit_code, 0);
-  const auto r = run_command(evms_binary() + " run " + in + " --quiet --format evt3 --out " + dir.path("evt3"));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto again = run_command(evms_binary() + " run " + dir.path("evt3/events.raw") + " --quiet --out " + dir.path("again"));
-  ASSERT_EQ(again.exit_code, 0) << again.err;
-  const auto original = csv_rows(dir.path("csv/events.csv")), decoded = csv_rows(dir.path("again/events.csv"));
+  const auto original = csv_rows(dir.path("csv/events.csv"));
   ASSERT_EQ(original.size(), events.size());
-  ASSERT_EQ(decoded.size(), original.size());
-  std::ifstream labels(dir.path("evt3/labels.csv"));
-  std::string line;
-  std::getline(labels, line);
-  EXPECT_EQ(line.rfind("# one label per event of ", 0), 0u);
-  std::getline(labels, line);
-  EXPECT_EQ(line, "label");
-  for (size_t i = 0; i < original.size(); ++i) {
-    ASSERT_EQ(decoded[i].first, original[i].first) << "event " << i;
-    ASSERT_TRUE(std::getline(labels, line));
-    ASSERT_EQ(line, original[i].second) << "label " << i;
+  for (const auto& [format, file, description] : {std::tuple{"evt3", "events.raw", "EVT 3.0"}, {"aedat4", "events.aedat4", "AEDAT 4.0"}}) {
+    SCOPED_TRACE(format);
+    const std::string out = dir.path(format);
+    const auto r = run_command(evms_binary() + " run " + in + " --quiet --format " + format + " --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto info = run_command(evms_binary() + " info " + out + "/" + file);
+    EXPECT_NE(info.out.find(std::string("format      ") + description), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("sensor      240x180 (from header)"), std::string::npos) << info.out;
+    const auto again = run_command(evms_binary() + " run " + out + "/" + file + " --quiet --out " + out + "/again");
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    const auto decoded = csv_rows(out + "/again/events.csv");
+    ASSERT_EQ(decoded.size(), original.size());
+    std::ifstream labels(out + "/labels.csv");
+    std::string line;
+    std::getline(labels, line);
+    EXPECT_EQ(line.rfind("# one label per event of ", 0), 0u);
+    std::getline(labels, line);
+    EXPECT_EQ(line, "label");
+    for (size_t i = 0; i < original.size(); ++i) {
+      ASSERT_EQ(decoded[i].first, original[i].first) << "event " << i;
+      ASSERT_TRUE(std::getline(labels, line));
+      ASSERT_EQ(line, original[i].second) << "label " << i;
+    }
+    EXPECT_FALSE(std::getline(labels, line));
   }
-  EXPECT_FALSE(std::getline(labels, line));
 }
 
 TEST(Cli, OutDashWritesTheRowsToStandardOutput) {
