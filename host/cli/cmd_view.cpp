@@ -15,6 +15,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/common.h"
 #include "host/read/live/live_source.h"
+#include "host/show/video_writer.h"
 #include "host/show/view_session.h"
 
 namespace evms::cli {
@@ -31,6 +32,7 @@ struct ViewOptions {
   bool headless = false;
   int paced = -1;  // --realtime 1, --no-realtime 0, neither -1: in a window yes, headless no
   std::string frames;
+  std::string video;
   std::int64_t max_frames = 0;
   double hold_s = 0;
   std::vector<int> window_at;
@@ -82,7 +84,6 @@ class SdlWindow {
   SDL_Renderer* renderer_ = nullptr;
   SDL_Texture* texture_ = nullptr;
 };
-static_assert(sizeof(show::Rgb) == 3, "the canvas must be packed RGB24 for SDL");
 
 void print_summary(show::ViewSession& session) {
   const auto& l = session.latency();
@@ -111,13 +112,26 @@ void view(const ViewOptions& o) {
   show::ViewSession session(std::move(source), o.backend, bo, o.fps, style);
   show::Canvas canvas = session.make_canvas();
 
-  if (o.headless && o.frames.empty()) throw std::invalid_argument("--headless needs --frames DIR");
+  const bool recording = !o.frames.empty() || !o.video.empty();
+  if (o.headless && !recording) throw std::invalid_argument("--headless needs --frames DIR or --video FILE");
   if (!o.frames.empty()) std::filesystem::create_directories(o.frames);
+  std::optional<show::VideoWriter> video;
+  if (!o.video.empty()) {
+    if (const auto folder = std::filesystem::path(o.video).parent_path(); !folder.empty()) std::filesystem::create_directories(folder);
+    video.emplace(o.video, canvas.width(), canvas.height(), o.fps);
+  }
+  const std::string destinations =
+      o.frames + (!o.frames.empty() && video ? " and " : "") + (video ? o.video : "");
   const auto save_frame = [&] {
+    if (video) video->write(canvas);
     if (o.frames.empty()) return;
     char name[32];
     std::snprintf(name, sizeof name, "/frame_%06lld.png", static_cast<long long>(session.frame()));
     canvas.save_png(o.frames + name);
+  };
+  const auto finish = [&] {
+    if (video) video->close();
+    if (recording) std::printf("%lld frames in %s\n", static_cast<long long>(session.frame() + 1), destinations.c_str());
   };
   const auto write_frames = [&] {
     bool more = true;
@@ -126,7 +140,7 @@ void view(const ViewOptions& o) {
       session.render(canvas);
       save_frame();
     }
-    std::printf("%lld frames in %s\n", static_cast<long long>(session.frame() + 1), o.frames.c_str());
+    finish();
     print_summary(session);
   };
   if (o.headless) return write_frames();
@@ -135,8 +149,8 @@ void view(const ViewOptions& o) {
   try {
     opened.emplace(canvas.width(), canvas.height(), o.window_at);
   } catch (const NoDisplay& e) {
-    if (o.frames.empty()) throw std::runtime_error(std::string(e.what()) + ": use --headless --frames DIR");
-    std::fprintf(stderr, "evms: %s: writing the frames to %s without a window\n", e.what(), o.frames.c_str());
+    if (!recording) throw std::runtime_error(std::string(e.what()) + ": use --headless --frames DIR or --video FILE");
+    std::fprintf(stderr, "evms: %s: writing the frames to %s without a window\n", e.what(), destinations.c_str());
     return write_frames();
   }
   SdlWindow& window = *opened;
@@ -201,6 +215,7 @@ void view(const ViewOptions& o) {
       break;
     }
   }
+  finish();
   print_summary(session);
 }
 
@@ -218,9 +233,11 @@ void add_view_command(CLI::App& app, const char* name, const char* help, bool li
   cmd->add_option("--device", o->device, "serial device of the board backend");
   cmd->add_option("--fps", o->fps, "frames per second of sensor time")->default_val(o->fps)->check(CLI::Range(1.0, 1000.0));
   cmd->add_option("--scale", o->scale, "screen pixels per sensor pixel")->default_val(o->scale)->check(CLI::Range(1, 8));
-  cmd->add_flag("--headless", o->headless, "no window: write the frames as PNG files (needs --frames)");
+  cmd->add_flag("--headless", o->headless, "no window: write the frames as PNG files or video (needs --frames or --video)");
   cmd->add_option("--frames", o->frames, "directory for the frames as PNG files, from the window or --headless (without a display, "
                                          "they are written headless)");
+  cmd->add_option("--video", o->video, "write the frames as a video (ffmpeg; the extension picks the container: .mp4, .mkv, .webm, .gif), "
+                                       "from the window or --headless, at --fps: one second of video per second of sensor time");
   cmd->add_option("--max-frames", o->max_frames, "stop after this many frames (0: at the end of the source)")->default_val(0);
   cmd->add_option("--hold-s", o->hold_s, "keep the last frame on screen this long")->default_val(0);
   cmd->add_option("--window-at", o->window_at, "window position X Y on the screen")->expected(2);

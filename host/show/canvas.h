@@ -12,6 +12,8 @@ struct Rgb {
   std::uint8_t r = 0, g = 0, b = 0;
   friend bool operator==(const Rgb&, const Rgb&) = default;
 };
+// A canvas's pixels are packed RGB24, as SDL textures and ffmpeg's rawvideo take them.
+static_assert(sizeof(Rgb) == 3);
 
 class Canvas {
  public:

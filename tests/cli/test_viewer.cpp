@@ -5,6 +5,7 @@
 #include <png.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -63,13 +64,55 @@ TEST(Viewer, WithoutADisplayItSaysSoAndFailsOrWritesTheFrames) {
   const std::string no_display = "env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER " + evms_binary() + " view \"" + kScene + "\"";
   const auto r = run_command(no_display + " --max-frames 3");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err, "evms: no display to open a window on (DISPLAY and WAYLAND_DISPLAY are not set): use --headless --frames DIR\n");
+  EXPECT_EQ(r.err, "evms: no display to open a window on (DISPLAY and WAYLAND_DISPLAY are not set): use --headless --frames DIR or --video FILE\n");
   EXPECT_EQ(r.out.find("shown frame"), std::string::npos) << r.out;
   // With --frames it writes them as --headless would, and says so.
   const auto f = run_command(no_display + " --no-realtime --max-frames 3 --frames " + dir.path("f"));
   EXPECT_EQ(f.exit_code, 0) << f.err;
   EXPECT_NE(f.err.find("writing the frames to " + dir.path("f") + " without a window"), std::string::npos) << f.err;
   EXPECT_TRUE(std::filesystem::exists(dir.path("f/frame_000002.png")));
+}
+
+// --video pipes the frames to ffmpeg: the file holds as many frames as were shown, of the
+// canvas's size, and its frame k is the PNG frame k up to the encoder's loss.
+TEST(Viewer, VideoHoldsTheFramesThePngsShow) {
+  TempDir dir;
+  const std::string view = evms_binary() + " view \"" + kScene + "\" --headless --max-frames 6 ";
+  const auto missing = run_command("env PATH=/nonexistent " + view + "--video " + dir.path("none.mp4"));
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(missing.err, "evms: " + dir.path("none.mp4") + ": writing video needs ffmpeg, which is not installed (apt install ffmpeg)\n");
+  if (run_command("command -v ffmpeg && command -v ffprobe").exit_code != 0) GTEST_SKIP() << "ffmpeg is not installed (apt install ffmpeg)";
+
+  const std::string video = dir.path("sub/v.mkv");  // the folder is made as --frames makes its own
+  const auto r = run_command(view + "--frames " + dir.path("png") + " --video " + video);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("6 frames in " + dir.path("png") + " and " + video), std::string::npos) << r.out;
+  const auto probe = run_command("ffprobe -v error -count_frames -show_entries stream=nb_read_frames,width,height -of csv=p=0 " + video);
+  EXPECT_EQ(probe.out, "480,360,6\n");
+  const auto decoded = run_command("ffmpeg -v error -i " + video + " -vf 'select=eq(n\\,5)' -frames:v 1 -f rawvideo -pix_fmt rgb24 -");
+  ASSERT_EQ(decoded.exit_code, 0) << decoded.err;
+  const Image last = read_png(dir.path("png/frame_000005.png")), first = read_png(dir.path("png/frame_000000.png"));
+  ASSERT_EQ(decoded.out.size(), last.rgb.size());
+  ASSERT_EQ(first.rgb.size(), last.rgb.size());
+  // Where frames 0 and 5 differ, the decoded frame is frame 5's colour, not frame 0's.
+  size_t changed = 0, like_last = 0;
+  double error = 0;
+  for (size_t i = 0; i < last.rgb.size(); ++i) {
+    const int v = static_cast<std::uint8_t>(decoded.out[i]);
+    error += std::abs(v - last.rgb[i]);
+    if (std::abs(first.rgb[i] - last.rgb[i]) < 60) continue;
+    ++changed;
+    like_last += std::abs(v - last.rgb[i]) < std::abs(v - first.rgb[i]);
+  }
+  EXPECT_LT(error / static_cast<double>(last.rgb.size()), 3.0);
+  EXPECT_GT(changed, 1000u);
+  EXPECT_GT(like_last, changed * 9 / 10) << like_last << " of " << changed;
+  // ffmpeg's own reason, in one line, when it cannot write what was asked.
+  const auto bad = run_command(view + "--video " + dir.path("v.unknown-container"));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(bad.err.rfind("evms: " + dir.path("v.unknown-container") + ": ", 0), 0u) << bad.err;
+  EXPECT_NE(bad.err.find("(ffmpeg: "), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
 
 // The brightest pixel of a canvas region, as the sum of its channels.
