@@ -22,8 +22,12 @@ struct Event {
 // The label a filtered event, a too-small cluster or an unassigned cluster carries.
 inline constexpr std::int32_t kNoiseLabel = -1;
 
+// The label of an event whose label the board's serial link destroyed (the board backend
+// only, docs/link.md): the board labelled it, but the host never learnt how.
+inline constexpr std::int32_t kLabelLostOnLink = -2;
+
 // One output row per input event, in input order. label is the persistent track ID of the
-// event's cluster, or kNoiseLabel.
+// event's cluster, or kNoiseLabel (or kLabelLostOnLink).
 struct LabelledEvent {
   Event event;
   std::int32_t label = kNoiseLabel;

@@ -22,6 +22,10 @@ struct BackendStats {
   std::int64_t tracks_started = 0;
   std::int64_t unassigned_clusters = 0;
   std::int64_t kernel_evaluations = 0; // point-to-point distances the mean shift took
+  // The board's serial link (the board backend only).
+  std::int64_t link_bad_frames = 0;    // frames that failed their check: the host's and the board's counts
+  std::int64_t link_events_resent = 0; // event frames sent again, when the board asked or fell silent
+  std::int64_t link_labels_lost = 0;   // events labelled kLabelLostOnLink
 };
 
 struct BackendOptions {

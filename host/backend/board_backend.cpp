@@ -3,12 +3,24 @@
 //
 // A run starts with a reset frame, which the board answers with a status frame once it is
 // ready: a board that ran before (or was left mid-run) starts clean, and a missing or silent
-// board is found at once. Events go out as event frames while fewer than the link window are unanswered; every event
-// comes back as one label frame, so labels are the acknowledgements. finish() sends a flush
-// and waits for the status frame that follows everything before it. The board runs its
-// build's register values: the iCE40 build's limits (128x128, packets of 64, 8 clusters, 8
-// tracks) and the method's defaults. Parameters that differ are refused, not ignored.
+// board is found. Events go out numbered, while fewer than the link window are unanswered;
+// every event comes back as one numbered label frame, so labels are the acknowledgements.
+// finish() sends a flush carrying the count of events and waits for the status frame that
+// follows everything before it.
+//
+// The line may flip, drop or repeat bytes. The board takes events in sequence only and asks
+// for the first one it is missing (a resend frame); the host then sends again everything from
+// there (go-back-N), so the core sees exactly the host's stream. A label frame the line
+// destroys cannot be asked for again (the board keeps no labels): the next label's number
+// shows the gap, and the events in it are output with kLabelLostOnLink and counted. When the
+// board says nothing for kResendMs while something is outstanding (its resend request, or the
+// status, was lost), the host sends the outstanding frames again; the board drops copies it
+// already has, so this never duplicates an event or a label.
+//
+// The board runs its build's register values: the iCE40 build's limits (128x128, packets of
+// 64, 8 clusters, 8 tracks) and the method's defaults. Parameters that differ are refused.
 #include <cstdio>
+#include <deque>
 #include <stdexcept>
 
 #include "hls/core/configs.h"
@@ -22,7 +34,13 @@ namespace {
 
 using S = hls::Ice40Shape;
 constexpr size_t kLinkWindow = 512;  // LINK_FIFO_DEPTH of the iCEBreaker top
+constexpr int kResendMs = 500;       // silence while waiting: send what is outstanding again
 constexpr int kSilenceMs = 10000;    // no frame for this long while waiting: the board is gone
+
+// The full number of a frame numbered modulo 2^16, at or after `oldest`.
+std::uint64_t unwrap(link::Sequence seq, std::uint64_t oldest) {
+  return oldest + static_cast<link::Sequence>(seq - static_cast<link::Sequence>(oldest));
+}
 
 class BoardBackend final : public Backend {
  public:
@@ -31,23 +49,25 @@ class BoardBackend final : public Backend {
     std::uint8_t old[4096];
     for (int i = 0; i < 100 && port_.read_some(old, 20) > 0; ++i) {
     }
-    std::vector<std::uint8_t> reset;
-    link::append_reset(reset);
-    port_.write_all(reset);
+    send_reset();
     // Whatever the board sent before the reset is stale; the status frame marks the start.
     DiscardSink stale;
-    status_seen_ = false;
-    while (!status_seen_) receive(stale, true);
-    at_start_ = status_;
+    while (!started_) receive(stale, true);
   }
 
   void push(std::span<const Event> events, OutputSink& out) override {
     std::vector<std::uint8_t> frames;
     for (const Event& e : events) {
-      while (mapper_.waiting() >= kLinkWindow) receive(out, true);
-      link::append_event(frames, mapper_.to_word(e));
+      while (unanswered_.size() >= kLinkWindow) {
+        port_.write_all(frames);
+        frames.clear();
+        receive(out, true);
+      }
+      const hls::EventWord word = mapper_.to_word(e);
+      link::append_event(frames, word, static_cast<link::Sequence>(answered_ + unanswered_.size()));
+      unanswered_.push_back(word);
       ++stats_.s.events_in;
-      if (frames.size() >= 64 * 15 || mapper_.waiting() >= kLinkWindow) {
+      if (frames.size() >= 64 * 15) {
         port_.write_all(frames);
         frames.clear();
       }
@@ -57,28 +77,21 @@ class BoardBackend final : public Backend {
   }
 
   void finish(OutputSink& out) override {
-    std::vector<std::uint8_t> flush;
-    link::append_flush(flush);
-    port_.write_all(flush);
-    status_seen_ = false;
-    while (!status_seen_) receive(out, true);
-    if (mapper_.waiting() != 0) {
-      throw std::runtime_error(port_.path() + ": the board answered the flush with " + std::to_string(mapper_.waiting()) +
-                               " events still unlabelled");
-    }
-    const std::uint32_t crc = status_.crc_errors - at_start_.crc_errors, framing = status_.framing_errors - at_start_.framing_errors,
-                        overruns = status_.overruns - at_start_.overruns;
-    if (crc || framing || overruns || decoder_.bad_frames() > bad_at_start_) {
-      throw std::runtime_error(port_.path() + ": link errors during the run: the board saw " + std::to_string(crc) + " CRC errors, " +
-                               std::to_string(framing) + " framing errors and " + std::to_string(overruns) + " overruns; the host saw " +
-                               std::to_string(decoder_.bad_frames() - bad_at_start_) + " bad frames");
-    }
+    flushing_ = true;
+    send_flush();
+    while (flushing_) receive(out, true);
+    // The board labelled every event before the status: labels still missing were lost.
+    while (!unanswered_.empty()) lose_oldest(out);
   }
 
   BackendStats stats() const override {
     BackendStats s = stats_.s;
     s.tracks_started = status_.tracks_started;
     s.unassigned_clusters = status_.unassigned_clusters;
+    s.link_bad_frames = static_cast<std::int64_t>(decoder_.bad_frames() - bad_at_start_) + (status_.crc_errors - at_start_.crc_errors) +
+                        (status_.framing_errors - at_start_.framing_errors) + unbelieved_;
+    s.link_events_resent = resent_;
+    s.link_labels_lost = lost_;
     return s;
   }
 
@@ -101,25 +114,85 @@ class BoardBackend final : public Backend {
     void on_packet(const PacketSummary&) override {}
   };
 
-  // Reads what the board has sent; with `wait`, blocks until at least one frame came.
+  void send_reset() {
+    std::vector<std::uint8_t> reset;
+    link::append_reset(reset);
+    port_.write_all(reset);
+  }
+  void send_flush() {
+    std::vector<std::uint8_t> flush;
+    link::append_flush(flush, static_cast<link::Sequence>(answered_ + unanswered_.size()));
+    port_.write_all(flush);
+  }
+  // Every event from number `from` on again (go-back-N), and the flush if it was sent. Each
+  // lost event frame costs a resend of everything in flight after it. The window stays whole:
+  // the core holds the events of an open packet (and the filtered ones among them) unlabelled
+  // until the packet closes, so a window below what it can hold would wait forever.
+  void resend_from(std::uint64_t from) {
+    std::vector<std::uint8_t> frames;
+    for (std::uint64_t n = from; n < answered_ + unanswered_.size(); ++n) {
+      link::append_event(frames, unanswered_[n - answered_], static_cast<link::Sequence>(n));
+      ++resent_;
+    }
+    port_.write_all(frames);
+    if (flushing_) send_flush();
+  }
+  static bool echoes(const hls::LabelWord& label, const hls::EventWord& event) {
+    return label.t == event.t && label.x == event.x && label.y == event.y && label.p == event.p;
+  }
+  void lose_oldest(OutputSink& out) {
+    out.on_event(mapper_.lost());
+    unanswered_.pop_front();
+    ++answered_, ++lost_;
+  }
+
+  // Reads what the board has sent; with `wait`, blocks until at least one frame came or, after
+  // kResendMs of silence, the outstanding frames were sent again.
   void receive(OutputSink& out, bool wait) {
     std::uint8_t buf[4096];
     for (;;) {
-      const size_t n = port_.read_some(buf, wait ? kSilenceMs : 0);
+      const size_t n = port_.read_some(buf, wait ? kResendMs : 0);
       if (n == 0 && wait) {
-        throw std::runtime_error(port_.path() + ": the board sent nothing for " + std::to_string(kSilenceMs / 1000) + " s (" +
-                                 std::to_string(mapper_.waiting()) + " events unanswered)");
+        silent_ms_ += kResendMs;
+        if (silent_ms_ >= kSilenceMs) {
+          throw std::runtime_error(port_.path() + ": the board sent nothing for " + std::to_string(kSilenceMs / 1000) + " s (" +
+                                   std::to_string(unanswered_.size()) + " events unanswered)");
+        }
+        if (!started_) {
+          send_reset();
+        } else {
+          resend_from(answered_);
+        }
+        return;
       }
       decoder_.push(std::span(buf, n));
       bool any = false;
       link::Frame f;
       while (decoder_.next(f)) {
         any = true;
-        if (!started_ && f.type != link::kStatus) {
-          continue;  // output of an earlier run, before the reset's status frame
-        }
+        silent_ms_ = 0;
+        if (!started_ && f.type != link::kStatus) continue;  // output of an earlier run, before the reset's status frame
         switch (f.type) {
-          case link::kLabel: out.on_event(mapper_.label(link::decode_label(f))); break;
+          case link::kLabel: {
+            const std::uint64_t number = unwrap(link::label_sequence(f), answered_);
+            const hls::LabelWord label = link::decode_label(f);
+            // A frame whose corruption the check missed (one in 2^16 corrupt frames) names no
+            // event of ours, or not the event its number says: it is dropped, not believed.
+            if (number >= answered_ + unanswered_.size() || !echoes(label, unanswered_[number - answered_])) {
+              ++unbelieved_;
+              break;
+            }
+            while (answered_ < number) lose_oldest(out);
+            out.on_event(mapper_.label(label));
+            unanswered_.pop_front();
+            ++answered_;
+            break;
+          }
+          case link::kResend: {
+            const std::uint64_t from = unwrap(link::decode_resend(f), answered_);
+            if (from <= answered_ + unanswered_.size()) resend_from(from);
+            break;
+          }
           case link::kTrack: out.on_track(mapper_.track(link::decode_track(f))); break;
           case link::kPacket: {
             const hls::PacketWord p = link::decode_packet(f);
@@ -127,10 +200,17 @@ class BoardBackend final : public Backend {
             out.on_packet(mapper_.packet(p));
             break;
           }
-          case link::kStatus:
-            status_ = link::decode_status(f), status_seen_ = true;
-            if (!started_) started_ = true, bad_at_start_ = decoder_.bad_frames();
+          case link::kStatus: {
+            const link::Status status = link::decode_status(f);
+            if (!started_) {
+              started_ = true, bad_at_start_ = decoder_.bad_frames(), status_ = at_start_ = status;
+            } else if (flushing_ && status.events_received - at_start_.events_received == static_cast<std::uint32_t>(answered_ + unanswered_.size())) {
+              // The flush's status: the board took every event (a reset's status, repeated
+              // when the first was slow, comes before any).
+              status_ = status, flushing_ = false;
+            }
             break;
+          }
           default: break;
         }
       }
@@ -142,9 +222,13 @@ class BoardBackend final : public Backend {
   link::FrameDecoder decoder_;
   CoreWordMapper<S> mapper_;
   CoreStats stats_;
+  std::deque<hls::EventWord> unanswered_;  // sent, not yet labelled: numbers answered_, answered_ + 1, ...
+  std::uint64_t answered_ = 0;             // events labelled, or whose label was lost
+  std::int64_t resent_ = 0, lost_ = 0, unbelieved_ = 0;
+  int silent_ms_ = 0;
   link::Status status_, at_start_;
   std::uint64_t bad_at_start_ = 0;
-  bool status_seen_ = false, started_ = false;
+  bool started_ = false, flushing_ = false;
 };
 
 }  // namespace

@@ -32,6 +32,12 @@ class CoreWordMapper {
     }
     return {e, w.label};
   }
+  // The oldest event not yet labelled, whose label was lost on the way (the board backend).
+  LabelledEvent lost() {
+    const Event e = pending_.front();
+    pending_.pop_front();
+    return {e, kLabelLostOnLink};
+  }
   TimeUs to_time(std::uint32_t core_t) const {
     const std::uint32_t latest = static_cast<std::uint32_t>(latest_ - base_);
     return latest_ - static_cast<std::int32_t>(latest - core_t);

@@ -145,6 +145,11 @@ void run(const RunOptions& o) {
   std::fprintf(summary, "tracks      %s started, %s confirmed, %s track updates\n", grouped(s.tracks_started).c_str(),
               grouped(sink.confirmed).c_str(), grouped(sink.track_rows).c_str());
   if (s.unassigned_clusters) std::fprintf(summary, "            %s clusters found no free track slot (labelled noise)\n", grouped(s.unassigned_clusters).c_str());
+  if (o.backend == "board") {
+    std::fprintf(summary, "link        %s frames failed their check, %s events sent again, %s labels lost (labelled %d)\n",
+                 grouped(s.link_bad_frames).c_str(), grouped(s.link_events_resent).c_str(), grouped(s.link_labels_lost).c_str(),
+                 kLabelLostOnLink);
+  }
   if (!live && !source->skipped().empty()) {
     const char* separator = "skipped     ";
     for (const auto& [kind, count] : source->skipped()) {

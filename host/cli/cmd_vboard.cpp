@@ -6,6 +6,10 @@
 //
 // Bytes written to the terminal go into the board's receive line at 4 clocks a bit; bytes the
 // board transmits come out of it. It runs until it is interrupted.
+//
+// --error-rate R makes the line unreliable, as a UART beside a sensor can be: each byte, in
+// either direction, is hit with probability R by one fault, equally often a flipped bit, the
+// byte dropped, or the byte repeated (--seed chooses the faults).
 #include <fcntl.h>
 #include <poll.h>
 #include <termios.h>
@@ -14,6 +18,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -28,7 +33,41 @@ constexpr int kClocksPerBit = 4;                // as sim/CMakeLists.txt builds 
 constexpr std::uint64_t kBusyCycles = 400000;   // keep clocking this long after the last byte:
                                                 // the core may still be clustering a packet
 
-void serve(const std::string& path_file) {
+struct VboardOptions {
+  std::string path_file;
+  double error_rate = 0;
+  std::uint64_t seed = 1;
+};
+
+// The faults of an unreliable line, applied to the bytes crossing it in one direction.
+class LineFaults {
+ public:
+  LineFaults(double rate, std::uint64_t seed) : rate_(rate), rng_(seed) {}
+  std::vector<std::uint8_t> pass(std::span<const std::uint8_t> bytes) {
+    std::vector<std::uint8_t> out;
+    out.reserve(bytes.size() + 8);
+    for (std::uint8_t b : bytes) {
+      if (rate_ == 0 || uniform_(rng_) >= rate_) {
+        out.push_back(b);
+        continue;
+      }
+      switch (rng_() % 3) {
+        case 0: out.push_back(static_cast<std::uint8_t>(b ^ (1u << (rng_() % 8)))); break;  // a flipped bit
+        case 1: break;                                                                       // dropped
+        default: out.push_back(b), out.push_back(b); break;                                  // repeated
+      }
+    }
+    return out;
+  }
+
+ private:
+  double rate_;
+  std::mt19937_64 rng_;
+  std::uniform_real_distribution<double> uniform_{0.0, 1.0};
+};
+
+void serve(const VboardOptions& o) {
+  const std::string& path_file = o.path_file;
   const int master = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
   if (master < 0 || grantpt(master) != 0 || unlockpt(master) != 0) {
     throw std::runtime_error(std::string("cannot create a pseudo-terminal: ") + std::strerror(errno));
@@ -47,6 +86,9 @@ void serve(const std::string& path_file) {
     if (std::FILE* f = std::fopen(path_file.c_str(), "w")) std::fprintf(f, "%s\n", path.c_str()), std::fclose(f);
   }
 
+  if (o.error_rate > 0) std::fprintf(stderr, "evms vboard: %g of the bytes each way hit by a fault (seed %llu)\n", o.error_rate,
+                                     static_cast<unsigned long long>(o.seed));
+  LineFaults to_board(o.error_rate, o.seed), to_host(o.error_rate, o.seed ^ 0x9E3779B97F4A7C15ull);
   sim::VirtualBoard<Vboard_ice40> board(kClocksPerBit);
   std::vector<std::uint8_t> in(4096), out;
   std::uint64_t last_activity = 0;
@@ -56,14 +98,14 @@ void serve(const std::string& path_file) {
     if (::poll(&p, 1, busy ? 0 : 20) > 0 && (p.revents & POLLIN)) {
       const ssize_t n = ::read(master, in.data(), in.size());
       if (n > 0) {
-        board.send(std::span(in.data(), static_cast<size_t>(n)));
+        board.send(to_board.pass(std::span(in.data(), static_cast<size_t>(n))));
         last_activity = board.cycles();
       }
     }
     if (!busy && !board.sending()) continue;
     board.run(4096);
     if (!board.received.empty()) {
-      out.assign(board.received.begin(), board.received.end());
+      out = to_host.pass(std::vector<std::uint8_t>(board.received.begin(), board.received.end()));
       board.received.clear();
       for (size_t done = 0; done < out.size();) {
         const ssize_t n = ::write(master, out.data() + done, out.size() - done);
@@ -78,10 +120,15 @@ void serve(const std::string& path_file) {
 }  // namespace
 
 void register_vboard(CLI::App& app) {
-  auto path_file = std::make_shared<std::string>();
+  auto o = std::make_shared<VboardOptions>();
   CLI::App* cmd = app.add_subcommand("vboard", "the virtual board: the simulated iCE40 board top behind a pseudo-terminal, for --backend board");
-  cmd->add_option("--path-file", *path_file, "also write the terminal's path to this file");
-  cmd->callback([path_file] { serve(*path_file); });
+  cmd->add_option("--path-file", o->path_file, "also write the terminal's path to this file");
+  cmd->add_option("--error-rate", o->error_rate, "the chance that a byte crossing the line, either way, is hit by a fault: a flipped bit, "
+                                                 "dropped or repeated")
+      ->default_val(o->error_rate)
+      ->check(CLI::Range(0.0, 0.1));
+  cmd->add_option("--seed", o->seed, "seed of the line's faults")->default_val(o->seed);
+  cmd->callback([o] { serve(*o); });
 }
 
 }  // namespace evms::cli

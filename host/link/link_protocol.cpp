@@ -27,13 +27,14 @@ void frame(std::vector<std::uint8_t>& out, FrameType type, const std::vector<std
 
 size_t expected_length(std::uint8_t type) {
   switch (type) {
-    case kEvent: return 9;
-    case kFlush: return 0;
+    case kEvent: return 11;
+    case kFlush: return 2;
     case kReset: return 0;
-    case kLabel: return 13;
+    case kLabel: return 15;
     case kTrack: return 32;
     case kPacket: return 12;
     case kStatus: return 32;
+    case kResend: return 2;
     default: return 256;  // unknown
   }
 }
@@ -49,16 +50,21 @@ std::uint16_t crc16(std::span<const std::uint8_t> bytes) {
   return c;
 }
 
-void append_event(std::vector<std::uint8_t>& out, const hls::EventWord& e) {
+void append_event(std::vector<std::uint8_t>& out, const hls::EventWord& e, Sequence seq) {
   std::vector<std::uint8_t> p;
   put(p, e.t, 4);
   put(p, e.x, 2);
   put(p, e.y, 2);
   put(p, e.p, 1);
+  put(p, seq, 2);
   frame(out, kEvent, p);
 }
 
-void append_flush(std::vector<std::uint8_t>& out) { frame(out, kFlush, {}); }
+void append_flush(std::vector<std::uint8_t>& out, Sequence next_event) {
+  std::vector<std::uint8_t> p;
+  put(p, next_event, 2);
+  frame(out, kFlush, p);
+}
 void append_reset(std::vector<std::uint8_t>& out) { frame(out, kReset, {}); }
 
 void FrameDecoder::push(std::span<const std::uint8_t> bytes) {
@@ -97,6 +103,16 @@ hls::LabelWord decode_label(const Frame& f) {
   if (f.type != kLabel) throw std::logic_error("not a label frame");
   return {get(f.payload, 0, 4), static_cast<std::uint16_t>(get(f.payload, 4, 2)), static_cast<std::uint16_t>(get(f.payload, 6, 2)),
           static_cast<std::uint8_t>(get(f.payload, 8, 1)), static_cast<std::int32_t>(get(f.payload, 9, 4))};
+}
+
+Sequence label_sequence(const Frame& f) {
+  if (f.type != kLabel) throw std::logic_error("not a label frame");
+  return static_cast<Sequence>(get(f.payload, 13, 2));
+}
+
+Sequence decode_resend(const Frame& f) {
+  if (f.type != kResend) throw std::logic_error("not a resend frame");
+  return static_cast<Sequence>(get(f.payload, 0, 2));
 }
 
 hls::TrackWord decode_track(const Frame& f) {

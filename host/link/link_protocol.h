@@ -4,8 +4,10 @@
 //
 //   frame = 0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 //   CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF) over TYPE, LEN and PAYLOAD
-//   host -> board: 0x01 event (t u32, x u16, y u16, p u8), 0x02 flush, 0x03 reset
-//   board -> host: 0x81 labelled event, 0x82 track update, 0x83 packet summary, 0x84 status
+//   host -> board: 0x01 event (t u32, x u16, y u16, p u8, seq u16), 0x02 flush (seq u16: the
+//                  next event's), 0x03 reset
+//   board -> host: 0x81 labelled event (with the label's seq u16), 0x82 track update,
+//                  0x83 packet summary, 0x84 status, 0x85 resend (seq u16 the board expects)
 #pragma once
 
 #include <cstdint>
@@ -25,12 +27,17 @@ enum FrameType : std::uint8_t {
   kTrack = 0x82,
   kPacket = 0x83,
   kStatus = 0x84,
+  kResend = 0x85,
 };
+
+// Events and labels are numbered modulo 2^16 from the reset on; the host unwraps the numbers
+// against what it has outstanding (never more than the link's window, far below 2^15).
+using Sequence = std::uint16_t;
 
 std::uint16_t crc16(std::span<const std::uint8_t> bytes);
 
-void append_event(std::vector<std::uint8_t>& out, const hls::EventWord& e);
-void append_flush(std::vector<std::uint8_t>& out);
+void append_event(std::vector<std::uint8_t>& out, const hls::EventWord& e, Sequence seq);
+void append_flush(std::vector<std::uint8_t>& out, Sequence next_event);
 void append_reset(std::vector<std::uint8_t>& out);
 
 struct Status {
@@ -57,6 +64,8 @@ class FrameDecoder {
 };
 
 hls::LabelWord decode_label(const Frame& f);
+Sequence label_sequence(const Frame& f);
+Sequence decode_resend(const Frame& f);
 hls::TrackWord decode_track(const Frame& f);
 hls::PacketWord decode_packet(const Frame& f);
 Status decode_status(const Frame& f);

@@ -8,7 +8,8 @@
 //
 // A reset frame from the host restarts the core and the link's queues (a new run on a board
 // that ran before, or after an aborted one) and is answered by a status frame once the core is
-// idle. After a flush from the host, once the core has released everything, a status frame
+// idle. The link takes events in sequence only and asks the host to resend what the line lost
+// (evms_link_rx.sv), so the core sees the host's stream exactly. After a flush from the host, once the core has released everything, a status frame
 // (timestamp, events received, check errors, framing errors, overruns, external AER events,
 // tracks started, clusters without a track slot) tells the host that the flush is complete. Backpressure reaches the AER sender (it waits for
 // its acknowledge); the link keeps at most LINK_FIFO_DEPTH events in flight by protocol.
@@ -63,12 +64,13 @@ module evms_board #(
   logic [31:0] framing_errors;
   evms_uart_rx #(.CLKS_PER_BIT(CLKS_PER_BIT)) u_uart_rx (
     .clk(clk), .rst_n(rst_n), .rx(uart_rx), .valid(rx_valid), .data(rx_data), .framing_errors(framing_errors));
-  logic lk_valid, lk_ready, lk_p, lk_flush, soft_reset;
+  logic lk_valid, lk_ready, lk_p, lk_flush, soft_reset, rs_valid, rs_ready;
   logic [31:0] lk_t, crc_errors, overruns, events_received;
-  logic [15:0] lk_x, lk_y;
+  logic [15:0] lk_x, lk_y, rs_seq;
   evms_link_rx #(.FIFO_DEPTH(LINK_FIFO_DEPTH)) u_link_rx (
     .clk(clk), .rst_n(rst_n), .byte_valid(rx_valid), .byte_data(rx_data), .ev_valid(lk_valid), .ev_ready(lk_ready),
-    .ev_t(lk_t), .ev_x(lk_x), .ev_y(lk_y), .ev_p(lk_p), .ev_flush(lk_flush), .soft_reset(soft_reset), .crc_errors(crc_errors), .overruns(overruns),
+    .ev_t(lk_t), .ev_x(lk_x), .ev_y(lk_y), .ev_p(lk_p), .ev_flush(lk_flush), .soft_reset(soft_reset),
+    .resend_valid(rs_valid), .resend_ready(rs_ready), .resend_seq(rs_seq), .crc_errors(crc_errors), .overruns(overruns),
     .events_received(events_received));
 
   // Link words first (the host owns the stream while it sends), then the sensor.
@@ -145,7 +147,7 @@ module evms_board #(
     .lab_p(lab_p), .lab_label(lab_label), .trk_valid(trk_valid), .trk_ready(trk_ready),
     .trk_payload({trk_zy, trk_zx, trk_vy, trk_vx, trk_y, trk_x, trk_id, trk_t}), .pkt_valid(pkt_valid),
     .pkt_ready(pkt_ready), .pkt_payload({pkt_iterations, pkt_clusters, pkt_events, pkt_t_last, pkt_t_first}),
-    .st_valid(st_valid), .st_ready(st_ready),
+    .st_valid(st_valid), .st_ready(st_ready), .rs_valid(rs_valid), .rs_ready(rs_ready), .rs_seq(rs_seq),
     .st_payload({unassigned, tracks_started, external_events, overruns, framing_errors, crc_errors, events_received, timestamp}),
     .byte_valid(tx_valid), .byte_ready(tx_ready), .byte_data(tx_data));
   evms_uart_tx #(.CLKS_PER_BIT(CLKS_PER_BIT)) u_uart_tx (

@@ -1,10 +1,11 @@
 // Board-to-host half of the serial link (docs/link.md): labelled events (0x81), track
-// updates (0x82), packet summaries (0x83) and status (0x84) as frames
+// updates (0x82), packet summaries (0x83), status (0x84) and resend requests (0x85) as frames
 //   0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 // (CRC-16/CCITT-FALSE over TYPE, LEN and PAYLOAD; little-endian fields). Streams are served
-// one frame at a time, status first, then packet summaries, track updates, labelled events; a
-// stream waits (its valid stays high) while the UART is busy, so the core sees backpressure
-// and nothing is lost.
+// one frame at a time, status first, then resend requests, packet summaries, track updates,
+// labelled events; a stream waits (its valid stays high) while the UART is busy, so the core
+// sees backpressure and nothing is lost. Label frames carry their number modulo 2^16, counted
+// from reset, so that the host finds a label frame the line destroyed.
 module evms_link_tx (
   input  logic        clk,
   input  logic        rst_n,
@@ -28,6 +29,10 @@ module evms_link_tx (
   input  logic        st_valid,
   output logic        st_ready,
   input  logic [255:0] st_payload,    // eight 32-bit counters
+  // Resend requests: the number of the event the link's receiver expects.
+  input  logic        rs_valid,
+  output logic        rs_ready,
+  input  logic [15:0] rs_seq,
   // Bytes to the UART.
   output logic        byte_valid,
   input  logic        byte_ready,
@@ -38,14 +43,17 @@ module evms_link_tx (
   logic [255:0] payload;
   logic [7:0] ftype, flen, pos;
   logic [15:0] crc;
+  logic [15:0] label_seq;
 
   always_comb begin
     lab_ready = 1'b0;
     trk_ready = 1'b0;
     pkt_ready = 1'b0;
     st_ready = 1'b0;
+    rs_ready = 1'b0;
     if (state == S_IDLE) begin
       if (st_valid) st_ready = 1'b1;
+      else if (rs_valid) rs_ready = 1'b1;
       else if (pkt_valid) pkt_ready = 1'b1;
       else if (trk_valid) trk_ready = 1'b1;
       else if (lab_valid) lab_ready = 1'b1;
@@ -75,11 +83,15 @@ module evms_link_tx (
       flen <= '0;
       pos <= '0;
       crc <= 16'hFFFF;
+      label_seq <= '0;
     end else begin
       case (state)
         S_IDLE: begin
           if (st_valid) begin
             {ftype, flen, payload} <= {8'h84, 8'd32, st_payload};
+            state <= S_SYNC1;
+          end else if (rs_valid) begin
+            {ftype, flen, payload} <= {8'h85, 8'd2, 240'd0, rs_seq};
             state <= S_SYNC1;
           end else if (pkt_valid) begin
             {ftype, flen, payload} <= {8'h83, 8'd12, 160'd0, pkt_payload};
@@ -88,7 +100,8 @@ module evms_link_tx (
             {ftype, flen, payload} <= {8'h82, 8'd32, trk_payload};
             state <= S_SYNC1;
           end else if (lab_valid) begin
-            {ftype, flen, payload} <= {8'h81, 8'd13, 152'd0, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
+            {ftype, flen, payload} <= {8'h81, 8'd15, 136'd0, label_seq, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
+            label_seq <= label_seq + 1'b1;
             state <= S_SYNC1;
           end
           crc <= 16'hFFFF;

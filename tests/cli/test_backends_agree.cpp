@@ -3,8 +3,10 @@
 // the framed UART link, equals the fixed-point core of the iCE40 build.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <chrono>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "tests/support/command.h"
@@ -50,8 +52,8 @@ TEST(BackendsAgree, ACoreBuildRefusesParametersBeyondItsLimits) {
 // `evms vboard` in the background, for the length of a test.
 class VirtualBoardProcess {
  public:
-  explicit VirtualBoardProcess(const TempDir& dir)
-      : path_file_(dir.path("vboard.path")), process_({evms_binary(), "vboard", "--path-file", path_file_}) {
+  explicit VirtualBoardProcess(const TempDir& dir, std::vector<std::string> options = {})
+      : path_file_(dir.path("vboard.path")), process_(command(path_file_, std::move(options))) {
     for (int i = 0; i < 200 && device_.empty(); ++i) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
       std::ifstream f(path_file_);
@@ -61,6 +63,12 @@ class VirtualBoardProcess {
   const std::string& device() const { return device_; }
 
  private:
+  static std::vector<std::string> command(const std::string& path_file, std::vector<std::string> options) {
+    std::vector<std::string> c = {evms_binary(), "vboard", "--path-file", path_file};
+    c.insert(c.end(), options.begin(), options.end());
+    return c;
+  }
+
   std::string path_file_, device_;
   BackgroundProcess process_;
 };
@@ -78,6 +86,58 @@ TEST(BackendsAgree, TheBoardThroughTheVirtualBoardEqualsTheFixedCore) {
   // A second run on the same board starts from the reset frame: the same files again.
   const auto again = run_backend(dir, "board2", scene, "--backend board --device " + board.device() + kIce40Limits);
   EXPECT_EQ(again, fixed);
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// A line that flips, drops and repeats bytes both ways (evms vboard --error-rate): the run ends
+// cleanly, every event has one row, each label equals the fixed core's or is reported lost
+// (-2, and counted in the summary), and every track row is one of the fixed core's, in order
+// (a track frame the line destroys is missing, never changed).
+TEST(BackendsAgree, TheBoardOverAnUnreliableLineLosesOnlyWhatItReports) {
+  const std::string scene = "gen://rotation?duration-s=0.12&seed=5&width=128&height=128";
+  TempDir dir;
+  const auto fixed = run_backend(dir, "fixed", scene, std::string("--backend fixed --core ice40") + kIce40Limits);
+  const auto fixed_events = lines_of(fixed.first), fixed_tracks = lines_of(fixed.second);
+  for (const char* rate : {"1e-4", "1e-3"}) {
+    SCOPED_TRACE(std::string("error rate ") + rate);
+    TempDir run_dir;
+    VirtualBoardProcess board(run_dir, {"--error-rate", rate, "--seed", "11"});
+    ASSERT_FALSE(board.device().empty()) << "evms vboard did not start";
+    const std::string out = run_dir.path("board");
+    const auto r = run_command(evms_binary() + " run \"" + scene + "\" --quiet --out " + out + " --backend board --device " + board.device() +
+                               kIce40Limits);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto events = lines_of(read_file(out + "/events.csv")), tracks = lines_of(read_file(out + "/tracks.csv"));
+    ASSERT_EQ(events.size(), fixed_events.size());
+    size_t lost = 0;
+    for (size_t i = 0; i < events.size(); ++i) {
+      if (events[i] == fixed_events[i]) continue;
+      const std::string event = fixed_events[i].substr(0, fixed_events[i].rfind(','));
+      ASSERT_EQ(events[i], event + ",-2") << "row " << i;
+      ++lost;
+    }
+    EXPECT_NE(r.out.find(", " + std::to_string(lost) + " labels lost (labelled -2)"), std::string::npos) << r.out;
+    const size_t link_line = r.out.find("link        ");
+    ASSERT_NE(link_line, std::string::npos) << r.out;
+    long bad_frames = 0;  // "1,140 frames failed their check"
+    for (size_t i = link_line + 12; i < r.out.size() && (std::isdigit(static_cast<unsigned char>(r.out[i])) || r.out[i] == ','); ++i) {
+      if (r.out[i] != ',') bad_frames = bad_frames * 10 + (r.out[i] - '0');
+    }
+    EXPECT_GT(bad_frames, 0) << "the line made no errors: " << r.out;
+    size_t at = 0;
+    for (const std::string& row : tracks) {
+      while (at < fixed_tracks.size() && fixed_tracks[at] != row) ++at;
+      ASSERT_LT(at, fixed_tracks.size()) << "a track row the fixed core did not write: " << row;
+      ++at;
+    }
+    EXPECT_LE(fixed_tracks.size() - tracks.size(), static_cast<size_t>(bad_frames));
+  }
 }
 
 TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {

@@ -46,6 +46,8 @@ Expected cxx_core(const std::vector<hls::EventWord>& words) {
 
 struct Received {
   Expected words;
+  std::vector<link::Sequence> label_seqs;
+  std::vector<link::Sequence> resends;  // the numbers the board asked for again
   std::vector<link::Status> status;
   std::uint64_t bad_frames = 0;
 };
@@ -57,35 +59,57 @@ void collect(sim::VirtualBoard<Vboard_ice40>& board, link::FrameDecoder& decoder
   link::Frame f;
   while (decoder.next(f)) {
     switch (f.type) {
-      case link::kLabel: r.words.labels.push_back(link::decode_label(f)); break;
+      case link::kLabel:
+        r.words.labels.push_back(link::decode_label(f));
+        r.label_seqs.push_back(link::label_sequence(f));
+        break;
       case link::kTrack: r.words.tracks.push_back(link::decode_track(f)); break;
       case link::kPacket: r.words.packets.push_back(link::decode_packet(f)); break;
       case link::kStatus: r.status.push_back(link::decode_status(f)); break;
+      case link::kResend: r.resends.push_back(link::decode_resend(f)); break;
       default: break;
     }
   }
   r.bad_frames = decoder.bad_frames();
 }
 
-// Streams `frames` (one per event, then a flush) keeping at most kWindow events in flight.
-Received run_link(const std::vector<std::vector<std::uint8_t>>& frames) {
+// Streams `frames` (one per event, numbered from 0, then a flush) keeping at most kWindow
+// events in flight, and going back to the frame the board asks for again, as the host does.
+// The first copy of frame `corrupt` (if any) has a payload bit flipped on the line.
+Received run_link(const std::vector<std::vector<std::uint8_t>>& frames, size_t corrupt = SIZE_MAX) {
   sim::VirtualBoard<Vboard_ice40> board(kCpb);
   link::FrameDecoder decoder;
   Received r;
-  size_t sent = 0;
+  size_t next = 0;
+  size_t resends_seen = 0;
   std::uint64_t guard = 0;
   while (r.status.empty()) {
-    if (sent < frames.size() && !board.sending() && sent < r.words.labels.size() + kWindow) {
-      board.send(frames[sent++]);
+    if (next < frames.size() && !board.sending() && next < r.words.labels.size() + kWindow) {
+      std::vector<std::uint8_t> frame = frames[next];
+      if (next == corrupt) frame[6] ^= 0x10, corrupt = SIZE_MAX;
+      board.send(frame);
+      ++next;
     }
     board.run(64);
     collect(board, decoder, r);
+    for (; resends_seen < r.resends.size(); ++resends_seen) next = r.resends[resends_seen];  // fewer than 2^16 frames here
     if (++guard > 5000000) {
       ADD_FAILURE() << "no status frame after the flush";
       break;
     }
   }
   return r;
+}
+
+std::vector<std::vector<std::uint8_t>> link_frames(const std::vector<hls::EventWord>& words) {
+  std::vector<std::vector<std::uint8_t>> frames;
+  for (const auto& w : words) {
+    frames.emplace_back();
+    link::append_event(frames.back(), w, static_cast<link::Sequence>(frames.size() - 1));
+  }
+  frames.emplace_back();
+  link::append_flush(frames.back(), static_cast<link::Sequence>(words.size()));
+  return frames;
 }
 
 void expect_same(const Expected& got, const Expected& want) {
@@ -119,14 +143,7 @@ std::vector<hls::EventWord> scene_words(double duration_s) {
 
 TEST(BoardLink, EventsInLabelsOutEqualToTheCppCore) {
   auto words = scene_words(0.04);
-  std::vector<std::vector<std::uint8_t>> frames;
-  for (const auto& w : words) {
-    frames.emplace_back();
-    link::append_event(frames.back(), w);
-  }
-  frames.emplace_back();
-  link::append_flush(frames.back());
-  const Received r = run_link(frames);
+  const Received r = run_link(link_frames(words));
   hls::EventWord flush;
   flush.flush = true;
   words.push_back(flush);
@@ -137,21 +154,17 @@ TEST(BoardLink, EventsInLabelsOutEqualToTheCppCore) {
   EXPECT_EQ(r.status[0].framing_errors, 0u);
   EXPECT_EQ(r.status[0].overruns, 0u);
   EXPECT_EQ(r.bad_frames, 0u);
+  EXPECT_TRUE(r.resends.empty());
+  // Label frames are numbered in order from the reset.
+  for (size_t i = 0; i < r.label_seqs.size(); ++i) ASSERT_EQ(r.label_seqs[i], static_cast<link::Sequence>(i)) << i;
 }
 
-TEST(BoardLink, ACorruptFrameIsCountedAndDropped) {
+// A frame the line corrupts is counted and dropped, the frames after it are refused until the
+// board has asked for it once, and the core sees the whole stream in order.
+TEST(BoardLink, ACorruptEventFrameIsAskedForAgainAndNothingIsLost) {
   auto words = scene_words(0.015);
-  std::vector<std::vector<std::uint8_t>> frames;
   const size_t corrupt = words.size() / 2;
-  for (const auto& w : words) {
-    frames.emplace_back();
-    link::append_event(frames.back(), w);
-  }
-  frames[corrupt][6] ^= 0x10;  // a payload bit: the check fails
-  frames.emplace_back();
-  link::append_flush(frames.back());
-  const Received r = run_link(frames);
-  words.erase(words.begin() + static_cast<long>(corrupt));
+  const Received r = run_link(link_frames(words), corrupt);
   hls::EventWord flush;
   flush.flush = true;
   words.push_back(flush);
@@ -159,6 +172,40 @@ TEST(BoardLink, ACorruptFrameIsCountedAndDropped) {
   ASSERT_EQ(r.status.size(), 1u);
   EXPECT_EQ(r.status[0].crc_errors, 1u);
   EXPECT_EQ(r.status[0].events_received, words.size() - 1);
+  ASSERT_EQ(r.resends.size(), 1u);
+  EXPECT_EQ(r.resends[0], corrupt);
+}
+
+// A flush whose number is ahead of the board's count (its last events were lost) is answered
+// by a resend request, not a status.
+TEST(BoardLink, AFlushAfterLostEventsAsksForThem) {
+  auto words = scene_words(0.004);
+  auto frames = link_frames(words);
+  const size_t last = words.size() - 1;
+  frames[last][6] ^= 0x01;  // every copy of the last event is corrupt: the board never has it
+  sim::VirtualBoard<Vboard_ice40> board(kCpb);
+  link::FrameDecoder decoder;
+  Received r;
+  for (const auto& f : frames) board.send(f);
+  for (int guard = 0; r.resends.empty() && guard < 200000; ++guard) {
+    board.run(64);
+    collect(board, decoder, r);
+  }
+  ASSERT_EQ(r.resends.size(), 1u);
+  EXPECT_EQ(r.resends[0], last);
+  EXPECT_TRUE(r.status.empty());
+  // The good copy and the flush again: now the status comes.
+  std::vector<std::uint8_t> event, flush;
+  link::append_event(event, words[last], static_cast<link::Sequence>(last));
+  link::append_flush(flush, static_cast<link::Sequence>(words.size()));
+  board.send(event), board.send(flush);
+  for (int guard = 0; r.status.empty() && guard < 2000000; ++guard) {
+    board.run(64);
+    collect(board, decoder, r);
+  }
+  ASSERT_EQ(r.status.size(), 1u);
+  EXPECT_EQ(r.status[0].events_received, words.size());
+  EXPECT_EQ(r.words.labels.size(), words.size());
 }
 
 // The sensor side of the four-phase handshake, with random waits; then a flush over the
@@ -202,7 +249,7 @@ TEST(BoardAer, FourPhaseHandshake) {
     }
   }
   std::vector<std::uint8_t> flush;
-  link::append_flush(flush);
+  link::append_flush(flush, 0);  // no events came over the link
   board.send(flush);
   link::FrameDecoder decoder;
   Received r;
