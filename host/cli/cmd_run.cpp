@@ -96,6 +96,8 @@ class RunSink final : public OutputSink {
   std::optional<write::TracksCsv> tracks_;
 };
 
+volatile std::sig_atomic_t g_interrupted = 0;
+
 void run(const RunOptions& o) {
   auto source = read::open_source(o.source, o.source_options);
   const read::SourceInfo& info = source->info();
@@ -104,15 +106,25 @@ void run(const RunOptions& o) {
   RunSink sink(o.out, o.format, info.sensor);
   Progress progress(!o.quiet);
 
-  // Ctrl-C ends a live source as if its input had ended, so that the outputs are complete.
+  // Ctrl-C (or a SIGTERM) ends any source as if its input had ended, so that the outputs are
+  // complete files: a live source delivers what it has buffered, a recording stops at the next
+  // batch. A second Ctrl-C ends evms at once.
   const bool live = dynamic_cast<read::LiveSource*>(source.get()) != nullptr;
-  if (live) std::signal(SIGINT, [](int) { read::end_live_sources(); std::signal(SIGINT, SIG_DFL); });
+  g_interrupted = 0;
+  for (const int sig : {SIGINT, SIGTERM}) {
+    std::signal(sig, [](int) {
+      g_interrupted = 1;
+      read::end_live_sources();
+      std::signal(SIGINT, SIG_DFL), std::signal(SIGTERM, SIG_DFL);
+    });
+  }
 
   std::vector<Event> batch(4096);
   TimeUs t_first = 0, t_last = 0;
   bool any = false;
   const auto start = std::chrono::steady_clock::now();
   for (;;) {
+    if (g_interrupted && !live) break;
     const size_t n = source->read(batch);
     if (n == 0) break;
     if (!any) t_first = batch[0].t, any = true;
@@ -170,6 +182,12 @@ void run(const RunOptions& o) {
     std::string listed;
     for (const std::string& f : sink.files) listed += (listed.empty() ? "" : ", ") + f;
     std::fprintf(summary, "outputs     %s\n", listed.c_str());
+  }
+  // A live source has no end but the one the user gives it; a recording cut short says so.
+  if (g_interrupted && !live) {
+    std::fprintf(summary, "interrupted before the end of the source: the outputs hold the events read until then\n");
+    std::fflush(summary);
+    throw ExitStatus{130};
   }
 }
 

@@ -3,6 +3,12 @@
 #include <CLI/CLI.hpp>
 
 namespace evms::cli {
+// A subcommand that finished its work but must end with this exit status (its outputs are
+// written and its summary printed).
+struct ExitStatus {
+  int code;
+};
+
 void register_run(CLI::App& app);
 void register_info(CLI::App& app);
 void register_gen(CLI::App& app);

@@ -96,6 +96,8 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const evms::cli::ExitStatus& e) {
+    return e.code;
   } catch (const std::filesystem::filesystem_error& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "evms: %s\n", evms::read::printable(describe(e)).c_str());

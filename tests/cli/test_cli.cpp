@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -332,6 +333,50 @@ TEST(Cli, GenIsDeterministicOnDisk) {
   for (const char* f : {"events.txt", "labels.csv", "gt_tracks.csv"}) {
     const auto r = run_command("cmp " + dir.path("a/") + f + " " + dir.path("b/") + f);
     EXPECT_EQ(r.exit_code, 0) << f;
+  }
+}
+
+// Ctrl-C ends any source as if its input had ended: the outputs are complete files holding
+// every event read until then, and the summary is printed. A recording cut short exits 130; a
+// live source (here a paced replay, and a UDP port nobody sends to) ends normally.
+TEST(Cli, CtrlCLeavesCompleteOutputs) {
+  struct Case {
+    std::string source;
+    std::string ready;  // a shell test that is true once evms is in its loop
+    int exit_code;
+  };
+  TempDir dir;
+  const std::string out = dir.path("o"), log = dir.path("log");
+  const std::vector<Case> cases = {
+      {"'gen://rotation?duration-s=60'", "[ -s " + out + "/events.csv ]", 130},
+      {"'gen://rotation?duration-s=60' --realtime", "[ -s " + out + "/events.csv ]", 0},
+      {"udp://127.0.0.1:47193", "grep -q listening " + log, 0},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.source);
+    std::filesystem::remove_all(out);
+    const auto r = run_command(evms_binary() + " run " + c.source + " --quiet --out " + out + " > " + log +
+                               " 2>&1 & pid=$!; for i in $(seq 600); do " + c.ready + " && break; sleep 0.05; done; sleep 0.3; "
+                               "kill -INT $pid; wait $pid; echo $?");
+    ASSERT_EQ(r.out, std::to_string(c.exit_code) + "\n") << read_file(log);
+    const std::string summary = read_file(log);
+    const size_t at = summary.find("events in   ");
+    ASSERT_NE(at, std::string::npos) << summary;
+    std::int64_t events = 0;
+    for (size_t i = at + 12; i < summary.size() && (std::isdigit(static_cast<unsigned char>(summary[i])) || summary[i] == ','); ++i) {
+      if (summary[i] != ',') events = events * 10 + (summary[i] - '0');
+    }
+    EXPECT_NE(summary.find("outputs     "), std::string::npos) << summary;
+    EXPECT_EQ(summary.find("interrupted before the end") != std::string::npos, c.exit_code == 130) << summary;
+    const std::string rows = read_file(out + "/events.csv"), tracks = read_file(out + "/tracks.csv");
+    EXPECT_EQ(static_cast<std::int64_t>(count_lines(out + "/events.csv")), events + 2);
+    ASSERT_FALSE(rows.empty());
+    EXPECT_EQ(rows.back(), '\n');
+    const std::string last = rows.substr(rows.rfind('\n', rows.size() - 2) + 1);
+    EXPECT_EQ(std::count(last.begin(), last.end(), ','), 4) << last;
+    EXPECT_EQ(tracks.rfind("t_us,track_id,state,", 0), 0u);
+    EXPECT_EQ(tracks.back(), '\n');
+    if (c.exit_code == 130) EXPECT_GT(events, 0);
   }
 }
 
