@@ -123,9 +123,17 @@ void run(const RunOptions& o) {
   TimeUs t_first = 0, t_last = 0;
   bool any = false;
   const auto start = std::chrono::steady_clock::now();
+  // A source that fails part way (a camera unplugged, a corrupt record) ends the input: what
+  // came before it is labelled and written, then the cause is reported.
+  std::string source_error;
   for (;;) {
     if (g_interrupted && !live) break;
-    const size_t n = source->read(batch);
+    size_t n = 0;
+    try {
+      n = source->read(batch);
+    } catch (const read::InputError& e) {
+      source_error = e.what();
+    }
     if (n == 0) break;
     if (!any) t_first = batch[0].t, any = true;
     t_last = batch[n - 1].t;
@@ -182,6 +190,11 @@ void run(const RunOptions& o) {
     std::string listed;
     for (const std::string& f : sink.files) listed += (listed.empty() ? "" : ", ") + f;
     std::fprintf(summary, "outputs     %s\n", listed.c_str());
+  }
+  if (!source_error.empty()) {
+    std::fflush(summary);
+    std::fprintf(stderr, "evms: %s\n", read::printable(source_error).c_str());
+    throw ExitStatus{1};
   }
   // A live source has no end but the one the user gives it; a recording cut short says so.
   if (g_interrupted && !live) {

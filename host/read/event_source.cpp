@@ -1,4 +1,6 @@
 #include "host/read/event_source.h"
+
+#include <utility>
 #include "host/read/live/live_source.h"
 #include "host/read/source_window.h"
 
@@ -44,8 +46,18 @@ size_t DecodedEventSource::read(std::span<Event> out) {
   size_t n = 0;
   for (;;) {
     n += ordering_->pop(out.subspan(n));
-    if (n == out.size() || exhausted_) return n;
-    if (!decode_more()) {
+    if (n == out.size() || exhausted_) {
+      // The events decoded before a bad record come out first; the error after them.
+      if (n == 0 && failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
+      return n;
+    }
+    try {
+      if (!decode_more()) {
+        exhausted_ = true;
+        ordering_->finish();
+      }
+    } catch (const InputError&) {
+      failure_ = std::current_exception();
       exhausted_ = true;
       ordering_->finish();
     }

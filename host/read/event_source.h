@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <memory>
 #include <optional>
 #include <span>
@@ -100,6 +101,7 @@ class DecodedEventSource : public EventSource {
   std::optional<EventOrdering> ordering_;
   std::vector<std::pair<std::string, std::int64_t>> skipped_;
   bool exhausted_ = false;
+  std::exception_ptr failure_;  // a decoding error, reported once the events before it are read
 };
 
 // Base of every file decoder: owns the byte reader.
