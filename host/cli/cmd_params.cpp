@@ -4,6 +4,7 @@
 
 #include "host/cli/commands.h"
 #include "host/cli/common.h"
+#include "host/cli/config_file.h"
 
 namespace evms::cli {
 

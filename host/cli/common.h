@@ -23,11 +23,6 @@ void add_replay_options(CLI::App& cmd, read::SourceOptions& options, Pacing paci
 // --preset and one option per row of the parameter table (golden/params.cpp). Values are
 // checked as they are parsed; Method::resolve applies them over the preset.
 void add_method_options(CLI::App& cmd, Method& method);
-// The preset and settings of a --config YAML file; throws read::InputError naming the file and
-// line of what is wrong.
-Method method_from_config(const std::string& path);
-// A --config file with every parameter at its default, each under a comment saying what it is.
-std::string config_yaml();
 
 // "240x180", or "240x180 assumed: ..." when the source does not say its sensor size.
 std::string sensor_text(const read::SourceInfo& info);

@@ -295,7 +295,9 @@ TEST(Cli, ConfigFilesSetParametersAndTheCommandLineWins) {
            {"bandwidth: 0.1\nbandwith: 0.2\n", ": line 2: unknown parameter 'bandwith'"},
            {"kernel: round\n", ": line 1: --kernel: 'round' is not one of"},
            {"preset: fast\n", ": line 1: unknown preset 'fast'"},
-           {"a: [1,\n", ": line 2: bad YAML"}}) {
+           {"a: [1,\n", ": line 2: bad YAML"},
+           // Found by tests/fuzz/fuzz_config.cpp: a key that is a list once ended evms with yaml-cpp's exception.
+           {"bandwidth: 0.1\n? [a, b]\n: 3000\n", ": line 2: expected a parameter name before ':'"}}) {
     const std::string path = dir.write("bad.yaml", text);
     const auto r = run_command(evms_binary() + scene + dir.path("bad") + " --config " + path);
     EXPECT_EQ(r.exit_code, 1) << text;
