@@ -9,6 +9,11 @@ struct ExitStatus {
   int code;
 };
 
+// The evms program: parses the command line, runs the subcommand, and returns the exit status.
+// host/cli/evms.cpp is its main(); a test harness may call it with a source of its own behind
+// a seam (tests/support/evms_scripted_usb.cpp).
+int run_evms(int argc, char** argv);
+
 void register_run(CLI::App& app);
 void register_info(CLI::App& app);
 void register_gen(CLI::App& app);

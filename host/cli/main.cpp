@@ -1,4 +1,4 @@
-// evms: event-based mean-shift clustering and tracking, from files, cameras or generated
+// The evms command line (run_evms, commands.h): event-based mean-shift clustering and tracking, from files, cameras or generated
 // scenes, on the golden model, the fixed-point core, the simulated RTL or an FPGA board.
 #include <cstdio>
 #include <filesystem>
@@ -53,7 +53,7 @@ std::string describe(const std::filesystem::filesystem_error& e) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int evms::cli::run_evms(int argc, char** argv) {
   CLI::App app{"evms: real-time clustering and multi-target tracking of event-camera output "
                "(Barranco, Fermuller & Ros, IROS 2018)"};
   evms::cli::set_invocation(argc, argv);

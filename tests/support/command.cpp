@@ -14,6 +14,7 @@
 namespace evms::test {
 
 std::string evms_binary() { return EVMS_BINARY; }
+std::string scripted_usb_binary() { return EVMS_SCRIPTED_USB_BINARY; }
 
 std::string read_file(const std::string& path) {
   std::stringstream ss;

@@ -16,6 +16,8 @@ struct CommandResult {
 CommandResult run_command(const std::string& command);
 // Path of the built evms program.
 std::string evms_binary();
+// Path of evms with a scripted camera behind usb:// (evms_scripted_usb.cpp; EVMS_USB_SCRIPT names the script).
+std::string scripted_usb_binary();
 // A file's whole contents, bytes as they are ("" when it cannot be read).
 std::string read_file(const std::string& path);
 

@@ -356,6 +356,36 @@ std::string TempDir::write(const std::string& name, const Bytes& bytes) const {
   return path(name);
 }
 
+Bytes dvs128_usb_words(const std::vector<Event>& events) {
+  Bytes b;
+  TimeUs base = 0;
+  for (const Event& e : events) {
+    for (; e.t - base >= 0x4000; base += 0x4000) b.insert(b.end(), {0, 0, 0, 0x80});
+    const unsigned addr = ((127u - e.y) << 8) | ((127u - e.x) << 1) | (e.p ? 0u : 1u);
+    const auto ts = static_cast<unsigned>(e.t - base);
+    b.insert(b.end(), {static_cast<std::uint8_t>(addr), static_cast<std::uint8_t>(addr >> 8), static_cast<std::uint8_t>(ts),
+                       static_cast<std::uint8_t>(ts >> 8)});
+  }
+  return b;
+}
+
+Bytes davis_usb_words(const std::vector<Event>& events) {
+  Bytes b;
+  const auto word = [&b](unsigned w) { b.insert(b.end(), {static_cast<std::uint8_t>(w), static_cast<std::uint8_t>(w >> 8)}); };
+  TimeUs base = 0;
+  for (const Event& e : events) {
+    while (e.t - base >= 0x8000) {
+      const TimeUs wraps = std::min<TimeUs>((e.t - base) / 0x8000, 0xFFF);
+      word(0x7000u | static_cast<unsigned>(wraps));
+      base += wraps * 0x8000;
+    }
+    word(0x8000u | static_cast<unsigned>(e.t - base));
+    word(0x1000u | e.y);
+    word((e.p ? 0x3000u : 0x2000u) | e.x);
+  }
+  return b;
+}
+
 std::vector<Event> sample_events(size_t n, SensorSize sensor, std::uint64_t seed) {
   gen::Random rng(seed);
   std::vector<Event> out;

@@ -52,6 +52,11 @@ class TempDir {
   std::string dir_;
 };
 
+// What iniVation cameras send on their bulk IN endpoint (facts.md, Live USB cameras), in time
+// order from t = 0: timestamp wraps where they fall, then each event.
+Bytes dvs128_usb_words(const std::vector<Event>& events);  // 4-byte address + timestamp words
+Bytes davis_usb_words(const std::vector<Event>& events);   // 16-bit timestamp, row and column words
+
 // Events of a few moving dots, deterministic, in time order.
 std::vector<Event> sample_events(size_t n, SensorSize sensor, std::uint64_t seed = 1);
 

@@ -1,17 +1,28 @@
-// usb://dvs128 and usb://davis: live iniVation cameras over libusb-1.0.
+// usb://dvs128 and usb://davis: live iniVation cameras over libusb-1.0 (through usb_port.h).
 //
 // The reader opens the first camera of the kind, claims interface 0, starts streaming with the
 // vendor requests libcaer uses (facts.md), and keeps kTransfers asynchronous bulk transfers in
 // flight on its own thread. Each completed transfer is decoded (usb_decoders.h) and appended to
 // the live buffer, then resubmitted. Biases are left as the camera holds them.
-#include <libusb.h>
-
+//
+// Faults while streaming, each counted or named in one line:
+//   - a stalled bulk endpoint is cleared (libusb_clear_halt) and streaming goes on; stalls
+//     again and again with no data in between end the stream;
+//   - a failed transfer is resubmitted (its bytes are lost); kTransfers failures in a row end it;
+//   - an unplugged camera ends it;
+//   - silence ends it: a streaming camera sends a timestamp wrap at least every 33 ms (DAVIS;
+//     16 ms on the DVS128), so `silence-s` seconds (default 3) without a byte mean it has hung.
+// Events decoded before the end are delivered, then the cause (live_source.h).
+#include <algorithm>
 #include <array>
+#include <charconv>
 #include <cstdio>
 #include <string>
 
 #include "host/read/live/live_source.h"
 #include "host/read/live/usb_decoders.h"
+#include "host/read/live/usb_port.h"
+#include "host/read/uri.h"
 
 namespace evms::read {
 namespace {
@@ -20,6 +31,9 @@ constexpr std::uint16_t kInivationVid = 0x152A;
 constexpr int kTransfers = 8;
 constexpr int kTransferBytes = 16384;
 constexpr unsigned kTimeoutMs = 1000;
+constexpr int kStallsInARowMax = 3;
+constexpr double kSilenceDefaultS = 3.0;
+constexpr std::uint8_t kEndpointIn = 0x80, kRequestVendor = 0x40, kRecipientDevice = 0x00;
 constexpr const char* kUdevHint =
     "add a udev rule such as /etc/udev/rules.d/65-inivation.rules containing "
     "SUBSYSTEM==\"usb\", ATTR{idVendor}==\"152a\", MODE=\"0666\", then run 'sudo udevadm control --reload' and replug the camera";
@@ -32,15 +46,18 @@ struct CameraKind {
 constexpr CameraKind kDvs128{"DVS128", {0x8400, 0x8400}, 0x86};
 constexpr CameraKind kDavis{"DAVIS", {0x841B, 0x841A}, 0x82};
 
-std::string usb_error(int code) { return std::string(libusb_error_name(code)) + ": " + libusb_strerror(static_cast<libusb_error>(code)); }
-
 class UsbCamera final : public LiveSource, private DecodedSink {
  public:
-  UsbCamera(const std::string& uri, const CameraKind& kind, const SourceOptions& o)
-      : LiveSource(o.live_buffer_events), uri_(uri), kind_(kind), dvs128_(*this), davis_(*this) {
+  UsbCamera(const std::string& uri, const CameraKind& kind, double silence_s, const SourceOptions& o)
+      : LiveSource(o.live_buffer_events), uri_(uri), kind_(kind), silence_ns_(static_cast<std::int64_t>(silence_s * 1e9)),
+        dvs128_(*this), davis_(*this) {
     info_.name = uri;
     info_.format = std::string(kind.name) + " over USB";
-    if (int rc = libusb_init(&ctx_); rc < 0) throw InputError(uri + ": libusb could not start (" + usb_error(rc) + ")");
+    try {
+      port_ = open_usb_port();
+    } catch (const InputError& e) {
+      throw InputError(uri_ + ": " + e.what());
+    }
     try {
       open();
       configure(true);
@@ -57,39 +74,36 @@ class UsbCamera final : public LiveSource, private DecodedSink {
   }
 
  private:
+  std::string usb_error(int code) const { return port_->describe(code); }
+
   void open() {
-    libusb_device** list = nullptr;
-    const ssize_t n = libusb_get_device_list(ctx_, &list);
-    libusb_device* found = nullptr;
-    for (ssize_t i = 0; i < n && !found; ++i) {
-      libusb_device_descriptor d{};
-      if (libusb_get_device_descriptor(list[i], &d) == 0 && d.idVendor == kInivationVid &&
-          (d.idProduct == kind_.pids[0] || d.idProduct == kind_.pids[1])) {
-        found = list[i];
-      }
-    }
-    if (!found) {
-      libusb_free_device_list(list, 1);
+    const std::vector<UsbDeviceId> devices = port_->devices();
+    const auto found = std::find_if(devices.begin(), devices.end(), [this](const UsbDeviceId& d) {
+      return d.vendor == kInivationVid && (d.product == kind_.pids[0] || d.product == kind_.pids[1]);
+    });
+    if (found == devices.end()) {
       char ids[64];
       std::snprintf(ids, sizeof ids, "VID 0x%04X, PID 0x%04X%s", kInivationVid, kind_.pids[0],
                     kind_.pids[0] != kind_.pids[1] ? " or 0x841A" : "");
       throw InputError(uri_ + ": no " + kind_.name + " camera found (" + ids + "); is it plugged in? 'lsusb' lists what is");
     }
-    const int bus = libusb_get_bus_number(found), address = libusb_get_device_address(found);
-    const int rc = libusb_open(found, &handle_);
-    libusb_free_device_list(list, 1);
-    if (rc == LIBUSB_ERROR_ACCESS) {
-      throw InputError(uri_ + ": no permission to open the " + kind_.name + " at USB bus " + std::to_string(bus) + " device " +
-                       std::to_string(address) + ": " + kUdevHint);
+    const int rc = port_->open(*found);
+    device_open_ = rc == 0;
+    if (rc == kUsbErrorAccess) {
+      throw InputError(uri_ + ": no permission to open the " + kind_.name + " at USB bus " + std::to_string(found->bus) + " device " +
+                       std::to_string(found->address) + ": " + kUdevHint);
     }
     if (rc < 0) throw InputError(uri_ + ": cannot open the " + kind_.name + " (" + usb_error(rc) + ")");
-    libusb_set_auto_detach_kernel_driver(handle_, 1);
-    if (int c = libusb_claim_interface(handle_, 0); c < 0) {
+    if (int c = port_->claim_interface(0); c < 0) {
       throw InputError(uri_ + ": cannot claim the camera's interface 0 (" + usb_error(c) +
                        "); is another program (jAER, DV, caer) using it?");
     }
     if (is_davis()) {
       const std::uint32_t columns = read_config(1, 0), rows = read_config(1, 1);
+      if (columns < 1 || rows < 1 || columns > static_cast<std::uint32_t>(kMaxSensorSide) || rows > static_cast<std::uint32_t>(kMaxSensorSide)) {
+        throw InputError(uri_ + ": the camera reports a " + std::to_string(columns) + "x" + std::to_string(rows) +
+                         " sensor, outside 1.." + std::to_string(kMaxSensorSide) + " a side");
+      }
       info_.sensor = {static_cast<int>(columns), static_cast<int>(rows)};
       info_.sensor_origin = "camera";
     } else {
@@ -100,24 +114,25 @@ class UsbCamera final : public LiveSource, private DecodedSink {
 
   bool is_davis() const { return &kind_ == &kDavis; }
 
-  void control(std::uint8_t request, std::uint16_t value, std::uint16_t index, unsigned char* data, std::uint16_t length, bool in) {
-    const unsigned direction = in ? LIBUSB_ENDPOINT_IN : LIBUSB_ENDPOINT_OUT;
-    const auto type = static_cast<std::uint8_t>(direction | unsigned{LIBUSB_REQUEST_TYPE_VENDOR} | unsigned{LIBUSB_RECIPIENT_DEVICE});
-    const int rc = libusb_control_transfer(handle_, type, request, value, index, data, length, kTimeoutMs);
-    if (rc < 0) {
+  void control(std::uint8_t request, std::uint16_t value, std::uint16_t index, std::span<unsigned char> data, bool in) {
+    const auto type = static_cast<std::uint8_t>((in ? kEndpointIn : 0) | kRequestVendor | kRecipientDevice);
+    const int rc = port_->control_transfer(type, request, value, index, data, kTimeoutMs);
+    if (rc < 0 || (in && static_cast<size_t>(rc) < data.size())) {
       char what[64];
       std::snprintf(what, sizeof what, "vendor request 0x%02X (%u, %u)", request, value, index);
-      throw InputError(uri_ + ": " + what + " failed (" + usb_error(rc) + ")");
+      throw InputError(uri_ + ": " + what + " failed (" +
+                       (rc < 0 ? usb_error(rc) : "the camera answered " + std::to_string(rc) + " of " + std::to_string(data.size()) + " bytes") +
+                       ")");
     }
   }
   void write_config(std::uint16_t module, std::uint16_t param, std::uint32_t v) {
     unsigned char be[4] = {static_cast<unsigned char>(v >> 24), static_cast<unsigned char>(v >> 16), static_cast<unsigned char>(v >> 8),
                            static_cast<unsigned char>(v)};
-    control(0xBF, module, param, be, 4, false);
+    control(0xBF, module, param, be, false);
   }
   std::uint32_t read_config(std::uint16_t module, std::uint16_t param) {
     unsigned char be[4] = {};
-    control(0xBF, module, param, be, 4, true);
+    control(0xBF, module, param, be, true);
     return (std::uint32_t{be[0]} << 24) | (std::uint32_t{be[1]} << 16) | (std::uint32_t{be[2]} << 8) | be[3];
   }
 
@@ -133,61 +148,114 @@ class UsbCamera final : public LiveSource, private DecodedSink {
       write_config(1, 3, on);  // DVS: run
       if (run) write_config(0, 2, 1);  // MUX: timestamp reset
     } else {
-      control(run ? 0xB3 : 0xB4, 0, 0, nullptr, 0, false);
-      if (run) control(0xBB, 0, 0, nullptr, 0, false);
+      control(run ? 0xB3 : 0xB4, 0, 0, {}, false);
+      if (run) control(0xBB, 0, 0, {}, false);
     }
   }
 
   void produce(std::stop_token stop) override {
-    std::array<libusb_transfer*, kTransfers> transfers{};
     std::vector<unsigned char> memory(static_cast<size_t>(kTransfers) * kTransferBytes);
+    std::array<UsbTransfer, kTransfers> transfers;
     for (int i = 0; i < kTransfers; ++i) {
-      transfers[i] = libusb_alloc_transfer(0);
-      libusb_fill_bulk_transfer(transfers[i], handle_, kind_.endpoint, memory.data() + static_cast<size_t>(i) * kTransferBytes,
-                                kTransferBytes, &UsbCamera::on_transfer, this, 0);
-      if (int rc = libusb_submit_transfer(transfers[i]); rc < 0) {
+      UsbTransfer& t = transfers[i];
+      t.endpoint = kind_.endpoint;
+      t.buffer = std::span(memory).subspan(static_cast<size_t>(i) * kTransferBytes, kTransferBytes);
+      t.on_complete = [this](UsbTransfer& done) { completed(done); };
+      if (int rc = port_->submit(t); rc < 0) {
         fail_ = uri_ + ": cannot start the bulk transfers (" + usb_error(rc) + ")";
         break;
       }
       ++in_flight_;
     }
-    timeval tick{0, 100000};
-    while (in_flight_ > 0) {
+    last_data_ns_ = steady_now_ns();
+    while (in_flight_ > 0 || !halted_.empty()) {
       if ((stop.stop_requested() || !fail_.empty()) && !cancelled_) {
-        for (auto* t : transfers) libusb_cancel_transfer(t);
+        for (auto& t : transfers) port_->cancel(t);
         cancelled_ = true;
       }
-      libusb_handle_events_timeout_completed(ctx_, &tick, nullptr);
+      if (cancelled_) halted_.clear();
+      if (in_flight_ > 0) port_->handle_events(100);
+      // libusb's synchronous calls do not belong in a completion, so a stall is cleared here.
+      if (!halted_.empty() && !cancelled_ && fail_.empty()) recover_from_stall();
+      if (!cancelled_ && fail_.empty() && silence_ns_ > 0 && steady_now_ns() - last_data_ns_ > silence_ns_) {
+        char s[32];
+        std::snprintf(s, sizeof s, "%g", static_cast<double>(silence_ns_) * 1e-9);
+        fail_ = uri_ + ": the " + kind_.name + " sent nothing for " + s +
+                " s, though a streaming camera sends a timestamp wrap every few ms; it has hung (replug it)";
+      }
     }
-    for (auto* t : transfers) libusb_free_transfer(t);
     if (!fail_.empty()) throw InputError(fail_);
   }
 
-  static void LIBUSB_CALL on_transfer(libusb_transfer* t) {
-    auto* self = static_cast<UsbCamera*>(t->user_data);
-    switch (t->status) {
-      case LIBUSB_TRANSFER_COMPLETED: {
-        self->arrival_ = steady_now_ns();
-        const std::span<const std::uint8_t> bytes(t->buffer, static_cast<size_t>(t->actual_length));
-        if (self->is_davis()) {
-          self->davis_.feed(bytes);
-        } else {
-          self->dvs128_.feed(bytes);
+  // Runs from handle_events(). A transfer that is not resubmitted leaves the flight.
+  void completed(UsbTransfer& t) {
+    --in_flight_;
+    switch (t.status) {
+      case UsbTransferStatus::kCompleted:
+        if (t.received > 0) {
+          last_data_ns_ = arrival_ = steady_now_ns();
+          stalls_in_a_row_ = 0, failures_in_a_row_ = 0;
+          const std::span<const std::uint8_t> bytes(t.buffer.data(), t.received);
+          if (is_davis()) {
+            davis_.feed(bytes);
+          } else {
+            dvs128_.feed(bytes);
+          }
+          flush();
         }
-        self->flush();
-        if (!self->cancelled_ && libusb_submit_transfer(t) == 0) return;
+        resubmit(t);
         break;
-      }
-      case LIBUSB_TRANSFER_NO_DEVICE:
-        if (self->fail_.empty()) self->fail_ = self->uri_ + ": the " + self->kind_.name + " was unplugged while streaming";
-        break;
-      case LIBUSB_TRANSFER_CANCELLED: break;
+      case UsbTransferStatus::kStall: halted_.push_back(&t); break;
+      case UsbTransferStatus::kNoDevice: unplugged(); break;
+      case UsbTransferStatus::kCancelled: break;
       default:
-        if (self->fail_.empty()) {
-          self->fail_ = self->uri_ + ": a bulk transfer failed (" + libusb_error_name(t->status) + ")";
+        count_skipped("failed bulk transfers, resubmitted (their bytes lost)");
+        if (++failures_in_a_row_ >= kTransfers) {
+          if (fail_.empty()) {
+            fail_ = uri_ + ": " + std::to_string(failures_in_a_row_) + " bulk transfers failed in a row, the last with '" +
+                    usb_transfer_status_name(t.status) + "'; replug the camera";
+          }
+        } else {
+          resubmit(t);
         }
     }
-    --self->in_flight_;
+  }
+
+  void resubmit(UsbTransfer& t) {
+    if (cancelled_ || !fail_.empty()) return;
+    const int rc = port_->submit(t);
+    if (rc == 0) {
+      ++in_flight_;
+    } else if (rc == kUsbErrorNoDevice) {
+      unplugged();
+    } else if (fail_.empty()) {
+      fail_ = uri_ + ": cannot resubmit a bulk transfer (" + usb_error(rc) + ")";
+    }
+  }
+
+  // Every transfer the stall ended is back once the endpoint is cleared; a stall that comes back
+  // kStallsInARowMax times with no data between is a camera that needs replugging.
+  void recover_from_stall() {
+    count_skipped("bulk endpoint stalls, cleared");
+    if (++stalls_in_a_row_ >= kStallsInARowMax) {
+      fail_ = uri_ + ": the " + kind_.name + "'s bulk endpoint stalled " + std::to_string(stalls_in_a_row_) +
+              " times in a row with no data between, though it was cleared each time; replug the camera";
+      halted_.clear();
+      return;
+    }
+    if (const int rc = port_->clear_halt(kind_.endpoint); rc < 0) {
+      fail_ = rc == kUsbErrorNoDevice ? unplugged_message() : uri_ + ": the bulk endpoint stalled and could not be cleared (" + usb_error(rc) + ")";
+      halted_.clear();
+      return;
+    }
+    std::vector<UsbTransfer*> halted;
+    halted.swap(halted_);
+    for (UsbTransfer* t : halted) resubmit(*t);
+  }
+
+  std::string unplugged_message() const { return uri_ + ": the " + kind_.name + " was unplugged while streaming"; }
+  void unplugged() {
+    if (fail_.empty()) fail_ = unplugged_message();
   }
 
   void event(TimeUs t, std::uint16_t x, std::uint16_t y, std::uint8_t p) override {
@@ -204,39 +272,45 @@ class UsbCamera final : public LiveSource, private DecodedSink {
   }
 
   void close_device() {
-    if (handle_) {
-      try {
-        configure(false);
-      } catch (const InputError&) {
-        // The camera may be gone; stopping it is then moot.
-      }
-      libusb_release_interface(handle_, 0);
-      libusb_close(handle_);
-      handle_ = nullptr;
+    if (!device_open_) return;
+    device_open_ = false;
+    try {
+      configure(false);
+    } catch (const InputError&) {
+      // The camera may be gone or was never opened; stopping it is then moot.
     }
-    if (ctx_) libusb_exit(ctx_), ctx_ = nullptr;
+    port_->close();
   }
 
   std::string uri_;
   const CameraKind& kind_;
-  libusb_context* ctx_ = nullptr;
-  libusb_device_handle* handle_ = nullptr;
+  std::int64_t silence_ns_;
+  std::unique_ptr<UsbPort> port_;
   Dvs128Decoder dvs128_;
   DavisDecoder davis_;
   std::vector<Event> pending_;
-  std::int64_t arrival_ = 0;
-  int in_flight_ = 0;
-  bool cancelled_ = false;
+  std::vector<UsbTransfer*> halted_;  // ended by a stall, to resubmit once the endpoint is cleared
+  std::int64_t arrival_ = 0, last_data_ns_ = 0;
+  int in_flight_ = 0, stalls_in_a_row_ = 0, failures_in_a_row_ = 0;
+  bool device_open_ = false, cancelled_ = false;
   std::string fail_;
 };
 
 }  // namespace
 
 std::unique_ptr<EventSource> open_usb_camera(const std::string& uri, const SourceOptions& o) {
-  const std::string kind = uri.substr(6);
-  if (kind == "dvs128") return std::make_unique<UsbCamera>(uri, kDvs128, o);
-  if (kind == "davis") return std::make_unique<UsbCamera>(uri, kDavis, o);
-  throw InputError(uri + ": unknown camera '" + kind + "' (expected usb://dvs128 or usb://davis)");
+  const SourceUri parts = split_source_uri(uri);
+  double silence_s = kSilenceDefaultS;
+  for (const auto& [key, value] : parts.query) {
+    if (key != "silence-s") throw InputError(uri + ": unknown option '" + printable(key) + "' (known: silence-s)");
+    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), silence_s);
+    if (value.empty() || ec != std::errc() || end != value.data() + value.size() || !(silence_s >= 0)) {
+      throw InputError(uri + ": 'silence-s' needs a number of seconds (0: wait for ever), got '" + printable(value) + "'");
+    }
+  }
+  if (parts.target == "dvs128") return std::make_unique<UsbCamera>(uri, kDvs128, silence_s, o);
+  if (parts.target == "davis") return std::make_unique<UsbCamera>(uri, kDavis, silence_s, o);
+  throw InputError(uri + ": unknown camera '" + printable(parts.target) + "' (expected usb://dvs128 or usb://davis)");
 }
 
 }  // namespace evms::read
