@@ -28,6 +28,8 @@ struct PipelineStats {
   std::int64_t clusters = 0;        // summed over packets
   std::int64_t iterations = 0;      // mean-shift sweeps or climb steps, summed over packets
   std::int64_t kernel_evaluations = 0;  // point-to-point distances the mean shift took
+  std::int64_t cluster_ns = 0;          // wall clock spent clustering packets (features, mean shift, labels)
+  std::int64_t track_ns = 0;            // ... and measuring clusters and tracking them
 };
 
 class Pipeline {

@@ -22,6 +22,9 @@ struct BackendStats {
   std::int64_t tracks_started = 0;
   std::int64_t unassigned_clusters = 0;
   std::int64_t kernel_evaluations = 0; // point-to-point distances the mean shift took
+  // Wall clock in the method's stages, where the backend measures them (golden); 0 otherwise.
+  std::int64_t cluster_ns = 0;         // clustering packets
+  std::int64_t track_ns = 0;           // measuring clusters and tracking them
   // The board's serial link (the board backend only).
   std::int64_t link_bad_frames = 0;    // frames that failed their check: the host's and the board's counts
   std::int64_t link_events_resent = 0; // event frames sent again, when the board asked or fell silent

@@ -14,8 +14,12 @@ class GoldenBackend final : public Backend {
   void finish(OutputSink& out) override { pipeline_.finish(out); }
   BackendStats stats() const override {
     const auto& s = pipeline_.stats();
-    return {s.events_in, s.events_kept, s.packets, s.clusters, s.iterations,
-            pipeline_.tracker().tracks_started(), pipeline_.tracker().unassigned_clusters(), s.kernel_evaluations};
+    BackendStats b;
+    b.events_in = s.events_in, b.events_kept = s.events_kept, b.packets = s.packets, b.clusters = s.clusters;
+    b.iterations = s.iterations, b.kernel_evaluations = s.kernel_evaluations;
+    b.tracks_started = pipeline_.tracker().tracks_started(), b.unassigned_clusters = pipeline_.tracker().unassigned_clusters();
+    b.cluster_ns = s.cluster_ns, b.track_ns = s.track_ns;
+    return b;
   }
 
  private:

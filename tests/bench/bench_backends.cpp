@@ -1,5 +1,6 @@
 // Backend throughput on one core, default parameters, events held in memory so that only the
-// method is timed. Real recordings are used when ../shared/data/real is present.
+// method is timed, with the time per event of its clustering and tracking stages and the kernel
+// evaluations per event. Reading and writing have their own benchmarks (bench_io.cpp). Real recordings are used when ../shared/data/real is present.
 //   build/bin/bench_backends --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
@@ -28,6 +29,7 @@ void run(benchmark::State& state, const std::string& backend, const std::string&
   const auto events = test::read_all(path);
   const SensorSize sensor = read::open_source(path, {})->info().sensor;
   backend::BackendStats stats;
+  std::int64_t cluster_ns = 0, track_ns = 0;
   for (auto _ : state) {
     auto b = backend::make_backend(backend, backend::options_for(Params{}, sensor));
     NullSink sink;
@@ -35,11 +37,18 @@ void run(benchmark::State& state, const std::string& backend, const std::string&
     b->finish(sink);
     benchmark::DoNotOptimize(sink.labelled);
     stats = b->stats();
+    cluster_ns += stats.cluster_ns, track_ns += stats.track_ns;
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(events.size()));
   state.counters["events"] = static_cast<double>(events.size());
   state.counters["kept"] = static_cast<double>(stats.events_kept) / static_cast<double>(events.size());
   state.counters["iters/packet"] = stats.packets ? static_cast<double>(stats.iterations) / stats.packets : 0;
+  state.counters["kernel/event"] = static_cast<double>(stats.kernel_evaluations) / static_cast<double>(events.size());
+  // The stages' time per event (the backends that time them: golden); filter and the rest is the
+  // time per event less these.
+  const double per_event = 1.0 / (static_cast<double>(state.iterations()) * static_cast<double>(events.size()));
+  state.counters["cluster_ns/ev"] = static_cast<double>(cluster_ns) * per_event;
+  state.counters["track_ns/ev"] = static_cast<double>(track_ns) * per_event;
   state.counters["us/packet"] = benchmark::Counter(static_cast<double>(stats.packets) * state.iterations(),
                                                    benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -88,6 +89,36 @@ TEST(Cli, RunWritesOneRowPerEventAndATrackFile) {
   std::getline(tracks, header);
   EXPECT_EQ(header, "t_us,track_id,state,x,y,vx,vy,events,x_min,y_min,x_max,y_max,var_x,cov_xy,var_y");
   EXPECT_NE(r.out.find("events in   3,000"), std::string::npos) << r.out;
+}
+
+// The summary's "time" line splits the wall clock into reading, the method (for golden: its
+// clustering, tracking and the rest) and writing, and golden counts its kernel evaluations.
+TEST(Cli, RunSummarySaysWhereTheTimeWent) {
+  TempDir dir;
+  const std::string events = dir.write("e.csv", "# sensor 240x180\n" + csv(sample_events(20000, {240, 180})));
+  const auto golden = run_command(evms_binary() + " run " + events + " --out " + dir.path("g"));
+  ASSERT_EQ(golden.exit_code, 0) << golden.err;
+  double read = -1, method = -1, cluster = -1, track = -1, rest = -1, write = -1, kernel = -1;
+  const size_t at = golden.out.find("time        ");
+  ASSERT_NE(at, std::string::npos) << golden.out;
+  ASSERT_EQ(std::sscanf(golden.out.c_str() + at, "time        read %lf s, method %lf s (cluster %lf, track %lf, filter and the rest %lf), write %lf s",
+                        &read, &method, &cluster, &track, &rest, &write),
+            6)
+      << golden.out;
+  EXPECT_GE(read, 0);
+  EXPECT_GE(write, 0);
+  EXPECT_GT(cluster, 0);
+  EXPECT_NEAR(cluster + track + rest, method, 0.0021) << "the method's parts add up to it (to the printed digits)";
+  const size_t k = golden.out.find(" kernel evaluations per event");
+  ASSERT_NE(k, std::string::npos) << golden.out;
+  ASSERT_EQ(std::sscanf(golden.out.c_str() + golden.out.rfind(", ", k) + 2, "%lf", &kernel), 1);
+  EXPECT_GT(kernel, 0);
+  // The fixed core counts no kernel evaluations and does not time its stages: neither is printed.
+  const auto fixed = run_command(evms_binary() + " run " + events + " --backend fixed");
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
+  EXPECT_EQ(fixed.out.find("kernel evaluations"), std::string::npos) << fixed.out;
+  EXPECT_NE(fixed.out.find("time        read "), std::string::npos) << fixed.out;
+  EXPECT_EQ(fixed.out.find("(cluster "), std::string::npos) << fixed.out;
 }
 
 TEST(Cli, RunsOnTheEmbeddedDefaultScene) {
