@@ -14,13 +14,19 @@ struct Vec {
   Vec operator-(Vec o) const { return {x - o.x, y - o.y}; }
   Vec operator*(double s) const { return {x * s, y * s}; }
   double dot(Vec o) const { return x * o.x + y * o.y; }
-  double norm() const { return std::hypot(x, y); }
+  // Not std::hypot: glibc's guards against overflow make it half the generator's time, and
+  // these are pixel-scale lengths.
+  double norm() const { return std::sqrt(x * x + y * y); }
 };
 
-Vec rotate(Vec v, double a) {
-  const double c = std::cos(a), s = std::sin(a);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
+// A rotation by an angle, its cosine and sine computed once.
+struct Rotation {
+  explicit Rotation(double a) : c(std::cos(a)), s(std::sin(a)) {}
+  Vec operator()(Vec v) const { return {c * v.x - s * v.y, s * v.x + c * v.y}; }
+  double c, s;
+};
+
+Vec rotate(Vec v, double a) { return Rotation(a)(v); }
 
 // A shape in its own frame, centred on its geometric centre. Signed distance is negative
 // inside. Polygons (convex or not) are exact; the ellipse is the usual first-order
@@ -36,7 +42,7 @@ struct Shape {
     switch (kind) {
       case Kind::kCircle: return p.norm() - a;
       case Kind::kEllipse: {
-        const double k = std::hypot(p.x / a, p.y / b);
+        const double k = Vec{p.x / a, p.y / b}.norm();
         return (k - 1.0) * std::min(a, b);
       }
       case Kind::kRing: return std::abs(p.norm() - a) - b;
@@ -213,10 +219,11 @@ struct SceneGenerator::Impl {
       th_on[i] = std::max(0.05, cfg.contrast_threshold + cfg.threshold_sigma * rng.normal());
       th_off[i] = std::max(0.05, cfg.contrast_threshold + cfg.threshold_sigma * rng.normal());
     }
+    const Instant first(*this, 0.0);
     for (int y = 0; y < cfg.height; ++y) {
       for (int x = 0; x < cfg.width; ++x) {
         int who = -1;
-        const double l = std::log(intensity(x, y, 0.0, who));
+        const double l = std::log(intensity(x, y, first, who));
         const size_t i = index(x, y);
         log_ref[i] = log_prev[i] = l;
         owner[i] = static_cast<std::int8_t>(who);
@@ -362,17 +369,29 @@ struct SceneGenerator::Impl {
     return o.home + Vec{o.amplitude.x * std::sin(2 * M_PI * o.hz_x * u + o.phase_x), o.amplitude.y * std::sin(2 * M_PI * o.hz_y * u + o.phase_y)};
   }
 
-  // Intensity seen by pixel (x, y) at time t, and the topmost object covering it.
-  double intensity(int x, int y, double t, int& who) const { return intensity(x, y, pose(t), t, who); }
-  double intensity(int x, int y, const Pose& p, double t, int& who) const {
-    const Vec q = to_poster({double(x), double(y)}, p);
+  // What intensity() needs at one instant, computed once for every pixel it is asked about:
+  // the pose's rotation, each object's centre and its rotation into the object's frame.
+  struct Instant {
+    Instant(const Impl& scene, double t) : pose(scene.pose(t)), camera(pose.theta) {
+      for (const Object& o : scene.objects) centres.push_back(scene.object_centre(o, t)), unrotate.emplace_back(-o.angle);
+    }
+    Pose pose;
+    Rotation camera;
+    std::vector<Vec> centres;
+    std::vector<Rotation> unrotate;
+  };
+
+  // Intensity seen by pixel (x, y) at an instant, and the topmost object covering it.
+  double intensity(int x, int y, const Instant& at, int& who) const {
+    const Pose& p = at.pose;
+    const Vec q = at.camera(Vec{double(x), double(y)} - centre) * p.zoom + centre + p.d;  // to_poster
     double value = 1.0;
     who = -1;
     for (size_t k = 0; k < objects.size(); ++k) {
       const Object& o = objects[k];
-      const Vec rel = q - object_centre(o, t);
+      const Vec rel = q - at.centres[k];
       if (rel.norm() > o.shape.bound + 2 * p.zoom) continue;
-      const double d = o.shape.sdf(rotate(rel, -o.angle)) / p.zoom;  // in pixels
+      const double d = o.shape.sdf(at.unrotate[k](rel)) / p.zoom;  // in pixels
       const double cover = std::clamp(0.5 - d, 0.0, 1.0);
       if (cover > 0) {
         value = value * (1 - cover) + o.intensity * cover;
@@ -412,6 +431,7 @@ struct SceneGenerator::Impl {
     const double dt = std::clamp(0.25 / std::max(v, 1e-9), 20e-6, 2e-3);
     const double t1 = std::min(t_s + dt, end);
     const Pose p0 = pose(t_s), p1 = pose(t1);
+    const Instant at_t1(*this, t1);
     ++step;
 
     // Only pixels near an object can change.
@@ -428,7 +448,7 @@ struct SceneGenerator::Impl {
           if (visited[i] == step) continue;
           visited[i] = step;
           int who = -1;
-          const double l1 = std::log(intensity(x, y, p1, t1, who));
+          const double l1 = std::log(intensity(x, y, at_t1, who));
           const double l0 = log_prev[i];
           const int label = who >= 0 ? who : owner[i];
           if (l1 != l0) crossings(x, y, l0, l1, t_s, t1, label);
