@@ -177,7 +177,9 @@ class VirtualDisplay {
   VirtualDisplay() {
     if (access("/usr/bin/Xvfb", X_OK) != 0) return;
     for (int n = 91; n < 120 && display_.empty(); ++n) {
-      const std::string name = ":" + std::to_string(n);
+      // Appended, not `":" + to_string(n)`: GCC 12 warns falsely (-Wrestrict) on that form.
+      std::string name = ":";
+      name += std::to_string(n);
       if (std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n)) || std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock")) {
         continue;
       }
