@@ -23,17 +23,10 @@ struct Collected : DecodedSink {
   void skip(const char* kind) override { skipped.emplace_back(kind); }
 };
 
-using Bytes = std::vector<std::uint8_t>;
-
-// DVS128 wire words, written from the protocol: address LE, timestamp LE.
-void dvs128_event(Bytes& b, int x, int y, int p, int ts) {
-  const int addr = ((127 - y) << 8) | ((127 - x) << 1) | (p ? 0 : 1);
-  b.insert(b.end(), {static_cast<std::uint8_t>(addr), static_cast<std::uint8_t>(addr >> 8), static_cast<std::uint8_t>(ts),
-                     static_cast<std::uint8_t>(ts >> 8)});
-}
-void dvs128_flag(Bytes& b, std::uint8_t byte3) { b.insert(b.end(), {0, 0, 0, byte3}); }
-
-void davis_word(Bytes& b, unsigned w) { b.insert(b.end(), {static_cast<std::uint8_t>(w), static_cast<std::uint8_t>(w >> 8)}); }
+using test::Bytes;
+using test::davis_word;
+using test::dvs128_event;
+using test::dvs128_flag;
 
 TEST(Dvs128Decoder, DecodesEventsWrapsResetsAndSpecialEvents) {
   Bytes b;

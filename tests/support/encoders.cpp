@@ -356,22 +356,27 @@ std::string TempDir::write(const std::string& name, const Bytes& bytes) const {
   return path(name);
 }
 
+void dvs128_event(Bytes& b, int x, int y, int p, int ts) {
+  const int addr = ((127 - y) << 8) | ((127 - x) << 1) | (p ? 0 : 1);
+  b.insert(b.end(), {static_cast<std::uint8_t>(addr), static_cast<std::uint8_t>(addr >> 8), static_cast<std::uint8_t>(ts),
+                     static_cast<std::uint8_t>(ts >> 8)});
+}
+void dvs128_flag(Bytes& b, std::uint8_t byte3) { b.insert(b.end(), {0, 0, 0, byte3}); }
+void davis_word(Bytes& b, unsigned w) { b.insert(b.end(), {static_cast<std::uint8_t>(w), static_cast<std::uint8_t>(w >> 8)}); }
+
 Bytes dvs128_usb_words(const std::vector<Event>& events) {
   Bytes b;
   TimeUs base = 0;
   for (const Event& e : events) {
-    for (; e.t - base >= 0x4000; base += 0x4000) b.insert(b.end(), {0, 0, 0, 0x80});
-    const unsigned addr = ((127u - e.y) << 8) | ((127u - e.x) << 1) | (e.p ? 0u : 1u);
-    const auto ts = static_cast<unsigned>(e.t - base);
-    b.insert(b.end(), {static_cast<std::uint8_t>(addr), static_cast<std::uint8_t>(addr >> 8), static_cast<std::uint8_t>(ts),
-                       static_cast<std::uint8_t>(ts >> 8)});
+    for (; e.t - base >= 0x4000; base += 0x4000) dvs128_flag(b, 0x80);
+    dvs128_event(b, e.x, e.y, e.p, static_cast<int>(e.t - base));
   }
   return b;
 }
 
 Bytes davis_usb_words(const std::vector<Event>& events) {
   Bytes b;
-  const auto word = [&b](unsigned w) { b.insert(b.end(), {static_cast<std::uint8_t>(w), static_cast<std::uint8_t>(w >> 8)}); };
+  const auto word = [&b](unsigned w) { davis_word(b, w); };
   TimeUs base = 0;
   for (const Event& e : events) {
     while (e.t - base >= 0x8000) {

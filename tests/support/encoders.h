@@ -52,6 +52,11 @@ class TempDir {
   std::string dir_;
 };
 
+// One word of what iniVation cameras send: a DVS128 event (address LE, timestamp LE), a DVS128
+// word with only its flag byte (0x80 wrap, 0x40 timestamp reset), a 16-bit DAVIS word.
+void dvs128_event(Bytes& b, int x, int y, int p, int ts);
+void dvs128_flag(Bytes& b, std::uint8_t byte3);
+void davis_word(Bytes& b, unsigned w);
 // What iniVation cameras send on their bulk IN endpoint (facts.md, Live USB cameras), in time
 // order from t = 0: timestamp wraps where they fall, then each event.
 Bytes dvs128_usb_words(const std::vector<Event>& events);  // 4-byte address + timestamp words

@@ -131,6 +131,12 @@ int ScriptedUsbPort::cancel(UsbTransfer& t) {
   return 0;
 }
 
+UsbTransfer* ScriptedUsbPort::take_oldest() {
+  UsbTransfer* t = pending_.front();
+  pending_.pop_front();
+  return t;
+}
+
 void ScriptedUsbPort::complete(UsbTransfer& t, UsbTransferStatus status, size_t received) {
   t.status = status;
   t.received = received;
@@ -158,8 +164,7 @@ int ScriptedUsbPort::handle_events(int timeout_ms) {
   UsbScript::Step& step = script_.steps[step_];
   switch (step.kind) {
     case UsbScript::Step::Kind::kBytes: {
-      UsbTransfer* t = pending_.front();
-      pending_.pop_front();
+      UsbTransfer* t = take_oldest();
       const size_t n = std::min(t->buffer.size(), step.bytes.size() - step_offset_);
       std::copy_n(step.bytes.begin() + static_cast<std::ptrdiff_t>(step_offset_), n, t->buffer.begin());
       step_offset_ += n;
@@ -172,13 +177,10 @@ int ScriptedUsbPort::handle_events(int timeout_ms) {
       halted_ = true;
       all_pending(UsbTransferStatus::kStall);
       break;
-    case UsbScript::Step::Kind::kError: {
+    case UsbScript::Step::Kind::kError:
       ++step_;
-      UsbTransfer* t = pending_.front();
-      pending_.pop_front();
-      complete(*t, UsbTransferStatus::kError);
+      complete(*take_oldest(), UsbTransferStatus::kError);
       break;
-    }
     case UsbScript::Step::Kind::kUnplug:
       ++step_;
       gone_ = true;

@@ -72,6 +72,7 @@ class ScriptedUsbPort final : public read::UsbPort {
   std::string describe(int result) const override;
 
  private:
+  read::UsbTransfer* take_oldest();  // the transfer submitted first of those pending
   void complete(read::UsbTransfer& t, read::UsbTransferStatus status, size_t received = 0);
 
   UsbScript script_;
