@@ -5,9 +5,13 @@
 namespace evms::read {
 
 LabelledCsvReader::LabelledCsvReader(const std::string& path) : in_(path) {
+  // Comment lines may come first: evms writes "# sensor WxH" there.
   std::string_view header;
-  if (!in_.next_line(header) || header.rfind("t_us,x,y,p,label", 0) != 0) {
-    fail(path, InputPosition::line(1), "bad header: expected 't_us,x,y,p,label'");
+  bool more = false;
+  while ((more = in_.next_line(header)) && header.rfind('#', 0) == 0) {
+  }
+  if (!more || header.rfind("t_us,x,y,p,label", 0) != 0) {
+    fail(path, InputPosition::line(in_.line()), "bad header: expected 't_us,x,y,p,label'");
   }
 }
 

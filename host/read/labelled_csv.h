@@ -1,5 +1,6 @@
 // Reader of labelled-event CSV files (`t_us,x,y,p,label`), as `evms run` and `evms gen`
-// write them, for scoring. Bad rows stop with the file and line.
+// write them, for scoring. Comment lines before the header (evms writes "# sensor WxH" there)
+// are skipped. Bad rows stop with the file and line.
 #pragma once
 
 #include <string>

@@ -369,6 +369,27 @@ TEST(Cli, GenIsDeterministicOnDisk) {
   }
 }
 
+// evms metrics reads the files evms itself writes (their first line is "# sensor WxH"): the
+// truth against itself scores 1, and a run of the method scores between 0 and 1.
+TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
+  TempDir dir;
+  const auto gen = run_command(evms_binary() + " gen --scene rotation --duration-s 0.1 --seed 3 --out " + dir.path("g"));
+  ASSERT_EQ(gen.exit_code, 0) << gen.err;
+  const auto run = run_command(evms_binary() + " run " + dir.path("g/events.txt") + " --quiet --out " + dir.path("r"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  auto f_of = [&](const std::string& pred) {
+    const auto r = run_command(evms_binary() + " metrics --chunk-us 10000 --truth " + dir.path("g/labels.csv") + " --pred " + pred);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    double ari = -1, nmi = -1, p = -1, rc = -1, f = -1;
+    EXPECT_EQ(std::sscanf(r.out.c_str(), "%lf %lf %lf %lf %lf", &ari, &nmi, &p, &rc, &f), 5) << r.out;
+    return f;
+  };
+  EXPECT_DOUBLE_EQ(f_of(dir.path("g/labels.csv")), 1.0);
+  const double f = f_of(dir.path("r/events.csv"));
+  EXPECT_GT(f, 0.5);
+  EXPECT_LT(f, 1.0);
+}
+
 // A source that fails part way (a corrupt record; a camera unplugged, which reaches the run
 // the same way as a paced replay's failure does): the events before the failure are labelled
 // and written, the summary printed, and the cause is one line with a non-zero exit.
