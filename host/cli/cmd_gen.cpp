@@ -17,12 +17,13 @@ struct GenOptions {
   std::string family;
   std::string out;
   gen::SceneConfig config;
+  gen::FamilyPins pins;  // with --family: what the command line gave
 };
 
 void generate(GenOptions o) {
   if (!o.family.empty()) {
     const double duration = o.config.duration_s;
-    o.config = gen::family_scene(o.family, o.config.seed);
+    o.config = gen::family_scene(o.family, o.config.seed, o.pins);
     if (duration > 0) o.config.duration_s = duration;
   } else if (!gen::parse_motion(o.scene, o.config.motion) ||
              !(o.config.motion == gen::Motion::kTranslation || o.config.motion == gen::Motion::kRotation ||
@@ -79,13 +80,19 @@ void register_gen(CLI::App& app) {
   cmd->add_option("--seed", o->config.seed, "random seed: the same seed gives the same bytes")->default_val(o->config.seed);
   cmd->add_option("--duration-s", o->config.duration_s, "length of the scene in seconds")
       ->default_str("5, or the family member's")->check(CLI::Range(0.001, 3600.0));
-  cmd->add_option("--noise-hz", o->config.noise_hz, "background activity per pixel, events/s")
+  cmd->add_option("--noise-hz", o->config.noise_hz, "background activity per pixel, events/s (with --family: instead of the seed's draw)")
       ->default_val(o->config.noise_hz)->check(CLI::Range(0.0, 1000.0));
-  cmd->add_option("--width", o->config.width, "sensor width, px")->default_val(o->config.width)->check(CLI::Range(64, 4096));
-  cmd->add_option("--height", o->config.height, "sensor height, px")->default_val(o->config.height)->check(CLI::Range(64, 4096));
+  cmd->add_option("--width", o->config.width, "sensor width, px (with --family: instead of the seed's draw)")->default_val(o->config.width)->check(CLI::Range(64, 4096));
+  cmd->add_option("--height", o->config.height, "sensor height, px (with --family: instead of the seed's draw)")->default_val(o->config.height)->check(CLI::Range(64, 4096));
   cmd->add_option("--movers", o->config.movers, "shapes of the poster that move on their own")->default_val(0)->check(CLI::Range(0, 9));
+  cmd->add_option("--objects", o->pins.objects, "with --family: this many shapes instead of the seed's draw")->check(CLI::Range(1, 16));
   cmd->add_option("--out", o->out, "output directory")->required();
-  cmd->callback([o] { generate(*o); });
+  cmd->callback([o, cmd] {
+    // With --family, the sensor and the noise are the seed's draw unless given.
+    if (cmd->count("--width") || cmd->count("--height")) o->pins.width = o->config.width, o->pins.height = o->config.height;
+    if (cmd->count("--noise-hz")) o->pins.noise_hz = o->config.noise_hz;
+    generate(*o);
+  });
 }
 
 }  // namespace evms::cli

@@ -1,5 +1,6 @@
 #include "host/gen/family.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -29,7 +30,7 @@ bool is_family_type(const std::string& type) {
   return false;
 }
 
-SceneConfig family_scene(const std::string& type, std::uint64_t seed) {
+SceneConfig family_scene(const std::string& type, std::uint64_t seed, const FamilyPins& pins) {
   if (!is_family_type(type)) {
     throw std::invalid_argument("unknown scene type '" + type + "' (still, translation, rotation, zoom, 6dof, shake or crossing)");
   }
@@ -41,17 +42,22 @@ SceneConfig family_scene(const std::string& type, std::uint64_t seed) {
   SceneConfig c;
   c.seed = mix;
   const SensorChoice sensor = kSensors[rng.below(kSensors.size())];
-  c.width = sensor.width;
-  c.height = sensor.height;
+  c.width = pins.width > 0 ? pins.width : sensor.width;
+  c.height = pins.height > 0 ? pins.height : sensor.height;
   c.duration_s = sensor.duration_s;
+  for (const SensorChoice& s : kSensors) {
+    if (s.width == c.width && s.height == c.height) c.duration_s = s.duration_s;
+  }
   c.layout = Layout::kScattered;
   c.objects = 1 + static_cast<int>(rng.below(12));
+  if (pins.objects > 0) c.objects = pins.objects;
   const double size_scale = std::sqrt(c.width * c.height / (240.0 * 180.0));
   c.size_min_px = 5 * std::max(1.0, size_scale);
   c.size_max_px = 60 * size_scale;
   c.low_contrast_share = 0.25;
   c.speed = log_uniform(rng, 0.25, 4.0);
   c.noise_hz = log_uniform(rng, 0.05, 2.0);
+  if (pins.noise_hz >= 0) c.noise_hz = pins.noise_hz;
   c.hot_pixels = static_cast<int>(rng.below(5));
   c.hot_pixel_hz = log_uniform(rng, 50, 500);
   c.threshold_sigma = rng.uniform(0.02, 0.06);
@@ -59,13 +65,13 @@ SceneConfig family_scene(const std::string& type, std::uint64_t seed) {
   c.mover_speed_px_s = 60 * size_scale;
   if (type == "still") {
     c.motion = Motion::kStill;
-    c.objects = std::max(c.objects, 2);
+    if (pins.objects == 0) c.objects = std::max(c.objects, 2);
     c.movers = 1 + static_cast<int>(rng.below(static_cast<std::uint64_t>(std::min(4, c.objects))));
   } else if (type == "crossing") {
     c.motion = Motion::kTranslation;
     c.speed *= 0.25;  // a slow drift: the movers make the scene
-    c.objects = std::max(c.objects, 4);
-    c.movers = 2 + static_cast<int>(rng.below(3));
+    if (pins.objects == 0) c.objects = std::max(c.objects, 4);
+    c.movers = std::min(c.objects, 2 + static_cast<int>(rng.below(3)));
     c.crossing = true;
   } else {
     parse_motion(type, c.motion);

@@ -36,8 +36,17 @@ inline Split split_of(std::uint64_t seed) { return seed >= kValidationSeedBase ?
 // The n-th seed (0-based) of a split.
 inline std::uint64_t split_seed(Split s, int n) { return (s == Split::kValidation ? kValidationSeedBase : 1) + static_cast<std::uint64_t>(n); }
 
+// What a member may have pinned instead of drawn from the seed: the sensor (object sizes and
+// speeds scale with it), the number of shapes and the background activity. 0 (-1 for the
+// noise) leaves the draw; every other draw stays that of the seed.
+struct FamilyPins {
+  int width = 0, height = 0;
+  int objects = 0;
+  double noise_hz = -1;
+};
+
 // The member (type, seed) of the family; throws std::invalid_argument for an unknown type.
-SceneConfig family_scene(const std::string& type, std::uint64_t seed);
+SceneConfig family_scene(const std::string& type, std::uint64_t seed, const FamilyPins& pins = {});
 
 // The paper's scenes: the shapes poster at 240x180 seen by a translating, rotating or 6-DoF
 // camera (the Event Camera Dataset's shapes_translation, shapes_rotation, shapes_6dof).

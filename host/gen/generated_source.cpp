@@ -1,7 +1,8 @@
 // gen://SCENE?seed=S&speed=F&duration-s=D : a generated labelled scene as an event source,
 // so that every subcommand can run without a file. SCENE is one of the paper's scenes
 // (translation, rotation or 6dof: the shapes poster), or family/TYPE, a member of the scene
-// family (host/gen/family.h) drawn from the seed.
+// family (host/gen/family.h) drawn from the seed (width, height, objects and noise-hz pin
+// those draws).
 #include <charconv>
 
 #include "host/gen/family.h"
@@ -30,12 +31,23 @@ SceneConfig parse_scene_uri(const std::string& uri) {
     }
     std::uint64_t seed = 1;
     double duration_s = 0;
+    FamilyPins pins;
     for (const auto& [key, value] : parts.query) {
       if (key == "seed") number(key, value, seed);
       else if (key == "duration-s") number(key, value, duration_s);
-      else throw read::InputError(uri + ": unknown setting '" + key + "' of a family scene (seed, duration-s)");
+      else if (key == "width") number(key, value, pins.width);
+      else if (key == "height") number(key, value, pins.height);
+      else if (key == "objects") number(key, value, pins.objects);
+      else if (key == "noise-hz") {
+        number(key, value, pins.noise_hz);
+        if (!(pins.noise_hz >= 0)) throw read::InputError(uri + ": noise-hz must not be negative");
+      } else throw read::InputError(uri + ": unknown setting '" + key + "' of a family scene (seed, duration-s, width, height, objects, noise-hz)");
     }
-    cfg = family_scene(type, seed);
+    if ((pins.width != 0) != (pins.height != 0) || (pins.width != 0 && (pins.width < 64 || pins.height < 64 || pins.width > 4096 || pins.height > 4096)) ||
+        pins.objects < 0 || pins.objects > 16) {
+      throw read::InputError(uri + ": width and height go together, between 64 and 4096 px, and objects are 1 to 16");
+    }
+    cfg = family_scene(type, seed, pins);
     if (duration_s != 0) cfg.duration_s = duration_s;
     if (!(cfg.duration_s > 0)) throw read::InputError(uri + ": duration-s must be positive");
     return cfg;

@@ -6,6 +6,8 @@
 
 #include "host/gen/family.h"
 #include "host/gen/scene_generator.h"
+#include "host/gen/scene_uri.h"
+#include "host/read/input_error.h"
 
 namespace evms::gen {
 namespace {
@@ -101,6 +103,45 @@ TEST(SceneFamily, AMemberIsItsTypeAndSeedAndNothingElse) {
   EXPECT_NE(family_scene("crossing", 8).seed, a.seed);
   EXPECT_NE(family_scene("rotation", 7).seed, a.seed) << "seed 7 of two types are unrelated scenes";
   EXPECT_THROW(family_scene("spin", 1), std::invalid_argument);
+}
+
+// Pins replace the sensor, the shape count and the noise of a member; its other draws stay the
+// seed's, and the shapes' sizes follow the pinned sensor.
+TEST(SceneFamily, PinsReplaceOnlyWhatTheyName) {
+  for (std::uint64_t seed : {1000, 1001, 1002, 1003}) {
+    const SceneConfig drawn = family_scene("rotation", seed);
+    const SceneConfig pinned = family_scene("rotation", seed, {240, 180, 7, 0.1});
+    EXPECT_EQ(pinned.width, 240);
+    EXPECT_EQ(pinned.height, 180);
+    EXPECT_EQ(pinned.objects, 7);
+    EXPECT_DOUBLE_EQ(pinned.noise_hz, 0.1);
+    EXPECT_DOUBLE_EQ(pinned.size_max_px, 60.0);
+    EXPECT_DOUBLE_EQ(pinned.duration_s, 1.0);
+    EXPECT_EQ(pinned.seed, drawn.seed);
+    EXPECT_DOUBLE_EQ(pinned.speed, drawn.speed);
+    EXPECT_DOUBLE_EQ(pinned.threshold_sigma, drawn.threshold_sigma);
+    EXPECT_EQ(pinned.hot_pixels, drawn.hot_pixels);
+  }
+  // A zero noise pin is a noiseless member; no pins is the drawn member.
+  EXPECT_DOUBLE_EQ(family_scene("still", 5, {0, 0, 0, 0.0}).noise_hz, 0.0);
+  EXPECT_DOUBLE_EQ(family_scene("still", 5, {}).noise_hz, family_scene("still", 5).noise_hz);
+  // Crossing members keep no more movers than shapes.
+  const SceneConfig two = family_scene("crossing", 1002, {0, 0, 2, -1});
+  EXPECT_EQ(two.objects, 2);
+  EXPECT_LE(two.movers, 2);
+}
+
+TEST(SceneFamily, AFamilyUriTakesThePins) {
+  const SceneConfig c = parse_scene_uri("gen://family/rotation?seed=1001&width=240&height=180&objects=7&noise-hz=0.1");
+  const SceneConfig d = family_scene("rotation", 1001, {240, 180, 7, 0.1});
+  EXPECT_EQ(c.seed, d.seed);
+  EXPECT_EQ(c.width, 240);
+  EXPECT_EQ(c.objects, 7);
+  EXPECT_DOUBLE_EQ(c.noise_hz, 0.1);
+  for (const char* bad : {"gen://family/rotation?width=240", "gen://family/rotation?width=32&height=32",
+                          "gen://family/rotation?objects=17", "gen://family/rotation?noise-hz=-1", "gen://family/rotation?size=3"}) {
+    EXPECT_THROW(parse_scene_uri(bad), read::InputError) << bad;
+  }
 }
 
 TEST(SceneFamily, TheSplitsAreDisjointBySeed) {
