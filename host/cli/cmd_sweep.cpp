@@ -26,6 +26,7 @@ struct SweepOptions {
   std::string split = "tuning";   // of --vary
   int rounds = 3;
   std::string backend = "golden";
+  gen::FamilyPins pins;
   Method method;
 };
 
@@ -146,7 +147,7 @@ void compare_presets(const SweepOptions& o, const std::vector<std::string>& type
   std::vector<Method> methods;
   for (const char* name : preset_names()) methods.push_back({name, {}});
   for (gen::Split split : {gen::Split::kTuning, gen::Split::kValidation}) {
-    const auto family = eval::generate_family(split, o.seeds, types, o.jobs);
+    const auto family = eval::generate_family(split, o.seeds, types, o.jobs, o.pins);
     std::printf("\n## %s split (%d seeds a type)\n\n", split == gen::Split::kTuning ? "Tuning" : "Validation", o.seeds);
     print_header(types, "preset");
     const auto results = eval::evaluate_family(family, methods, o.backend, o.jobs);
@@ -158,7 +159,7 @@ void compare_presets(const SweepOptions& o, const std::vector<std::string>& type
 void one_at_a_time(const SweepOptions& o, const std::vector<std::string>& types) {
   const gen::Split split = o.split == "validation" ? gen::Split::kValidation : gen::Split::kTuning;
   std::printf("\n%s split, %d seeds a type.\n", o.split.c_str(), o.seeds);
-  const auto family = eval::generate_family(split, o.seeds, types, o.jobs);
+  const auto family = eval::generate_family(split, o.seeds, types, o.jobs, o.pins);
   for (const auto& [name, values] : parse_grid(o.vary)) {
     std::printf("\n## %s (around %s)\n\n", name.c_str(), o.method.describe().c_str());
     print_header(types, name.c_str());
@@ -172,7 +173,7 @@ void one_at_a_time(const SweepOptions& o, const std::vector<std::string>& types)
 
 void search(const SweepOptions& o, const std::vector<std::string>& types) {
   const auto grid = parse_grid(o.vary.empty() ? kSearchGrid : o.vary);
-  const auto tuning = eval::generate_family(gen::Split::kTuning, o.seeds, types, o.jobs);
+  const auto tuning = eval::generate_family(gen::Split::kTuning, o.seeds, types, o.jobs, o.pins);
   Method best = o.method;
   eval::FamilyResult best_result = eval::evaluate_family(tuning, best, o.backend, o.jobs);
   std::printf("\nStart: `%s`, objective %.4f (mean F %.3f, worst type %.3f)\n", best.describe().c_str(), objective(best_result),
@@ -211,7 +212,7 @@ void search(const SweepOptions& o, const std::vector<std::string>& types) {
   }
   std::printf("\n## Result\n\n`%s`\n\nTuning split: mean F %.3f, worst type %.3f, objective %.4f.\n", best.describe().c_str(), best_result.mean_f,
               best_result.worst_type_f, objective(best_result));
-  const auto validation = eval::generate_family(gen::Split::kValidation, o.seeds, types, o.jobs);
+  const auto validation = eval::generate_family(gen::Split::kValidation, o.seeds, types, o.jobs, o.pins);
   const std::vector<Method> check = {best, {"paper", {}}, {"evms", {}}};
   const auto results = eval::evaluate_family(validation, check, o.backend, o.jobs);
   std::printf("\n## Validation split (%d seeds a type)\n\n", o.seeds);
@@ -238,6 +239,23 @@ void register_sweep(CLI::App& app) {
   cmd->add_flag("--per-scene", o->per_scene, "every member's F too (presets and --vary)");
   cmd->add_option("--rounds", o->rounds, "passes of --search over the grid")->default_val(o->rounds)->check(CLI::Range(1, 20));
   cmd->add_option("--backend", o->backend, "implementation to measure")->default_val(o->backend);
+  cmd->add_option("--sensor", o->pins.width, "the family's members on this sensor instead of the seed's draw: WxH")
+      ->transform([o](std::string v) {
+        const size_t x = v.find('x');
+        try {
+          if (x == std::string::npos) throw std::invalid_argument(v);
+          o->pins.height = std::stoi(v.substr(x + 1));
+          if (o->pins.height < 64 || o->pins.height > 4096) throw std::invalid_argument(v);
+          return v.substr(0, x);
+        } catch (const std::exception&) {
+          throw CLI::ValidationError("expected WxH between 64 and 4096 px, got '" + v + "'");
+        }
+      })
+      ->check(CLI::Range(64, 4096));
+  cmd->add_option("--objects", o->pins.objects, "the family's members with this many shapes instead of the seed's draw")
+      ->check(CLI::Range(1, 16));
+  cmd->add_option("--noise-hz", o->pins.noise_hz, "the family's members with this background activity a pixel instead of the seed's draw")
+      ->check(CLI::Range(0.0, 1000.0));
   add_method_options(*cmd, o->method);
   cmd->callback([o] {
     const auto types = types_of(*o);

@@ -8,23 +8,24 @@
 
 namespace evms::eval {
 
-std::vector<FamilyScene> generate_family(gen::Split split, int seeds, const std::vector<std::string>& types, int jobs) {
+std::vector<FamilyScene> generate_family(gen::Split split, int seeds, const std::vector<std::string>& types, int jobs,
+                                         const gen::FamilyPins& pins) {
   std::vector<FamilyScene> family;
   for (const std::string& type : types) {
     for (int k = 0; k < seeds; ++k) family.push_back({type, gen::split_seed(split, k), {}});
   }
-  parallel_for(family.size(), jobs, [&](size_t i) { family[i].scene = generate_scene(member_scene(family[i].type, family[i].seed)); });
+  parallel_for(family.size(), jobs, [&](size_t i) { family[i].scene = generate_scene(member_scene(family[i].type, family[i].seed, pins)); });
   return family;
 }
 
-gen::SceneConfig member_scene(const std::string& type, std::uint64_t seed) {
+gen::SceneConfig member_scene(const std::string& type, std::uint64_t seed, const gen::FamilyPins& pins) {
   const std::string paper = "paper-";
   if (type.rfind(paper, 0) == 0) {
     gen::Motion motion;
     if (!gen::parse_motion(type.substr(paper.size()), motion)) throw std::invalid_argument("unknown scene type '" + type + "'");
     return gen::paper_scene(motion, seed, kPaperSceneSeconds);
   }
-  return gen::family_scene(type, seed);
+  return gen::family_scene(type, seed, pins);
 }
 
 namespace {

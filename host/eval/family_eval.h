@@ -21,12 +21,14 @@ struct FamilyScene {
 
 // A member: a family type (host/gen/family.h), or "paper-translation", "paper-rotation" or
 // "paper-6dof" for the paper's scenes (the shapes poster at 240x180, kPaperSceneSeconds long).
-gen::SceneConfig member_scene(const std::string& type, std::uint64_t seed);
+// `pins` apply to the family's types, not to the paper's scenes.
+gen::SceneConfig member_scene(const std::string& type, std::uint64_t seed, const gen::FamilyPins& pins = {});
 inline constexpr double kPaperSceneSeconds = 1.0;
 inline const std::vector<std::string> kPaperSceneTypes = {"paper-translation", "paper-rotation", "paper-6dof"};
 
 // `seeds` members of every type in `types` from one split.
-std::vector<FamilyScene> generate_family(gen::Split split, int seeds, const std::vector<std::string>& types, int jobs);
+std::vector<FamilyScene> generate_family(gen::Split split, int seeds, const std::vector<std::string>& types, int jobs,
+                                         const gen::FamilyPins& pins = {});
 
 // How family scores are taken: 10 ms chunks, as the independent scenes were scored.
 inline constexpr Chunking kFamilyChunking{Chunking::Kind::kTime, 10000};

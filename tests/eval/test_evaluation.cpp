@@ -172,6 +172,19 @@ TEST(SweepCommand, PrintsATablePerParameter) {
   EXPECT_NE(r.out.find("| packet-size | rotation | still | mean F |"), std::string::npos) << r.out;
 }
 
+// --sensor, --objects and --noise-hz pin the family's members (not the paper's scenes).
+TEST(SweepCommand, PinsTheMembersSensorShapesAndNoise) {
+  const auto r = test::run_command(test::evms_binary() + " sweep --types rotation,paper-rotation --seeds 1 --per-scene --sensor 200x150 "
+                                   "--objects 3 --noise-hz 0.5 --vary bandwidth=0.04");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("| rotation 1: rotation 200x150,  3 shapes (0 moving), speed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("noise 0.50 Hz"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| paper-rotation 1: rotation 240x180, poster of 9 shapes"), std::string::npos) << r.out;
+  const auto bad = test::run_command(test::evms_binary() + " sweep --types rotation --seeds 1 --sensor 200");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--sensor: expected WxH"), std::string::npos) << bad.err;
+}
+
 TEST(SweepCommand, UnknownTypesAndParametersAreOneLine) {
   const auto type = test::run_command(test::evms_binary() + " sweep --types spin --seeds 1");
   EXPECT_NE(type.exit_code, 0);
