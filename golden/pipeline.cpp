@@ -31,6 +31,7 @@ Pipeline::Pipeline(const Params& params, SensorSize sensor)
     : params_(params),
       sensor_(sensor),
       filter_(sensor, params.filter_window_us, params.filter_support),
+      clusterer_(params, sensor),
       tracker_(make_tracker(params)) {
   packet_.reserve(static_cast<size_t>(params.packet_size));
 }
@@ -69,7 +70,7 @@ void Pipeline::close_packet(OutputSink& out) {
       }
     }
     const FeatureMatrix features = packet_features(supported, sensor_, params_);
-    const PacketClusters clusters = cluster_packet(supported, features, params_, modes_, spreads_, feature_area(sensor_, params_));
+    const PacketClusters clusters = clusterer_.cluster(supported, features, modes_, spreads_);
     modes_ = clusters.modes;
     spreads_ = clusters.spreads;
     stats_.cluster_ns += clock.lap();

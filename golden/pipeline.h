@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "golden/cluster/clustering.h"
 #include "golden/event.h"
 #include "golden/filter/background_activity_filter.h"
 #include "golden/output.h"
@@ -49,6 +50,7 @@ class Pipeline {
   Params params_;
   SensorSize sensor_;
   BackgroundActivityFilter filter_;
+  PacketClusterer clusterer_;
   std::unique_ptr<Tracker> tracker_;
   std::vector<Eigen::Vector4d> modes_;   // the previous packet's, for warm starts
   std::vector<double> spreads_;          // ... and their clusters' spreads

@@ -4,19 +4,9 @@
 //  every   The paper's text. Every event climbs at once (hybrid_mean_shift in mean_shift.h);
 //          an event's cluster is the one its own mode joins (merge_modes).
 //  events, grid
-//          Seeded climbs, as the authors' code does it. A seed climbs by plain mean shift
-//          against the packet's events,
-//              m <- sum_j k(|m - f_j|^2 / h^2) f_j / sum_j k(...),
-//          until it moves no more than the tolerance (or max_iterations). Every event inside the
-//          ball of radius h around the climb, at any of its steps, is "reached" and gets one
-//          vote for the climb. A converged climb joins the nearest earlier mode within the merge
-//          radius (votes added, that mode kept) or opens a new mode. Seeds, in order: the
-//          previous packet's modes (warm_start); then, for "events", the oldest event no climb
-//          has reached yet, until every event was reached; for "grid", the centroid of the
-//          events of each cell of an h x h grid on (x, y), most populated cell first, skipping
-//          cells whose events were all reached. An event's cluster is then the mode with most
-//          of its votes (labelling votes; ties to the older mode) or the nearest mode within h
-//          (labelling nearest; noise beyond).
+//          Seeded climbs, as the authors' code does it (seeded_climbs.h): seeds climb to modes
+//          and each event takes the mode of the first climb that reached it (or by votes, or
+//          the nearest mode). Clusters whose events touch are then joined (mode_links.h).
 //
 // With seeded climbs, a mode whose ball held fewer than min_density times the events that a
 // uniform spread of the packet over the sensor would put in a ball of radius h is noise, and so
@@ -30,6 +20,9 @@
 #include <vector>
 
 #include "golden/cluster/features.h"
+#include "golden/cluster/mode_links.h"
+#include "golden/cluster/packet_grid.h"
+#include "golden/cluster/seeded_climbs.h"
 
 namespace evms::golden {
 
@@ -42,11 +35,32 @@ struct PacketClusters {
   std::int64_t kernel_evaluations = 0;   // point-to-point distances taken
 };
 
-// `warm_modes`: the previous packet's modes, used when params.warm_start is set.
-// `sensor_area`: the sensor's area in (x, y) feature units (feature_pixels' reciprocals times
-// the sensor size, times scale_xy squared).
+// Clusters packet after packet, keeping its working memory (the grid, the climbs' marks, the
+// link map) from one to the next.
+class PacketClusterer {
+ public:
+  PacketClusterer(const Params& params, SensorSize sensor);
+
+  // `warm_modes` and `warm_spreads`: the previous packet's modes and clusters' spreads, used
+  // when params.warm_start is set.
+  PacketClusters cluster(std::span<const Event> events, const FeatureMatrix& features, const std::vector<Eigen::Vector4d>& warm_modes,
+                         const std::vector<double>& warm_spreads);
+
+ private:
+  PacketClusters finish(std::span<const Event> events, const FeatureMatrix& features, std::vector<int> mode_of);
+  void join_overlapping_boxes(std::span<const Event> events, std::vector<int>& raw) const;
+
+  Params params_;
+  SensorSize sensor_;
+  double sensor_area_;    // in (x, y) feature units
+  PacketGrid grid_;
+  PacketGrid cells_;      // grid seeding with a kernel without reach: cells of h all the same
+  SeededClimbs climbs_;
+  ModeLinks links_;
+};
+
+// One packet on its own.
 PacketClusters cluster_packet(std::span<const Event> events, const FeatureMatrix& features, const Params& params,
-                              const std::vector<Eigen::Vector4d>& warm_modes, const std::vector<double>& warm_spreads,
-                              double sensor_area);
+                              const std::vector<Eigen::Vector4d>& warm_modes, const std::vector<double>& warm_spreads, SensorSize sensor);
 
 }  // namespace evms::golden

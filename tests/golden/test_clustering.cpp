@@ -19,7 +19,7 @@ struct Packet {
   FeatureMatrix features;
   Packet(std::vector<Event> e, const Params& p) : events(std::move(e)), features(packet_features(events, kSensor, p)) {}
   PacketClusters cluster(const Params& p, const std::vector<Eigen::Vector4d>& warm = {}, const std::vector<double>& spreads = {}) const {
-    return cluster_packet(events, features, p, warm, spreads, feature_area(kSensor, p));
+    return cluster_packet(events, features, p, warm, spreads, kSensor);
   }
 };
 

@@ -61,7 +61,7 @@ TEST(SeededClimbsFixed, TheSameClustersAsGoldenOnRandomPackets) {
   for (std::uint64_t seed = 1; seed <= 40; ++seed) {
     const std::vector<Event> events = random_packet(seed, 1500);
     const golden::FeatureMatrix f = golden::packet_features(events, sensor, p);
-    const golden::PacketClusters want = golden::cluster_packet(events, f, p, {}, {}, golden::feature_area(sensor, p));
+    const golden::PacketClusters want = golden::cluster_packet(events, f, p, {}, {}, sensor);
 
     auto ev = std::make_unique<PacketEvents<S>>();
     for (size_t i = 0; i < events.size(); ++i) ev->x[i] = events[i].x, ev->y[i] = events[i].y, ev->p[i] = 1, ev->t[i] = static_cast<std::uint32_t>(i);
