@@ -29,7 +29,7 @@ FeatureMatrix packet_features(std::span<const Event> events, SensorSize sensor,
     const double dt = static_cast<double>(newest - e.t);
     f.col(static_cast<Eigen::Index>(i)) << params.scale_xy * e.x / px.x(),
         params.scale_xy * e.y / px.y(), params.scale_p * e.p,
-        params.scale_t * std::exp(-dt / params.tau_us);
+        params.scale_t == 0 ? 0.0 : params.scale_t * std::exp(-dt / params.tau_us);
   }
   return f;
 }

@@ -5,8 +5,7 @@
 
 namespace evms::golden {
 
-ModeLinks::ModeLinks(SensorSize sensor)
-    : sensor_(sensor), stamp_(static_cast<size_t>(sensor.width) * sensor.height, 0), read_(stamp_.size(), 0), mode_(stamp_.size(), -1) {}
+ModeLinks::ModeLinks(SensorSize sensor) : sensor_(sensor), map_(static_cast<size_t>(sensor.width) * sensor.height) {}
 
 int ModeLinks::find(int c) {
   while (root_[static_cast<size_t>(c)] != c) c = root_[static_cast<size_t>(c)] = root_[static_cast<size_t>(root_[static_cast<size_t>(c)])];
@@ -21,44 +20,42 @@ void ModeLinks::unite(int a, int b) {
 void ModeLinks::join(std::span<const Event> events, double link_px, int modes, std::vector<int>& mode_of) {
   root_.resize(static_cast<size_t>(modes));
   for (int c = 0; c < modes; ++c) root_[static_cast<size_t>(c)] = c;
-  if (link_px != offsets_for_) {
-    offsets_.clear();
-    const int r = static_cast<int>(std::floor(link_px));
-    for (int dy = -r; dy <= r; ++dy) {
-      for (int dx = -r; dx <= r; ++dx) {
-        // Half the disc: of two events within reach, the one the other lies ahead of looks.
-        const bool ahead = dy > 0 || (dy == 0 && dx > 0);
-        if (ahead && dx * dx + dy * dy <= link_px * link_px) offsets_.emplace_back(dx, dy);
-      }
+  if (link_px != reach_for_) {
+    // Row dy of the disc spans dx with dx^2 + dy^2 <= link_px^2.
+    half_width_.clear();
+    for (int dy = 0; dy * dy <= link_px * link_px; ++dy) {
+      int dx = 0;
+      while ((dx + 1) * (dx + 1) + dy * dy <= link_px * link_px) ++dx;
+      half_width_.push_back(dx);
     }
-    offsets_for_ = link_px;
+    reach_for_ = link_px;
   }
   if (++packet_ == 0) {  // the stamps wrapped: start from a clear map
-    std::fill(stamp_.begin(), stamp_.end(), 0);
-    std::fill(read_.begin(), read_.end(), 0);
+    std::fill(map_.begin(), map_.end(), Pixel{});
     packet_ = 1;
   }
   const int w = sensor_.width, h = sensor_.height;
   for (size_t i = 0; i < events.size(); ++i) {
     if (mode_of[i] < 0) continue;
-    const size_t pixel = static_cast<size_t>(events[i].y) * static_cast<size_t>(w) + events[i].x;
-    if (stamp_[pixel] == packet_) unite(mode_of[i], mode_[pixel]);
-    stamp_[pixel] = packet_;
-    mode_[pixel] = mode_of[i];
+    Pixel& p = map_[static_cast<size_t>(events[i].y) * static_cast<size_t>(w) + events[i].x];
+    if (p.written == packet_) unite(mode_of[i], p.mode);
+    p.written = packet_;
+    p.mode = mode_of[i];
   }
-  // Every pair of events within reach meets here: two on one pixel met above (a later event
-  // overwrote the pixel after joining the earlier), any others now, once a pixel.
   for (size_t i = 0; i < events.size(); ++i) {
     if (mode_of[i] < 0) continue;
     const int x = events[i].x, y = events[i].y;
-    const size_t own = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
-    if (read_[own] == packet_) continue;
-    read_[own] = packet_;
-    for (const auto& [dx, dy] : offsets_) {
-      const int nx = x + dx, ny = y + dy;
-      if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-      const size_t pixel = static_cast<size_t>(ny) * static_cast<size_t>(w) + static_cast<size_t>(nx);
-      if (stamp_[pixel] == packet_ && mode_[pixel] != mode_of[i]) unite(mode_of[i], mode_[pixel]);
+    Pixel& own = map_[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)];
+    if (own.looked == packet_) continue;  // the pixel's events are one set already
+    own.looked = packet_;
+    const int mode = own.mode;
+    for (int dy = 0; dy < static_cast<int>(half_width_.size()) && y + dy < h; ++dy) {
+      const int a = half_width_[static_cast<size_t>(dy)];
+      const int x0 = dy == 0 ? x + 1 : std::max(0, x - a), x1 = std::min(w - 1, x + a);
+      const Pixel* row = &map_[static_cast<size_t>(y + dy) * static_cast<size_t>(w)];
+      for (int nx = x0; nx <= x1; ++nx) {
+        if (row[nx].written == packet_ && row[nx].mode != mode) unite(mode, row[nx].mode);
+      }
     }
   }
   for (int& c : mode_of) {

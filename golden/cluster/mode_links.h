@@ -5,8 +5,9 @@
 //
 // The events of a packet are found through a pixel map of the sensor, each pixel stamped with
 // the packet that last wrote it: an event writes its mode into its pixel (joining the mode
-// already there in this packet) and reads the pixels within reach. The map lives across
-// packets, so no packet clears it.
+// already there in this packet), then each pixel written looks at the pixels within reach ahead
+// of it (the rows below, and the pixels to its right in its own row): of two events within
+// reach, one lies ahead of the other. The map lives across packets, so no packet clears it.
 #pragma once
 
 #include <cstdint>
@@ -28,13 +29,16 @@ class ModeLinks {
   int find(int c);
   void unite(int a, int b);
 
+  struct Pixel {
+    std::uint32_t written = 0;  // the packet that last wrote a mode here
+    std::uint32_t looked = 0;   // the packet that last looked around here
+    int mode = -1;
+  };
   SensorSize sensor_;
-  std::vector<std::uint32_t> stamp_;   // per pixel: the packet that wrote it
-  std::vector<std::uint32_t> read_;    // per pixel: the packet that looked around it
-  std::vector<int> mode_;              // per pixel: the mode written
-  std::vector<int> root_;              // per mode
-  std::vector<std::pair<int, int>> offsets_;  // the pixels within reach ahead of an event
-  double offsets_for_ = -1;
+  std::vector<Pixel> map_;
+  std::vector<int> root_;             // per mode
+  std::vector<int> half_width_;       // per row offset dy = 0 .. r: the reach along the row
+  double reach_for_ = -1;
   std::uint32_t packet_ = 0;
 };
 

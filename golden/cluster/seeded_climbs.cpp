@@ -37,15 +37,22 @@ void SeededClimbs::step(const Eigen::Vector4d& m, double inv_h2, long reach, int
   g.rows_near(m.x(), m.y(), reach, [&](int begin, int end) {
     kernel_evaluations_ += end - begin;
     if constexpr (kFlat2d) {
-      // The ball test and the exact sums first, in a loop the compiler vectorizes.
+      // The ball test and the exact sums first, in a loop the compiler vectorizes (the
+      // pointers are restrict: the flags written do not alias the features read).
+      const double* __restrict fx = g.fx.data();
+      const double* __restrict fy = g.fy.data();
+      const std::int32_t* __restrict px = g.px.data();
+      const std::int32_t* __restrict py = g.py.data();
+      std::uint8_t* __restrict inside = inside_.data();
+      const double mx = m.x(), my = m.y();
       std::int64_t count = 0, sx = 0, sy = 0;
       for (int k = begin; k < end; ++k) {
-        const double dx = g.fx[static_cast<size_t>(k)] - m.x(), dy = g.fy[static_cast<size_t>(k)] - m.y();
+        const double dx = fx[k] - mx, dy = fy[k] - my;
         const bool in = (dx * dx + dy * dy) * inv_h2 < 1.0;
-        inside_[static_cast<size_t>(k)] = in;
+        inside[k] = in;
         count += in;
-        sx += in ? g.px[static_cast<size_t>(k)] : 0;
-        sy += in ? g.py[static_cast<size_t>(k)] : 0;
+        sx += in ? px[k] : 0;
+        sy += in ? py[k] : 0;
       }
       s.count += count, s.x += sx, s.y += sy;
     } else {
@@ -61,13 +68,17 @@ void SeededClimbs::step(const Eigen::Vector4d& m, double inv_h2, long reach, int
         if (in) ++s.count, s.x += g.px[j], s.y += g.py[j];
       }
     }
-    for (int k = begin; k < end; ++k) {
-      const auto j = static_cast<size_t>(k);
-      if (!inside_[j]) continue;
-      if (first_climb_[j] < 0) first_climb_[j] = climb;
-      if constexpr (kCountSteps) {
+    if constexpr (kCountSteps) {
+      for (int k = begin; k < end; ++k) {
+        const auto j = static_cast<size_t>(k);
+        if (!inside_[j]) continue;
+        if (first_climb_[j] < 0) first_climb_[j] = climb;
         if (steps_inside_[j]++ == 0) touched_.push_back(k);
       }
+    } else {
+      const std::uint8_t* __restrict inside = inside_.data();
+      int* __restrict first = first_climb_.data();
+      for (int k = begin; k < end; ++k) first[k] = inside[k] && first[k] < 0 ? climb : first[k];
     }
   });
 }

@@ -10,6 +10,7 @@
 // neighbours. A window of 0 turns the filter off: every event is kept.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "golden/event.h"
@@ -28,11 +29,17 @@ class BackgroundActivityFilter {
   int neighbours_fired_since(int x, int y, TimeUs since) const;
 
  private:
-  static constexpr TimeUs kNever = INT64_MIN;
+  // Longer ago than any window: a time difference to it cannot overflow, as times are at most
+  // 2^62 us (host/read/event_source.h).
+  static constexpr TimeUs kNever = -(TimeUs{1} << 61);
+  TimeUs& last_fired(int x, int y) { return last_fired_[static_cast<std::size_t>(y + 1) * stride_ + static_cast<std::size_t>(x + 1)]; }
+  TimeUs last_fired(int x, int y) const { return last_fired_[static_cast<std::size_t>(y + 1) * stride_ + static_cast<std::size_t>(x + 1)]; }
+
   SensorSize sensor_;
   TimeUs window_us_;
   int support_;
-  std::vector<TimeUs> last_fired_;  // per pixel, row-major
+  std::size_t stride_;                  // a row of the map: the sensor's width and a border pixel each side
+  std::vector<TimeUs> last_fired_;  // per pixel, row-major, with a border of pixels that never fire
 };
 
 }  // namespace evms::golden
