@@ -7,7 +7,9 @@
 // the packet that last wrote it: an event writes its mode into its pixel (joining the mode
 // already there in this packet), then each pixel written looks at the pixels within reach ahead
 // of it (the rows below, and the pixels to its right in its own row): of two events within
-// reach, one lies ahead of the other. The map lives across packets, so no packet clears it.
+// reach, one lies ahead of the other. The map lives across packets, so no packet clears it
+// (but the one at which the 16-bit stamps wrap); a pixel is one 32-bit word, so that a row of
+// the reach is one cache line.
 #pragma once
 
 #include <cstdint>
@@ -29,17 +31,13 @@ class ModeLinks {
   int find(int c);
   void unite(int a, int b);
 
-  struct Pixel {
-    std::uint32_t written = 0;  // the packet that last wrote a mode here
-    std::uint32_t looked = 0;   // the packet that last looked around here
-    int mode = -1;
-  };
   SensorSize sensor_;
-  std::vector<Pixel> map_;
+  std::vector<std::uint32_t> map_;    // per pixel: the packet that last wrote it (high 16 bits), its mode (low 16)
+  std::vector<std::uint32_t> written_;  // the pixels this packet wrote
   std::vector<int> root_;             // per mode
   std::vector<int> half_width_;       // per row offset dy = 0 .. r: the reach along the row
   double reach_for_ = -1;
-  std::uint32_t packet_ = 0;
+  std::uint32_t packet_ = 0;          // 1 .. 65535
 };
 
 }  // namespace evms::golden

@@ -56,6 +56,7 @@ void run(benchmark::State& state, const std::string& backend, const std::string&
 #define EVMS_BENCH(backend)                                                                                                  \
   BENCHMARK_CAPTURE(run, backend##_dvxplorer_indoor, #backend, "dvxplorer_indoor.aedat4")->Unit(benchmark::kMillisecond)->MinTime(2); \
   BENCHMARK_CAPTURE(run, backend##_gen3_moving_blob, #backend, "gen3_moving_blob.evt2.raw")->Unit(benchmark::kMillisecond)->MinTime(2); \
+  BENCHMARK_CAPTURE(run, backend##_gen41_dense_scene, #backend, "gen41_dense_scene.evt3.raw")->Unit(benchmark::kMillisecond)->MinTime(2); \
   BENCHMARK_CAPTURE(run, backend##_rotation_2s, #backend, "gen://rotation?duration-s=2")->Unit(benchmark::kMillisecond)->MinTime(2)
 EVMS_BENCH(golden);
 EVMS_BENCH(fixed);
