@@ -36,7 +36,15 @@ class EventOrdering {
  public:
   EventOrdering(std::string path, SensorSize sensor, TimeUs tolerance_us);
 
-  void push(TimeUs t, long x, long y, int p, InputPosition where);
+  void push(TimeUs t, long x, long y, int p, InputPosition where) {
+    // The common case inline: a valid event no older than the newest goes to the ring.
+    const bool valid = static_cast<unsigned long>(x) < static_cast<unsigned long>(sensor_.width) &&
+                       static_cast<unsigned long>(y) < static_cast<unsigned long>(sensor_.height) && t >= newest_ && t <= kMaxTimestampUs &&
+                       tail_ - head_ < in_order_.size();
+    if (!valid) return push_checked(t, x, y, p, where);
+    ring(tail_++) = {{t, static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), static_cast<std::uint8_t>(p != 0)}, arrivals_++};
+    newest_ = t;
+  }
   // Moves out events that no later input can precede.
   size_t pop(std::span<Event> out);
   // End of input: everything held becomes final.
@@ -51,17 +59,20 @@ class EventOrdering {
   // Events not yet final, earliest first; the arrival number keeps equal timestamps in file
   // order. A heap, so that an event arriving late costs log(held) and not a shift of the rest.
   struct Held {
-    TimeUs t;
-    std::uint64_t arrival;
     Event event;
-    bool operator>(const Held& o) const { return t != o.t ? t > o.t : arrival > o.arrival; }
+    std::uint64_t arrival;
+    bool operator>(const Held& o) const { return event.t != o.event.t ? event.t > o.event.t : arrival > o.arrival; }
   };
   std::priority_queue<Held, std::vector<Held>, std::greater<>> held_;  // late events
-  std::vector<Held> in_order_;  // events in time order from in_order_head_ on
-  size_t in_order_head_ = 0;
-  size_t held() const { return held_.size() + in_order_.size() - in_order_head_; }
+  // Events in time order: a ring of a power-of-two size, from head_ to tail_ (free-running
+  // counters), so that memory follows what is held and nothing is moved.
+  std::vector<Held> in_order_ = std::vector<Held>(1024);
+  size_t head_ = 0, tail_ = 0;
+  Held& ring(size_t i) { return in_order_[i & (in_order_.size() - 1)]; }
+  size_t held() const { return held_.size() + (tail_ - head_); }
+  void push_checked(TimeUs t, long x, long y, int p, InputPosition where);
   std::uint64_t arrivals_ = 0;
-  TimeUs newest_ = INT64_MIN;
+  TimeUs newest_ = 0;  // no event is older than this without being late (timestamps are >= 0)
   bool finished_ = false;
   std::int64_t reordered_ = 0;
 };

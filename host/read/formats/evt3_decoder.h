@@ -10,6 +10,7 @@
 // type is reserved.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include "golden/event.h"
@@ -49,9 +50,8 @@ class Evt3Decoder {
  private:
   template <class Sink>
   void vector(unsigned bits, int width, Sink& sink) {
-    for (int i = 0; i < width; ++i) {
-      if (bits & (1u << i)) event(base_x_ + static_cast<unsigned>(i), base_p_, sink);
-    }
+    bits &= (1u << width) - 1;
+    for (; bits != 0; bits &= bits - 1) event(base_x_ + static_cast<unsigned>(std::countr_zero(bits)), base_p_, sink);
     base_x_ += static_cast<unsigned>(width);
   }
   template <class Sink>

@@ -23,7 +23,7 @@ namespace evms::read {
 namespace {
 
 // Words are decoded a block at a time from the reader's buffer.
-constexpr size_t kBlockBytes = 1 << 16;
+constexpr size_t kBlockBytes = 1 << 14;
 
 struct PropheseeHeader {
   enum class Kind { kEvt2, kEvt3, kDat, kUnknown } kind = Kind::kUnknown;
