@@ -101,7 +101,69 @@ class TextSource final : public FileEventSource {
     return us * 1000000 + micro;
   }
 
+  // The usual line, read in one pass: "t x y p" (t seconds with a fraction) or "t_us,x,y,p[,label]"
+  // with digits only and no blanks inside a CSV row. Anything else (a comment, a header, a
+  // negative coordinate, extra blanks, a bad field) is left to parse(), which reads it or names
+  // what is wrong; what this accepts, parse() would read to the same event.
+  bool parse_usual(std::string_view line) {
+    const char* p = line.data();
+    const char* const end = p + line.size();
+    const auto digit = [&](const char* q) { return q < end && static_cast<unsigned>(*q - '0') < 10; };
+    const auto blanks = [&] {
+      const char* start = p;
+      while (p < end && (*p == ' ' || *p == '\t')) ++p;
+      return p > start;
+    };
+    const auto number = [&](long& v, int most) {
+      if (!digit(p)) return false;
+      v = 0;
+      for (int n = 0; digit(p); ++p, ++n) {
+        if (n == most) return false;
+        v = v * 10 + (*p - '0');
+      }
+      return true;
+    };
+    TimeUs t = 0;
+    long x = 0, y = 0, pol = 0;
+    if (csv_) {
+      long us = 0;
+      if (!number(us, 18) || p == end || *p++ != ',') return false;
+      t = us;
+      if (!number(x, 9) || p == end || *p++ != ',' || !number(y, 9) || p == end || *p++ != ',' || !number(pol, 1)) return false;
+      if (p < end && *p == ',') {
+        ++p;
+        if (p < end && *p == '-') ++p;
+        long label = 0;
+        if (!number(label, 9)) return false;
+      }
+      if (p != end) return false;
+    } else {
+      blanks();
+      long whole = 0;
+      if (!number(whole, 12)) return false;
+      TimeUs micro = 0;
+      if (p < end && *p == '.') {
+        ++p;
+        int n = 0;
+        for (; digit(p); ++p, ++n) {
+          if (n < 6) micro = micro * 10 + (*p - '0');
+          else if (n == 6 && *p >= '5') ++micro;  // round half up on the seventh digit
+        }
+        for (; n < 6; ++n) micro *= 10;
+      }
+      t = whole * 1000000 + micro;
+      if (!blanks() || !number(x, 9) || !blanks() || !number(y, 9) || !blanks() || !number(pol, 1)) return false;
+      blanks();
+      if (p != end) return false;
+    }
+    if (pol > 1) return false;
+    records_ = true;
+    emit(t, x, y, pol == 1, InputPosition::line(in_.line()));
+    return true;
+  }
+
   void parse(std::string_view line) {
+    if (parse_usual(line)) return;
     size_t first = line.find_first_not_of(" \t");
     if (first == std::string_view::npos || line[first] == '#') return;
     if (csv_ && !records_ && std::isalpha(static_cast<unsigned char>(line[first]))) {
