@@ -1,7 +1,6 @@
 // evms view SOURCE [--backend B] : the live viewer (SDL2), or with --headless --frames DIR the
 // same frames as PNG files. Keys: space pauses, + and - double or halve the replay speed,
 // b switches to the next backend, q or Escape quits.
-#include <SDL.h>
 
 #include <chrono>
 #include <cstdio>
@@ -15,6 +14,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/common.h"
 #include "host/read/live/live_source.h"
+#include "host/show/sdl_library.h"
 #include "host/show/video_writer.h"
 #include "host/show/view_session.h"
 
@@ -50,33 +50,33 @@ class SdlWindow {
     if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY") && !std::getenv("SDL_VIDEODRIVER")) {
       throw NoDisplay("no display to open a window on (DISPLAY and WAYLAND_DISPLAY are not set)");
     }
-    if (SDL_Init(SDL_INIT_VIDEO) != 0) throw NoDisplay(std::string("no display to open a window on (") + SDL_GetError() + ")");
+    if (show::sdl().Init(SDL_INIT_VIDEO) != 0) throw NoDisplay(std::string("no display to open a window on (") + show::sdl().GetError() + ")");
     // Without a display SDL falls back to drivers that draw nowhere; only a user who asks for
     // one by SDL_VIDEODRIVER gets it.
-    const std::string driver = SDL_GetCurrentVideoDriver() ? SDL_GetCurrentVideoDriver() : "";
+    const std::string driver = show::sdl().GetCurrentVideoDriver() ? show::sdl().GetCurrentVideoDriver() : "";
     if ((driver == "dummy" || driver == "offscreen" || driver == "evdev") && !std::getenv("SDL_VIDEODRIVER")) {
-      SDL_Quit();
+      show::sdl().Quit();
       throw NoDisplay("no display to open a window on (SDL reached none and fell back to '" + driver + "')");
     }
     const int x = at.size() == 2 ? at[0] : static_cast<int>(SDL_WINDOWPOS_CENTERED);
     const int y = at.size() == 2 ? at[1] : static_cast<int>(SDL_WINDOWPOS_CENTERED);
-    window_ = SDL_CreateWindow("evms", x, y, w, h, SDL_WINDOW_SHOWN);
-    if (!window_) throw std::runtime_error(std::string("cannot open a window: ") + SDL_GetError());
-    renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
-    texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING, w, h);
-    if (!renderer_ || !texture_) throw std::runtime_error(std::string("cannot draw in the window: ") + SDL_GetError());
+    window_ = show::sdl().CreateWindow("evms", x, y, w, h, SDL_WINDOW_SHOWN);
+    if (!window_) throw std::runtime_error(std::string("cannot open a window: ") + show::sdl().GetError());
+    renderer_ = show::sdl().CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
+    texture_ = show::sdl().CreateTexture(renderer_, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING, w, h);
+    if (!renderer_ || !texture_) throw std::runtime_error(std::string("cannot draw in the window: ") + show::sdl().GetError());
   }
   ~SdlWindow() {
-    if (texture_) SDL_DestroyTexture(texture_);
-    if (renderer_) SDL_DestroyRenderer(renderer_);
-    if (window_) SDL_DestroyWindow(window_);
-    SDL_Quit();
+    if (texture_) show::sdl().DestroyTexture(texture_);
+    if (renderer_) show::sdl().DestroyRenderer(renderer_);
+    if (window_) show::sdl().DestroyWindow(window_);
+    show::sdl().Quit();
   }
   void show(const show::Canvas& c) {
-    SDL_UpdateTexture(texture_, nullptr, c.pixels().data(), c.width() * 3);
-    SDL_RenderClear(renderer_);
-    SDL_RenderCopy(renderer_, texture_, nullptr, nullptr);
-    SDL_RenderPresent(renderer_);
+    show::sdl().UpdateTexture(texture_, nullptr, c.pixels().data(), c.width() * 3);
+    show::sdl().RenderClear(renderer_);
+    show::sdl().RenderCopy(renderer_, texture_, nullptr, nullptr);
+    show::sdl().RenderPresent(renderer_);
   }
 
  private:
@@ -163,7 +163,7 @@ void view(const ViewOptions& o) {
   bool paused = false, quit = false, more = true;
   while (!quit) {
     SDL_Event ev;
-    while (SDL_PollEvent(&ev)) {
+    while (show::sdl().PollEvent(&ev)) {
       if (ev.type == SDL_QUIT) quit = true;
       if (ev.type != SDL_KEYDOWN) continue;
       switch (ev.key.keysym.sym) {
@@ -207,7 +207,7 @@ void view(const ViewOptions& o) {
       // Keep the last frame up (and the window responsive) for --hold-s, then end.
       const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.hold_s);
       while (std::chrono::steady_clock::now() < until) {
-        while (SDL_PollEvent(&ev)) {
+        while (show::sdl().PollEvent(&ev)) {
         }
         window.show(canvas);
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
