@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <optional>
 
+#include <thread>
+
 #include "host/backend/backend.h"
+#include "host/cli/bounded_queue.h"
 #include "host/cli/common.h"
 #include "host/cli/commands.h"
 #include "host/eval/latency_histogram.h"
@@ -28,13 +31,60 @@ struct RunOptions {
   read::SourceOptions source_options;
   Method method;
   bool quiet = false;
+  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 };
 
-// Writes the outputs (when asked) and counts what the summary reports.
-class RunSink final : public OutputSink {
+// Events read at a time: one batch through the three stages.
+constexpr size_t kBatchEvents = 16384;
+
+// What the method hands to the writing stage for one batch of input: its labelled events and
+// the track updates they produced.
+struct OutputBatch {
+  std::vector<LabelledEvent> events;
+  std::vector<TrackUpdate> tracks;
+};
+
+// The method's side of the outputs: collects what the backend labels into the batch for the
+// writers, and counts what the summary reports.
+class Collector final : public OutputSink {
+ public:
+  explicit Collector(bool keep) : keep_(keep) {}
+  void on_event(const LabelledEvent& e) override {
+    ++events, ++labelled_since_;
+    if (e.label == kNoiseLabel) ++noise;
+    if (keep_) batch_.events.push_back(e);
+  }
+  void on_track(const TrackUpdate& u) override {
+    ++track_rows;
+    const auto id = static_cast<size_t>(u.id);
+    if (u.state == TrackState::kConfirmed) {
+      if (id >= seen_.size()) seen_.resize(id + 1, false);
+      if (!seen_[id]) seen_[id] = true, ++confirmed;
+    }
+    if (keep_) batch_.tracks.push_back(u);
+  }
+  // The events labelled since the last call: their labels are out now (one clock read for all).
+  void stamp_latency() {
+    latency.labelled(labelled_since_);
+    labelled_since_ = 0;
+  }
+  OutputBatch take() { return std::exchange(batch_, {}); }
+
+  std::int64_t events = 0, noise = 0, track_rows = 0, confirmed = 0;
+  eval::ArrivalLatency latency;  // live sources: from arrival to label
+
+ private:
+  bool keep_;
+  OutputBatch batch_;
+  std::int64_t labelled_since_ = 0;
+  std::vector<bool> seen_;  // track IDs with at least one confirmed update
+};
+
+// The writing stage: the labelled events in the chosen format and tracks.csv.
+class Writers {
  public:
   // `out_dir` "-": CSV rows on standard output, and no tracks file.
-  RunSink(const std::string& out_dir, const std::string& format, SensorSize sensor) {
+  Writers(const std::string& out_dir, const std::string& format, SensorSize sensor) {
     if (out_dir == "-") {
       if (format != "csv") throw std::invalid_argument("--out - writes CSV only (--format " + format + " needs a folder)");
       csv_.emplace("-", sensor);
@@ -57,35 +107,19 @@ class RunSink final : public OutputSink {
     tracks_.emplace(out_dir + "/tracks.csv");
     files.push_back(out_dir + "/tracks.csv");
   }
-  // Labelled events are held and written a batch at a time (write_held), so that the summary can
-  // time writing apart from the method.
-  void on_event(const LabelledEvent& e) override {
-    latency.labelled();
-    ++events;
-    if (e.label == kNoiseLabel) ++noise;
-    if (!files.empty() || csv_) held_.push_back(e);
-  }
-  void write_held() {
-    for (const LabelledEvent& e : held_) {
+  bool any() const { return csv_.has_value() || !files.empty(); }
+  void write(const OutputBatch& b) {
+    for (const LabelledEvent& e : b.events) {
       if (csv_) csv_->write(e);
       if (npy_) npy_->write(e);
       if (evt3_) evt3_->write(e);
       if (aedat4_) aedat4_->write(e);
     }
-    held_.clear();
-  }
-  void on_track(const TrackUpdate& u) override {
-    ++track_rows;
-    const auto id = static_cast<size_t>(u.id);
-    if (u.state == TrackState::kConfirmed) {
-      if (id >= seen_.size()) seen_.resize(id + 1, false);
-      if (!seen_[id]) seen_[id] = true, ++confirmed;
+    if (tracks_) {
+      for (const TrackUpdate& u : b.tracks) tracks_->write(u);
     }
-    if (tracks_) tracks_->write(u);
   }
-  void on_packet(const PacketSummary&) override {}
   void close() {
-    write_held();
     if (csv_) csv_->close();
     if (npy_) npy_->close();
     if (evt3_) evt3_->close();
@@ -94,17 +128,20 @@ class RunSink final : public OutputSink {
   }
 
   std::vector<std::string> files;  // written, for the summary
-  std::int64_t events = 0, noise = 0, track_rows = 0, confirmed = 0;
-  eval::ArrivalLatency latency;  // live sources: from arrival to label
 
  private:
-  std::vector<LabelledEvent> held_;
-  std::vector<bool> seen_;  // track IDs with at least one confirmed update
   std::optional<write::LabelledEventsCsv> csv_;
   std::optional<write::LabelledEventsNpy> npy_;
   std::optional<write::Evt3Events> evt3_;
   std::optional<write::Aedat4Events> aedat4_;
   std::optional<write::TracksCsv> tracks_;
+};
+
+// One batch of input as the reading stage hands it on.
+struct InputBatch {
+  std::vector<Event> events;
+  std::vector<std::int64_t> arrivals;  // live sources: each event's arrival
+  double progress = -1;                // of the source, after this batch
 };
 
 volatile std::sig_atomic_t g_interrupted = 0;
@@ -114,7 +151,7 @@ void run(const RunOptions& o) {
   const read::SourceInfo& info = source->info();
   const Params params = o.method.resolve(info.sensor);
   auto backend = backend::make_backend(o.backend, {params, info.sensor, o.core, o.device, o.baud});
-  RunSink sink(o.out, o.format, info.sensor);
+  Writers writers(o.out, o.format, info.sensor);
   Progress progress(!o.quiet);
 
   // Ctrl-C (or a SIGTERM) ends any source as if its input had ended, so that the outputs are
@@ -130,44 +167,132 @@ void run(const RunOptions& o) {
     });
   }
 
-  std::vector<Event> batch(4096);
+  Collector sink(writers.any());
   TimeUs t_first = 0, t_last = 0;
   bool any = false;
   const auto start = std::chrono::steady_clock::now();
   // A source that fails part way (a camera unplugged, a corrupt record) ends the input: what
   // came before it is labelled and written, then the cause is reported.
   std::string source_error;
-  // Wall clock by stage: reading, the backend, writing (the backend's own split comes from its stats).
+  // Busy time by stage: reading, the backend, writing (the backend's own split comes from its stats).
   std::int64_t read_ns = 0, method_ns = 0, write_ns = 0;
-  auto mark = std::chrono::steady_clock::now();
-  const auto lap = [&mark](std::int64_t& total) {
+  const auto since = [](std::chrono::steady_clock::time_point& mark) {
     const auto now = std::chrono::steady_clock::now();
-    total += std::chrono::duration_cast<std::chrono::nanoseconds>(now - mark).count();
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now - mark).count();
     mark = now;
+    return ns;
   };
-  for (;;) {
-    if (g_interrupted && !live) break;
+  // Reading: the next batch, or an empty one at the end (or at Ctrl-C, or after a failure).
+  const auto read_batch = [&](InputBatch& b) {
+    b.events.resize(kBatchEvents);
     size_t n = 0;
-    try {
-      n = source->read(batch);
-    } catch (const read::InputError& e) {
-      source_error = e.what();
+    if (!g_interrupted || live) {
+      try {
+        n = source->read(b.events);
+      } catch (const read::InputError& e) {
+        source_error = e.what();
+      }
     }
-    lap(read_ns);
-    if (n == 0) break;
-    if (!any) t_first = batch[0].t, any = true;
-    t_last = batch[n - 1].t;
-    sink.latency.arrived(source->arrivals());
-    backend->push(std::span(batch).first(n), sink);
-    lap(method_ns);
-    sink.write_held();
-    lap(write_ns);
-    progress.update(source->progress(), backend->stats().events_in);
+    b.events.resize(n);
+    const auto arrivals = source->arrivals();
+    b.arrivals.assign(arrivals.begin(), arrivals.end());
+    b.progress = source->progress();
+  };
+  // The method: labels a batch into the collector; its outputs go to the writers.
+  const auto label_batch = [&](const InputBatch& b) {
+    if (!any) t_first = b.events.front().t, any = true;
+    t_last = b.events.back().t;
+    sink.latency.arrived(b.arrivals);
+    backend->push(b.events, sink);
+    sink.stamp_latency();
+    progress.update(b.progress, backend->stats().events_in);
+  };
+  const auto finish_method = [&] {
+    backend->finish(sink);
+    sink.stamp_latency();
+  };
+
+  if (o.threads <= 1) {
+    InputBatch in;
+    auto mark = std::chrono::steady_clock::now();
+    for (;;) {
+      read_batch(in);
+      read_ns += since(mark);
+      if (in.events.empty()) break;
+      label_batch(in);
+      method_ns += since(mark);
+      writers.write(sink.take());
+      write_ns += since(mark);
+    }
+    finish_method();
+    method_ns += since(mark);
+    writers.write(sink.take());
+    writers.close();
+    write_ns += since(mark);
+  } else {
+    // Reading, the method and writing, each in a thread of its own, joined by queues: the
+    // method sees the same batches in the same order, so the outputs are the same bytes.
+    BoundedQueue<InputBatch> inputs(4);
+    BoundedQueue<OutputBatch> outputs(4);
+    std::exception_ptr reader_failed, writer_failed;
+    std::thread reader([&] {
+      try {
+        auto mark = std::chrono::steady_clock::now();
+        for (;;) {
+          InputBatch b;
+          read_batch(b);
+          read_ns += since(mark);
+          const bool end = b.events.empty();
+          if (!end && !inputs.push(std::move(b))) break;
+          if (end) break;
+          mark = std::chrono::steady_clock::now();
+        }
+      } catch (...) {
+        reader_failed = std::current_exception();
+      }
+      inputs.close();
+    });
+    std::thread writer([&] {
+      try {
+        OutputBatch b;
+        while (outputs.pop(b)) {
+          auto mark = std::chrono::steady_clock::now();
+          writers.write(b);
+          write_ns += since(mark);
+        }
+        auto mark = std::chrono::steady_clock::now();
+        writers.close();
+        write_ns += since(mark);
+      } catch (...) {
+        writer_failed = std::current_exception();
+        outputs.close();  // the method stops handing over what could not be written
+      }
+    });
+    try {
+      InputBatch b;
+      while (inputs.pop(b)) {
+        auto mark = std::chrono::steady_clock::now();
+        label_batch(b);
+        method_ns += since(mark);
+        outputs.push(sink.take());
+      }
+      auto mark = std::chrono::steady_clock::now();
+      finish_method();
+      method_ns += since(mark);
+      outputs.push(sink.take());
+    } catch (...) {
+      inputs.close();
+      outputs.close();
+      reader.join();
+      writer.join();
+      throw;
+    }
+    outputs.close();
+    reader.join();
+    writer.join();
+    if (reader_failed) std::rethrow_exception(reader_failed);
+    if (writer_failed) std::rethrow_exception(writer_failed);
   }
-  backend->finish(sink);
-  lap(method_ns);
-  sink.close();
-  lap(write_ns);
   progress.done();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -192,14 +317,15 @@ void run(const RunOptions& o) {
   }
   std::fprintf(summary, "\n");
   {
-    // Where the wall clock went. A live source's read time is mostly waiting for events.
+    // Where the time went, stage by stage (busy time: with threads the stages overlap). A live
+    // source's read time is mostly waiting for events.
     const auto seconds = [](std::int64_t ns) { return static_cast<double>(ns) * 1e-9; };
     std::fprintf(summary, "time        read %.3f s%s, method %.3f s", seconds(read_ns), live ? " (waiting included)" : "", seconds(method_ns));
     if (s.cluster_ns + s.track_ns > 0) {
       std::fprintf(summary, " (cluster %.3f, track %.3f, filter and the rest %.3f)", seconds(s.cluster_ns), seconds(s.track_ns),
                    seconds(std::max<std::int64_t>(0, method_ns - s.cluster_ns - s.track_ns)));
     }
-    std::fprintf(summary, ", write %.3f s\n", seconds(write_ns));
+    std::fprintf(summary, ", write %.3f s%s\n", seconds(write_ns), o.threads > 1 ? " (each in its own thread)" : "");
   }
   std::fprintf(summary, "clusters    %.2f per packet on average\n", s.packets ? static_cast<double>(s.clusters) / s.packets : 0.0);
   std::fprintf(summary, "tracks      %s started, %s confirmed, %s track updates\n", grouped(s.tracks_started).c_str(),
@@ -226,9 +352,9 @@ void run(const RunOptions& o) {
     std::fprintf(summary, "latency     arrival to label: p50 %.0f us, p99 %.0f us, max %.0f us over %s events\n", l.quantile_us(0.5),
                 l.quantile_us(0.99), static_cast<double>(l.max_ns()) * 1e-3, grouped(l.count()).c_str());
   }
-  if (!sink.files.empty()) {
+  if (!writers.files.empty()) {
     std::string listed;
-    for (const std::string& f : sink.files) listed += (listed.empty() ? "" : ", ") + f;
+    for (const std::string& f : writers.files) listed += (listed.empty() ? "" : ", ") + f;
     std::fprintf(summary, "outputs     %s\n", listed.c_str());
   }
   if (!source_error.empty()) {
@@ -263,6 +389,10 @@ void register_run(CLI::App& app) {
   cmd->add_option("--device", o->device, "serial device of the board backend (or the path evms vboard prints)");
   cmd->add_option("--baud", o->baud, "line rate of the board's serial link")->default_val(o->baud);
   cmd->add_flag("--quiet", o->quiet, "no progress bar");
+  cmd->add_option("--threads", o->threads, "1: read, label and write in turn; 2 or more: reading, the method and writing each in a "
+                                          "thread of its own (the outputs are the same bytes either way)")
+      ->default_str("the cores present")
+      ->check(CLI::Range(1, 256));
   add_source_options(*cmd, o->source_options);
   add_replay_options(*cmd, o->source_options, Pacing::kRealtimeFlag);
   add_method_options(*cmd, o->method);

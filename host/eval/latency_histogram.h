@@ -49,10 +49,14 @@ class LatencyHistogram {
 class ArrivalLatency {
  public:
   void arrived(std::span<const std::int64_t> arrival_ns) { waiting_.insert(waiting_.end(), arrival_ns.begin(), arrival_ns.end()); }
-  void labelled() {
-    if (waiting_.empty()) return;
-    histogram_.add(read::steady_now_ns() - waiting_.front());
-    waiting_.pop_front();
+  // The next `n` events (in input order) have their labels now.
+  void labelled(std::int64_t n = 1) {
+    if (waiting_.empty() || n <= 0) return;
+    const std::int64_t now = read::steady_now_ns();
+    for (; n > 0 && !waiting_.empty(); --n) {
+      histogram_.add(now - waiting_.front());
+      waiting_.pop_front();
+    }
   }
   // Events pushed to a backend that is then dropped will not be labelled.
   void forget_waiting() { waiting_.clear(); }

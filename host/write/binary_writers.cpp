@@ -1,5 +1,7 @@
 #include "host/write/binary_writers.h"
 
+#include <filesystem>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -71,7 +73,8 @@ void LabelledEventsNpy::close() {
 }
 
 LabelsSideFile::LabelsSideFile(const std::string& path, const std::string& events_path) : out_(path) {
-  out_.text("# one label per event of " + events_path + ", in its order\nlabel\n");
+  // The events file by its name: the two sit side by side wherever they are moved.
+  out_.text("# one label per event of " + std::filesystem::path(events_path).filename().string() + ", in its order\nlabel\n");
 }
 
 Aedat4Events::Aedat4Events(const std::string& path, const std::string& labels_path, SensorSize sensor)

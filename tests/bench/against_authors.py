@@ -11,9 +11,11 @@ wall clock as a whole process (reading, clustering, writing; the median of --rep
 
 The scenes are 240x180, as the authors' code was written for: members of the scene family's
 validation split pinned to 7 shapes and 0.1 Hz of background activity a pixel (about 5 % noise),
-and the paper's three shapes-poster scenes. The authors' program is built here from
-../shared/peer with g++ and Debian's libopencv-core-dev; when that folder is absent the
-comparison is skipped, saying so.
+and the paper's three shapes-poster scenes. Then the real recordings of ../shared/data/real
+that the authors' program can take (it reads events.txt: each recording is converted first, and
+evms reads the recording itself), timed only, as they carry no labels. The authors' program is
+built here from ../shared/peer with g++ and Debian's libopencv-core-dev; when that folder is
+absent the comparison is skipped, saying so.
 """
 import argparse
 import os
@@ -26,6 +28,7 @@ import time
 
 TYPES = ["translation", "rotation", "6dof", "crossing"]
 PAPER = ["translation", "rotation", "6dof"]
+REAL = ["dvxplorer_indoor.aedat4"]
 
 
 def build_peer(peer_dir, work):
@@ -59,6 +62,7 @@ def main():
     ap.add_argument("--seeds", type=int, default=4, help="family members of each type")
     ap.add_argument("--repeat", type=int, default=3, help="runs of each program a scene, for the median time")
     ap.add_argument("--peer", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../../shared/peer"))
+    ap.add_argument("--duration-s", type=float, default=1.0, help="length of the family's members")
     ap.add_argument("--keep", help="keep the scenes and outputs in this folder")
     a = ap.parse_args()
     if not os.path.isfile(os.path.join(a.peer, "authors_clustering.cpp")):
@@ -70,10 +74,11 @@ def main():
     peer = build_peer(a.peer, work)
 
     scenes = [(f"{t} {1000 + k}", ["--family", t, "--seed", str(1000 + k), "--width", "240", "--height", "180",
-                                   "--objects", "7", "--noise-hz", "0.1"]) for t in TYPES for k in range(a.seeds)]
-    scenes += [(f"paper-{m} 1", ["--scene", m, "--seed", "1", "--duration-s", "1"]) for m in PAPER]
+                                   "--objects", "7", "--noise-hz", "0.1", "--duration-s", str(a.duration_s)])
+              for t in TYPES for k in range(a.seeds)]
+    scenes += [(f"paper-{m} 1", ["--scene", m, "--seed", "1", "--duration-s", str(a.duration_s)]) for m in PAPER]
 
-    print(f"<!-- tests/bench/against_authors.py {a.evms} --seeds {a.seeds} --repeat {a.repeat} -->")
+    print(f"<!-- tests/bench/against_authors.py {a.evms} --seeds {a.seeds} --repeat {a.repeat} --duration-s {a.duration_s:g} -->")
     print("| scene | events | F authors | F --preset paper | F evms | authors s | evms s | evms speed-up |")
     print("|---|---|---|---|---|---|---|---|")
     rows = []
@@ -93,6 +98,33 @@ def main():
         rows.append((name, events, f_peer, f_paper, f_evms, t_peer, t_evms))
         print(f"| {name} | {events:,} | {f_peer:.3f} | {f_paper:.3f} | {f_evms:.3f} | {t_peer:.3f} | {t_evms:.3f} | "
               f"{t_peer / t_evms:.1f}x |", flush=True)
+
+    recordings = []
+    real = os.path.join(os.path.dirname(os.path.abspath(a.peer)), "data", "real")
+    for name in REAL:
+        path = os.path.join(real, name)
+        if not os.path.isfile(path):
+            continue
+        d = os.path.join(work, name)
+        os.makedirs(d, exist_ok=True)
+        csv = subprocess.run([evms, "run", path, "--out", "-", "--quiet"], check=True, capture_output=True, text=True).stdout
+        lines = csv.splitlines()
+        width, height = (int(v) for v in lines[0].split()[-1].split("x"))
+        events_txt = os.path.join(d, "events.txt")
+        with open(events_txt, "w") as f:
+            for row in lines[2:]:
+                t, x, y, p = row.split(",")[:4]
+                f.write(f"{int(t) // 1000000}.{int(t) % 1000000:06d} {x} {y} {p}\n")
+        t_peer = timed([peer, events_txt, os.path.join(d, "authors.csv"), "--width", str(width), "--height", str(height),
+                        "--fix-clamp", "1"], a.repeat)
+        t_evms = timed([evms, "run", path, "--out", os.path.join(d, "evms"), "--quiet"], a.repeat)
+        recordings.append((name, len(lines) - 2, t_peer, t_evms))
+    if recordings:
+        print()
+        print("| recording | events | authors s (events.txt) | evms s (the recording) | evms speed-up |")
+        print("|---|---|---|---|---|")
+        for name, n, t_peer, t_evms in recordings:
+            print(f"| {name} | {n:,} | {t_peer:.3f} | {t_evms:.3f} | {t_peer / t_evms:.1f}x |")
 
     diffs = [abs(r[3] - r[2]) for r in rows]
     events = sum(r[1] for r in rows)

@@ -369,6 +369,33 @@ TEST(Cli, GenIsDeterministicOnDisk) {
   }
 }
 
+// Reading, the method and writing in threads of their own write the same bytes as one thread,
+// on every backend that runs on the host, in every output format.
+TEST(Cli, ThreadsWriteTheSameBytesAsOne) {
+  TempDir dir;
+  const std::string scene = dir.write("e.csv", "# sensor 128x128\n" + csv(sample_events(30000, {128, 128})));
+  for (const char* backend : {"golden", "fixed", "rtl"}) {
+    const std::string method = std::string(backend) == "rtl" ? " --preset gaussian" : "";
+    const std::string limit = std::string(backend) == "rtl" ? " --limit 3000" : "";
+    for (const char* format : {"csv", "npy", "evt3"}) {
+      std::vector<std::string> outputs;
+      for (const char* threads : {"1", "4"}) {
+        const std::string out = dir.path(std::string(backend) + "_" + format + "_" + threads);
+        const auto r = run_command(evms_binary() + " run " + scene + " --quiet --backend " + backend + method + limit + " --format " +
+                                   format + " --threads " + threads + " --out " + out);
+        ASSERT_EQ(r.exit_code, 0) << backend << " " << r.err;
+        outputs.push_back(out);
+      }
+      for (const auto& entry : std::filesystem::directory_iterator(outputs[0])) {
+        const std::string name = entry.path().filename();
+        const std::string one = read_file(outputs[0] + "/" + name), four = read_file(outputs[1] + "/" + name);
+        EXPECT_GT(one.size(), 100u) << backend << " " << name;
+        EXPECT_TRUE(one == four) << backend << " " << format << ": " << name << " differs between 1 and 4 threads";
+      }
+    }
+  }
+}
+
 // evms metrics reads the files evms itself writes (their first line is "# sensor WxH"): the
 // truth against itself scores 1, and a run of the method scores between 0 and 1.
 TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
