@@ -36,6 +36,7 @@ PacketClusters PacketClusterer::cluster(std::span<const Event> events, const Fea
                                         const std::vector<Eigen::Vector4d>& warm_modes, const std::vector<double>& warm_spreads) {
   if (params_.seeding == Seeding::kEvery) return every_event(features, params_);
   const bool finite = kernel_is_finite(params_.kernel);
+  // Cells of half a bandwidth: a climb's ball then visits little more than its own area.
   grid_.build(features, events, params_.bandwidth, finite);
   climbs_.start(grid_, params_, sensor_);
   if (params_.warm_start) {
@@ -46,8 +47,8 @@ PacketClusters PacketClusterer::cluster(std::span<const Event> events, const Fea
     }
   }
   if (params_.seeding == Seeding::kGrid) {
-    if (!finite) cells_.build(features, events, params_.bandwidth, true);
-    climbs_.seed_from_grid(finite ? grid_ : cells_);
+    cells_.build(features, events, params_.bandwidth, true);
+    climbs_.seed_from_grid(cells_);
   }
   climbs_.seed_from_events();  // after grid seeds: only events no climb reached, if any
   return finish(events, features, climbs_.labels());

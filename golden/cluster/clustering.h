@@ -53,8 +53,8 @@ class PacketClusterer {
   Params params_;
   SensorSize sensor_;
   double sensor_area_;    // in (x, y) feature units
-  PacketGrid grid_;
-  PacketGrid cells_;      // grid seeding with a kernel without reach: cells of h all the same
+  PacketGrid grid_;       // cells of h / 2, for the climbs
+  PacketGrid cells_;      // cells of h, the seeds of grid seeding
   SeededClimbs climbs_;
   ModeLinks links_;
 };

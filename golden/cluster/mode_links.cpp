@@ -1,12 +1,16 @@
 #include "golden/cluster/mode_links.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <stdexcept>
 
 namespace evms::golden {
 
-ModeLinks::ModeLinks(SensorSize sensor) : sensor_(sensor), map_(static_cast<size_t>(sensor.width) * sensor.height, 0) {}
+ModeLinks::ModeLinks(SensorSize sensor)
+    : sensor_(sensor),
+      words_per_row_((sensor.width + 63) / 64 + 2),
+      marked_(static_cast<size_t>(words_per_row_) * sensor.height, 0),
+      mode_(static_cast<size_t>(sensor.width) * sensor.height, -1) {}
 
 int ModeLinks::find(int c) {
   while (root_[static_cast<size_t>(c)] != c) c = root_[static_cast<size_t>(c)] = root_[static_cast<size_t>(root_[static_cast<size_t>(c)])];
@@ -18,8 +22,25 @@ void ModeLinks::unite(int a, int b) {
   if (ra != rb) root_[static_cast<size_t>(std::max(ra, rb))] = std::min(ra, rb);
 }
 
+void ModeLinks::join_row(int mode, int y, int x0, int x1) {
+  x0 = std::max(x0, 0), x1 = std::min(x1, sensor_.width - 1);
+  if (x0 > x1) return;
+  const std::uint64_t* row = &marked_[static_cast<size_t>(y) * static_cast<size_t>(words_per_row_)];
+  const int* modes = &mode_[static_cast<size_t>(y) * static_cast<size_t>(sensor_.width)];
+  // Bit b of word w is pixel 64 (w - 1) + b.
+  for (int w = x0 / 64 + 1; w <= x1 / 64 + 1; ++w) {
+    const int first = 64 * (w - 1);
+    std::uint64_t bits = row[w];
+    if (x0 > first) bits &= ~std::uint64_t{0} << (x0 - first);
+    if (x1 < first + 63) bits &= ~std::uint64_t{0} >> (63 - (x1 - first));
+    for (; bits != 0; bits &= bits - 1) {
+      const int other = modes[first + std::countr_zero(bits)];
+      if (other != mode) unite(mode, other);
+    }
+  }
+}
+
 void ModeLinks::join(std::span<const Event> events, double link_px, int modes, std::vector<int>& mode_of) {
-  if (modes > 0xFFFF) throw std::length_error("ModeLinks: more than 65535 modes in a packet");
   root_.resize(static_cast<size_t>(modes));
   for (int c = 0; c < modes; ++c) root_[static_cast<size_t>(c)] = c;
   if (link_px != reach_for_) {
@@ -32,32 +53,33 @@ void ModeLinks::join(std::span<const Event> events, double link_px, int modes, s
     }
     reach_for_ = link_px;
   }
-  if (++packet_ > 0xFFFF) {  // the stamps wrapped: start from a clear map
-    std::fill(map_.begin(), map_.end(), 0);
-    packet_ = 1;
-  }
-  const std::uint32_t stamp = packet_ << 16;
   const int w = sensor_.width, h = sensor_.height;
+  const auto bit = [&](int x, int y) -> std::uint64_t& { return marked_[static_cast<size_t>(y) * static_cast<size_t>(words_per_row_) + static_cast<size_t>(x / 64 + 1)]; };
   written_.clear();
   for (size_t i = 0; i < events.size(); ++i) {
     if (mode_of[i] < 0) continue;
-    const auto pixel = static_cast<std::uint32_t>(events[i].y) * static_cast<std::uint32_t>(w) + events[i].x;
-    std::uint32_t& p = map_[pixel];
-    if ((p & 0xFFFF0000u) == stamp) unite(mode_of[i], static_cast<int>(p & 0xFFFFu));
-    else written_.push_back(pixel);
-    p = stamp | static_cast<std::uint32_t>(mode_of[i]);
+    const int x = events[i].x, y = events[i].y;
+    const std::uint64_t mask = std::uint64_t{1} << (x % 64);
+    int& mode = mode_[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)];
+    if (bit(x, y) & mask) {
+      unite(mode_of[i], mode);
+    } else {
+      bit(x, y) |= mask;
+      written_.push_back(static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(x));
+    }
+    mode = mode_of[i];
   }
   for (const std::uint32_t pixel : written_) {
     const int x = static_cast<int>(pixel % static_cast<std::uint32_t>(w)), y = static_cast<int>(pixel / static_cast<std::uint32_t>(w));
-    const std::uint32_t own = map_[pixel];
-    for (int dy = 0; dy < static_cast<int>(half_width_.size()) && y + dy < h; ++dy) {
-      const int a = half_width_[static_cast<size_t>(dy)];
-      const int x0 = dy == 0 ? x + 1 : std::max(0, x - a), x1 = std::min(w - 1, x + a);
-      const std::uint32_t* row = &map_[static_cast<size_t>(y + dy) * static_cast<size_t>(w)];
-      for (int nx = x0; nx <= x1; ++nx) {
-        if ((row[nx] & 0xFFFF0000u) == stamp && row[nx] != own) unite(static_cast<int>(own & 0xFFFFu), static_cast<int>(row[nx] & 0xFFFFu));
-      }
+    const int mode = mode_[pixel];
+    join_row(mode, y, x + 1, x + half_width_[0]);
+    for (int dy = 1; dy < static_cast<int>(half_width_.size()) && y + dy < h; ++dy) {
+      join_row(mode, y + dy, x - half_width_[static_cast<size_t>(dy)], x + half_width_[static_cast<size_t>(dy)]);
     }
+  }
+  for (const std::uint32_t pixel : written_) {
+    const int x = static_cast<int>(pixel % static_cast<std::uint32_t>(w)), y = static_cast<int>(pixel / static_cast<std::uint32_t>(w));
+    bit(x, y) &= ~(std::uint64_t{1} << (x % 64));
   }
   for (int& c : mode_of) {
     if (c >= 0) c = find(c);

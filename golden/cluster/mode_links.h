@@ -3,13 +3,12 @@
 // mode (union-find with the smaller index as the root), so the result does not depend on the
 // order of the joins.
 //
-// The events of a packet are found through a pixel map of the sensor, each pixel stamped with
-// the packet that last wrote it: an event writes its mode into its pixel (joining the mode
-// already there in this packet), then each pixel written looks at the pixels within reach ahead
-// of it (the rows below, and the pixels to its right in its own row): of two events within
-// reach, one lies ahead of the other. The map lives across packets, so no packet clears it
-// (but the one at which the 16-bit stamps wrap); a pixel is one 32-bit word, so that a row of
-// the reach is one cache line.
+// A packet's events are found through a bitmap of the sensor's pixels with the mode written at
+// each: an event marks its pixel and writes its mode there (joining the mode already there in
+// this packet); then each pixel marked looks, row by row, at the marked pixels within reach ahead
+// of it (the rows below, and the pixels to its right in its own row; of two events within reach,
+// one lies ahead of the other), a machine word of the bitmap at a time. The marks are cleared
+// after the packet, pixel by pixel, so no packet touches more of the map than its own events.
 #pragma once
 
 #include <cstdint>
@@ -30,14 +29,17 @@ class ModeLinks {
  private:
   int find(int c);
   void unite(int a, int b);
+  // Joins `mode` with the modes of the marked pixels x0 .. x1 of row y.
+  void join_row(int mode, int y, int x0, int x1);
 
   SensorSize sensor_;
-  std::vector<std::uint32_t> map_;    // per pixel: the packet that last wrote it (high 16 bits), its mode (low 16)
-  std::vector<std::uint32_t> written_;  // the pixels this packet wrote
+  int words_per_row_;                 // a word of margin each side, so that no window leaves the row
+  std::vector<std::uint64_t> marked_; // per pixel, one bit: written by this packet
+  std::vector<int> mode_;             // per pixel: the mode written (meaningful where marked)
+  std::vector<std::uint32_t> written_;  // the pixels this packet marked
   std::vector<int> root_;             // per mode
   std::vector<int> half_width_;       // per row offset dy = 0 .. r: the reach along the row
   double reach_for_ = -1;
-  std::uint32_t packet_ = 0;          // 1 .. 65535
 };
 
 }  // namespace evms::golden

@@ -5,12 +5,14 @@
 
 namespace evms::golden {
 
-long PacketGrid::cell(double v) const { return std::max(0L, static_cast<long>(std::floor(v / cell_))); }
+long PacketGrid::cell(double v) const { return static_cast<long>(std::floor(v / cell_)); }
 
 void PacketGrid::build(const FeatureMatrix& f, std::span<const Event> events, double cell, bool finite) {
   const int n = static_cast<int>(f.cols());
   cell_ = finite ? cell : 1e300;
+  finite_ = finite;
   nx_ = ny_ = 1;
+  // Features are not negative (pixels from 0), so the cells start at 0.
   for (int i = 0; i < n; ++i) nx_ = std::max(nx_, this->cell(f(0, i)) + 1), ny_ = std::max(ny_, this->cell(f(1, i)) + 1);
   // Counting sort by cell, stable: members keep packet order within a cell.
   start_.assign(static_cast<size_t>(nx_ * ny_ + 1), 0);

@@ -5,6 +5,8 @@
 // Members keep packet order within their cell.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -16,23 +18,32 @@ namespace evms::golden {
 class PacketGrid {
  public:
   // Bins `f` (and the events' pixel coordinates) into cells of side `cell` feature units.
-  // `finite` false makes one cell that holds every event (a kernel without reach).
+  // `finite` false makes one cell that holds every event (a kernel without reach: rows_near
+  // gives them all).
   void build(const FeatureMatrix& f, std::span<const Event> events, double cell, bool finite);
 
   int size() const { return static_cast<int>(event_.size()); }
-  // The cell of a feature coordinate (negative ones in cell 0; beyond the grid, beyond it).
-  long column(double fx) const { return cell(fx); }
-  long row(double fy) const { return cell(fy); }
 
-  // Calls run(begin, end) for the members of the cells within `reach` cells of (fx, fy), one
-  // call a row of cells.
+  // Calls run(begin, end) for the members of the cells that the disc of radius r around
+  // (fx, fy) touches, one call a row of cells: in each row, the cells between the disc's left and
+  // right edges within that row's band. Every point within r is among them.
   template <class Run>
-  void rows_near(double fx, double fy, long reach, Run&& run) const {
-    const long cx = column(fx), cy = row(fy);
-    const long x0 = cx - reach < 0 ? 0 : cx - reach, x1 = cx + reach >= nx_ ? nx_ - 1 : cx + reach;
-    const long y0 = cy - reach < 0 ? 0 : cy - reach, y1 = cy + reach >= ny_ ? ny_ - 1 : cy + reach;
-    if (x0 > x1) return;
-    for (long y = y0; y <= y1; ++y) run(start_[static_cast<size_t>(y * nx_ + x0)], start_[static_cast<size_t>(y * nx_ + x1 + 1)]);
+  void rows_near(double fx, double fy, double r, Run&& run) const {
+    if (!finite_) {
+      run(0, size());
+      return;
+    }
+    const long y0 = std::max(0L, cell(fy - r)), y1 = std::min(ny_ - 1, cell(fy + r));
+    for (long y = y0; y <= y1; ++y) {
+      // The band's nearest point to fy, and the disc's half-width there (a hair wider, so
+      // that rounding cannot shut out a point on the rim).
+      const double band0 = static_cast<double>(y) * cell_, band1 = band0 + cell_;
+      const double dy = fy < band0 ? band0 - fy : (fy > band1 ? fy - band1 : 0.0);
+      const double half = std::sqrt(std::max(0.0, r * r - dy * dy)) * (1 + 1e-12) + 1e-15;
+      const long x0 = std::max(0L, cell(fx - half)), x1 = std::min(nx_ - 1, cell(fx + half));
+      if (x0 > x1) continue;
+      run(start_[static_cast<size_t>(y * nx_ + x0)], start_[static_cast<size_t>(y * nx_ + x1 + 1)]);
+    }
   }
 
   // The occupied cells, most populated first (ties: the lower cell number), each as the range
@@ -51,6 +62,7 @@ class PacketGrid {
   long cell(double v) const;
 
   double cell_ = 1;
+  bool finite_ = true;
   long nx_ = 1, ny_ = 1;
   std::vector<int> start_;      // nx * ny + 1 entries
   std::vector<int> event_;      // cell order -> packet order

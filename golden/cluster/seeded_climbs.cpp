@@ -31,10 +31,11 @@ void SeededClimbs::start(const PacketGrid& grid, const Params& params, SensorSiz
 // One step of a climb at m: the sums over the members in the ball, which are marked reached by
 // this climb (and, for votes, counted).
 template <bool kFlat2d, bool kCountSteps>
-void SeededClimbs::step(const Eigen::Vector4d& m, double inv_h2, long reach, int climb, Sums& s) {
+void SeededClimbs::step(const Eigen::Vector4d& m, double h, int climb, Sums& s) {
   const PacketGrid& g = *grid_;
   const Kernel kernel = p_->kernel;
-  g.rows_near(m.x(), m.y(), reach, [&](int begin, int end) {
+  const double inv_h2 = 1.0 / (h * h);
+  g.rows_near(m.x(), m.y(), h, [&](int begin, int end) {
     kernel_evaluations_ += end - begin;
     if constexpr (kFlat2d) {
       // The ball test and the exact sums first, in a loop the compiler vectorizes (the
@@ -92,18 +93,16 @@ Eigen::Vector4d SeededClimbs::mean_of(const Sums& s) const {
 }
 
 void SeededClimbs::climb(const Eigen::Vector4d& seed, double h) {
-  const double inv_h2 = 1.0 / (h * h);
-  const long reach = static_cast<long>(std::ceil(h / p_->bandwidth - 1e-12));
   const int id = static_cast<int>(climb_mode_.size());
   const bool votes = p_->labelling == Labelling::kVotes;
   Eigen::Vector4d m = seed;
   int inside = 0;  // events in the ball at the climb's last step
   for (int k = 0; k < p_->max_iterations; ++k) {
     Sums s;
-    if (flat2d_ && !votes) step<true, false>(m, inv_h2, reach, id, s);
-    else if (flat2d_) step<true, true>(m, inv_h2, reach, id, s);
-    else if (!votes) step<false, false>(m, inv_h2, reach, id, s);
-    else step<false, true>(m, inv_h2, reach, id, s);
+    if (flat2d_ && !votes) step<true, false>(m, h, id, s);
+    else if (flat2d_) step<true, true>(m, h, id, s);
+    else if (!votes) step<false, false>(m, h, id, s);
+    else step<false, true>(m, h, id, s);
     if (p_->kernel == Kernel::kFlat) {
       // Only the exact sums were kept on the fast path; the flat kernel's weight is the count.
       s.w = static_cast<double>(s.count);

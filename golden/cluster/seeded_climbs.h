@@ -28,7 +28,7 @@ namespace evms::golden {
 
 class SeededClimbs {
  public:
-  // Starts a packet's climbs over `grid` (built on the packet's features with cell h).
+  // Starts a packet's climbs over `grid` (built on the packet's features).
   void start(const PacketGrid& grid, const Params& params, SensorSize sensor);
 
   // Climbs from `seed` with bandwidth h (at least params.bandwidth: the grid's cell).
@@ -55,7 +55,7 @@ class SeededClimbs {
     Eigen::Vector4d f = Eigen::Vector4d::Zero();
   };
   template <bool kFlat2d, bool kCountSteps>
-  void step(const Eigen::Vector4d& m, double inv_h2, long reach, int climb, Sums& s);
+  void step(const Eigen::Vector4d& m, double h, int climb, Sums& s);
   Eigen::Vector4d mean_of(const Sums& s) const;
   int join_or_open(const Eigen::Vector4d& m, int inside);
 
