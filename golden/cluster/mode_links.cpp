@@ -24,19 +24,19 @@ void ModeLinks::unite(int a, int b) {
 
 void ModeLinks::join_row(int mode, int y, int x0, int x1) {
   x0 = std::max(x0, 0), x1 = std::min(x1, sensor_.width - 1);
-  if (x0 > x1) return;
   const std::uint64_t* row = &marked_[static_cast<size_t>(y) * static_cast<size_t>(words_per_row_)];
   const int* modes = &mode_[static_cast<size_t>(y) * static_cast<size_t>(sensor_.width)];
-  // Bit b of word w is pixel 64 (w - 1) + b.
-  for (int w = x0 / 64 + 1; w <= x1 / 64 + 1; ++w) {
-    const int first = 64 * (w - 1);
-    std::uint64_t bits = row[w];
-    if (x0 > first) bits &= ~std::uint64_t{0} << (x0 - first);
-    if (x1 < first + 63) bits &= ~std::uint64_t{0} >> (63 - (x1 - first));
-    for (; bits != 0; bits &= bits - 1) {
-      const int other = modes[first + std::countr_zero(bits)];
-      if (other != mode) unite(mode, other);
-    }
+  // 64 pixels at a time: bit k of `marked` is pixel x + k (bit b of word w is pixel 64 (w - 1) + b).
+  for (int x = x0; x <= x1; x += 64) {
+    const int len = std::min(64, x1 - x + 1), w = x / 64 + 1, off = x % 64;
+    std::uint64_t marked = row[w] >> off;
+    if (off > 0) marked |= row[w + 1] << (64 - off);
+    if (len < 64) marked &= (std::uint64_t{1} << len) - 1;
+    if (marked == 0) continue;
+    // The marked pixels of another mode: most near a pixel share its mode.
+    std::uint64_t other = 0;
+    for (int k = 0; k < len; ++k) other |= static_cast<std::uint64_t>(modes[x + k] != mode) << k;
+    for (std::uint64_t bits = marked & other; bits != 0; bits &= bits - 1) unite(mode, modes[x + std::countr_zero(bits)]);
   }
 }
 

@@ -3,6 +3,7 @@
 // percentiles within 1 % of the exact order statistic.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -15,11 +16,12 @@ namespace evms::eval {
 
 class LatencyHistogram {
  public:
-  void add(std::int64_t ns) {
+  // `count` events of latency `ns`.
+  void add(std::int64_t ns, std::int64_t count = 1) {
     const double us = std::max(static_cast<double>(ns) * 1e-3, 1.0);
     const int b = std::min(static_cast<int>(std::log(us) / kLogStep), kBuckets - 1);
-    ++counts_[static_cast<size_t>(b)];
-    ++total_;
+    counts_[static_cast<size_t>(b)] += count;
+    total_ += count;
     max_ns_ = std::max(max_ns_, ns);
   }
   std::int64_t count() const { return total_; }
@@ -46,16 +48,28 @@ class LatencyHistogram {
 // Pairs each labelled event with the arrival time of the event pushed in the same order (labels
 // come out in input order) and records the difference. Sources that are not live have no
 // arrival times, and then nothing is recorded.
+//
+// Events arrive in runs that share one arrival time (a USB transfer, a datagram, a slice of a
+// replay), so the waiting events are kept as (arrival, count) runs and each run of labels is one
+// histogram entry.
 class ArrivalLatency {
  public:
-  void arrived(std::span<const std::int64_t> arrival_ns) { waiting_.insert(waiting_.end(), arrival_ns.begin(), arrival_ns.end()); }
+  void arrived(std::span<const std::int64_t> arrival_ns) {
+    for (const std::int64_t t : arrival_ns) {
+      if (!waiting_.empty() && waiting_.back().arrival_ns == t) ++waiting_.back().count;
+      else waiting_.push_back({t, 1});
+    }
+  }
   // The next `n` events (in input order) have their labels now.
   void labelled(std::int64_t n = 1) {
     if (waiting_.empty() || n <= 0) return;
     const std::int64_t now = read::steady_now_ns();
-    for (; n > 0 && !waiting_.empty(); --n) {
-      histogram_.add(now - waiting_.front());
-      waiting_.pop_front();
+    while (n > 0 && !waiting_.empty()) {
+      Run& run = waiting_.front();
+      const std::int64_t take = std::min(n, run.count);
+      histogram_.add(now - run.arrival_ns, take);
+      n -= take;
+      if ((run.count -= take) == 0) waiting_.pop_front();
     }
   }
   // Events pushed to a backend that is then dropped will not be labelled.
@@ -63,7 +77,11 @@ class ArrivalLatency {
   const LatencyHistogram& histogram() const { return histogram_; }
 
  private:
-  std::deque<std::int64_t> waiting_;
+  struct Run {
+    std::int64_t arrival_ns;
+    std::int64_t count;
+  };
+  std::deque<Run> waiting_;
   LatencyHistogram histogram_;
 };
 
