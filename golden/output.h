@@ -2,6 +2,8 @@
 // labelled events, track updates and per-packet summaries through this interface.
 #pragma once
 
+#include <span>
+
 #include "golden/event.h"
 
 namespace evms {
@@ -19,6 +21,10 @@ class OutputSink {
   virtual ~OutputSink() = default;
   // Exactly once per input event, in input order.
   virtual void on_event(const LabelledEvent& e) = 0;
+  // Several at once, in input order: the same as on_event for each.
+  virtual void on_events(std::span<const LabelledEvent> events) {
+    for (const LabelledEvent& e : events) on_event(e);
+  }
   virtual void on_track(const TrackUpdate& u) = 0;
   virtual void on_packet(const PacketSummary&) {}
 };

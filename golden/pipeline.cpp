@@ -56,19 +56,24 @@ void Pipeline::push(const Event& e, OutputSink& out) {
 void Pipeline::finish(OutputSink& out) { close_packet(out); }
 
 void Pipeline::close_packet(OutputSink& out) {
-  std::vector<std::int32_t> label_of_packet_event(packet_.size(), kNoiseLabel);
+  label_of_packet_event_.assign(packet_.size(), kNoiseLabel);
+  std::vector<std::int32_t>& label_of_packet_event = label_of_packet_event_;
   if (!packet_.empty()) {
     StageClock clock;
     // Events whose neighbours stayed quiet while the packet was open are noise.
-    std::vector<Event> supported;
-    std::vector<int> index_of;  // in packet_, per supported event
-    for (size_t i = 0; i < packet_.size(); ++i) {
-      if (params_.packet_support == 0 ||
-          filter_.neighbours_fired_since(packet_[i].x, packet_[i].y, packet_.front().t) >= params_.packet_support) {
-        supported.push_back(packet_[i]);
-        index_of.push_back(static_cast<int>(i));
+    std::span<const Event> supported = packet_;
+    index_of_.clear();  // in packet_, per supported event, when some are left out
+    if (params_.packet_support > 0) {
+      supported_.clear();
+      for (size_t i = 0; i < packet_.size(); ++i) {
+        if (filter_.neighbours_fired_since(packet_[i].x, packet_[i].y, packet_.front().t) >= params_.packet_support) {
+          supported_.push_back(packet_[i]);
+          index_of_.push_back(static_cast<int>(i));
+        }
       }
+      supported = supported_;
     }
+    const auto packet_index = [&](size_t i) { return index_of_.empty() ? i : static_cast<size_t>(index_of_[i]); };
     const FeatureMatrix features = packet_features(supported, sensor_, params_);
     const PacketClusters clusters = clusterer_.cluster(supported, features, modes_, spreads_);
     modes_ = clusters.modes;
@@ -107,7 +112,7 @@ void Pipeline::close_packet(OutputSink& out) {
     const std::vector<std::int32_t> ids = tracker_->step(packet_.back().t, measurements, updates_);
     for (size_t i = 0; i < supported.size(); ++i) {
       const int c = clusters.cluster_of[i];
-      if (c >= 0) label_of_packet_event[static_cast<size_t>(index_of[i])] = ids[static_cast<size_t>(c)];
+      if (c >= 0) label_of_packet_event[packet_index(i)] = ids[static_cast<size_t>(c)];
     }
     stats_.track_ns += clock.lap();
 
@@ -115,15 +120,18 @@ void Pipeline::close_packet(OutputSink& out) {
     stats_.clusters += clusters.count;
     stats_.iterations += clusters.iterations;
     stats_.kernel_evaluations += clusters.kernel_evaluations;
+    labelled_.clear();
     for (const Pending& p : pending_) {
-      out.on_event({p.event, p.packet_index < 0 ? kNoiseLabel
-                                                : label_of_packet_event[static_cast<size_t>(p.packet_index)]});
+      labelled_.push_back({p.event, p.packet_index < 0 ? kNoiseLabel : label_of_packet_event[static_cast<size_t>(p.packet_index)]});
     }
+    out.on_events(labelled_);
     for (const TrackUpdate& u : updates_) out.on_track(u);
     out.on_packet({packet_.front().t, packet_.back().t, static_cast<int>(packet_.size()),
                    clusters.count, clusters.iterations});
   } else {
-    for (const Pending& p : pending_) out.on_event({p.event, kNoiseLabel});
+    labelled_.clear();
+    for (const Pending& p : pending_) labelled_.push_back({p.event, kNoiseLabel});
+    out.on_events(labelled_);
   }
   pending_.clear();
   packet_.clear();

@@ -61,6 +61,11 @@ class Pipeline {
   };
   std::vector<Pending> pending_;
   std::vector<TrackUpdate> updates_;
+  std::vector<LabelledEvent> labelled_;  // the pending events with their labels, handed out at once
+  // Working memory of close_packet, kept from packet to packet.
+  std::vector<std::int32_t> label_of_packet_event_;
+  std::vector<Event> supported_;
+  std::vector<int> index_of_;
   PipelineStats stats_;
 };
 

@@ -5,15 +5,17 @@
 
 namespace evms::golden {
 
-long PacketGrid::cell(double v) const { return static_cast<long>(std::floor(v / cell_)); }
+long PacketGrid::cell(double v) const { return static_cast<long>(std::floor(v * per_cell_)); }
 
 void PacketGrid::build(const FeatureMatrix& f, std::span<const Event> events, double cell, bool finite) {
   const int n = static_cast<int>(f.cols());
   cell_ = finite ? cell : 1e300;
+  per_cell_ = 1 / cell_;  // cells by multiplication: monotonic in the feature, which is all rows_near needs
   finite_ = finite;
-  nx_ = ny_ = 1;
   // Features are not negative (pixels from 0), so the cells start at 0.
-  for (int i = 0; i < n; ++i) nx_ = std::max(nx_, this->cell(f(0, i)) + 1), ny_ = std::max(ny_, this->cell(f(1, i)) + 1);
+  double most_x = 0, most_y = 0;
+  for (int i = 0; i < n; ++i) most_x = std::max(most_x, f(0, i)), most_y = std::max(most_y, f(1, i));
+  nx_ = this->cell(most_x) + 1, ny_ = this->cell(most_y) + 1;
   // Counting sort by cell, stable: members keep packet order within a cell.
   start_.assign(static_cast<size_t>(nx_ * ny_ + 1), 0);
   cell_of_.resize(static_cast<size_t>(n));

@@ -61,7 +61,7 @@ class PacketGrid {
  private:
   long cell(double v) const;
 
-  double cell_ = 1;
+  double cell_ = 1, per_cell_ = 1;
   bool finite_ = true;
   long nx_ = 1, ny_ = 1;
   std::vector<int> start_;      // nx * ny + 1 entries

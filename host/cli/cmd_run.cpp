@@ -49,10 +49,12 @@ struct OutputBatch {
 class Collector final : public OutputSink {
  public:
   explicit Collector(bool keep) : keep_(keep) {}
-  void on_event(const LabelledEvent& e) override {
-    ++events, ++labelled_since_;
-    if (e.label == kNoiseLabel) ++noise;
-    if (keep_) batch_.events.push_back(e);
+  void on_event(const LabelledEvent& e) override { on_events({&e, 1}); }
+  void on_events(std::span<const LabelledEvent> labelled) override {
+    events += static_cast<std::int64_t>(labelled.size());
+    labelled_since_ += static_cast<std::int64_t>(labelled.size());
+    for (const LabelledEvent& e : labelled) noise += e.label == kNoiseLabel;
+    if (keep_) batch_.events.insert(batch_.events.end(), labelled.begin(), labelled.end());
   }
   void on_track(const TrackUpdate& u) override {
     ++track_rows;
