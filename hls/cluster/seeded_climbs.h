@@ -16,6 +16,11 @@
 // every event was reached. An event's cluster is the mode of the first climb
 // that reached it. The sums are exact integers, so the order the events are visited in (and the
 // number of lanes that visit them) does not change a result.
+//
+// The events are first sorted into a grid of cells one bandwidth wide (the integer part of their
+// features, clamped to kGridSide - 1), cell by cell, row after row: a ball of radius r <= R
+// bandwidths around m holds only events of the cells within R of m's cell, which are 2R + 1
+// contiguous runs of the sorted events. So a step visits the events near m, not the packet.
 #pragma once
 
 #include <cstdint>
@@ -72,11 +77,17 @@ constexpr std::int64_t divide_rounded(std::int64_t num, std::int64_t den) { retu
 template <class S>
 class SeededClimbs {
  public:
-  // Writes each event's mode (or -1) to first_mode and the modes to `modes`.
+  static constexpr std::uint64_t kOne = std::uint64_t{1} << (2 * (S::kFeatFrac + kClimbFrac));  // h^2
+  static constexpr int kUnitShift = S::kFeatFrac + kClimbFrac;                                  // one bandwidth
+  static constexpr int kCells = S::kGridSide * S::kGridSide;
+
+  // Writes each event's mode (or -1) to first_mode and the modes to `modes`. Warm balls must be
+  // at most kReachMax bandwidths (the backends refuse larger, host/backend/core_config.h).
   void run(const Features<S>& phi, int n, const Config& cfg, const Modes<S>& warm, std::int16_t first_mode[S::kPacketMax], Modes<S>& modes,
            ClimbTrace& trace) {
     trace = {};
     modes.count = 0;
+    sort_into_cells(phi, n);
   clear:
     for (int j = 0; j < S::kPacketMax; ++j) {
 #pragma HLS PIPELINE II = 1
@@ -88,56 +99,100 @@ class SeededClimbs {
   warm_seeds:
     for (int k = 0; k < S::kModesMax; ++k) {
       if (!cfg.warm_start || k >= warm.count) break;
-      climb(phi, n, cfg, warm.x[k], warm.y[k], warm.p[k], warm.t[k], warm.ball2[k], first_mode, modes, trace);
+      climb(cfg, warm.x[k], warm.y[k], warm.ball2[k], first_mode, modes, trace);
     }
   event_seeds:
     for (int i = 0; i < S::kPacketMax; ++i) {
       if (i >= n) break;
-      if (!reached_[i]) climb(phi, n, cfg, phi.x[i], phi.y[i], phi.p[i], phi.t[i], kOne, first_mode, modes, trace);
+      if (!reached_[i]) climb(cfg, phi.x[i], phi.y[i], kOne, first_mode, modes, trace);
     }
   }
 
  private:
- public:
-  static constexpr std::uint64_t kOne = std::uint64_t{1} << (2 * (S::kFeatFrac + kClimbFrac));  // h^2
+  static int cell_of(std::int64_t v) {
+    const std::int64_t c = v >> kUnitShift;
+    return c < 0 ? 0 : (c >= S::kGridSide ? S::kGridSide - 1 : static_cast<int>(c));
+  }
 
- private:
-  void climb(const Features<S>& phi, int n, const Config& cfg, std::int64_t mx, std::int64_t my, std::int64_t mp, std::int64_t mt,
-             std::uint64_t ball2, std::int16_t first_mode[S::kPacketMax], Modes<S>& modes, ClimbTrace& trace) {
+  // Counting sort of the events by cell: start_[c] .. start_[c + 1] are cell c's events in
+  // sorted order, in packet order within the cell.
+  void sort_into_cells(const Features<S>& phi, int n) {
+  clear_counts:
+    for (int c = 0; c <= kCells; ++c) {
+#pragma HLS PIPELINE II = 1
+      start_[c] = 0;
+    }
+  count:
+    for (int j = 0; j < S::kPacketMax; ++j) {
+#pragma HLS PIPELINE II = 1
+      if (j >= n) break;
+      cell_[j] = static_cast<std::uint16_t>(cell_of(phi.y[j]) * S::kGridSide + cell_of(phi.x[j]));
+      ++start_[cell_[j] + 1];
+    }
+  prefix:
+    for (int c = 0; c < kCells; ++c) {
+#pragma HLS PIPELINE II = 1
+      start_[c + 1] += start_[c];
+      next_[c] = start_[c];
+    }
+  place:
+    for (int j = 0; j < S::kPacketMax; ++j) {
+#pragma HLS PIPELINE II = 1
+      if (j >= n) break;
+      const int k = next_[cell_[j]]++;
+      sorted_x_[k] = phi.x[j], sorted_y_[k] = phi.y[j], event_[k] = static_cast<std::uint16_t>(j);
+    }
+  }
+
+  void climb(const Config& cfg, std::int64_t mx, std::int64_t my, std::uint64_t ball2, std::int16_t first_mode[S::kPacketMax], Modes<S>& modes,
+             ClimbTrace& trace) {
     ++trace.climbs;
+    // The ball's reach in cells: the least r with (r bandwidths)^2 >= ball2.
+    int reach = 1;
+  reach_of_ball:
+    for (int r = 1; r < S::kReachMax; ++r) {
+      if ((static_cast<std::uint64_t>(r * r) << (2 * kUnitShift)) >= ball2) break;
+      reach = r + 1;
+    }
+    int touched = 0;
   steps:
     for (int step = 0; step < S::kIterationsMax; ++step) {
       if (step >= cfg.max_iterations) break;
-      std::int64_t sx = 0, sy = 0, sp = 0, st = 0, count = 0;
-    kernel:
-      for (int j = 0; j < S::kPacketMax; ++j) {
+      std::int64_t sx = 0, sy = 0, count = 0;
+      const int cx = cell_of(mx), cy = cell_of(my);
+      const int x0 = cx - reach < 0 ? 0 : cx - reach, x1 = cx + reach >= S::kGridSide ? S::kGridSide - 1 : cx + reach;
+    rows:
+      for (int dy = -S::kReachMax; dy <= S::kReachMax; ++dy) {
+        const int row = cy + dy;
+        if (dy < -reach || dy > reach || row < 0 || row >= S::kGridSide) continue;
+      kernel:
+        for (int k = start_[row * S::kGridSide + x0]; k < start_[row * S::kGridSide + x1 + 1]; ++k) {
 #pragma HLS PIPELINE II = 1
 #pragma HLS UNROLL factor = S::kLanes
-        if (j >= n) break;
-        const std::int64_t dx = mx - phi.x[j], dy = my - phi.y[j], dp = mp - phi.p[j], dt = mt - phi.t[j];
-        if (squared_distance(dx, dy, dp, dt) < ball2) {
-          reached_[j] = true;
-          in_climb_[j] = true;
-          sx += phi.x[j], sy += phi.y[j], sp += phi.p[j], st += phi.t[j];
-          ++count;
+          const std::int64_t dx = mx - sorted_x_[k], dyf = my - sorted_y_[k];
+          if (squared_distance(dx, dyf, 0, 0) < ball2) {
+            const int j = event_[k];
+            reached_[j] = true;
+            if (!in_climb_[j]) in_climb_[j] = true, touched_[touched++] = static_cast<std::uint16_t>(j);
+            sx += sorted_x_[k], sy += sorted_y_[k];
+            ++count;
+          }
         }
       }
       ++trace.steps;
       if (count == 0) break;  // nothing in reach: the climb stays where it is
       const std::int64_t nx = detail::divide_rounded(sx, count), ny = detail::divide_rounded(sy, count);
-      const std::int64_t np = detail::divide_rounded(sp, count), nt = detail::divide_rounded(st, count);
-      std::int64_t move = nx > mx ? nx - mx : mx - nx;
-      const std::int64_t moves[3] = {ny > my ? ny - my : my - ny, np > mp ? np - mp : mp - np, nt > mt ? nt - mt : mt - nt};
-      for (std::int64_t m : moves) move = m > move ? m : move;
-      mx = nx, my = ny, mp = np, mt = nt;
-      if (move <= cfg.tolerance) break;
+      const std::int64_t move_x = nx > mx ? nx - mx : mx - nx, move_y = ny > my ? ny - my : my - ny;
+      mx = nx, my = ny;
+      if ((move_x > move_y ? move_x : move_y) <= cfg.tolerance) break;
     }
-    const int mode = join_or_open(cfg, mx, my, mp, mt, modes, trace);
+    const int mode = join_or_open(cfg, mx, my, 0, 0, modes, trace);
   label:
-    for (int j = 0; j < S::kPacketMax; ++j) {
+    for (int t = 0; t < S::kPacketMax; ++t) {
 #pragma HLS PIPELINE II = 1
-      if (j >= n) break;
-      if (in_climb_[j] && first_mode[j] < 0) first_mode[j] = static_cast<std::int16_t>(mode);
+      if (t >= touched) break;
+      const int j = touched_[t];
+      if (first_mode[j] < 0) first_mode[j] = static_cast<std::int16_t>(mode);
       in_climb_[j] = false;
     }
   }
@@ -168,6 +223,13 @@ class SeededClimbs {
 
   bool reached_[S::kPacketMax];
   bool in_climb_[S::kPacketMax];
+  std::uint16_t touched_[S::kPacketMax];   // the current climb's events, in the order it reached them
+  // The grid: the events sorted by cell, their packet index, and where each cell's run starts.
+  std::uint16_t cell_[S::kPacketMax];
+  std::uint32_t sorted_x_[S::kPacketMax], sorted_y_[S::kPacketMax];
+  std::uint16_t event_[S::kPacketMax];
+  int start_[kCells + 1];
+  int next_[kCells];
 };
 
 }  // namespace evms::hls

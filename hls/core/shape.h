@@ -15,7 +15,8 @@ namespace evms::hls {
 
 template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsMax, int ClustersMax, int TracksMax,
           int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,
-          int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4>
+          int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4,
+          int GridSide = 32, int ReachMax = 8>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -31,6 +32,8 @@ struct Shape {
   static constexpr int kTracksMax = TracksMax;
   static constexpr int kModesMax = ModesMax;     // seeded climbs: modes a packet can open
   static constexpr int kLinkMax = LinkMax;       // seeded climbs: the largest link distance, px
+  static constexpr int kGridSide = GridSide;     // seeded climbs: cells of one bandwidth a side of the grid
+  static constexpr int kReachMax = ReachMax;     // seeded climbs: the largest ball, in bandwidths
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;

@@ -95,6 +95,8 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   need(p.confirm_hits <= 255 && p.min_cluster_size <= 65535, "confirm-hits or min-cluster-size too large for the core");
 
   need(p.link_px < S::kLinkMax + 1, "the core links clusters at most " + std::to_string(S::kLinkMax) + " px apart (--link-px)");
+  need(p.seeding == Seeding::kEvery || p.warm_max_bandwidth <= S::kReachMax * p.bandwidth,
+       "the core's warm balls reach at most " + std::to_string(S::kReachMax) + " bandwidths (--warm-max-bandwidth)");
   need(p.filter_support <= 8, "--filter-support is at most 8");
   const bool seeded = p.seeding != Seeding::kEvery;
   // One phi unit in normalized feature space: h for the flat ball (|dphi|^2 < 1), h sqrt(2)
