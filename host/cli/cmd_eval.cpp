@@ -5,7 +5,7 @@
 
 #include "host/cli/commands.h"
 #include "host/cli/common.h"
-#include "host/eval/report.h"
+#include "host/cli/eval_report.h"
 
 namespace evms::cli {
 

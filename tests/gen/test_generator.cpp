@@ -6,7 +6,7 @@
 
 #include "host/gen/family.h"
 #include "host/gen/scene_generator.h"
-#include "host/gen/scene_uri.h"
+#include "host/read/generated_source.h"
 #include "host/read/input_error.h"
 
 namespace evms::gen {
@@ -132,7 +132,7 @@ TEST(SceneFamily, PinsReplaceOnlyWhatTheyName) {
 }
 
 TEST(SceneFamily, AFamilyUriTakesThePins) {
-  const SceneConfig c = parse_scene_uri("gen://family/rotation?seed=1001&width=240&height=180&objects=7&noise-hz=0.1");
+  const SceneConfig c = read::parse_scene_uri("gen://family/rotation?seed=1001&width=240&height=180&objects=7&noise-hz=0.1");
   const SceneConfig d = family_scene("rotation", 1001, {240, 180, 7, 0.1});
   EXPECT_EQ(c.seed, d.seed);
   EXPECT_EQ(c.width, 240);
@@ -140,7 +140,7 @@ TEST(SceneFamily, AFamilyUriTakesThePins) {
   EXPECT_DOUBLE_EQ(c.noise_hz, 0.1);
   for (const char* bad : {"gen://family/rotation?width=240", "gen://family/rotation?width=32&height=32",
                           "gen://family/rotation?objects=17", "gen://family/rotation?noise-hz=-1", "gen://family/rotation?size=3"}) {
-    EXPECT_THROW(parse_scene_uri(bad), read::InputError) << bad;
+    EXPECT_THROW(read::parse_scene_uri(bad), read::InputError) << bad;
   }
 }
 

@@ -1,4 +1,4 @@
-#include "host/eval/plot.h"
+#include "host/show/plot.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace evms::eval {
+namespace evms::show {
 namespace {
 
 std::string quoted(const std::string& s) {
@@ -126,4 +126,4 @@ void render(const BarChart& c, const std::string& stem) {
   run_gnuplot(stem + ".gp");
 }
 
-}  // namespace evms::eval
+}  // namespace evms::show

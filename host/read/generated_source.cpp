@@ -7,31 +7,33 @@
 
 #include "host/gen/family.h"
 #include "host/gen/scene_generator.h"
-#include "host/gen/scene_uri.h"
 #include "host/read/event_source.h"
+#include "host/read/generated_source.h"
 #include "host/read/uri.h"
 
-namespace evms::gen {
+namespace evms::read {
+
+using gen::SceneConfig;
 
 SceneConfig parse_scene_uri(const std::string& uri) {
-  const read::SourceUri parts = read::split_source_uri(uri);
+  const SourceUri parts = split_source_uri(uri);
   const std::string& scene = parts.target;
   auto number = [&](const std::string& key, const std::string& value, auto& out) {
     auto [p, ec] = std::from_chars(value.data(), value.data() + value.size(), out);
     if (ec != std::errc() || p != value.data() + value.size()) {
-      throw read::InputError(uri + ": '" + key + "' needs a number, got '" + value + "'");
+      throw InputError(uri + ": '" + key + "' needs a number, got '" + value + "'");
     }
   };
   SceneConfig cfg;
   const std::string family_prefix = "family/";
   if (scene.rfind(family_prefix, 0) == 0) {
     const std::string type = scene.substr(family_prefix.size());
-    if (!is_family_type(type)) {
-      throw read::InputError(uri + ": unknown scene type '" + type + "' (still, translation, rotation, zoom, 6dof, shake or crossing)");
+    if (!gen::is_family_type(type)) {
+      throw InputError(uri + ": unknown scene type '" + type + "' (still, translation, rotation, zoom, 6dof, shake or crossing)");
     }
     std::uint64_t seed = 1;
     double duration_s = 0;
-    FamilyPins pins;
+    gen::FamilyPins pins;
     for (const auto& [key, value] : parts.query) {
       if (key == "seed") number(key, value, seed);
       else if (key == "duration-s") number(key, value, duration_s);
@@ -40,21 +42,21 @@ SceneConfig parse_scene_uri(const std::string& uri) {
       else if (key == "objects") number(key, value, pins.objects);
       else if (key == "noise-hz") {
         number(key, value, pins.noise_hz);
-        if (!(pins.noise_hz >= 0)) throw read::InputError(uri + ": noise-hz must not be negative");
-      } else throw read::InputError(uri + ": unknown setting '" + key + "' of a family scene (seed, duration-s, width, height, objects, noise-hz)");
+        if (!(pins.noise_hz >= 0)) throw InputError(uri + ": noise-hz must not be negative");
+      } else throw InputError(uri + ": unknown setting '" + key + "' of a family scene (seed, duration-s, width, height, objects, noise-hz)");
     }
     if ((pins.width != 0) != (pins.height != 0) || (pins.width != 0 && (pins.width < 64 || pins.height < 64 || pins.width > 4096 || pins.height > 4096)) ||
         pins.objects < 0 || pins.objects > 16) {
-      throw read::InputError(uri + ": width and height go together, between 64 and 4096 px, and objects are 1 to 16");
+      throw InputError(uri + ": width and height go together, between 64 and 4096 px, and objects are 1 to 16");
     }
-    cfg = family_scene(type, seed, pins);
+    cfg = gen::family_scene(type, seed, pins);
     if (duration_s != 0) cfg.duration_s = duration_s;
-    if (!(cfg.duration_s > 0)) throw read::InputError(uri + ": duration-s must be positive");
+    if (!(cfg.duration_s > 0)) throw InputError(uri + ": duration-s must be positive");
     return cfg;
   }
-  Motion motion;
-  if (!parse_motion(scene, motion) || !(motion == Motion::kTranslation || motion == Motion::kRotation || motion == Motion::kSixDof)) {
-    throw read::InputError(uri + ": unknown scene '" + scene + "' (translation, rotation, 6dof, or family/TYPE)");
+  gen::Motion motion;
+  if (!gen::parse_motion(scene, motion) || !(motion == gen::Motion::kTranslation || motion == gen::Motion::kRotation || motion == gen::Motion::kSixDof)) {
+    throw InputError(uri + ": unknown scene '" + scene + "' (translation, rotation, 6dof, or family/TYPE)");
   }
   cfg.motion = motion;
   for (const auto& [key, value] : parts.query) {
@@ -65,18 +67,18 @@ SceneConfig parse_scene_uri(const std::string& uri) {
     else if (key == "width") number(key, value, cfg.width);
     else if (key == "height") number(key, value, cfg.height);
     else if (key == "movers") number(key, value, cfg.movers);
-    else throw read::InputError(uri + ": unknown setting '" + key + "' (seed, speed, duration-s, noise-hz, width, height, movers)");
+    else throw InputError(uri + ": unknown setting '" + key + "' (seed, speed, duration-s, noise-hz, width, height, movers)");
   }
   if (!(cfg.speed > 0) || !(cfg.duration_s > 0) || cfg.width < 64 || cfg.height < 64 || cfg.width > 4096 || cfg.height > 4096 ||
       cfg.movers < 0 || cfg.movers > 9) {
-    throw read::InputError(uri + ": speed and duration-s must be positive, the sensor between 64 and 4096 px, and movers 0 to 9");
+    throw InputError(uri + ": speed and duration-s must be positive, the sensor between 64 and 4096 px, and movers 0 to 9");
   }
   return cfg;
 }
 
 namespace {
 
-class GeneratedSource final : public read::EventSource {
+class GeneratedSource final : public EventSource {
  public:
   explicit GeneratedSource(const std::string& uri) : generator_(parse_scene_uri(uri)) {
     info_.name = uri;
@@ -84,7 +86,7 @@ class GeneratedSource final : public read::EventSource {
     info_.sensor = generator_.sensor();
     info_.sensor_origin = "scene";
   }
-  const read::SourceInfo& info() const override { return info_; }
+  const SourceInfo& info() const override { return info_; }
   size_t read(std::span<Event> out) override {
     size_t n = 0;
     while (n < out.size()) {
@@ -102,18 +104,17 @@ class GeneratedSource final : public read::EventSource {
   double progress() const override { return generator_.progress(); }
 
  private:
-  SceneGenerator generator_;
-  read::SourceInfo info_;
+  gen::SceneGenerator generator_;
+  SourceInfo info_;
   std::vector<LabelledEvent> buffer_;
-  std::vector<TruthSample> truth_;
+  std::vector<gen::TruthSample> truth_;
   size_t next_ = 0;
 };
 
 }  // namespace
-}  // namespace evms::gen
 
-namespace evms::read {
 std::unique_ptr<EventSource> open_generated_scene(const std::string& uri, const SourceOptions&) {
-  return std::make_unique<gen::GeneratedSource>(uri);
+  return std::make_unique<GeneratedSource>(uri);
 }
+
 }  // namespace evms::read

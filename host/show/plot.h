@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-namespace evms::eval {
+namespace evms::show {
 
 struct Series {
   std::string title;
@@ -39,4 +39,4 @@ void render(const BarChart& chart, const std::string& stem);
 // Several plots stacked in one figure.
 void render(const std::vector<Plot>& panels, const std::string& title, const std::string& stem);
 
-}  // namespace evms::eval
+}  // namespace evms::show

@@ -1,4 +1,4 @@
-#include "host/eval/report.h"
+#include "host/cli/eval_report.h"
 
 #include <algorithm>
 #include <chrono>
@@ -15,7 +15,7 @@
 #include "host/eval/evaluation.h"
 #include "host/eval/kmeans.h"
 #include "host/eval/parallel.h"
-#include "host/eval/plot.h"
+#include "host/show/plot.h"
 #include "host/read/event_source.h"
 #include "host/show/frame_renderer.h"
 
@@ -23,6 +23,10 @@ namespace evms::eval {
 namespace {
 
 namespace fs = std::filesystem;
+using show::BarChart;
+using show::Plot;
+using show::Series;
+using show::render;
 
 constexpr double kBinS = 0.05;   // clusters-over-time bins
 
