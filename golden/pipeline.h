@@ -14,10 +14,10 @@
 #include <Eigen/Core>
 
 #include "golden/cluster/clustering.h"
-#include "golden/event.h"
+#include "types/event.h"
 #include "golden/filter/background_activity_filter.h"
-#include "golden/output.h"
-#include "golden/params.h"
+#include "types/output.h"
+#include "types/params.h"
 #include "golden/track/tracker.h"
 
 namespace evms::golden {

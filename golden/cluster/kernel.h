@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "golden/params.h"
+#include "types/params.h"
 
 namespace evms::golden {
 

@@ -15,7 +15,7 @@
 #include <span>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 
 namespace evms::golden {
 

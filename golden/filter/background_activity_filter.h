@@ -13,7 +13,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 
 namespace evms::golden {
 

@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "golden/event.h"
-#include "golden/params.h"
+#include "types/event.h"
+#include "types/params.h"
 
 namespace evms::golden {
 

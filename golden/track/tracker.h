@@ -29,8 +29,8 @@
 #include <span>
 #include <vector>
 
-#include "golden/event.h"
-#include "golden/params.h"
+#include "types/event.h"
+#include "types/params.h"
 #include "golden/track/kalman_filter.h"
 
 namespace evms::golden {

@@ -7,9 +7,9 @@
 #include <span>
 #include <string>
 
-#include "golden/event.h"
-#include "golden/output.h"
-#include "golden/params.h"
+#include "types/event.h"
+#include "types/output.h"
+#include "types/params.h"
 
 namespace evms::backend {
 

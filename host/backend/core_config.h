@@ -1,4 +1,4 @@
-// The method's parameters (golden/params.h, doubles in physical units) as the core's
+// The method's parameters (types/params.h, doubles in physical units) as the core's
 // registers (hls/core/config.h, integers in the Shape's formats). Every backend built on the
 // core (fixed, rtl, board) and the RTL generator use this one conversion.
 #pragma once
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "golden/params.h"
+#include "types/params.h"
 #include "hls/cluster/centroid.h"
 #include "hls/cluster/seeded_climbs.h"
 #include "hls/core/config.h"

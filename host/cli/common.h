@@ -6,7 +6,7 @@
 #include <chrono>
 #include <string>
 
-#include "golden/params.h"
+#include "types/params.h"
 #include "host/read/event_source.h"
 
 namespace evms::cli {
@@ -20,7 +20,7 @@ enum class Pacing { kRealtimeFlag, kChosenByCommand, kAlwaysRealtime };
 // --speed, --live-buffer and, with Pacing::kRealtimeFlag, --realtime: for the subcommands that
 // feed a backend as events come, under the heading "Replay".
 void add_replay_options(CLI::App& cmd, read::SourceOptions& options, Pacing pacing);
-// --preset and one option per row of the parameter table (golden/params.cpp). Values are
+// --preset and one option per row of the parameter table (types/params.cpp). Values are
 // checked as they are parsed; Method::resolve applies them over the preset.
 void add_method_options(CLI::App& cmd, Method& method);
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "golden/params.h"
+#include "types/params.h"
 
 namespace evms::cli {
 

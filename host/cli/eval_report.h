@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "golden/params.h"
+#include "types/params.h"
 #include "host/eval/chunks.h"
 #include "host/eval/family_eval.h"
 

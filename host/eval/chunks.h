@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 
 namespace evms::eval {
 

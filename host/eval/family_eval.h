@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "golden/params.h"
+#include "types/params.h"
 #include "host/eval/evaluation.h"
 #include "host/eval/identity_metrics.h"
 #include "host/gen/family.h"

@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <span>
 
-#include "golden/event.h"
+#include "types/event.h"
 
 namespace evms::eval {
 

@@ -8,8 +8,8 @@
 #include <span>
 #include <vector>
 
-#include "golden/event.h"
-#include "golden/params.h"
+#include "types/event.h"
+#include "types/params.h"
 #include "host/eval/chunks.h"
 
 namespace evms::eval {

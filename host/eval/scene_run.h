@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "golden/output.h"
+#include "types/output.h"
 #include "host/backend/backend.h"
 #include "host/gen/scene_generator.h"
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 #include "host/gen/scene_generator.h"
 
 namespace evms::eval {

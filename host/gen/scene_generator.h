@@ -32,7 +32,7 @@
 #include <string>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 #include "host/gen/random.h"
 
 namespace evms::gen {

@@ -20,7 +20,7 @@
 #include <span>
 #include <string>
 
-#include "golden/event.h"
+#include "types/event.h"
 #include "host/read/input_error.h"
 
 namespace evms::read {

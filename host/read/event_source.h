@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 #include "host/read/byte_reader.h"
 #include "host/read/event_ordering.h"
 

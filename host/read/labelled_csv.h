@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "golden/event.h"
+#include "types/event.h"
 #include "host/read/byte_reader.h"
 
 namespace evms::read {

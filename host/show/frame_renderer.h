@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 #include "host/show/canvas.h"
 
 namespace evms::show {

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 #include "host/write/text_writer.h"
 
 namespace evms::write {

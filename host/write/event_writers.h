@@ -13,7 +13,7 @@
 #include <charconv>
 #include <string>
 
-#include "golden/event.h"
+#include "types/event.h"
 #include "host/write/text_writer.h"
 
 namespace evms::write {

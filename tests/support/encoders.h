@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 
 namespace evms::test {
 

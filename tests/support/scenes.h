@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "golden/event.h"
-#include "golden/output.h"
+#include "types/event.h"
+#include "types/output.h"
 #include "host/gen/random.h"
 
 namespace evms::test {

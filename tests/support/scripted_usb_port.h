@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 #include "host/read/live/usb_port.h"
 
 namespace evms::test {

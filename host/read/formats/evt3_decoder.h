@@ -13,7 +13,7 @@
 #include <bit>
 #include <cstdint>
 
-#include "golden/event.h"
+#include "types/event.h"
 
 namespace evms::read {
 

@@ -8,7 +8,7 @@
 
 #include <cstdint>
 
-#include "golden/event.h"
+#include "types/event.h"
 
 namespace evms::read {
 

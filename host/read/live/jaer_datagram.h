@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 #include "host/read/bytes.h"
 #include "host/read/formats/jaer_address.h"
 

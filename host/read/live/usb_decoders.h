@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <span>
 
-#include "golden/event.h"
+#include "types/event.h"
 
 namespace evms::read {
 

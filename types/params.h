@@ -11,7 +11,7 @@
 #include <variant>
 #include <vector>
 
-#include "golden/event.h"
+#include "types/event.h"
 
 namespace evms {
 
@@ -125,7 +125,7 @@ std::string set_param(Params& p, const ParamInfo& info, const std::string& text)
 // Checks every parameter against its bounds; returns an error message or an empty string.
 std::string validate(const Params& p);
 
-// Named settings of the whole method (golden/presets.cpp): "evms" (the defaults), "paper"
+// Named settings of the whole method (types/presets.cpp): "evms" (the defaults), "paper"
 // (the authors' published code), "gaussian" (the paper's text: the method the RTL implements).
 std::span<const char* const> preset_names();
 // Throws std::invalid_argument naming the presets for an unknown name. `sensor` picks the

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "golden/params.h"
+#include "types/params.h"
 
 namespace evms {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <span>
 
-#include "golden/event.h"
+#include "types/event.h"
 
 namespace evms {
 

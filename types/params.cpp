@@ -1,4 +1,4 @@
-#include "golden/params.h"
+#include "types/params.h"
 
 #include <array>
 #include <charconv>
