@@ -9,9 +9,9 @@
 #include <thread>
 
 #include "host/backend/backend.h"
-#include "host/cli/bounded_queue.h"
 #include "host/cli/common.h"
 #include "host/cli/commands.h"
+#include "host/cli/run_stages.h"
 #include "host/eval/latency_histogram.h"
 #include "host/read/live/live_source.h"
 #include "host/write/binary_writers.h"
@@ -32,118 +32,6 @@ struct RunOptions {
   Method method;
   bool quiet = false;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-};
-
-// Events read at a time: one batch through the three stages.
-constexpr size_t kBatchEvents = 16384;
-
-// What the method hands to the writing stage for one batch of input: its labelled events and
-// the track updates they produced.
-struct OutputBatch {
-  std::vector<LabelledEvent> events;
-  std::vector<TrackUpdate> tracks;
-};
-
-// The method's side of the outputs: collects what the backend labels into the batch for the
-// writers, and counts what the summary reports.
-class Collector final : public OutputSink {
- public:
-  explicit Collector(bool keep) : keep_(keep) {}
-  void on_event(const LabelledEvent& e) override { on_events({&e, 1}); }
-  void on_events(std::span<const LabelledEvent> labelled) override {
-    events += static_cast<std::int64_t>(labelled.size());
-    labelled_since_ += static_cast<std::int64_t>(labelled.size());
-    for (const LabelledEvent& e : labelled) noise += e.label == kNoiseLabel;
-    if (keep_) batch_.events.insert(batch_.events.end(), labelled.begin(), labelled.end());
-  }
-  void on_track(const TrackUpdate& u) override {
-    ++track_rows;
-    const auto id = static_cast<size_t>(u.id);
-    if (u.state == TrackState::kConfirmed) {
-      if (id >= seen_.size()) seen_.resize(id + 1, false);
-      if (!seen_[id]) seen_[id] = true, ++confirmed;
-    }
-    if (keep_) batch_.tracks.push_back(u);
-  }
-  // The events labelled since the last call: their labels are out now (one clock read for all).
-  void stamp_latency() {
-    latency.labelled(labelled_since_);
-    labelled_since_ = 0;
-  }
-  OutputBatch take() { return std::exchange(batch_, {}); }
-
-  std::int64_t events = 0, noise = 0, track_rows = 0, confirmed = 0;
-  eval::ArrivalLatency latency;  // live sources: from arrival to label
-
- private:
-  bool keep_;
-  OutputBatch batch_;
-  std::int64_t labelled_since_ = 0;
-  std::vector<bool> seen_;  // track IDs with at least one confirmed update
-};
-
-// The writing stage: the labelled events in the chosen format and tracks.csv.
-class Writers {
- public:
-  // `out_dir` "-": CSV rows on standard output, and no tracks file.
-  Writers(const std::string& out_dir, const std::string& format, SensorSize sensor) {
-    if (out_dir == "-") {
-      if (format != "csv") throw std::invalid_argument("--out - writes CSV only (--format " + format + " needs a folder)");
-      csv_.emplace("-", sensor);
-      return;
-    }
-    if (out_dir.empty()) return;
-    std::filesystem::create_directories(out_dir);
-    if (format == "csv") csv_.emplace(out_dir + "/events.csv", sensor), files.push_back(out_dir + "/events.csv");
-    if (format == "npy") npy_.emplace(out_dir + "/events.npy"), files.push_back(out_dir + "/events.npy");
-    if (format == "evt3") {
-      evt3_.emplace(out_dir + "/events.raw", out_dir + "/labels.csv", sensor);
-      files.push_back(out_dir + "/events.raw");
-      files.push_back(out_dir + "/labels.csv");
-    }
-    if (format == "aedat4") {
-      aedat4_.emplace(out_dir + "/events.aedat4", out_dir + "/labels.csv", sensor);
-      files.push_back(out_dir + "/events.aedat4");
-      files.push_back(out_dir + "/labels.csv");
-    }
-    tracks_.emplace(out_dir + "/tracks.csv");
-    files.push_back(out_dir + "/tracks.csv");
-  }
-  bool any() const { return csv_.has_value() || !files.empty(); }
-  void write(const OutputBatch& b) {
-    for (const LabelledEvent& e : b.events) {
-      if (csv_) csv_->write(e);
-      if (npy_) npy_->write(e);
-      if (evt3_) evt3_->write(e);
-      if (aedat4_) aedat4_->write(e);
-    }
-    if (tracks_) {
-      for (const TrackUpdate& u : b.tracks) tracks_->write(u);
-    }
-  }
-  void close() {
-    if (csv_) csv_->close();
-    if (npy_) npy_->close();
-    if (evt3_) evt3_->close();
-    if (aedat4_) aedat4_->close();
-    if (tracks_) tracks_->close();
-  }
-
-  std::vector<std::string> files;  // written, for the summary
-
- private:
-  std::optional<write::LabelledEventsCsv> csv_;
-  std::optional<write::LabelledEventsNpy> npy_;
-  std::optional<write::Evt3Events> evt3_;
-  std::optional<write::Aedat4Events> aedat4_;
-  std::optional<write::TracksCsv> tracks_;
-};
-
-// One batch of input as the reading stage hands it on.
-struct InputBatch {
-  std::vector<Event> events;
-  std::vector<std::int64_t> arrivals;  // live sources: each event's arrival
-  double progress = -1;                // of the source, after this batch
 };
 
 volatile std::sig_atomic_t g_interrupted = 0;
@@ -170,131 +58,16 @@ void run(const RunOptions& o) {
   }
 
   Collector sink(writers.any());
-  TimeUs t_first = 0, t_last = 0;
-  bool any = false;
   const auto start = std::chrono::steady_clock::now();
-  // A source that fails part way (a camera unplugged, a corrupt record) ends the input: what
-  // came before it is labelled and written, then the cause is reported.
-  std::string source_error;
-  // Busy time by stage: reading, the backend, writing (the backend's own split comes from its stats).
-  std::int64_t read_ns = 0, method_ns = 0, write_ns = 0;
-  const auto since = [](std::chrono::steady_clock::time_point& mark) {
-    const auto now = std::chrono::steady_clock::now();
-    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now - mark).count();
-    mark = now;
-    return ns;
-  };
-  // Reading: the next batch, or an empty one at the end (or at Ctrl-C, or after a failure).
-  const auto read_batch = [&](InputBatch& b) {
-    b.events.resize(kBatchEvents);
-    size_t n = 0;
-    if (!g_interrupted || live) {
-      try {
-        n = source->read(b.events);
-      } catch (const read::InputError& e) {
-        source_error = e.what();
-      }
-    }
-    b.events.resize(n);
-    const auto arrivals = source->arrivals();
-    b.arrivals.assign(arrivals.begin(), arrivals.end());
-    b.progress = source->progress();
-  };
-  // The method: labels a batch into the collector; its outputs go to the writers.
-  const auto label_batch = [&](const InputBatch& b) {
-    if (!any) t_first = b.events.front().t, any = true;
-    t_last = b.events.back().t;
-    sink.latency.arrived(b.arrivals);
-    backend->push(b.events, sink);
-    sink.stamp_latency();
-    progress.update(b.progress, backend->stats().events_in);
-  };
-  const auto finish_method = [&] {
-    backend->finish(sink);
-    sink.stamp_latency();
-  };
-
-  if (o.threads <= 1) {
-    InputBatch in;
-    auto mark = std::chrono::steady_clock::now();
-    for (;;) {
-      read_batch(in);
-      read_ns += since(mark);
-      if (in.events.empty()) break;
-      label_batch(in);
-      method_ns += since(mark);
-      writers.write(sink.take());
-      write_ns += since(mark);
-    }
-    finish_method();
-    method_ns += since(mark);
-    writers.write(sink.take());
-    writers.close();
-    write_ns += since(mark);
-  } else {
-    // Reading, the method and writing, each in a thread of its own, joined by queues: the
-    // method sees the same batches in the same order, so the outputs are the same bytes.
-    BoundedQueue<InputBatch> inputs(4);
-    BoundedQueue<OutputBatch> outputs(4);
-    std::exception_ptr reader_failed, writer_failed;
-    std::thread reader([&] {
-      try {
-        auto mark = std::chrono::steady_clock::now();
-        for (;;) {
-          InputBatch b;
-          read_batch(b);
-          read_ns += since(mark);
-          const bool end = b.events.empty();
-          if (!end && !inputs.push(std::move(b))) break;
-          if (end) break;
-          mark = std::chrono::steady_clock::now();
-        }
-      } catch (...) {
-        reader_failed = std::current_exception();
-      }
-      inputs.close();
-    });
-    std::thread writer([&] {
-      try {
-        OutputBatch b;
-        while (outputs.pop(b)) {
-          auto mark = std::chrono::steady_clock::now();
-          writers.write(b);
-          write_ns += since(mark);
-        }
-        auto mark = std::chrono::steady_clock::now();
-        writers.close();
-        write_ns += since(mark);
-      } catch (...) {
-        writer_failed = std::current_exception();
-        outputs.close();  // the method stops handing over what could not be written
-      }
-    });
-    try {
-      InputBatch b;
-      while (inputs.pop(b)) {
-        auto mark = std::chrono::steady_clock::now();
-        label_batch(b);
-        method_ns += since(mark);
-        outputs.push(sink.take());
-      }
-      auto mark = std::chrono::steady_clock::now();
-      finish_method();
-      method_ns += since(mark);
-      outputs.push(sink.take());
-    } catch (...) {
-      inputs.close();
-      outputs.close();
-      reader.join();
-      writer.join();
-      throw;
-    }
-    outputs.close();
-    reader.join();
-    writer.join();
-    if (reader_failed) std::rethrow_exception(reader_failed);
-    if (writer_failed) std::rethrow_exception(writer_failed);
-  }
+  StageOptions stages;
+  stages.threads = o.threads;
+  // Ctrl-C ends a recording at the next batch; a live source ends on its own (end_live_sources).
+  stages.stop = [live] { return g_interrupted && !live; };
+  stages.progress = [&progress](double fraction, std::int64_t events) { progress.update(fraction, events); };
+  const StageReport report = run_stages(*source, *backend, sink, writers, stages);
+  const std::int64_t read_ns = report.read_ns, method_ns = report.method_ns, write_ns = report.write_ns;
+  const TimeUs t_first = report.t_first, t_last = report.t_last;
+  const std::string& source_error = report.source_error;
   progress.done();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

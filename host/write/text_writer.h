@@ -5,9 +5,10 @@
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <memory>
 #include <string>
 #include <string_view>
-#include <vector>
 
 namespace evms::write {
 
@@ -20,13 +21,17 @@ class TextWriter {
   TextWriter& operator=(const TextWriter&) = delete;
 
   TextWriter& text(std::string_view s) {
-    if (buffer_.size() + s.size() > kFlushAt) flush();
-    buffer_.insert(buffer_.end(), s.begin(), s.end());
+    if (used_ + s.size() > kFlushAt) {
+      flush();
+      if (s.size() > kFlushAt) return write_through(s);
+    }
+    std::memcpy(buffer_.get() + used_, s.data(), s.size());
+    used_ += s.size();
     return *this;
   }
   TextWriter& ch(char c) {
-    buffer_.push_back(c);
-    if (buffer_.size() > kFlushAt) flush();
+    if (used_ + 1 > kFlushAt) flush();
+    buffer_[used_++] = c;
     return *this;
   }
   TextWriter& integer(std::int64_t v) {
@@ -43,21 +48,21 @@ class TextWriter {
   // Room for `n` more bytes at the end of the buffer, to format into in place; commit() says how
   // many were used. For the writers' hot loops: one bounds check a row, not one a field.
   char* reserve(size_t n) {
-    if (buffer_.size() + n > kFlushAt) flush();
-    const size_t used = buffer_.size();
-    buffer_.resize(used + n);
-    return buffer_.data() + used;
+    if (used_ + n > kFlushAt) flush();
+    return buffer_.get() + used_;
   }
-  void commit(char* end) { buffer_.resize(static_cast<size_t>(end - buffer_.data())); }
+  void commit(char* end) { used_ = static_cast<size_t>(end - buffer_.get()); }
   // Closes the file; throws if anything failed.
   void close();
 
  private:
   static constexpr size_t kFlushAt = 1 << 16;
   void flush();
+  TextWriter& write_through(std::string_view s);  // a text longer than the buffer
   std::string path_;
   std::FILE* file_ = nullptr;
-  std::vector<char> buffer_;
+  std::unique_ptr<char[]> buffer_ = std::make_unique_for_overwrite<char[]>(kFlushAt);
+  size_t used_ = 0;
 };
 
 }  // namespace evms::write
