@@ -1,16 +1,16 @@
-// Clusters that touch become one (golden/cluster/clustering.cpp, link): two modes join when an
-// event of one lies within the link distance (dx^2 + dy^2 <= link2, in whole pixels) of an
-// event of the other. The joined set's representative is its oldest mode (union-find with the
-// smaller index as the root), so the result does not depend on the order of the unions.
+// Clusters that touch become one (golden/cluster/mode_links.h): two modes join when an event of
+// one lies within the link distance (dx^2 + dy^2 <= link2, in whole pixels) of an event of the
+// other. The joined set's representative is its oldest mode (union-find with the smaller index
+// as the root), so the result does not depend on the order of the unions.
 //
-// In hardware form this is a pixel map like the filter's timestamp memory: each event writes
-// its mode into its pixel, stamped with the packet's number; a pixel that already holds a mode
-// of this packet joins the two. Then each pixel written reads the pixels within the link
-// distance ahead of it (the rows below, and to its right in its own row) and joins its mode with
-// every mode stamped there. Every pair of events within reach meets: two events on one pixel at
-// the write, any others at the read, where of two pixels within reach one lies ahead of the
-// other (a pixel's later events overwrote its earlier ones, but those were joined at the write;
-// a pixel reads once, stamped as read).
+// In hardware form this is a one-bit-a-pixel map of the pixels the packet's events fall on, and
+// beside it the mode each of those pixels holds. Each event marks its pixel and writes its mode
+// there (a pixel already marked joins the two) and the pixel goes on a list. Then each listed
+// pixel reads the marked pixels within the link distance ahead of it (the rows below, and to its
+// right in its own row) and joins its mode with theirs: of two pixels within reach one lies
+// ahead of the other, and a pixel's later events overwrote its earlier ones only after joining
+// them. Last, the listed pixels are unmarked, so the map is clear for the next packet without a
+// pass over the sensor.
 #pragma once
 
 #include <cstdint>
@@ -24,8 +24,7 @@ template <class S>
 class ModeLinks {
  public:
   void reset() {
-    for (int i = 0; i < S::kMaxWidth * S::kMaxHeight; ++i) stamp_[i] = 0, read_[i] = 0;
-    packet_ = 0;
+    for (int i = 0; i < S::kMaxHeight * kWordsPerRow; ++i) marked_[i] = 0;
   }
 
   // Replaces each event's mode (first_mode, -1 for none) by the oldest mode of its set.
@@ -36,14 +35,19 @@ class ModeLinks {
       parent_[c] = static_cast<std::int16_t>(c);
     }
     if (cfg.link2 != 0) {
-      next_packet();
+      int listed = 0;
     write:
       for (int j = 0; j < S::kPacketMax; ++j) {
+#pragma HLS PIPELINE II = 1
         if (j >= n) break;
         if (first_mode[j] < 0) continue;
         const int pixel = ev.y[j] * S::kMaxWidth + ev.x[j];
-        if (stamp_[pixel] == packet_) join(first_mode[j], mode_[pixel]);
-        stamp_[pixel] = packet_;
+        if (is_marked(ev.x[j], ev.y[j])) {
+          join(first_mode[j], mode_[pixel]);
+        } else {
+          mark(ev.x[j], ev.y[j], true);
+          listed_[listed++] = pixel;
+        }
         mode_[pixel] = first_mode[j];
       }
       // The reach along row dy: the largest dx with dx^2 + dy^2 <= link2 (-1: none).
@@ -56,24 +60,27 @@ class ModeLinks {
         }
       }
     read:
-      for (int j = 0; j < S::kPacketMax; ++j) {
-        if (j >= n) break;
-        if (first_mode[j] < 0) continue;
-        const int own = ev.y[j] * S::kMaxWidth + ev.x[j];
-        if (read_[own] == packet_) continue;
-        read_[own] = packet_;
-        const int mode = mode_[own];
+      for (int k = 0; k < S::kPacketMax; ++k) {
+        if (k >= listed) break;
+        const int x0 = listed_[k] % S::kMaxWidth, y0 = listed_[k] / S::kMaxWidth;
+        const int mode = mode_[listed_[k]];
       window:
         for (int dy = 0; dy <= S::kLinkMax; ++dy) {
           for (int dx = -S::kLinkMax; dx <= S::kLinkMax; ++dx) {
 #pragma HLS PIPELINE II = 1
             if (dx > half_width[dy] || -dx > half_width[dy] || (dy == 0 && dx <= 0)) continue;
-            const int x = ev.x[j] + dx, y = ev.y[j] + dy;
-            if (x < 0 || x >= cfg.sensor_width || y >= cfg.sensor_height) continue;
-            const int pixel = y * S::kMaxWidth + x;
-            if (stamp_[pixel] == packet_ && mode_[pixel] != mode) join(mode, mode_[pixel]);
+            const int x = x0 + dx, y = y0 + dy;
+            if (x < 0 || x >= cfg.sensor_width || y >= cfg.sensor_height || !is_marked(x, y)) continue;
+            const int other = mode_[y * S::kMaxWidth + x];
+            if (other != mode) join(mode, other);
           }
         }
+      }
+    unmark:
+      for (int k = 0; k < S::kPacketMax; ++k) {
+#pragma HLS PIPELINE II = 1
+        if (k >= listed) break;
+        mark(listed_[k] % S::kMaxWidth, listed_[k] / S::kMaxWidth, false);
       }
     }
   resolve:
@@ -84,6 +91,15 @@ class ModeLinks {
   }
 
  private:
+  static constexpr int kWordsPerRow = (S::kMaxWidth + 63) / 64;
+
+  bool is_marked(int x, int y) const { return (marked_[y * kWordsPerRow + x / 64] >> (x % 64)) & 1; }
+  void mark(int x, int y, bool on) {
+    std::uint64_t& word = marked_[y * kWordsPerRow + x / 64];
+    const std::uint64_t bit = std::uint64_t{1} << (x % 64);
+    word = on ? word | bit : word & ~bit;
+  }
+
   int find(int c) const {
   walk:
     for (int k = 0; k < S::kModesMax; ++k) {
@@ -99,19 +115,10 @@ class ModeLinks {
     else if (rb < ra) parent_[ra] = static_cast<std::int16_t>(rb);
   }
 
-  // A new packet number; at the wrap the stamps restart from a cleared map.
-  void next_packet() {
-    if (++packet_ == 0) {
-      reset();
-      packet_ = 1;
-    }
-  }
-
-  std::uint32_t stamp_[S::kMaxWidth * S::kMaxHeight] = {};
-  std::uint32_t read_[S::kMaxWidth * S::kMaxHeight] = {};   // the packet that last read around the pixel
-  std::int16_t mode_[S::kMaxWidth * S::kMaxHeight] = {};
+  std::uint64_t marked_[S::kMaxHeight * kWordsPerRow] = {};  // one bit a pixel: written by this packet
+  std::int16_t mode_[S::kMaxWidth * S::kMaxHeight] = {};     // the mode last written there (where marked)
+  std::int32_t listed_[S::kPacketMax] = {};                 // the pixels this packet marked
   std::int16_t parent_[S::kModesMax] = {};
-  std::uint32_t packet_ = 0;
 };
 
 }  // namespace evms::hls
