@@ -10,7 +10,7 @@ namespace evms::cli {
 namespace {
 
 // Events read at a time: one batch through the three stages.
-constexpr size_t kBatchEvents = 4096;
+constexpr size_t kBatchEvents = 16384;
 
 }  // namespace
 
