@@ -120,9 +120,11 @@ void Pipeline::close_packet(OutputSink& out) {
     stats_.clusters += clusters.count;
     stats_.iterations += clusters.iterations;
     stats_.kernel_evaluations += clusters.kernel_evaluations;
-    labelled_.clear();
-    for (const Pending& p : pending_) {
-      labelled_.push_back({p.event, p.packet_index < 0 ? kNoiseLabel : label_of_packet_event[static_cast<size_t>(p.packet_index)]});
+    labelled_.resize(pending_.size());
+    for (size_t k = 0; k < pending_.size(); ++k) {
+      const Pending& p = pending_[k];
+      labelled_[k].event = p.event;
+      labelled_[k].label = p.packet_index < 0 ? kNoiseLabel : label_of_packet_event[static_cast<size_t>(p.packet_index)];
     }
     out.on_events(labelled_);
     for (const TrackUpdate& u : updates_) out.on_track(u);
