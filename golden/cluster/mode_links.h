@@ -3,12 +3,15 @@
 // mode (union-find with the smaller index as the root), so the result does not depend on the
 // order of the joins.
 //
-// A packet's events are found through a bitmap of the sensor's pixels with the mode written at
-// each: an event marks its pixel and writes its mode there (joining the mode already there in
-// this packet); then each pixel marked looks, row by row, at the marked pixels within reach ahead
-// of it (the rows below, and the pixels to its right in its own row; of two events within reach,
-// one lies ahead of the other), a machine word of the bitmap at a time. The marks are cleared
-// after the packet, pixel by pixel, so no packet touches more of the map than its own events.
+// A packet's events are drawn into a bitmap of the sensor's pixels with the mode written at each
+// (two events on one pixel join there). Each row's marked pixels then form runs: consecutive
+// marked pixels of one mode. Along a row, each run joins the next when the gap between them is
+// within reach (a run between two others lies within reach of both). Below it, a run x0 .. x1
+// reaches, in the row dy further down, the pixels x0 - a .. x1 + a (a the disc's half-width at
+// dy): that window is read from the bitmap 64 pixels at a time and its marked pixels of another
+// mode joined. A dense object is a few long runs a row, each read once a row below, not a disc
+// around every pixel. The marks are cleared after the packet, pixel by pixel, so no packet
+// touches more of the map than its own pixels.
 #pragma once
 
 #include <cstdint>
@@ -27,18 +30,27 @@ class ModeLinks {
   void join(std::span<const Event> events, double link_px, int modes, std::vector<int>& mode_of);
 
  private:
+  struct Run {
+    int x0, x1, mode;  // pixels x0 .. x1 of the row, all marked, all of this mode
+  };
   int find(int c);
   void unite(int a, int b);
-  // Joins `mode` with the modes of the marked pixels x0 .. x1 of row y.
+  // Row y's runs, appended to runs_.
+  void collect_runs(int y);
+  // Joins `mode` with the marked pixels of another mode among x0 .. x1 of row y.
   void join_row(int mode, int y, int x0, int x1);
 
   SensorSize sensor_;
-  int words_per_row_;                 // a word of margin each side, so that no window leaves the row
-  std::vector<std::uint64_t> marked_; // per pixel, one bit: written by this packet
-  std::vector<int> mode_;             // per pixel: the mode written (meaningful where marked)
+  int words_per_row_;
+  std::vector<std::uint64_t> marked_;   // per pixel, one bit: written by this packet
+  std::vector<int> mode_;               // per pixel: the mode written (meaningful where marked)
   std::vector<std::uint32_t> written_;  // the pixels this packet marked
-  std::vector<int> root_;             // per mode
-  std::vector<int> half_width_;       // per row offset dy = 0 .. r: the reach along the row
+  std::vector<int> rows_;               // the rows this packet marked
+  std::vector<std::uint8_t> row_marked_;  // per row: in rows_
+  std::vector<int> row_words_;          // per row: the first and one past the last word marked (2 entries)
+  std::vector<Run> runs_;               // the runs of one row
+  std::vector<int> root_;               // per mode
+  std::vector<int> half_width_;         // per row offset dy = 0 .. r: the reach along the row
   double reach_for_ = -1;
 };
 
