@@ -42,9 +42,13 @@ def scene(events_per_ms, ms):
     return out
 
 
-def datagrams(events, per_datagram, loop_us, loops):
-    """Big-endian {address, timestamp} records, DVS128 addresses, behind sequence numbers."""
-    records = np.array([((y << 8) | (x << 1) | p, t) for t, x, y, p in events], dtype=np.uint64)
+def records_of(events):
+    """{address, timestamp} records with DVS128 addresses."""
+    return np.array([((y << 8) | (x << 1) | p, t) for t, x, y, p in events], dtype=np.uint64)
+
+
+def datagrams(events, records, per_datagram, loop_us, loops):
+    """Big-endian records behind sequence numbers, the scene looped."""
     seq = 0
     for loop in range(loops):
         block = records.copy()
@@ -79,6 +83,7 @@ def main():
     per_ms = max(1, o.rate // 1000)
     loop_ms = 200
     events = scene(per_ms, loop_ms)
+    records = records_of(events)  # before evms starts: it ends after 3 s without a datagram
     loops = max(1, int(o.minutes * 60 * 1000 / loop_ms))
     run = subprocess.Popen([o.evms, "run", f"udp://127.0.0.1:{o.port}?camera=dvs128&idle-s=3", "--backend", o.backend, "--quiet"],
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -89,7 +94,7 @@ def main():
     start = time.monotonic()
     minute_peaks = {}
     next_sample = start
-    for t_us, payload, n in datagrams(events, 1000, loop_ms * 1000, loops):
+    for t_us, payload, n in datagrams(events, records, 1000, loop_ms * 1000, loops):
         due = start + t_us * 1e-6
         now = time.monotonic()
         if due > now:
