@@ -16,6 +16,7 @@
 
 #include "hls/core/config.h"
 #include "hls/core/words.h"
+#include "sim/rtl_profile.h"
 
 namespace evms::sim {
 
@@ -79,42 +80,20 @@ class RtlCore {
   std::deque<hls::TrackWord> tracks;
   std::deque<hls::PacketWord> packets;
   std::uint64_t cycles() const { return cycles_; }
-  // Cycles spent in each state of the core's controller (rtl/core/evms_core.sv, state_e); idle
-  // cycles without a word offered are not counted.
-  const std::array<std::uint64_t, 32>& state_cycles() const { return state_cycles_; }
+  // Cycles spent in each state of the core's controller (hls/core/schedule.h,
+  // EVMS_CORE_CONTROLLER_STATES); idle cycles without a word offered are not counted.
+  const StateCycles& state_cycles() const { return state_cycles_; }
   std::int32_t tracks_started() const { return static_cast<std::int32_t>(top_->stat_tracks_started); }
   std::int64_t unassigned() const { return top_->stat_unassigned; }
 
  private:
   static constexpr std::uint64_t kStallLimit = 200000000;
 
+  // Every register of the RTL core (hls/core/registers.h) to its cfg_ port.
   void configure(const hls::Config& c) {
-    top_->cfg_sensor_width = c.sensor_width;
-    top_->cfg_sensor_height = c.sensor_height;
-    top_->cfg_filter_enabled = c.filter_enabled;
-    top_->cfg_filter_window = c.filter_window;
-    top_->cfg_packet_size = c.packet_size;
-    top_->cfg_packet_max_span_us = c.packet_max_span_us;
-    top_->cfg_scale_x = c.scale_x;
-    top_->cfg_scale_y = c.scale_y;
-    top_->cfg_phi_on = c.phi_on;
-    top_->cfg_phi_t_max = c.phi_t_max;
-    top_->cfg_inv_tau = c.inv_tau;
-    top_->cfg_max_iterations = c.max_iterations;
-    top_->cfg_tolerance = c.tolerance;
-    top_->cfg_merge_radius2 = c.merge_radius2;
-    top_->cfg_min_cluster_size = c.min_cluster_size;
-    top_->cfg_max_clusters = c.max_clusters;
-    top_->cfg_gate2 = c.gate2;
-    top_->cfg_confirm_hits = c.confirm_hits;
-    top_->cfg_coast_us = c.coast_us;
-    top_->cfg_max_tracks = c.max_tracks;
-    top_->cfg_q_third = static_cast<std::uint64_t>(c.q_third);
-    top_->cfg_q_half = static_cast<std::uint64_t>(c.q_half);
-    top_->cfg_q = static_cast<std::uint64_t>(c.q);
-    top_->cfg_r = static_cast<std::uint64_t>(c.r);
-    top_->cfg_p0_pos = static_cast<std::uint64_t>(c.p0_pos);
-    top_->cfg_p0_vel = static_cast<std::uint64_t>(c.p0_vel);
+#define EVMS_SET_CFG_PORT(name, type, bits, reset, description) top_->cfg_##name = static_cast<std::uint64_t>(c.name);
+    EVMS_CORE_RTL_REGISTERS(EVMS_SET_CFG_PORT)
+#undef EVMS_SET_CFG_PORT
   }
 
   bool ready_draw() {
@@ -134,7 +113,8 @@ class RtlCore {
     top_->eval();
     if (trace_) trace_->dump(ctx_->time());
     const unsigned state = top_->rootp->evms_core__DOT__state;
-    if (state != 0 || top_->in_valid) ++state_cycles_[state & 31];
+    if (state >= state_cycles_.size()) throw std::runtime_error("evms_core entered state " + std::to_string(state) + ", which hls/core/schedule.h does not list");
+    if (state != 0 || top_->in_valid) ++state_cycles_[state];
     ctx_->timeInc(1);
     if (top_->in_valid && top_->in_ready) accepted_ = true;
     if (top_->lab_valid && top_->lab_ready) {
@@ -165,7 +145,7 @@ class RtlCore {
   double ready_p_;
   bool accepted_ = false;
   std::uint64_t cycles_ = 0;
-  std::array<std::uint64_t, 32> state_cycles_{};
+  StateCycles state_cycles_{};
 };
 
 }  // namespace evms::sim

@@ -97,8 +97,8 @@ run_config() {
   # yosys_on RUN SCRIPT: the top elaborated at this lane count, then SCRIPT; logs in $dir/RUN.*
   yosys_on() {
     # $readmemh paths in the generated headers are relative to rtl/generated.
-    (cd "$root/rtl/generated" && yosys -q -l "$dir/$1.log" -p "read_verilog -sv -I. -I$root/rtl/board ${sources[*]} $root/rtl/board/$top.sv;
-        hierarchy -top $top -chparam LANES_OVERRIDE $lanes; $2") >/dev/null 2>"$dir/$1.warnings" || {
+    (cd "$root/rtl/generated" && yosys -q -l "$dir/$1.log" -p "read_verilog -sv -I. -I$root/rtl/board -I$root/rtl/common ${sources[*]} $root/rtl/board/$top.sv;
+        hierarchy -top $top -chparam LanesOverride $lanes; $2") >/dev/null 2>"$dir/$1.warnings" || {
       echo "synth.sh: $name: yosys failed ($1 run): $(grep -m1 'ERROR' "$dir/$1.warnings" || tail -n 1 "$dir/$1.warnings")" >&2
       return 1
     }

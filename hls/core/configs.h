@@ -1,6 +1,8 @@
-// The core builds evms knows by name: the host/simulation core and the two boards. The RTL
-// generator (host/tools/rtl_gen) writes each one's parameters and tables for rtl/; the
-// cosimulation checks each RTL build against the C++ core of the same Shape.
+// The core builds evms knows by name: the host/simulation core and the two boards. Everything
+// that lists the builds is made from EVMS_CORE_BUILDS: the host's --core and --build choices
+// (host/backend/core_builds.h), the RTL generator's files (host/tools/rtl_gen writes each
+// build's parameters, reset values and tables into rtl/generated/, and the build list for CMake),
+// and the cosimulation, which checks each RTL build against the C++ core of the same Shape.
 #pragma once
 
 #include "hls/core/shape.h"
@@ -13,5 +15,17 @@ namespace evms::hls {
 using Ice40Shape = Shape<128, 128, 64, 1, 8, 8, 8, 16, 7, 4 * 64, 10, 15, 8, 12, 4>;
 // Arty A7-35T beside a DAVIS240: the default board core, eight kernel lanes (what fits its DSPs).
 using ArtyShape = DefaultShape;
+
+// X(name, FixedShape, RtlShape, sensor width, sensor height, description): the fixed backend's
+// Shape, the RTL's (rtl/generated/evms_cfg_<name>.*, Verilated as Vcore_<name>), and the sensor
+// the build's reset registers are for.
+#define EVMS_CORE_BUILDS(X)                                                                             \
+  X(host, HostShape, RtlHostShape, 1280, 720, "the host core: every recording evms reads")              \
+  X(arty, ArtyShape, ArtyShape, 240, 180, "Arty A7-35T beside a DAVIS240 (rtl/board/evms_arty_top.sv)") \
+  X(ice40, Ice40Shape, Ice40Shape, 128, 128, "iCEBreaker (UP5K) beside a DVS128 (rtl/board/evms_icebreaker_top.sv)")
+
+#define EVMS_CORE_BUILD_NAME(name, fixed, rtl, width, height, description) #name,
+inline constexpr const char* kCoreBuildNames[] = {EVMS_CORE_BUILDS(EVMS_CORE_BUILD_NAME)};
+#undef EVMS_CORE_BUILD_NAME
 
 }  // namespace evms::hls

@@ -39,6 +39,42 @@ constexpr int kStageCount = 9;
 constexpr const char* kStageNames[kStageCount] = {"accept",     "filter", "packet control", "features", "mean shift",
                                                   "merge",      "centroids", "tracking",    "release"};
 
+// The states of the core's controller (rtl/core/evms_core.sv, state_e), in encoding order, each
+// with the stage its clocks count in. rtl/generated/evms_core_states.svh is written from this
+// list (host/tools/rtl_gen), and sim/rtl_profile.h reads the RTL's state through it. Idle counts
+// as accept only while a word is offered.
+#define EVMS_CORE_CONTROLLER_STATES(X) \
+  X(Idle, kAccept)                     \
+  X(Filter, kFilter)                   \
+  X(Append, kPacketControl)            \
+  X(Close, kPacketControl)             \
+  X(FeatRead, kFeatures)               \
+  X(FeatWait, kFeatures)               \
+  X(FeatX, kFeatures)                  \
+  X(FeatY, kFeatures)                  \
+  X(FeatAge, kFeatures)                \
+  X(FeatDecay1, kFeatures)             \
+  X(FeatDecay2, kFeatures)             \
+  X(FeatT, kFeatures)                  \
+  X(FeatStore, kFeatures)              \
+  X(MeanShift, kMeanShift)             \
+  X(Merge, kMerge)                     \
+  X(Centroid, kCentroid)               \
+  X(Track, kTrack)                     \
+  X(Packet, kPacketControl)            \
+  X(ReleaseRead, kRelease)             \
+  X(ReleaseWait, kRelease)             \
+  X(ReleaseCluster, kRelease)          \
+  X(ReleaseSend, kRelease)
+
+#define EVMS_CONTROLLER_STATE_STAGE(state, stage) Stage::stage,
+constexpr Stage kControllerStateStage[] = {EVMS_CORE_CONTROLLER_STATES(EVMS_CONTROLLER_STATE_STAGE)};
+#undef EVMS_CONTROLLER_STATE_STAGE
+#define EVMS_CONTROLLER_STATE_NAME(state, stage) "St" #state,
+constexpr const char* kControllerStateNames[] = {EVMS_CORE_CONTROLLER_STATES(EVMS_CONTROLLER_STATE_NAME)};
+#undef EVMS_CONTROLLER_STATE_NAME
+constexpr int kControllerStates = sizeof(kControllerStateStage) / sizeof(kControllerStateStage[0]);
+
 struct StageCycles {
   double cycles[kStageCount] = {};
   double& operator[](Stage s) { return cycles[static_cast<int>(s)]; }

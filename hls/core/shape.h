@@ -58,6 +58,37 @@ struct Shape {
   static constexpr int kMulDigitBits = MulDigitBits;
 };
 
+// The Shape members the RTL takes as parameters, each X(Name): S::kName in C++, the parameter
+// Name in rtl/core/evms_core.sv and rtl/board/evms_board.sv. host/tools/rtl_gen writes the
+// parameter lists, their connections and every build's values from this list.
+#define EVMS_SHAPE_RTL_PARAMETERS(X) \
+  X(MaxWidth)                        \
+  X(MaxHeight)                       \
+  X(TimestampBits)                   \
+  X(TimestampShift)                  \
+  X(PacketMax)                       \
+  X(PendingDepth)                    \
+  X(Lanes)                           \
+  X(IterationsMax)                   \
+  X(ClustersMax)                     \
+  X(TracksMax)                       \
+  X(FeatInt)                         \
+  X(FeatFrac)                        \
+  X(WeightFrac)                      \
+  X(ExpTableLog2)                    \
+  X(ExpInterpBits)                   \
+  X(SumFrac)                         \
+  X(RecipTableLog2)                  \
+  X(RecipFrac)                       \
+  X(DecayFrac)                       \
+  X(CoordScaleFrac)                  \
+  X(PosFrac)                         \
+  X(TickLog2)                        \
+  X(CovFrac)                         \
+  X(GainFrac)                        \
+  X(NoiseFrac)                       \
+  X(MulDigitBits)
+
 // The default board build: a DAVIS240-class sensor, the defaults of docs/sweep.md, a 16-bit
 // timestamp per pixel in 128 us units (one iCE40 SPRAM word), and eight kernel lanes: 88 of an
 // XC7A35T's 90 DSP48E1 (docs/rtl.md, "Area").

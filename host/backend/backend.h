@@ -47,9 +47,18 @@ inline BackendOptions options_for(const Params& params, SensorSize sensor) {
   return o;
 }
 
-// The core builds (hls/core/shape.h) a backend can run: "host", "arty" or "ice40".
-// Throws std::invalid_argument naming them for anything else.
+// The core builds (hls/core/configs.h, EVMS_CORE_BUILDS) a backend can run: "host", "arty" or
+// "ice40". Throws std::invalid_argument naming them for anything else.
 void check_core_build(const std::string& core);
+// The build a board backend talks to (evms vboard's, and the iCEBreaker's bitstream).
+inline constexpr const char* kBoardCoreBuild = "ice40";
+
+// `p` (resolved from `method`) within the packet size, cluster and track counts of the build
+// `core` of `backend` (fixed: the build's C++ Shape; rtl and board: its RTL Shape; golden: no
+// limits): each of the three that the method's preset makes larger than the build holds is cut
+// to the build's, unless the command line set it (then the backend refuses it with a one-line
+// error). So `--core ice40` alone runs the iCE40 build's sizes.
+Params fit_core_build(const std::string& backend, const std::string& core, Params p, const Method& method);
 
 class Backend {
  public:

@@ -32,7 +32,7 @@
 namespace evms::backend {
 namespace {
 
-using S = hls::Ice40Shape;
+using S = hls::Ice40Shape;  // kBoardCoreBuild (host/backend/backend.h)
 constexpr size_t kLinkWindow = 512;  // LINK_FIFO_DEPTH of the iCEBreaker top
 constexpr int kResendMs = 500;       // silence while waiting: send what is outstanding again
 constexpr int kSilenceMs = 10000;    // no frame for this long while waiting: the board is gone

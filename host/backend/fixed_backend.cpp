@@ -8,9 +8,11 @@ namespace evms::backend {
 
 std::unique_ptr<Backend> make_fixed_backend(const BackendOptions& o) {
   check_core_build(o.core);
-  if (o.core == "arty") return std::make_unique<FixedBackend<hls::ArtyShape>>(o);
-  if (o.core == "ice40") return std::make_unique<FixedBackend<hls::Ice40Shape>>(o);
-  return std::make_unique<FixedBackend<hls::HostShape>>(o);
+#define EVMS_FIXED_OF_BUILD(name, fixed, rtl, width, height, description) \
+  if (o.core == #name) return std::make_unique<FixedBackend<hls::fixed>>(o);
+  EVMS_CORE_BUILDS(EVMS_FIXED_OF_BUILD)
+#undef EVMS_FIXED_OF_BUILD
+  return nullptr;  // check_core_build refused any other name
 }
 
 }  // namespace evms::backend

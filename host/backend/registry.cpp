@@ -1,7 +1,10 @@
 #include "host/backend/registry.h"
 
+#include <algorithm>
 #include <array>
 #include <stdexcept>
+
+#include "hls/core/configs.h"
 
 namespace evms::backend {
 
@@ -15,9 +18,46 @@ const std::array kBackends = {
 }  // namespace
 
 void check_core_build(const std::string& core) {
-  if (core != "host" && core != "arty" && core != "ice40") {
-    throw std::invalid_argument("unknown core build '" + core + "' (known: host, arty, ice40)");
+  std::string known;
+  for (const char* name : hls::kCoreBuildNames) {
+    if (core == name) return;
+    known += (known.empty() ? "" : ", ") + std::string(name);
   }
+  throw std::invalid_argument("unknown core build '" + core + "' (known: " + known + ")");
+}
+
+namespace {
+
+template <class S>
+Params fit_sizes(Params p, const Method& method) {
+  auto set_by_user = [&](const char* name) {
+    for (const auto& [setting, value] : method.settings) {
+      if (setting == name) return true;
+    }
+    return false;
+  };
+  auto fit = [&](int& value, const char* name, int build_max) {
+    if (!set_by_user(name)) value = std::min(value, build_max);
+  };
+  fit(p.packet_size, "packet-size", S::kPacketMax);
+  fit(p.max_clusters, "max-clusters", S::kClustersMax);
+  fit(p.max_tracks, "max-tracks", S::kTracksMax);
+  return p;
+}
+
+}  // namespace
+
+Params fit_core_build(const std::string& backend, const std::string& core, Params p, const Method& method) {
+  check_core_build(core);
+  if (backend == "golden") return p;
+  const bool fixed = backend == "fixed";
+  // A board runs the build it was synthesized from, whatever --core says.
+  const std::string build = backend == "board" ? kBoardCoreBuild : core;
+#define EVMS_FIT_BUILD(name, fixed_shape, rtl_shape, width, height, description) \
+  if (build == #name) return fixed ? fit_sizes<hls::fixed_shape>(p, method) : fit_sizes<hls::rtl_shape>(p, method);
+  EVMS_CORE_BUILDS(EVMS_FIT_BUILD)
+#undef EVMS_FIT_BUILD
+  return p;
 }
 
 std::span<const BackendInfo> backends() { return kBackends; }

@@ -59,9 +59,11 @@ class RtlBackend final : public Backend {
 std::unique_ptr<Backend> make_rtl_backend(const BackendOptions& o) {
   check_core_build(o.core);
   if (std::string unsupported = rtl_unsupported(o.params); !unsupported.empty()) throw std::invalid_argument(unsupported);
-  if (o.core == "arty") return std::make_unique<RtlBackend<Vcore_arty, hls::ArtyShape>>(o);
-  if (o.core == "ice40") return std::make_unique<RtlBackend<Vcore_ice40, hls::Ice40Shape>>(o);
-  return std::make_unique<RtlBackend<Vcore_host, hls::RtlHostShape>>(o);
+#define EVMS_RTL_OF_BUILD(name, fixed, rtl, width, height, description) \
+  if (o.core == #name) return std::make_unique<RtlBackend<Vcore_##name, hls::rtl>>(o);
+  EVMS_CORE_BUILDS(EVMS_RTL_OF_BUILD)
+#undef EVMS_RTL_OF_BUILD
+  return nullptr;  // check_core_build refused any other name
 }
 
 }  // namespace evms::backend

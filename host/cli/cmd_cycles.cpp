@@ -83,12 +83,15 @@ hls::StageCycles rtl_run(const std::vector<hls::EventWord>& words, const hls::Co
   return sim::stage_cycles(core.state_cycles());
 }
 
+// The method counted: the options' (by default the RTL's, --preset gaussian) with the build's sizes.
+Params method_of(const CyclesOptions& o, SensorSize sensor) { return backend::fit_core_build("rtl", o.build, o.method.resolve(sensor), o.method); }
+
 template <class V, class S>
 void cycles(const CyclesOptions& o) {
   SensorSize sensor;
   const std::vector<Event> events = read_events(o, sensor);
   // The cycle model is the RTL's: it counts the method the RTL implements.
-  if (std::string unsupported = backend::rtl_unsupported(o.method.resolve(sensor)); !unsupported.empty()) {
+  if (std::string unsupported = backend::rtl_unsupported(method_of(o, sensor)); !unsupported.empty()) {
     throw std::invalid_argument(unsupported + "; the cycle model counts the RTL's method");
   }
   if (events.empty()) throw std::runtime_error(o.source + ": no events");
@@ -104,7 +107,7 @@ void cycles(const CyclesOptions& o) {
       if (n > S::kPacketMax) continue;
       for (int it : {2, 4, 8}) {
         if (it > S::kIterationsMax) continue;
-        Params p = o.method.resolve(sensor);
+        Params p = method_of(o, sensor);
         p.packet_size = n;
         p.max_iterations = it;
         const auto model = model_run<S>(words, backend::core_config<S>(p, sensor));
@@ -115,11 +118,14 @@ void cycles(const CyclesOptions& o) {
     }
     return;
   }
-  const hls::Config cfg = backend::core_config<S>(o.method.resolve(sensor), sensor);
+  const Params params = method_of(o, sensor);
+  const hls::Config cfg = backend::core_config<S>(params, sensor);
   const auto model = model_run<S>(words, cfg);
   const double n_events = static_cast<double>(model.events());
-  std::printf("build %s (P = %d, multiplier latency %d): %s events, %s kept, %s packets, %.2f sweeps a packet\n", o.build.c_str(),
-              S::kLanes, hls::multiplier_latency(S::kMulDigitBits), grouped(model.events()).c_str(), grouped(model.kept()).c_str(),
+  std::printf("build %s (P = %d, multiplier latency %d), %s, packets of %d, %d clusters, %d tracks\n", o.build.c_str(), S::kLanes,
+              hls::multiplier_latency(S::kMulDigitBits), o.method.describe().c_str(), params.packet_size, params.max_clusters,
+              params.max_tracks);
+  std::printf("%s events, %s kept, %s packets, %.2f sweeps a packet\n", grouped(model.events()).c_str(), grouped(model.kept()).c_str(),
               grouped(model.packets()).c_str(), model.mean_sweeps());
   const hls::StageCycles predicted = model.cycles();
   hls::StageCycles measured;
@@ -145,17 +151,20 @@ void register_cycles(CLI::App& app) {
   auto o = std::make_shared<CyclesOptions>();
   auto* cmd = app.add_subcommand("cycles", "Clocks per event of a core build, stage by stage: the cycle model, and the RTL with --rtl");
   cmd->add_option("source", o->source, "Event file or gen:// scene")->required();
-  cmd->add_option("--build", o->build, "Core build: host, arty or ice40")->check(CLI::IsMember({"host", "arty", "ice40"}));
+  cmd->add_option("--build", o->build, "Core build: host, arty or ice40 (hls/core/configs.h); its packet, cluster and track sizes apply")
+      ->check(CLI::IsMember(std::vector<std::string>(std::begin(hls::kCoreBuildNames), std::end(hls::kCoreBuildNames))));
   cmd->add_flag("--rtl", o->rtl, "Also simulate the Verilated RTL and print its measured cycles");
   cmd->add_flag("--table", o->table, "Print cycles per event against packet size, iteration cap and lanes (markdown)");
   cmd->add_option("--lanes", o->lanes, "Lane counts for the model's comparison")->delimiter(',');
   o->source_options.window.limit = 1000000;  // the cycle model holds every event it measures
+  o->method.preset = "gaussian";              // the method the RTL implements
   add_source_options(*cmd, o->source_options);
   add_method_options(*cmd, o->method);
   cmd->callback([o] {
-    if (o->build == "host") cycles<Vcore_host, hls::RtlHostShape>(*o);
-    else if (o->build == "arty") cycles<Vcore_arty, hls::ArtyShape>(*o);
-    else cycles<Vcore_ice40, hls::Ice40Shape>(*o);
+#define EVMS_CYCLES_OF_BUILD(name, fixed, rtl, width, height, description) \
+  if (o->build == #name) return cycles<Vcore_##name, hls::rtl>(*o);
+    EVMS_CORE_BUILDS(EVMS_CYCLES_OF_BUILD)
+#undef EVMS_CYCLES_OF_BUILD
   });
 }
 

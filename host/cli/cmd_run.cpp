@@ -39,7 +39,7 @@ volatile std::sig_atomic_t g_interrupted = 0;
 void run(const RunOptions& o) {
   auto source = read::open_source(o.source, o.source_options);
   const read::SourceInfo& info = source->info();
-  const Params params = o.method.resolve(info.sensor);
+  const Params params = backend::fit_core_build(o.backend, o.core, o.method.resolve(info.sensor), o.method);
   auto backend = backend::make_backend(o.backend, {params, info.sensor, o.core, o.device, o.baud});
   Writers writers(o.out, o.format, info.sensor);
   Progress progress(!o.quiet);

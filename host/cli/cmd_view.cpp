@@ -103,7 +103,7 @@ void view(const ViewOptions& o) {
   so.realtime = o.paced == -1 ? !o.headless : o.paced == 1;
   auto source = read::open_source(o.source, so);
   backend::BackendOptions bo;
-  bo.params = o.method.resolve(source->info().sensor);
+  bo.params = backend::fit_core_build(o.backend, o.core, o.method.resolve(source->info().sensor), o.method);
   bo.core = o.core;
   bo.device = o.device;
   show::ViewStyle style;

@@ -30,15 +30,18 @@ size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 template <class S>
-std::string shape_text(const char* name) {
-  return std::string(name) + " " + std::to_string(S::kMaxWidth) + "x" + std::to_string(S::kMaxHeight) + ", packets of " +
+std::string shape_text() {
+  return std::to_string(S::kMaxWidth) + "x" + std::to_string(S::kMaxHeight) + ", packets of " +
          std::to_string(S::kPacketMax) + ", " + std::to_string(S::kClustersMax) + " clusters, " + std::to_string(S::kTracksMax) +
          " tracks, " + std::to_string(S::kLanes) + " lane" + (S::kLanes > 1 ? "s" : "");
 }
 
 void print_version() {
-  std::printf("evms %s\ncore builds:\n  %s\n  %s\n  %s\n", EVMS_VERSION, shape_text<evms::hls::HostShape>("host ").c_str(),
-              shape_text<evms::hls::ArtyShape>("arty ").c_str(), shape_text<evms::hls::Ice40Shape>("ice40").c_str());
+  std::printf("evms %s\ncore builds (fixed backend):\n", EVMS_VERSION);
+#define EVMS_PRINT_BUILD(name, fixed, rtl, width, height, description) \
+  std::printf("  %-5s %s\n", #name, shape_text<evms::hls::fixed>().c_str());
+  EVMS_CORE_BUILDS(EVMS_PRINT_BUILD)
+#undef EVMS_PRINT_BUILD
 }
 
 // "cannot create directories: No such file or directory [/x]" -> "/x: cannot create directories: ..."

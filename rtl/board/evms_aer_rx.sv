@@ -13,7 +13,7 @@
 // DVS128 address (16 bits): bit 15 external event (ignored and acknowledged), y = bits 14..8,
 // x = bits 7..1, polarity = bit 0 (1 = ON).
 module evms_aer_rx #(
-  parameter int CLK_HZ = 12000000
+  parameter int ClkHz = 12000000
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -29,10 +29,10 @@ module evms_aer_rx #(
   output logic [31:0] timestamp,        // microseconds since reset
   output logic [31:0] external_events   // counted, not forwarded
 );
-  localparam int TicksPerUs = CLK_HZ / 1000000;
-  localparam int TW = TicksPerUs > 1 ? $clog2(TicksPerUs) : 1;
+  localparam int TicksPerUs = ClkHz / 1000000;
+  localparam int TickBits = TicksPerUs > 1 ? $clog2(TicksPerUs) : 1;
 
-  logic [TW-1:0] tick;
+  logic [TickBits-1:0] tick;
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
       tick <= '0;
@@ -46,7 +46,7 @@ module evms_aer_rx #(
   end
 
   logic req;
-  evms_sync #(.WIDTH(1), .RESET_VALUE(1'b1)) u_req_sync (.clk(clk), .rst_n(rst_n), .d(req_n), .q(req));
+  evms_sync #(.Width(1), .ResetValue(1'b1)) u_req_sync (.clk(clk), .rst_n(rst_n), .d(req_n), .q(req));
 
   typedef enum logic [1:0] {S_WAIT_REQ, S_OFFER, S_ACK, S_WAIT_RELEASE} state_e;
   state_e state;

@@ -3,8 +3,8 @@
 // link runs on the USB UART at 2 Mbaud (50 clocks a bit); LEDs show activity and link errors.
 // Pins: constraints/arty_a7.xdc.
 module evms_arty_top #(
-  // The synthesis flow's lane sweep (constraints/flow/synth.sh); 0 keeps the build's LANES.
-  parameter int LANES_OVERRIDE = 0
+  // The synthesis flow's lane sweep (constraints/flow/synth.sh); 0 keeps the build's Lanes.
+  parameter int LanesOverride = 0
 ) (
   input  logic        CLK,
   input  logic        BTN_N,
@@ -26,7 +26,7 @@ module evms_arty_top #(
 
   logic busy, error;
   evms_board #(
-    .CLK_HZ(100000000), .CLKS_PER_BIT(50), .LINK_FIFO_DEPTH(2048), .MUL_DIGIT_BITS(MUL_DIGIT_BITS),
+    .ClkHz(100000000), .ClksPerBit(50), .LinkFifoDepth(2048),
     `include "evms_board_build_params.svh"
   ) u_board (
     .clk(CLK), .rst_n(rst_n), .aer_req_n(AER_REQ_N), .aer_ack_n(AER_ACK_N), .aer_addr(AER_ADDR), .uart_rx(RX),

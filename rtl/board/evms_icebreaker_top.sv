@@ -2,8 +2,8 @@
 // FT2232H's UART at 3 Mbaud (4 clocks a bit), LEDs for activity and link errors.
 // Pins: constraints/icebreaker.pcf.
 module evms_icebreaker_top #(
-  // The synthesis flow's lane sweep (constraints/flow/synth.sh); 0 keeps the build's LANES.
-  parameter int LANES_OVERRIDE = 0
+  // The synthesis flow's lane sweep (constraints/flow/synth.sh); 0 keeps the build's Lanes.
+  parameter int LanesOverride = 0
 ) (
   input  logic        CLK,
   input  logic        BTN_N,
@@ -25,7 +25,7 @@ module evms_icebreaker_top #(
 
   logic busy, error;
   evms_board #(
-    .CLK_HZ(12000000), .CLKS_PER_BIT(4), .LINK_FIFO_DEPTH(512), .MUL_DIGIT_BITS(MUL_DIGIT_BITS),
+    .ClkHz(12000000), .ClksPerBit(4), .LinkFifoDepth(512),
     `include "evms_board_build_params.svh"
   ) u_board (
     .clk(CLK), .rst_n(rst_n), .aer_req_n(AER_REQ_N), .aer_ack_n(AER_ACK_N), .aer_addr(AER_ADDR), .uart_rx(RX),

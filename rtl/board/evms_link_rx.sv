@@ -8,14 +8,14 @@
 //
 // Events are taken in sequence only, so that the core sees exactly the host's stream however
 // the line corrupts it (go-back-N): the event numbered expected_seq goes into a FIFO of
-// FIFO_DEPTH words for the core, an older number is a resent copy and is dropped, and a newer
+// FifoDepth words for the core, an older number is a resent copy and is dropped, and a newer
 // one means frames were lost: it is dropped and a resend of expected_seq is asked for once
 // (resend_valid, until the link's transmitter takes it), not again until an event is taken.
 // A flush whose number is not expected_seq asks again: events before it are missing. The host
-// keeps at most FIFO_DEPTH events in flight, so the FIFO does not overrun; if it does anyway,
+// keeps at most FifoDepth events in flight, so the FIFO does not overrun; if it does anyway,
 // the word is counted and asked for again.
 module evms_link_rx #(
-  parameter int FIFO_DEPTH = 512
+  parameter int FifoDepth = 512
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -58,10 +58,10 @@ module evms_link_rx #(
   assign seq_ahead = frame_seq - expected_seq;  // as a signed number: > 0 means frames were lost
 
   // FIFO of {flush, p, y, x, t}, in block RAM.
-  localparam int WW = 1 + 1 + 16 + 16 + 32;
+  localparam int WordBits = 1 + 1 + 16 + 16 + 32;
   logic push, fifo_ready;
-  logic [WW-1:0] push_word;
-  evms_fifo #(.WIDTH(WW), .DEPTH(FIFO_DEPTH)) u_fifo (
+  logic [WordBits-1:0] push_word;
+  evms_fifo #(.Width(WordBits), .Depth(FifoDepth)) u_fifo (
     .clk(clk), .rst_n(rst_n && !soft_reset), .in_valid(push), .in_ready(fifo_ready), .in_data(push_word), .out_valid(ev_valid),
     .out_ready(ev_ready), .out_data({ev_flush, ev_p, ev_y, ev_x, ev_t}));
 

@@ -1,7 +1,7 @@
 // UART receiver, 8 data bits, no parity, one stop bit, LSB first; samples mid-bit. A byte
 // whose stop bit is low is a framing error: dropped and counted.
 module evms_uart_rx #(
-  parameter int CLKS_PER_BIT = 4
+  parameter int ClksPerBit = 4
 ) (
   input  logic       clk,
   input  logic       rst_n,
@@ -10,12 +10,12 @@ module evms_uart_rx #(
   output logic [7:0] data,
   output logic [31:0] framing_errors
 );
-  localparam int CW = $clog2(CLKS_PER_BIT + 1);
+  localparam int CountBits = $clog2(ClksPerBit + 1);
   logic line;
-  evms_sync #(.WIDTH(1), .RESET_VALUE(1'b1)) u_sync (.clk(clk), .rst_n(rst_n), .d(rx), .q(line));
+  evms_sync #(.Width(1), .ResetValue(1'b1)) u_sync (.clk(clk), .rst_n(rst_n), .d(rx), .q(line));
   typedef enum logic [1:0] {S_IDLE, S_START, S_DATA, S_STOP} state_e;
   state_e state;
-  logic [CW-1:0] count;
+  logic [CountBits-1:0] count;
   logic [2:0] bit_i;
   logic [7:0] shift;
   always_ff @(posedge clk or negedge rst_n) begin
@@ -31,12 +31,12 @@ module evms_uart_rx #(
       valid <= 1'b0;
       case (state)
         S_IDLE: if (!line) begin
-          count <= CW'(CLKS_PER_BIT / 2);
+          count <= CountBits'(ClksPerBit / 2);
           state <= S_START;
         end
         S_START: if (count == 0) begin
           if (!line) begin
-            count <= CW'(CLKS_PER_BIT - 1);
+            count <= CountBits'(ClksPerBit - 1);
             bit_i <= '0;
             state <= S_DATA;
           end else begin
@@ -45,7 +45,7 @@ module evms_uart_rx #(
         end else count <= count - 1'b1;
         S_DATA: if (count == 0) begin
           shift <= {line, shift[7:1]};
-          count <= CW'(CLKS_PER_BIT - 1);
+          count <= CountBits'(ClksPerBit - 1);
           bit_i <= bit_i + 1'b1;
           if (bit_i == 3'd7) state <= S_STOP;
         end else count <= count - 1'b1;

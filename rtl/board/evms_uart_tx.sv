@@ -1,7 +1,7 @@
-// UART transmitter, 8N1, LSB first, each bit held CLKS_PER_BIT cycles, with a valid/ready
+// UART transmitter, 8N1, LSB first, each bit held ClksPerBit cycles, with a valid/ready
 // byte input.
 module evms_uart_tx #(
-  parameter int CLKS_PER_BIT = 4
+  parameter int ClksPerBit = 4
 ) (
   input  logic       clk,
   input  logic       rst_n,
@@ -10,10 +10,10 @@ module evms_uart_tx #(
   input  logic [7:0] data,
   output logic       tx
 );
-  localparam int CW = $clog2(CLKS_PER_BIT + 1);
+  localparam int CountBits = $clog2(ClksPerBit + 1);
   logic [9:0] frame;
   logic [3:0] bit_i;
-  logic [CW-1:0] count;
+  logic [CountBits-1:0] count;
   logic busy;
   assign ready = !busy;
   always_ff @(posedge clk or negedge rst_n) begin
@@ -28,7 +28,7 @@ module evms_uart_tx #(
         frame <= {1'b1, data, 1'b0};
         tx <= 1'b0;  // start bit
         bit_i <= '0;
-        count <= CW'(CLKS_PER_BIT - 1);
+        count <= CountBits'(ClksPerBit - 1);
         busy <= 1'b1;
       end
     end else if (count != 0) begin
@@ -38,7 +38,7 @@ module evms_uart_tx #(
     end else begin
       tx <= frame[bit_i + 1'b1];
       bit_i <= bit_i + 1'b1;
-      count <= CW'(CLKS_PER_BIT - 1);
+      count <= CountBits'(ClksPerBit - 1);
     end
   end
 endmodule

@@ -1,5 +1,5 @@
 // Each cluster's measurement, as hls/cluster/centroid.h: the centre of mass of its events
-// (POS_FRAC fraction bits) at the mean of their timestamps, rounded half up. One pass over the
+// (PosFrac fraction bits) at the mean of their timestamps, rounded half up. One pass over the
 // packet accumulates; then each cluster takes three divisions through the reciprocal unit and
 // the shared multiplier.
 //
@@ -11,10 +11,12 @@
 // (distributed RAM on a Xilinx part) instead of registers with a write multiplexer each; a
 // valid bit per cluster clears the sums at once at the start of a packet, so the schedule is
 // the one of registers. The three divisions share one rounding shifter.
+`include "evms_assert.svh"
+
 module evms_centroid #(
-  parameter int CLUSTERS_MAX = 16,
-  parameter int POS_FRAC     = 12,
-  parameter int RECIP_FRAC   = 20
+  parameter int ClustersMax = 16,
+  parameter int PosFrac     = 12,
+  parameter int RecipFrac   = 20
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -32,7 +34,7 @@ module evms_centroid #(
   output logic        recip_start,
   output logic [63:0] recip_x,
   input  logic        recip_done,
-  input  logic [RECIP_FRAC:0] recip_r,
+  input  logic [RecipFrac:0] recip_r,
   input  logic [6:0]  recip_m,
   output logic        mul_start,
   output logic signed [63:0] mul_a,
@@ -46,44 +48,41 @@ module evms_centroid #(
   output logic signed [31:0] z_y,
   output logic        done
 );
-  localparam int CW = CLUSTERS_MAX > 1 ? $clog2(CLUSTERS_MAX) : 1;
+  localparam int ClusterIndexBits = ClustersMax > 1 ? $clog2(ClustersMax) : 1;
   typedef enum logic [3:0] {S_IDLE, S_ACC_READ, S_ACC_WAIT, S_ACC_ADD, S_DIV, S_DIV_RECIP, S_DIV_X, S_DIV_Y, S_DIV_T,
                             S_DONE} state_e;
   state_e state;
   // Per cluster: {sx, sy, st, count}, valid when the packet has added to it.
-  logic [159:0] sums [CLUSTERS_MAX];
-  logic [CLUSTERS_MAX-1:0] sums_valid;
+  logic [159:0] sums [ClustersMax];
+  logic [ClustersMax-1:0] sums_valid;
   // Per cluster: {t, x, y}, written when its last division ends.
-  logic [95:0]  results [CLUSTERS_MAX];
+  logic [95:0]  results [ClustersMax];
   logic signed [31:0] x_q, y_q;  // the cluster's x and y until its t is ready
   logic [15:0] i;
   logic [7:0]  c;
   logic [6:0]  shift_xy_m1, shift_t_m1;  // each quotient's right shift, minus one
-  logic [RECIP_FRAC:0] r;
+  logic [RecipFrac:0] r;
   logic [31:0] t_q;         // the cluster's mean age, added to t0 and stored the next clock
   logic        store;
-  logic [CW-1:0] store_c;
+  logic [ClusterIndexBits-1:0] store_c;
 
-  assign {z_t, z_x, z_y} = results[CW'(z_c)];
+  assign {z_t, z_x, z_y} = results[ClusterIndexBits'(z_c)];
   assign rd_i = i;
 
   // The sums of the cluster being added to (accumulating) or divided.
-  logic [CW-1:0] sum_c;
+  logic [ClusterIndexBits-1:0] sum_c;
   logic [31:0]   sx, sy, count;
   logic [63:0]   st;
   logic          adding;  // this cycle adds the event to its cluster's sums
   assign adding = state == S_ACC_ADD && ev_cluster >= 0;
-  assign sum_c = state == S_ACC_ADD ? CW'(ev_cluster) : CW'(c);
+  assign sum_c = state == S_ACC_ADD ? ClusterIndexBits'(ev_cluster) : ClusterIndexBits'(c);
   assign {sx, sy, st, count} = sums_valid[sum_c] ? sums[sum_c] : 160'd0;
   // Time since the packet's first event, modulo 2^32 like the C++ core's uint32 difference.
   logic [31:0] age;
   assign age = ev_t - t0;
   assign recip_x = 64'(count);
 
-  initial begin
-    if (RECIP_FRAC <= POS_FRAC)
-      $error("evms_centroid: the quotients shift right by at least one bit (RECIP_FRAC > POS_FRAC)");
-  end
+  `EVMS_ASSERT_INIT("the quotients shift right by at least one bit (RecipFrac > PosFrac)", RecipFrac > PosFrac)
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
@@ -138,8 +137,8 @@ module evms_centroid #(
         end
         S_DIV_RECIP: if (recip_done) begin
           r <= recip_r;
-          shift_xy_m1 <= 7'(RECIP_FRAC - POS_FRAC - 1) + recip_m;
-          shift_t_m1 <= 7'(RECIP_FRAC - 1) + recip_m;
+          shift_xy_m1 <= 7'(RecipFrac - PosFrac - 1) + recip_m;
+          shift_t_m1 <= 7'(RecipFrac - 1) + recip_m;
           mul_start <= 1'b1;
           mul_a <= $signed(64'(sx));
           mul_b <= $signed(64'(recip_r));
@@ -162,7 +161,7 @@ module evms_centroid #(
         S_DIV_T: if (mul_done) begin
           t_q <= q_rounded;
           store <= 1'b1;
-          store_c <= CW'(c);
+          store_c <= ClusterIndexBits'(c);
           c <= c + 1'b1;
           state <= S_DIV;
         end
@@ -175,8 +174,8 @@ module evms_centroid #(
     end
   end
 
-  // One rounding shifter for the three quotients, round(p * 2^-(RECIP_FRAC + m - extra)) as
-  // Reciprocal::divide, with extra = POS_FRAC for x and y and 0 for t (the results are 32-bit
+  // One rounding shifter for the three quotients, round(p * 2^-(RecipFrac + m - extra)) as
+  // Reciprocal::divide, with extra = PosFrac for x and y and 0 for t (the results are 32-bit
   // words, as the C++ core's).
   logic [31:0] q_rounded;
   assign q_rounded = 32'(evms_round_pkg::round_shift(64'(mul_p), state == S_DIV_T ? shift_t_m1 : shift_xy_m1));

@@ -1,42 +1,44 @@
-// The hybrid mean-shift engine, as hls/cluster/mean_shift.h, with LANES kernel evaluations a
+// The hybrid mean-shift engine, as hls/cluster/mean_shift.h, with Lanes kernel evaluations a
 // cycle. Per sweep and point i, every point j contributes
 //   u = (x_i - x0_j)^2 + (y_i - y0_j)^2 + (p_i - p_j)^2 + (t_i - t_j)^2,  w = exp(-u),
-//   sums += w, (w x0_j) >> PS, (w y0_j) >> PS, (w p_j) >> PS, (w t_j) >> PS
+//   sums += w, (w x0_j) >> ProductShift, (w y0_j) >> ProductShift, (w p_j) >> ProductShift, (w t_j) >> ProductShift
 // and the point moves to sums / sum(w) (rounded, through the reciprocal), or stays when
 // sum(w) = 0. Sums are exact, so the lane count cannot change a result.
 //
 // Memories: the original positions x0, y0 and two buffers of (x, y, p, t) that take turns as
-// the current points and the next ones, each split into LANES banks (point j in bank j % LANES
-// at address j / LANES) so that every lane reads its point in the same cycle.
+// the current points and the next ones, each split into Lanes banks (point j in bank j % Lanes
+// at address j / Lanes) so that every lane reads its point in the same cycle.
 //
-// Schedule per point: one clock reading the point, then ceil(n / LANES) clocks issuing point
+// Schedule per point: one clock reading the point, then ceil(n / Lanes) clocks issuing point
 // pairs; the next point is read in the clock after the last issue, so the points' kernel loops
 // follow each other while each one's terms still drain through the lanes (seven clocks). A
 // point's sums go to the divider when its last terms are in; the divider takes R + 10 clocks a
 // point, so points start at least that far apart. A sweep ends when the divider has finished
 // the last point.
+`include "evms_assert.svh"
+
 module evms_mean_shift #(
-  parameter int PACKET_MAX     = 256,
-  parameter int LANES          = 8,
-  parameter int ITERATIONS_MAX = 8,
-  parameter int FEAT_BITS      = 16,   // kFeatInt + kFeatFrac
-  parameter int FEAT_FRAC      = 11,
-  parameter int WEIGHT_FRAC    = 16,
-  parameter int SUM_FRAC       = 16,
-  parameter int EXP_LOG2       = 9,
-  parameter int EXP_INTERP     = 8,
-  parameter int RECIP_FRAC     = 20,
-  parameter     EXP_MEM        = "exp_9_16.mem"
+  parameter int PacketMax     = 256,
+  parameter int Lanes          = 8,
+  parameter int IterationsMax = 8,
+  parameter int FeatBits      = 16,   // kFeatInt + kFeatFrac
+  parameter int FeatFrac      = 11,
+  parameter int WeightFrac    = 16,
+  parameter int SumFrac       = 16,
+  parameter int ExpTableLog2       = 9,
+  parameter int ExpInterpBits     = 8,
+  parameter int RecipFrac     = 20,
+  parameter     ExpTableFile        = "exp_9_16.mem"
 ) (
   input  logic        clk,
   input  logic        rst_n,
   // Loading the packet's features (point i = load_i).
   input  logic                    load_we,
   input  logic [15:0]             load_i,
-  input  logic [FEAT_BITS-1:0]    load_x,
-  input  logic [FEAT_BITS-1:0]    load_y,
-  input  logic [FEAT_BITS-1:0]    load_p,
-  input  logic [FEAT_BITS-1:0]    load_t,
+  input  logic [FeatBits-1:0]    load_x,
+  input  logic [FeatBits-1:0]    load_y,
+  input  logic [FeatBits-1:0]    load_p,
+  input  logic [FeatBits-1:0]    load_t,
   // Running.
   input  logic                    start,
   input  logic [15:0]             n,
@@ -46,35 +48,35 @@ module evms_mean_shift #(
   output logic [7:0]              sweeps,
   // Reading the modes after done (1-cycle latency).
   input  logic [15:0]             rd_i,
-  output logic [FEAT_BITS:0]      rd_x,
-  output logic [FEAT_BITS:0]      rd_y,
-  output logic [FEAT_BITS:0]      rd_p,
-  output logic [FEAT_BITS:0]      rd_t,
+  output logic [FeatBits:0]      rd_x,
+  output logic [FeatBits:0]      rd_y,
+  output logic [FeatBits:0]      rd_p,
+  output logic [FeatBits:0]      rd_t,
   // The core's reciprocal unit (math/evms_recip), which no other stage uses while mean shift runs.
   output logic                    recip_start,
   output logic [63:0]             recip_x,
   input  logic                    recip_done,
-  input  logic [RECIP_FRAC:0]     recip_r,
+  input  logic [RecipFrac:0]     recip_r,
   input  logic [6:0]              recip_m
 );
-  localparam int FW = FEAT_BITS + 1;                          // a mode may round one LSB past the features
-  localparam int Depth = (PACKET_MAX + LANES - 1) / LANES;
-  localparam int AW = Depth > 1 ? $clog2(Depth) : 1;
-  localparam int BW = LANES > 1 ? $clog2(LANES) : 1;
-  localparam int UF = 2 * FEAT_FRAC;
-  localparam int PS = WEIGHT_FRAC + FEAT_FRAC - SUM_FRAC;     // product shift
-  localparam int QF = FEAT_FRAC + WEIGHT_FRAC - SUM_FRAC;     // quotient fraction bits
-  initial if (QF >= RECIP_FRAC + 1) $error("evms_mean_shift: the quotient shift must be positive");
+  localparam int ModeBits = FeatBits + 1;                          // a mode may round one LSB past the features
+  localparam int Depth = (PacketMax + Lanes - 1) / Lanes;
+  localparam int AddrBits = Depth > 1 ? $clog2(Depth) : 1;
+  localparam int LaneIndexBits = Lanes > 1 ? $clog2(Lanes) : 1;
+  localparam int DistFrac = 2 * FeatFrac;
+  localparam int ProductShift = WeightFrac + FeatFrac - SumFrac;     // product shift
+  localparam int QuotientFrac = FeatFrac + WeightFrac - SumFrac;     // quotient fraction bits
+  `EVMS_ASSERT_INIT("the quotient shift must be positive (QuotientFrac <= RecipFrac)", QuotientFrac < RecipFrac + 1)
 
-  // Point j lives in bank j % LANES at address j / LANES.
-  function automatic [BW-1:0] bank_of(input [15:0] idx);
+  // Point j lives in bank j % Lanes at address j / Lanes.
+  function automatic [LaneIndexBits-1:0] bank_of(input [15:0] idx);
     begin
-      bank_of = BW'(32'(idx) % LANES);
+      bank_of = LaneIndexBits'(32'(idx) % Lanes);
     end
   endfunction
-  function automatic [AW-1:0] addr_of(input [15:0] idx);
+  function automatic [AddrBits-1:0] addr_of(input [15:0] idx);
     begin
-      addr_of = AW'(32'(idx) / LANES);
+      addr_of = AddrBits'(32'(idx) / Lanes);
     end
   endfunction
 
@@ -87,33 +89,33 @@ module evms_mean_shift #(
   // Writes: loading (into buffer 0 and x0, y0) or the divider's next values.
   logic          wr_en;
   logic [15:0]   wr_i;
-  logic [FW-1:0] wr_x, wr_y, wr_p, wr_t;
+  logic [ModeBits-1:0] wr_x, wr_y, wr_p, wr_t;
 
   // Read addresses: lanes read chunk a; a new point reads point i; merging reads rd_i.
-  logic [AW:0]   pt_addr, xy_addr;
-  logic [FW-1:0] bank_x [LANES], bank_y [LANES], bank_p [LANES], bank_t [LANES];
-  logic [FEAT_BITS-1:0] m_x0 [LANES], m_y0 [LANES];
-  logic [FW-1:0] m_p [LANES], m_t [LANES];
+  logic [AddrBits:0]   pt_addr, xy_addr;
+  logic [ModeBits-1:0] bank_x [Lanes], bank_y [Lanes], bank_p [Lanes], bank_t [Lanes];
+  logic [FeatBits-1:0] m_x0 [Lanes], m_y0 [Lanes];
+  logic [ModeBits-1:0] m_p [Lanes], m_t [Lanes];
 
-  for (genvar b = 0; b < LANES; b++) begin : g_bank
-    logic [FEAT_BITS-1:0] x0 [Depth];
-    logic [FEAT_BITS-1:0] y0 [Depth];
-    logic [2*FW-1:0] xy [2*Depth];
-    logic [2*FW-1:0] pt [2*Depth];
-    logic [2*FW-1:0] xy_q, pt_q;
-    wire load_here = load_we && bank_of(load_i) == BW'(b);
-    wire next_here = wr_en && bank_of(wr_i) == BW'(b);
+  for (genvar b = 0; b < Lanes; b++) begin : g_bank
+    logic [FeatBits-1:0] x0 [Depth];
+    logic [FeatBits-1:0] y0 [Depth];
+    logic [2*ModeBits-1:0] xy [2*Depth];
+    logic [2*ModeBits-1:0] pt [2*Depth];
+    logic [2*ModeBits-1:0] xy_q, pt_q;
+    wire load_here = load_we && bank_of(load_i) == LaneIndexBits'(b);
+    wire next_here = wr_en && bank_of(wr_i) == LaneIndexBits'(b);
     always_ff @(posedge clk) begin
       if (load_here) begin
         x0[addr_of(load_i)] <= load_x;
         y0[addr_of(load_i)] <= load_y;
       end
-      m_x0[b] <= x0[AW'(a)];
-      m_y0[b] <= y0[AW'(a)];
+      m_x0[b] <= x0[AddrBits'(a)];
+      m_y0[b] <= y0[AddrBits'(a)];
     end
     always_ff @(posedge clk) begin
       if (load_here) begin
-        xy[{1'b0, addr_of(load_i)}] <= {FW'(load_x), FW'(load_y)};
+        xy[{1'b0, addr_of(load_i)}] <= {ModeBits'(load_x), ModeBits'(load_y)};
       end else if (next_here) begin
         xy[{~cur, addr_of(wr_i)}] <= {wr_x, wr_y};
       end
@@ -121,7 +123,7 @@ module evms_mean_shift #(
     end
     always_ff @(posedge clk) begin
       if (load_here) begin
-        pt[{1'b0, addr_of(load_i)}] <= {FW'(load_p), FW'(load_t)};
+        pt[{1'b0, addr_of(load_i)}] <= {ModeBits'(load_p), ModeBits'(load_t)};
       end else if (next_here) begin
         pt[{~cur, addr_of(wr_i)}] <= {wr_p, wr_t};
       end
@@ -129,8 +131,8 @@ module evms_mean_shift #(
     end
     assign {bank_x[b], bank_y[b]} = xy_q;
     assign {bank_p[b], bank_t[b]} = pt_q;
-    assign m_p[b] = pt_q[2*FW-1:FW];
-    assign m_t[b] = pt_q[FW-1:0];
+    assign m_p[b] = pt_q[2*ModeBits-1:ModeBits];
+    assign m_t[b] = pt_q[ModeBits-1:0];
   end
 
   // Merging reads the modes after done; the bank is chosen by the index it presents.
@@ -144,16 +146,16 @@ module evms_mean_shift #(
   state_e state;
   logic [7:0]  k;          // sweep
   logic [15:0] i;          // point
-  logic [AW:0] a;          // chunk address
+  logic [AddrBits:0] a;          // chunk address
   logic [7:0]  limit;
   logic [31:0] max_move;
   logic        sweep_begin;  // pulses when a sweep starts: the divider restarts its largest move
 
   // The point i's current coordinates, read at S_POINT and taken in its first issue clock.
-  logic signed [FW+1:0] xi, yi, pi_, ti;
+  logic signed [ModeBits+1:0] xi, yi, pi_, ti;
   // The point whose terms drain through the lanes, until its sums go to the divider.
   logic [15:0]   drain_i;
-  logic [FW-1:0] drain_cur [4];
+  logic [ModeBits-1:0] drain_cur [4];
   logic          draining;
   // Clocks until the next point may start: points start R + 10 clocks apart at least, so that
   // the divider has finished the previous point when the next one's sums are in.
@@ -161,49 +163,49 @@ module evms_mean_shift #(
   logic [4:0]    spacing;
 
   assign xy_addr = state == S_POINT ? {cur, addr_of(i)} : {cur, addr_of(rd_i)};
-  assign pt_addr = state == S_POINT ? {cur, addr_of(i)} : (state == S_IDLE ? {cur, addr_of(rd_i)} : {cur, AW'(a)});
+  assign pt_addr = state == S_POINT ? {cur, addr_of(i)} : (state == S_IDLE ? {cur, addr_of(rd_i)} : {cur, AddrBits'(a)});
 
   // Lane issue: address a, chunk valid per lane.
   logic issue, last_chunk;
   assign issue = state == S_ISSUE;
-  assign last_chunk = (32'(a) + 1) * LANES >= 32'(n);
-  logic [LANES-1:0] lane_valid_issue;
+  assign last_chunk = (32'(a) + 1) * Lanes >= 32'(n);
+  logic [Lanes-1:0] lane_valid_issue;
   always_comb begin
-    for (int l = 0; l < LANES; l++) lane_valid_issue[l] = issue && (32'(a) * LANES + l < 32'(n));
+    for (int l = 0; l < Lanes; l++) lane_valid_issue[l] = issue && (32'(a) * Lanes + l < 32'(n));
   end
 
   // ---- lanes ------------------------------------------------------------------------------
   // s1: memory data; s2: differences; s3: u; s4..s5: exp; s6: products.
-  logic [LANES-1:0] v1, v2, v3, v4, v5, v6;
-  logic [FW-1:0] d_x0 [5][LANES], d_y0 [5][LANES], d_p [5][LANES], d_t [5][LANES];
-  // Differences of two values in [0, 2^FW) fit FW + 1 signed bits: 18 on the Arty build, the
+  logic [Lanes-1:0] v1, v2, v3, v4, v5, v6;
+  logic [ModeBits-1:0] d_x0 [5][Lanes], d_y0 [5][Lanes], d_p [5][Lanes], d_t [5][Lanes];
+  // Differences of two values in [0, 2^ModeBits) fit ModeBits + 1 signed bits: 18 on the Arty build, the
   // widest operand one DSP48E1 squares (19 bits take two).
-  logic signed [FW:0] dx [LANES], dy [LANES], dp [LANES], dtt [LANES];
-  logic [63:0] u [LANES];
-  logic [WEIGHT_FRAC:0] w [LANES];
-  logic [WEIGHT_FRAC:0] w6 [LANES];
-  logic [63:0] px6 [LANES], py6 [LANES], pp6 [LANES], pt6 [LANES];
+  logic signed [ModeBits:0] dx [Lanes], dy [Lanes], dp [Lanes], dtt [Lanes];
+  logic [63:0] u [Lanes];
+  logic [WeightFrac:0] w [Lanes];
+  logic [WeightFrac:0] w6 [Lanes];
+  logic [63:0] px6 [Lanes], py6 [Lanes], pp6 [Lanes], pt6 [Lanes];
   logic last1, last2, last3, last4, last5, last6;
 
-  for (genvar l = 0; l < LANES; l++) begin : g_lane
+  for (genvar l = 0; l < Lanes; l++) begin : g_lane
     always_ff @(posedge clk) begin
-      dx[l]  <= (FW+1)'(xi - $signed({2'b0, m_x0[l]}));
-      dy[l]  <= (FW+1)'(yi - $signed({2'b0, m_y0[l]}));
-      dp[l]  <= (FW+1)'(pi_ - $signed({1'b0, m_p[l]}));
-      dtt[l] <= (FW+1)'(ti - $signed({1'b0, m_t[l]}));
+      dx[l]  <= (ModeBits+1)'(xi - $signed({2'b0, m_x0[l]}));
+      dy[l]  <= (ModeBits+1)'(yi - $signed({2'b0, m_y0[l]}));
+      dp[l]  <= (ModeBits+1)'(pi_ - $signed({1'b0, m_p[l]}));
+      dtt[l] <= (ModeBits+1)'(ti - $signed({1'b0, m_t[l]}));
       // Operands widen before they multiply: a cast of a product would keep its narrow width.
       u[l] <= 64'($signed(64'(dx[l])) * $signed(64'(dx[l]))) + 64'($signed(64'(dy[l])) * $signed(64'(dy[l]))) +
               64'($signed(64'(dp[l])) * $signed(64'(dp[l]))) + 64'($signed(64'(dtt[l])) * $signed(64'(dtt[l])));
       w6[l] <= v5[l] ? w[l] : '0;
-      px6[l] <= (64'(w[l]) * 64'(d_x0[3][l])) >> PS;
-      py6[l] <= (64'(w[l]) * 64'(d_y0[3][l])) >> PS;
-      pp6[l] <= (64'(w[l]) * 64'(d_p[3][l])) >> PS;
-      pt6[l] <= (64'(w[l]) * 64'(d_t[3][l])) >> PS;
+      px6[l] <= (64'(w[l]) * 64'(d_x0[3][l])) >> ProductShift;
+      py6[l] <= (64'(w[l]) * 64'(d_y0[3][l])) >> ProductShift;
+      pp6[l] <= (64'(w[l]) * 64'(d_p[3][l])) >> ProductShift;
+      pt6[l] <= (64'(w[l]) * 64'(d_t[3][l])) >> ProductShift;
     end
     // The lane's point, carried along to the product stage.
     always_ff @(posedge clk) begin
-      d_x0[0][l] <= FW'(m_x0[l]);
-      d_y0[0][l] <= FW'(m_y0[l]);
+      d_x0[0][l] <= ModeBits'(m_x0[l]);
+      d_y0[0][l] <= ModeBits'(m_y0[l]);
       d_p[0][l] <= m_p[l];
       d_t[0][l] <= m_t[l];
       for (int s = 1; s < 5; s++) begin
@@ -213,7 +215,7 @@ module evms_mean_shift #(
         d_t[s][l] <= d_t[s-1][l];
       end
     end
-    evms_exp_lut #(.L(EXP_LOG2), .WF(WEIGHT_FRAC), .IB(EXP_INTERP), .UF(UF), .UW(64), .MEM_FILE(EXP_MEM))
+    evms_exp_lut #(.TableLog2(ExpTableLog2), .WeightFrac(WeightFrac), .InterpBits(ExpInterpBits), .ArgFrac(DistFrac), .ArgBits(64), .TableFile(ExpTableFile))
       u_exp (.clk(clk), .u(u[l]), .w(w[l]));
   end
 
@@ -252,12 +254,12 @@ module evms_mean_shift #(
     end else begin
       // node k's five sums are bits [320 k +: 320] (a flat vector: Yosys takes no multi-dimensional
       // variable declared in a block)
-      logic [2*LANES*320-1:0] lane_tree;
+      logic [2*Lanes*320-1:0] lane_tree;
       logic [63:0] aw, ax, ay, ap, at;
       lane_tree = '0;
-      for (int l = 0; l < LANES; l++)
-        if (v6[l]) lane_tree[320*(LANES + l) +: 320] = {64'(w6[l]), px6[l], py6[l], pp6[l], pt6[l]};
-      for (int node = LANES - 1; node >= 1; node--)
+      for (int l = 0; l < Lanes; l++)
+        if (v6[l]) lane_tree[320*(Lanes + l) +: 320] = {64'(w6[l]), px6[l], py6[l], pp6[l], pt6[l]};
+      for (int node = Lanes - 1; node >= 1; node--)
         for (int q = 0; q < 5; q++)
           lane_tree[320*node + 64*q +: 64] = lane_tree[640*node + 64*q +: 64] + lane_tree[640*node + 320 + 64*q +: 64];
       {aw, ax, ay, ap, at} = lane_tree[320 +: 320];
@@ -277,9 +279,9 @@ module evms_mean_shift #(
   logic        job_valid, job_busy;
   logic [15:0] job_i;
   logic [63:0] job_sw, job_s [4];
-  logic [FW-1:0] job_cur [4];
+  logic [ModeBits-1:0] job_cur [4];
   logic [2:0]  job_dim;
-  logic [FW-1:0] job_next [4];
+  logic [ModeBits-1:0] job_next [4];
   typedef enum logic [2:0] {D_IDLE, D_RECIP, D_QUOT, D_WRITE} dstate_e;
   dstate_e dstate;
 
@@ -288,16 +290,16 @@ module evms_mean_shift #(
   // The quotients are a three-clock pipeline, one dimension a clock, so that no clock holds
   // more than one multiply or one wide add: the sum's four 16-bit digits times r (one DSP
   // each), their sum (the low 64 bits of sum * r) into quot_p, then the rounding shift (by at
-  // least one bit: QF <= RECIP_FRAC).
-  logic [RECIP_FRAC+16:0] quot_pp [4];
+  // least one bit: QuotientFrac <= RecipFrac).
+  logic [RecipFrac+16:0] quot_pp [4];
   logic [63:0] quot_p;
   logic [6:0]  quot_shift;
-  assign quot_shift = 7'(RECIP_FRAC) + recip_m - 7'(QF);
+  assign quot_shift = 7'(RecipFrac) + recip_m - 7'(QuotientFrac);
 
   // The sweep's largest move so far, with one more coordinate's move. The quotient pipeline
   // takes the dimensions' moves one a clock as their quotients land, instead of all four in
   // series when the point is written.
-  function automatic [31:0] larger_move(input [31:0] so_far, input [FW-1:0] next, input [FW-1:0] now);
+  function automatic [31:0] larger_move(input [31:0] so_far, input [ModeBits-1:0] next, input [ModeBits-1:0] now);
     logic [31:0] diff;
     begin
       diff = next > now ? 32'(next) - 32'(now) : 32'(now) - 32'(next);
@@ -339,10 +341,10 @@ module evms_mean_shift #(
         end
         D_QUOT: begin
           if (job_dim < 4)
-            for (int g = 0; g < 4; g++) quot_pp[g] <= (RECIP_FRAC+17)'(job_s[job_dim[1:0]][16*g +: 16]) * (RECIP_FRAC+17)'(recip_r);
+            for (int g = 0; g < 4; g++) quot_pp[g] <= (RecipFrac+17)'(job_s[job_dim[1:0]][16*g +: 16]) * (RecipFrac+17)'(recip_r);
           if (job_dim >= 1 && job_dim <= 4)
             quot_p <= 64'(quot_pp[0]) + (64'(quot_pp[1]) << 16) + (64'(quot_pp[2]) << 32) + (64'(quot_pp[3]) << 48);
-          if (job_dim >= 2) job_next[2'(job_dim - 3'd2)] <= FW'(evms_round_pkg::round_shift(quot_p, quot_shift - 7'd1));
+          if (job_dim >= 2) job_next[2'(job_dim - 3'd2)] <= ModeBits'(evms_round_pkg::round_shift(quot_p, quot_shift - 7'd1));
           if (job_dim >= 3) max_move <= larger_move(max_move, job_next[2'(job_dim - 3'd3)], job_cur[2'(job_dim - 3'd3)]);
           job_dim <= job_dim + 1'b1;
           if (job_dim == 5) dstate <= D_WRITE;
@@ -404,17 +406,17 @@ module evms_mean_shift #(
       // one-chunk point has taken them too), handed to the divider when its sums are in.
       if (issue && last_chunk) drain_i <= i;
       if (last1) begin
-        drain_cur[0] <= FW'(xi);
-        drain_cur[1] <= FW'(yi);
-        drain_cur[2] <= FW'(pi_);
-        drain_cur[3] <= FW'(ti);
+        drain_cur[0] <= ModeBits'(xi);
+        drain_cur[1] <= ModeBits'(yi);
+        drain_cur[2] <= ModeBits'(pi_);
+        drain_cur[3] <= ModeBits'(ti);
       end
       case (state)
         S_IDLE: if (start) begin
           cur <= 1'b0;
           k <= '0;
           sweeps <= '0;
-          limit <= cfg_max_iterations < 8'(ITERATIONS_MAX) ? cfg_max_iterations : 8'(ITERATIONS_MAX);
+          limit <= cfg_max_iterations < 8'(IterationsMax) ? cfg_max_iterations : 8'(IterationsMax);
           if (cfg_max_iterations == 0 || n == 0) begin
             done <= 1'b1;
           end else begin
@@ -470,10 +472,6 @@ module evms_mean_shift #(
     end
   end
 
-`ifndef SYNTHESIS
   // The divider must be free when a point's sums are in (the point spacing guarantees it).
-  always_ff @(posedge clk)
-    if (sums_ready && (job_valid || job_busy || dstate != D_IDLE))
-      $error("evms_mean_shift: point %0d's sums are in while the divider is busy", drain_i);
-`endif
+  `EVMS_ASSERT("a point's sums are in while the divider is busy", !(sums_ready && (job_valid || job_busy || dstate != D_IDLE)), clk, rst_n)
 endmodule

@@ -6,8 +6,8 @@
 // seed, their squared sum, the comparison), so that no clock holds a multiply and a 64-bit
 // comparison in series: a mode's seeds take seeds + 2 clocks.
 module evms_merge #(
-  parameter int CLUSTERS_MAX = 16,
-  parameter int FW           = 17      // mode width (features + 1)
+  parameter int ClustersMax = 16,
+  parameter int ModeBits           = 17      // mode width (features + 1)
 ) (
   input  logic          clk,
   input  logic          rst_n,
@@ -18,10 +18,10 @@ module evms_merge #(
   input  logic [7:0]    cfg_max_clusters,
   // Mode reads (1-cycle latency).
   output logic [15:0]   rd_i,
-  input  logic [FW-1:0] rd_x,
-  input  logic [FW-1:0] rd_y,
-  input  logic [FW-1:0] rd_p,
-  input  logic [FW-1:0] rd_t,
+  input  logic [ModeBits-1:0] rd_x,
+  input  logic [ModeBits-1:0] rd_y,
+  input  logic [ModeBits-1:0] rd_p,
+  input  logic [ModeBits-1:0] rd_t,
   // Cluster of each point: written here, read by the core afterwards.
   output logic          co_we,
   output logic [15:0]   co_i,
@@ -30,14 +30,14 @@ module evms_merge #(
   output logic          done,
   output logic [7:0]    clusters
 );
-  localparam int CW = CLUSTERS_MAX > 1 ? $clog2(CLUSTERS_MAX) : 1;
+  localparam int ClusterIndexBits = ClustersMax > 1 ? $clog2(ClustersMax) : 1;
   typedef enum logic [3:0] {S_IDLE, S_READ, S_WAIT, S_SEEDS, S_DECIDE, S_RENUMBER, S_RELABEL_READ, S_RELABEL_WAIT,
                             S_RELABEL_WRITE, S_DONE} state_e;
   state_e state;
-  logic [FW-1:0] seed_x [CLUSTERS_MAX], seed_y [CLUSTERS_MAX], seed_p [CLUSTERS_MAX], seed_t [CLUSTERS_MAX];
-  logic [15:0]   size [CLUSTERS_MAX];
-  logic signed [7:0] renumber [CLUSTERS_MAX];
-  logic [FW-1:0] mx, my, mp, mt;
+  logic [ModeBits-1:0] seed_x [ClustersMax], seed_y [ClustersMax], seed_p [ClustersMax], seed_t [ClustersMax];
+  logic [15:0]   size [ClustersMax];
+  logic signed [7:0] renumber [ClustersMax];
+  logic [ModeBits-1:0] mx, my, mp, mt;
   logic [15:0]   i;
   logic [7:0]    c, seeds, count;
   logic signed [8:0] best;
@@ -45,16 +45,16 @@ module evms_merge #(
 
   // Distance from the mode to seed c: the differences (stage A), then their squared sum (B),
   // each with the seed's index and a valid bit; stage C compares.
-  logic signed [FW:0] ex, ey, ep, et;
+  logic signed [ModeBits:0] ex, ey, ep, et;
   logic [63:0] d2;
   logic        a_valid, b_valid;
   logic [7:0]  a_c, b_c;
   always_ff @(posedge clk) begin
     if (state == S_SEEDS) begin
-      ex <= $signed({1'b0, mx}) - $signed({1'b0, seed_x[CW'(c)]});
-      ey <= $signed({1'b0, my}) - $signed({1'b0, seed_y[CW'(c)]});
-      ep <= $signed({1'b0, mp}) - $signed({1'b0, seed_p[CW'(c)]});
-      et <= $signed({1'b0, mt}) - $signed({1'b0, seed_t[CW'(c)]});
+      ex <= $signed({1'b0, mx}) - $signed({1'b0, seed_x[ClusterIndexBits'(c)]});
+      ey <= $signed({1'b0, my}) - $signed({1'b0, seed_y[ClusterIndexBits'(c)]});
+      ep <= $signed({1'b0, mp}) - $signed({1'b0, seed_p[ClusterIndexBits'(c)]});
+      et <= $signed({1'b0, mt}) - $signed({1'b0, seed_t[ClusterIndexBits'(c)]});
       a_c <= c;
       d2 <= 64'($signed(64'(ex)) * $signed(64'(ex))) + 64'($signed(64'(ey)) * $signed(64'(ey))) +
             64'($signed(64'(ep)) * $signed(64'(ep))) + 64'($signed(64'(et)) * $signed(64'(et)));
@@ -81,7 +81,7 @@ module evms_merge #(
       a_valid <= 1'b0;
       b_valid <= 1'b0;
       {mx, my, mp, mt} <= '0;
-      for (int q = 0; q < CLUSTERS_MAX; q++) begin
+      for (int q = 0; q < ClustersMax; q++) begin
         size[q] <= '0;
         renumber[q] <= '0;
         {seed_x[q], seed_y[q], seed_p[q], seed_t[q]} <= '0;
@@ -116,16 +116,16 @@ module evms_merge #(
         S_DECIDE: begin
           logic signed [8:0] b;
           b = best;
-          if (b < 0 && seeds < cfg_max_clusters && 32'(seeds) < CLUSTERS_MAX) begin
+          if (b < 0 && seeds < cfg_max_clusters && 32'(seeds) < ClustersMax) begin
             b = $signed({1'b0, seeds});
-            seed_x[CW'(seeds)] <= mx;
-            seed_y[CW'(seeds)] <= my;
-            seed_p[CW'(seeds)] <= mp;
-            seed_t[CW'(seeds)] <= mt;
-            size[CW'(seeds)] <= 16'd1;
+            seed_x[ClusterIndexBits'(seeds)] <= mx;
+            seed_y[ClusterIndexBits'(seeds)] <= my;
+            seed_p[ClusterIndexBits'(seeds)] <= mp;
+            seed_t[ClusterIndexBits'(seeds)] <= mt;
+            size[ClusterIndexBits'(seeds)] <= 16'd1;
             seeds <= seeds + 1'b1;
           end else if (b >= 0) begin
-            size[CW'(b)] <= size[CW'(b)] + 1'b1;
+            size[ClusterIndexBits'(b)] <= size[ClusterIndexBits'(b)] + 1'b1;
           end
           co_we <= 1'b1;
           co_i <= i;
@@ -144,11 +144,11 @@ module evms_merge #(
             i <= '0;
             state <= n == 0 ? S_DONE : S_RELABEL_READ;
           end else begin
-            if (size[CW'(c)] >= cfg_min_cluster_size) begin
-              renumber[CW'(c)] <= $signed(count);
+            if (size[ClusterIndexBits'(c)] >= cfg_min_cluster_size) begin
+              renumber[ClusterIndexBits'(c)] <= $signed(count);
               count <= count + 1'b1;
             end else begin
-              renumber[CW'(c)] <= -8'sd1;
+              renumber[ClusterIndexBits'(c)] <= -8'sd1;
             end
             c <= c + 1'b1;
           end
@@ -160,7 +160,7 @@ module evms_merge #(
         S_RELABEL_WAIT: state <= S_RELABEL_WRITE;
         S_RELABEL_WRITE: begin
           co_we <= 1'b1;
-          co_value <= co_rdata >= 0 ? renumber[CW'(co_rdata)] : -8'sd1;
+          co_value <= co_rdata >= 0 ? renumber[ClusterIndexBits'(co_rdata)] : -8'sd1;
           if (32'(i) + 1 < 32'(n)) begin
             i <= i + 1'b1;
             state <= S_RELABEL_READ;

@@ -2,32 +2,32 @@
 // port, so that synthesis maps it to block RAM; a two-entry output buffer keeps one word a
 // cycle flowing through the RAM's read latency.
 module evms_fifo #(
-  parameter int WIDTH = 32,
-  parameter int DEPTH = 512
+  parameter int Width = 32,
+  parameter int Depth = 512
 ) (
   input  logic             clk,
   input  logic             rst_n,
   input  logic             in_valid,
   output logic             in_ready,
-  input  logic [WIDTH-1:0] in_data,
+  input  logic [Width-1:0] in_data,
   output logic             out_valid,
   input  logic             out_ready,
-  output logic [WIDTH-1:0] out_data
+  output logic [Width-1:0] out_data
 );
-  localparam int AW = $clog2(DEPTH);
+  localparam int AddrBits = $clog2(Depth);
 
-  logic [WIDTH-1:0] mem [DEPTH];
-  logic [AW:0] head, tail;          // RAM read and write positions
-  logic [WIDTH-1:0] rdata;
+  logic [Width-1:0] mem [Depth];
+  logic [AddrBits:0] head, tail;          // RAM read and write positions
+  logic [Width-1:0] rdata;
   logic rd_en, rd_inflight;
 
   // Output buffer: up to two words, the older at index ob_head.
-  logic [WIDTH-1:0] ob [2];
+  logic [Width-1:0] ob [2];
   logic [1:0] ob_n;
   logic ob_head;
 
   wire ram_empty = head == tail;
-  assign in_ready = (tail - head) != (AW+1)'(DEPTH);
+  assign in_ready = (tail - head) != (AddrBits+1)'(Depth);
   assign out_valid = ob_n != 0;
   assign out_data = ob[ob_head];
   wire take = out_valid && out_ready;
@@ -35,8 +35,8 @@ module evms_fifo #(
   assign rd_en = !ram_empty && (32'(ob_n) + 32'(rd_inflight) - 32'(take)) < 2;
 
   always_ff @(posedge clk) begin
-    if (in_valid && in_ready) mem[AW'(tail)] <= in_data;
-    if (rd_en) rdata <= mem[AW'(head)];
+    if (in_valid && in_ready) mem[AddrBits'(tail)] <= in_data;
+    if (rd_en) rdata <= mem[AddrBits'(head)];
   end
 
   always_ff @(posedge clk or negedge rst_n) begin

@@ -1,11 +1,11 @@
 // Signed 64 x 64 multiplier, low 64 bits, for the core's sequential stages (features, merging,
 // centroids, tracking), which the core keeps below 2^63 so that the low bits are the product.
-//   DIGIT_BITS = 64: pipelined over three clocks (FPGAs with DSP blocks, and simulation);
-//   DIGIT_BITS < 64: DIGIT_BITS bits of |b| a cycle (iCE40: a few hundred LUTs, no DSP).
+//   DigitBits = 64: pipelined over three clocks (FPGAs with DSP blocks, and simulation);
+//   DigitBits < 64: DigitBits bits of |b| a cycle (iCE40: a few hundred LUTs, no DSP).
 // start is taken in any cycle in which busy is low; done pulses with p valid, and p holds until
 // the next product is done.
 module evms_mul #(
-  parameter int DIGIT_BITS = 64
+  parameter int DigitBits = 64
 ) (
   input  logic               clk,
   input  logic               rst_n,
@@ -16,7 +16,7 @@ module evms_mul #(
   output logic               done,
   output logic signed [63:0] p
 );
-  if (DIGIT_BITS >= 64) begin : g_pipelined
+  if (DigitBits >= 64) begin : g_pipelined
     // The low 64 bits of a two's-complement product are those of the unsigned product, so the
     // operands split into four 16-bit digits, and only the ten digit products with i + j <= 3
     // reach the low half. Each is one DSP multiply with a register behind it (no cascade, so
@@ -55,7 +55,7 @@ module evms_mul #(
     end
     assign busy = 1'b0;
   end else begin : g_serial
-    localparam int Steps = (64 + DIGIT_BITS - 1) / DIGIT_BITS;
+    localparam int Steps = (64 + DigitBits - 1) / DigitBits;
     logic [63:0] mag_a, mag_b, acc;
     logic        negate;
     logic [$clog2(Steps+1)-1:0] step;
@@ -79,14 +79,14 @@ module evms_mul #(
           step   <= '0;
           busy   <= 1'b1;
         end else if (busy) begin
-          // acc += |a| * digit(|b|, step) << (step * DIGIT_BITS), from the top digit down
-          acc  <= (acc << DIGIT_BITS) + mag_a * 64'(mag_b[63 - (32'(step) * DIGIT_BITS) -: DIGIT_BITS]);
+          // acc += |a| * digit(|b|, step) << (step * DigitBits), from the top digit down
+          acc  <= (acc << DigitBits) + mag_a * 64'(mag_b[63 - (32'(step) * DigitBits) -: DigitBits]);
           step <= step + 1'b1;
           if (32'(step) == Steps - 1) begin
             busy <= 1'b0;
             done <= 1'b1;
-            p    <= negate ? -((acc << DIGIT_BITS) + mag_a * 64'(mag_b[DIGIT_BITS-1:0]))
-                           : ((acc << DIGIT_BITS) + mag_a * 64'(mag_b[DIGIT_BITS-1:0]));
+            p    <= negate ? -((acc << DigitBits) + mag_a * 64'(mag_b[DigitBits-1:0]))
+                           : ((acc << DigitBits) + mag_a * 64'(mag_b[DigitBits-1:0]));
           end
         end
       end

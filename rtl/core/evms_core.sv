@@ -10,64 +10,12 @@
 // open is released at once. The parameters are one Shape (hls/core/shape.h), generated into
 // rtl/generated/evms_cfg_*.svh.
 module evms_core #(
-  parameter int MAX_WIDTH        = 240,
-  parameter int MAX_HEIGHT       = 180,
-  parameter int TS_BITS          = 16,
-  parameter int TS_SHIFT         = 7,
-  parameter int PACKET_MAX       = 256,
-  parameter int PENDING_DEPTH    = 1024,
-  parameter int LANES            = 8,
-  parameter int ITERATIONS_MAX   = 8,
-  parameter int CLUSTERS_MAX     = 16,
-  parameter int TRACKS_MAX       = 16,
-  parameter int FEAT_INT         = 5,
-  parameter int FEAT_FRAC        = 11,
-  parameter int WEIGHT_FRAC      = 16,
-  parameter int EXP_LOG2         = 9,
-  parameter int EXP_INTERP_BITS  = 8,
-  parameter int SUM_FRAC         = 16,
-  parameter int RECIP_LOG2       = 8,
-  parameter int RECIP_FRAC       = 20,
-  parameter int DECAY_FRAC       = 32,
-  parameter int COORD_SCALE_FRAC = 20,
-  parameter int POS_FRAC         = 12,
-  parameter int TICK_LOG2        = 14,
-  parameter int COV_FRAC         = 16,
-  parameter int GAIN_FRAC        = 20,
-  parameter int NOISE_FRAC       = 32,
-  parameter int MUL_DIGIT_BITS   = 64,
-  parameter     EXP_MEM          = "exp_9_16.mem",
-  parameter     RECIP_MEM        = "recip_8_20.mem"
+  `include "evms_core_shape_params.svh"
 ) (
   input  logic        clk,
   input  logic        rst_n,
-  // Registers (hls/core/config.h).
-  input  logic [15:0] cfg_sensor_width,
-  input  logic [15:0] cfg_sensor_height,
-  input  logic        cfg_filter_enabled,
-  input  logic [31:0] cfg_filter_window,
-  input  logic [15:0] cfg_packet_size,
-  input  logic [31:0] cfg_packet_max_span_us,
-  input  logic [31:0] cfg_scale_x,
-  input  logic [31:0] cfg_scale_y,
-  input  logic [31:0] cfg_phi_on,
-  input  logic [31:0] cfg_phi_t_max,
-  input  logic [63:0] cfg_inv_tau,
-  input  logic [7:0]  cfg_max_iterations,
-  input  logic [31:0] cfg_tolerance,
-  input  logic [63:0] cfg_merge_radius2,
-  input  logic [15:0] cfg_min_cluster_size,
-  input  logic [7:0]  cfg_max_clusters,
-  input  logic [63:0] cfg_gate2,
-  input  logic [7:0]  cfg_confirm_hits,
-  input  logic [31:0] cfg_coast_us,
-  input  logic [7:0]  cfg_max_tracks,
-  input  logic [63:0] cfg_q_third,
-  input  logic [63:0] cfg_q_half,
-  input  logic [63:0] cfg_q,
-  input  logic [63:0] cfg_r,
-  input  logic [63:0] cfg_p0_pos,
-  input  logic [63:0] cfg_p0_vel,
+  // Registers (hls/core/registers.h).
+  `include "evms_core_cfg_ports.svh"
   // Events in.
   input  logic        in_valid,
   output logic        in_ready,
@@ -108,25 +56,25 @@ module evms_core #(
   output logic [31:0] stat_tracks_started,
   output logic [31:0] stat_unassigned
 );
-  localparam int FEAT_BITS = FEAT_INT + FEAT_FRAC;
-  localparam int FW = FEAT_BITS + 1;
-  localparam int PW = $clog2(PENDING_DEPTH + 1);   // counts 0..PENDING_DEPTH
-  localparam int NW = $clog2(PACKET_MAX + 1);
-  localparam int PI = $clog2(PENDING_DEPTH);       // indexes
-  localparam int NI = $clog2(PACKET_MAX);
-  localparam logic [63:0] FeatMax = (64'd1 << FEAT_BITS) - 1;
+  localparam int FeatBits = FeatInt + FeatFrac;
+  localparam int ModeBits = FeatBits + 1;
+  localparam int PendingCountBits = $clog2(PendingDepth + 1);   // counts 0..PendingDepth
+  localparam int PacketCountBits = $clog2(PacketMax + 1);
+  localparam int PendingIndexBits = $clog2(PendingDepth);       // indexes
+  localparam int PacketIndexBits = $clog2(PacketMax);
+  localparam logic [63:0] FeatMax = (64'd1 << FeatBits) - 1;
 
   // ---- memories ---------------------------------------------------------------------------
   // Each has one write port and one registered read port, so that it maps to block RAM.
   // Pending queue: every event since the last release, with its index in the packet or -1.
   localparam int PendW = 32 + 16 + 16 + 1 + 16;
-  logic [PendW-1:0] pend_mem [PENDING_DEPTH];
+  logic [PendW-1:0] pend_mem [PendingDepth];
   logic             pend_we;
   logic [PendW-1:0] pend_wdata, pend_rdata;
   // The open packet, and each of its events' cluster.
-  logic [64:0] pk_mem [PACKET_MAX];
+  logic [64:0] pk_mem [PacketMax];
   logic [64:0] pk_rdata;
-  logic signed [7:0] cluster_of [PACKET_MAX];
+  logic signed [7:0] cluster_of [PacketMax];
 
   // Packet RAM read port (features, centroids) and cluster_of port (merge, centroids, release).
   logic [15:0] rd_pk_i, co_i;
@@ -139,14 +87,14 @@ module evms_core #(
   logic [31:0] e_t;
   logic [15:0] e_x, e_y;
   logic        e_p;
-  logic [NW-1:0] n;          // kept events in the packet
-  logic [PW-1:0] pend_n;     // events waiting
+  logic [PacketCountBits-1:0] n;          // kept events in the packet
+  logic [PendingCountBits-1:0] pend_n;     // events waiting
   logic [31:0] t_first, t_last;
   logic        append_after;  // the closing event still has to join the next packet
 
   // ---- filter -------------------------------------------------------------------------------
   logic f_ready, f_start, f_done, f_kept;
-  evms_ba_filter #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .TS_BITS(TS_BITS), .TS_SHIFT(TS_SHIFT)) u_filter (
+  evms_ba_filter #(.MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift)) u_filter (
     .clk(clk), .rst_n(rst_n), .cfg_enabled(cfg_filter_enabled), .cfg_width(cfg_sensor_width), .cfg_height(cfg_sensor_height),
     .cfg_window(cfg_filter_window), .ready(f_ready), .start(f_start), .t(in_t), .x(in_x), .y(in_y), .done(f_done), .kept(f_kept));
 
@@ -155,27 +103,27 @@ module evms_core #(
   logic signed [63:0] feat_mul_a, feat_mul_b;
   logic mul_start, mul_busy, mul_done;  // consumers wait for done, so busy is only for lint
   logic signed [63:0] mul_a, mul_b, mul_p;
-  evms_mul #(.DIGIT_BITS(MUL_DIGIT_BITS)) u_mul (
+  evms_mul #(.DigitBits(MulDigitBits)) u_mul (
     .clk(clk), .rst_n(rst_n), .start(mul_start), .a(mul_a), .b(mul_b), .busy(mul_busy), .done(mul_done), .p(mul_p));
   logic recip_start, recip_done;
   logic [63:0] recip_x;
-  logic [RECIP_FRAC:0] recip_r;
+  logic [RecipFrac:0] recip_r;
   logic [6:0] recip_m;
-  evms_recip #(.T(RECIP_LOG2), .RF(RECIP_FRAC), .MEM_FILE(RECIP_MEM)) u_recip (
+  evms_recip #(.TableLog2(RecipTableLog2), .RecipFrac(RecipFrac), .TableFile(RecipTableFile)) u_recip (
     .clk(clk), .rst_n(rst_n), .start(recip_start), .x(recip_x), .done(recip_done), .r(recip_r), .m(recip_m));
 
   // ---- mean-shift engine ----------------------------------------------------------------------
   logic ms_load_we, ms_start, ms_done;
   logic [15:0] ms_load_i, ms_rd_i;
-  logic [FEAT_BITS-1:0] ms_lx, ms_ly, ms_lp, ms_lt;
+  logic [FeatBits-1:0] ms_lx, ms_ly, ms_lp, ms_lt;
   logic [7:0] ms_sweeps;
-  logic [FW-1:0] ms_rx, ms_ry, ms_rp, ms_rt;
+  logic [ModeBits-1:0] ms_rx, ms_ry, ms_rp, ms_rt;
   logic ms_recip_start;
   logic [63:0] ms_recip_x;
   evms_mean_shift #(
-    .PACKET_MAX(PACKET_MAX), .LANES(LANES), .ITERATIONS_MAX(ITERATIONS_MAX), .FEAT_BITS(FEAT_BITS), .FEAT_FRAC(FEAT_FRAC),
-    .WEIGHT_FRAC(WEIGHT_FRAC), .SUM_FRAC(SUM_FRAC), .EXP_LOG2(EXP_LOG2), .EXP_INTERP(EXP_INTERP_BITS),
-    .RECIP_FRAC(RECIP_FRAC), .EXP_MEM(EXP_MEM)
+    .PacketMax(PacketMax), .Lanes(Lanes), .IterationsMax(IterationsMax), .FeatBits(FeatBits), .FeatFrac(FeatFrac),
+    .WeightFrac(WeightFrac), .SumFrac(SumFrac), .ExpTableLog2(ExpTableLog2), .ExpInterpBits(ExpInterpBits),
+    .RecipFrac(RecipFrac), .ExpTableFile(ExpTableFile)
   ) u_mean_shift (
     .clk(clk), .rst_n(rst_n), .load_we(ms_load_we), .load_i(ms_load_i), .load_x(ms_lx), .load_y(ms_ly), .load_p(ms_lp),
     .load_t(ms_lt), .start(ms_start), .n(16'(n)), .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance),
@@ -187,7 +135,7 @@ module evms_core #(
   logic [15:0] mg_rd_i, mg_co_i;
   logic signed [7:0] mg_co_value;
   logic [7:0] clusters;
-  evms_merge #(.CLUSTERS_MAX(CLUSTERS_MAX), .FW(FW)) u_merge (
+  evms_merge #(.ClustersMax(ClustersMax), .ModeBits(ModeBits)) u_merge (
     .clk(clk), .rst_n(rst_n), .start(mg_start), .n(16'(n)), .cfg_merge_radius2(cfg_merge_radius2),
     .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_max_clusters(cfg_max_clusters), .rd_i(mg_rd_i), .rd_x(ms_rx),
     .rd_y(ms_ry), .rd_p(ms_rp), .rd_t(ms_rt), .co_we(mg_co_we), .co_i(mg_co_i), .co_value(mg_co_value),
@@ -201,7 +149,7 @@ module evms_core #(
   logic [7:0] z_c;
   logic [31:0] z_t;
   logic signed [31:0] z_x, z_y;
-  evms_centroid #(.CLUSTERS_MAX(CLUSTERS_MAX), .POS_FRAC(POS_FRAC), .RECIP_FRAC(RECIP_FRAC)) u_centroid (
+  evms_centroid #(.ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac)) u_centroid (
     .clk(clk), .rst_n(rst_n), .start(ct_start), .n(16'(n)), .clusters(clusters), .t0(t_first), .rd_i(ct_rd_i),
     .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_cluster(co_rdata), .recip_start(ct_recip_start),
     .recip_x(ct_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m), .mul_start(ct_mul_start),
@@ -215,8 +163,8 @@ module evms_core #(
   logic [7:0] id_c;
   logic signed [31:0] id_of;
   evms_tracker #(
-    .CLUSTERS_MAX(CLUSTERS_MAX), .TRACKS_MAX(TRACKS_MAX), .POS_FRAC(POS_FRAC), .TICK_LOG2(TICK_LOG2), .COV_FRAC(COV_FRAC),
-    .GAIN_FRAC(GAIN_FRAC), .NOISE_FRAC(NOISE_FRAC), .RECIP_FRAC(RECIP_FRAC)
+    .ClustersMax(ClustersMax), .TracksMax(TracksMax), .PosFrac(PosFrac), .TickLog2(TickLog2), .CovFrac(CovFrac),
+    .GainFrac(GainFrac), .NoiseFrac(NoiseFrac), .RecipFrac(RecipFrac)
   ) u_tracker (
     .clk(clk), .rst_n(rst_n), .cfg_gate2(cfg_gate2), .cfg_confirm_hits(cfg_confirm_hits), .cfg_coast_us(cfg_coast_us),
     .cfg_max_tracks(cfg_max_tracks), .cfg_q_third(cfg_q_third), .cfg_q_half(cfg_q_half), .cfg_q(cfg_q), .cfg_r(cfg_r),
@@ -229,20 +177,16 @@ module evms_core #(
 
   // ---- decay for the time feature -----------------------------------------------------------------
   logic [63:0] decay_u;
-  logic [WEIGHT_FRAC:0] decay_w;
-  evms_exp_lut #(.L(EXP_LOG2), .WF(WEIGHT_FRAC), .IB(EXP_INTERP_BITS), .UF(DECAY_FRAC), .UW(64), .MEM_FILE(EXP_MEM)) u_decay (
+  logic [WeightFrac:0] decay_w;
+  evms_exp_lut #(.TableLog2(ExpTableLog2), .WeightFrac(WeightFrac), .InterpBits(ExpInterpBits), .ArgFrac(DecayFrac), .ArgBits(64), .TableFile(ExpTableFile)) u_decay (
     .clk(clk), .u(decay_u), .w(decay_w));
 
   // ---- control ------------------------------------------------------------------------------------
-  typedef enum logic [4:0] {
-    C_IDLE, C_FILTER, C_APPEND, C_CLOSE, C_FEAT_READ, C_FEAT_WAIT, C_FEAT_X, C_FEAT_Y, C_FEAT_AGE, C_FEAT_DECAY1,
-    C_FEAT_DECAY2, C_FEAT_T, C_FEAT_STORE, C_MEANSHIFT, C_MERGE, C_CENTROID, C_TRACK, C_PACKET, C_RELEASE_READ,
-    C_RELEASE_WAIT, C_RELEASE_CLUSTER, C_RELEASE_SEND
-  } state_e;
+  `include "evms_core_states.svh"
   state_e state /*verilator public_flat_rd*/;  // read by the cycle profile (sim/rtl_core.h)
   logic [15:0] fi;            // feature index
-  logic [PW-1:0] ri;          // release index
-  logic [FEAT_BITS-1:0] phi_x, phi_y, phi_p;
+  logic [PendingCountBits-1:0] ri;          // release index
+  logic [FeatBits-1:0] phi_x, phi_y, phi_p;
   logic [31:0] rel_t;
   logic [15:0] rel_x, rel_y;
   logic        rel_p;
@@ -250,20 +194,20 @@ module evms_core #(
   logic [7:0]  iterations;
 
   always_ff @(posedge clk) begin
-    if (pend_we) pend_mem[PI'(pend_n)] <= pend_wdata;
-    pend_rdata <= pend_mem[PI'(ri)];
-    if (state == C_APPEND) pk_mem[NI'(n)] <= {e_x, e_y, e_p, e_t};
-    pk_rdata <= pk_mem[NI'(rd_pk_i)];
-    if (mg_co_we) cluster_of[NI'(mg_co_i)] <= mg_co_value;
-    co_rdata <= cluster_of[NI'(co_i)];
+    if (pend_we) pend_mem[PendingIndexBits'(pend_n)] <= pend_wdata;
+    pend_rdata <= pend_mem[PendingIndexBits'(ri)];
+    if (state == StAppend) pk_mem[PacketIndexBits'(n)] <= {e_x, e_y, e_p, e_t};
+    pk_rdata <= pk_mem[PacketIndexBits'(rd_pk_i)];
+    if (mg_co_we) cluster_of[PacketIndexBits'(mg_co_i)] <= mg_co_value;
+    co_rdata <= cluster_of[PacketIndexBits'(co_i)];
   end
   assign {rd_pk_x, rd_pk_y, rd_pk_p, rd_pk_t} = pk_rdata;
   // Events join the pending queue when the filter rejects them or when they join the packet.
-  assign pend_we = (state == C_FILTER && f_done && !f_kept) || state == C_APPEND;
-  assign pend_wdata = {e_t, e_x, e_y, e_p, state == C_APPEND ? 16'(n) : 16'hFFFF};
-  assign rd_pk_i = state == C_CENTROID ? ct_rd_i : fi;
-  assign co_i = state == C_MERGE ? mg_co_i : (state == C_CENTROID ? ct_rd_i :
-                (state == C_RELEASE_WAIT ? pend_rdata[15:0] : 16'(rel_idx)));
+  assign pend_we = (state == StFilter && f_done && !f_kept) || state == StAppend;
+  assign pend_wdata = {e_t, e_x, e_y, e_p, state == StAppend ? 16'(n) : 16'hFFFF};
+  assign rd_pk_i = state == StCentroid ? ct_rd_i : fi;
+  assign co_i = state == StMerge ? mg_co_i : (state == StCentroid ? ct_rd_i :
+                (state == StReleaseWait ? pend_rdata[15:0] : 16'(rel_idx)));
   assign ms_rd_i = mg_rd_i;
 
   // The shared units belong to one stage at a time.
@@ -273,13 +217,13 @@ module evms_core #(
     mul_b = '0;
     recip_start = 1'b0;
     recip_x = '0;
-    if (state == C_CENTROID) begin
+    if (state == StCentroid) begin
       mul_start = ct_mul_start;
       mul_a = ct_mul_a;
       mul_b = ct_mul_b;
       recip_start = ct_recip_start;
       recip_x = ct_recip_x;
-    end else if (state == C_TRACK) begin
+    end else if (state == StTrack) begin
       mul_start = tk_mul_start;
       mul_a = tk_mul_a;
       mul_b = tk_mul_b;
@@ -306,14 +250,14 @@ module evms_core #(
     end
   endfunction
 
-  assign in_ready = state == C_IDLE && f_ready;
+  assign in_ready = state == StIdle && f_ready;
   assign idle = in_ready && pend_n == 0 && !lab_valid && !trk_valid && !pkt_valid;
   assign f_start = in_valid && in_ready && !in_flush;
   assign id_c = co_rdata >= 0 ? 8'(co_rdata) : 8'd0;
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state <= C_IDLE;
+      state <= StIdle;
       {e_t, e_x, e_y, e_p} <= '0;
       n <= '0;
       pend_n <= '0;
@@ -351,108 +295,108 @@ module evms_core #(
       if (lab_valid && lab_ready) lab_valid <= 1'b0;
       if (pkt_valid && pkt_ready) pkt_valid <= 1'b0;
       case (state)
-        C_IDLE: if (in_valid && in_ready) begin
+        StIdle: if (in_valid && in_ready) begin
           {e_t, e_x, e_y, e_p} <= {in_t, in_x, in_y, in_p};
           append_after <= 1'b0;
-          state <= in_flush ? C_CLOSE : C_FILTER;
+          state <= in_flush ? StClose : StFilter;
         end
-        C_FILTER: if (f_done) begin
+        StFilter: if (f_done) begin
           if (!f_kept) begin
             pend_n <= pend_n + 1'b1;
-            state <= (n == 0 || 32'(pend_n) + 1 == PENDING_DEPTH) ? C_CLOSE : C_IDLE;
+            state <= (n == 0 || 32'(pend_n) + 1 == PendingDepth) ? StClose : StIdle;
           end else if (n > 0 && cfg_packet_max_span_us != 0 && e_t - t_first > cfg_packet_max_span_us) begin
             append_after <= 1'b1;
-            state <= C_CLOSE;
+            state <= StClose;
           end else begin
-            state <= C_APPEND;
+            state <= StAppend;
           end
         end
-        C_APPEND: begin
+        StAppend: begin
           if (n == 0) t_first <= e_t;
           t_last <= e_t;
           n <= n + 1'b1;
           pend_n <= pend_n + 1'b1;
           append_after <= 1'b0;
-          state <= (32'(n) + 1 >= 32'(cfg_packet_size) || 32'(n) + 1 >= PACKET_MAX || 32'(pend_n) + 1 == PENDING_DEPTH)
-                   ? C_CLOSE : C_IDLE;
+          state <= (32'(n) + 1 >= 32'(cfg_packet_size) || 32'(n) + 1 >= PacketMax || 32'(pend_n) + 1 == PendingDepth)
+                   ? StClose : StIdle;
         end
-        C_CLOSE: begin
+        StClose: begin
           if (n > 0) begin
             fi <= '0;
-            state <= C_FEAT_READ;
+            state <= StFeatRead;
           end else begin
             ri <= '0;
-            state <= pend_n == 0 ? (append_after ? C_APPEND : C_IDLE) : C_RELEASE_READ;
+            state <= pend_n == 0 ? (append_after ? StAppend : StIdle) : StReleaseRead;
           end
         end
         // Features of event fi.
-        C_FEAT_READ: state <= C_FEAT_WAIT;
-        C_FEAT_WAIT: begin
+        StFeatRead: state <= StFeatWait;
+        StFeatWait: begin
           feat_mul_start <= 1'b1;
           feat_mul_a <= $signed(64'(rd_pk_x));
           feat_mul_b <= $signed(64'(cfg_scale_x));
-          state <= C_FEAT_X;
+          state <= StFeatX;
         end
-        C_FEAT_X: if (mul_done) begin
-          phi_x <= FEAT_BITS'(clamp_feat(shr_rnd(mul_p, COORD_SCALE_FRAC - FEAT_FRAC)));
+        StFeatX: if (mul_done) begin
+          phi_x <= FeatBits'(clamp_feat(shr_rnd(mul_p, CoordScaleFrac - FeatFrac)));
           feat_mul_start <= 1'b1;
           feat_mul_a <= $signed(64'(rd_pk_y));
           feat_mul_b <= $signed(64'(cfg_scale_y));
-          state <= C_FEAT_Y;
+          state <= StFeatY;
         end
-        C_FEAT_Y: if (mul_done) begin
+        StFeatY: if (mul_done) begin
           logic [31:0] age, age_clamped;
-          phi_y <= FEAT_BITS'(clamp_feat(shr_rnd(mul_p, COORD_SCALE_FRAC - FEAT_FRAC)));
-          phi_p <= rd_pk_p ? FEAT_BITS'(clamp_feat($signed(64'(cfg_phi_on)))) : '0;
+          phi_y <= FeatBits'(clamp_feat(shr_rnd(mul_p, CoordScaleFrac - FeatFrac)));
+          phi_p <= rd_pk_p ? FeatBits'(clamp_feat($signed(64'(cfg_phi_on)))) : '0;
           age = t_last - rd_pk_t;
           age_clamped = age > 32'h7FFFFFFF ? 32'h7FFFFFFF : age;
           feat_mul_start <= 1'b1;
           feat_mul_a <= $signed(64'(age_clamped));
           feat_mul_b <= $signed(cfg_inv_tau);
-          state <= C_FEAT_AGE;
+          state <= StFeatAge;
         end
-        C_FEAT_AGE: if (mul_done) begin
+        StFeatAge: if (mul_done) begin
           decay_u <= mul_p;
-          state <= C_FEAT_DECAY1;
+          state <= StFeatDecay1;
         end
-        C_FEAT_DECAY1: state <= C_FEAT_DECAY2;
-        C_FEAT_DECAY2: state <= C_FEAT_T;
-        C_FEAT_T: begin
+        StFeatDecay1: state <= StFeatDecay2;
+        StFeatDecay2: state <= StFeatT;
+        StFeatT: begin
           feat_mul_start <= 1'b1;
           feat_mul_a <= $signed(64'(cfg_phi_t_max));
           feat_mul_b <= $signed(64'(decay_w));
-          state <= C_FEAT_STORE;
+          state <= StFeatStore;
         end
-        C_FEAT_STORE: if (mul_done) begin
+        StFeatStore: if (mul_done) begin
           ms_load_we <= 1'b1;
           ms_load_i <= fi;
           ms_lx <= phi_x;
           ms_ly <= phi_y;
           ms_lp <= phi_p;
-          ms_lt <= FEAT_BITS'(clamp_feat(shr_rnd(mul_p, WEIGHT_FRAC)));
+          ms_lt <= FeatBits'(clamp_feat(shr_rnd(mul_p, WeightFrac)));
           if (32'(fi) + 1 < 32'(n)) begin
             fi <= fi + 1'b1;
-            state <= C_FEAT_READ;
+            state <= StFeatRead;
           end else begin
             ms_start <= 1'b1;
-            state <= C_MEANSHIFT;
+            state <= StMeanShift;
           end
         end
-        C_MEANSHIFT: if (ms_done) begin
+        StMeanShift: if (ms_done) begin
           iterations <= ms_sweeps;
           mg_start <= 1'b1;
-          state <= C_MERGE;
+          state <= StMerge;
         end
-        C_MERGE: if (mg_done) begin
+        StMerge: if (mg_done) begin
           ct_start <= 1'b1;
-          state <= C_CENTROID;
+          state <= StCentroid;
         end
-        C_CENTROID: if (ct_done) begin
+        StCentroid: if (ct_done) begin
           tk_start <= 1'b1;
-          state <= C_TRACK;
+          state <= StTrack;
         end
-        C_TRACK: if (tk_done) state <= C_PACKET;
-        C_PACKET: if (!pkt_valid || pkt_ready) begin
+        StTrack: if (tk_done) state <= StPacket;
+        StPacket: if (!pkt_valid || pkt_ready) begin
           pkt_valid <= 1'b1;
           pkt_t_first <= t_first;
           pkt_t_last <= t_last;
@@ -460,29 +404,29 @@ module evms_core #(
           pkt_clusters <= clusters;
           pkt_iterations <= iterations;
           ri <= '0;
-          state <= C_RELEASE_READ;
+          state <= StReleaseRead;
         end
         // Release pending event ri with its label.
-        C_RELEASE_READ: state <= C_RELEASE_WAIT;       // pending[ri] is being read
-        C_RELEASE_WAIT: begin                           // ... and cluster_of[its index]
+        StReleaseRead: state <= StReleaseWait;       // pending[ri] is being read
+        StReleaseWait: begin                           // ... and cluster_of[its index]
           {rel_t, rel_x, rel_y, rel_p, rel_idx} <= pend_rdata;
-          state <= C_RELEASE_CLUSTER;
+          state <= StReleaseCluster;
         end
-        C_RELEASE_CLUSTER: state <= C_RELEASE_SEND;   // ids[cluster] settles
-        C_RELEASE_SEND: if (!lab_valid || lab_ready) begin
+        StReleaseCluster: state <= StReleaseSend;   // ids[cluster] settles
+        StReleaseSend: if (!lab_valid || lab_ready) begin
           lab_valid <= 1'b1;
           {lab_t, lab_x, lab_y, lab_p} <= {rel_t, rel_x, rel_y, rel_p};
           lab_label <= rel_idx < 0 || co_rdata < 0 ? 32'hFFFFFFFF : id_of;
           if (32'(ri) + 1 < 32'(pend_n)) begin
             ri <= ri + 1'b1;
-            state <= C_RELEASE_READ;
+            state <= StReleaseRead;
           end else begin
             n <= '0;
             pend_n <= '0;
-            state <= append_after ? C_APPEND : C_IDLE;
+            state <= append_after ? StAppend : StIdle;
           end
         end
-        default: state <= C_IDLE;
+        default: state <= StIdle;
       endcase
     end
   end

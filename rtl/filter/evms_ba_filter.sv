@@ -3,14 +3,14 @@
 //   - filter off: kept at once, no memory access;
 //   - outside the configured sensor: noise, no memory access;
 //   - else read the (up to) 8 neighbours inside the sensor, keep when one holds a time t' != 0
-//     with (now - t') mod 2^TS_BITS <= window, where now = t >> TS_SHIFT; write now (or 1 for 0)
+//     with (now - t') mod 2^TimestampBits <= window, where now = t >> TimestampShift; write now (or 1 for 0)
 //     to the own pixel; then scrub two entries: clear each whose age is at least half the wrap.
 // After reset the RAM is cleared, one word a cycle; ready stays low until then.
 module evms_ba_filter #(
-  parameter int MAX_WIDTH  = 240,
-  parameter int MAX_HEIGHT = 180,
-  parameter int TS_BITS    = 16,
-  parameter int TS_SHIFT   = 7
+  parameter int MaxWidth  = 240,
+  parameter int MaxHeight = 180,
+  parameter int TimestampBits    = 16,
+  parameter int TimestampShift   = 7
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -26,14 +26,14 @@ module evms_ba_filter #(
   output logic        done,
   output logic        kept
 );
-  localparam int Pixels = MAX_WIDTH * MAX_HEIGHT;
-  localparam int AW = $clog2(Pixels);
-  localparam logic [TS_BITS-1:0] HalfWrap = TS_BITS'(1) << (TS_BITS - 1);
+  localparam int Pixels = MaxWidth * MaxHeight;
+  localparam int AddrBits = $clog2(Pixels);
+  localparam logic [TimestampBits-1:0] HalfWrap = TimestampBits'(1) << (TimestampBits - 1);
 
-  logic [TS_BITS-1:0] ram [0:Pixels-1];
-  logic [AW-1:0]      addr;
+  logic [TimestampBits-1:0] ram [0:Pixels-1];
+  logic [AddrBits-1:0]      addr;
   logic               we;
-  logic [TS_BITS-1:0] wdata, rdata;
+  logic [TimestampBits-1:0] wdata, rdata;
   // One port, and no read while writing: the shape of a single-ported RAM whose output holds
   // during a write (an iCE40 SPRAM, a Xilinx block RAM in NO_CHANGE mode). No state reads
   // rdata after a write cycle.
@@ -44,11 +44,11 @@ module evms_ba_filter #(
 
   typedef enum logic [3:0] {S_CLEAR, S_IDLE, S_READ, S_WRITE, S_SCRUB_READ, S_SCRUB_WAIT, S_SCRUB_DECIDE, S_DONE} state_e;
   state_e state;
-  logic [AW-1:0] clear_addr, scrub;
+  logic [AddrBits-1:0] clear_addr, scrub;
   logic [3:0]    k;            // neighbour being addressed (0..8)
   logic [1:0]    pending_cmp;  // [0]: address registered last cycle; [1]: rdata holds that neighbour
   logic          supported;
-  logic [TS_BITS-1:0] now;
+  logic [TimestampBits-1:0] now;
   logic [15:0]   ex, ey;
   logic          scrub_second;
 
@@ -103,7 +103,7 @@ module evms_ba_filter #(
           end else begin
             ex <= x;
             ey <= y;
-            now <= TS_BITS'(t >> TS_SHIFT);
+            now <= TimestampBits'(t >> TimestampShift);
             k <= '0;
             pending_cmp <= '0;
             supported <= 1'b0;
@@ -112,11 +112,11 @@ module evms_ba_filter #(
         end
         S_READ: begin
           // Address neighbour k (when inside); the RAM answers two cycles later.
-          if (pending_cmp[1] && rdata != 0 && 32'(TS_BITS'(now - rdata)) <= cfg_window) supported <= 1'b1;
+          if (pending_cmp[1] && rdata != 0 && 32'(TimestampBits'(now - rdata)) <= cfg_window) supported <= 1'b1;
           pending_cmp <= {pending_cmp[0], 1'b0};
           if (k <= 8) begin
             if (n_inside) begin
-              addr <= AW'(32'(ny) * MAX_WIDTH + 32'(nx));
+              addr <= AddrBits'(32'(ny) * MaxWidth + 32'(nx));
               pending_cmp[0] <= 1'b1;
             end
             k <= k + 1'b1;
@@ -126,8 +126,8 @@ module evms_ba_filter #(
         end
         S_WRITE: begin
           we <= 1'b1;
-          addr <= AW'(32'(ey) * MAX_WIDTH + 32'(ex));
-          wdata <= now == 0 ? TS_BITS'(1) : now;
+          addr <= AddrBits'(32'(ey) * MaxWidth + 32'(ex));
+          wdata <= now == 0 ? TimestampBits'(1) : now;
           scrub_second <= 1'b0;
           state <= S_SCRUB_READ;
         end
@@ -137,7 +137,7 @@ module evms_ba_filter #(
         end
         S_SCRUB_WAIT: state <= S_SCRUB_DECIDE;
         S_SCRUB_DECIDE: begin
-          if (rdata != 0 && TS_BITS'(now - rdata) >= HalfWrap) begin
+          if (rdata != 0 && TimestampBits'(now - rdata) >= HalfWrap) begin
             we <= 1'b1;
             wdata <= '0;
           end

@@ -13,15 +13,17 @@
 // and a combinational read (distributed RAM on a Xilinx part), not registers with a write
 // multiplexer each. Covariances are stored in CovBits bits: every stored covariance is clamped
 // to +-(2^35 - 1) or is P0, which host/backend/core_config.h keeps below 2^35.
+`include "evms_assert.svh"
+
 module evms_tracker #(
-  parameter int CLUSTERS_MAX = 16,
-  parameter int TRACKS_MAX   = 16,
-  parameter int POS_FRAC     = 12,
-  parameter int TICK_LOG2    = 14,
-  parameter int COV_FRAC     = 16,
-  parameter int GAIN_FRAC    = 20,
-  parameter int NOISE_FRAC   = 32,
-  parameter int RECIP_FRAC   = 20
+  parameter int ClustersMax = 16,
+  parameter int TracksMax   = 16,
+  parameter int PosFrac     = 12,
+  parameter int TickLog2    = 14,
+  parameter int CovFrac     = 16,
+  parameter int GainFrac    = 20,
+  parameter int NoiseFrac   = 32,
+  parameter int RecipFrac   = 20
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -55,7 +57,7 @@ module evms_tracker #(
   output logic        recip_start,
   output logic [63:0] recip_x,
   input  logic        recip_done,
-  input  logic [RECIP_FRAC:0] recip_r,
+  input  logic [RecipFrac:0] recip_r,
   input  logic [6:0]  recip_m,
   output logic        mul_start,
   output logic signed [63:0] mul_a,
@@ -66,22 +68,17 @@ module evms_tracker #(
   output logic [31:0] tracks_started,
   output logic [31:0] unassigned
 );
-  localparam int TW = TRACKS_MAX > 1 ? $clog2(TRACKS_MAX) : 1;
-  localparam int CW = CLUSTERS_MAX > 1 ? $clog2(CLUSTERS_MAX) : 1;
+  localparam int TrackIndexBits = TracksMax > 1 ? $clog2(TracksMax) : 1;
+  localparam int ClusterIndexBits = ClustersMax > 1 ? $clog2(ClustersMax) : 1;
   // Bounds: covariances +-(2^35 - 1), gains +-(2^27 - 1), positions +-(2^31 - 1), gating
-  // distances +-2^(12 + POS_FRAC) (4096 px).
-  localparam int CovLog2 = 35, GainLog2 = 27, PosLog2 = 31, DistLog2 = 12 + POS_FRAC;
+  // distances +-2^(12 + PosFrac) (4096 px).
+  localparam int CovLog2 = 35, GainLog2 = 27, PosLog2 = 31, DistLog2 = 12 + PosFrac;
   localparam logic signed [63:0] MaxDt = 64'sd1 <<< 18;   // longer time steps are clamped
   localparam int CovBits = 36;
-  initial begin
-    if (TICK_LOG2 < 1 || 2 * TICK_LOG2 - COV_FRAC < 1 || COV_FRAC < 1 || NOISE_FRAC < 1 ||
-        NOISE_FRAC + TICK_LOG2 - COV_FRAC < 1 || GAIN_FRAC < 1)
-      $error("evms_tracker: the step unit rounds right shifts of at least one bit");
-    if (RECIP_FRAC < GAIN_FRAC || GainLog2 != 27)
-      $error("evms_tracker: the gains' quotient shifts right (RECIP_FRAC >= GAIN_FRAC) and clamps at 2^27 - 1");
-    if (POS_FRAC > 14)
-      $error("evms_tracker: the gating distance assumes 2^(16 + POS_FRAC) + 2^DistLog2 < 2^31 - 1");
-  end
+  `EVMS_ASSERT_INIT("the step unit rounds right shifts of at least one bit",
+                   TickLog2 >= 1 && 2 * TickLog2 - CovFrac >= 1 && CovFrac >= 1 && NoiseFrac >= 1 && NoiseFrac + TickLog2 - CovFrac >= 1 && GainFrac >= 1)
+  `EVMS_ASSERT_INIT("the gains' quotient shifts right (RecipFrac >= GainFrac) and clamps at 2^27 - 1", RecipFrac >= GainFrac && GainLog2 == 27)
+  `EVMS_ASSERT_INIT("the gating distance assumes 2^(16 + PosFrac) + 2^DistLog2 < 2^31 - 1", PosFrac <= 14)
 
   // clamp_sym(v, b) for the bounds the tracker uses, b = 2^n - 1 (ones) and b = 2^n (pow2),
   // decided from the sign and the high bits instead of two 64-bit comparisons, which are carry
@@ -115,19 +112,19 @@ module evms_tracker #(
   endfunction
 
   // ---- slots ------------------------------------------------------------------------------
-  logic                     s_valid [TRACKS_MAX], s_confirmed [TRACKS_MAX];
-  logic signed [31:0]       s_id [TRACKS_MAX];
-  logic [7:0]               s_hits [TRACKS_MAX];
-  logic [31:0]              s_t [TRACKS_MAX];
+  logic                     s_valid [TracksMax], s_confirmed [TracksMax];
+  logic signed [31:0]       s_id [TracksMax];
+  logic [7:0]               s_hits [TracksMax];
+  logic [31:0]              s_t [TracksMax];
   // Filter state of each slot, one memory per axis: {pos, vel, p00, p01, p11}.
   localparam int KW = 64 + 3 * CovBits;
-  logic [KW-1:0]            kal_x [TRACKS_MAX], kal_y [TRACKS_MAX];
-  logic [TRACKS_MAX-1:0]    slot_matched;
-  logic [CLUSTERS_MAX-1:0]  meas_matched;
-  logic signed [31:0]       ids [CLUSTERS_MAX];
+  logic [KW-1:0]            kal_x [TracksMax], kal_y [TracksMax];
+  logic [TracksMax-1:0]    slot_matched;
+  logic [ClustersMax-1:0]  meas_matched;
+  logic signed [31:0]       ids [ClustersMax];
   logic signed [31:0]       next_id;
 
-  assign id_of = ids[CW'(id_c)];
+  assign id_of = ids[ClusterIndexBits'(id_c)];
   assign tracks_started = 32'(next_id);
 
   typedef enum logic [5:0] {
@@ -139,7 +136,7 @@ module evms_tracker #(
   state_e state;
 
   logic [7:0]  round_n;
-  logic [TW:0] s;         // slot being scanned or updated
+  logic [TrackIndexBits:0] s;         // slot being scanned or updated
   logic [7:0]  k;         // measurement being scanned or born
   logic signed [8:0]  best_s;
   logic [7:0]  best_m;
@@ -150,16 +147,16 @@ module evms_tracker #(
   logic signed [63:0] w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e;
   logic signed [63:0] acc, k0, k1, p00n;
   logic signed [CovBits-1:0] p01n;
-  logic [RECIP_FRAC:0] rr;
+  logic [RecipFrac:0] rr;
   // Reciprocal::divide for a non-negative numerator: q = p * 2^-shift rounded half up, with
-  // shift = RECIP_FRAC + m - GAIN_FRAC >= 0. As (p + 2^(s-1)) >> s == ((p >> (s-1)) + 1) >> 1,
+  // shift = RecipFrac + m - GainFrac >= 0. As (p + 2^(s-1)) >> s == ((p >> (s-1)) + 1) >> 1,
   // q = (t + 1) >> 1 with t = {p, 0} >> shift: one shifter by a registered amount, then one add.
   logic [7:0]  q_shift;
   logic [64:0] q_t;
   assign q_t = {mul_p, 1'b0} >> q_shift;
 
-  logic [TW-1:0] si;
-  assign si = TW'(s);
+  logic [TrackIndexBits-1:0] si;
+  assign si = TrackIndexBits'(s);
 
   // The slot being scanned or updated, both axes.
   logic [KW-1:0]             kx, ky;
@@ -228,12 +225,12 @@ module evms_tracker #(
   always_comb begin
     // (p + 2^(s-1)) >> s  ==  ((p >> (s-1)) + 1) >> 1, with one shifter for every s.
     case (step_shift)
-      SH_DT2:       step_half = mul_p >>> (2 * TICK_LOG2 - COV_FRAC - 1);
-      SH_COV:       step_half = mul_p >>> (COV_FRAC - 1);
-      SH_NOISE:     step_half = mul_p >>> (NOISE_FRAC - 1);
-      SH_NOISE_P11: step_half = mul_p >>> (NOISE_FRAC + TICK_LOG2 - COV_FRAC - 1);
-      SH_GAIN:      step_half = mul_p >>> (GAIN_FRAC - 1);
-      default:      step_half = mul_p >>> (TICK_LOG2 - 1);
+      SH_DT2:       step_half = mul_p >>> (2 * TickLog2 - CovFrac - 1);
+      SH_COV:       step_half = mul_p >>> (CovFrac - 1);
+      SH_NOISE:     step_half = mul_p >>> (NoiseFrac - 1);
+      SH_NOISE_P11: step_half = mul_p >>> (NoiseFrac + TickLog2 - CovFrac - 1);
+      SH_GAIN:      step_half = mul_p >>> (GainFrac - 1);
+      default:      step_half = mul_p >>> (TickLog2 - 1);
     endcase
     // base +- ((h + 1) >> 1) as one adder with a carry in: (h + 1) >> 1 == (h >> 1) + h[0], and
     // base - q == base + ~q + 1, so the rounding add and the sum are one carry chain.
@@ -245,7 +242,7 @@ module evms_tracker #(
     // The gating distance of the predicted position to the measurement, clamp(z - step): from
     // z - pos (registered when the pair was issued) minus the rounded term, a second carry chain
     // beside the step's rather than after it. When the prediction saturates at +-(2^31 - 1) the
-    // distance saturates at -+2^DistLog2, as |z| < 2^(16 + POS_FRAC) (pixel coordinates).
+    // distance saturates at -+2^DistLog2, as |z| < 2^(16 + PosFrac) (pixel coordinates).
     gate_sum = zp[step_axis] + ~step_hs + 64'(!step_carry);   // zp - (hs + carry)
     if (outside_ones(step_sum, PosLog2)) gate_dist = step_sum[63] ? 64'sd1 <<< DistLog2 : -(64'sd1 <<< DistLog2);
     else gate_dist = clamp_pow2(gate_sum, DistLog2);
@@ -255,7 +252,7 @@ module evms_tracker #(
   logic signed [8:0] free;
   always_comb begin
     free = -9'sd1;
-    for (int q = TRACKS_MAX - 1; q >= 0; q--) begin
+    for (int q = TracksMax - 1; q >= 0; q--) begin
       if (!s_valid[q] && q < 32'(cfg_max_tracks)) free = 9'(q);
     end
   end
@@ -291,14 +288,14 @@ module evms_tracker #(
       {w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e, acc, k0, k1, p00n, p01n} <= '0;
       rr <= '0;
       q_shift <= '0;
-      for (int q = 0; q < TRACKS_MAX; q++) begin
+      for (int q = 0; q < TracksMax; q++) begin
         s_valid[q] <= 1'b0;
         s_confirmed[q] <= 1'b0;
         s_id[q] <= '0;
         s_hits[q] <= '0;
         s_t[q] <= '0;
       end
-      for (int q = 0; q < CLUSTERS_MAX; q++) ids[q] <= -32'sd1;
+      for (int q = 0; q < ClustersMax; q++) ids[q] <= -32'sd1;
     end else begin
       done <= 1'b0;
       mul_start <= 1'b0;
@@ -311,10 +308,10 @@ module evms_tracker #(
         end
         // 1. Confirmed (and any) tracks not measured for more than coast_us end.
         S_EXPIRE: begin
-          if (32'(s) >= TRACKS_MAX) begin
+          if (32'(s) >= TracksMax) begin
             slot_matched <= '0;
             meas_matched <= '0;
-            for (int q = 0; q < CLUSTERS_MAX; q++) ids[q] <= -32'sd1;
+            for (int q = 0; q < ClustersMax; q++) ids[q] <= -32'sd1;
             round_n <= '0;
             state <= S_ROUND;
           end else begin
@@ -324,7 +321,7 @@ module evms_tracker #(
         end
         // 2. Rounds: the nearest remaining pair within the gate.
         S_ROUND: begin
-          if (32'(round_n) >= CLUSTERS_MAX) begin
+          if (32'(round_n) >= ClustersMax) begin
             s <= '0;
             state <= S_DROP;
           end else begin
@@ -338,7 +335,7 @@ module evms_tracker #(
         end
         S_PAIR: begin
           // Skip pairs that cannot be candidates; otherwise predict the slot to the measurement.
-          if (32'(s) >= TRACKS_MAX) begin
+          if (32'(s) >= TracksMax) begin
             if (best_s < 0) begin
               s <= '0;
               state <= S_DROP;
@@ -348,7 +345,7 @@ module evms_tracker #(
           end else if (!s_valid[si] || slot_matched[si] || 32'(s) >= 32'(cfg_max_tracks) || k >= m) begin
             s <= s + 1'b1;
             k <= '0;
-          end else if (meas_matched[CW'(k)]) begin
+          end else if (meas_matched[ClusterIndexBits'(k)]) begin
             k <= k + 1'b1;
           end else begin
             logic signed [31:0] raw;
@@ -390,13 +387,13 @@ module evms_tracker #(
         end
         // 3. The match: predict both axes to the measurement's time, then update them.
         S_MATCH: begin
-          slot_matched[TW'(best_s)] <= 1'b1;
-          meas_matched[CW'(best_m)] <= 1'b1;
-          s <= (TW+1)'(best_s);
+          slot_matched[TrackIndexBits'(best_s)] <= 1'b1;
+          meas_matched[ClusterIndexBits'(best_m)] <= 1'b1;
+          s <= (TrackIndexBits+1)'(best_s);
           k <= best_m;
           begin
             logic [31:0] raw;
-            raw = z_t - s_t[TW'(best_s)];
+            raw = z_t - s_t[TrackIndexBits'(best_s)];
             dt <= capped_dt(raw);
             `EVMS_REQUEST(capped_dt(raw), capped_dt(raw))
           end
@@ -463,7 +460,7 @@ module evms_tracker #(
         end
         S_U_RECIP: if (recip_done) begin
           rr <= recip_r;
-          q_shift <= 8'(RECIP_FRAC - GAIN_FRAC) + 8'(recip_m);
+          q_shift <= 8'(RecipFrac - GainFrac) + 8'(recip_m);
           `EVMS_REQUEST(w_p00, 64'(recip_r))
           state <= S_U_K0;
         end
@@ -513,7 +510,7 @@ module evms_tracker #(
           end else begin
             axis <= 1'b0;
             s_t[si] <= z_t;
-            ids[CW'(k)] <= s_id[si];
+            ids[ClusterIndexBits'(k)] <= s_id[si];
             if (!s_confirmed[si]) begin
               s_hits[si] <= s_hits[si] + 1'b1;
               s_confirmed[si] <= s_hits[si] + 1'b1 >= cfg_confirm_hits;
@@ -540,7 +537,7 @@ module evms_tracker #(
         end
         // 4. Tentative tracks without a match end.
         S_DROP: begin
-          if (32'(s) >= TRACKS_MAX) begin
+          if (32'(s) >= TracksMax) begin
             k <= '0;
             state <= S_BIRTH;
           end else begin
@@ -552,21 +549,21 @@ module evms_tracker #(
         S_BIRTH: begin
           if (k >= m) begin
             state <= S_DONE;
-          end else if (meas_matched[CW'(k)]) begin
+          end else if (meas_matched[ClusterIndexBits'(k)]) begin
             k <= k + 1'b1;
           end else begin
             if (free < 0) begin
               unassigned <= unassigned + 1'b1;
               k <= k + 1'b1;
             end else begin
-              s_valid[TW'(free)] <= 1'b1;
-              s_id[TW'(free)] <= next_id;
+              s_valid[TrackIndexBits'(free)] <= 1'b1;
+              s_id[TrackIndexBits'(free)] <= next_id;
               next_id <= (next_id + 1) & 32'h7FFFFFFF;
-              s_hits[TW'(free)] <= 8'd1;
-              s_confirmed[TW'(free)] <= cfg_confirm_hits <= 8'd1;
-              s_t[TW'(free)] <= z_t;
-              ids[CW'(k)] <= next_id;
-              s <= (TW+1)'(free);
+              s_hits[TrackIndexBits'(free)] <= 8'd1;
+              s_confirmed[TrackIndexBits'(free)] <= cfg_confirm_hits <= 8'd1;
+              s_t[TrackIndexBits'(free)] <= z_t;
+              ids[ClusterIndexBits'(k)] <= next_id;
+              s <= (TrackIndexBits+1)'(free);
               state <= S_BIRTH_EMIT;
             end
           end
@@ -600,11 +597,11 @@ module evms_tracker #(
 
   // ---- the filter-state memories: a birth writes both axes, an update the axis it filtered --
   logic          birth_now, update_now;
-  logic [TW-1:0] kal_addr;
+  logic [TrackIndexBits-1:0] kal_addr;
   logic [KW-1:0] kal_update;
-  assign birth_now = state == S_BIRTH && k < m && !meas_matched[CW'(k)] && free >= 0;
+  assign birth_now = state == S_BIRTH && k < m && !meas_matched[ClusterIndexBits'(k)] && free >= 0;
   assign update_now = state == S_U_P11 && mul_done;
-  assign kal_addr = birth_now ? TW'(free) : si;
+  assign kal_addr = birth_now ? TrackIndexBits'(free) : si;
   assign kal_update = {32'(w_pos), 32'(w_vel), CovBits'(p00n), p01n, CovBits'(step)};
   // A new track's axis: at the measurement, at rest, with the initial covariance.
   function automatic [KW-1:0] born_at(input signed [31:0] z);

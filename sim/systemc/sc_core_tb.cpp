@@ -5,12 +5,13 @@
 #include <systemc.h>
 
 #include <cstdio>
+#include <type_traits>
 #include <vector>
 
 #include "Vcore_sc_ice40.h"
 #include "hls/core/configs.h"
 #include "hls/core/core.h"
-#include "rtl/generated/evms_cfg_ice40_registers.h"
+#include "rtl/generated/evms_cfg_registers.h"
 
 using S = evms::hls::Ice40Shape;
 
@@ -40,18 +41,22 @@ static std::vector<evms::hls::EventWord> blob_words(int count) {
 }
 
 // The registers of the build's defaults for a 128x128 sensor, as the generator wrote them.
-static evms::hls::Config registers() { return evms::hls::generated::ice40_registers(); }
+static evms::hls::Config registers() { return evms::hls::config_of_rtl_registers(evms::hls::generated::kIce40Registers); }
+
+// The C++ type of a Verilated SystemC port of this many bits.
+template <int Bits>
+using ScPortType = std::conditional_t<Bits == 1, bool, std::conditional_t<Bits <= 32, uint32_t, uint64_t>>;
 
 SC_MODULE(Testbench) {
   sc_clock clk{"clk", 10, SC_NS};
   sc_signal<bool> rst_n, in_valid, in_ready, in_p, in_flush, lab_valid, lab_ready, lab_p, trk_valid, trk_ready, pkt_valid, pkt_ready,
-      idle, cfg_filter_enabled;
+      idle;
   sc_signal<uint32_t> in_t, in_x, in_y, lab_t, lab_x, lab_y, lab_label, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy,
       pkt_t_first, pkt_t_last, pkt_events, pkt_clusters, pkt_iterations, stat_tracks_started, stat_unassigned;
-  sc_signal<uint32_t> cfg_sensor_width, cfg_sensor_height, cfg_filter_window, cfg_packet_size, cfg_packet_max_span_us, cfg_scale_x,
-      cfg_scale_y, cfg_phi_on, cfg_phi_t_max, cfg_max_iterations, cfg_tolerance, cfg_min_cluster_size, cfg_max_clusters,
-      cfg_confirm_hits, cfg_coast_us, cfg_max_tracks;
-  sc_signal<uint64_t> cfg_inv_tau, cfg_merge_radius2, cfg_gate2, cfg_q_third, cfg_q_half, cfg_q, cfg_r, cfg_p0_pos, cfg_p0_vel;
+  // One signal per register of the RTL core (hls/core/registers.h).
+#define EVMS_CFG_SIGNAL(name, type, bits, reset, description) sc_signal<ScPortType<bits>> cfg_##name;
+  EVMS_CORE_RTL_REGISTERS(EVMS_CFG_SIGNAL)
+#undef EVMS_CFG_SIGNAL
 
   Vcore_sc_ice40 dut{"dut"};
   std::vector<evms::hls::EventWord> words = blob_words(3000);
@@ -70,14 +75,9 @@ SC_MODULE(Testbench) {
     dut.pkt_valid(pkt_valid), dut.pkt_ready(pkt_ready), dut.pkt_t_first(pkt_t_first), dut.pkt_t_last(pkt_t_last);
     dut.pkt_events(pkt_events), dut.pkt_clusters(pkt_clusters), dut.pkt_iterations(pkt_iterations), dut.idle(idle);
     dut.stat_tracks_started(stat_tracks_started), dut.stat_unassigned(stat_unassigned);
-    dut.cfg_sensor_width(cfg_sensor_width), dut.cfg_sensor_height(cfg_sensor_height), dut.cfg_filter_enabled(cfg_filter_enabled);
-    dut.cfg_filter_window(cfg_filter_window), dut.cfg_packet_size(cfg_packet_size), dut.cfg_packet_max_span_us(cfg_packet_max_span_us);
-    dut.cfg_scale_x(cfg_scale_x), dut.cfg_scale_y(cfg_scale_y), dut.cfg_phi_on(cfg_phi_on), dut.cfg_phi_t_max(cfg_phi_t_max);
-    dut.cfg_inv_tau(cfg_inv_tau), dut.cfg_max_iterations(cfg_max_iterations), dut.cfg_tolerance(cfg_tolerance);
-    dut.cfg_merge_radius2(cfg_merge_radius2), dut.cfg_min_cluster_size(cfg_min_cluster_size), dut.cfg_max_clusters(cfg_max_clusters);
-    dut.cfg_gate2(cfg_gate2), dut.cfg_confirm_hits(cfg_confirm_hits), dut.cfg_coast_us(cfg_coast_us);
-    dut.cfg_max_tracks(cfg_max_tracks), dut.cfg_q_third(cfg_q_third), dut.cfg_q_half(cfg_q_half), dut.cfg_q(cfg_q), dut.cfg_r(cfg_r);
-    dut.cfg_p0_pos(cfg_p0_pos), dut.cfg_p0_vel(cfg_p0_vel);
+#define EVMS_BIND_CFG(name, type, bits, reset, description) dut.cfg_##name(cfg_##name);
+    EVMS_CORE_RTL_REGISTERS(EVMS_BIND_CFG)
+#undef EVMS_BIND_CFG
     SC_THREAD(drive);
     sensitive << clk.posedge_event();
     SC_THREAD(monitor);
@@ -86,14 +86,9 @@ SC_MODULE(Testbench) {
 
   void drive() {
     const evms::hls::Config c = registers();
-    cfg_sensor_width = c.sensor_width, cfg_sensor_height = c.sensor_height, cfg_filter_enabled = c.filter_enabled;
-    cfg_filter_window = c.filter_window, cfg_packet_size = c.packet_size, cfg_packet_max_span_us = c.packet_max_span_us;
-    cfg_scale_x = c.scale_x, cfg_scale_y = c.scale_y, cfg_phi_on = c.phi_on, cfg_phi_t_max = c.phi_t_max, cfg_inv_tau = c.inv_tau;
-    cfg_max_iterations = c.max_iterations, cfg_tolerance = c.tolerance, cfg_merge_radius2 = c.merge_radius2;
-    cfg_min_cluster_size = c.min_cluster_size, cfg_max_clusters = c.max_clusters, cfg_gate2 = c.gate2;
-    cfg_confirm_hits = c.confirm_hits, cfg_coast_us = c.coast_us, cfg_max_tracks = c.max_tracks;
-    cfg_q_third = static_cast<uint64_t>(c.q_third), cfg_q_half = static_cast<uint64_t>(c.q_half), cfg_q = static_cast<uint64_t>(c.q);
-    cfg_r = static_cast<uint64_t>(c.r), cfg_p0_pos = static_cast<uint64_t>(c.p0_pos), cfg_p0_vel = static_cast<uint64_t>(c.p0_vel);
+#define EVMS_SET_CFG(name, type, bits, reset, description) cfg_##name = static_cast<ScPortType<bits>>(c.name);
+    EVMS_CORE_RTL_REGISTERS(EVMS_SET_CFG)
+#undef EVMS_SET_CFG
     rst_n = false;
     for (int i = 0; i < 4; ++i) wait();
     rst_n = true;

@@ -25,7 +25,7 @@ std::pair<std::string, std::string> run_backend(const TempDir& dir, const std::s
 }
 
 // The cores implement the method of --preset gaussian (host/backend/core_config.h).
-constexpr const char* kIce40Limits = " --preset gaussian --packet-size 64 --max-clusters 8 --max-tracks 8";
+constexpr const char* kIce40Limits = " --preset gaussian";
 
 TEST(BackendsAgree, RtlEqualsFixedFileForFile) {
   TempDir dir;
@@ -38,6 +38,25 @@ TEST(BackendsAgree, RtlEqualsFixedFileForFile) {
   const std::string small = "gen://rotation?duration-s=0.1&seed=9&width=128&height=128";
   EXPECT_EQ(run_backend(dir, "rtl_ice40", small, std::string("--backend rtl --core ice40") + kIce40Limits),
             run_backend(dir, "fixed_ice40", small, std::string("--backend fixed --core ice40") + kIce40Limits));
+}
+
+// --core ice40 alone runs that build's packet size, cluster and track counts (hls/core/configs.h),
+// and so does evms cycles --build ice40; a size set by hand beyond the build's is refused.
+TEST(BackendsAgree, ACoreBuildAppliesItsOwnSizes) {
+  TempDir dir;
+  const std::string small = "gen://rotation?duration-s=0.1&seed=9&width=128&height=128";
+  const auto by_build = run_backend(dir, "by_build", small, "--backend fixed --core ice40 --preset gaussian");
+  const auto by_hand =
+      run_backend(dir, "by_hand", small, "--backend fixed --core ice40 --preset gaussian --packet-size 64 --max-clusters 8 --max-tracks 8");
+  EXPECT_GT(by_build.first.size(), 1000u);
+  EXPECT_EQ(by_build, by_hand);
+  const auto refused = run_command(evms_binary() + " run \"" + small + "\" --quiet --backend fixed --core ice40 --packet-size 100 --out " +
+                                   dir.path("refused"));
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.err.find("--packet-size"), std::string::npos) << refused.err;
+  const auto cycles = run_command(evms_binary() + " cycles \"" + small + "\" --build ice40");
+  ASSERT_EQ(cycles.exit_code, 0) << cycles.err;
+  EXPECT_NE(cycles.out.find("packets of 64, 8 clusters, 8 tracks"), std::string::npos) << cycles.out;
 }
 
 TEST(BackendsAgree, ACoreBuildRefusesParametersBeyondItsLimits) {
@@ -148,7 +167,9 @@ TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {
                                    kIce40Limits);
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_NE(missing.err.find("/dev/evms-no-such-tty: cannot open the serial device"), std::string::npos) << missing.err;
-  const auto params = run_command(evms_binary() + " run gen://rotation?width=128\\&height=128 --backend board --device /dev/null --preset gaussian --quiet");
+  // The board's registers are its build's: a packet size set by hand is refused.
+  const auto params = run_command(evms_binary() +
+                                  " run gen://rotation?width=128\\&height=128 --backend board --device /dev/null --preset gaussian --packet-size 32 --quiet");
   EXPECT_NE(params.exit_code, 0);
   EXPECT_NE(params.err.find("the board runs its build's settings"), std::string::npos) << params.err;
 }

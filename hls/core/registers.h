@@ -1,0 +1,60 @@
+// The core's registers, described once. Every copy is made from these two lists:
+//   - hls/core/config.h (the Config struct), through the lists below;
+//   - the RTL's cfg_* ports, the board's Cfg* parameters and their connections, the per-build
+//     reset values, and docs/registers.md, written by host/tools/rtl_gen into rtl/generated/;
+//   - the Verilated and SystemC testbenches' port assignments (sim/rtl_core.h,
+//     sim/systemc/sc_core_tb.cpp), through the lists below.
+//
+// X(name, type, bits, reset, description):
+//   name         the Config member; the RTL port is cfg_<name>, the board parameter Cfg<Name>
+//   type         its C++ type
+//   bits         its width in the RTL (unsigned there; a signed value travels as its bits)
+//   reset        its value in a default-constructed Config
+//   description  what it holds and in what format (formats: hls/core/shape.h)
+#pragma once
+
+// Registers of both the C++ core and the RTL core (rtl/core/evms_core.sv).
+#define EVMS_CORE_RTL_REGISTERS(X)                                                                                      \
+  X(sensor_width, std::uint16_t, 16, 240, "sensor width, px")                                                           \
+  X(sensor_height, std::uint16_t, 16, 180, "sensor height, px")                                                         \
+  X(filter_enabled, bool, 1, true, "background-activity filter on")                                                     \
+  X(filter_window, std::uint32_t, 32, 78, "filter window, stored time units (2^kTimestampShift us)")                    \
+  X(packet_size, std::uint16_t, 16, 256, "kept events that close a packet (at most kPacketMax)")                        \
+  X(packet_max_span_us, std::uint32_t, 32, 0, "a packet also closes when it would span more than this, us; 0: never")   \
+  X(scale_x, std::uint32_t, 32, 0, "Gaussian feature: phi_x = x * scale_x, kCoordScaleFrac fraction bits")              \
+  X(scale_y, std::uint32_t, 32, 0, "Gaussian feature: phi_y = y * scale_y, kCoordScaleFrac fraction bits")              \
+  X(phi_on, std::uint32_t, 32, 0, "Gaussian feature: phi_p of an ON event (OFF: 0), kFeatFrac fraction bits")           \
+  X(phi_t_max, std::uint32_t, 32, 0, "Gaussian feature: phi_t = phi_t_max * exp(-dt * inv_tau), kFeatFrac bits")        \
+  X(inv_tau, std::uint64_t, 64, 0, "1 / tau per us, kDecayFrac fraction bits")                                          \
+  X(max_iterations, std::uint8_t, 8, 8, "mean-shift iterations at most (at most kIterationsMax)")                       \
+  X(tolerance, std::uint32_t, 32, 0, "largest move that counts as converged, phi raw units")                            \
+  X(merge_radius2, std::uint64_t, 64, 0, "squared merge radius of modes, phi^2 raw units")                              \
+  X(min_cluster_size, std::uint16_t, 16, 8, "events a cluster needs, or its events are noise")                          \
+  X(max_clusters, std::uint8_t, 8, 16, "clusters a packet keeps, largest first (at most kClustersMax)")                 \
+  X(gate2, std::uint64_t, 64, 0, "squared association gate, px^2 with 2 * kPosFrac fraction bits")                      \
+  X(confirm_hits, std::uint8_t, 8, 3, "updates that confirm a track")                                                   \
+  X(coast_us, std::uint32_t, 32, 100000, "a track unmatched this long ends, us")                                        \
+  X(max_tracks, std::uint8_t, 8, 16, "track slots (at most kTracksMax)")                                                \
+  X(q_third, std::int64_t, 64, 0, "process noise q / 3 per tick^3, kNoiseFrac fraction bits")                           \
+  X(q_half, std::int64_t, 64, 0, "process noise q / 2 per tick^3, kNoiseFrac fraction bits")                            \
+  X(q, std::int64_t, 64, 0, "process noise q per tick^3, kNoiseFrac fraction bits")                                     \
+  X(r, std::int64_t, 64, 0, "measurement variance, px^2, kCovFrac fraction bits")                                       \
+  X(p0_pos, std::int64_t, 64, 0, "position variance of a new track, px^2, kCovFrac fraction bits")                      \
+  X(p0_vel, std::int64_t, 64, 0, "velocity variance of a new track, (px/tick)^2, kCovFrac bits")
+
+// Registers of the C++ core only: the seeded climbs with the flat kernel and the tracker's
+// policies. The RTL refuses a setting that needs them (host/backend/core_config.h).
+#define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
+  X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
+  X(seeded, bool, 1, false, "climbs from seeds with the flat kernel (hls/cluster/seeded_climbs.h), not every event")    \
+  X(climb_scale_x, std::uint64_t, 64, 0, "seeded: phi_x = x * climb_scale_x, kClimbScaleFrac fraction bits")            \
+  X(climb_scale_y, std::uint64_t, 64, 0, "seeded: phi_y = y * climb_scale_y, kClimbScaleFrac fraction bits")            \
+  X(warm_start, bool, 1, false, "seeded: the modes of the previous packet climb first")                                 \
+  X(warm_scale2, std::uint32_t, 32, 0, "seeded: radius^2 of a warm ball per variance of its cluster, kSpreadFrac bits") \
+  X(warm_ball2_max, std::uint64_t, 64, 0, "seeded: radius^2 of the largest warm ball, phi^2 raw units (at least h^2)")  \
+  X(link2, std::uint32_t, 32, 0, "seeded: clusters with events within sqrt(link2) px join; 0: off")                     \
+  X(associate_last, bool, 1, false, "gate against the last measurement of a track, not its prediction")                 \
+  X(gate_spread2, std::uint32_t, 32, 0, "widening of the gate by the spread of the cluster, squared, kSpreadFrac bits") \
+  X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never")       \
+  X(evict_stale, bool, 1, false, "with no free slot, take the unmatched slot measured longest ago")                     \
+  X(report_tentative, bool, 1, false, "tentative tracks report their updates too")
