@@ -39,8 +39,8 @@
   X(q_half, std::int64_t, 64, 0, "process noise q / 2 per tick^3, kNoiseFrac fraction bits")                            \
   X(q, std::int64_t, 64, 0, "process noise q per tick^3, kNoiseFrac fraction bits")                                     \
   X(r, std::int64_t, 64, 0, "measurement variance, px^2, kCovFrac fraction bits")                                       \
-  X(p0_pos, std::int64_t, 64, 0, "position variance of a new track, px^2, kCovFrac fraction bits")                      \
-  X(p0_vel, std::int64_t, 64, 0, "velocity variance of a new track, (px/tick)^2, kCovFrac bits")
+  X(p0_pos, std::int64_t, 64, 0, "position variance a track starts with, px^2, kCovFrac fraction bits")                      \
+  X(p0_vel, std::int64_t, 64, 0, "velocity variance a track starts with, (px/tick)^2, kCovFrac bits")
 
 // Registers of the C++ core only: the seeded climbs with the flat kernel and the tracker's
 // policies. The RTL refuses a setting that needs them (host/backend/core_config.h).

@@ -24,5 +24,5 @@ input  logic [63:0] cfg_q_third,  // process noise q / 3 per tick^3, kNoiseFrac 
 input  logic [63:0] cfg_q_half,  // process noise q / 2 per tick^3, kNoiseFrac fraction bits
 input  logic [63:0] cfg_q,  // process noise q per tick^3, kNoiseFrac fraction bits
 input  logic [63:0] cfg_r,  // measurement variance, px^2, kCovFrac fraction bits
-input  logic [63:0] cfg_p0_pos,  // position variance of a new track, px^2, kCovFrac fraction bits
-input  logic [63:0] cfg_p0_vel,  // velocity variance of a new track, (px/tick)^2, kCovFrac bits
+input  logic [63:0] cfg_p0_pos,  // position variance a track starts with, px^2, kCovFrac fraction bits
+input  logic [63:0] cfg_p0_vel,  // velocity variance a track starts with, (px/tick)^2, kCovFrac bits

@@ -101,8 +101,7 @@ TEST(HlsRules, SourcesNameNoHeapOrExceptionConstructs) {
     for (std::string line; std::getline(in, line);) {
       ++n;
       const auto comment = line.find("//");
-      // Words inside a string literal (a register's description) are not code.
-      const std::string code = std::regex_replace(line.substr(0, comment), std::regex(R"("[^"]*")"), "\"\"");
+      const std::string code = line.substr(0, comment);
       EXPECT_FALSE(std::regex_search(code, forbidden)) << e.path().string() << ":" << n << ": " << line;
     }
   }
