@@ -31,10 +31,7 @@ namespace {
 template <class S>
 Params fit_sizes(Params p, const Method& method) {
   auto set_by_user = [&](const char* name) {
-    for (const auto& [setting, value] : method.settings) {
-      if (setting == name) return true;
-    }
-    return false;
+    return std::any_of(method.settings.begin(), method.settings.end(), [&](const auto& setting) { return setting.first == name; });
   };
   auto fit = [&](int& value, const char* name, int build_max) {
     if (!set_by_user(name)) value = std::min(value, build_max);

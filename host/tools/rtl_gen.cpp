@@ -52,21 +52,18 @@ std::string upper_camel(const std::string& snake) {
 struct Register {
   const char* name;
   int bits;
-  bool rtl;
   const char* description;
 };
 
-const std::vector<Register>& registers() {
-  static const std::vector<Register> list = {
-#define EVMS_RTL_REGISTER(name, type, bits, reset, description) {#name, bits, true, description},
-      EVMS_CORE_RTL_REGISTERS(EVMS_RTL_REGISTER)
-#undef EVMS_RTL_REGISTER
-#define EVMS_HLS_REGISTER(name, type, bits, reset, description) {#name, bits, false, description},
-          EVMS_CORE_HLS_REGISTERS(EVMS_HLS_REGISTER)
-#undef EVMS_HLS_REGISTER
-  };
-  return list;
-}
+#define EVMS_REGISTER_ENTRY(name, type, bits, reset, description) {#name, bits, description},
+// The registers of the RTL core, in the order of a build's values (rtl_register_values).
+const std::vector<Register> kRtlRegisters = {EVMS_CORE_RTL_REGISTERS(EVMS_REGISTER_ENTRY)};
+// The registers of the C++ core only.
+const std::vector<Register> kHlsRegisters = {EVMS_CORE_HLS_REGISTERS(EVMS_REGISTER_ENTRY)};
+#undef EVMS_REGISTER_ENTRY
+
+// The board's parameter that holds a register's value: "merge_radius2" -> "CfgMergeRadius2".
+std::string board_parameter(const Register& r) { return "Cfg" + upper_camel(r.name); }
 
 // The RTL registers' values in `c`, as their bits.
 std::vector<std::uint64_t> rtl_register_values(const hls::Config& c) {
@@ -144,12 +141,11 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
   board_params << "// " << kGeneratedBy << "\n// The registers' values on a board (hls/core/registers.h), with the '" << defaults.name
                << "' build's.\n";
   board_connect << "// " << kGeneratedBy << "\n// The board's register values on evms_core's cfg_* ports.\n";
-  size_t i = 0;
-  for (const Register& r : registers()) {
-    if (!r.rtl) continue;
-    const std::string param = "Cfg" + upper_camel(r.name);
+  for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
+    const Register& r = kRtlRegisters[i];
+    const std::string param = board_parameter(r);
     ports << "input  " << sv_type(r.bits) << " cfg_" << r.name << ",  // " << r.description << "\n";
-    board_params << "parameter " << sv_type(r.bits) << " " << param << " = " << sv_literal(r.bits, defaults.registers[i++]) << ",\n";
+    board_params << "parameter " << sv_type(r.bits) << " " << param << " = " << sv_literal(r.bits, defaults.registers[i]) << ",\n";
     board_connect << ".cfg_" << r.name << "(" << param << "),\n";
     build << "." << param << "(" << param << "),\n";
   }
@@ -210,10 +206,9 @@ void write_build(const std::string& dir, const BuildFiles& b) {
   o << "localparam RecipTableFile = \"" << b.recip_file << "\";\n";
   o << "// Reset registers: the method of --preset gaussian, within this build's limits, for a " << b.width << "x" << b.height
     << " sensor.\n";
-  size_t i = 0;
-  for (const Register& r : registers()) {
-    if (!r.rtl) continue;
-    o << "localparam " << sv_type(r.bits) << " Cfg" << upper_camel(r.name) << " = " << sv_literal(r.bits, b.registers[i++]) << ";\n";
+  for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
+    const Register& r = kRtlRegisters[i];
+    o << "localparam " << sv_type(r.bits) << " " << board_parameter(r) << " = " << sv_literal(r.bits, b.registers[i]) << ";\n";
   }
   write(dir + "/evms_cfg_" + b.name + ".svh", o.str());
 
@@ -223,9 +218,8 @@ void write_build(const std::string& dir, const BuildFiles& b) {
   v << "# " << kGeneratedBy << "\nset(EVMS_RTL_PARAMS_" << b.name;
   for (size_t k = 0; k < shape.size(); ++k) v << " -G" << shape[k] << "=" << b.shape[k];
   v << ")\nset(EVMS_RTL_DEFAULTS_" << b.name;
-  i = 0;
-  for (const Register& r : registers()) {
-    if (r.rtl) v << " -GCfg" << upper_camel(r.name) << "=" << sv_literal(r.bits, b.registers[i++]);
+  for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
+    v << " -G" << board_parameter(kRtlRegisters[i]) << "=" << sv_literal(kRtlRegisters[i].bits, b.registers[i]);
   }
   v << ")\nset(EVMS_RTL_EXP_MEM_" << b.name << " " << b.exp_file << ")\n";
   v << "set(EVMS_RTL_RECIP_MEM_" << b.name << " " << b.recip_file << ")\n";
@@ -260,11 +254,15 @@ void write_docs(const std::string& path, const std::vector<BuildFiles>& builds) 
   d << " description |\n|---|---|---|";
   for (size_t k = 0; k < builds.size(); ++k) d << "---|";
   d << "---|\n";
-  size_t i = 0;
-  for (const Register& r : registers()) {
-    d << "| `" << r.name << "` | " << r.bits << " | " << (r.rtl ? "yes" : "no") << " |";
-    for (const BuildFiles& b : builds) d << " " << (r.rtl ? std::to_string(b.registers[i]) : "") << " |";
-    if (r.rtl) ++i;
+  for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
+    const Register& r = kRtlRegisters[i];
+    d << "| `" << r.name << "` | " << r.bits << " | yes |";
+    for (const BuildFiles& b : builds) d << " " << b.registers[i] << " |";
+    d << " " << r.description << " |\n";
+  }
+  for (const Register& r : kHlsRegisters) {
+    d << "| `" << r.name << "` | " << r.bits << " | no |";
+    for (size_t k = 0; k < builds.size(); ++k) d << "  |";
     d << " " << r.description << " |\n";
   }
   d << "\n## Controller states (hls/core/schedule.h)\n\n| encoding | state | counted as |\n|---|---|---|\n";
