@@ -79,16 +79,17 @@ std::vector<std::string> types_of(const SweepOptions& o) {
 void print_header(const std::vector<std::string>& types, const char* first) {
   std::printf("| %s |", first);
   for (const auto& t : types) std::printf(" %s |", t.c_str());
-  std::printf(" mean F | worst type | ARI | IDF1 | ID switches/object | track err px | within 2.5 px | kernel evals/event | events/s |\n|---|");
-  for (size_t i = 0; i < types.size() + 9; ++i) std::printf("---|");
+  std::printf(" mean F | worst type | ARI | IDF1 | ID switches/object | track err px | within 2.5 px | err to events' centre px | within 2.5 px | kernel evals/event | events/s |\n|---|");
+  for (size_t i = 0; i < types.size() + 11; ++i) std::printf("---|");
   std::printf("\n");
 }
 
 void print_row(const std::string& label, const eval::FamilyResult& r) {
   std::printf("| %s |", label.c_str());
   for (const auto& t : r.types) std::printf(" %.3f |", t.f);
-  std::printf(" **%.3f** | %.3f | %.3f | %.3f | %.1f | %.2f | %.2f | %.0f | %s |\n", r.mean_f, r.worst_type_f, r.mean_ari, r.idf1,
-              r.id_switches_per_object, r.tracking.mean, r.tracking.within, r.kernel_evaluations_per_event, si(r.events_per_s).c_str());
+  std::printf(" **%.3f** | %.3f | %.3f | %.3f | %.1f | %.2f | %.2f | %.2f | %.2f | %.0f | %s |\n", r.mean_f, r.worst_type_f, r.mean_ari,
+              r.idf1, r.id_switches_per_object, r.tracking.mean, r.tracking.within, r.tracking_to_events.mean, r.tracking_to_events.within,
+              r.kernel_evaluations_per_event, si(r.events_per_s).c_str());
   std::fflush(stdout);
 }
 
@@ -128,16 +129,22 @@ std::string current_value(const Method& m, const std::string& name) {
 void print_scenes(const std::vector<eval::FamilyScene>& family, const std::vector<Method>& methods,
                   const std::vector<eval::FamilyResult>& results) {
   std::printf("\n| scene | events | noise |");
-  for (const Method& m : methods) std::printf(" F %s |", m.settings.empty() ? m.preset.c_str() : m.settings.back().second.c_str());
+  for (const Method& m : methods) {
+    const char* name = m.settings.empty() ? m.preset.c_str() : m.settings.back().second.c_str();
+    std::printf(" F %s | track err px %s | err to events' centre px %s |", name, name, name);
+  }
   std::printf("\n|---|---|---|");
-  for (size_t m = 0; m < methods.size(); ++m) std::printf("---|");
+  for (size_t m = 0; m < methods.size(); ++m) std::printf("---|---|---|");
   std::printf("\n");
   for (size_t i = 0; i < family.size(); ++i) {
     const auto& s = family[i];
     const auto truth_noise = std::count(s.scene.truth.begin(), s.scene.truth.end(), kNoiseLabel);
     std::printf("| %s %llu: %s | %zu | %.0f%% |", s.type.c_str(), static_cast<unsigned long long>(s.seed),
                 gen::describe(s.scene.config).c_str(), s.scene.events.size(), 100.0 * truth_noise / std::max<size_t>(1, s.scene.events.size()));
-    for (const auto& r : results) std::printf(" %.3f |", r.scenes[i].scores.f);
+    for (const auto& r : results) {
+      const eval::TrackingReport& t = r.scenes[i].tracking;
+      std::printf(" %.3f | %.2f | %.2f |", r.scenes[i].scores.f, t.all_kalman.mean, t.all_kalman_events.mean);
+    }
     std::printf("\n");
   }
 }
@@ -236,7 +243,7 @@ void register_sweep(CLI::App& app) {
   cmd->add_option("--split", o->split, "the split --vary measures on (the search tunes on tuning and checks on validation)")
       ->default_val(o->split)
       ->check(CLI::IsMember({"tuning", "validation"}));
-  cmd->add_flag("--per-scene", o->per_scene, "every member's F too (presets and --vary)");
+  cmd->add_flag("--per-scene", o->per_scene, "every member's F and tracking errors too (presets and --vary)");
   cmd->add_option("--rounds", o->rounds, "passes of --search over the grid")->default_val(o->rounds)->check(CLI::Range(1, 20));
   cmd->add_option("--backend", o->backend, "implementation to measure")->default_val(o->backend);
   cmd->add_option("--sensor", o->pins.width, "the family's members on this sensor instead of the seed's draw: WxH")

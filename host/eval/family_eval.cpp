@@ -40,7 +40,8 @@ SceneResult run_member(const FamilyScene& member, const Method& method, const st
   for (const TrackUpdate& u : run.tracks) {
     if (u.state == TrackState::kConfirmed) confirmed.push_back(u);
   }
-  r.tracking = tracking_report(confirmed, scene.centres, static_cast<int>(scene.object_names.size()));
+  r.tracking = tracking_report(confirmed, scene.centres, static_cast<int>(scene.object_names.size()), 2.5, 15.0, 20000,
+                               {scene.events, scene.truth});
   r.identity = identity_scores(scene.events, scene.truth, run.labels);
   r.events = static_cast<std::int64_t>(scene.events.size());
   r.noise_share = r.events ? static_cast<double>(std::count(run.labels.begin(), run.labels.end(), kNoiseLabel)) / static_cast<double>(r.events) : 0;
@@ -49,12 +50,39 @@ SceneResult run_member(const FamilyScene& member, const Method& method, const st
   return r;
 }
 
+// Error statistics pooled over scenes, each weighing by its samples.
+class PooledErrors {
+ public:
+  void add(const ErrorStats& e) {
+    const auto n = static_cast<double>(e.samples);
+    samples_ += e.samples;
+    sum_ += e.mean * n;
+    sum_sq_ += (e.std * e.std + e.mean * e.mean) * n;
+    within_ += e.within * n;
+  }
+  ErrorStats stats() const {
+    ErrorStats s;
+    s.samples = samples_;
+    if (samples_ == 0) return s;
+    const auto n = static_cast<double>(samples_);
+    s.mean = sum_ / n;
+    s.std = std::sqrt(std::max(0.0, sum_sq_ / n - s.mean * s.mean));
+    s.within = within_ / n;
+    return s;
+  }
+
+ private:
+  std::int64_t samples_ = 0;
+  double sum_ = 0, sum_sq_ = 0, within_ = 0;
+};
+
 FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<SceneResult> scenes) {
   FamilyResult out;
   std::map<std::string, TypeSummary> by_type;
   std::vector<std::string> order;
-  std::int64_t events = 0, evaluations = 0, samples = 0, switches = 0, objects = 0;
-  double wall = 0, error_sum = 0, error_sq = 0, within = 0;
+  std::int64_t events = 0, evaluations = 0, switches = 0, objects = 0;
+  double wall = 0;
+  PooledErrors to_centres, to_events;
   for (size_t i = 0; i < family.size(); ++i) {
     const SceneResult& r = scenes[i];
     auto [it, fresh] = by_type.try_emplace(family[i].type);
@@ -72,11 +100,8 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
     events += r.events;
     evaluations += r.kernel_evaluations;
     wall += r.wall_s;
-    const ErrorStats& e = r.tracking.all_kalman;
-    samples += e.samples;
-    error_sum += e.mean * static_cast<double>(e.samples);
-    error_sq += (e.std * e.std + e.mean * e.mean) * static_cast<double>(e.samples);
-    within += e.within * static_cast<double>(e.samples);
+    to_centres.add(r.tracking.all_kalman);
+    to_events.add(r.tracking.all_kalman_events);
   }
   const double n = static_cast<double>(std::max<size_t>(1, family.size()));
   out.mean_f /= n;
@@ -91,12 +116,8 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
     out.worst_type_f = std::min(out.worst_type_f, t.f);
     out.types.push_back(t);
   }
-  out.tracking.samples = samples;
-  if (samples > 0) {
-    out.tracking.mean = error_sum / static_cast<double>(samples);
-    out.tracking.std = std::sqrt(std::max(0.0, error_sq / static_cast<double>(samples) - out.tracking.mean * out.tracking.mean));
-    out.tracking.within = within / static_cast<double>(samples);
-  }
+  out.tracking = to_centres.stats();
+  out.tracking_to_events = to_events.stats();
   out.kernel_evaluations_per_event = events ? static_cast<double>(evaluations) / static_cast<double>(events) : 0;
   out.events_per_s = wall > 0 ? static_cast<double>(events) / wall : 0;
   out.scenes = std::move(scenes);

@@ -56,6 +56,7 @@ struct FamilyResult {
   double mean_f = 0, mean_ari = 0;        // over every scene, each weighing the same
   double worst_type_f = 0;                // the lowest of the types' means
   ErrorStats tracking;                    // pooled over every scene: Kalman estimate against the true centre
+  ErrorStats tracking_to_events;          // ... against the centre of the object's labelled events (the paper's)
   double idf1 = 0;                        // mean over scenes
   double id_switches_per_object = 0;      // over every scene
   double kernel_evaluations_per_event = 0;

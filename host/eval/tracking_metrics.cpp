@@ -39,6 +39,40 @@ class CentreLookup {
   std::vector<std::unordered_map<TimeUs, std::pair<double, double>>> per_object_;
 };
 
+// The centre of mass of each object's labelled events in (t - window, t], from prefix sums.
+class EventCentreLookup {
+ public:
+  EventCentreLookup(const LabelledEvents& labelled, int objects, TimeUs window_us)
+      : per_object_(static_cast<size_t>(objects)), window_us_(window_us) {
+    for (auto& o : per_object_) o.sx.push_back(0), o.sy.push_back(0);
+    for (size_t i = 0; i < labelled.events.size() && i < labelled.truth.size(); ++i) {
+      const std::int32_t o = labelled.truth[i];
+      if (o < 0 || o >= objects) continue;
+      Object& ob = per_object_[static_cast<size_t>(o)];
+      const Event& e = labelled.events[i];
+      ob.t.push_back(e.t);
+      ob.sx.push_back(ob.sx.back() + e.x);
+      ob.sy.push_back(ob.sy.back() + e.y);
+    }
+  }
+  std::optional<std::pair<double, double>> at(int object, TimeUs t) const {
+    const Object& ob = per_object_[static_cast<size_t>(object)];
+    const size_t end = static_cast<size_t>(std::upper_bound(ob.t.begin(), ob.t.end(), t) - ob.t.begin());
+    const size_t begin = static_cast<size_t>(std::upper_bound(ob.t.begin(), ob.t.end(), t - window_us_) - ob.t.begin());
+    if (end < begin + static_cast<size_t>(kEventCentreMinEvents)) return std::nullopt;
+    const double n = static_cast<double>(end - begin);
+    return std::pair{(ob.sx[end] - ob.sx[begin]) / n, (ob.sy[end] - ob.sy[begin]) / n};
+  }
+
+ private:
+  struct Object {
+    std::vector<TimeUs> t;            // in input order, which is time order
+    std::vector<double> sx, sy;       // prefix sums, one longer than t
+  };
+  std::vector<Object> per_object_;
+  TimeUs window_us_;
+};
+
 struct Accumulator {
   std::vector<double> errors;
   ErrorStats stats(double tau) const {
@@ -58,8 +92,10 @@ struct Accumulator {
 }  // namespace
 
 TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<const gen::TruthSample> centres, int objects,
-                               double tau_px, double association_radius_px, TimeUs coverage_window_us) {
+                               double tau_px, double association_radius_px, TimeUs coverage_window_us, LabelledEvents labelled,
+                               TimeUs event_window_us) {
   const CentreLookup lookup(centres, objects);
+  const EventCentreLookup event_lookup(labelled, objects, event_window_us);
   std::map<std::int32_t, std::vector<int>> votes;  // track -> votes per object
   for (const TrackUpdate& u : updates) {
     int best = -1;
@@ -81,8 +117,9 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   }
 
   TrackingReport report;
-  std::vector<Accumulator> kalman(static_cast<size_t>(objects)), raw(static_cast<size_t>(objects));
-  Accumulator all_kalman, all_raw, all_velocity;
+  std::vector<Accumulator> kalman(static_cast<size_t>(objects)), raw(static_cast<size_t>(objects)),
+      kalman_events(static_cast<size_t>(objects));
+  Accumulator all_kalman, all_raw, all_velocity, all_kalman_events;
   std::vector<Accumulator> velocity(static_cast<size_t>(objects));
   std::vector<std::vector<TimeUs>> update_times(static_cast<size_t>(objects));
   for (const TrackUpdate& u : updates) {
@@ -92,6 +129,11 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
       continue;
     }
     update_times[static_cast<size_t>(o)].push_back(u.t);
+    if (const auto m = event_lookup.at(o, u.t)) {
+      const double e = std::hypot(u.x - m->first, u.y - m->second);
+      kalman_events[static_cast<size_t>(o)].errors.push_back(e);
+      all_kalman_events.errors.push_back(e);
+    }
     const auto c = lookup.at(o, u.t);
     if (!c) continue;
     const double ek = std::hypot(u.x - c->first, u.y - c->second), er = std::hypot(u.zx - c->first, u.zy - c->second);
@@ -113,6 +155,7 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
     }
     t.kalman = kalman[static_cast<size_t>(o)].stats(tau_px);
     t.raw = raw[static_cast<size_t>(o)].stats(tau_px);
+    t.kalman_events = kalman_events[static_cast<size_t>(o)].stats(tau_px);
     t.velocity_error = velocity[static_cast<size_t>(o)].stats(0).mean;
     auto& times = update_times[static_cast<size_t>(o)];
     std::sort(times.begin(), times.end());
@@ -128,6 +171,7 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   }
   report.all_kalman = all_kalman.stats(tau_px);
   report.all_raw = all_raw.stats(tau_px);
+  report.all_kalman_events = all_kalman_events.stats(tau_px);
   report.velocity_error = all_velocity.stats(0).mean;
   return report;
 }

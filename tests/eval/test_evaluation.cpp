@@ -91,6 +91,41 @@ TEST(TrackingMetrics, ErrorsWithinTauAndAssociation) {
   EXPECT_DOUBLE_EQ(r.all_kalman.within, 0.5);
 }
 
+// The paper's ground truth: the centre of mass of the object's labelled events over the last
+// 10 ms. An object whose right edge fires three events for each of its left edge's has that
+// centre 5 px right of its outline's centre (left edge at x = 40, right at 60: (40 + 3 * 60) / 4
+// = 55); a track on the centre of mass is 5 px off the one and 0 px off the other.
+TEST(TrackingMetrics, LabelledEventsCentreIsThePapersGroundTruth) {
+  std::vector<gen::TruthSample> centres;
+  std::vector<Event> events;
+  std::vector<std::int32_t> truth;
+  for (TimeUs t = 0; t <= 50000; t += 1000) {
+    centres.push_back({t, 0, 50, 50, 10});
+    for (int k = 0; k < 4; ++k) {
+      events.push_back({t + 10 * k, static_cast<std::uint16_t>(k == 0 ? 40 : 60), static_cast<std::uint16_t>(46 + 2 * k), 1});
+      truth.push_back(0);
+    }
+    events.push_back({t + 50, 200, 10, 0});  // noise: no object's
+    truth.push_back(-1);
+  }
+  std::vector<TrackUpdate> updates;
+  for (TimeUs t = 20000; t <= 50000; t += 5000) updates.push_back({t, 3, 55, 49, 0, 0, 55, 49});
+  // Before 2 ms the window holds fewer than kEventCentreMinEvents of the object's events.
+  updates.push_back({1000, 3, 55, 49, 0, 0, 55, 49});
+  const TrackingReport r = tracking_report(updates, centres, 1, 2.5, 15.0, 20000, {events, truth});
+  ASSERT_EQ(r.objects.size(), 1u);
+  EXPECT_EQ(r.all_kalman.samples, 8);
+  EXPECT_NEAR(r.all_kalman.mean, std::hypot(5.0, 1.0), 1e-9);
+  EXPECT_DOUBLE_EQ(r.all_kalman.within, 0.0);
+  // y: the events' rows 46, 48, 50, 52 average to 49.
+  EXPECT_EQ(r.all_kalman_events.samples, 7);
+  EXPECT_NEAR(r.all_kalman_events.mean, 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(r.all_kalman_events.within, 1.0);
+  EXPECT_EQ(r.objects[0].kalman_events.samples, 7);
+  // Without the events the paper's statistics stay empty.
+  EXPECT_EQ(tracking_report(updates, centres, 1).all_kalman_events.samples, 0);
+}
+
 TEST(Evaluation, OcclusionChunksAreRecognised) {
   Scene s;
   for (TimeUs t = 0; t < 4000; t += 10) s.events.push_back({t, 0, 0, 0}), s.truth.push_back(0);
