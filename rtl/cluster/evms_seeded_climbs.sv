@@ -1,0 +1,568 @@
+// Seeded mean-shift climbs with a flat kernel, as hls/cluster/seeded_climbs.h (SeededClimbs::run),
+// bit for bit: the events' climb features (x, y in bandwidth units, UnitShift fraction bits)
+// are sorted into a GridSide x GridSide grid of one-bandwidth cells; the warm seeds climb with
+// their own balls and then every event no climb has reached yet climbs with the ball of radius
+// one bandwidth. A climb step sums the events in the ball over the 2 reach + 1 rows of cells
+// around the climb's cell, moves to their mean (exact division, rounded half up), and stops on
+// an empty ball, a move within the tolerance or the iteration cap. The converged climb joins
+// the nearest mode within the merge radius or opens one; the events it reached that have no
+// mode yet take it.
+//
+// Schedule (cycles in hls/core/schedule.h's seeded model):
+//   sort    Cells + 1 clearing the cell counts, 3 a event counting, Cells + 2 for the prefix
+//           sums, 3 a event placing;
+//   climbs  per step: 3 per row of cells, then one event a clock through a 3-stage pipeline
+//           (read; squared distance; accumulate), 2 to drain, and when the ball held events a
+//           divide of SumBits + 2 clocks (x and y at once);
+//           per climb: 2 per open mode to join, 1 to decide, touched events + 2 to label.
+// Memories have one write port and a registered read port; the per-event flags (reached, in
+// the current climb, labelled) are bit vectors, cleared in one clock.
+`include "evms_assert.svh"
+
+module evms_seeded_climbs #(
+  parameter int PacketMax     = 256,
+  parameter int ModesMax      = 64,
+  parameter int GridSide      = 32,
+  parameter int ReachMax      = 8,
+  parameter int IterationsMax = 8,
+  parameter int UnitShift     = 19,   // kFeatFrac + kClimbFrac: fraction bits of a climb feature
+  parameter int CoordBits     = 32
+) (
+  input  logic                 clk,
+  input  logic                 rst_n,
+  // The packet's climb features (event i = load_i).
+  input  logic                 load_we,
+  input  logic [15:0]          load_i,
+  input  logic [CoordBits-1:0] load_x,
+  input  logic [CoordBits-1:0] load_y,
+  // The warm seeds: the previous packet's modes and the squared radius of each one's ball.
+  input  logic                 warm_we,
+  input  logic [7:0]           warm_k,
+  input  logic [CoordBits-1:0] warm_x,
+  input  logic [CoordBits-1:0] warm_y,
+  input  logic [63:0]          warm_ball2,
+  // Running.
+  input  logic                 start,
+  input  logic [15:0]          n,
+  input  logic [7:0]           warm_count,
+  input  logic                 cfg_warm_start,
+  input  logic [7:0]           cfg_max_iterations,
+  input  logic [31:0]          cfg_tolerance,
+  input  logic [63:0]          cfg_merge_radius2,
+  output logic                 done,         // one clock
+  output logic [15:0]          mode_count,
+  output logic [15:0]          climbs,
+  output logic [15:0]          steps,
+  output logic [15:0]          modes_lost,
+  // After done (one clock of latency): event rd_j's mode (-1: none) and mode rd_c.
+  input  logic [15:0]          rd_j,
+  output logic signed [15:0]   rd_mode,
+  input  logic [7:0]           rd_c,
+  output logic [CoordBits-1:0] rd_mode_x,
+  output logic [CoordBits-1:0] rd_mode_y
+);
+  localparam int IdxBits = PacketMax > 1 ? $clog2(PacketMax) : 1;
+  localparam int CntBits = $clog2(PacketMax + 1);
+  localparam int Cells = GridSide * GridSide;
+  localparam int CellBits = $clog2(Cells + 1);
+  localparam int AxisBits = $clog2(GridSide + 1) + 1;       // signed cell coordinates
+  localparam int ReachBits = $clog2(ReachMax + 1);
+  localparam int ModeBits = ModesMax > 1 ? $clog2(ModesMax) : 1;
+  localparam int ModeCntBits = $clog2(ModesMax + 1);
+  localparam int SumBits = CoordBits + CntBits;
+  localparam int DistBits = UnitShift + ReachBits;          // differences squared: below 2^ReachBits bandwidths
+  localparam logic [63:0] One = 64'(1) << (2 * UnitShift);  // h^2
+  `EVMS_ASSERT_INIT("a squared ball radius must fit 64 bits", 2 * UnitShift + 2 * $clog2(ReachMax + 1) < 64)
+  `EVMS_ASSERT_INIT("the grid's cells must fit the 16-bit event index range", CntBits <= 16)
+
+  typedef enum logic [4:0] {
+    StIdle, StClear, StCountRead, StCountCell, StCountWrite, StPrefix, StPlaceRead, StPlaceNext, StPlaceWrite,
+    StSeedWarm, StSeedWarmLoad, StSeedEvent, StSeedEventLoad, StClimbStart, StStepInit, StRowLow, StRowHigh,
+    StRowRange, StKernel, StStepEnd, StDivide, StJoinRead, StJoinCompare, StJoinDecide, StLabel, StDone
+  } state_e;
+  state_e state_q;
+
+  // The cell of a coordinate: its integer part in bandwidths, clamped to the grid.
+  function automatic [AxisBits-1:0] cell_of(input [CoordBits-1:0] v);
+    logic [CoordBits-1:0] c;
+    begin
+      c = v >> UnitShift;
+      cell_of = c >= CoordBits'(GridSide) ? AxisBits'(GridSide - 1) : AxisBits'(c);
+    end
+  endfunction
+
+  // ---- registers -------------------------------------------------------------------------
+  logic [15:0]          j_q;                 // event index of the sort passes and the event seeds
+  logic [CellBits-1:0]  c_q, pc_q;           // prefix pass: cell read, cell written
+  logic                 pv_q;                // prefix pass: a read is in flight
+  logic [CntBits-1:0]   acc_q;               // prefix sum
+  logic [CellBits-1:0]  cell_hold_q;
+  logic [7:0]           seed_k_q;            // warm seed index
+  logic                 seeding_warm_q;
+  logic [CoordBits-1:0] mx_q, my_q;
+  logic [63:0]          ball2_q;
+  logic [ReachBits-1:0] reach_q;
+  logic [7:0]           step_q;
+  logic [AxisBits-1:0]  row_q, row_last_q, x0_q, x1_q;
+  logic [CntBits-1:0]   k_q, k_end_q;        // the row's run of sorted events
+  logic                 s1_valid_q, s2_valid_q, s2_in_q;
+  logic [CoordBits-1:0] s2_x_q, s2_y_q;
+  logic [IdxBits-1:0]   s2_j_q;
+  logic [SumBits-1:0]   sum_x_q, sum_y_q;
+  logic [CntBits-1:0]   count_q, touched_q;
+  logic [ModeBits-1:0]  scan_c_q;
+  logic                 best_valid_q;
+  logic [ModeBits-1:0]  best_q;
+  logic [63:0]          best_d2_q;
+  logic [ModeCntBits-1:0] modes_q;
+  logic signed [ModeBits:0] mode_q;          // the climb's mode, -1 when the table was full
+  logic [CntBits-1:0]   t_q;                 // labelling: touched index read
+  logic                 lv_q;                // labelling: a read is in flight
+  logic [15:0]          climbs_q, steps_q, lost_q;
+  logic [PacketMax-1:0] reached_q, in_climb_q, labelled_q;
+
+  wire [7:0] iteration_cap = cfg_max_iterations < 8'(IterationsMax) ? cfg_max_iterations : 8'(IterationsMax);
+
+  // ---- memories --------------------------------------------------------------------------
+  logic [CoordBits-1:0] phi_x [PacketMax], phi_y [PacketMax], phi_x_q, phi_y_q;
+  logic [IdxBits-1:0]   phi_ra;
+  always_ff @(posedge clk) begin
+    if (load_we) begin
+      phi_x[IdxBits'(load_i)] <= load_x;
+      phi_y[IdxBits'(load_i)] <= load_y;
+    end
+    phi_x_q <= phi_x[phi_ra];
+    phi_y_q <= phi_y[phi_ra];
+  end
+
+  logic [CellBits-1:0] cell_mem [PacketMax], cell_q;
+  logic                cell_we;
+  logic [CellBits-1:0] cell_wd;
+  always_ff @(posedge clk) begin
+    if (cell_we) cell_mem[IdxBits'(j_q)] <= cell_wd;
+    cell_q <= cell_mem[IdxBits'(j_q)];
+  end
+
+  // start[c]: where cell c's run of sorted events begins (counts, then their prefix sums).
+  logic [CntBits-1:0]  start_mem [Cells + 1], start_q, start_wd;
+  logic [CellBits-1:0] start_ra, start_wa;
+  logic                start_we;
+  always_ff @(posedge clk) begin
+    if (start_we) start_mem[start_wa] <= start_wd;
+    start_q <= start_mem[start_ra];
+  end
+
+  // next[c]: where cell c's next event goes while placing.
+  localparam int CellIdxBits = $clog2(Cells);
+  logic [CntBits-1:0]  next_mem [Cells], next_q, next_wd;
+  logic [CellBits-1:0] next_ra, next_wa;           // below Cells
+  logic                next_we;
+  always_ff @(posedge clk) begin
+    if (next_we) next_mem[CellIdxBits'(next_wa)] <= next_wd;
+    next_q <= next_mem[CellIdxBits'(next_ra)];
+  end
+
+  // The events in cell order, with their packet index.
+  logic [CoordBits-1:0] sorted_x [PacketMax], sorted_y [PacketMax], sorted_x_q, sorted_y_q;
+  logic [IdxBits-1:0]   event_mem [PacketMax], event_q;
+  logic                 sorted_we;
+  always_ff @(posedge clk) begin
+    if (sorted_we) begin
+      sorted_x[IdxBits'(next_q)] <= phi_x_q;
+      sorted_y[IdxBits'(next_q)] <= phi_y_q;
+      event_mem[IdxBits'(next_q)] <= IdxBits'(j_q);
+    end
+    sorted_x_q <= sorted_x[IdxBits'(k_q)];
+    sorted_y_q <= sorted_y[IdxBits'(k_q)];
+    event_q <= event_mem[IdxBits'(k_q)];
+  end
+
+  // The current climb's events, in the order it reached them.
+  logic [IdxBits-1:0] touched_mem [PacketMax], touched_rd_q;
+  wire touched_we = s2_valid_q && s2_in_q && !in_climb_q[s2_j_q];
+  always_ff @(posedge clk) begin
+    if (touched_we) touched_mem[IdxBits'(touched_q)] <= s2_j_q;
+    touched_rd_q <= touched_mem[IdxBits'(t_q)];
+  end
+
+  // Each event's mode, valid where labelled.
+  logic [ModeBits-1:0] first_mode_mem [PacketMax], first_mode_q;
+  wire first_mode_we = lv_q && !labelled_q[touched_rd_q] && mode_q >= 0;
+  always_ff @(posedge clk) begin
+    if (first_mode_we) first_mode_mem[touched_rd_q] <= ModeBits'(mode_q);
+    first_mode_q <= first_mode_mem[IdxBits'(rd_j)];
+  end
+  logic rd_labelled_q;
+  always_ff @(posedge clk) rd_labelled_q <= labelled_q[IdxBits'(rd_j)];
+  assign rd_mode = rd_labelled_q ? 16'(first_mode_q) : -16'sd1;
+
+  // The modes.
+  logic [CoordBits-1:0] mode_x [ModesMax], mode_y [ModesMax], mode_x_q, mode_y_q;
+  logic [ModeBits-1:0]  mode_ra;
+  wire mode_we = state_q == StJoinDecide && !best_valid_q && modes_q != ModeCntBits'(ModesMax);
+  always_ff @(posedge clk) begin
+    if (mode_we) begin
+      mode_x[ModeBits'(modes_q)] <= mx_q;
+      mode_y[ModeBits'(modes_q)] <= my_q;
+    end
+    mode_x_q <= mode_x[mode_ra];
+    mode_y_q <= mode_y[mode_ra];
+  end
+  assign rd_mode_x = mode_x_q;
+  assign rd_mode_y = mode_y_q;
+
+  // The warm seeds.
+  logic [CoordBits-1:0] warm_x_mem [ModesMax], warm_y_mem [ModesMax], warm_x_q, warm_y_q;
+  logic [63:0]          warm_b2_mem [ModesMax], warm_b2_q;
+  always_ff @(posedge clk) begin
+    if (warm_we) begin
+      warm_x_mem[ModeBits'(warm_k)] <= warm_x;
+      warm_y_mem[ModeBits'(warm_k)] <= warm_y;
+      warm_b2_mem[ModeBits'(warm_k)] <= warm_ball2;
+    end
+    warm_x_q <= warm_x_mem[ModeBits'(seed_k_q)];
+    warm_y_q <= warm_y_mem[ModeBits'(seed_k_q)];
+    warm_b2_q <= warm_b2_mem[ModeBits'(seed_k_q)];
+  end
+
+  // ---- the two dividers: the step's new position ------------------------------------------
+  logic div_start, div_done, div_y_done;
+  logic [SumBits-1:0] quotient_x, quotient_y;
+  evms_divide_rounded #(.NumBits(SumBits), .DenBits(CntBits)) u_divide_x (
+    .clk, .rst_n, .start(div_start), .num(sum_x_q), .den(count_q), .done(div_done), .quotient(quotient_x));
+  evms_divide_rounded #(.NumBits(SumBits), .DenBits(CntBits)) u_divide_y (
+    .clk, .rst_n, .start(div_start), .num(sum_y_q), .den(count_q), .done(div_y_done), .quotient(quotient_y));
+  assign div_start = state_q == StStepEnd && count_q != '0;
+
+  // ---- combinational: addresses, the kernel test, the reach of a ball ------------------------
+  // The ball's reach in cells: the least r >= 1 with (r bandwidths)^2 >= ball2, at most ReachMax.
+  logic [ReachBits-1:0] reach_of_ball;
+  always_comb begin
+    reach_of_ball = ReachBits'(ReachMax);
+    for (int r = ReachMax - 1; r >= 1; r--) begin
+      if ((64'(r * r) << (2 * UnitShift)) >= ball2_q) reach_of_ball = ReachBits'(r);
+    end
+  end
+
+  // Squared distances. A ball reaches at most ReachMax bandwidths and the merge radius is below
+  // 2^ReachBits bandwidths (both asserted below), so a difference of 2^DistBits or more puts a
+  // pair outside either whatever the other coordinate: only DistBits-bit differences are squared.
+  function automatic logic [DistBits-1:0] magnitude(input [CoordBits-1:0] a, input [CoordBits-1:0] b, output logic far);
+    logic [CoordBits-1:0] d;
+    begin
+      d = a > b ? a - b : b - a;
+      far = d >= CoordBits'(64'(1) << DistBits);
+      magnitude = DistBits'(d);
+    end
+  endfunction
+  logic kernel_far_x, kernel_far_y, join_far_x, join_far_y;
+  logic [DistBits-1:0] kernel_dx, kernel_dy, join_dx, join_dy;
+  always_comb begin
+    kernel_dx = magnitude(mx_q, sorted_x_q, kernel_far_x);
+    kernel_dy = magnitude(my_q, sorted_y_q, kernel_far_y);
+    join_dx = magnitude(mx_q, mode_x_q, join_far_x);
+    join_dy = magnitude(my_q, mode_y_q, join_far_y);
+  end
+  wire [63:0] kernel_d2 = 64'(kernel_dx) * 64'(kernel_dx) + 64'(kernel_dy) * 64'(kernel_dy);
+  wire [63:0] join_d2 = 64'(join_dx) * 64'(join_dx) + 64'(join_dy) * 64'(join_dy);
+  wire kernel_in = !kernel_far_x && !kernel_far_y && kernel_d2 < ball2_q;
+  wire join_near = !join_far_x && !join_far_y && join_d2 <= cfg_merge_radius2;
+
+  // The climb's cell and the rows and columns of cells its ball reaches, clamped to the grid.
+  wire signed [AxisBits:0] climb_cx = $signed({1'b0, cell_of(mx_q)});
+  wire signed [AxisBits:0] climb_cy = $signed({1'b0, cell_of(my_q)});
+  wire signed [AxisBits:0] climb_r = $signed({1'b0, AxisBits'(reach_q)});
+  wire signed [AxisBits:0] last_cell = (AxisBits + 1)'(GridSide - 1);
+
+  wire [CoordBits-1:0] new_x = CoordBits'(quotient_x), new_y = CoordBits'(quotient_y);
+  wire [CoordBits-1:0] move_x = new_x > mx_q ? new_x - mx_q : mx_q - new_x;
+  wire [CoordBits-1:0] move_y = new_y > my_q ? new_y - my_q : my_q - new_y;
+  wire [CoordBits-1:0] move = move_x > move_y ? move_x : move_y;
+
+  wire [CellBits-1:0] row_base = CellBits'(row_q) * CellBits'(GridSide);
+  wire [CellBits-1:0] count_cell = CellBits'(cell_of(phi_y_q)) * CellBits'(GridSide) + CellBits'(cell_of(phi_x_q));
+
+  always_comb begin
+    phi_ra = IdxBits'(j_q);
+    start_ra = '0;
+    start_we = 1'b0;
+    start_wa = '0;
+    start_wd = '0;
+    next_ra = cell_q;
+    next_we = 1'b0;
+    next_wa = '0;
+    next_wd = '0;
+    cell_we = 1'b0;
+    cell_wd = count_cell;
+    sorted_we = 1'b0;
+    mode_ra = state_q == StJoinRead ? scan_c_q : ModeBits'(rd_c);
+    unique case (state_q)
+      StClear: begin
+        start_we = 1'b1;
+        start_wa = c_q;
+      end
+      StCountCell: begin
+        cell_we = 1'b1;
+        start_ra = count_cell + 1'b1;
+      end
+      StCountWrite: begin
+        start_we = 1'b1;
+        start_wa = cell_hold_q + 1'b1;
+        start_wd = start_q + 1'b1;
+      end
+      StPrefix: begin
+        start_ra = c_q;
+        start_we = pv_q;
+        start_wa = pc_q;
+        start_wd = acc_q + start_q;
+        next_we = pv_q && pc_q != CellBits'(Cells);
+        next_wa = pc_q;
+        next_wd = acc_q + start_q;
+      end
+      StPlaceWrite: begin
+        sorted_we = 1'b1;
+        next_we = 1'b1;
+        next_wa = cell_q;
+        next_wd = next_q + 1'b1;
+      end
+      StRowLow: start_ra = row_base + CellBits'(x0_q);
+      StRowHigh: start_ra = row_base + CellBits'(x1_q) + 1'b1;
+      default: ;
+    endcase
+  end
+
+  // ---- the controller and the datapath -----------------------------------------------------
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      state_q <= StIdle;
+      done <= 1'b0;
+      {j_q, c_q, pc_q, pv_q, acc_q, cell_hold_q, seed_k_q, seeding_warm_q} <= '0;
+      {mx_q, my_q, ball2_q, reach_q, step_q, row_q, row_last_q, x0_q, x1_q, k_q, k_end_q} <= '0;
+      {s1_valid_q, s2_valid_q, s2_in_q, s2_x_q, s2_y_q, s2_j_q} <= '0;
+      {sum_x_q, sum_y_q, count_q, touched_q, scan_c_q, best_valid_q, best_q, best_d2_q} <= '0;
+      {modes_q, t_q, lv_q, climbs_q, steps_q, lost_q} <= '0;
+      mode_q <= '0;
+      {reached_q, in_climb_q, labelled_q} <= '0;
+    end else begin
+      done <= 1'b0;
+      unique case (state_q)
+        StIdle: if (start) begin
+          {reached_q, in_climb_q, labelled_q} <= '0;
+          {climbs_q, steps_q, lost_q} <= '0;
+          modes_q <= '0;
+          c_q <= '0;
+          state_q <= StClear;
+        end
+        // Sorting into cells: count, prefix sums, place.
+        StClear: begin
+          c_q <= c_q + 1'b1;
+          if (c_q == CellBits'(Cells)) begin
+            j_q <= '0;
+            state_q <= n == '0 ? StSeedWarm : StCountRead;
+            seed_k_q <= '0;
+            seeding_warm_q <= 1'b1;
+          end
+        end
+        StCountRead: state_q <= StCountCell;
+        StCountCell: begin
+          cell_hold_q <= count_cell;
+          state_q <= StCountWrite;
+        end
+        StCountWrite: begin
+          j_q <= j_q + 1'b1;
+          if (j_q + 1'b1 == n) begin
+            c_q <= '0;
+            pv_q <= 1'b0;
+            acc_q <= '0;
+            state_q <= StPrefix;
+          end else begin
+            state_q <= StCountRead;
+          end
+        end
+        StPrefix: begin
+          if (pv_q) acc_q <= acc_q + start_q;
+          pv_q <= c_q <= CellBits'(Cells);
+          pc_q <= c_q;
+          if (c_q <= CellBits'(Cells)) c_q <= c_q + 1'b1;
+          if (c_q > CellBits'(Cells) && !pv_q) begin
+            j_q <= '0;
+            state_q <= StPlaceRead;
+          end
+        end
+        StPlaceRead: state_q <= StPlaceNext;
+        StPlaceNext: state_q <= StPlaceWrite;
+        StPlaceWrite: begin
+          j_q <= j_q + 1'b1;
+          if (j_q + 1'b1 == n) begin
+            seed_k_q <= '0;
+            seeding_warm_q <= 1'b1;
+            state_q <= StSeedWarm;
+          end else begin
+            state_q <= StPlaceRead;
+          end
+        end
+        // Seeds: the warm ones, then every event not reached yet.
+        StSeedWarm: begin
+          if (cfg_warm_start && seed_k_q < warm_count && seed_k_q < 8'(ModesMax)) begin
+            state_q <= StSeedWarmLoad;
+          end else begin
+            seeding_warm_q <= 1'b0;
+            j_q <= '0;
+            state_q <= StSeedEvent;
+          end
+        end
+        StSeedWarmLoad: begin
+          mx_q <= warm_x_q;
+          my_q <= warm_y_q;
+          ball2_q <= warm_b2_q;
+          seed_k_q <= seed_k_q + 1'b1;
+          state_q <= StClimbStart;
+        end
+        StSeedEvent: begin
+          if (j_q >= n) begin
+            done <= 1'b1;
+            state_q <= StDone;
+          end else if (reached_q[IdxBits'(j_q)]) begin
+            j_q <= j_q + 1'b1;
+          end else begin
+            state_q <= StSeedEventLoad;
+          end
+        end
+        StSeedEventLoad: begin
+          mx_q <= phi_x_q;
+          my_q <= phi_y_q;
+          ball2_q <= One;
+          j_q <= j_q + 1'b1;
+          state_q <= StClimbStart;
+        end
+        // One climb.
+        StClimbStart: begin
+          climbs_q <= climbs_q + 1'b1;
+          reach_q <= reach_of_ball;
+          step_q <= '0;
+          touched_q <= '0;
+          count_q <= '0;
+          state_q <= iteration_cap == '0 ? StJoinRead : StStepInit;
+          scan_c_q <= '0;
+          best_valid_q <= 1'b0;
+          if (iteration_cap == '0 && modes_q == '0) state_q <= StJoinDecide;
+        end
+        StStepInit: begin
+          row_q <= climb_cy - climb_r < 0 ? '0 : AxisBits'(climb_cy - climb_r);
+          row_last_q <= climb_cy + climb_r > last_cell ? AxisBits'(last_cell) : AxisBits'(climb_cy + climb_r);
+          x0_q <= climb_cx - climb_r < 0 ? '0 : AxisBits'(climb_cx - climb_r);
+          x1_q <= climb_cx + climb_r > last_cell ? AxisBits'(last_cell) : AxisBits'(climb_cx + climb_r);
+          sum_x_q <= '0;
+          sum_y_q <= '0;
+          count_q <= '0;
+          state_q <= StRowLow;
+        end
+        StRowLow: state_q <= StRowHigh;
+        StRowHigh: begin
+          k_q <= start_q;
+          state_q <= StRowRange;
+        end
+        StRowRange: begin
+          k_end_q <= start_q;
+          s1_valid_q <= 1'b0;
+          s2_valid_q <= 1'b0;
+          state_q <= StKernel;
+        end
+        StKernel: begin
+          // Issue (the memories read k), test (squared distance), accumulate.
+          s1_valid_q <= k_q < k_end_q;
+          if (k_q < k_end_q) k_q <= k_q + 1'b1;
+          s2_valid_q <= s1_valid_q;
+          s2_in_q <= kernel_in;
+          s2_x_q <= sorted_x_q;
+          s2_y_q <= sorted_y_q;
+          s2_j_q <= event_q;
+          if (s2_valid_q && s2_in_q) begin
+            sum_x_q <= sum_x_q + SumBits'(s2_x_q);
+            sum_y_q <= sum_y_q + SumBits'(s2_y_q);
+            count_q <= count_q + 1'b1;
+            reached_q[s2_j_q] <= 1'b1;
+            if (!in_climb_q[s2_j_q]) begin
+              in_climb_q[s2_j_q] <= 1'b1;
+              touched_q <= touched_q + 1'b1;
+            end
+          end
+          if (k_q >= k_end_q && !s1_valid_q && !s2_valid_q) begin
+            if (row_q == row_last_q) begin
+              state_q <= StStepEnd;
+            end else begin
+              row_q <= row_q + 1'b1;
+              state_q <= StRowLow;
+            end
+          end
+        end
+        StStepEnd: begin
+          steps_q <= steps_q + 1'b1;
+          state_q <= count_q == '0 ? (modes_q == '0 ? StJoinDecide : StJoinRead) : StDivide;
+        end
+        StDivide: if (div_done) begin
+          mx_q <= new_x;
+          my_q <= new_y;
+          step_q <= step_q + 1'b1;
+          if (move <= cfg_tolerance || step_q + 1'b1 >= iteration_cap) begin
+            state_q <= modes_q == '0 ? StJoinDecide : StJoinRead;
+          end else begin
+            state_q <= StStepInit;
+          end
+        end
+        // Join the nearest mode within the merge radius (ties: the older), else open one.
+        StJoinRead: state_q <= StJoinCompare;
+        StJoinCompare: begin
+          if (join_near && (!best_valid_q || join_d2 < best_d2_q)) begin
+            best_valid_q <= 1'b1;
+            best_q <= scan_c_q;
+            best_d2_q <= join_d2;
+          end
+          scan_c_q <= scan_c_q + 1'b1;
+          state_q <= ModeCntBits'(scan_c_q) + 1'b1 == modes_q ? StJoinDecide : StJoinRead;
+        end
+        StJoinDecide: begin
+          if (best_valid_q) begin
+            mode_q <= $signed({1'b0, best_q});
+          end else if (modes_q == ModeCntBits'(ModesMax)) begin
+            mode_q <= -1;
+            lost_q <= lost_q + 1'b1;
+          end else begin
+            mode_q <= $signed({1'b0, ModeBits'(modes_q)});
+            modes_q <= modes_q + 1'b1;
+          end
+          t_q <= '0;
+          lv_q <= 1'b0;
+          state_q <= StLabel;
+        end
+        // The climb's events that have no mode yet take its mode; all leave the climb.
+        StLabel: begin
+          lv_q <= t_q < touched_q;
+          if (t_q < touched_q) t_q <= t_q + 1'b1;
+          if (lv_q) begin
+            in_climb_q[touched_rd_q] <= 1'b0;
+            if (!labelled_q[touched_rd_q] && mode_q >= 0) labelled_q[touched_rd_q] <= 1'b1;
+          end
+          if (t_q >= touched_q && !lv_q) state_q <= seeding_warm_q ? StSeedWarm : StSeedEvent;
+        end
+        StDone: if (start) begin
+          {reached_q, in_climb_q, labelled_q} <= '0;
+          {climbs_q, steps_q, lost_q} <= '0;
+          modes_q <= '0;
+          c_q <= '0;
+          state_q <= StClear;
+        end
+        default: state_q <= StIdle;
+      endcase
+    end
+  end
+
+  assign mode_count = 16'(modes_q);
+  assign climbs = climbs_q;
+  assign steps = steps_q;
+  assign modes_lost = lost_q;
+
+  `EVMS_ASSERT("a packet holds at most PacketMax events", !(start && n > 16'(PacketMax)), clk, rst_n)
+  `EVMS_ASSERT("a ball reaches at most ReachMax bandwidths", state_q != StClimbStart || ball2_q <= 64'(ReachMax * ReachMax) * One, clk, rst_n)
+  `EVMS_ASSERT("the merge radius is below 2^ReachBits bandwidths", !start || cfg_merge_radius2 < (64'(1) << (2 * DistBits)), clk, rst_n)
+endmodule
