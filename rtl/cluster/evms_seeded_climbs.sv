@@ -15,7 +15,7 @@
 //           (read; squared distance; accumulate), 2 to drain, and when the ball held events a
 //           divide of SumBits + 2 clocks (x and y at once);
 //           per climb: 2 per open mode to join, 1 to decide, touched events + 2 to label.
-// Memories have one write port and a registered read port; the per-event flags (reached, in
+// Memories have one write port and a registered read port (common/evms_ram_1w1r); the per-event flags (reached, in
 // the current climb, labelled) are bit vectors, cleared in one clock.
 `include "evms_assert.svh"
 
@@ -123,107 +123,72 @@ module evms_seeded_climbs #(
 
   wire [7:0] iteration_cap = cfg_max_iterations < 8'(IterationsMax) ? cfg_max_iterations : 8'(IterationsMax);
 
-  // ---- memories --------------------------------------------------------------------------
-  logic [CoordBits-1:0] phi_x [PacketMax], phi_y [PacketMax], phi_x_q, phi_y_q;
+  // ---- memories (common/evms_ram_1w1r) ----------------------------------------------------
+  // The packet's features.
+  logic [CoordBits-1:0] phi_x_q, phi_y_q;
   logic [IdxBits-1:0]   phi_ra;
-  always_ff @(posedge clk) begin
-    if (load_we) begin
-      phi_x[IdxBits'(load_i)] <= load_x;
-      phi_y[IdxBits'(load_i)] <= load_y;
-    end
-    phi_x_q <= phi_x[phi_ra];
-    phi_y_q <= phi_y[phi_ra];
-  end
+  evms_ram_1w1r #(.Width(2 * CoordBits), .Depth(PacketMax)) u_phi (
+    .clk, .we(load_we), .wa(IdxBits'(load_i)), .wd({load_x, load_y}), .ra(phi_ra), .rd({phi_x_q, phi_y_q}));
 
-  logic [CellBits-1:0] cell_mem [PacketMax], cell_q;
+  // Each event's cell, from counting to placing.
+  logic [CellBits-1:0] cell_q, cell_wd;
   logic                cell_we;
-  logic [CellBits-1:0] cell_wd;
-  always_ff @(posedge clk) begin
-    if (cell_we) cell_mem[IdxBits'(j_q)] <= cell_wd;
-    cell_q <= cell_mem[IdxBits'(j_q)];
-  end
+  evms_ram_1w1r #(.Width(CellBits), .Depth(PacketMax)) u_cell (
+    .clk, .we(cell_we), .wa(IdxBits'(j_q)), .wd(cell_wd), .ra(IdxBits'(j_q)), .rd(cell_q));
 
   // start[c]: where cell c's run of sorted events begins (counts, then their prefix sums).
-  logic [CntBits-1:0]  start_mem [Cells + 1], start_q, start_wd;
+  logic [CntBits-1:0]  start_q, start_wd;
   logic [CellBits-1:0] start_ra, start_wa;
   logic                start_we;
-  always_ff @(posedge clk) begin
-    if (start_we) start_mem[start_wa] <= start_wd;
-    start_q <= start_mem[start_ra];
-  end
+  evms_ram_1w1r #(.Width(CntBits), .Depth(Cells + 1)) u_start (
+    .clk, .we(start_we), .wa(start_wa), .wd(start_wd), .ra(start_ra), .rd(start_q));
 
   // next[c]: where cell c's next event goes while placing.
   localparam int CellIdxBits = $clog2(Cells);
-  logic [CntBits-1:0]  next_mem [Cells], next_q, next_wd;
+  logic [CntBits-1:0]  next_q, next_wd;
   logic [CellBits-1:0] next_ra, next_wa;           // below Cells
   logic                next_we;
-  always_ff @(posedge clk) begin
-    if (next_we) next_mem[CellIdxBits'(next_wa)] <= next_wd;
-    next_q <= next_mem[CellIdxBits'(next_ra)];
-  end
+  evms_ram_1w1r #(.Width(CntBits), .Depth(Cells)) u_next (
+    .clk, .we(next_we), .wa(CellIdxBits'(next_wa)), .wd(next_wd), .ra(CellIdxBits'(next_ra)), .rd(next_q));
 
   // The events in cell order, with their packet index.
-  logic [CoordBits-1:0] sorted_x [PacketMax], sorted_y [PacketMax], sorted_x_q, sorted_y_q;
-  logic [IdxBits-1:0]   event_mem [PacketMax], event_q;
+  logic [CoordBits-1:0] sorted_x_q, sorted_y_q;
+  logic [IdxBits-1:0]   event_q;
   logic                 sorted_we;
-  always_ff @(posedge clk) begin
-    if (sorted_we) begin
-      sorted_x[IdxBits'(next_q)] <= phi_x_q;
-      sorted_y[IdxBits'(next_q)] <= phi_y_q;
-      event_mem[IdxBits'(next_q)] <= IdxBits'(j_q);
-    end
-    sorted_x_q <= sorted_x[IdxBits'(k_q)];
-    sorted_y_q <= sorted_y[IdxBits'(k_q)];
-    event_q <= event_mem[IdxBits'(k_q)];
-  end
+  evms_ram_1w1r #(.Width(2 * CoordBits + IdxBits), .Depth(PacketMax)) u_sorted (
+    .clk, .we(sorted_we), .wa(IdxBits'(next_q)), .wd({phi_x_q, phi_y_q, IdxBits'(j_q)}), .ra(IdxBits'(k_q)),
+    .rd({sorted_x_q, sorted_y_q, event_q}));
 
   // The current climb's events, in the order it reached them.
-  logic [IdxBits-1:0] touched_mem [PacketMax], touched_rd_q;
+  logic [IdxBits-1:0] touched_rd_q;
   wire touched_we = s2_valid_q && s2_in_q && !in_climb_q[s2_j_q];
-  always_ff @(posedge clk) begin
-    if (touched_we) touched_mem[IdxBits'(touched_q)] <= s2_j_q;
-    touched_rd_q <= touched_mem[IdxBits'(t_q)];
-  end
+  evms_ram_1w1r #(.Width(IdxBits), .Depth(PacketMax)) u_touched (
+    .clk, .we(touched_we), .wa(IdxBits'(touched_q)), .wd(s2_j_q), .ra(IdxBits'(t_q)), .rd(touched_rd_q));
 
   // Each event's mode, valid where labelled.
-  logic [ModeBits-1:0] first_mode_mem [PacketMax], first_mode_q;
+  logic [ModeBits-1:0] first_mode_q;
   wire first_mode_we = lv_q && !labelled_q[touched_rd_q] && mode_q >= 0;
-  always_ff @(posedge clk) begin
-    if (first_mode_we) first_mode_mem[touched_rd_q] <= ModeBits'(mode_q);
-    first_mode_q <= first_mode_mem[IdxBits'(rd_j)];
-  end
+  evms_ram_1w1r #(.Width(ModeBits), .Depth(PacketMax)) u_first_mode (
+    .clk, .we(first_mode_we), .wa(touched_rd_q), .wd(ModeBits'(mode_q)), .ra(IdxBits'(rd_j)), .rd(first_mode_q));
   logic rd_labelled_q;
   always_ff @(posedge clk) rd_labelled_q <= labelled_q[IdxBits'(rd_j)];
   assign rd_mode = rd_labelled_q ? 16'(first_mode_q) : -16'sd1;
 
   // The modes.
-  logic [CoordBits-1:0] mode_x [ModesMax], mode_y [ModesMax], mode_x_q, mode_y_q;
+  logic [CoordBits-1:0] mode_x_q, mode_y_q;
   logic [ModeBits-1:0]  mode_ra;
   wire mode_we = state_q == StJoinDecide && !best_valid_q && modes_q != ModeCntBits'(ModesMax);
-  always_ff @(posedge clk) begin
-    if (mode_we) begin
-      mode_x[ModeBits'(modes_q)] <= mx_q;
-      mode_y[ModeBits'(modes_q)] <= my_q;
-    end
-    mode_x_q <= mode_x[mode_ra];
-    mode_y_q <= mode_y[mode_ra];
-  end
+  evms_ram_1w1r #(.Width(2 * CoordBits), .Depth(ModesMax)) u_modes (
+    .clk, .we(mode_we), .wa(ModeBits'(modes_q)), .wd({mx_q, my_q}), .ra(mode_ra), .rd({mode_x_q, mode_y_q}));
   assign rd_mode_x = mode_x_q;
   assign rd_mode_y = mode_y_q;
 
   // The warm seeds.
-  logic [CoordBits-1:0] warm_x_mem [ModesMax], warm_y_mem [ModesMax], warm_x_q, warm_y_q;
-  logic [63:0]          warm_b2_mem [ModesMax], warm_b2_q;
-  always_ff @(posedge clk) begin
-    if (warm_we) begin
-      warm_x_mem[ModeBits'(warm_k)] <= warm_x;
-      warm_y_mem[ModeBits'(warm_k)] <= warm_y;
-      warm_b2_mem[ModeBits'(warm_k)] <= warm_ball2;
-    end
-    warm_x_q <= warm_x_mem[ModeBits'(seed_k_q)];
-    warm_y_q <= warm_y_mem[ModeBits'(seed_k_q)];
-    warm_b2_q <= warm_b2_mem[ModeBits'(seed_k_q)];
-  end
+  logic [CoordBits-1:0] warm_x_q, warm_y_q;
+  logic [63:0]          warm_b2_q;
+  evms_ram_1w1r #(.Width(2 * CoordBits + 64), .Depth(ModesMax)) u_warm (
+    .clk, .we(warm_we), .wa(ModeBits'(warm_k)), .wd({warm_x, warm_y, warm_ball2}), .ra(ModeBits'(seed_k_q)),
+    .rd({warm_x_q, warm_y_q, warm_b2_q}));
 
   // ---- the two dividers: the step's new position ------------------------------------------
   logic div_start, div_done, div_y_done;
