@@ -311,7 +311,8 @@ module evms_seeded_climbs #(
     end else begin
       done <= 1'b0;
       unique case (state_q)
-        StIdle: if (start) begin
+        // Idle, or done with the last packet (its results stay readable until the next start).
+        StIdle, StDone: if (start) begin
           {reached_q, in_climb_q, labelled_q} <= '0;
           {climbs_q, steps_q, lost_q} <= '0;
           modes_q <= '0;
@@ -509,13 +510,6 @@ module evms_seeded_climbs #(
             if (!labelled_q[touched_rd_q] && mode_q >= 0) labelled_q[touched_rd_q] <= 1'b1;
           end
           if (t_q >= touched_q && !lv_q) state_q <= seeding_warm_q ? StSeedWarm : StSeedEvent;
-        end
-        StDone: if (start) begin
-          {reached_q, in_climb_q, labelled_q} <= '0;
-          {climbs_q, steps_q, lost_q} <= '0;
-          modes_q <= '0;
-          c_q <= '0;
-          state_q <= StClear;
         end
         default: state_q <= StIdle;
       endcase
