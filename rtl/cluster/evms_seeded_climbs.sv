@@ -96,7 +96,6 @@ module evms_seeded_climbs #(
   logic [CellBits-1:0]  c_q, pc_q;           // prefix pass: cell read, cell written
   logic                 pv_q;                // prefix pass: a read is in flight
   logic [CntBits-1:0]   acc_q;               // prefix sum
-  logic [CellBits-1:0]  cell_hold_q;
   logic [7:0]           seed_k_q;            // warm seed index
   logic                 seeding_warm_q;
   logic [CoordBits-1:0] mx_q, my_q;
@@ -121,9 +120,16 @@ module evms_seeded_climbs #(
   logic [15:0]          climbs_q, steps_q, lost_q;
   logic [PacketMax-1:0] reached_q, in_climb_q, labelled_q;
 
+  // Where a converged climb goes: the scan of the open modes, or straight to opening one.
+  state_e join_state;
+  assign join_state = modes_q == '0 ? StJoinDecide : StJoinRead;
   wire [7:0] iteration_cap = cfg_max_iterations < 8'(IterationsMax) ? cfg_max_iterations : 8'(IterationsMax);
 
   // ---- memories (common/evms_ram_1w1r) ----------------------------------------------------
+  // The event index of the sort passes and the event seeds, as a memory address (a named wire:
+  // Yosys 0.23 sizes a cast inside a concatenation by the operand, not the cast).
+  wire [IdxBits-1:0] j_index = IdxBits'(j_q);
+
   // The packet's features.
   logic [CoordBits-1:0] phi_x_q, phi_y_q;
   logic [IdxBits-1:0]   phi_ra;
@@ -134,7 +140,7 @@ module evms_seeded_climbs #(
   logic [CellBits-1:0] cell_q, cell_wd;
   logic                cell_we;
   evms_ram_1w1r #(.Width(CellBits), .Depth(PacketMax)) u_cell (
-    .clk, .we(cell_we), .wa(IdxBits'(j_q)), .wd(cell_wd), .ra(IdxBits'(j_q)), .rd(cell_q));
+    .clk, .we(cell_we), .wa(j_index), .wd(cell_wd), .ra(j_index), .rd(cell_q));
 
   // start[c]: where cell c's run of sorted events begins (counts, then their prefix sums).
   logic [CntBits-1:0]  start_q, start_wd;
@@ -156,7 +162,7 @@ module evms_seeded_climbs #(
   logic [IdxBits-1:0]   event_q;
   logic                 sorted_we;
   evms_ram_1w1r #(.Width(2 * CoordBits + IdxBits), .Depth(PacketMax)) u_sorted (
-    .clk, .we(sorted_we), .wa(IdxBits'(next_q)), .wd({phi_x_q, phi_y_q, IdxBits'(j_q)}), .ra(IdxBits'(k_q)),
+    .clk, .we(sorted_we), .wa(IdxBits'(next_q)), .wd({phi_x_q, phi_y_q, j_index}), .ra(IdxBits'(k_q)),
     .rd({sorted_x_q, sorted_y_q, event_q}));
 
   // The current climb's events, in the order it reached them.
@@ -236,7 +242,7 @@ module evms_seeded_climbs #(
   // The climb's cell and the rows and columns of cells its ball reaches, clamped to the grid.
   wire signed [AxisBits:0] climb_cx = $signed({1'b0, cell_of(mx_q)});
   wire signed [AxisBits:0] climb_cy = $signed({1'b0, cell_of(my_q)});
-  wire signed [AxisBits:0] climb_r = $signed({1'b0, AxisBits'(reach_q)});
+  wire signed [AxisBits:0] climb_r = $signed((AxisBits + 1)'(reach_q));
   wire signed [AxisBits:0] last_cell = (AxisBits + 1)'(GridSide - 1);
 
   wire [CoordBits-1:0] new_x = CoordBits'(quotient_x), new_y = CoordBits'(quotient_y);
@@ -248,7 +254,7 @@ module evms_seeded_climbs #(
   wire [CellBits-1:0] count_cell = CellBits'(cell_of(phi_y_q)) * CellBits'(GridSide) + CellBits'(cell_of(phi_x_q));
 
   always_comb begin
-    phi_ra = IdxBits'(j_q);
+    phi_ra = j_index;
     start_ra = '0;
     start_we = 1'b0;
     start_wa = '0;
@@ -272,7 +278,7 @@ module evms_seeded_climbs #(
       end
       StCountWrite: begin
         start_we = 1'b1;
-        start_wa = cell_hold_q + 1'b1;
+        start_wa = count_cell + 1'b1;           // phi still holds event j_q
         start_wd = start_q + 1'b1;
       end
       StPrefix: begin
@@ -301,7 +307,7 @@ module evms_seeded_climbs #(
     if (!rst_n) begin
       state_q <= StIdle;
       done <= 1'b0;
-      {j_q, c_q, pc_q, pv_q, acc_q, cell_hold_q, seed_k_q, seeding_warm_q} <= '0;
+      {j_q, c_q, pc_q, pv_q, acc_q, seed_k_q, seeding_warm_q} <= '0;
       {mx_q, my_q, ball2_q, reach_q, step_q, row_q, row_last_q, x0_q, x1_q, k_q, k_end_q} <= '0;
       {s1_valid_q, s2_valid_q, s2_in_q, s2_x_q, s2_y_q, s2_j_q} <= '0;
       {sum_x_q, sum_y_q, count_q, touched_q, scan_c_q, best_valid_q, best_q, best_d2_q} <= '0;
@@ -330,10 +336,7 @@ module evms_seeded_climbs #(
           end
         end
         StCountRead: state_q <= StCountCell;
-        StCountCell: begin
-          cell_hold_q <= count_cell;
-          state_q <= StCountWrite;
-        end
+        StCountCell: state_q <= StCountWrite;
         StCountWrite: begin
           j_q <= j_q + 1'b1;
           if (j_q + 1'b1 == n) begin
@@ -388,7 +391,7 @@ module evms_seeded_climbs #(
           if (j_q >= n) begin
             done <= 1'b1;
             state_q <= StDone;
-          end else if (reached_q[IdxBits'(j_q)]) begin
+          end else if (reached_q[j_index]) begin
             j_q <= j_q + 1'b1;
           end else begin
             state_q <= StSeedEventLoad;
@@ -408,10 +411,9 @@ module evms_seeded_climbs #(
           step_q <= '0;
           touched_q <= '0;
           count_q <= '0;
-          state_q <= iteration_cap == '0 ? StJoinRead : StStepInit;
+          state_q <= iteration_cap == '0 ? join_state : StStepInit;
           scan_c_q <= '0;
           best_valid_q <= 1'b0;
-          if (iteration_cap == '0 && modes_q == '0) state_q <= StJoinDecide;
         end
         StStepInit: begin
           row_q <= climb_cy - climb_r < 0 ? '0 : AxisBits'(climb_cy - climb_r);
@@ -448,10 +450,10 @@ module evms_seeded_climbs #(
             sum_y_q <= sum_y_q + SumBits'(s2_y_q);
             count_q <= count_q + 1'b1;
             reached_q[s2_j_q] <= 1'b1;
-            if (!in_climb_q[s2_j_q]) begin
-              in_climb_q[s2_j_q] <= 1'b1;
-              touched_q <= touched_q + 1'b1;
-            end
+          end
+          if (touched_we) begin
+            in_climb_q[s2_j_q] <= 1'b1;
+            touched_q <= touched_q + 1'b1;
           end
           if (k_q >= k_end_q && !s1_valid_q && !s2_valid_q) begin
             if (row_q == row_last_q) begin
@@ -464,14 +466,14 @@ module evms_seeded_climbs #(
         end
         StStepEnd: begin
           steps_q <= steps_q + 1'b1;
-          state_q <= count_q == '0 ? (modes_q == '0 ? StJoinDecide : StJoinRead) : StDivide;
+          state_q <= count_q == '0 ? join_state : StDivide;
         end
         StDivide: if (div_done) begin
           mx_q <= new_x;
           my_q <= new_y;
           step_q <= step_q + 1'b1;
           if (move <= cfg_tolerance || step_q + 1'b1 >= iteration_cap) begin
-            state_q <= modes_q == '0 ? StJoinDecide : StJoinRead;
+            state_q <= join_state;
           end else begin
             state_q <= StStepInit;
           end
@@ -489,12 +491,12 @@ module evms_seeded_climbs #(
         end
         StJoinDecide: begin
           if (best_valid_q) begin
-            mode_q <= $signed({1'b0, best_q});
+            mode_q <= $signed((ModeBits + 1)'(best_q));
           end else if (modes_q == ModeCntBits'(ModesMax)) begin
             mode_q <= -1;
             lost_q <= lost_q + 1'b1;
           end else begin
-            mode_q <= $signed({1'b0, ModeBits'(modes_q)});
+            mode_q <= $signed((ModeBits + 1)'(modes_q));   // below ModesMax here
             modes_q <= modes_q + 1'b1;
           end
           t_q <= '0;
@@ -507,7 +509,7 @@ module evms_seeded_climbs #(
           if (t_q < touched_q) t_q <= t_q + 1'b1;
           if (lv_q) begin
             in_climb_q[touched_rd_q] <= 1'b0;
-            if (!labelled_q[touched_rd_q] && mode_q >= 0) labelled_q[touched_rd_q] <= 1'b1;
+            if (first_mode_we) labelled_q[touched_rd_q] <= 1'b1;
           end
           if (t_q >= touched_q && !lv_q) state_q <= seeding_warm_q ? StSeedWarm : StSeedEvent;
         end

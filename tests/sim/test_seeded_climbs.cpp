@@ -34,6 +34,7 @@ constexpr int kWidth = 240, kHeight = 180;
 
 struct Case {
   hls::PacketEvents<S> events{};
+  hls::Features<S> phi{};         // the events' climb features, which both sides take
   int n = 0;
   hls::Config cfg{};
   hls::Modes<S> warm{};
@@ -80,6 +81,7 @@ Case draw_case(std::mt19937_64& rng) {
     const double r = uniform(1, S::kReachMax);
     c.warm.ball2[k] = below(3) == 0 ? kOne : static_cast<std::uint64_t>(r * r * static_cast<double>(kOne));
   }
+  hls::climb_features(c.events, c.n, c.cfg, c.phi);
   return c;
 }
 
@@ -91,13 +93,11 @@ struct Result {
 };
 
 Result run_model(const Case& c) {
-  hls::Features<S> phi;
-  hls::climb_features(c.events, c.n, c.cfg, phi);
   auto climbs = std::make_unique<hls::SeededClimbs<S>>();
   std::int16_t first_mode[S::kPacketMax];
   hls::Modes<S> modes;
   hls::ClimbTrace trace;
-  climbs->run(phi, c.n, c.cfg, c.warm, first_mode, modes, trace);
+  climbs->run(c.phi, c.n, c.cfg, c.warm, first_mode, modes, trace);
   Result r;
   r.first_mode.assign(first_mode, first_mode + c.n);
   for (int k = 0; k < modes.count; ++k) r.modes.push_back({modes.x[k], modes.y[k]});
@@ -106,8 +106,6 @@ Result run_model(const Case& c) {
 }
 
 Result run_rtl(const Case& c, const std::string& trace_path) {
-  hls::Features<S> phi;
-  hls::climb_features(c.events, c.n, c.cfg, phi);
   auto context = std::make_unique<VerilatedContext>();
   auto rtl = std::make_unique<Vseeded_climbs>(context.get());
   std::unique_ptr<VerilatedFstC> fst;
@@ -130,7 +128,7 @@ Result run_rtl(const Case& c, const std::string& trace_path) {
   tick();
   rtl->rst_n = 1;
   for (int i = 0; i < c.n; ++i) {
-    rtl->load_we = 1, rtl->load_i = static_cast<std::uint16_t>(i), rtl->load_x = phi.x[i], rtl->load_y = phi.y[i];
+    rtl->load_we = 1, rtl->load_i = static_cast<std::uint16_t>(i), rtl->load_x = c.phi.x[i], rtl->load_y = c.phi.y[i];
     tick();
   }
   rtl->load_we = 0;
