@@ -2,6 +2,7 @@
 // tracking accuracy, and cost.
 #pragma once
 
+#include <span>
 #include <string>
 
 #include "host/eval/chunks.h"
@@ -29,6 +30,10 @@ ClusteringScores score_chunks(const Scene& scene, std::span<const std::int32_t> 
 
 // Milliseconds of the scene (t_us / 1000) in which two objects' outlines overlap.
 std::vector<bool> overlap_by_ms(const Scene& scene);
+
+// A generated scene's tracking against both ground truths: its objects' true centres and the
+// centres of their labelled events (tracking_metrics.h).
+TrackingReport scene_tracking(std::span<const TrackUpdate> updates, const Scene& scene, double tau_px = 2.5);
 
 Evaluation evaluate(const Scene& scene, const Params& params, const std::string& backend, Chunking chunking,
                     double tau_px = 2.5);
