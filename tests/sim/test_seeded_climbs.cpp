@@ -2,16 +2,12 @@
 // hls/cluster/seeded_climbs.h: the same packet, warm seeds and registers; every event's mode,
 // every mode, and the climb, step and lost-mode counts must be equal. The seed is drawn anew
 // each run and printed (EVMS_SEED=N repeats one); a mismatch repeats the packet with an FST
-// trace in the temporary directory.
+// trace in the temporary directory (sim/verilated_block.h).
 #include <gtest/gtest.h>
-
-#include <verilated.h>
-#include <verilated_fst_c.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -20,6 +16,7 @@
 #include "Vseeded_climbs.h"
 #include "hls/cluster/seeded_climbs.h"
 #include "hls/core/shape.h"
+#include "sim/verilated_block.h"
 
 namespace evms {
 namespace {
@@ -106,37 +103,17 @@ Result run_model(const Case& c) {
 }
 
 Result run_rtl(const Case& c, const std::string& trace_path) {
-  auto context = std::make_unique<VerilatedContext>();
-  auto rtl = std::make_unique<Vseeded_climbs>(context.get());
-  std::unique_ptr<VerilatedFstC> fst;
-  if (!trace_path.empty()) {
-    context->traceEverOn(true);
-    fst = std::make_unique<VerilatedFstC>();
-    rtl->trace(fst.get(), 99);
-    fst->open(trace_path.c_str());
-  }
-  std::uint64_t time = 0;
-  auto tick = [&] {
-    rtl->clk = 0;
-    rtl->eval();
-    if (fst) fst->dump(time++);
-    rtl->clk = 1;
-    rtl->eval();
-    if (fst) fst->dump(time++);
-  };
-  rtl->rst_n = 0;
-  tick();
-  rtl->rst_n = 1;
+  sim::VerilatedBlock<Vseeded_climbs> rtl(trace_path);
   for (int i = 0; i < c.n; ++i) {
     rtl->load_we = 1, rtl->load_i = static_cast<std::uint16_t>(i), rtl->load_x = c.phi.x[i], rtl->load_y = c.phi.y[i];
-    tick();
+    rtl.tick();
   }
   rtl->load_we = 0;
   for (int k = 0; k < c.warm.count; ++k) {
     rtl->warm_we = 1, rtl->warm_k = static_cast<std::uint8_t>(k);
     rtl->warm_x = static_cast<std::uint32_t>(c.warm.x[k]), rtl->warm_y = static_cast<std::uint32_t>(c.warm.y[k]);
     rtl->warm_ball2 = c.warm.ball2[k];
-    tick();
+    rtl.tick();
   }
   rtl->warm_we = 0;
   rtl->n = static_cast<std::uint16_t>(c.n);
@@ -146,25 +123,24 @@ Result run_rtl(const Case& c, const std::string& trace_path) {
   rtl->cfg_tolerance = c.cfg.tolerance;
   rtl->cfg_merge_radius2 = c.cfg.merge_radius2;
   rtl->start = 1;
-  tick();
+  rtl.tick();
   rtl->start = 0;
   Result r;
   for (r.cycles = 1; !rtl->done; ++r.cycles) {
-    tick();
+    rtl.tick();
     if (r.cycles > 50'000'000) throw std::runtime_error("the engine did not finish");
   }
   for (int j = 0; j < c.n; ++j) {
     rtl->rd_j = static_cast<std::uint16_t>(j);
-    tick();
+    rtl.tick();
     r.first_mode.push_back(static_cast<std::int16_t>(rtl->rd_mode));
   }
   for (int k = 0; k < rtl->mode_count; ++k) {
     rtl->rd_c = static_cast<std::uint8_t>(k);
-    tick();
+    rtl.tick();
     r.modes.push_back({rtl->rd_mode_x, rtl->rd_mode_y});
   }
   r.climbs = rtl->climbs, r.steps = rtl->steps, r.modes_lost = rtl->modes_lost;
-  if (fst) fst->close();
   return r;
 }
 
@@ -192,9 +168,7 @@ std::string difference(const Result& want, const Result& got) {
 }
 
 TEST(SeededClimbsRtl, EveryModeAndLabelEqualTheCppModelOnRandomPackets) {
-  const char* pinned = std::getenv("EVMS_SEED");
-  const std::uint64_t seed = pinned ? std::strtoull(pinned, nullptr, 10) : std::random_device{}();
-  std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
+  const std::uint64_t seed = sim::cosim_seed();
   std::mt19937_64 rng(seed);
   std::uint64_t cycles = 0, events = 0, climbs = 0;
   for (int packet = 0; packet < 200; ++packet) {
@@ -202,7 +176,7 @@ TEST(SeededClimbsRtl, EveryModeAndLabelEqualTheCppModelOnRandomPackets) {
     const Result want = run_model(c);
     const Result got = run_rtl(c, "");
     if (const std::string d = difference(want, got); !d.empty()) {
-      const std::string trace = (std::filesystem::temp_directory_path() / ("evms_seeded_climbs_" + std::to_string(seed) + ".fst")).string();
+      const std::string trace = sim::cosim_trace_path("seeded_climbs", seed);
       run_rtl(c, trace);
       FAIL() << "seed " << seed << ", packet " << packet << " (n " << c.n << ", warm " << c.warm.count << ", iterations "
              << int{c.cfg.max_iterations} << "): " << d << "; trace in " << trace;

@@ -1,0 +1,71 @@
+// What the block-level cosimulations (tests/sim/test_seeded_climbs.cpp, test_mode_links.cpp)
+// share: the run's seed, drawn anew and printed (EVMS_SEED=N repeats a run), and one Verilated
+// block with its clock, its reset and, when a mismatch is being repeated, an FST trace.
+#pragma once
+
+#include <verilated.h>
+#include <verilated_fst_c.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <random>
+#include <string>
+
+namespace evms::sim {
+
+inline std::uint64_t cosim_seed() {
+  const char* pinned = std::getenv("EVMS_SEED");
+  const std::uint64_t seed = pinned ? std::strtoull(pinned, nullptr, 10) : std::random_device{}();
+  std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
+  return seed;
+}
+
+// Where the trace of a failed run of `block` goes.
+inline std::string cosim_trace_path(const std::string& block, std::uint64_t seed) {
+  return (std::filesystem::temp_directory_path() / ("evms_" + block + "_" + std::to_string(seed) + ".fst")).string();
+}
+
+template <class Model>
+class VerilatedBlock {
+ public:
+  // An empty trace_path: no trace.
+  explicit VerilatedBlock(const std::string& trace_path) : context_(std::make_unique<VerilatedContext>()) {
+    if (!trace_path.empty()) context_->traceEverOn(true);
+    model_ = std::make_unique<Model>(context_.get());
+    if (!trace_path.empty()) {
+      fst_ = std::make_unique<VerilatedFstC>();
+      model_->trace(fst_.get(), 99);
+      fst_->open(trace_path.c_str());
+    }
+    model_->rst_n = 0;
+    tick();
+    model_->rst_n = 1;
+  }
+  ~VerilatedBlock() {
+    if (fst_) fst_->close();
+    model_->final();
+  }
+  VerilatedBlock(const VerilatedBlock&) = delete;
+  VerilatedBlock& operator=(const VerilatedBlock&) = delete;
+
+  Model* operator->() { return model_.get(); }
+  void tick() {
+    model_->clk = 0;
+    model_->eval();
+    if (fst_) fst_->dump(time_++);
+    model_->clk = 1;
+    model_->eval();
+    if (fst_) fst_->dump(time_++);
+  }
+
+ private:
+  std::unique_ptr<VerilatedContext> context_;
+  std::unique_ptr<Model> model_;
+  std::unique_ptr<VerilatedFstC> fst_;
+  std::uint64_t time_ = 0;
+};
+
+}  // namespace evms::sim

@@ -1,0 +1,176 @@
+// Block-level cosimulation of rtl/cluster/evms_mode_links.sv against ModeLinks in
+// hls/cluster/link.h: one instance of each takes a run of packets (the map must be clear again
+// after each), and every event's mode after linking must be equal. The seed is printed
+// (EVMS_SEED=N repeats a run); a mismatch repeats the run with an FST trace
+// (sim/verilated_block.h).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "Vmode_links.h"
+#include "hls/cluster/link.h"
+#include "hls/core/shape.h"
+#include "sim/verilated_block.h"
+
+namespace evms {
+namespace {
+
+using S = hls::DefaultShape;
+static_assert(EVMS_LINKS_MaxWidth == S::kMaxWidth && EVMS_LINKS_MaxHeight == S::kMaxHeight && EVMS_LINKS_PacketMax == S::kPacketMax &&
+                  EVMS_LINKS_ModesMax == S::kModesMax && EVMS_LINKS_LinkMax == S::kLinkMax,
+              "sim/CMakeLists.txt builds the block at DefaultShape's sizes");
+
+struct Packet {
+  hls::PacketEvents<S> events{};
+  std::vector<std::int16_t> first_mode;   // the climbs' modes, -1 for none
+  int modes = 0;
+  hls::Config cfg{};
+};
+
+// Blobs of events (1 to 12 blobs, 1 to 15 px across, some sharing a pixel, some touching, some on
+// the sensor's edges), each
+// event with one of its blob's modes or none, on a sensor up to the Shape's, under link
+// distances from off to beyond LinkMax.
+Packet draw_packet(std::mt19937_64& rng) {
+  Packet p;
+  auto below = [&](int k) { return static_cast<int>(rng() % static_cast<std::uint64_t>(k)); };
+  p.cfg.sensor_width = static_cast<std::uint16_t>(below(4) == 0 ? 1 + below(S::kMaxWidth) : S::kMaxWidth);
+  p.cfg.sensor_height = static_cast<std::uint16_t>(below(4) == 0 ? 1 + below(S::kMaxHeight) : S::kMaxHeight);
+  p.cfg.link2 = std::vector<std::uint32_t>{0, 1, 2, 4, 5, 9, 16, 18, 25, 32, 100}[static_cast<size_t>(below(11))];
+  p.modes = 1 + below(S::kModesMax);
+  const int n = 1 + below(S::kPacketMax), blobs = 1 + below(12);
+  std::vector<double> bx(static_cast<size_t>(blobs)), by(bx), br(bx);
+  std::vector<int> mode_base(static_cast<size_t>(blobs));
+  for (size_t b = 0; b < bx.size(); ++b) {
+    bx[b] = std::uniform_real_distribution<double>(0, p.cfg.sensor_width - 1)(rng);
+    by[b] = std::uniform_real_distribution<double>(0, p.cfg.sensor_height - 1)(rng);
+    if (below(3) == 0) bx[b] = below(2) == 0 ? 0 : p.cfg.sensor_width - 1;   // on an edge, where the window leaves the sensor
+    if (below(3) == 0) by[b] = below(2) == 0 ? 0 : p.cfg.sensor_height - 1;
+    br[b] = std::uniform_real_distribution<double>(0.3, 7.0)(rng);
+    mode_base[b] = below(p.modes);
+  }
+  for (int j = 0; j < n; ++j) {
+    const size_t b = static_cast<size_t>(below(blobs));
+    const long x = std::lround(std::normal_distribution<double>(bx[b], br[b])(rng));
+    const long y = std::lround(std::normal_distribution<double>(by[b], br[b])(rng));
+    p.events.x[j] = static_cast<std::uint16_t>(std::clamp(x, 0L, long{p.cfg.sensor_width - 1}));
+    p.events.y[j] = static_cast<std::uint16_t>(std::clamp(y, 0L, long{p.cfg.sensor_height - 1}));
+    const int mode = below(8) == 0 ? -1 : std::min(p.modes - 1, mode_base[b] + below(3));
+    p.first_mode.push_back(static_cast<std::int16_t>(mode));
+  }
+  return p;
+}
+
+using Modes = std::vector<std::vector<std::int16_t>>;  // per packet, per event
+
+Modes run_model(const std::vector<Packet>& run) {
+  auto links = std::make_unique<hls::ModeLinks<S>>();
+  links->reset();
+  Modes out;
+  for (const Packet& p : run) {
+    std::int16_t mode[S::kPacketMax];
+    std::copy(p.first_mode.begin(), p.first_mode.end(), mode);
+    const int n = static_cast<int>(p.first_mode.size());
+    links->run(p.events, n, p.modes, p.cfg, mode);
+    out.emplace_back(mode, mode + n);
+  }
+  return out;
+}
+
+struct RtlRun {
+  Modes modes;
+  std::uint64_t cycles = 0, events = 0;
+};
+
+RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
+  sim::VerilatedBlock<Vmode_links> rtl(trace_path);
+  RtlRun r;
+  for (int k = 0; !rtl->ready; ++k) {
+    rtl.tick();
+    if (k > 1'000'000) throw std::runtime_error("the block never left reset");
+  }
+  for (const Packet& p : run) {
+    const int n = static_cast<int>(p.first_mode.size());
+    rtl->n = static_cast<std::uint16_t>(n);
+    rtl->cfg_link2 = p.cfg.link2;
+    rtl->cfg_sensor_width = p.cfg.sensor_width;
+    rtl->cfg_sensor_height = p.cfg.sensor_height;
+    rtl->start = 1;
+    // The packet's memories answer ev_j the clock after, as a block RAM's registered read does.
+    auto tick_with_memories = [&] {
+      const int j = rtl->ev_j;
+      rtl.tick();
+      const bool in = j < n;
+      rtl->ev_x = in ? p.events.x[j] : 0, rtl->ev_y = in ? p.events.y[j] : 0;
+      rtl->ev_mode = static_cast<std::uint16_t>(in ? p.first_mode[static_cast<size_t>(j)] : 0);
+    };
+    tick_with_memories();
+    rtl->start = 0;
+    std::uint64_t cycles = 1;
+    for (; !rtl->done; ++cycles) {
+      tick_with_memories();
+      if (cycles > 10'000'000) throw std::runtime_error("the block did not finish");
+    }
+    r.cycles += cycles, r.events += static_cast<std::uint64_t>(n);
+    std::vector<std::int16_t> modes;
+    for (int j = 0; j < n; ++j) {
+      const int first = p.first_mode[static_cast<size_t>(j)];
+      if (first < 0) {
+        modes.push_back(-1);
+        continue;
+      }
+      rtl->rd_c = static_cast<std::uint8_t>(first);
+      rtl->eval();
+      modes.push_back(static_cast<std::int16_t>(rtl->rd_root));
+    }
+    r.modes.push_back(modes);
+    rtl.tick();
+  }
+  return r;
+}
+
+std::string difference(const Modes& want, const Modes& got) {
+  for (size_t k = 0; k < want.size(); ++k) {
+    for (size_t j = 0; j < want[k].size(); ++j) {
+      if (want[k][j] != got[k][j]) {
+        std::ostringstream o;
+        o << "packet " << k << ", event " << j << ": mode " << got[k][j] << ", want " << want[k][j];
+        return o.str();
+      }
+    }
+  }
+  return "";
+}
+
+TEST(ModeLinksRtl, EveryEventsLinkedModeEqualsTheCppModelOverRunsOfPackets) {
+  const std::uint64_t seed = sim::cosim_seed();
+  std::mt19937_64 rng(seed);
+  std::uint64_t cycles = 0, events = 0, joined = 0;
+  for (int r = 0; r < 12; ++r) {
+    std::vector<Packet> run;
+    for (int k = 0; k < 20; ++k) run.push_back(draw_packet(rng));
+    const Modes want = run_model(run);
+    const RtlRun got = run_rtl(run, "");
+    if (const std::string d = difference(want, got.modes); !d.empty()) {
+      const std::string trace = sim::cosim_trace_path("mode_links", seed);
+      run_rtl(run, trace);
+      FAIL() << "seed " << seed << ", run " << r << ": " << d << "; trace in " << trace;
+    }
+    cycles += got.cycles, events += got.events;
+    for (size_t k = 0; k < run.size(); ++k) {
+      for (size_t j = 0; j < want[k].size(); ++j) joined += want[k][j] != run[k].first_mode[j];
+    }
+  }
+  std::printf("%llu events, %llu took an older mode, %.1f cycles an event\n", static_cast<unsigned long long>(events),
+              static_cast<unsigned long long>(joined), static_cast<double>(cycles) / static_cast<double>(events));
+  EXPECT_GT(joined, events / 10) << "too few packets joined modes to test the links";
+}
+
+}  // namespace
+}  // namespace evms
