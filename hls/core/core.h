@@ -19,6 +19,7 @@
 #include "hls/cluster/mean_shift.h"
 #include "hls/cluster/merge.h"
 #include "hls/cluster/seeded_climbs.h"
+#include "hls/cluster/warm_seeds.h"
 #include "hls/core/config.h"
 #include "hls/core/shape.h"
 #include "hls/core/words.h"
@@ -106,8 +107,8 @@ class Core {
         Modes<S> modes;
         climbs_.run(phi, n_, cfg_, warm_, mode_of, modes, trace.climbs);
         links_.run(packet_, n_, modes.count, cfg_, mode_of);
-        clusters = keep_clusters(mode_of, modes, cluster_of);
-        warm_balls(phi, cluster_of);
+        clusters = keep_clusters<S>(mode_of, n_, modes, cfg_, cluster_of, warm_);
+        warm_balls<S>(phi, n_, cluster_of, cfg_, warm_);
         sweeps = trace.climbs.steps;
       } else {
         packet_features(packet_, n_, cfg_, phi);
@@ -138,80 +139,6 @@ class Core {
     }
     n_ = 0;
     pending_n_ = 0;
-  }
-
-  // Seeded climbs: modes (after linking) with at least min_cluster_size events become clusters,
-  // the first max_clusters of them in the order they opened; their modes seed the next packet.
-  int keep_clusters(const std::int16_t mode_of[S::kPacketMax], const Modes<S>& modes, std::int8_t cluster_of[S::kPacketMax]) {
-    int size[S::kModesMax];
-  count:
-    for (int c = 0; c < S::kModesMax; ++c) {
-      if (c >= modes.count) break;
-      size[c] = 0;
-    }
-  sizes:
-    for (int j = 0; j < S::kPacketMax; ++j) {
-      if (j >= n_) break;
-      if (mode_of[j] >= 0) ++size[mode_of[j]];
-    }
-    std::int16_t renumber[S::kModesMax];
-    int kept = 0;
-  survivors:
-    for (int c = 0; c < S::kModesMax; ++c) {
-      if (c >= modes.count) break;
-      renumber[c] = -1;
-      if (size[c] >= cfg_.min_cluster_size && kept < cfg_.max_clusters && kept < S::kClustersMax) {
-        renumber[c] = static_cast<std::int16_t>(kept);
-        warm_.x[kept] = modes.x[c], warm_.y[kept] = modes.y[c], warm_.p[kept] = modes.p[c], warm_.t[kept] = modes.t[c];
-        ++kept;
-      }
-    }
-    warm_.count = kept;
-  relabel:
-    for (int j = 0; j < S::kPacketMax; ++j) {
-      if (j >= n_) break;
-      cluster_of[j] = static_cast<std::int8_t>(mode_of[j] < 0 ? -1 : renumber[mode_of[j]]);
-    }
-    return kept;
-  }
-
-  // The ball each kept cluster's mode climbs with in the next packet: radius^2 = warm_scale2
-  // times the variance of its events' features, clamped to [h^2, warm_ball2_max]. The sums run
-  // about the mode (warm_), so that they stay within 64 bits; var = S2 / n - (S1 / n)^2, each
-  // quotient rounded.
-  void warm_balls(const Features<S>& phi, const std::int8_t cluster_of[S::kPacketMax]) {
-    std::int64_t s1[4][S::kClustersMax], count[S::kClustersMax];
-    std::uint64_t s2[4][S::kClustersMax];  // a cluster across a 1280 px sensor reaches 2^63
-  clear:
-    for (int c = 0; c < S::kClustersMax; ++c) {
-      count[c] = 0;
-      for (int d = 0; d < 4; ++d) s1[d][c] = s2[d][c] = 0;
-    }
-  accumulate:
-    for (int j = 0; j < S::kPacketMax; ++j) {
-#pragma HLS PIPELINE II = 1
-      if (j >= n_) break;
-      const int c = cluster_of[j];
-      if (c < 0) continue;
-      const std::int64_t v[4] = {phi.x[j] - warm_.x[c], phi.y[j] - warm_.y[c], phi.p[j] - warm_.p[c], phi.t[j] - warm_.t[c]};
-      for (int d = 0; d < 4; ++d) s1[d][c] += v[d], s2[d][c] += static_cast<std::uint64_t>(v[d] * v[d]);
-      ++count[c];
-    }
-    constexpr std::uint64_t kOne = SeededClimbs<S>::kOne;
-    const std::uint64_t top = cfg_.warm_ball2_max > kOne ? cfg_.warm_ball2_max : kOne;
-  balls:
-    for (int c = 0; c < S::kClustersMax; ++c) {
-      if (c >= warm_.count) break;
-      std::int64_t var = 0;
-      for (int d = 0; d < 4; ++d) {
-        const std::int64_t mean = s1[d][c] >= 0 ? (2 * s1[d][c] + count[c]) / (2 * count[c]) : -((-2 * s1[d][c] + count[c]) / (2 * count[c]));
-        const auto n = static_cast<std::uint64_t>(count[c]);
-        var += static_cast<std::int64_t>(s2[d][c] / n + (s2[d][c] % n >= (n + 1) / 2 ? 1 : 0)) - mean * mean;
-      }
-      const auto v = static_cast<std::uint64_t>(var > 0 ? var : 0);
-      const std::uint64_t ball2 = (std::uint64_t{cfg_.warm_scale2} * v + (std::uint64_t{1} << (kSpreadFrac - 1))) >> kSpreadFrac;
-      warm_.ball2[c] = ball2 < kOne ? kOne : (ball2 > top ? top : ball2);
-    }
   }
 
   struct Pending {
