@@ -98,9 +98,9 @@ module evms_warm_seeds #(
     .clk, .we(sums_we), .wa(sums_wa), .wd(sums_wd), .ra(sums_ra), .rd(sums_rd));
 
   // ---- registers ---------------------------------------------------------------------------------
-  logic [ModeBits-1:0]    mode_q, mode_d;     // the event's mode
-  logic [CoordBits-1:0]   x_q, x_d, y_q, y_d; // the event's features, then the seed's position
-  logic [ClusterBits-1:0] cluster_q, cluster_d;
+  // An event's mode, features and cluster, and a cluster's seed and sums, are not held: each
+  // stays on its memory's read port while its address does (ev_j and c_q change only when the
+  // next one is due).
   logic [CoordBits-1:0]   mean_x_q, mean_x_d, mean_y_q, mean_y_d;   // |mean| < 2^CoordBits: only its square is used
   logic [63:0]            var_q, var_d;       // max(0, variance)
 
@@ -115,8 +115,8 @@ module evms_warm_seeds #(
   logic [Sum1Bits-1:0]        abs_sum1_x, abs_sum1_y;
   assign abs_sum1_x = sum1_x < 0 ? $unsigned(-sum1_x) : $unsigned(sum1_x);
   assign abs_sum1_y = sum1_y < 0 ? $unsigned(-sum1_y) : $unsigned(sum1_y);
-  assign dev_x = $signed({1'b0, x_q}) - $signed({1'b0, seed_rd[2*CoordBits-1:CoordBits]});
-  assign dev_y = $signed({1'b0, y_q}) - $signed({1'b0, seed_rd[CoordBits-1:0]});
+  assign dev_x = $signed({1'b0, ev_x}) - $signed({1'b0, seed_rd[2*CoordBits-1:CoordBits]});
+  assign dev_y = $signed({1'b0, ev_y}) - $signed({1'b0, seed_rd[CoordBits-1:0]});
   assign dev2_x = 64'(dev_x * dev_x);
   assign dev2_y = 64'(dev_y * dev_y);
 
@@ -144,10 +144,6 @@ module evms_warm_seeds #(
     j_d = j_q;
     c_d = c_q;
     kept_d = kept_q;
-    mode_d = mode_q;
-    x_d = x_q;
-    y_d = y_q;
-    cluster_d = cluster_q;
     mean_x_d = mean_x_q;
     mean_y_d = mean_y_q;
     var_d = var_q;
@@ -191,7 +187,6 @@ module evms_warm_seeds #(
           c_d = '0;
           state_d = StKeepRead;
         end else begin
-          mode_d = ModeBits'(ev_mode);
           size_ra = ModeBits'(ev_mode);
           j_d = j_q + 1'b1;
           state_d = ev_mode < 0 ? StCountAddr : StCountAdd;
@@ -199,7 +194,7 @@ module evms_warm_seeds #(
       end
       StCountAdd: begin
         size_we = 1'b1;
-        size_wa = mode_q;
+        size_wa = ModeBits'(ev_mode);
         size_wd = size_rd + 1'b1;
         state_d = StCountMode;
       end
@@ -228,8 +223,6 @@ module evms_warm_seeds #(
           j_d = j_q + 1'b1;
           state_d = StLabelAddr;
         end else begin
-          x_d = ev_x;
-          y_d = ev_y;
           state_d = StLabelCluster;
         end
       end
@@ -237,7 +230,6 @@ module evms_warm_seeds #(
       StLabelCluster: begin
         co_we = 1'b1;
         co_value = renumber_rd;
-        cluster_d = ClusterBits'(renumber_rd);
         seed_ra = ClusterBits'(renumber_rd);
         sums_ra = ClusterBits'(renumber_rd);
         j_d = j_q + 1'b1;
@@ -245,7 +237,7 @@ module evms_warm_seeds #(
       end
       StLabelAdd: begin
         sums_we = 1'b1;
-        sums_wa = cluster_q;
+        sums_wa = ClusterBits'(renumber_rd);
         sums_wd = {sum_count + 1'b1, sum1_x + Sum1Bits'(dev_x), sum1_y + Sum1Bits'(dev_y), sum2_x + dev2_x, sum2_y + dev2_y};
         state_d = StLabelMode;      // event j + 1 was read this clock
       end
@@ -253,8 +245,6 @@ module evms_warm_seeds #(
       // divisions run (the dividers' denominator is the count read).
       StBallRead: state_d = c_q == 16'(kept_q) ? StDone : StBallLoad;
       StBallLoad: begin
-        x_d = seed_rd[2*CoordBits-1:CoordBits];
-        y_d = seed_rd[CoordBits-1:0];
         div_start = 1'b1;
         div_num_x = 64'(abs_sum1_x);
         div_num_y = 64'(abs_sum1_y);
@@ -289,8 +279,8 @@ module evms_warm_seeds #(
   assign md_c = 8'(c_q);
   assign co_j = j_q;
   assign warm_k = 8'(c_q);
-  assign warm_x = x_q;
-  assign warm_y = y_q;
+  assign warm_x = seed_rd[2*CoordBits-1:CoordBits];
+  assign warm_y = seed_rd[CoordBits-1:0];
   assign warm_ball2 = ball2;
   assign clusters = kept_q;
   `EVMS_ASSERT("start only when idle", !start || state_q == StIdle, clk, rst_n)
@@ -302,10 +292,6 @@ module evms_warm_seeds #(
       j_q <= '0;
       c_q <= '0;
       kept_q <= '0;
-      mode_q <= '0;
-      x_q <= '0;
-      y_q <= '0;
-      cluster_q <= '0;
       mean_x_q <= '0;
       mean_y_q <= '0;
       var_q <= '0;
@@ -314,10 +300,6 @@ module evms_warm_seeds #(
       j_q <= j_d;
       c_q <= c_d;
       kept_q <= kept_d;
-      mode_q <= mode_d;
-      x_q <= x_d;
-      y_q <= y_d;
-      cluster_q <= cluster_d;
       mean_x_q <= mean_x_d;
       mean_y_q <= mean_y_d;
       var_q <= var_d;
