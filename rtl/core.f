@@ -1,11 +1,16 @@
 common/evms_mul.sv
 common/evms_fifo.sv
+common/evms_ram_1w1r.sv
 math/evms_round_pkg.sv
 math/evms_exp_lut.sv
 math/evms_recip.sv
+math/evms_divide_rounded.sv
 filter/evms_ba_filter.sv
 cluster/evms_mean_shift.sv
 cluster/evms_merge.sv
+cluster/evms_seeded_climbs.sv
+cluster/evms_mode_links.sv
+cluster/evms_warm_seeds.sv
 cluster/evms_centroid.sv
 track/evms_tracker.sv
 core/evms_core.sv

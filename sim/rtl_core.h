@@ -129,7 +129,7 @@ class RtlCore {
     }
     if (top_->pkt_valid && top_->pkt_ready) {
       packets.push_back({top_->pkt_t_first, top_->pkt_t_last, static_cast<std::uint16_t>(top_->pkt_events),
-                         static_cast<std::uint8_t>(top_->pkt_clusters), static_cast<std::uint8_t>(top_->pkt_iterations)});
+                         static_cast<std::uint8_t>(top_->pkt_clusters), static_cast<std::uint16_t>(top_->pkt_iterations)});
     }
     top_->clk = 1;
     top_->eval();

@@ -7,11 +7,10 @@
 #include <cstdint>
 
 #include "hls/cluster/features.h"
+#include "hls/core/shape.h"
 #include "hls/cluster/tables.h"
 
 namespace evms::hls {
-
-inline constexpr int kSpreadFrac = 8;
 
 struct Measurement {
   std::uint32_t t = 0;

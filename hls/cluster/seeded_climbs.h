@@ -26,15 +26,11 @@
 #include <cstdint>
 
 #include "hls/cluster/features.h"
+#include "hls/core/shape.h"
 #include "hls/core/config.h"
 #include "hls/math/round.h"
 
 namespace evms::hls {
-
-// Fraction bits of the climbs' features and positions beyond kFeatFrac, and of the scale
-// registers that make them.
-inline constexpr int kClimbFrac = 8;
-inline constexpr int kClimbScaleFrac = 40;
 
 // (x, y) in bandwidth units with kFeatFrac + kClimbFrac fraction bits, rounded; polarity and
 // time are not features of the climbs (the core refuses their scales).

@@ -40,19 +40,19 @@
   X(q, std::int64_t, 64, 0, "process noise q per tick^3, kNoiseFrac fraction bits")                                     \
   X(r, std::int64_t, 64, 0, "measurement variance, px^2, kCovFrac fraction bits")                                       \
   X(p0_pos, std::int64_t, 64, 0, "position variance a track starts with, px^2, kCovFrac fraction bits")                      \
-  X(p0_vel, std::int64_t, 64, 0, "velocity variance a track starts with, (px/tick)^2, kCovFrac bits")
-
-// Registers of the C++ core only: the seeded climbs with the flat kernel and the tracker's
-// policies. The RTL refuses a setting that needs them (host/backend/core_config.h).
-#define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
-  X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
+  X(p0_vel, std::int64_t, 64, 0, "velocity variance a track starts with, (px/tick)^2, kCovFrac bits")                   \
   X(seeded, bool, 1, false, "climbs from seeds with the flat kernel (hls/cluster/seeded_climbs.h), not every event")    \
   X(climb_scale_x, std::uint64_t, 64, 0, "seeded: phi_x = x * climb_scale_x, kClimbScaleFrac fraction bits")            \
   X(climb_scale_y, std::uint64_t, 64, 0, "seeded: phi_y = y * climb_scale_y, kClimbScaleFrac fraction bits")            \
   X(warm_start, bool, 1, false, "seeded: the modes of the previous packet climb first")                                 \
   X(warm_scale2, std::uint32_t, 32, 0, "seeded: radius^2 of a warm ball per variance of its cluster, kSpreadFrac bits") \
   X(warm_ball2_max, std::uint64_t, 64, 0, "seeded: radius^2 of the largest warm ball, phi^2 raw units (at least h^2)")  \
-  X(link2, std::uint32_t, 32, 0, "seeded: clusters with events within sqrt(link2) px join; 0: off")                     \
+  X(link2, std::uint32_t, 32, 0, "seeded: clusters with events within sqrt(link2) px join; 0: off")
+
+// Registers of the C++ core only: the filter's support count and the tracker's policies. The
+// RTL refuses a setting that needs them (host/backend/core_config.h).
+#define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
+  X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
   X(associate_last, bool, 1, false, "gate against the last measurement of a track, not its prediction")                 \
   X(gate_spread2, std::uint32_t, 32, 0, "widening of the gate by the spread of the cluster, squared, kSpreadFrac bits") \
   X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never")       \

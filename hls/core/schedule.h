@@ -57,8 +57,15 @@ constexpr const char* kStageNames[kStageCount] = {"accept",     "filter", "packe
   X(FeatDecay2, kFeatures)             \
   X(FeatT, kFeatures)                  \
   X(FeatStore, kFeatures)              \
+  X(ClimbRead, kFeatures)              \
+  X(ClimbWait, kFeatures)              \
+  X(ClimbX, kFeatures)                 \
+  X(ClimbY, kFeatures)                 \
   X(MeanShift, kMeanShift)             \
   X(Merge, kMerge)                     \
+  X(Climb, kMeanShift)                 \
+  X(Link, kMerge)                      \
+  X(Warm, kMerge)                      \
   X(Centroid, kCentroid)               \
   X(Track, kTrack)                     \
   X(Packet, kPacketControl)            \

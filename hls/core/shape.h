@@ -13,10 +13,17 @@
 
 namespace evms::hls {
 
+// Fraction bits of the seeded climbs' features and positions beyond kFeatFrac, and of the
+// scale registers that make them (hls/cluster/seeded_climbs.h).
+inline constexpr int kClimbFrac = 8;
+inline constexpr int kClimbScaleFrac = 40;
+// Fraction bits of a spread squared and of the registers that scale one (hls/cluster/centroid.h).
+inline constexpr int kSpreadFrac = 8;
+
 template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsMax, int ClustersMax, int TracksMax,
           int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,
           int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4,
-          int GridSide = 32, int ReachMax = 8>
+          int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -34,6 +41,12 @@ struct Shape {
   static constexpr int kLinkMax = LinkMax;       // seeded climbs: the largest link distance, px
   static constexpr int kGridSide = GridSide;     // seeded climbs: cells of one bandwidth a side of the grid
   static constexpr int kReachMax = ReachMax;     // seeded climbs: the largest ball, in bandwidths
+  // Which clustering paths the RTL build holds (the C++ core always has both; Config::seeded
+  // chooses): the Gaussian mean shift of every event, and the seeded climbs with the flat
+  // kernel, their links and warm seeds.
+  static constexpr int kHasGaussianPath = HasGaussianPath;
+  static constexpr int kHasSeededPath = HasSeededPath;
+  static_assert(HasGaussianPath || HasSeededPath, "a core clusters by at least one path");
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;
@@ -46,6 +59,9 @@ struct Shape {
   static constexpr int kRecipFrac = 20;
   static constexpr int kDecayFrac = 32;          // fraction bits of dt * (1 / tau)
   static constexpr int kCoordScaleFrac = 20;     // fraction bits of the x, y scale registers
+  static constexpr int kClimbFrac = hls::kClimbFrac;
+  static constexpr int kClimbScaleFrac = hls::kClimbScaleFrac;
+  static constexpr int kSpreadFrac = hls::kSpreadFrac;
   // Tracker words.
   static constexpr int kPosFrac = PosFrac;
   static constexpr int kTickLog2 = 14;           // 16.384 ms
@@ -87,7 +103,16 @@ struct Shape {
   X(CovFrac)                         \
   X(GainFrac)                        \
   X(NoiseFrac)                       \
-  X(MulDigitBits)
+  X(MulDigitBits)                    \
+  X(ModesMax)                        \
+  X(LinkMax)                         \
+  X(GridSide)                        \
+  X(ReachMax)                        \
+  X(ClimbFrac)                       \
+  X(ClimbScaleFrac)                  \
+  X(SpreadFrac)                      \
+  X(HasGaussianPath)                 \
+  X(HasSeededPath)
 
 // The default board build: a DAVIS240-class sensor, the defaults of docs/sweep.md, a 16-bit
 // timestamp per pixel in 128 us units (one iCE40 SPRAM word), and eight kernel lanes: 88 of an
@@ -99,9 +124,9 @@ using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // deep enough that noisy recordings (a third noise, say) never close a packet early, as golden
 // never does.
 using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8>;
-// The RTL's host-simulation build: HostShape's sensor, words and tables with the packet, cluster
-// and track sizes of the method the RTL implements (--preset gaussian). For those settings the
-// two give the same words.
-using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10>;
+// The RTL's host-simulation build: HostShape's sensor, words and tables with smaller packet,
+// cluster and track sizes, and both clustering paths. For settings within those sizes the two
+// give the same words.
+using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 4, 32, 8, 1, 1>;
 
 }  // namespace evms::hls

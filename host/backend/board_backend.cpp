@@ -98,7 +98,7 @@ class BoardBackend final : public Backend {
  private:
   static const std::string& check(const BackendOptions& o) {
     if (o.device.empty()) throw std::invalid_argument("the board backend needs --device (e.g. /dev/ttyUSB1, or the path evms vboard prints)");
-    if (std::string unsupported = rtl_unsupported(o.params); !unsupported.empty()) throw std::invalid_argument(unsupported);
+    if (std::string unsupported = rtl_unsupported(o.params, kBoardCoreBuild); !unsupported.empty()) throw std::invalid_argument(unsupported);
     if (!(o.params == build_default_params<S>()) || !(o.sensor == SensorSize{S::kMaxWidth, S::kMaxHeight})) {
       throw std::invalid_argument("the board runs its build's settings: a " + std::to_string(S::kMaxWidth) + "x" + std::to_string(S::kMaxHeight) +
                                   " sensor, --packet-size " + std::to_string(S::kPacketMax) + " --max-clusters " +

@@ -13,6 +13,7 @@
 #include "hls/cluster/centroid.h"
 #include "hls/cluster/seeded_climbs.h"
 #include "hls/core/config.h"
+#include "hls/core/configs.h"
 
 namespace evms::backend {
 
@@ -65,15 +66,28 @@ inline std::string core_unsupported(const Params& p) {
   return {};
 }
 
-// The first setting of `p` that the RTL core (rtl/, and a board built from it) does not
-// implement: it implements the method of --preset gaussian, with any numbers.
-inline std::string rtl_unsupported(const Params& p) {
+// The first setting of `p` that RTL build `build` (hls/core/configs.h, and a board built from
+// it) does not implement. Every build implements the numbers of its clustering paths (the
+// Gaussian mean shift of every event, the seeded climbs, or both: Shape::kHasGaussianPath,
+// kHasSeededPath) and the tracker of --preset gaussian.
+inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
+  bool gaussian_path = false, seeded_path = false;
+#define EVMS_PATHS_OF_BUILD(name, fixed, rtl, width, height, description) \
+  if (build == #name) gaussian_path = hls::rtl::kHasGaussianPath != 0, seeded_path = hls::rtl::kHasSeededPath != 0;
+  EVMS_CORE_BUILDS(EVMS_PATHS_OF_BUILD)
+#undef EVMS_PATHS_OF_BUILD
+  const bool seeded = p.seeding != Seeding::kEvery;
+  if (seeded && !seeded_path) {
+    return "the RTL build '" + build + "' clusters by the Gaussian mean shift only, not " + detail::setting(p, "seeding") +
+           " (add --preset gaussian, or use --core host)";
+  }
+  if (!seeded && !gaussian_path) return "the RTL build '" + build + "' clusters by seeded climbs only, not " + detail::setting(p, "seeding");
   const Params rtl = preset("gaussian");
-  if (const char* name = detail::first_difference(p, rtl, {"kernel", "seeding", "xy-scale", "filter-support", "link-px", "warm-start", "warm-scale",
-                                                           "association", "gate-spread", "coast-packets", "evict-stale",
+  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "association", "gate-spread", "coast-packets", "evict-stale",
                                                            "report-tentative"})) {
-    return "the RTL core does not implement " + detail::setting(p, name) + " (it implements the method of --preset gaussian: add --preset gaussian)";
+    return "the RTL core does not implement " + detail::setting(p, name) + " (its tracker is the one of --preset gaussian: add --" + name +
+           " " + param_text(rtl, *find_param(name)) + ")";
   }
   return {};
 }

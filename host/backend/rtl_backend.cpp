@@ -58,7 +58,7 @@ class RtlBackend final : public Backend {
 
 std::unique_ptr<Backend> make_rtl_backend(const BackendOptions& o) {
   check_core_build(o.core);
-  if (std::string unsupported = rtl_unsupported(o.params); !unsupported.empty()) throw std::invalid_argument(unsupported);
+  if (std::string unsupported = rtl_unsupported(o.params, o.core); !unsupported.empty()) throw std::invalid_argument(unsupported);
 #define EVMS_RTL_OF_BUILD(name, fixed, rtl, width, height, description) \
   if (o.core == #name) return std::make_unique<RtlBackend<Vcore_##name, hls::rtl>>(o);
   EVMS_CORE_BUILDS(EVMS_RTL_OF_BUILD)

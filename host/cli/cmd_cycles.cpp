@@ -1,6 +1,7 @@
 // evms cycles SOURCE [--build host|arty|ice40] [--rtl] [--table] : clocks per event of a core
 // build, stage by stage, from the cycle model (hls/core/schedule.h) fed by the C++ core, and,
-// with --rtl, measured on the Verilated RTL beside it.
+// with --rtl, measured on the Verilated RTL beside it. The model counts the Gaussian path; the
+// seeded path (--seeding events) is measured on the RTL only.
 #include <cstdio>
 
 #include "Vcore_arty.h"
@@ -91,10 +92,14 @@ void cycles(const CyclesOptions& o) {
   SensorSize sensor;
   const std::vector<Event> events = read_events(o, sensor);
   // The cycle model is the RTL's: it counts the method the RTL implements.
-  if (std::string unsupported = backend::rtl_unsupported(method_of(o, sensor)); !unsupported.empty()) {
+  if (std::string unsupported = backend::rtl_unsupported(method_of(o, sensor), o.build); !unsupported.empty()) {
     throw std::invalid_argument(unsupported + "; the cycle model counts the RTL's method");
   }
   if (events.empty()) throw std::runtime_error(o.source + ": no events");
+  const bool seeded = method_of(o, sensor).seeding != Seeding::kEvery;
+  if (seeded && (!o.rtl || o.table)) {
+    throw std::invalid_argument("the cycle model counts the Gaussian path only: measure the seeded path on the RTL with --rtl (without --table)");
+  }
   const auto words = words_of<S>(events);
   if (o.table) {
     // Cycles per event against packet size, iteration cap and lane count.
@@ -125,22 +130,36 @@ void cycles(const CyclesOptions& o) {
   std::printf("build %s (P = %d, multiplier latency %d), %s, packets of %d, %d clusters, %d tracks\n", o.build.c_str(), S::kLanes,
               hls::multiplier_latency(S::kMulDigitBits), o.method.describe().c_str(), params.packet_size, params.max_clusters,
               params.max_tracks);
-  std::printf("%s events, %s kept, %s packets, %.2f sweeps a packet\n", grouped(model.events()).c_str(), grouped(model.kept()).c_str(),
-              grouped(model.packets()).c_str(), model.mean_sweeps());
+  const bool seeded_path = params.seeding != Seeding::kEvery;
+  std::printf("%s events, %s kept, %s packets, %.2f %s a packet\n", grouped(model.events()).c_str(), grouped(model.kept()).c_str(),
+              grouped(model.packets()).c_str(), model.mean_sweeps(), seeded_path ? "climb steps" : "sweeps");
   const hls::StageCycles predicted = model.cycles();
   hls::StageCycles measured;
   if (o.rtl) measured = rtl_run<V>(words, cfg);
-  std::printf("%-16s %14s %8s", "stage", "model cyc/ev", "share");
+  const bool modelled = !seeded_path;
+  const hls::StageCycles& shares = modelled ? predicted : measured;
+  std::printf("%-16s", "stage");
+  if (modelled) std::printf(" %14s", "model cyc/ev");
+  std::printf(" %8s", "share");
   if (o.rtl) std::printf(" %14s", "rtl cyc/ev");
   std::printf("\n");
   for (int s = 0; s < hls::kStageCount; ++s) {
-    std::printf("%-16s %14.2f %7.1f%%", hls::kStageNames[s], predicted[s] / n_events, 100.0 * predicted[s] / predicted.total());
+    std::printf("%-16s", hls::kStageNames[s]);
+    if (modelled) std::printf(" %14.2f", predicted[s] / n_events);
+    std::printf(" %7.1f%%", 100.0 * shares[s] / shares.total());
     if (o.rtl) std::printf(" %14.2f", measured[s] / n_events);
     std::printf("\n");
   }
-  std::printf("%-16s %14.2f %8s", "total", predicted.total() / n_events, "");
+  std::printf("%-16s", "total");
+  if (modelled) std::printf(" %14.2f", predicted.total() / n_events);
+  std::printf(" %8s", "");
   if (o.rtl) std::printf(" %14.2f", measured.total() / n_events);
-  std::printf("\n\nmodel, other lane counts:");
+  std::printf("\n");
+  if (!modelled) {
+    std::printf("\nthe seeded path: climbs count in \"mean shift\", links and warm seeds in \"merge\"\n");
+    return;
+  }
+  std::printf("\nmodel, other lane counts:");
   for (int lanes : o.lanes) std::printf("  P=%d: %.1f", lanes, model.cycles(lanes).total() / n_events);
   std::printf(" cycles/event\n");
 }

@@ -158,7 +158,7 @@ void view(const ViewOptions& o) {
   // --preset gaussian only, host/backend/core_config.h).
   std::vector<std::string> cycle = {"golden"};
   if (backend::core_unsupported(bo.params).empty()) cycle.push_back("fixed");
-  if (backend::rtl_unsupported(bo.params).empty()) cycle.push_back("rtl");
+  if (backend::rtl_unsupported(bo.params, bo.core).empty()) cycle.push_back("rtl");
   auto* control = dynamic_cast<read::PlaybackControl*>(&session.source());
   bool paused = false, quit = false, more = true;
   while (!quit) {

@@ -78,7 +78,10 @@ module evms_board #(
   logic lab_valid, lab_ready, lab_p, trk_valid, trk_ready, pkt_valid, pkt_ready, core_idle;
   logic [31:0] lab_t, lab_label, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy, pkt_t_first, pkt_t_last;
   logic [15:0] lab_x, lab_y, pkt_events;
-  logic [7:0] pkt_clusters, pkt_iterations;
+  logic [7:0] pkt_clusters;
+  logic [15:0] pkt_iterations;
+  // The link's packet frame carries 8 bits of iterations: more saturate at 255.
+  wire [7:0] pkt_iterations_sent = pkt_iterations > 16'd255 ? 8'd255 : 8'(pkt_iterations);
   logic [31:0] tracks_started, unassigned;
   evms_core #(
     `include "evms_core_shape_connect.svh"
@@ -116,7 +119,7 @@ module evms_board #(
     .clk(clk), .rst_n(run_rst_n), .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y),
     .lab_p(lab_p), .lab_label(lab_label), .trk_valid(trk_valid), .trk_ready(trk_ready),
     .trk_payload({trk_zy, trk_zx, trk_vy, trk_vx, trk_y, trk_x, trk_id, trk_t}), .pkt_valid(pkt_valid),
-    .pkt_ready(pkt_ready), .pkt_payload({pkt_iterations, pkt_clusters, pkt_events, pkt_t_last, pkt_t_first}),
+    .pkt_ready(pkt_ready), .pkt_payload({pkt_iterations_sent, pkt_clusters, pkt_events, pkt_t_last, pkt_t_first}),
     .st_valid(st_valid), .st_ready(st_ready), .rs_valid(rs_valid), .rs_ready(rs_ready), .rs_seq(rs_seq),
     .st_payload({unassigned, tracks_started, external_events, overruns, framing_errors, crc_errors, events_received, timestamp}),
     .byte_valid(tx_valid), .byte_ready(tx_ready), .byte_data(tx_data));

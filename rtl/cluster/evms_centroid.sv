@@ -1,7 +1,8 @@
 // Each cluster's measurement, as hls/cluster/centroid.h: the centre of mass of its events
 // (PosFrac fraction bits) at the mean of their timestamps, rounded half up. One pass over the
-// packet accumulates; then each cluster takes three divisions through the reciprocal unit and
-// the shared multiplier.
+// packet accumulates; then each cluster takes three divisions: through the reciprocal unit and
+// the shared multiplier, or, with `exact` (the seeded path), through a restoring divider
+// (math/evms_divide_rounded), NumBits + 2 clocks each.
 //
 // Timing: the quotients' shift amounts are registered when the reciprocal is done, and a
 // cluster's time (t0 + its mean age) is added and written the clock after its last product,
@@ -16,11 +17,14 @@
 module evms_centroid #(
   parameter int ClustersMax = 16,
   parameter int PosFrac     = 12,
-  parameter int RecipFrac   = 20
+  parameter int RecipFrac   = 20,
+  parameter int PacketMax   = 256,
+  parameter bit HasExact    = 1'b1    // 0: no divider; `exact` must stay low
 ) (
   input  logic        clk,
   input  logic        rst_n,
   input  logic        start,
+  input  logic        exact,               // divide exactly (held from start to done)
   input  logic [15:0] n,
   input  logic [7:0]  clusters,
   input  logic [31:0] t0,                  // the packet's first event
@@ -50,7 +54,7 @@ module evms_centroid #(
 );
   localparam int ClusterIndexBits = ClustersMax > 1 ? $clog2(ClustersMax) : 1;
   typedef enum logic [3:0] {S_IDLE, S_ACC_READ, S_ACC_WAIT, S_ACC_ADD, S_DIV, S_DIV_RECIP, S_DIV_X, S_DIV_Y, S_DIV_T,
-                            S_DONE} state_e;
+                            S_DONE, S_EXACT_X, S_EXACT_Y, S_EXACT_T} state_e;
   state_e state;
   // Per cluster: {sx, sy, st, count}, valid when the packet has added to it.
   logic [159:0] sums [ClustersMax];
@@ -65,6 +69,7 @@ module evms_centroid #(
   logic [31:0] t_q;         // the cluster's mean age, added to t0 and stored the next clock
   logic        store;
   logic [ClusterIndexBits-1:0] store_c;
+  logic        div_start;
 
   assign {z_t, z_x, z_y} = results[ClusterIndexBits'(z_c)];
   assign rd_i = i;
@@ -98,6 +103,7 @@ module evms_centroid #(
       store_c <= '0;
       recip_start <= 1'b0;
       mul_start <= 1'b0;
+      div_start <= 1'b0;
       mul_a <= '0;
       mul_b <= '0;
       sums_valid <= '0;
@@ -107,6 +113,7 @@ module evms_centroid #(
       done <= 1'b0;
       recip_start <= 1'b0;
       mul_start <= 1'b0;
+      div_start <= 1'b0;
       store <= 1'b0;
       case (state)
         S_IDLE: if (start) begin
@@ -130,10 +137,30 @@ module evms_centroid #(
         S_DIV: begin
           if (c >= clusters) begin
             state <= S_DONE;
+          end else if (exact) begin
+            div_start <= 1'b1;
+            state <= S_EXACT_X;
           end else begin
             recip_start <= 1'b1;
             state <= S_DIV_RECIP;
           end
+        end
+        S_EXACT_X: if (div_done) begin
+          x_q <= 32'(div_quotient);
+          div_start <= 1'b1;
+          state <= S_EXACT_Y;
+        end
+        S_EXACT_Y: if (div_done) begin
+          y_q <= 32'(div_quotient);
+          div_start <= 1'b1;
+          state <= S_EXACT_T;
+        end
+        S_EXACT_T: if (div_done) begin
+          t_q <= 32'(div_quotient);
+          store <= 1'b1;
+          store_c <= ClusterIndexBits'(c);
+          c <= c + 1'b1;
+          state <= S_DIV;
         end
         S_DIV_RECIP: if (recip_done) begin
           r <= recip_r;
@@ -172,6 +199,24 @@ module evms_centroid #(
         default: state <= S_IDLE;
       endcase
     end
+  end
+
+  // The exact quotients: round(sx 2^PosFrac / count), round(sy 2^PosFrac / count) and
+  // round(st / count), each started in the first clock of its state.
+  localparam int CountBits = $clog2(PacketMax + 1);
+  localparam int ExactBits = 32 + CountBits > 16 + CountBits + PosFrac ? 32 + CountBits : 16 + CountBits + PosFrac;
+  logic div_done;
+  logic [ExactBits-1:0] div_num, div_quotient;
+  assign div_num = state == S_EXACT_X ? ExactBits'(sx) << PosFrac : (state == S_EXACT_Y ? ExactBits'(sy) << PosFrac : ExactBits'(st));
+  if (HasExact) begin : g_exact
+    evms_divide_rounded #(.NumBits(ExactBits), .DenBits(16)) u_divide (
+      .clk, .rst_n, .start(div_start), .num(div_num), .den(16'(count)), .done(div_done), .quotient(div_quotient));
+  end else begin : g_no_exact
+    assign div_done = 1'b0;
+    assign div_quotient = '0;
+    logic unused_exact;   // waived in cluster/evms_cluster.vlt
+    assign unused_exact = ^{div_start, div_num};
+    `EVMS_ASSERT("a build without the divider cannot divide exactly", !(start && exact), clk, rst_n)
   end
 
   // One rounding shifter for the three quotients, round(p * 2^-(RecipFrac + m - extra)) as

@@ -54,9 +54,11 @@ module evms_seeded_climbs #(
   output logic [15:0]          climbs,
   output logic [15:0]          steps,
   output logic [15:0]          modes_lost,
-  // After done (one clock of latency): event rd_j's mode (-1: none) and mode rd_c.
+  // After done (one clock of latency): event rd_j's mode (-1: none) and feature, and mode rd_c.
   input  logic [15:0]          rd_j,
   output logic signed [15:0]   rd_mode,
+  output logic [CoordBits-1:0] rd_x,
+  output logic [CoordBits-1:0] rd_y,
   input  logic [7:0]           rd_c,
   output logic [CoordBits-1:0] rd_mode_x,
   output logic [CoordBits-1:0] rd_mode_y
@@ -135,6 +137,8 @@ module evms_seeded_climbs #(
   logic [IdxBits-1:0]   phi_ra;
   evms_ram_1w1r #(.Width(2 * CoordBits), .Depth(PacketMax)) u_phi (
     .clk, .we(load_we), .wa(IdxBits'(load_i)), .wd({load_x, load_y}), .ra(phi_ra), .rd({phi_x_q, phi_y_q}));
+  assign rd_x = phi_x_q;
+  assign rd_y = phi_y_q;
 
   // Each event's cell, from counting to placing.
   logic [CellBits-1:0] cell_q, cell_wd;
@@ -254,7 +258,7 @@ module evms_seeded_climbs #(
   wire [CellBits-1:0] count_cell = CellBits'(cell_of(phi_y_q)) * CellBits'(GridSide) + CellBits'(cell_of(phi_x_q));
 
   always_comb begin
-    phi_ra = j_index;
+    phi_ra = state_q == StIdle || state_q == StDone ? IdxBits'(rd_j) : j_index;
     start_ra = '0;
     start_we = 1'b0;
     start_wa = '0;

@@ -1,6 +1,12 @@
-// The evms core, as hls/core/core.h: filter -> packets -> features -> mean shift -> merging
-// -> centroids -> tracking -> labels, with valid/ready streams and full backpressure: no event
-// is ever dropped; the input simply waits while a packet is being clustered and released.
+// The evms core, as hls/core/core.h: filter -> packets -> features -> clustering -> centroids
+// -> tracking -> labels, with valid/ready streams and full backpressure: no event is ever
+// dropped; the input simply waits while a packet is being clustered and released.
+//
+// Clustering takes one of two paths, chosen by cfg_seeded among those the build holds
+// (HasGaussianPath, HasSeededPath): the Gaussian mean shift of every event and the merging of
+// its modes, or the seeded climbs with the flat kernel (cluster/evms_seeded_climbs.sv), the
+// links of clusters that touch (cluster/evms_mode_links.sv) and the clusters kept with their
+// warm seeds for the next packet (cluster/evms_warm_seeds.sv).
 //
 // Word by word: an event passes the filter (or is noise) and joins the pending queue, and,
 // when kept, the packet. A packet closes when it holds cfg_packet_size events, when the next
@@ -9,6 +15,8 @@
 // releases every pending event with its label. A noise event that arrives while no packet is
 // open is released at once. The parameters are one Shape (hls/core/shape.h), generated into
 // rtl/generated/evms_cfg_*.svh.
+`include "evms_assert.svh"
+
 module evms_core #(
   `include "evms_core_shape_params.svh"
 ) (
@@ -50,7 +58,7 @@ module evms_core #(
   output logic [31:0] pkt_t_last,
   output logic [15:0] pkt_events,
   output logic [7:0]  pkt_clusters,
-  output logic [7:0]  pkt_iterations,
+  output logic [15:0] pkt_iterations,      // Gaussian sweeps, or seeded climb steps
   // Status.
   output logic        idle,                // waiting for a word, nothing held
   output logic [31:0] stat_tracks_started,
@@ -63,6 +71,11 @@ module evms_core #(
   localparam int PendingIndexBits = $clog2(PendingDepth);       // indexes
   localparam int PacketIndexBits = $clog2(PacketMax);
   localparam logic [63:0] FeatMax = (64'd1 << FeatBits) - 1;
+  // The seeded path's climb features: x * cfg_climb_scale_x >> ClimbShift, UnitShift fraction bits.
+  localparam int UnitShift = FeatFrac + ClimbFrac;
+  localparam int ClimbShift = ClimbScaleFrac - UnitShift;
+  localparam int ModeIndexBits = ModesMax > 1 ? $clog2(ModesMax) : 1;
+  `EVMS_ASSERT_INIT("a core clusters by at least one path", HasGaussianPath != 0 || HasSeededPath != 0)
 
   // ---- memories ---------------------------------------------------------------------------
   // Each has one write port and one registered read port, so that it maps to block RAM.
@@ -112,7 +125,7 @@ module evms_core #(
   evms_recip #(.TableLog2(RecipTableLog2), .RecipFrac(RecipFrac), .TableFile(RecipTableFile)) u_recip (
     .clk(clk), .rst_n(rst_n), .start(recip_start), .x(recip_x), .done(recip_done), .r(recip_r), .m(recip_m));
 
-  // ---- mean-shift engine ----------------------------------------------------------------------
+  // ---- the Gaussian path: mean shift of every event, then merging of the modes ------------------
   logic ms_load_we, ms_start, ms_done;
   logic [15:0] ms_load_i, ms_rd_i;
   logic [FeatBits-1:0] ms_lx, ms_ly, ms_lp, ms_lt;
@@ -120,26 +133,108 @@ module evms_core #(
   logic [ModeBits-1:0] ms_rx, ms_ry, ms_rp, ms_rt;
   logic ms_recip_start;
   logic [63:0] ms_recip_x;
-  evms_mean_shift #(
-    .PacketMax(PacketMax), .Lanes(Lanes), .IterationsMax(IterationsMax), .FeatBits(FeatBits), .FeatFrac(FeatFrac),
-    .WeightFrac(WeightFrac), .SumFrac(SumFrac), .ExpTableLog2(ExpTableLog2), .ExpInterpBits(ExpInterpBits),
-    .RecipFrac(RecipFrac), .ExpTableFile(ExpTableFile)
-  ) u_mean_shift (
-    .clk(clk), .rst_n(rst_n), .load_we(ms_load_we), .load_i(ms_load_i), .load_x(ms_lx), .load_y(ms_ly), .load_p(ms_lp),
-    .load_t(ms_lt), .start(ms_start), .n(16'(n)), .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance),
-    .done(ms_done), .sweeps(ms_sweeps), .rd_i(ms_rd_i), .rd_x(ms_rx), .rd_y(ms_ry), .rd_p(ms_rp), .rd_t(ms_rt),
-    .recip_start(ms_recip_start), .recip_x(ms_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m));
-
-  // ---- merging ----------------------------------------------------------------------------------
   logic mg_start, mg_done, mg_co_we;
   logic [15:0] mg_rd_i, mg_co_i;
   logic signed [7:0] mg_co_value;
+  logic [7:0] mg_clusters;
+  if (HasGaussianPath != 0) begin : g_gaussian
+    evms_mean_shift #(
+      .PacketMax(PacketMax), .Lanes(Lanes), .IterationsMax(IterationsMax), .FeatBits(FeatBits), .FeatFrac(FeatFrac),
+      .WeightFrac(WeightFrac), .SumFrac(SumFrac), .ExpTableLog2(ExpTableLog2), .ExpInterpBits(ExpInterpBits),
+      .RecipFrac(RecipFrac), .ExpTableFile(ExpTableFile)
+    ) u_mean_shift (
+      .clk(clk), .rst_n(rst_n), .load_we(ms_load_we), .load_i(ms_load_i), .load_x(ms_lx), .load_y(ms_ly), .load_p(ms_lp),
+      .load_t(ms_lt), .start(ms_start), .n(16'(n)), .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance),
+      .done(ms_done), .sweeps(ms_sweeps), .rd_i(ms_rd_i), .rd_x(ms_rx), .rd_y(ms_ry), .rd_p(ms_rp), .rd_t(ms_rt),
+      .recip_start(ms_recip_start), .recip_x(ms_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m));
+    evms_merge #(.ClustersMax(ClustersMax), .ModeBits(ModeBits)) u_merge (
+      .clk(clk), .rst_n(rst_n), .start(mg_start), .n(16'(n)), .cfg_merge_radius2(cfg_merge_radius2),
+      .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_max_clusters(cfg_max_clusters), .rd_i(mg_rd_i), .rd_x(ms_rx),
+      .rd_y(ms_ry), .rd_p(ms_rp), .rd_t(ms_rt), .co_we(mg_co_we), .co_i(mg_co_i), .co_value(mg_co_value),
+      .co_rdata(co_rdata), .done(mg_done), .clusters(mg_clusters));
+  end else begin : g_no_gaussian
+    assign {ms_done, ms_sweeps, ms_rx, ms_ry, ms_rp, ms_rt, ms_recip_start, ms_recip_x} = '0;
+    assign {mg_done, mg_co_we, mg_rd_i, mg_co_i, mg_co_value, mg_clusters} = '0;
+    // What only the Gaussian path reads (waived in core/evms_core.vlt).
+    logic unused_gaussian_path;
+    assign unused_gaussian_path = ^{ms_load_we, ms_load_i, ms_lx, ms_ly, ms_lp, ms_lt, ms_start, ms_rd_i, mg_start, cfg_merge_radius2[0]};
+  end
+
+  // ---- the seeded path: climbs, links of clusters that touch, clusters kept and warm seeds -------
+  // The climbs hold the packet's climb features and each event's first mode. The links read an
+  // event's pixel (the packet memory) and first mode (the climbs) and leave each mode's
+  // representative on rd_root. The warm seeds read an event's feature and linked mode and a
+  // mode's position, write each event's cluster, and leave the next packet's seeds in the climbs.
+  logic cl_load_we, cl_start, cl_done;
+  logic [15:0] cl_load_i;
+  logic [31:0] cl_lx, cl_ly;
+  logic [15:0] cl_mode_count, cl_steps;
+  logic [15:0] cl_rd_j;
+  logic signed [15:0] cl_rd_mode;
+  logic [31:0] cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y;
+  logic lk_ready, lk_start, lk_done;
+  logic [15:0] lk_ev_j;
+  logic [ModeIndexBits-1:0] lk_rd_root;
+  logic ws_start, ws_done, ws_co_we, ws_warm_we;
+  logic [15:0] ws_ev_j, ws_co_j;
+  logic [7:0] ws_md_c, ws_clusters, ws_warm_k;
+  logic signed [7:0] ws_co_value;
+  logic signed [15:0] ws_ev_mode;
+  logic [31:0] ws_warm_x, ws_warm_y;
+  logic [63:0] ws_warm_ball2;
+  logic [7:0] warm_count;   // the seeds the last seeded packet left
+  // The links' representative of an event's first mode.
+  wire [ModeIndexBits-1:0] first_mode = ModeIndexBits'(cl_rd_mode);
+  assign ws_ev_mode = cl_rd_mode < 0 ? -16'sd1 : 16'(lk_rd_root);
+  if (HasSeededPath != 0) begin : g_seeded
+    logic [15:0] climbs_unused, modes_lost_unused;
+    evms_seeded_climbs #(
+      .PacketMax(PacketMax), .ModesMax(ModesMax), .GridSide(GridSide), .ReachMax(ReachMax), .IterationsMax(IterationsMax),
+      .UnitShift(UnitShift), .CoordBits(32)
+    ) u_climbs (
+      .clk(clk), .rst_n(rst_n), .load_we(cl_load_we), .load_i(cl_load_i), .load_x(cl_lx), .load_y(cl_ly),
+      .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),
+      .start(cl_start), .n(16'(n)), .warm_count(warm_count), .cfg_warm_start(cfg_warm_start),
+      .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance), .cfg_merge_radius2(cfg_merge_radius2),
+      .done(cl_done), .mode_count(cl_mode_count), .climbs(climbs_unused), .steps(cl_steps), .modes_lost(modes_lost_unused),
+      .rd_j(cl_rd_j), .rd_mode(cl_rd_mode), .rd_x(cl_rd_x), .rd_y(cl_rd_y), .rd_c(ws_md_c), .rd_mode_x(cl_rd_mode_x),
+      .rd_mode_y(cl_rd_mode_y));
+    evms_mode_links #(
+      .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .PacketMax(PacketMax), .ModesMax(ModesMax), .LinkMax(LinkMax)
+    ) u_links (
+      .clk(clk), .rst_n(rst_n), .ready(lk_ready), .start(lk_start), .n(16'(n)), .cfg_link2(cfg_link2),
+      .cfg_sensor_width(cfg_sensor_width), .cfg_sensor_height(cfg_sensor_height), .ev_j(lk_ev_j), .ev_x(rd_pk_x),
+      .ev_y(rd_pk_y), .ev_mode(cl_rd_mode), .done(lk_done), .rd_c(first_mode), .rd_root(lk_rd_root));
+    evms_warm_seeds #(
+      .PacketMax(PacketMax), .ModesMax(ModesMax), .ClustersMax(ClustersMax), .UnitShift(UnitShift), .SpreadFrac(SpreadFrac),
+      .CoordBits(32)
+    ) u_warm_seeds (
+      .clk(clk), .rst_n(rst_n), .start(ws_start), .n(16'(n)), .mode_count(cl_mode_count),
+      .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_max_clusters(cfg_max_clusters), .cfg_warm_scale2(cfg_warm_scale2),
+      .cfg_warm_ball2_max(cfg_warm_ball2_max), .ev_j(ws_ev_j), .ev_mode(ws_ev_mode), .ev_x(cl_rd_x), .ev_y(cl_rd_y),
+      .md_c(ws_md_c), .md_x(cl_rd_mode_x), .md_y(cl_rd_mode_y), .co_we(ws_co_we), .co_j(ws_co_j), .co_value(ws_co_value),
+      .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),
+      .done(ws_done), .clusters(ws_clusters));
+  end else begin : g_no_seeded
+    assign {cl_done, cl_mode_count, cl_steps, cl_rd_mode, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y} = '0;
+    assign {lk_done, lk_ev_j, lk_rd_root} = '0;
+    assign lk_ready = 1'b1;
+    assign {ws_done, ws_co_we, ws_warm_we, ws_ev_j, ws_co_j, ws_md_c, ws_clusters, ws_warm_k, ws_co_value} = '0;
+    assign {ws_warm_x, ws_warm_y, ws_warm_ball2} = '0;
+    // What only the seeded path reads (waived in core/evms_core.vlt).
+    logic unused_seeded_path;
+    assign unused_seeded_path = ^{cfg_warm_start, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we, cl_load_i, cl_lx, cl_ly,
+                                  cl_start, cl_mode_count, cl_rd_j, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, first_mode, lk_start,
+                                  warm_count, ws_ev_mode, ws_md_c, ws_start, ws_warm_we, ws_warm_k, ws_warm_x, ws_warm_y,
+                                  ws_warm_ball2};
+  end
+
+  // The path a packet takes (the host refuses a cfg_seeded the build cannot follow), and its
+  // clusters.
+  logic seeded;
+  assign seeded = HasSeededPath != 0 && cfg_seeded;
   logic [7:0] clusters;
-  evms_merge #(.ClustersMax(ClustersMax), .ModeBits(ModeBits)) u_merge (
-    .clk(clk), .rst_n(rst_n), .start(mg_start), .n(16'(n)), .cfg_merge_radius2(cfg_merge_radius2),
-    .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_max_clusters(cfg_max_clusters), .rd_i(mg_rd_i), .rd_x(ms_rx),
-    .rd_y(ms_ry), .rd_p(ms_rp), .rd_t(ms_rt), .co_we(mg_co_we), .co_i(mg_co_i), .co_value(mg_co_value),
-    .co_rdata(co_rdata), .done(mg_done), .clusters(clusters));
+  assign clusters = seeded ? ws_clusters : mg_clusters;
 
   // ---- centroids --------------------------------------------------------------------------------
   logic ct_start, ct_done, ct_recip_start, ct_mul_start;
@@ -149,8 +244,10 @@ module evms_core #(
   logic [7:0] z_c;
   logic [31:0] z_t;
   logic signed [31:0] z_x, z_y;
-  evms_centroid #(.ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac)) u_centroid (
-    .clk(clk), .rst_n(rst_n), .start(ct_start), .n(16'(n)), .clusters(clusters), .t0(t_first), .rd_i(ct_rd_i),
+  evms_centroid #(
+    .ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac), .PacketMax(PacketMax), .HasExact(HasSeededPath != 0)
+  ) u_centroid (
+    .clk(clk), .rst_n(rst_n), .start(ct_start), .exact(seeded), .n(16'(n)), .clusters(clusters), .t0(t_first), .rd_i(ct_rd_i),
     .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_cluster(co_rdata), .recip_start(ct_recip_start),
     .recip_x(ct_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m), .mul_start(ct_mul_start),
     .mul_a(ct_mul_a), .mul_b(ct_mul_b), .mul_done(mul_done), .mul_p(mul_p), .z_c(z_c), .z_t(z_t), .z_x(z_x), .z_y(z_y),
@@ -191,7 +288,8 @@ module evms_core #(
   logic [15:0] rel_x, rel_y;
   logic        rel_p;
   logic signed [15:0] rel_idx;
-  logic [7:0]  iterations;
+  logic [15:0] iterations;
+  logic [31:0] climb_x;
 
   always_ff @(posedge clk) begin
     if (pend_we) pend_mem[PendingIndexBits'(pend_n)] <= pend_wdata;
@@ -199,13 +297,15 @@ module evms_core #(
     if (state == StAppend) pk_mem[PacketIndexBits'(n)] <= {e_x, e_y, e_p, e_t};
     pk_rdata <= pk_mem[PacketIndexBits'(rd_pk_i)];
     if (mg_co_we) cluster_of[PacketIndexBits'(mg_co_i)] <= mg_co_value;
+    if (ws_co_we) cluster_of[PacketIndexBits'(ws_co_j)] <= ws_co_value;
     co_rdata <= cluster_of[PacketIndexBits'(co_i)];
   end
   assign {rd_pk_x, rd_pk_y, rd_pk_p, rd_pk_t} = pk_rdata;
   // Events join the pending queue when the filter rejects them or when they join the packet.
   assign pend_we = (state == StFilter && f_done && !f_kept) || state == StAppend;
   assign pend_wdata = {e_t, e_x, e_y, e_p, state == StAppend ? 16'(n) : 16'hFFFF};
-  assign rd_pk_i = state == StCentroid ? ct_rd_i : fi;
+  assign rd_pk_i = state == StCentroid ? ct_rd_i : (state == StLink ? lk_ev_j : fi);
+  assign cl_rd_j = state == StLink ? lk_ev_j : ws_ev_j;
   assign co_i = state == StMerge ? mg_co_i : (state == StCentroid ? ct_rd_i :
                 (state == StReleaseWait ? pend_rdata[15:0] : 16'(rel_idx)));
   assign ms_rd_i = mg_rd_i;
@@ -250,7 +350,8 @@ module evms_core #(
     end
   endfunction
 
-  assign in_ready = state == StIdle && f_ready;
+  // The filter and the links each clear their memory after reset.
+  assign in_ready = state == StIdle && f_ready && lk_ready;
   assign idle = in_ready && pend_n == 0 && !lab_valid && !trk_valid && !pkt_valid;
   assign f_start = in_valid && in_ready && !in_flush;
   assign id_c = co_rdata >= 0 ? 8'(co_rdata) : 8'd0;
@@ -276,6 +377,13 @@ module evms_core #(
       {ms_lx, ms_ly, ms_lp, ms_lt} <= '0;
       ms_start <= 1'b0;
       mg_start <= 1'b0;
+      cl_load_we <= 1'b0;
+      cl_load_i <= '0;
+      {cl_lx, cl_ly, climb_x} <= '0;
+      cl_start <= 1'b0;
+      lk_start <= 1'b0;
+      ws_start <= 1'b0;
+      warm_count <= '0;
       ct_start <= 1'b0;
       tk_start <= 1'b0;
       iterations <= '0;
@@ -290,6 +398,10 @@ module evms_core #(
       ms_load_we <= 1'b0;
       ms_start <= 1'b0;
       mg_start <= 1'b0;
+      cl_load_we <= 1'b0;
+      cl_start <= 1'b0;
+      lk_start <= 1'b0;
+      ws_start <= 1'b0;
       ct_start <= 1'b0;
       tk_start <= 1'b0;
       if (lab_valid && lab_ready) lab_valid <= 1'b0;
@@ -323,7 +435,7 @@ module evms_core #(
         StClose: begin
           if (n > 0) begin
             fi <= '0;
-            state <= StFeatRead;
+            state <= seeded ? StClimbRead : StFeatRead;
           end else begin
             ri <= '0;
             state <= pend_n == 0 ? (append_after ? StAppend : StIdle) : StReleaseRead;
@@ -382,8 +494,50 @@ module evms_core #(
             state <= StMeanShift;
           end
         end
+        // Climb features of event fi: x and y times their scales, rounded.
+        StClimbRead: state <= StClimbWait;
+        StClimbWait: begin
+          feat_mul_start <= 1'b1;
+          feat_mul_a <= $signed(64'(rd_pk_x));
+          feat_mul_b <= $signed(cfg_climb_scale_x);
+          state <= StClimbX;
+        end
+        StClimbX: if (mul_done) begin
+          climb_x <= 32'(shr_rnd(mul_p, ClimbShift));
+          feat_mul_start <= 1'b1;
+          feat_mul_a <= $signed(64'(rd_pk_y));
+          feat_mul_b <= $signed(cfg_climb_scale_y);
+          state <= StClimbY;
+        end
+        StClimbY: if (mul_done) begin
+          cl_load_we <= 1'b1;
+          cl_load_i <= fi;
+          cl_lx <= climb_x;
+          cl_ly <= 32'(shr_rnd(mul_p, ClimbShift));
+          if (32'(fi) + 1 < 32'(n)) begin
+            fi <= fi + 1'b1;
+            state <= StClimbRead;
+          end else begin
+            cl_start <= 1'b1;
+            state <= StClimb;
+          end
+        end
+        StClimb: if (cl_done) begin
+          iterations <= cl_steps;
+          lk_start <= 1'b1;
+          state <= StLink;
+        end
+        StLink: if (lk_done) begin
+          ws_start <= 1'b1;
+          state <= StWarm;
+        end
+        StWarm: if (ws_done) begin
+          warm_count <= ws_clusters;
+          ct_start <= 1'b1;
+          state <= StCentroid;
+        end
         StMeanShift: if (ms_done) begin
-          iterations <= ms_sweeps;
+          iterations <= 16'(ms_sweeps);
           mg_start <= 1'b1;
           state <= StMerge;
         end

@@ -26,3 +26,10 @@ input  logic [63:0] cfg_q,  // process noise q per tick^3, kNoiseFrac fraction b
 input  logic [63:0] cfg_r,  // measurement variance, px^2, kCovFrac fraction bits
 input  logic [63:0] cfg_p0_pos,  // position variance a track starts with, px^2, kCovFrac fraction bits
 input  logic [63:0] cfg_p0_vel,  // velocity variance a track starts with, (px/tick)^2, kCovFrac bits
+input  logic cfg_seeded,  // climbs from seeds with the flat kernel (hls/cluster/seeded_climbs.h), not every event
+input  logic [63:0] cfg_climb_scale_x,  // seeded: phi_x = x * climb_scale_x, kClimbScaleFrac fraction bits
+input  logic [63:0] cfg_climb_scale_y,  // seeded: phi_y = y * climb_scale_y, kClimbScaleFrac fraction bits
+input  logic cfg_warm_start,  // seeded: the modes of the previous packet climb first
+input  logic [31:0] cfg_warm_scale2,  // seeded: radius^2 of a warm ball per variance of its cluster, kSpreadFrac bits
+input  logic [63:0] cfg_warm_ball2_max,  // seeded: radius^2 of the largest warm ball, phi^2 raw units (at least h^2)
+input  logic [31:0] cfg_link2,  // seeded: clusters with events within sqrt(link2) px join; 0: off

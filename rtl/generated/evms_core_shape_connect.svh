@@ -26,4 +26,13 @@
 .GainFrac(GainFrac),
 .NoiseFrac(NoiseFrac),
 .MulDigitBits(MulDigitBits),
+.ModesMax(ModesMax),
+.LinkMax(LinkMax),
+.GridSide(GridSide),
+.ReachMax(ReachMax),
+.ClimbFrac(ClimbFrac),
+.ClimbScaleFrac(ClimbScaleFrac),
+.SpreadFrac(SpreadFrac),
+.HasGaussianPath(HasGaussianPath),
+.HasSeededPath(HasSeededPath),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

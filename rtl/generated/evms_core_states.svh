@@ -14,13 +14,20 @@ typedef enum logic [4:0] {
   StFeatDecay2,  // 10: features
   StFeatT,  // 11: features
   StFeatStore,  // 12: features
-  StMeanShift,  // 13: mean shift
-  StMerge,  // 14: merge
-  StCentroid,  // 15: centroids
-  StTrack,  // 16: tracking
-  StPacket,  // 17: packet control
-  StReleaseRead,  // 18: release
-  StReleaseWait,  // 19: release
-  StReleaseCluster,  // 20: release
-  StReleaseSend  // 21: release
+  StClimbRead,  // 13: features
+  StClimbWait,  // 14: features
+  StClimbX,  // 15: features
+  StClimbY,  // 16: features
+  StMeanShift,  // 17: mean shift
+  StMerge,  // 18: merge
+  StClimb,  // 19: mean shift
+  StLink,  // 20: merge
+  StWarm,  // 21: merge
+  StCentroid,  // 22: centroids
+  StTrack,  // 23: tracking
+  StPacket,  // 24: packet control
+  StReleaseRead,  // 25: release
+  StReleaseWait,  // 26: release
+  StReleaseCluster,  // 27: release
+  StReleaseSend  // 28: release
 } state_e;

@@ -117,10 +117,35 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --quiet");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find("the RTL core does not implement --kernel flat"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the RTL core does not implement --association last-measurement"), std::string::npos) << r.err;
+  const auto arty = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --quiet");
+  EXPECT_EQ(arty.exit_code, 1);
+  EXPECT_NE(arty.err.find("the RTL build 'arty' clusters by the Gaussian mean shift only"), std::string::npos) << arty.err;
   const auto fixed = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --kernel epanechnikov --quiet");
   EXPECT_EQ(fixed.exit_code, 1);
   EXPECT_NE(fixed.err.find("flat kernel only"), std::string::npos) << fixed.err;
+}
+
+// The host RTL build clusters by the default method's seeded path; with the tracker it
+// implements, its labels and tracks are the fixed-point core's.
+TEST(MethodOutputs, TheRtlRunsTheSeededPathAsTheFixedCore) {
+  TempDir dir;
+  const std::string method = " --association kalman --evict-stale off --report-tentative off --packet-size 256 --max-clusters 16 --max-tracks 16";
+  for (const char* backend : {"rtl", "fixed"}) {
+    const auto r = run_command(evms_binary() + " run gen://translation?duration-s=0.1 --backend " + backend + method + " --quiet --out " +
+                               dir.path(backend));
+    ASSERT_EQ(r.exit_code, 0) << backend << ": " << r.err;
+  }
+  const std::string labels = read_file(dir.path("rtl/events.csv"));
+  EXPECT_GT(csv_rows(dir.path("rtl/tracks.csv")).size(), 10u);
+  EXPECT_EQ(labels, read_file(dir.path("fixed/events.csv")));
+  // The RTL's track words end at the measurement (hls/core/words.h): compare up to vy.
+  const auto rtl_tracks = csv_rows(dir.path("rtl/tracks.csv")), fixed_tracks = csv_rows(dir.path("fixed/tracks.csv"));
+  ASSERT_EQ(rtl_tracks.size(), fixed_tracks.size());
+  for (size_t i = 0; i < rtl_tracks.size(); ++i) {
+    EXPECT_EQ(std::vector<std::string>(rtl_tracks[i].begin(), rtl_tracks[i].begin() + 7),
+              std::vector<std::string>(fixed_tracks[i].begin(), fixed_tracks[i].begin() + 7)) << "track row " << i;
+  }
 }
 
 TEST(MethodOutputs, ThePaperPresetRunsTheAuthorsRule) {

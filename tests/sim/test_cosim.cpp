@@ -152,6 +152,29 @@ std::vector<Event> scene_events(gen::Motion m, double duration_s, int width, int
   return eval::generate_scene(c).events;
 }
 
+// The default method (seeded climbs, links, warm seeds) with the tracker the RTL implements,
+// in the host build's sizes.
+Params seeded_method() {
+  Params p;
+  const Params tracker = preset("gaussian");
+  p.association = tracker.association;
+  p.gate_spread = tracker.gate_spread;
+  p.coast_packets = tracker.coast_packets;
+  p.evict_stale = tracker.evict_stale;
+  p.report_tentative = tracker.report_tentative;
+  p.packet_size = hls::RtlHostShape::kPacketMax;
+  p.max_clusters = hls::RtlHostShape::kClustersMax;
+  p.max_tracks = hls::RtlHostShape::kTracksMax;
+  return p;
+}
+
+TEST(Cosim, SeededPathHostBuild) {
+  for (auto m : {gen::Motion::kTranslation, gen::Motion::kRotation, gen::Motion::kSixDof}) {
+    expect_equal<Vcore_host, hls::RtlHostShape>(std::string("seeded_host_") + gen::motion_name(m), scene_events(m, 0.25, 240, 180, 3),
+                                                {240, 180}, 61, 0.8, seeded_method());
+  }
+}
+
 TEST(Cosim, LabelledScenesHostBuild) {
   for (auto m : {gen::Motion::kTranslation, gen::Motion::kRotation, gen::Motion::kSixDof}) {
     expect_equal<Vcore_host, hls::RtlHostShape>(std::string("scene_host_") + gen::motion_name(m), scene_events(m, 0.25, 240, 180, 3),
