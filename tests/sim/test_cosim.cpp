@@ -221,15 +221,19 @@ TEST(Cosim, ParameterCorners) {
   expect_equal<Vcore_host, hls::RtlHostShape>("corner_exact", events, {240, 180}, 44, 0.9, exact);
 }
 
-// The regression over every real recording, on the host build.
-TEST(CosimRegression, RealRecordings) {
+// The regression over every real recording, on the host build, by both clustering paths.
+void expect_equal_on_real_recordings(const Params& method, std::uint64_t seed) {
   const std::string dir = test::shared_data_dir();
   if (dir.empty()) GTEST_SKIP() << "../shared/data/real is absent";
   for (const char* f : {"atis_ncars_sample.dat", "dvxplorer_indoor.aedat4", "gen41_dense_scene.evt3.raw", "gen3_moving_blob.evt2.raw"}) {
     const std::string path = dir + "/" + f;
-    expect_equal<Vcore_host, hls::RtlHostShape>(f, test::read_all(path), read::open_source(path, {})->info().sensor, 51, 0.9);
+    expect_equal<Vcore_host, hls::RtlHostShape>(f, test::read_all(path), read::open_source(path, {})->info().sensor, seed, 0.9, method);
   }
 }
+
+TEST(CosimRegression, RealRecordings) { expect_equal_on_real_recordings(preset("gaussian"), 51); }
+
+TEST(CosimRegression, RealRecordingsSeededPath) { expect_equal_on_real_recordings(seeded_method(), 52); }
 
 }  // namespace
 }  // namespace evms
