@@ -84,8 +84,9 @@ void run(const RunOptions& o) {
   std::fprintf(summary, "events in   %s over %.3f s of sensor time (%s labelled noise)\n", grouped(s.events_in).c_str(), span_s,
               grouped(sink.noise).c_str());
   std::fprintf(summary, "throughput  %sevents/s (%.2f s wall clock, reading included)\n", si(s.events_in / std::max(wall, 1e-9)).c_str(), wall);
-  std::fprintf(summary, "packets     %s, %.1f mean-shift iterations each", grouped(s.packets).c_str(),
-              s.packets ? static_cast<double>(s.iterations) / s.packets : 0.0);
+  // Packets count sweeps when every event shifts, and climb steps (summed over climbs) when seeds climb.
+  std::fprintf(summary, "packets     %s, %.1f %s each", grouped(s.packets).c_str(), s.packets ? static_cast<double>(s.iterations) / s.packets : 0.0,
+               params.seeding == Seeding::kEvery ? "mean-shift iterations" : "climb steps");
   // Counted by the backends that count them (golden).
   if (s.kernel_evaluations > 0) {
     std::fprintf(summary, ", %.1f kernel evaluations per event", static_cast<double>(s.kernel_evaluations) / static_cast<double>(s.events_in));
