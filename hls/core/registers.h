@@ -47,14 +47,15 @@
   X(warm_start, bool, 1, false, "seeded: the modes of the previous packet climb first")                                 \
   X(warm_scale2, std::uint32_t, 32, 0, "seeded: radius^2 of a warm ball per variance of its cluster, kSpreadFrac bits") \
   X(warm_ball2_max, std::uint64_t, 64, 0, "seeded: radius^2 of the largest warm ball, phi^2 raw units (at least h^2)")  \
-  X(link2, std::uint32_t, 32, 0, "seeded: clusters with events within sqrt(link2) px join; 0: off")
-
-// Registers of the C++ core only: the filter's support count and the tracker's policies. The
-// RTL refuses a setting that needs them (host/backend/core_config.h).
-#define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
-  X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
+  X(link2, std::uint32_t, 32, 0, "seeded: clusters with events within sqrt(link2) px join; 0: off")                     \
   X(associate_last, bool, 1, false, "gate against the last measurement of a track, not its prediction")                 \
-  X(gate_spread2, std::uint32_t, 32, 0, "widening of the gate by the spread of the cluster, squared, kSpreadFrac bits") \
-  X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never")       \
   X(evict_stale, bool, 1, false, "with no free slot, take the unmatched slot measured longest ago")                     \
   X(report_tentative, bool, 1, false, "tentative tracks report their updates too")
+
+// Registers of the C++ core only: the filter's support count, the gate's widening by a
+// cluster's spread and coasting by packets. The RTL refuses a setting that needs them
+// (host/backend/core_config.h).
+#define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
+  X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
+  X(gate_spread2, std::uint32_t, 32, 0, "widening of the gate by the spread of the cluster, squared, kSpreadFrac bits") \
+  X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never")

@@ -20,7 +20,7 @@
 //   centroids   3 n + clusters (R + 2 + 3 (L + 1)) + 4
 //   tracking    2 T + 6 + m + births + scans (T + 2) + steps + 4 (L + 1) distances
 //               + (2 R + 8 + 30 (L + 1)) matches (+1 when every round matched; a reciprocal
-//               per axis)
+//               per axis) + (T + 2) eviction scans (a birth with no free slot, evict_stale)
 //   release     4 per event, and 1 + 1 per packet closing and sending its summary
 //   packet control 1 per kept event appended
 // where T is the Shape's track slots and m the packet's clusters. Mean shift is the term that
@@ -144,6 +144,7 @@ class ScheduleCounter {
     matches_ += p.track.matches;
     capped_ += p.track.rounds_capped ? 1 : 0;
     births_ += p.track.births;
+    evict_scans_ += p.track.evict_scans;
   }
 
   // The cycles of everything seen so far, on a core with `lanes` kernel lanes.
@@ -165,7 +166,7 @@ class ScheduleCounter {
     c[Stage::kMerge] = static_cast<double>(8 * kept_ + seed_visits_ + seeds_ + 4 * packets_);
     c[Stage::kCentroid] = static_cast<double>(3 * kept_ + clusters_ * (kRecipLatency + 2 + 3 * kMul) + 4 * packets_);
     c[Stage::kTrack] = static_cast<double>(packets_ * (2 * kSlots + 6) + clusters_ + births_ + scans_ * (kSlots + 2) + slot_steps_ +
-                                           4 * kMul * distances_ + (2 * kRecipLatency + 8 + 30 * kMul) * matches_ + capped_);
+                                           4 * kMul * distances_ + (2 * kRecipLatency + 8 + 30 * kMul) * matches_ + capped_ + (kSlots + 2) * evict_scans_);
     c[Stage::kRelease] = static_cast<double>(4 * released_);
     return c;
   }
@@ -174,6 +175,7 @@ class ScheduleCounter {
   std::int64_t words() const { return words_; }
   std::int64_t kept() const { return kept_; }
   std::int64_t packets() const { return packets_; }
+  std::int64_t evict_scans() const { return evict_scans_; }
   double mean_sweeps() const { return packets_ ? static_cast<double>(sweeps_) / static_cast<double>(packets_) : 0.0; }
 
   static int filter_cycles(const EventWord& w, const Config& cfg) {
@@ -188,7 +190,7 @@ class ScheduleCounter {
   Config cfg_;
   std::int64_t words_ = 0, flushes_ = 0, filter_ = 0, closes_ = 0, released_ = 0, packets_ = 0, kept_ = 0;
   std::int64_t sweeps_ = 0, seed_visits_ = 0, seeds_ = 0, clusters_ = 0;
-  std::int64_t scans_ = 0, slot_steps_ = 0, distances_ = 0, matches_ = 0, capped_ = 0, births_ = 0;
+  std::int64_t scans_ = 0, slot_steps_ = 0, distances_ = 0, matches_ = 0, capped_ = 0, births_ = 0, evict_scans_ = 0;
   std::uint32_t sweeps_of_[S::kPacketMax + 1][S::kIterationsMax + 1] = {};
 };
 

@@ -32,6 +32,7 @@ struct TrackerTrace {
   int matches = 0;
   bool rounds_capped = false;  // every round matched, up to kClustersMax
   int births = 0;
+  int evict_scans = 0;  // births that found no free slot and looked for one to evict
 };
 
 template <class S>
@@ -173,12 +174,13 @@ class Tracker {
 
   // The lowest free slot; with none, the unmatched slot measured longest ago (evict_stale,
   // ties to the lower slot); -1 when neither.
-  int slot_for_new_track(const Config& cfg, const bool slot_matched[S::kTracksMax]) const {
+  int slot_for_new_track(const Config& cfg, const bool slot_matched[S::kTracksMax]) {
     int free = -1;
     for (int s = S::kTracksMax - 1; s >= 0; --s) {
       if (!slot_[s].valid && s < cfg.max_tracks) free = s;
     }
     if (free >= 0 || !cfg.evict_stale) return free;
+    ++trace_.evict_scans;
     int stalest = -1;
     for (int s = 0; s < S::kTracksMax; ++s) {
       if (s >= cfg.max_tracks || slot_matched[s]) continue;

@@ -69,7 +69,8 @@ inline std::string core_unsupported(const Params& p) {
 // The first setting of `p` that RTL build `build` (hls/core/configs.h, and a board built from
 // it) does not implement. Every build implements the numbers of its clustering paths (the
 // Gaussian mean shift of every event, the seeded climbs, or both: Shape::kHasGaussianPath,
-// kHasSeededPath) and the tracker of --preset gaussian.
+// kHasSeededPath) and the tracker's policies but the gate's widening by the spread and coasting
+// by packets.
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
   bool gaussian_path = false, seeded_path = false;
@@ -84,10 +85,8 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!seeded && !gaussian_path) return "the RTL build '" + build + "' clusters by seeded climbs only, not " + detail::setting(p, "seeding");
   const Params rtl = preset("gaussian");
-  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "association", "gate-spread", "coast-packets", "evict-stale",
-                                                           "report-tentative"})) {
-    return "the RTL core does not implement " + detail::setting(p, name) + " (its tracker is the one of --preset gaussian: add --" + name +
-           " " + param_text(rtl, *find_param(name)) + ")";
+  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets"})) {
+    return "the RTL core does not implement " + detail::setting(p, name) + " (add --" + name + " " + param_text(rtl, *find_param(name)) + ")";
   }
   return {};
 }

@@ -13,6 +13,8 @@
 // (timestamp, events received, check errors, framing errors, overruns, external AER events,
 // tracks started, clusters without a track slot) tells the host that the flush is complete. Backpressure reaches the AER sender (it waits for
 // its acknowledge); the link keeps at most LinkFifoDepth events in flight by protocol.
+`include "evms_assert.svh"
+
 module evms_board #(
   parameter int ClkHz          = 12000000,
   parameter int ClksPerBit     = 4,
@@ -75,7 +77,7 @@ module evms_board #(
   end
 
   // ---- the core ---------------------------------------------------------------------------------
-  logic lab_valid, lab_ready, lab_p, trk_valid, trk_ready, pkt_valid, pkt_ready, core_idle;
+  logic lab_valid, lab_ready, lab_p, trk_valid, trk_ready, trk_confirmed, pkt_valid, pkt_ready, core_idle;
   logic [31:0] lab_t, lab_label, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy, pkt_t_first, pkt_t_last;
   logic [15:0] lab_x, lab_y, pkt_events;
   logic [7:0] pkt_clusters;
@@ -91,10 +93,15 @@ module evms_board #(
     .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y), .in_p(in_p), .in_flush(in_flush),
     .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y), .lab_p(lab_p),
     .lab_label(lab_label), .trk_valid(trk_valid), .trk_ready(trk_ready), .trk_t(trk_t), .trk_id(trk_id), .trk_x(trk_x),
-    .trk_y(trk_y), .trk_vx(trk_vx), .trk_vy(trk_vy), .trk_zx(trk_zx), .trk_zy(trk_zy), .pkt_valid(pkt_valid),
+    .trk_y(trk_y), .trk_vx(trk_vx), .trk_vy(trk_vy), .trk_zx(trk_zx), .trk_zy(trk_zy), .trk_confirmed(trk_confirmed),
+    .pkt_valid(pkt_valid),
     .pkt_ready(pkt_ready), .pkt_t_first(pkt_t_first), .pkt_t_last(pkt_t_last), .pkt_events(pkt_events),
     .pkt_clusters(pkt_clusters), .pkt_iterations(pkt_iterations), .idle(core_idle),
     .stat_tracks_started(tracks_started), .stat_unassigned(unassigned));
+
+  // The board runs its build's registers, whose tracker reports confirmed tracks only, so the
+  // link's track frame has no state field.
+  `EVMS_ASSERT("a board reports confirmed tracks only", !(trk_valid && !trk_confirmed), clk, run_rst_n)
 
   // ---- status after a flush ---------------------------------------------------------------------
   logic flush_pending, st_valid, st_ready;

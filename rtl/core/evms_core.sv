@@ -51,6 +51,7 @@ module evms_core #(
   output logic [31:0] trk_vy,
   output logic [31:0] trk_zx,
   output logic [31:0] trk_zy,
+  output logic        trk_confirmed,        // else tentative (cfg_report_tentative)
   // Packet summaries out.
   output logic        pkt_valid,
   input  logic        pkt_ready,
@@ -264,11 +265,13 @@ module evms_core #(
     .GainFrac(GainFrac), .NoiseFrac(NoiseFrac), .RecipFrac(RecipFrac)
   ) u_tracker (
     .clk(clk), .rst_n(rst_n), .cfg_gate2(cfg_gate2), .cfg_confirm_hits(cfg_confirm_hits), .cfg_coast_us(cfg_coast_us),
-    .cfg_max_tracks(cfg_max_tracks), .cfg_q_third(cfg_q_third), .cfg_q_half(cfg_q_half), .cfg_q(cfg_q), .cfg_r(cfg_r),
+    .cfg_max_tracks(cfg_max_tracks), .cfg_associate_last(cfg_associate_last), .cfg_evict_stale(cfg_evict_stale),
+    .cfg_report_tentative(cfg_report_tentative), .cfg_q_third(cfg_q_third), .cfg_q_half(cfg_q_half), .cfg_q(cfg_q), .cfg_r(cfg_r),
     .cfg_p0_pos(cfg_p0_pos), .cfg_p0_vel(cfg_p0_vel), .start(tk_start), .packet_time(t_last), .m(clusters), .z_c(z_c),
     .z_t(z_t), .z_x(z_x), .z_y(z_y), .id_c(id_c), .id_of(id_of), .upd_valid(trk_valid), .upd_ready(trk_ready),
     .upd_t(trk_t), .upd_id(trk_id), .upd_x(trk_x), .upd_y(trk_y), .upd_vx(trk_vx), .upd_vy(trk_vy), .upd_zx(trk_zx),
-    .upd_zy(trk_zy), .recip_start(tk_recip_start), .recip_x(tk_recip_x), .recip_done(recip_done), .recip_r(recip_r),
+    .upd_zy(trk_zy), .upd_confirmed(trk_confirmed), .recip_start(tk_recip_start), .recip_x(tk_recip_x),
+    .recip_done(recip_done), .recip_r(recip_r),
     .recip_m(recip_m), .mul_start(tk_mul_start), .mul_a(tk_mul_a), .mul_b(tk_mul_b), .mul_done(mul_done), .mul_p(mul_p),
     .done(tk_done), .tracks_started(stat_tracks_started), .unassigned(stat_unassigned));
 

@@ -33,3 +33,6 @@
 .cfg_warm_scale2(CfgWarmScale2),
 .cfg_warm_ball2_max(CfgWarmBall2Max),
 .cfg_link2(CfgLink2),
+.cfg_associate_last(CfgAssociateLast),
+.cfg_evict_stale(CfgEvictStale),
+.cfg_report_tentative(CfgReportTentative),

@@ -33,3 +33,6 @@ input  logic cfg_warm_start,  // seeded: the modes of the previous packet climb 
 input  logic [31:0] cfg_warm_scale2,  // seeded: radius^2 of a warm ball per variance of its cluster, kSpreadFrac bits
 input  logic [63:0] cfg_warm_ball2_max,  // seeded: radius^2 of the largest warm ball, phi^2 raw units (at least h^2)
 input  logic [31:0] cfg_link2,  // seeded: clusters with events within sqrt(link2) px join; 0: off
+input  logic cfg_associate_last,  // gate against the last measurement of a track, not its prediction
+input  logic cfg_evict_stale,  // with no free slot, take the unmatched slot measured longest ago
+input  logic cfg_report_tentative,  // tentative tracks report their updates too

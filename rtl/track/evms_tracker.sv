@@ -2,7 +2,11 @@
 // time through the shared 64-bit multiplier and reciprocal unit:
 //   expire -> rounds of nearest (track, measurement) pairs within the gate, each matched
 //   track predicted and updated (x axis, then y) -> tentative tracks without a match end ->
-//   unmatched measurements start tracks in the lowest free slots.
+//   unmatched measurements start tracks in the lowest free slots (with cfg_evict_stale and none
+//   free, in the unmatched slot measured longest ago, found by a scan of the slots).
+// With cfg_associate_last a pair's distance is to the track's last measurement, not to its
+// prediction (the prediction is still computed, so the schedule is the same); with
+// cfg_report_tentative tentative tracks report their updates too, marked by upd_confirmed.
 // Every arithmetic step is the C++ one: the same products, the same rounding (half up) and
 // the same clamps, so the results are equal bit for bit.
 //
@@ -31,6 +35,9 @@ module evms_tracker #(
   input  logic [7:0]  cfg_confirm_hits,
   input  logic [31:0] cfg_coast_us,
   input  logic [7:0]  cfg_max_tracks,
+  input  logic        cfg_associate_last,
+  input  logic        cfg_evict_stale,
+  input  logic        cfg_report_tentative,
   input  logic signed [63:0] cfg_q_third,
   input  logic signed [63:0] cfg_q_half,
   input  logic signed [63:0] cfg_q,
@@ -53,6 +60,7 @@ module evms_tracker #(
   input  logic        upd_ready,
   output logic [31:0] upd_t,
   output logic signed [31:0] upd_id, upd_x, upd_y, upd_vx, upd_vy, upd_zx, upd_zy,
+  output logic        upd_confirmed,
   // Shared reciprocal and multiplier.
   output logic        recip_start,
   output logic [63:0] recip_x,
@@ -122,6 +130,8 @@ module evms_tracker #(
   logic [TracksMax-1:0]    slot_matched;
   logic [ClustersMax-1:0]  meas_matched;
   logic signed [31:0]       ids [ClustersMax];
+  // Each slot's last measurement {x, y}: a memory with one write port and a combinational read.
+  logic [63:0]              s_z [TracksMax];
   logic signed [31:0]       next_id;
 
   assign id_of = ids[ClusterIndexBits'(id_c)];
@@ -131,7 +141,7 @@ module evms_tracker #(
     S_IDLE, S_EXPIRE, S_ROUND, S_PAIR, S_PAIR_PX, S_PAIR_PY, S_PAIR_DX2, S_PAIR_DY2, S_PAIR_END, S_MATCH,
     S_DT2, S_DT3, S_AX_BEGIN, S_P_POS, S_P_P00A, S_P_P00B, S_P_P00C, S_P_P01A, S_P_P01B, S_P_P11,
     S_U_RECIP, S_U_K0, S_U_K1, S_U_POS, S_U_VEL, S_U_P00, S_U_P01, S_U_P11, S_AX_END, S_EMIT, S_DROP, S_BIRTH, S_BIRTH_EMIT,
-    S_DONE
+    S_EVICT, S_DONE
   } state_e;
   state_e state;
 
@@ -142,6 +152,17 @@ module evms_tracker #(
   logic [7:0]  best_m;
   logic [63:0] best_d2, d2;
   logic signed [63:0] dt, dt2, dt3, dpred, dx;
+  logic signed [63:0] zl [2];   // z - the slot's last measurement, per axis (associate_last)
+  // The pair's distance per axis, chosen from registers (not after the gating distance's
+  // carry chain, which is the block's longest path).
+  logic signed [63:0] pair_dx, pair_dy;
+  assign pair_dx = cfg_associate_last ? zl[0] : dx;
+  assign pair_dy = cfg_associate_last ? zl[1] : dpred;
+  // Eviction: the scan for the stalest unmatched slot has run for this measurement
+  // (evict_scanned), and what it found (evict_slot, -1: none; evict_t: its last time).
+  logic               evict_scanned;
+  logic signed [8:0]  evict_slot;
+  logic [31:0]        evict_t;
   logic        axis;
   // Working copy of the axis being filtered.
   logic signed [63:0] w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e;
@@ -248,14 +269,18 @@ module evms_tracker #(
     else gate_dist = clamp_pow2(gate_sum, DistLog2);
   end
 
-  // The lowest free slot a birth takes (-1: none).
-  logic signed [8:0] free;
+  // The lowest free slot a birth takes (-1: none); with none, the slot an eviction scan found.
+  logic signed [8:0] free, birth_slot;
   always_comb begin
     free = -9'sd1;
     for (int q = TracksMax - 1; q >= 0; q--) begin
       if (!s_valid[q] && q < 32'(cfg_max_tracks)) free = 9'(q);
     end
+    birth_slot = free >= 0 ? free : (evict_scanned ? evict_slot : -9'sd1);
   end
+  // A birth with no free slot scans for one to evict first.
+  logic evict_scan_needed;
+  assign evict_scan_needed = free < 0 && cfg_evict_stale && !evict_scanned;
 
   // Issues a * b; the product comes back with mul_done.
 `define EVMS_REQUEST(A, B) begin mul_start <= 1'b1; mul_a <= (A); mul_b <= (B); end
@@ -284,6 +309,12 @@ module evms_tracker #(
       {d2, dt, dt2, dt3, dpred, dx} <= '0;
       zp[0] <= '0;
       zp[1] <= '0;
+      zl[0] <= '0;
+      zl[1] <= '0;
+      evict_scanned <= 1'b0;
+      evict_slot <= '0;
+      evict_t <= '0;
+      upd_confirmed <= 1'b0;
       axis <= 1'b0;
       {w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e, acc, k0, k1, p00n, p01n} <= '0;
       rr <= '0;
@@ -355,6 +386,8 @@ module evms_tracker #(
             dt <= dt_now;
             zp[0] <= 64'(z_x) - 64'(pos_of[0]);
             zp[1] <= 64'(z_y) - 64'(pos_of[1]);
+            zl[0] <= 64'(z_x) - 64'($signed(s_z[si][63:32]));
+            zl[1] <= 64'(z_y) - 64'($signed(s_z[si][31:0]));
             `EVMS_REQUEST(64'(vel_of[0]), dt_now)
             state <= S_PAIR_PX;
           end
@@ -366,12 +399,12 @@ module evms_tracker #(
         end
         S_PAIR_PY: if (mul_done) begin
           dpred <= gate_dist;
-          `EVMS_REQUEST(dx, dx)
+          `EVMS_REQUEST(pair_dx, pair_dx)
           state <= S_PAIR_DX2;
         end
         S_PAIR_DX2: if (mul_done) begin
           d2 <= 64'(mul_p);
-          `EVMS_REQUEST(dpred, dpred)
+          `EVMS_REQUEST(pair_dy, pair_dy)
           state <= S_PAIR_DY2;
         end
         S_PAIR_DY2: if (mul_done) begin
@@ -520,8 +553,9 @@ module evms_tracker #(
         end
         S_EMIT: begin
           if (!upd_valid || upd_ready) begin
-            if (s_confirmed[si]) begin
+            if (s_confirmed[si] || cfg_report_tentative) begin
               upd_valid <= 1'b1;
+              upd_confirmed <= s_confirmed[si];
               upd_t <= z_t;
               upd_id <= s_id[si];
               upd_x <= pos_of[0];
@@ -551,27 +585,48 @@ module evms_tracker #(
             state <= S_DONE;
           end else if (meas_matched[ClusterIndexBits'(k)]) begin
             k <= k + 1'b1;
+          end else if (evict_scan_needed) begin
+            s <= '0;
+            evict_slot <= -9'sd1;
+            state <= S_EVICT;
           end else begin
-            if (free < 0) begin
+            evict_scanned <= 1'b0;
+            if (birth_slot < 0) begin
               unassigned <= unassigned + 1'b1;
               k <= k + 1'b1;
             end else begin
-              s_valid[TrackIndexBits'(free)] <= 1'b1;
-              s_id[TrackIndexBits'(free)] <= next_id;
+              // A slot born (or taken) this packet is matched: a later eviction passes it by.
+              slot_matched[TrackIndexBits'(birth_slot)] <= 1'b1;
+              s_valid[TrackIndexBits'(birth_slot)] <= 1'b1;
+              s_id[TrackIndexBits'(birth_slot)] <= next_id;
               next_id <= (next_id + 1) & 32'h7FFFFFFF;
-              s_hits[TrackIndexBits'(free)] <= 8'd1;
-              s_confirmed[TrackIndexBits'(free)] <= cfg_confirm_hits <= 8'd1;
-              s_t[TrackIndexBits'(free)] <= z_t;
+              s_hits[TrackIndexBits'(birth_slot)] <= 8'd1;
+              s_confirmed[TrackIndexBits'(birth_slot)] <= cfg_confirm_hits <= 8'd1;
+              s_t[TrackIndexBits'(birth_slot)] <= z_t;
               ids[ClusterIndexBits'(k)] <= next_id;
-              s <= (TrackIndexBits+1)'(free);
+              s <= (TrackIndexBits+1)'(birth_slot);
               state <= S_BIRTH_EMIT;
             end
           end
         end
+        // The unmatched slot measured longest ago (ties to the lower slot), one slot a clock.
+        S_EVICT: begin
+          if (32'(s) >= TracksMax) begin
+            evict_scanned <= 1'b1;
+            state <= S_BIRTH;
+          end else begin
+            if (32'(s) < 32'(cfg_max_tracks) && !slot_matched[si] && (evict_slot < 0 || $signed(s_t[si] - evict_t) < 0)) begin
+              evict_slot <= $signed({1'b0, 8'(s)});
+              evict_t <= s_t[si];
+            end
+            s <= s + 1'b1;
+          end
+        end
         S_BIRTH_EMIT: begin
           if (!upd_valid || upd_ready) begin
-            if (cfg_confirm_hits <= 8'd1) begin
+            if (cfg_confirm_hits <= 8'd1 || cfg_report_tentative) begin
               upd_valid <= 1'b1;
+              upd_confirmed <= cfg_confirm_hits <= 8'd1;
               upd_t <= z_t;
               upd_id <= s_id[si];
               upd_x <= z_x;
@@ -599,9 +654,9 @@ module evms_tracker #(
   logic          birth_now, update_now;
   logic [TrackIndexBits-1:0] kal_addr;
   logic [KW-1:0] kal_update;
-  assign birth_now = state == S_BIRTH && k < m && !meas_matched[ClusterIndexBits'(k)] && free >= 0;
+  assign birth_now = state == S_BIRTH && k < m && !meas_matched[ClusterIndexBits'(k)] && !evict_scan_needed && birth_slot >= 0;
   assign update_now = state == S_U_P11 && mul_done;
-  assign kal_addr = birth_now ? TrackIndexBits'(free) : si;
+  assign kal_addr = birth_now ? TrackIndexBits'(birth_slot) : si;
   assign kal_update = {32'(w_pos), 32'(w_vel), CovBits'(p00n), p01n, CovBits'(step)};
   // A new track's axis: at the measurement, at rest, with the initial covariance.
   function automatic [KW-1:0] born_at(input signed [31:0] z);
@@ -612,5 +667,7 @@ module evms_tracker #(
   always_ff @(posedge clk) begin
     if (birth_now || (update_now && !axis)) kal_x[kal_addr] <= birth_now ? born_at(z_x) : kal_update;
     if (birth_now || (update_now && axis)) kal_y[kal_addr] <= birth_now ? born_at(z_y) : kal_update;
+    // The last measurement: a birth's, or the match's once both axes are filtered.
+    if (birth_now || (state == S_AX_END && axis)) s_z[kal_addr] <= {z_x, z_y};
   end
 endmodule

@@ -49,8 +49,8 @@ using ScPortType = std::conditional_t<Bits == 1, bool, std::conditional_t<Bits <
 
 SC_MODULE(Testbench) {
   sc_clock clk{"clk", 10, SC_NS};
-  sc_signal<bool> rst_n, in_valid, in_ready, in_p, in_flush, lab_valid, lab_ready, lab_p, trk_valid, trk_ready, pkt_valid, pkt_ready,
-      idle;
+  sc_signal<bool> rst_n, in_valid, in_ready, in_p, in_flush, lab_valid, lab_ready, lab_p, trk_valid, trk_ready, trk_confirmed, pkt_valid,
+      pkt_ready, idle;
   sc_signal<uint32_t> in_t, in_x, in_y, lab_t, lab_x, lab_y, lab_label, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy,
       pkt_t_first, pkt_t_last, pkt_events, pkt_clusters, pkt_iterations, stat_tracks_started, stat_unassigned;
   // One signal per register of the RTL core (hls/core/registers.h).
@@ -71,7 +71,7 @@ SC_MODULE(Testbench) {
     dut.lab_valid(lab_valid), dut.lab_ready(lab_ready), dut.lab_t(lab_t), dut.lab_x(lab_x), dut.lab_y(lab_y), dut.lab_p(lab_p);
     dut.lab_label(lab_label);
     dut.trk_valid(trk_valid), dut.trk_ready(trk_ready), dut.trk_t(trk_t), dut.trk_id(trk_id), dut.trk_x(trk_x), dut.trk_y(trk_y);
-    dut.trk_vx(trk_vx), dut.trk_vy(trk_vy), dut.trk_zx(trk_zx), dut.trk_zy(trk_zy);
+    dut.trk_vx(trk_vx), dut.trk_vy(trk_vy), dut.trk_zx(trk_zx), dut.trk_zy(trk_zy), dut.trk_confirmed(trk_confirmed);
     dut.pkt_valid(pkt_valid), dut.pkt_ready(pkt_ready), dut.pkt_t_first(pkt_t_first), dut.pkt_t_last(pkt_t_last);
     dut.pkt_events(pkt_events), dut.pkt_clusters(pkt_clusters), dut.pkt_iterations(pkt_iterations), dut.idle(idle);
     dut.stat_tracks_started(stat_tracks_started), dut.stat_unassigned(stat_unassigned);

@@ -114,10 +114,10 @@ TEST(MethodOutputs, ATextFileWithoutASizeSaysWhatWasAssumed) {
 }
 
 TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
-  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --quiet");
+  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --coast-packets 3 --quiet");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find("the RTL core does not implement --association last-measurement"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the RTL core does not implement --coast-packets 3 (add --coast-packets 0)"), std::string::npos) << r.err;
   const auto arty = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --quiet");
   EXPECT_EQ(arty.exit_code, 1);
   EXPECT_NE(arty.err.find("the RTL build 'arty' clusters by the Gaussian mean shift only"), std::string::npos) << arty.err;
@@ -126,11 +126,11 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   EXPECT_NE(fixed.err.find("flat kernel only"), std::string::npos) << fixed.err;
 }
 
-// The host RTL build clusters by the default method's seeded path; with the tracker it
-// implements, its labels and tracks are the fixed-point core's.
-TEST(MethodOutputs, TheRtlRunsTheSeededPathAsTheFixedCore) {
+// The host RTL build runs the default method (in its sizes); its labels and tracks are the
+// fixed-point core's.
+TEST(MethodOutputs, TheRtlRunsTheDefaultMethodAsTheFixedCore) {
   TempDir dir;
-  const std::string method = " --association kalman --evict-stale off --report-tentative off --packet-size 256 --max-clusters 16 --max-tracks 16";
+  const std::string method = " --packet-size 256 --max-clusters 16 --max-tracks 16";
   for (const char* backend : {"rtl", "fixed"}) {
     const auto r = run_command(evms_binary() + " run gen://translation?duration-s=0.1 --backend " + backend + method + " --quiet --out " +
                                dir.path(backend));

@@ -66,10 +66,11 @@ Mismatch compare(const std::vector<hls::EventWord>& words, const hls::Config& cf
     }
     while (!rtl.tracks.empty() && !want_tracks.empty()) {
       const auto a = rtl.tracks.front(), b = want_tracks.front();
-      if (a.t != b.t || a.id != b.id || a.x != b.x || a.y != b.y || a.vx != b.vx || a.vy != b.vy || a.zx != b.zx || a.zy != b.zy) {
+      if (a.t != b.t || a.id != b.id || a.x != b.x || a.y != b.y || a.vx != b.vx || a.vy != b.vy || a.zx != b.zx || a.zy != b.zy ||
+          a.confirmed != b.confirmed) {
         return {"track word " + std::to_string(n_tracks) + ": rtl (t=" + std::to_string(a.t) + " id=" + std::to_string(a.id) + " x=" +
                 std::to_string(a.x) + " y=" + std::to_string(a.y) + " vx=" + std::to_string(a.vx) + " zx=" + std::to_string(a.zx) +
-                ") c++ (t=" + std::to_string(b.t) + " id=" + std::to_string(b.id) + " x=" + std::to_string(b.x) + " y=" +
+                " confirmed=" + std::to_string(a.confirmed) + ") c++ (t=" + std::to_string(b.t) + " id=" + std::to_string(b.id) + " x=" + std::to_string(b.x) + " y=" +
                 std::to_string(b.y) + " vx=" + std::to_string(b.vx) + " zx=" + std::to_string(b.zx) + ")"};
       }
       rtl.tracks.pop_front(), want_tracks.pop_front(), ++n_tracks;
@@ -152,16 +153,10 @@ std::vector<Event> scene_events(gen::Motion m, double duration_s, int width, int
   return eval::generate_scene(c).events;
 }
 
-// The default method (seeded climbs, links, warm seeds) with the tracker the RTL implements,
-// in the host build's sizes.
+// The default method (seeded climbs, links, warm seeds; the tracker's last-measurement gating,
+// eviction of the stalest track and tentative reports) in the host build's sizes.
 Params seeded_method() {
   Params p;
-  const Params tracker = preset("gaussian");
-  p.association = tracker.association;
-  p.gate_spread = tracker.gate_spread;
-  p.coast_packets = tracker.coast_packets;
-  p.evict_stale = tracker.evict_stale;
-  p.report_tentative = tracker.report_tentative;
   p.packet_size = hls::RtlHostShape::kPacketMax;
   p.max_clusters = hls::RtlHostShape::kClustersMax;
   p.max_tracks = hls::RtlHostShape::kTracksMax;
@@ -173,6 +168,19 @@ TEST(Cosim, SeededPathHostBuild) {
     expect_equal<Vcore_host, hls::RtlHostShape>(std::string("seeded_host_") + gen::motion_name(m), scene_events(m, 0.25, 240, 180, 3),
                                                 {240, 180}, 61, 0.8, seeded_method());
   }
+  // Fewer slots than objects: births evict the stalest tracks.
+  Params evicting = seeded_method();
+  evicting.max_tracks = 3;
+  expect_equal<Vcore_host, hls::RtlHostShape>("seeded_host_evicting", scene_events(gen::Motion::kTranslation, 0.15, 240, 180, 5), {240, 180},
+                                              62, 0.7, evicting);
+  // The tracker's policies on the Gaussian path.
+  Params gaussian = preset("gaussian");
+  gaussian.association = Association::kLastMeasurement;
+  gaussian.evict_stale = true;
+  gaussian.report_tentative = true;
+  gaussian.max_tracks = 4;
+  expect_equal<Vcore_host, hls::RtlHostShape>("gaussian_host_policies", scene_events(gen::Motion::kRotation, 0.1, 240, 180, 6), {240, 180},
+                                              63, 0.7, gaussian);
 }
 
 TEST(Cosim, LabelledScenesHostBuild) {
@@ -244,7 +252,8 @@ namespace {
 // The cycle model (hls/core/schedule.h), fed by the C++ core, against the RTL's own count of
 // cycles in each stage, with every output always ready: they must agree exactly.
 template <class V, class S>
-void expect_schedule(const std::string& name, const std::vector<Event>& events, SensorSize sensor, const Params& params = preset("gaussian")) {
+void expect_schedule(const std::string& name, const std::vector<Event>& events, SensorSize sensor, const Params& params = preset("gaussian"),
+                     bool evicts = false) {
   const hls::Config cfg = backend::core_config<S>(params, sensor);
   const auto words = words_of(events);
   using Core = hls::Core<S, hls::ScheduleCounter<S>>;
@@ -269,6 +278,7 @@ void expect_schedule(const std::string& name, const std::vector<Event>& events, 
     EXPECT_EQ(predicted[s], measured[s]) << name << ": stage " << hls::kStageNames[s];
   }
   EXPECT_GT(model->observer().packets(), 0);
+  if (evicts) EXPECT_GT(model->observer().evict_scans(), 0) << name << ": no birth looked for a slot to evict";
 }
 
 TEST(Schedule, TheCycleModelCountsEveryStageOfTheRtl) {
@@ -285,6 +295,11 @@ TEST(Schedule, TheCycleModelCountsEveryStageOfTheRtl) {
   Params open = preset("gaussian");
   open.filter_window_us = 0;
   expect_schedule<Vcore_arty, hls::ArtyShape>("arty_filter_off", scene, {240, 180}, open);
+  Params evicting = corners;  // births scan for the stalest slot
+  evicting.evict_stale = true;
+  evicting.association = Association::kLastMeasurement;
+  evicting.report_tentative = true;
+  expect_schedule<Vcore_arty, hls::ArtyShape>("arty_evicting", scene, {240, 180}, evicting, true);
   expect_schedule<Vcore_ice40, hls::Ice40Shape>("ice40_6dof", scene_events(gen::Motion::kSixDof, 0.1, 128, 128, 8), {128, 128},
                                                 backend::build_default_params<hls::Ice40Shape>());
 }
