@@ -92,11 +92,12 @@ void cycles(const CyclesOptions& o) {
   SensorSize sensor;
   const std::vector<Event> events = read_events(o, sensor);
   // The cycle model is the RTL's: it counts the method the RTL implements.
-  if (std::string unsupported = backend::rtl_unsupported(method_of(o, sensor), o.build); !unsupported.empty()) {
+  const Params params = method_of(o, sensor);
+  if (std::string unsupported = backend::rtl_unsupported(params, o.build); !unsupported.empty()) {
     throw std::invalid_argument(unsupported + "; the cycle model counts the RTL's method");
   }
   if (events.empty()) throw std::runtime_error(o.source + ": no events");
-  const bool seeded = method_of(o, sensor).seeding != Seeding::kEvery;
+  const bool seeded = params.seeding != Seeding::kEvery;
   if (seeded && (!o.rtl || o.table)) {
     throw std::invalid_argument("the cycle model counts the Gaussian path only: measure the seeded path on the RTL with --rtl (without --table)");
   }
@@ -112,7 +113,7 @@ void cycles(const CyclesOptions& o) {
       if (n > S::kPacketMax) continue;
       for (int it : {2, 4, 8}) {
         if (it > S::kIterationsMax) continue;
-        Params p = method_of(o, sensor);
+        Params p = params;
         p.packet_size = n;
         p.max_iterations = it;
         const auto model = model_run<S>(words, backend::core_config<S>(p, sensor));
@@ -123,20 +124,18 @@ void cycles(const CyclesOptions& o) {
     }
     return;
   }
-  const Params params = method_of(o, sensor);
   const hls::Config cfg = backend::core_config<S>(params, sensor);
   const auto model = model_run<S>(words, cfg);
   const double n_events = static_cast<double>(model.events());
   std::printf("build %s (P = %d, multiplier latency %d), %s, packets of %d, %d clusters, %d tracks\n", o.build.c_str(), S::kLanes,
               hls::multiplier_latency(S::kMulDigitBits), o.method.describe().c_str(), params.packet_size, params.max_clusters,
               params.max_tracks);
-  const bool seeded_path = params.seeding != Seeding::kEvery;
   std::printf("%s events, %s kept, %s packets, %.2f %s a packet\n", grouped(model.events()).c_str(), grouped(model.kept()).c_str(),
-              grouped(model.packets()).c_str(), model.mean_sweeps(), seeded_path ? "climb steps" : "sweeps");
+              grouped(model.packets()).c_str(), model.mean_sweeps(), seeded ? "climb steps" : "sweeps");
   const hls::StageCycles predicted = model.cycles();
   hls::StageCycles measured;
   if (o.rtl) measured = rtl_run<V>(words, cfg);
-  const bool modelled = !seeded_path;
+  const bool modelled = !seeded;
   const hls::StageCycles& shares = modelled ? predicted : measured;
   std::printf("%-16s", "stage");
   if (modelled) std::printf(" %14s", "model cyc/ev");
