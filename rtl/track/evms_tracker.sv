@@ -152,12 +152,13 @@ module evms_tracker #(
   logic [7:0]  best_m;
   logic [63:0] best_d2, d2;
   logic signed [63:0] dt, dt2, dt3, dpred, dx;
-  logic signed [63:0] zl [2];   // z - the slot's last measurement, per axis (associate_last)
-  // The pair's distance per axis, chosen from registers (not after the gating distance's
-  // carry chain, which is the block's longest path).
+  // The pair's distance per axis: to the slot's last measurement (associate_last; the pair's
+  // slot and measurement stay addressed while its distances are squared), or the gated
+  // prediction's, chosen after the register and not after the gating distance's carry chain,
+  // which is the block's longest path.
   logic signed [63:0] pair_dx, pair_dy;
-  assign pair_dx = cfg_associate_last ? zl[0] : dx;
-  assign pair_dy = cfg_associate_last ? zl[1] : dpred;
+  assign pair_dx = cfg_associate_last ? 64'(z_x) - 64'($signed(s_z[si][63:32])) : dx;
+  assign pair_dy = cfg_associate_last ? 64'(z_y) - 64'($signed(s_z[si][31:0])) : dpred;
   // Eviction: the scan for the stalest unmatched slot has run for this measurement
   // (evict_scanned), and what it found (evict_slot, -1: none; evict_t: its last time).
   logic               evict_scanned;
@@ -309,8 +310,6 @@ module evms_tracker #(
       {d2, dt, dt2, dt3, dpred, dx} <= '0;
       zp[0] <= '0;
       zp[1] <= '0;
-      zl[0] <= '0;
-      zl[1] <= '0;
       evict_scanned <= 1'b0;
       evict_slot <= '0;
       evict_t <= '0;
@@ -386,8 +385,6 @@ module evms_tracker #(
             dt <= dt_now;
             zp[0] <= 64'(z_x) - 64'(pos_of[0]);
             zp[1] <= 64'(z_y) - 64'(pos_of[1]);
-            zl[0] <= 64'(z_x) - 64'($signed(s_z[si][63:32]));
-            zl[1] <= 64'(z_y) - 64'($signed(s_z[si][31:0]));
             `EVMS_REQUEST(64'(vel_of[0]), dt_now)
             state <= S_PAIR_PX;
           end
