@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "Vcore_arty.h"
@@ -17,6 +18,7 @@
 #include "hls/core/schedule.h"
 #include "host/backend/core_config.h"
 #include "host/eval/scene_run.h"
+#include "host/gen/family.h"
 #include "sim/rtl_core.h"
 #include "sim/rtl_profile.h"
 #include "tests/support/read_all.h"
@@ -243,6 +245,55 @@ TEST(CosimRegression, RealRecordings) { expect_equal_on_real_recordings(preset("
 
 TEST(CosimRegression, RealRecordingsSeededPath) { expect_equal_on_real_recordings(seeded_method(), 52); }
 
+// An environment variable as a count, or `fallback` when it is unset.
+long long env_count(const char* name, long long fallback) {
+  const char* v = std::getenv(name);
+  return v && *v ? std::stoll(v) : fallback;
+}
+
+// The scene family's validation members, every type in turn, until EVMS_COSIM_EVENTS events
+// (100,000 unless set) have been compared; the last member is cut at the budget. Three members
+// of four run the default method on the host build at their own sensor; every fourth runs the
+// Gaussian path on the Arty build at its 240x180. EVMS_COSIM_SHARD=k/n takes every n-th member
+// from the k-th and 1/n of the budget, so that n processes share a long regression:
+//   EVMS_COSIM_EVENTS=10000000 EVMS_COSIM_SHARD=0/2 build/bin/test_cosim --gtest_filter=CosimRegression.SceneFamily
+// Each member prints its type, seed, build and backpressure seed, so a failure reruns alone.
+TEST(CosimRegression, SceneFamily) {
+  long long shard = 0, shards = 1;
+  if (const char* s = std::getenv("EVMS_COSIM_SHARD"); s && *s) {
+    ASSERT_EQ(std::sscanf(s, "%lld/%lld", &shard, &shards), 2) << "EVMS_COSIM_SHARD is k/n, not '" << s << "'";
+    ASSERT_TRUE(shards > 0 && shard >= 0 && shard < shards) << "EVMS_COSIM_SHARD " << s << " names no shard";
+  }
+  const long long budget = env_count("EVMS_COSIM_EVENTS", 100000) / shards;
+  const auto types = gen::family_types();
+  long long compared = 0, members = 0;
+  for (long long n = shard; compared < budget; n += shards) {
+    const std::string type = types[static_cast<size_t>(n) % types.size()];
+    const std::uint64_t seed = gen::split_seed(gen::Split::kValidation, static_cast<int>(n / static_cast<long long>(types.size())));
+    const bool board = n % 4 == 3;
+    gen::FamilyPins pins;
+    if (board) pins.width = hls::ArtyShape::kMaxWidth, pins.height = hls::ArtyShape::kMaxHeight;
+    eval::Scene scene = eval::generate_scene(gen::family_scene(type, seed, pins));
+    if (static_cast<long long>(scene.events.size()) > budget - compared) scene.events.resize(static_cast<size_t>(budget - compared));
+    if (scene.events.empty()) continue;
+    const std::uint64_t backpressure_seed = 7000 + static_cast<std::uint64_t>(n);
+    const double ready_p = 0.5 + 0.05 * static_cast<double>(n % 10);
+    const std::string name = type + "_" + std::to_string(seed);
+    if (board) {
+      expect_equal<Vcore_arty, hls::ArtyShape>(name + "_arty_gaussian", scene.events, scene.sensor, backpressure_seed, ready_p,
+                                               backend::build_default_params<hls::ArtyShape>());
+    } else {
+      expect_equal<Vcore_host, hls::RtlHostShape>(name + "_host_default", scene.events, scene.sensor, backpressure_seed, ready_p,
+                                                  seeded_method());
+    }
+    if (HasFailure()) return;
+    compared += static_cast<long long>(scene.events.size());
+    ++members;
+  }
+  std::printf("scene family: %lld events over %lld members compared, shard %lld/%lld\n", compared, members, shard, shards);
+  EXPECT_GE(compared, budget);
+}
+
 }  // namespace
 }  // namespace evms
 
@@ -278,7 +329,9 @@ void expect_schedule(const std::string& name, const std::vector<Event>& events, 
     EXPECT_EQ(predicted[s], measured[s]) << name << ": stage " << hls::kStageNames[s];
   }
   EXPECT_GT(model->observer().packets(), 0);
-  if (evicts) EXPECT_GT(model->observer().evict_scans(), 0) << name << ": no birth looked for a slot to evict";
+  if (evicts) {
+    EXPECT_GT(model->observer().evict_scans(), 0) << name << ": no birth looked for a slot to evict";
+  }
 }
 
 TEST(Schedule, TheCycleModelCountsEveryStageOfTheRtl) {
