@@ -18,9 +18,12 @@
 //   merge       8 n + (mode, seed) distances + seeds + 4 (a mode's distances drain a three-stage
 //               pipeline)
 //   centroids   3 n + clusters (R + 2 + 3 (L + 1)) + 4
-//   tracking    2 T + 6 + m + births + scans (T + 2) + steps + 4 (L + 1) distances
+//   tracking    3 T + 7 + m + births + scans (T + 2) + steps + (1 + a (L + 1)) distances
 //               + (2 R + 8 + 30 (L + 1)) matches (+1 when every round matched; a reciprocal
-//               per axis) + (T + 2) eviction scans (a birth with no free slot, evict_stale)
+//               per axis) + (T + 2) eviction scans (a birth with no free slot, evict_stale);
+//               a distance is taken once per (live track, measurement) pair, with a = 2
+//               products (associate_last: two squares) or 4 (the prediction's two first), and
+//               each round's scan reads the pair table a pair a clock
 //   release     4 per event, and 1 + 1 per packet closing and sending its summary
 //   packet control 1 per kept event appended
 // where T is the Shape's track slots and m the packet's clusters. Mean shift is the term that
@@ -165,8 +168,10 @@ class ScheduleCounter {
     c[Stage::kMeanShift] = mean_shift;
     c[Stage::kMerge] = static_cast<double>(8 * kept_ + seed_visits_ + seeds_ + 4 * packets_);
     c[Stage::kCentroid] = static_cast<double>(3 * kept_ + clusters_ * (kRecipLatency + 2 + 3 * kMul) + 4 * packets_);
-    c[Stage::kTrack] = static_cast<double>(packets_ * (2 * kSlots + 6) + clusters_ + births_ + scans_ * (kSlots + 2) + slot_steps_ +
-                                           4 * kMul * distances_ + (2 * kRecipLatency + 8 + 30 * kMul) * matches_ + capped_ + (kSlots + 2) * evict_scans_);
+    const std::int64_t distance_products = cfg_.associate_last ? 2 : 4;
+    c[Stage::kTrack] = static_cast<double>(packets_ * (3 * kSlots + 7) + clusters_ + births_ + scans_ * (kSlots + 2) + slot_steps_ +
+                                           (1 + distance_products * kMul) * distances_ + (2 * kRecipLatency + 8 + 30 * kMul) * matches_ +
+                                           capped_ + (kSlots + 2) * evict_scans_);
     c[Stage::kRelease] = static_cast<double>(4 * released_);
     return c;
   }

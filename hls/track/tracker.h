@@ -28,7 +28,7 @@ namespace evms::hls {
 struct TrackerTrace {
   int scans = 0;        // passes over the (track, measurement) pairs, one per round
   int slot_steps = 0;   // measurements visited by those passes, over live unmatched tracks
-  int distances = 0;    // predicted distances taken
+  int distances = 0;    // distances taken, once per (live track, measurement) pair
   int matches = 0;
   bool rounds_capped = false;  // every round matched, up to kClustersMax
   int births = 0;
@@ -67,6 +67,23 @@ class Tracker {
       if (c < m) gate2[c] = gate_of(z[c], cfg);
     }
 
+    // Every pair's distance, once: a track's distance to a measurement changes only when the
+    // track is matched, and a matched track takes part in no later round. The rounds then scan
+    // the table, a pair a clock, instead of predicting and squaring again.
+    std::uint64_t pair_d2[S::kTracksMax][S::kClustersMax];
+    bool pair_within[S::kTracksMax][S::kClustersMax] = {};
+#pragma HLS ARRAY_PARTITION variable = pair_within complete dim = 1
+  distances:
+    for (int s = 0; s < S::kTracksMax; ++s) {
+      if (!slot_[s].valid || s >= cfg.max_tracks) continue;
+      for (int k = 0; k < S::kClustersMax; ++k) {
+        if (k >= m) break;
+        ++trace_.distances;
+        pair_d2[s][k] = cfg.associate_last ? last_distance2(slot_[s], z[k]) : distance2(slot_[s], z[k]);
+        pair_within[s][k] = pair_d2[s][k] <= gate2[k];
+      }
+    }
+
     trace_.rounds_capped = true;
   rounds:
     for (int round = 0; round < S::kClustersMax; ++round) {
@@ -80,10 +97,8 @@ class Tracker {
         for (int k = 0; k < S::kClustersMax; ++k) {
 #pragma HLS PIPELINE II = 1
           if (k >= m) break;
-          if (meas_matched[k]) continue;
-          ++trace_.distances;
-          const std::uint64_t d2 = cfg.associate_last ? last_distance2(slot_[s], z[k]) : distance2(slot_[s], z[k]);
-          if (d2 <= gate2[k] && (best_s < 0 || d2 < best_d2)) best_s = s, best_m = k, best_d2 = d2;
+          if (meas_matched[k] || !pair_within[s][k]) continue;
+          if (best_s < 0 || pair_d2[s][k] < best_d2) best_s = s, best_m = k, best_d2 = pair_d2[s][k];
         }
       }
       if (best_s < 0) {

@@ -1,12 +1,14 @@
 // Multi-target tracking, as hls/track/tracker.h and hls/track/kalman_axis.h, one step at a
 // time through the shared 64-bit multiplier and reciprocal unit:
-//   expire -> rounds of nearest (track, measurement) pairs within the gate, each matched
-//   track predicted and updated (x axis, then y) -> tentative tracks without a match end ->
+//   expire -> every (live track, measurement) pair's distance, into the pair table -> rounds
+//   of nearest pairs within the gate, each a scan of the table, a pair a clock, and its match
+//   predicted and updated (x axis, then y) -> tentative tracks without a match end ->
 //   unmatched measurements start tracks in the lowest free slots (with cfg_evict_stale and none
 //   free, in the unmatched slot measured longest ago, found by a scan of the slots).
-// With cfg_associate_last a pair's distance is to the track's last measurement, not to its
-// prediction (the prediction is still computed, so the schedule is the same); with
-// cfg_report_tentative tentative tracks report their updates too, marked by upd_confirmed.
+// A pair's distance is taken once: it changes only when its track is matched, and a matched
+// track takes part in no later round. With cfg_associate_last it is the distance to the
+// track's last measurement (two squares), otherwise to its prediction (two more products);
+// with cfg_report_tentative tentative tracks report their updates too, marked by upd_confirmed.
 // Every arithmetic step is the C++ one: the same products, the same rounding (half up) and
 // the same clamps, so the results are equal bit for bit.
 //
@@ -138,7 +140,7 @@ module evms_tracker #(
   assign tracks_started = 32'(next_id);
 
   typedef enum logic [5:0] {
-    S_IDLE, S_EXPIRE, S_ROUND, S_PAIR, S_PAIR_PX, S_PAIR_PY, S_PAIR_DX2, S_PAIR_DY2, S_PAIR_END, S_MATCH,
+    S_IDLE, S_EXPIRE, S_ROUND, S_SCAN, S_PAIR, S_PAIR_PX, S_PAIR_PY, S_PAIR_DX2, S_PAIR_DY2, S_PAIR_END, S_MATCH,
     S_DT2, S_DT3, S_AX_BEGIN, S_P_POS, S_P_P00A, S_P_P00B, S_P_P00C, S_P_P01A, S_P_P01B, S_P_P11,
     S_U_RECIP, S_U_K0, S_U_K1, S_U_POS, S_U_VEL, S_U_P00, S_U_P01, S_U_P11, S_AX_END, S_EMIT, S_DROP, S_BIRTH, S_BIRTH_EMIT,
     S_EVICT, S_DONE
@@ -164,6 +166,16 @@ module evms_tracker #(
   logic               evict_scanned;
   logic signed [8:0]  evict_slot;
   logic [31:0]        evict_t;
+  // The pair table: {within the gate, squared distance} of each (slot, measurement), written by
+  // the distance pass and read by the rounds' scans (registered read: a pair issued in one
+  // clock is compared in the next, scan_pending_q).
+  localparam int PairAddrBits = TrackIndexBits + ClusterIndexBits;
+  logic                    pair_we;
+  logic [PairAddrBits-1:0] pair_wa, pair_ra;
+  logic [64:0]             pair_wd, pair_rd;
+  logic                    scan_pending_q;
+  logic [TrackIndexBits-1:0] scan_slot_q;
+  logic [7:0]              scan_meas_q;
   logic        axis;
   // Working copy of the axis being filtered.
   logic signed [63:0] w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e;
@@ -331,6 +343,11 @@ module evms_tracker #(
       mul_start <= 1'b0;
       recip_start <= 1'b0;
       if (upd_valid && upd_ready) upd_valid <= 1'b0;
+      if (scan_pending_q && pair_rd[64] && (best_s < 0 || pair_rd[63:0] < best_d2)) begin
+        best_s <= $signed({1'b0, 8'(scan_slot_q)});
+        best_m <= scan_meas_q;
+        best_d2 <= pair_rd[63:0];
+      end
       case (state)
         S_IDLE: if (start) begin
           s <= '0;
@@ -342,41 +359,27 @@ module evms_tracker #(
             slot_matched <= '0;
             meas_matched <= '0;
             for (int q = 0; q < ClustersMax; q++) ids[q] <= -32'sd1;
-            round_n <= '0;
-            state <= S_ROUND;
+            s <= '0;
+            k <= '0;
+            state <= S_PAIR;
           end else begin
             if (s_valid[si] && $signed(packet_time - s_t[si]) > $signed(cfg_coast_us)) s_valid[si] <= 1'b0;
             s <= s + 1'b1;
           end
         end
-        // 2. Rounds: the nearest remaining pair within the gate.
-        S_ROUND: begin
-          if (32'(round_n) >= ClustersMax) begin
-            s <= '0;
-            state <= S_DROP;
-          end else begin
-            best_s <= -9'sd1;
-            best_m <= '0;
-            best_d2 <= '0;
-            s <= '0;
-            k <= '0;
-            state <= S_PAIR;
-          end
-        end
+        // 2. The distance pass: every live slot's distance to every measurement, into the pair
+        // table; to the last measurement (two squares) or to the prediction at the
+        // measurement's time (two products first).
         S_PAIR: begin
-          // Skip pairs that cannot be candidates; otherwise predict the slot to the measurement.
           if (32'(s) >= TracksMax) begin
-            if (best_s < 0) begin
-              s <= '0;
-              state <= S_DROP;
-            end else begin
-              state <= S_MATCH;
-            end
-          end else if (!s_valid[si] || slot_matched[si] || 32'(s) >= 32'(cfg_max_tracks) || k >= m) begin
+            round_n <= '0;
+            state <= S_ROUND;
+          end else if (!s_valid[si] || 32'(s) >= 32'(cfg_max_tracks) || k >= m) begin
             s <= s + 1'b1;
             k <= '0;
-          end else if (meas_matched[ClusterIndexBits'(k)]) begin
-            k <= k + 1'b1;
+          end else if (cfg_associate_last) begin
+            `EVMS_REQUEST(pair_dx, pair_dx)
+            state <= S_PAIR_DX2;
           end else begin
             logic signed [31:0] raw;
             logic signed [63:0] dt_now;
@@ -405,17 +408,43 @@ module evms_tracker #(
           state <= S_PAIR_DY2;
         end
         S_PAIR_DY2: if (mul_done) begin
-          logic [63:0] pair_d2;
-          pair_d2 = d2 + 64'(mul_p);
-          if (pair_d2 <= cfg_gate2 && (best_s < 0 || pair_d2 < best_d2)) begin
-            best_s <= $signed({1'b0, 8'(s)});
-            best_m <= k;
-            best_d2 <= pair_d2;
-          end
+          // (the pair table's write port takes d2 + mul_p)
           k <= k + 1'b1;
           state <= S_PAIR;
         end
-        // 3. The match: predict both axes to the measurement's time, then update them.
+        // 3. Rounds: the nearest remaining pair within the gate, by a scan of the pair table in
+        // slot-then-measurement order, so that ties go to the lower slot, then measurement.
+        S_ROUND: begin
+          if (32'(round_n) >= ClustersMax) begin
+            s <= '0;
+            state <= S_DROP;
+          end else begin
+            best_s <= -9'sd1;
+            best_m <= '0;
+            best_d2 <= '0;
+            s <= '0;
+            k <= '0;
+            state <= S_SCAN;
+          end
+        end
+        // A pair is read the clock it is visited and compared the next (below); a slot's last
+        // pair is compared in the clock that moves to the next slot, so none is pending at the end.
+        S_SCAN: begin
+          if (32'(s) >= TracksMax) begin
+            if (best_s < 0) begin
+              s <= '0;
+              state <= S_DROP;
+            end else begin
+              state <= S_MATCH;
+            end
+          end else if (!s_valid[si] || slot_matched[si] || 32'(s) >= 32'(cfg_max_tracks) || k >= m) begin
+            s <= s + 1'b1;
+            k <= '0;
+          end else begin
+            k <= k + 1'b1;
+          end
+        end
+        // 4. The match: predict both axes to the measurement's time, then update them.
         S_MATCH: begin
           slot_matched[TrackIndexBits'(best_s)] <= 1'b1;
           meas_matched[ClusterIndexBits'(best_m)] <= 1'b1;
@@ -566,7 +595,7 @@ module evms_tracker #(
             state <= S_ROUND;
           end
         end
-        // 4. Tentative tracks without a match end.
+        // 5. Tentative tracks without a match end.
         S_DROP: begin
           if (32'(s) >= TracksMax) begin
             k <= '0;
@@ -576,7 +605,7 @@ module evms_tracker #(
             s <= s + 1'b1;
           end
         end
-        // 5. Births in the lowest free slots.
+        // 6. Births in the lowest free slots.
         S_BIRTH: begin
           if (k >= m) begin
             state <= S_DONE;
@@ -646,6 +675,30 @@ module evms_tracker #(
     end
   end
 `undef EVMS_REQUEST
+
+  // ---- the pair table ------------------------------------------------------------------------
+  logic [63:0] pair_d2_new;
+  assign pair_d2_new = d2 + 64'(mul_p);
+  assign pair_we = state == S_PAIR_DY2 && mul_done;
+  assign pair_wa = {si, ClusterIndexBits'(k)};
+  assign pair_wd = {pair_d2_new <= cfg_gate2, pair_d2_new};
+  assign pair_ra = {si, ClusterIndexBits'(k)};
+  evms_ram_1w1r #(.Width(65), .Depth(1 << PairAddrBits)) u_pair_table (
+    .clk, .we(pair_we), .wa(pair_wa), .wd(pair_wd), .ra(pair_ra), .rd(pair_rd)
+  );
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      scan_pending_q <= 1'b0;
+      scan_slot_q <= '0;
+      scan_meas_q <= '0;
+    end else begin
+      scan_pending_q <= state == S_SCAN && 32'(s) < TracksMax && s_valid[si] && !slot_matched[si] && 32'(s) < 32'(cfg_max_tracks) &&
+                        k < m && !meas_matched[ClusterIndexBits'(k)];
+      scan_slot_q <= si;
+      scan_meas_q <= k;
+    end
+  end
+  `EVMS_ASSERT("a pending pair is compared while the scan runs", !scan_pending_q || state == S_SCAN, clk, rst_n)
 
   // ---- the filter-state memories: a birth writes both axes, an update the axis it filtered --
   logic          birth_now, update_now;
