@@ -427,8 +427,9 @@ module evms_tracker #(
             state <= S_SCAN;
           end
         end
-        // A pair is read the clock it is visited and compared the next (below); a slot's last
-        // pair is compared in the clock that moves to the next slot, so none is pending at the end.
+        // A pair is read the clock it is visited and compared the next (scan_pending_q, before
+        // this case statement); a slot's last pair is compared in the clock that moves to the
+        // next slot, so none is pending at the end.
         S_SCAN: begin
           if (32'(s) >= TracksMax) begin
             if (best_s < 0) begin
