@@ -70,9 +70,12 @@ class Tracker {
     // Every pair's distance, once: a track's distance to a measurement changes only when the
     // track is matched, and a matched track takes part in no later round. The rounds then scan
     // the table, a pair a clock, instead of predicting and squaring again.
+    // One memory of {within, d2} words in the RTL (rtl/track/evms_tracker.sv, the pair table):
+    // written by the distance pass, read by the scans, never both in one clock.
     std::uint64_t pair_d2[S::kTracksMax][S::kClustersMax];
     bool pair_within[S::kTracksMax][S::kClustersMax] = {};
-#pragma HLS ARRAY_PARTITION variable = pair_within complete dim = 1
+#pragma HLS BIND_STORAGE variable = pair_d2 type = ram_s2p
+#pragma HLS BIND_STORAGE variable = pair_within type = ram_s2p
   distances:
     for (int s = 0; s < S::kTracksMax; ++s) {
       if (!slot_[s].valid || s >= cfg.max_tracks) continue;
