@@ -359,6 +359,8 @@ module evms_core #(
   assign f_start = in_valid && in_ready && !in_flush;
   assign id_c = co_rdata >= 0 ? 8'(co_rdata) : 8'd0;
 
+  // Issues a * b on the controller's port of the shared multiplier; the product comes back with mul_done.
+`define EVMS_FEAT_REQUEST(A, B) begin feat_mul_start <= 1'b1; feat_mul_a <= (A); feat_mul_b <= (B); end
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
       state <= StIdle;
@@ -447,16 +449,12 @@ module evms_core #(
         // Features of event fi.
         StFeatRead: state <= StFeatWait;
         StFeatWait: begin
-          feat_mul_start <= 1'b1;
-          feat_mul_a <= $signed(64'(rd_pk_x));
-          feat_mul_b <= $signed(64'(cfg_scale_x));
+          `EVMS_FEAT_REQUEST($signed(64'(rd_pk_x)), $signed(64'(cfg_scale_x)))
           state <= StFeatX;
         end
         StFeatX: if (mul_done) begin
           phi_x <= FeatBits'(clamp_feat(shr_rnd(mul_p, CoordScaleFrac - FeatFrac)));
-          feat_mul_start <= 1'b1;
-          feat_mul_a <= $signed(64'(rd_pk_y));
-          feat_mul_b <= $signed(64'(cfg_scale_y));
+          `EVMS_FEAT_REQUEST($signed(64'(rd_pk_y)), $signed(64'(cfg_scale_y)))
           state <= StFeatY;
         end
         StFeatY: if (mul_done) begin
@@ -465,9 +463,7 @@ module evms_core #(
           phi_p <= rd_pk_p ? FeatBits'(clamp_feat($signed(64'(cfg_phi_on)))) : '0;
           age = t_last - rd_pk_t;
           age_clamped = age > 32'h7FFFFFFF ? 32'h7FFFFFFF : age;
-          feat_mul_start <= 1'b1;
-          feat_mul_a <= $signed(64'(age_clamped));
-          feat_mul_b <= $signed(cfg_inv_tau);
+          `EVMS_FEAT_REQUEST($signed(64'(age_clamped)), $signed(cfg_inv_tau))
           state <= StFeatAge;
         end
         StFeatAge: if (mul_done) begin
@@ -477,9 +473,7 @@ module evms_core #(
         StFeatDecay1: state <= StFeatDecay2;
         StFeatDecay2: state <= StFeatT;
         StFeatT: begin
-          feat_mul_start <= 1'b1;
-          feat_mul_a <= $signed(64'(cfg_phi_t_max));
-          feat_mul_b <= $signed(64'(decay_w));
+          `EVMS_FEAT_REQUEST($signed(64'(cfg_phi_t_max)), $signed(64'(decay_w)))
           state <= StFeatStore;
         end
         StFeatStore: if (mul_done) begin
@@ -500,16 +494,12 @@ module evms_core #(
         // Climb features of event fi: x and y times their scales, rounded.
         StClimbRead: state <= StClimbWait;
         StClimbWait: begin
-          feat_mul_start <= 1'b1;
-          feat_mul_a <= $signed(64'(rd_pk_x));
-          feat_mul_b <= $signed(cfg_climb_scale_x);
+          `EVMS_FEAT_REQUEST($signed(64'(rd_pk_x)), $signed(cfg_climb_scale_x))
           state <= StClimbX;
         end
         StClimbX: if (mul_done) begin
           climb_x <= 32'(shr_rnd(mul_p, ClimbShift));
-          feat_mul_start <= 1'b1;
-          feat_mul_a <= $signed(64'(rd_pk_y));
-          feat_mul_b <= $signed(cfg_climb_scale_y);
+          `EVMS_FEAT_REQUEST($signed(64'(rd_pk_y)), $signed(cfg_climb_scale_y))
           state <= StClimbY;
         end
         StClimbY: if (mul_done) begin
@@ -587,4 +577,5 @@ module evms_core #(
       endcase
     end
   end
+`undef EVMS_FEAT_REQUEST
 endmodule
