@@ -154,8 +154,8 @@ void view(const ViewOptions& o) {
     return write_frames();
   }
   SdlWindow& window = *opened;
-  // b cycles through the backends that implement the method being shown (the RTL implements
-  // --preset gaussian only, host/backend/core_config.h).
+  // b cycles through the backends that implement the method being shown (what each RTL build
+  // lacks: rtl_unsupported, host/backend/core_config.h).
   std::vector<std::string> cycle = {"golden"};
   if (backend::core_unsupported(bo.params).empty()) cycle.push_back("fixed");
   if (backend::rtl_unsupported(bo.params, bo.core).empty()) cycle.push_back("rtl");
