@@ -13,4 +13,5 @@ cluster/evms_mode_links.sv
 cluster/evms_warm_seeds.sv
 cluster/evms_centroid.sv
 track/evms_tracker.sv
+core/evms_intake.sv
 core/evms_core.sv

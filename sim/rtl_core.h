@@ -70,7 +70,7 @@ class RtlCore {
     std::uint64_t quiet = 0, guard = 0;
     while (quiet < 64) {
       tick();
-      const bool busy = !top_->in_ready || top_->lab_valid || top_->trk_valid || top_->pkt_valid;
+      const bool busy = !top_->idle || top_->lab_valid || top_->trk_valid || top_->pkt_valid;
       quiet = busy ? 0 : quiet + 1;
       if (++guard > kStallLimit) throw std::runtime_error("evms_core did not settle");
     }
@@ -81,7 +81,8 @@ class RtlCore {
   std::deque<hls::PacketWord> packets;
   std::uint64_t cycles() const { return cycles_; }
   // Cycles spent in each state of the core's controller (hls/core/schedule.h,
-  // EVMS_CORE_CONTROLLER_STATES); idle cycles without a word offered are not counted.
+  // EVMS_CORE_CONTROLLER_STATES, then the idle state's waits for the intake); idle cycles with
+  // no word offered or in the intake are not counted.
   const StateCycles& state_cycles() const { return state_cycles_; }
   std::int32_t tracks_started() const { return static_cast<std::int32_t>(top_->stat_tracks_started); }
   std::int64_t unassigned() const { return top_->stat_unassigned; }
@@ -113,8 +114,14 @@ class RtlCore {
     top_->eval();
     if (trace_) trace_->dump(ctx_->time());
     const unsigned state = top_->rootp->evms_core__DOT__state;
-    if (state >= state_cycles_.size()) throw std::runtime_error("evms_core entered state " + std::to_string(state) + ", which hls/core/schedule.h does not list");
-    if (state != 0 || top_->in_valid) ++state_cycles_[state];
+    if (state >= hls::kControllerStates) throw std::runtime_error("evms_core entered state " + std::to_string(state) + ", which hls/core/schedule.h does not list");
+    if (state != 0) {
+      ++state_cycles_[state];
+    } else if (top_->rootp->evms_core__DOT__q_valid) {
+      ++state_cycles_[0];
+    } else if (top_->in_valid || !top_->rootp->evms_core__DOT__intake_empty) {
+      ++state_cycles_[kWaitingForIntake];
+    }
     ctx_->timeInc(1);
     if (top_->in_valid && top_->in_ready) accepted_ = true;
     if (top_->lab_valid && top_->lab_ready) {

@@ -10,12 +10,15 @@
 
 namespace evms::sim {
 
-// Cycles spent in each controller state, indexed by the state's encoding.
-using StateCycles = std::array<std::uint64_t, hls::kControllerStates>;
+// Cycles spent in each controller state, indexed by the state's encoding, and last the idle
+// state's cycles with the intake's queue empty: the controller waiting for the filter.
+constexpr int kWaitingForIntake = hls::kControllerStates;
+using StateCycles = std::array<std::uint64_t, hls::kControllerStates + 1>;
 
 inline hls::StageCycles stage_cycles(const StateCycles& state_cycles) {
   hls::StageCycles s{};
   for (int i = 0; i < hls::kControllerStates; ++i) s[hls::kControllerStateStage[i]] += static_cast<double>(state_cycles[i]);
+  s[hls::Stage::kFilter] += static_cast<double>(state_cycles[kWaitingForIntake]);
   return s;
 }
 

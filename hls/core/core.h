@@ -40,10 +40,10 @@ struct PacketTrace {
   TrackerTrace track;
 };
 
-// Sees every word and every packet closing; the core's results do not depend on it. The
-// default sees nothing and costs nothing.
+// Sees every word (with the filter's answer; false for a flush word) and every packet closing;
+// the core's results do not depend on it. The default sees nothing and costs nothing.
 struct NoObserver {
-  void on_word(const EventWord&) {}
+  void on_word(const EventWord&, bool /*kept*/) {}
   void on_close(const PacketTrace&) {}
 };
 
@@ -68,12 +68,13 @@ class Core {
   // Consumes one input word. The output streams must have room for what a packet releases
   // (the host drains them after every word; the RTL holds them in FIFOs of the same depth).
   void process(const EventWord& in, LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
-    observer_.on_word(in);
     if (in.flush) {
+      observer_.on_word(in, false);
       close_packet(labels, tracks, packets);
       return;
     }
     const bool kept = filter_.accept(in, cfg_);
+    observer_.on_word(in, kept);
     if (!kept) {
       pending_[pending_n_++] = {in, -1};
       if (n_ == 0 || pending_n_ == S::kPendingDepth) close_packet(labels, tracks, packets);

@@ -1,15 +1,19 @@
 // The hardware schedule of the core, rtl/core/evms_core.sv, as a cycle model: how many clocks
 // each stage takes, from what the C++ core did (hls/core/core.h reports every word and, per
-// packet, a PacketTrace). The RTL runs one stage at a time, so the stages add up. Every term
-// below is read off a state machine of the RTL; sim/ checks the model against the Verilated
-// RTL stage by stage (tests/sim/test_schedule.cpp), exactly, when no output is held back.
+// packet, a PacketTrace). The controller runs one stage at a time, so its stages add up; the
+// intake (the filter) runs ahead of it through a queue, and the controller's waits for it are
+// followed word by word (ScheduleCounter). Every term below is read off a state machine of the
+// RTL; tests/sim/test_cosim.cpp (Schedule.*) checks the model against the Verilated RTL stage
+// by stage, exactly, when no output is held back.
 //
 // With n events in a packet, P kernel lanes, C = ceil(n / P), L the multiplier's latency
 // (3 clocks for a 64-bit product, pipelined over its digit products, ceil(64 / d) + 1 for d bits
 // a clock) and R = 6 the reciprocal's:
-//   accept      1 per input word
-//   filter      19..21 per event (21 inside the sensor, less on its last row and column),
-//               1 when the filter is off or the event is outside the sensor
+//   accept      1 per input word (the controller takes it from the intake's queue)
+//   filter      the controller's clocks waiting for the intake: the filter takes 19..21 clocks
+//               an event (21 inside the sensor, less on its last row and column; 1 when it is
+//               off or the event is outside the sensor), at least 3 with the climb features
+//               and 3 more through the queue, but runs while the controller clusters
 //   features    5 + 4 (L + 1) per kept event (three products and the decay table)
 //   mean shift  3 + sweeps ((n - 1) max(C + 1, R + 10) + C + R + 19) per packet: each point is
 //               read (1) and issues C chunks while the previous one's terms drain through the
@@ -48,7 +52,6 @@ constexpr const char* kStageNames[kStageCount] = {"accept",     "filter", "packe
 // as accept only while a word is offered.
 #define EVMS_CORE_CONTROLLER_STATES(X) \
   X(Idle, kAccept)                     \
-  X(Filter, kFilter)                   \
   X(Append, kPacketControl)            \
   X(Close, kPacketControl)             \
   X(FeatRead, kFeatures)               \
@@ -60,10 +63,6 @@ constexpr const char* kStageNames[kStageCount] = {"accept",     "filter", "packe
   X(FeatDecay2, kFeatures)             \
   X(FeatT, kFeatures)                  \
   X(FeatStore, kFeatures)              \
-  X(ClimbRead, kFeatures)              \
-  X(ClimbWait, kFeatures)              \
-  X(ClimbX, kFeatures)                 \
-  X(ClimbY, kFeatures)                 \
   X(MeanShift, kMeanShift)             \
   X(Merge, kMerge)                     \
   X(Climb, kMeanShift)                 \
@@ -91,6 +90,10 @@ struct StageCycles {
   double operator[](Stage s) const { return cycles[static_cast<int>(s)]; }
   double& operator[](int s) { return cycles[s]; }
   double operator[](int s) const { return cycles[s]; }
+  StageCycles& operator+=(const StageCycles& o) {
+    for (int s = 0; s < kStageCount; ++s) cycles[s] += o.cycles[s];
+    return *this;
+  }
   double total() const {
     double t = 0;
     for (int s = 0; s < kStageCount; ++s) t += cycles[s];
@@ -115,64 +118,70 @@ constexpr std::int64_t sweep_cycles(int n, int lanes) {
   return (n - 1) * period + 1 + chunks + 7 + divider + 1;
 }
 
-// Counts what the core did (as its Observer) and turns it into cycles for any lane count.
+// The lane counts the model follows at once (a core's own is one of them).
+constexpr int kModelLaneCounts[] = {1, 2, 4, 8, 16, 32, 64};
+constexpr int kModelLaneCountsN = sizeof(kModelLaneCounts) / sizeof(kModelLaneCounts[0]);
+constexpr int model_lane_index(int lanes) {
+  for (int l = 0; l < kModelLaneCountsN; ++l) {
+    if (kModelLaneCounts[l] == lanes) return l;
+  }
+  return -1;
+}
+
+// The intake's clocks (rtl/core/evms_intake.sv): a word taken at clock A is pushed at
+// A + max(F, kIntakeMinClocks) and reaches the head of an empty queue kQueueLatency clocks later.
+constexpr std::int64_t kIntakeMinClocks = 3;
+constexpr std::int64_t kQueueLatency = 3;
+
+// Counts what the core did (as its Observer) and turns it into cycles for each lane count of
+// kModelLaneCounts. The controller's stages add up word by word; the intake runs beside it, and
+// the controller's clocks waiting for it ("filter") come from following both, word by word:
+//   taken  A_i = max(P_(i-1) + 1, pop_(i-Q) + 1)    (Q = the queue's depth, PacketMax)
+//   pushed P_i = A_i + max(F_i, 3)                   (F_i: filter_cycles)
+//   popped pop_i = max(P_i + 3, R_i)                 (R_i: the controller is back in its idle state)
+//   R_(i+1) = pop_i + the controller's clocks for word i (its take, append, and any packet it closes)
 template <class S>
 class ScheduleCounter {
  public:
   void configure(const Config& cfg) { cfg_ = cfg; }
 
-  void on_word(const EventWord& w) {
+  void on_word(const EventWord& w, bool kept) {
+    for (int l = 0; l < kModelLaneCountsN; ++l) lanes_[l].finish(word_);
     ++words_;
-    if (w.flush) {
-      ++flushes_;
-      return;
-    }
-    filter_ += filter_cycles(w, cfg_);
+    if (w.flush) ++flushes_;
+    if (kept) ++kept_;
+    word_.filter = w.flush ? 1 : filter_cycles(w, cfg_);
+    // The take (accept) and, for a kept event, its append (packet control).
+    for (int l = 0; l < kModelLaneCountsN; ++l) lanes_[l].word_cost = 1 + (kept ? 1 : 0);
+    word_.open = true;
   }
 
   void on_close(const PacketTrace& p) {
     ++closes_;
-    released_ += p.events;
-    if (p.kept == 0) return;
-    ++packets_;
-    kept_ += p.kept;
-    ++sweeps_of_[p.kept][p.sweeps];
-    sweeps_ += p.sweeps;
-    seed_visits_ += p.merge.seed_visits;
-    seeds_ += p.merge.seeds;
-    clusters_ += p.clusters;
-    scans_ += p.track.scans;
-    slot_steps_ += p.track.slot_steps;
-    distances_ += p.track.distances;
-    matches_ += p.track.matches;
-    capped_ += p.track.rounds_capped ? 1 : 0;
-    births_ += p.track.births;
+    if (p.kept > 0) {
+      ++packets_;
+      sweeps_ += p.sweeps;
+    }
     evict_scans_ += p.track.evict_scans;
+    for (int l = 0; l < kModelLaneCountsN; ++l) {
+      const StageCycles c = close_cycles(p, kModelLaneCounts[l]);
+      lanes_[l].closing += c;
+      lanes_[l].word_cost += static_cast<std::int64_t>(c.total());
+    }
   }
 
-  // The cycles of everything seen so far, on a core with `lanes` kernel lanes.
+  // The cycles of everything seen so far, on a core with `lanes` kernel lanes (one of
+  // kModelLaneCounts; any other gives zeros).
   StageCycles cycles(int lanes = S::kLanes) const {
-    constexpr std::int64_t kMul = multiplier_latency(S::kMulDigitBits) + 1;  // a state waiting for a product
-    constexpr std::int64_t kSlots = S::kTracksMax;
     StageCycles c;
-    c[Stage::kAccept] = static_cast<double>(words_);
-    c[Stage::kFilter] = static_cast<double>(filter_);
-    c[Stage::kPacketControl] = static_cast<double>(kept_ + closes_ + packets_);
-    c[Stage::kFeatures] = static_cast<double>(kept_ * (5 + 4 * kMul));
-    double mean_shift = 0;
-    for (int n = 1; n <= S::kPacketMax; ++n) {
-      for (int k = 0; k <= S::kIterationsMax; ++k) {
-        if (sweeps_of_[n][k] != 0) mean_shift += static_cast<double>(sweeps_of_[n][k]) * static_cast<double>(3 + k * sweep_cycles(n, lanes));
-      }
-    }
-    c[Stage::kMeanShift] = mean_shift;
-    c[Stage::kMerge] = static_cast<double>(8 * kept_ + seed_visits_ + seeds_ + 4 * packets_);
-    c[Stage::kCentroid] = static_cast<double>(3 * kept_ + clusters_ * (kRecipLatency + 2 + 3 * kMul) + 4 * packets_);
-    const std::int64_t distance_products = cfg_.associate_last ? 2 : 4;
-    c[Stage::kTrack] = static_cast<double>(packets_ * (3 * kSlots + 7) + clusters_ + births_ + scans_ * (kSlots + 2) + slot_steps_ +
-                                           (1 + distance_products * kMul) * distances_ + (2 * kRecipLatency + 8 + 30 * kMul) * matches_ +
-                                           capped_ + (kSlots + 2) * evict_scans_);
-    c[Stage::kRelease] = static_cast<double>(4 * released_);
+    const int l = model_lane_index(lanes);
+    if (l < 0) return c;
+    Timeline t = lanes_[l];
+    t.finish(word_);
+    c = t.closing;
+    c[Stage::kAccept] += static_cast<double>(words_);
+    c[Stage::kPacketControl] += static_cast<double>(kept_);
+    c[Stage::kFilter] += static_cast<double>(t.waits);
     return c;
   }
 
@@ -192,11 +201,65 @@ class ScheduleCounter {
   }
 
  private:
+  static constexpr int kQueueDepth = S::kPacketMax;
+
+  // The word whose controller clocks are still being counted (its packet may yet close).
+  struct OpenWord {
+    bool open = false;
+    int filter = 0;
+  };
+
+  // The intake and the controller, followed word by word at one lane count.
+  struct Timeline {
+    std::int64_t intake_free = 0;   // the first clock the intake may take the next word
+    std::int64_t ready = 0;         // R: the controller is back in its idle state
+    std::int64_t waits = 0;         // its clocks there with the queue empty
+    std::int64_t word_cost = 0;     // the open word's controller clocks so far
+    std::int64_t taken = 0;
+    std::int64_t pops[kQueueDepth] = {};  // pop clocks of the last Q words, by word index mod Q
+    StageCycles closing;            // the packets' stages (close, features .. tracking, release)
+
+    void finish(const OpenWord& w) {
+      if (!w.open) return;
+      std::int64_t take = intake_free;
+      if (taken >= kQueueDepth && pops[taken % kQueueDepth] + 1 > take) take = pops[taken % kQueueDepth] + 1;
+      const std::int64_t pushed = take + (w.filter > kIntakeMinClocks ? w.filter : kIntakeMinClocks);
+      const std::int64_t pop = pushed + kQueueLatency > ready ? pushed + kQueueLatency : ready;
+      waits += pop - ready;
+      ready = pop + word_cost;
+      intake_free = pushed + 1;
+      pops[taken % kQueueDepth] = pop;
+      ++taken;
+    }
+  };
+
+  // The controller's clocks for closing one packet, stage by stage, with `lanes` kernel lanes.
+  StageCycles close_cycles(const PacketTrace& p, int lanes) const {
+    constexpr std::int64_t kMul = multiplier_latency(S::kMulDigitBits) + 1;  // a state waiting for a product
+    constexpr std::int64_t kSlots = S::kTracksMax;
+    StageCycles c;
+    c[Stage::kPacketControl] = p.kept > 0 ? 2 : 1;  // close, and the summary
+    c[Stage::kRelease] = static_cast<double>(4 * p.events);
+    if (p.kept == 0) return c;
+    const std::int64_t n = p.kept;
+    // The Gaussian path's features; the seeded path's come with the intake.
+    c[Stage::kFeatures] = cfg_.seeded ? 0.0 : static_cast<double>(n * (5 + 4 * kMul));
+    c[Stage::kMeanShift] = static_cast<double>(3 + p.sweeps * sweep_cycles(static_cast<int>(n), lanes));
+    c[Stage::kMerge] = static_cast<double>(8 * n + p.merge.seed_visits + p.merge.seeds + 4);
+    c[Stage::kCentroid] = static_cast<double>(3 * n + p.clusters * (kRecipLatency + 2 + 3 * kMul) + 4);
+    const std::int64_t distance_products = cfg_.associate_last ? 2 : 4;
+    const TrackerTrace& t = p.track;
+    c[Stage::kTrack] = static_cast<double>(3 * kSlots + 7 + p.clusters + t.births + t.scans * (kSlots + 2) + t.slot_steps +
+                                           (1 + distance_products * kMul) * t.distances +
+                                           (2 * kRecipLatency + 8 + 30 * kMul) * t.matches + (t.rounds_capped ? 1 : 0) +
+                                           (kSlots + 2) * t.evict_scans);
+    return c;
+  }
+
   Config cfg_;
-  std::int64_t words_ = 0, flushes_ = 0, filter_ = 0, closes_ = 0, released_ = 0, packets_ = 0, kept_ = 0;
-  std::int64_t sweeps_ = 0, seed_visits_ = 0, seeds_ = 0, clusters_ = 0;
-  std::int64_t scans_ = 0, slot_steps_ = 0, distances_ = 0, matches_ = 0, capped_ = 0, births_ = 0, evict_scans_ = 0;
-  std::uint32_t sweeps_of_[S::kPacketMax + 1][S::kIterationsMax + 1] = {};
+  OpenWord word_;
+  Timeline lanes_[kModelLaneCountsN];
+  std::int64_t words_ = 0, flushes_ = 0, closes_ = 0, packets_ = 0, kept_ = 0, sweeps_ = 0, evict_scans_ = 0;
 };
 
 }  // namespace evms::hls

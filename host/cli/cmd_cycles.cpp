@@ -173,7 +173,9 @@ void register_cycles(CLI::App& app) {
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(hls::kCoreBuildNames), std::end(hls::kCoreBuildNames))));
   cmd->add_flag("--rtl", o->rtl, "Also simulate the Verilated RTL and print its measured cycles");
   cmd->add_flag("--table", o->table, "Print cycles per event against packet size, iteration cap and lanes (markdown)");
-  cmd->add_option("--lanes", o->lanes, "Lane counts for the model's comparison")->delimiter(',');
+  cmd->add_option("--lanes", o->lanes, "Lane counts for the model's comparison (1, 2, 4 .. 64)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(std::vector<int>(std::begin(hls::kModelLaneCounts), std::end(hls::kModelLaneCounts))));
   o->source_options.window.limit = 1000000;  // the cycle model holds every event it measures
   o->method.preset = "gaussian";              // the method the RTL implements
   add_source_options(*cmd, o->source_options);

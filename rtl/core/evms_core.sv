@@ -1,6 +1,7 @@
 // The evms core, as hls/core/core.h: filter -> packets -> features -> clustering -> centroids
 // -> tracking -> labels, with valid/ready streams and full backpressure: no event is ever
-// dropped; the input simply waits while a packet is being clustered and released.
+// dropped. The intake (core/evms_intake.sv: the filter, the climb features) runs ahead of the
+// controller through a packet-deep queue, so the input waits only when that queue is full.
 //
 // Clustering takes one of two paths, chosen by cfg_seeded among those the build holds
 // (HasGaussianPath, HasSeededPath): the Gaussian mean shift of every event and the merging of
@@ -8,7 +9,8 @@
 // links of clusters that touch (cluster/evms_mode_links.sv) and the clusters kept with their
 // warm seeds for the next packet (cluster/evms_warm_seeds.sv).
 //
-// Word by word: an event passes the filter (or is noise) and joins the pending queue, and,
+// Word by word, as the controller takes it from the intake: an event that passed the filter (or
+// is noise) joins the pending queue, and,
 // when kept, the packet. A packet closes when it holds cfg_packet_size events, when the next
 // kept event is more than cfg_packet_max_span_us newer than its first, when the pending queue
 // is full, or on a flush word. Closing clusters and tracks the packet, sends its summary, and
@@ -101,16 +103,27 @@ module evms_core #(
   logic [31:0] e_t;
   logic [15:0] e_x, e_y;
   logic        e_p;
+  logic [31:0] e_climb_x, e_climb_y;
   logic [PacketCountBits-1:0] n;          // kept events in the packet
   logic [PendingCountBits-1:0] pend_n;     // events waiting
   logic [31:0] t_first, t_last;
   logic        append_after;  // the closing event still has to join the next packet
 
-  // ---- filter -------------------------------------------------------------------------------
-  logic f_ready, f_start, f_done, f_kept;
-  evms_ba_filter #(.MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift)) u_filter (
-    .clk(clk), .rst_n(rst_n), .cfg_enabled(cfg_filter_enabled), .cfg_width(cfg_sensor_width), .cfg_height(cfg_sensor_height),
-    .cfg_window(cfg_filter_window), .ready(f_ready), .start(f_start), .t(in_t), .x(in_x), .y(in_y), .done(f_done), .kept(f_kept));
+  // ---- intake: the filter and the climb features, running ahead in a packet-deep queue ---------
+  logic q_valid /*verilator public_flat_rd*/;  // read by the cycle profile (sim/rtl_core.h)
+  logic intake_empty /*verilator public_flat_rd*/;
+  logic q_pop, q_p, q_flush, q_kept;
+  logic [31:0] q_t, q_climb_x, q_climb_y;
+  logic [15:0] q_x, q_y;
+  evms_intake #(
+    .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift),
+    .QueueDepth(PacketMax), .HasClimbScale(HasSeededPath), .ClimbShift(ClimbShift)
+  ) u_intake (
+    .clk(clk), .rst_n(rst_n), .cfg_filter_enabled(cfg_filter_enabled), .cfg_sensor_width(cfg_sensor_width),
+    .cfg_sensor_height(cfg_sensor_height), .cfg_filter_window(cfg_filter_window), .cfg_climb_scale_x(cfg_climb_scale_x),
+    .cfg_climb_scale_y(cfg_climb_scale_y), .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y),
+    .in_p(in_p), .in_flush(in_flush), .q_valid(q_valid), .q_pop(q_pop), .q_t(q_t), .q_x(q_x), .q_y(q_y), .q_p(q_p),
+    .q_flush(q_flush), .q_kept(q_kept), .q_climb_x(q_climb_x), .q_climb_y(q_climb_y), .empty(intake_empty));
 
   // ---- shared multiplier and reciprocal -------------------------------------------------------
   logic feat_mul_start;
@@ -275,11 +288,17 @@ module evms_core #(
     .recip_m(recip_m), .mul_start(tk_mul_start), .mul_a(tk_mul_a), .mul_b(tk_mul_b), .mul_done(mul_done), .mul_p(mul_p),
     .done(tk_done), .tracks_started(stat_tracks_started), .unassigned(stat_unassigned));
 
-  // ---- decay for the time feature -----------------------------------------------------------------
+  // ---- decay for the time feature (the Gaussian path's) -------------------------------------------
   logic [63:0] decay_u;
   logic [WeightFrac:0] decay_w;
-  evms_exp_lut #(.TableLog2(ExpTableLog2), .WeightFrac(WeightFrac), .InterpBits(ExpInterpBits), .ArgFrac(DecayFrac), .ArgBits(64), .TableFile(ExpTableFile)) u_decay (
-    .clk(clk), .u(decay_u), .w(decay_w));
+  if (HasGaussianPath != 0) begin : g_decay
+    evms_exp_lut #(.TableLog2(ExpTableLog2), .WeightFrac(WeightFrac), .InterpBits(ExpInterpBits), .ArgFrac(DecayFrac), .ArgBits(64), .TableFile(ExpTableFile)) u_decay (
+      .clk(clk), .u(decay_u), .w(decay_w));
+  end else begin : g_no_decay
+    assign decay_w = '0;
+    logic unused_decay;
+    assign unused_decay = ^decay_u;
+  end
 
   // ---- control ------------------------------------------------------------------------------------
   `include "evms_core_states.svh"
@@ -292,7 +311,6 @@ module evms_core #(
   logic        rel_p;
   logic signed [15:0] rel_idx;
   logic [15:0] iterations;
-  logic [31:0] climb_x;
 
   always_ff @(posedge clk) begin
     if (pend_we) pend_mem[PendingIndexBits'(pend_n)] <= pend_wdata;
@@ -304,9 +322,12 @@ module evms_core #(
     co_rdata <= cluster_of[PacketIndexBits'(co_i)];
   end
   assign {rd_pk_x, rd_pk_y, rd_pk_p, rd_pk_t} = pk_rdata;
-  // Events join the pending queue when the filter rejects them or when they join the packet.
-  assign pend_we = (state == StFilter && f_done && !f_kept) || state == StAppend;
-  assign pend_wdata = {e_t, e_x, e_y, e_p, state == StAppend ? 16'(n) : 16'hFFFF};
+  // Events join the pending queue when the filter rejects them (taken from the intake's queue)
+  // or when they join the packet.
+  wire take_noise = q_pop && !q_flush && !q_kept;
+  assign pend_we = take_noise || state == StAppend;
+  wire [15:0] append_index = 16'(n);  // named: Yosys 0.23 sizes a cast inside a concatenation by its operand
+  assign pend_wdata = state == StAppend ? {e_t, e_x, e_y, e_p, append_index} : {q_t, q_x, q_y, q_p, 16'hFFFF};
   assign rd_pk_i = state == StCentroid ? ct_rd_i : (state == StLink ? lk_ev_j : fi);
   assign cl_rd_j = state == StLink ? lk_ev_j : ws_ev_j;
   assign co_i = state == StMerge ? mg_co_i : (state == StCentroid ? ct_rd_i :
@@ -353,10 +374,10 @@ module evms_core #(
     end
   endfunction
 
-  // The filter and the links each clear their memory after reset.
-  assign in_ready = state == StIdle && f_ready && lk_ready;
-  assign idle = in_ready && pend_n == 0 && !lab_valid && !trk_valid && !pkt_valid;
-  assign f_start = in_valid && in_ready && !in_flush;
+  // The controller takes a decided word from the intake while idle; the links clear their
+  // memory after reset (as the filter does, which holds in_ready low meanwhile).
+  assign q_pop = state == StIdle && q_valid && lk_ready;
+  assign idle = in_ready && intake_empty && state == StIdle && lk_ready && pend_n == 0 && !lab_valid && !trk_valid && !pkt_valid;
   assign id_c = co_rdata >= 0 ? 8'(co_rdata) : 8'd0;
 
   // Issues a * b on the controller's port of the shared multiplier; the product comes back with mul_done.
@@ -364,7 +385,7 @@ module evms_core #(
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
       state <= StIdle;
-      {e_t, e_x, e_y, e_p} <= '0;
+      {e_t, e_x, e_y, e_p, e_climb_x, e_climb_y} <= '0;
       n <= '0;
       pend_n <= '0;
       t_first <= '0;
@@ -384,7 +405,7 @@ module evms_core #(
       mg_start <= 1'b0;
       cl_load_we <= 1'b0;
       cl_load_i <= '0;
-      {cl_lx, cl_ly, climb_x} <= '0;
+      {cl_lx, cl_ly} <= '0;
       cl_start <= 1'b0;
       lk_start <= 1'b0;
       ws_start <= 1'b0;
@@ -412,16 +433,15 @@ module evms_core #(
       if (lab_valid && lab_ready) lab_valid <= 1'b0;
       if (pkt_valid && pkt_ready) pkt_valid <= 1'b0;
       case (state)
-        StIdle: if (in_valid && in_ready) begin
-          {e_t, e_x, e_y, e_p} <= {in_t, in_x, in_y, in_p};
+        StIdle: if (q_pop) begin
+          {e_t, e_x, e_y, e_p, e_climb_x, e_climb_y} <= {q_t, q_x, q_y, q_p, q_climb_x, q_climb_y};
           append_after <= 1'b0;
-          state <= in_flush ? StClose : StFilter;
-        end
-        StFilter: if (f_done) begin
-          if (!f_kept) begin
+          if (q_flush) begin
+            state <= StClose;
+          end else if (!q_kept) begin
             pend_n <= pend_n + 1'b1;
-            state <= (n == 0 || 32'(pend_n) + 1 == PendingDepth) ? StClose : StIdle;
-          end else if (n > 0 && cfg_packet_max_span_us != 0 && e_t - t_first > cfg_packet_max_span_us) begin
+            if (n == 0 || 32'(pend_n) + 1 == PendingDepth) state <= StClose;
+          end else if (n > 0 && cfg_packet_max_span_us != 0 && q_t - t_first > cfg_packet_max_span_us) begin
             append_after <= 1'b1;
             state <= StClose;
           end else begin
@@ -429,6 +449,12 @@ module evms_core #(
           end
         end
         StAppend: begin
+          // The seeded path's climb features, computed by the intake, go to the climbs as the
+          // event joins the packet.
+          cl_load_we <= 1'b1;
+          cl_load_i <= 16'(n);
+          cl_lx <= e_climb_x;
+          cl_ly <= e_climb_y;
           if (n == 0) t_first <= e_t;
           t_last <= e_t;
           n <= n + 1'b1;
@@ -440,7 +466,8 @@ module evms_core #(
         StClose: begin
           if (n > 0) begin
             fi <= '0;
-            state <= seeded ? StClimbRead : StFeatRead;
+            cl_start <= seeded;
+            state <= seeded ? StClimb : StFeatRead;
           end else begin
             ri <= '0;
             state <= pend_n == 0 ? (append_after ? StAppend : StIdle) : StReleaseRead;
@@ -489,30 +516,6 @@ module evms_core #(
           end else begin
             ms_start <= 1'b1;
             state <= StMeanShift;
-          end
-        end
-        // Climb features of event fi: x and y times their scales, rounded.
-        StClimbRead: state <= StClimbWait;
-        StClimbWait: begin
-          `EVMS_FEAT_REQUEST($signed(64'(rd_pk_x)), $signed(cfg_climb_scale_x))
-          state <= StClimbX;
-        end
-        StClimbX: if (mul_done) begin
-          climb_x <= 32'(shr_rnd(mul_p, ClimbShift));
-          `EVMS_FEAT_REQUEST($signed(64'(rd_pk_y)), $signed(cfg_climb_scale_y))
-          state <= StClimbY;
-        end
-        StClimbY: if (mul_done) begin
-          cl_load_we <= 1'b1;
-          cl_load_i <= fi;
-          cl_lx <= climb_x;
-          cl_ly <= 32'(shr_rnd(mul_p, ClimbShift));
-          if (32'(fi) + 1 < 32'(n)) begin
-            fi <= fi + 1'b1;
-            state <= StClimbRead;
-          end else begin
-            cl_start <= 1'b1;
-            state <= StClimb;
           end
         end
         StClimb: if (cl_done) begin

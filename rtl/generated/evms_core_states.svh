@@ -2,32 +2,27 @@
 // The core controller's states (hls/core/schedule.h), in encoding order.
 typedef enum logic [4:0] {
   StIdle,  // 0: accept
-  StFilter,  // 1: filter
-  StAppend,  // 2: packet control
-  StClose,  // 3: packet control
-  StFeatRead,  // 4: features
-  StFeatWait,  // 5: features
-  StFeatX,  // 6: features
-  StFeatY,  // 7: features
-  StFeatAge,  // 8: features
-  StFeatDecay1,  // 9: features
-  StFeatDecay2,  // 10: features
-  StFeatT,  // 11: features
-  StFeatStore,  // 12: features
-  StClimbRead,  // 13: features
-  StClimbWait,  // 14: features
-  StClimbX,  // 15: features
-  StClimbY,  // 16: features
-  StMeanShift,  // 17: mean shift
-  StMerge,  // 18: merge
-  StClimb,  // 19: mean shift
-  StLink,  // 20: merge
-  StWarm,  // 21: merge
-  StCentroid,  // 22: centroids
-  StTrack,  // 23: tracking
-  StPacket,  // 24: packet control
-  StReleaseRead,  // 25: release
-  StReleaseWait,  // 26: release
-  StReleaseCluster,  // 27: release
-  StReleaseSend  // 28: release
+  StAppend,  // 1: packet control
+  StClose,  // 2: packet control
+  StFeatRead,  // 3: features
+  StFeatWait,  // 4: features
+  StFeatX,  // 5: features
+  StFeatY,  // 6: features
+  StFeatAge,  // 7: features
+  StFeatDecay1,  // 8: features
+  StFeatDecay2,  // 9: features
+  StFeatT,  // 10: features
+  StFeatStore,  // 11: features
+  StMeanShift,  // 12: mean shift
+  StMerge,  // 13: merge
+  StClimb,  // 14: mean shift
+  StLink,  // 15: merge
+  StWarm,  // 16: merge
+  StCentroid,  // 17: centroids
+  StTrack,  // 18: tracking
+  StPacket,  // 19: packet control
+  StReleaseRead,  // 20: release
+  StReleaseWait,  // 21: release
+  StReleaseCluster,  // 22: release
+  StReleaseSend  // 23: release
 } state_e;
