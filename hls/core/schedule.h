@@ -49,7 +49,8 @@ constexpr const char* kStageNames[kStageCount] = {"accept",     "filter", "packe
 // The states of the core's controller (rtl/core/evms_core.sv, state_e), in encoding order, each
 // with the stage its clocks count in. rtl/generated/evms_core_states.svh is written from this
 // list (host/tools/rtl_gen), and sim/rtl_profile.h reads the RTL's state through it. Idle counts
-// as accept only while a word is offered.
+// as accept while the intake's queue has a word for it, and as filter while the queue is empty
+// and a word is offered or in the intake.
 #define EVMS_CORE_CONTROLLER_STATES(X) \
   X(Idle, kAccept)                     \
   X(Append, kPacketControl)            \
@@ -157,7 +158,6 @@ class ScheduleCounter {
   }
 
   void on_close(const PacketTrace& p) {
-    ++closes_;
     if (p.kept > 0) {
       ++packets_;
       sweeps_ += p.sweeps;
@@ -259,7 +259,7 @@ class ScheduleCounter {
   Config cfg_;
   OpenWord word_;
   Timeline lanes_[kModelLaneCountsN];
-  std::int64_t words_ = 0, flushes_ = 0, closes_ = 0, packets_ = 0, kept_ = 0, sweeps_ = 0, evict_scans_ = 0;
+  std::int64_t words_ = 0, flushes_ = 0, packets_ = 0, kept_ = 0, sweeps_ = 0, evict_scans_ = 0;
 };
 
 }  // namespace evms::hls

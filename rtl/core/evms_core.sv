@@ -367,12 +367,6 @@ module evms_core #(
       clamp_feat = v < 0 ? 64'd0 : ($unsigned(v) > FeatMax ? FeatMax : $unsigned(v));
     end
   endfunction
-  function automatic signed [63:0] shr_rnd(input signed [63:0] v, input integer s);
-    begin
-      if (s <= 0) shr_rnd = v <<< (-s);
-      else shr_rnd = (v + (64'sd1 <<< (s - 1))) >>> s;
-    end
-  endfunction
 
   // The controller takes a decided word from the intake while idle; the links clear their
   // memory after reset (as the filter does, which holds in_ready low meanwhile).
@@ -480,13 +474,13 @@ module evms_core #(
           state <= StFeatX;
         end
         StFeatX: if (mul_done) begin
-          phi_x <= FeatBits'(clamp_feat(shr_rnd(mul_p, CoordScaleFrac - FeatFrac)));
+          phi_x <= FeatBits'(clamp_feat(evms_round_pkg::shr_rnd(mul_p, CoordScaleFrac - FeatFrac)));
           `EVMS_FEAT_REQUEST($signed(64'(rd_pk_y)), $signed(64'(cfg_scale_y)))
           state <= StFeatY;
         end
         StFeatY: if (mul_done) begin
           logic [31:0] age, age_clamped;
-          phi_y <= FeatBits'(clamp_feat(shr_rnd(mul_p, CoordScaleFrac - FeatFrac)));
+          phi_y <= FeatBits'(clamp_feat(evms_round_pkg::shr_rnd(mul_p, CoordScaleFrac - FeatFrac)));
           phi_p <= rd_pk_p ? FeatBits'(clamp_feat($signed(64'(cfg_phi_on)))) : '0;
           age = t_last - rd_pk_t;
           age_clamped = age > 32'h7FFFFFFF ? 32'h7FFFFFFF : age;
@@ -509,7 +503,7 @@ module evms_core #(
           ms_lx <= phi_x;
           ms_ly <= phi_y;
           ms_lp <= phi_p;
-          ms_lt <= FeatBits'(clamp_feat(shr_rnd(mul_p, WeightFrac)));
+          ms_lt <= FeatBits'(clamp_feat(evms_round_pkg::shr_rnd(mul_p, WeightFrac)));
           if (32'(fi) + 1 < 32'(n)) begin
             fi <= fi + 1'b1;
             state <= StFeatRead;

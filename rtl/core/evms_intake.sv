@@ -83,20 +83,16 @@ module evms_intake #(
     // The low 64 bits of a 16 x 64 product, as the C++ core's uint64 arithmetic.
     wire [63:0] factor = age_q == 2'd0 ? 64'(x_q) : 64'(y_q);
     wire [63:0] scale = age_q == 2'd0 ? cfg_climb_scale_x : cfg_climb_scale_y;
-    function automatic [31:0] shr_rnd32(input signed [63:0] v);
-      if (ClimbShift <= 0) shr_rnd32 = 32'(v <<< (-ClimbShift));
-      else shr_rnd32 = 32'((v + (64'sd1 <<< (ClimbShift - 1))) >>> ClimbShift);
-    endfunction
     always_ff @(posedge clk or negedge rst_n) begin
       if (!rst_n) begin
         product_q <= '0;
         climb_x_q <= '0;
       end else begin
         if (busy_q && age_q < 2'd2) product_q <= factor * scale;
-        if (busy_q && age_q == 2'd1) climb_x_q <= shr_rnd32($signed(product_q));
+        if (busy_q && age_q == 2'd1) climb_x_q <= 32'(evms_round_pkg::shr_rnd($signed(product_q), ClimbShift));
       end
     end
-    assign climb_y = shr_rnd32($signed(product_q));
+    assign climb_y = 32'(evms_round_pkg::shr_rnd($signed(product_q), ClimbShift));
     assign push_word = {t_q, x_q, y_q, p_q, flush_q, kept, climb_x_q, climb_y};
     assign {q_t, q_x, q_y, q_p, q_flush, q_kept, q_climb_x, q_climb_y} = head_word;
   end else begin : g_no_climb_scale
