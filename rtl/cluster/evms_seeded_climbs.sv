@@ -15,8 +15,10 @@
 //           (read; squared distance; accumulate), 2 to drain, and when the ball held events a
 //           divide of SumBits + 2 clocks (x and y at once);
 //           per climb: 2 per open mode to join, 1 to decide, touched events + 2 to label.
-// Memories have one write port and a registered read port (common/evms_ram_1w1r); the per-event flags (reached, in
-// the current climb, labelled) are bit vectors, cleared in one clock.
+// Memories have one write port and a registered read port (common/evms_ram_1w1r). The per-event
+// flags (reached, in the current climb, labelled) are one-bit memories with one address each and
+// a combinational read (distributed RAM on a Xilinx part, not 256 registers with a decoder and a
+// multiplexer each); they are cleared while the grid's counts are (Cells + 1 >= PacketMax clocks).
 `include "evms_assert.svh"
 
 module evms_seeded_climbs #(
@@ -76,6 +78,7 @@ module evms_seeded_climbs #(
   localparam logic [63:0] One = 64'(1) << (2 * UnitShift);  // h^2
   `EVMS_ASSERT_INIT("a squared ball radius must fit 64 bits", 2 * UnitShift + 2 * $clog2(ReachMax + 1) < 64)
   `EVMS_ASSERT_INIT("the grid's cells must fit the 16-bit event index range", CntBits <= 16)
+  `EVMS_ASSERT_INIT("the grid's clearing must reach every event's flags", Cells + 1 >= PacketMax)
 
   typedef enum logic [4:0] {
     StIdle, StClear, StCountRead, StCountCell, StCountWrite, StPrefix, StPlaceRead, StPlaceNext, StPlaceWrite,
@@ -120,7 +123,6 @@ module evms_seeded_climbs #(
   logic [CntBits-1:0]   t_q;                 // labelling: touched index read
   logic                 lv_q;                // labelling: a read is in flight
   logic [15:0]          climbs_q, steps_q, lost_q;
-  logic [PacketMax-1:0] reached_q, in_climb_q, labelled_q;
 
   // Where a converged climb goes: the scan of the open modes, or straight to opening one.
   state_e join_state;
@@ -169,19 +171,39 @@ module evms_seeded_climbs #(
     .clk, .we(sorted_we), .wa(IdxBits'(next_q)), .wd({phi_x_q, phi_y_q, j_index}), .ra(IdxBits'(k_q)),
     .rd({sorted_x_q, sorted_y_q, event_q}));
 
-  // The current climb's events, in the order it reached them.
+  // The per-event flags. Each has one address a state chooses; StClear writes zeros.
+  wire               flags_clearing = state_q == StClear && 32'(c_q) < PacketMax;
+  wire [IdxBits-1:0] clear_index = IdxBits'(c_q);
   logic [IdxBits-1:0] touched_rd_q;
-  wire touched_we = s2_valid_q && s2_in_q && !in_climb_q[s2_j_q];
+  logic reached_mem [PacketMax], in_climb_mem [PacketMax], labelled_mem [PacketMax];
+  // reached: set by the kernel, read by the event seeds.
+  wire [IdxBits-1:0] reached_addr = flags_clearing ? clear_index : state_q == StKernel ? s2_j_q : j_index;
+  wire               reached = reached_mem[reached_addr];
+  wire               reached_we = flags_clearing || (state_q == StKernel && s2_valid_q && s2_in_q);
+  // in_climb: set by the kernel, cleared by the labelling.
+  wire [IdxBits-1:0] in_climb_addr = flags_clearing ? clear_index : state_q == StLabel ? touched_rd_q : s2_j_q;
+  wire               in_climb = in_climb_mem[in_climb_addr];
+  // labelled: read and set by the labelling, read through rd_j after done.
+  wire [IdxBits-1:0] labelled_addr = flags_clearing ? clear_index : state_q == StLabel ? touched_rd_q : IdxBits'(rd_j);
+  wire               labelled = labelled_mem[labelled_addr];
+
+  // The current climb's events, in the order it reached them.
+  wire touched_we = s2_valid_q && s2_in_q && !in_climb;
   evms_ram_1w1r #(.Width(IdxBits), .Depth(PacketMax)) u_touched (
     .clk, .we(touched_we), .wa(IdxBits'(touched_q)), .wd(s2_j_q), .ra(IdxBits'(t_q)), .rd(touched_rd_q));
 
   // Each event's mode, valid where labelled.
   logic [ModeBits-1:0] first_mode_q;
-  wire first_mode_we = lv_q && !labelled_q[touched_rd_q] && mode_q >= 0;
+  wire first_mode_we = lv_q && !labelled && mode_q >= 0;
   evms_ram_1w1r #(.Width(ModeBits), .Depth(PacketMax)) u_first_mode (
     .clk, .we(first_mode_we), .wa(touched_rd_q), .wd(ModeBits'(mode_q)), .ra(IdxBits'(rd_j)), .rd(first_mode_q));
   logic rd_labelled_q;
-  always_ff @(posedge clk) rd_labelled_q <= labelled_q[IdxBits'(rd_j)];
+  always_ff @(posedge clk) begin
+    rd_labelled_q <= labelled;
+    if (reached_we) reached_mem[reached_addr] <= !flags_clearing;
+    if (flags_clearing || touched_we || (state_q == StLabel && lv_q)) in_climb_mem[in_climb_addr] <= touched_we && !flags_clearing;
+    if (flags_clearing || first_mode_we) labelled_mem[labelled_addr] <= !flags_clearing;
+  end
   assign rd_mode = rd_labelled_q ? 16'(first_mode_q) : -16'sd1;
 
   // The modes.
@@ -317,13 +339,11 @@ module evms_seeded_climbs #(
       {sum_x_q, sum_y_q, count_q, touched_q, scan_c_q, best_valid_q, best_q, best_d2_q} <= '0;
       {modes_q, t_q, lv_q, climbs_q, steps_q, lost_q} <= '0;
       mode_q <= '0;
-      {reached_q, in_climb_q, labelled_q} <= '0;
     end else begin
       done <= 1'b0;
       unique case (state_q)
         // Idle, or done with the last packet (its results stay readable until the next start).
         StIdle, StDone: if (start) begin
-          {reached_q, in_climb_q, labelled_q} <= '0;
           {climbs_q, steps_q, lost_q} <= '0;
           modes_q <= '0;
           c_q <= '0;
@@ -395,7 +415,7 @@ module evms_seeded_climbs #(
           if (j_q >= n) begin
             done <= 1'b1;
             state_q <= StDone;
-          end else if (reached_q[j_index]) begin
+          end else if (reached) begin
             j_q <= j_q + 1'b1;
           end else begin
             state_q <= StSeedEventLoad;
@@ -453,10 +473,8 @@ module evms_seeded_climbs #(
             sum_x_q <= sum_x_q + SumBits'(s2_x_q);
             sum_y_q <= sum_y_q + SumBits'(s2_y_q);
             count_q <= count_q + 1'b1;
-            reached_q[s2_j_q] <= 1'b1;
           end
           if (touched_we) begin
-            in_climb_q[s2_j_q] <= 1'b1;
             touched_q <= touched_q + 1'b1;
           end
           if (k_q >= k_end_q && !s1_valid_q && !s2_valid_q) begin
@@ -511,10 +529,6 @@ module evms_seeded_climbs #(
         StLabel: begin
           lv_q <= t_q < touched_q;
           if (t_q < touched_q) t_q <= t_q + 1'b1;
-          if (lv_q) begin
-            in_climb_q[touched_rd_q] <= 1'b0;
-            if (first_mode_we) labelled_q[touched_rd_q] <= 1'b1;
-          end
           if (t_q >= touched_q && !lv_q) state_q <= seeding_warm_q ? StSeedWarm : StSeedEvent;
         end
         default: state_q <= StIdle;
