@@ -17,7 +17,8 @@
 // bound the state selects, instead of an adder and two comparators per step. Each slot's
 // filter state (pos, vel, p00, p01, p11) per axis is one word of a memory with one write port
 // and a combinational read (distributed RAM on a Xilinx part), not registers with a write
-// multiplexer each. Covariances are stored in CovBits bits: every stored covariance is clamped
+// multiplexer each; so are each slot's ID and last time, and each measurement's track ID (with
+// a valid bit a measurement, cleared in one clock). Covariances are stored in CovBits bits: every stored covariance is clamped
 // to +-(2^35 - 1) or is P0, which host/backend/core_config.h keeps below 2^35.
 `include "evms_assert.svh"
 
@@ -123,20 +124,23 @@ module evms_tracker #(
 
   // ---- slots ------------------------------------------------------------------------------
   logic                     s_valid [TracksMax], s_confirmed [TracksMax];
-  logic signed [31:0]       s_id [TracksMax];
   logic [7:0]               s_hits [TracksMax];
+  // Each slot's ID and last time: memories with one write port and combinational reads.
+  logic signed [31:0]       s_id [TracksMax];
   logic [31:0]              s_t [TracksMax];
   // Filter state of each slot, one memory per axis: {pos, vel, p00, p01, p11}.
   localparam int KW = 64 + 3 * CovBits;
   logic [KW-1:0]            kal_x [TracksMax], kal_y [TracksMax];
   logic [TracksMax-1:0]    slot_matched;
   logic [ClustersMax-1:0]  meas_matched;
+  // Each measurement's track ID (memory), where ids_valid says it has one this packet.
   logic signed [31:0]       ids [ClustersMax];
+  logic [ClustersMax-1:0]   ids_valid;
   // Each slot's last measurement {x, y}: a memory with one write port and a combinational read.
   logic [63:0]              s_z [TracksMax];
   logic signed [31:0]       next_id;
 
-  assign id_of = ids[ClusterIndexBits'(id_c)];
+  assign id_of = ids_valid[ClusterIndexBits'(id_c)] ? ids[ClusterIndexBits'(id_c)] : -32'sd1;
   assign tracks_started = 32'(next_id);
 
   typedef enum logic [5:0] {
@@ -333,11 +337,9 @@ module evms_tracker #(
       for (int q = 0; q < TracksMax; q++) begin
         s_valid[q] <= 1'b0;
         s_confirmed[q] <= 1'b0;
-        s_id[q] <= '0;
         s_hits[q] <= '0;
-        s_t[q] <= '0;
       end
-      for (int q = 0; q < ClustersMax; q++) ids[q] <= -32'sd1;
+      ids_valid <= '0;
     end else begin
       done <= 1'b0;
       mul_start <= 1'b0;
@@ -358,7 +360,7 @@ module evms_tracker #(
           if (32'(s) >= TracksMax) begin
             slot_matched <= '0;
             meas_matched <= '0;
-            for (int q = 0; q < ClustersMax; q++) ids[q] <= -32'sd1;
+            ids_valid <= '0;
             s <= '0;
             k <= '0;
             state <= S_PAIR;
@@ -569,8 +571,7 @@ module evms_tracker #(
             state <= S_AX_BEGIN;
           end else begin
             axis <= 1'b0;
-            s_t[si] <= z_t;
-            ids[ClusterIndexBits'(k)] <= s_id[si];
+            ids_valid[ClusterIndexBits'(k)] <= 1'b1;
             if (!s_confirmed[si]) begin
               s_hits[si] <= s_hits[si] + 1'b1;
               s_confirmed[si] <= s_hits[si] + 1'b1 >= cfg_confirm_hits;
@@ -625,12 +626,10 @@ module evms_tracker #(
               // A slot born (or taken) this packet is matched: a later eviction passes it by.
               slot_matched[TrackIndexBits'(birth_slot)] <= 1'b1;
               s_valid[TrackIndexBits'(birth_slot)] <= 1'b1;
-              s_id[TrackIndexBits'(birth_slot)] <= next_id;
               next_id <= (next_id + 1) & 32'h7FFFFFFF;
               s_hits[TrackIndexBits'(birth_slot)] <= 8'd1;
               s_confirmed[TrackIndexBits'(birth_slot)] <= cfg_confirm_hits <= 8'd1;
-              s_t[TrackIndexBits'(birth_slot)] <= z_t;
-              ids[ClusterIndexBits'(k)] <= next_id;
+              ids_valid[ClusterIndexBits'(k)] <= 1'b1;
               s <= (TrackIndexBits+1)'(birth_slot);
               state <= S_BIRTH_EMIT;
             end
@@ -718,7 +717,13 @@ module evms_tracker #(
   always_ff @(posedge clk) begin
     if (birth_now || (update_now && !axis)) kal_x[kal_addr] <= birth_now ? born_at(z_x) : kal_update;
     if (birth_now || (update_now && axis)) kal_y[kal_addr] <= birth_now ? born_at(z_y) : kal_update;
-    // The last measurement: a birth's, or the match's once both axes are filtered.
-    if (birth_now || (state == S_AX_END && axis)) s_z[kal_addr] <= {z_x, z_y};
+    // The last measurement and its time: a birth's, or the match's once both axes are filtered;
+    // the measurement's track ID: the new track's, or the matched slot's.
+    if (birth_now || (state == S_AX_END && axis)) begin
+      s_z[kal_addr] <= {z_x, z_y};
+      s_t[kal_addr] <= z_t;
+      ids[ClusterIndexBits'(k)] <= birth_now ? next_id : s_id[si];
+    end
+    if (birth_now) s_id[kal_addr] <= next_id;
   end
 endmodule
