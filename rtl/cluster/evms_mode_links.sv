@@ -14,13 +14,14 @@
 //          the pixel takes the event's mode, and a pixel marked now goes on the list;
 //   scan   each listed pixel reads the rows y0 .. y0 + LinkMax (within the sensor and the link
 //          distance) and joins its set with every marked pixel within reach ahead of it (the
-//          rows below, and to its right in its own row), one join a clock, until none of them
-//          lies outside its set;
+//          rows below, and to its right in its own row), one join every two clocks (find the
+//          first pixel outside the set and register its mode; join), until none of them lies
+//          outside its set;
 //   clear  each listed pixel's word is written zero, so the map is clear for the next packet
 //          (after reset, every word is: BankDepth clocks before ready).
 //
 // Schedule: 1 to start; 2 clocks an event (read its word; join and mark); per listed pixel 2
-// to read it and 2 per row of its window, plus one clock per join; 1 a listed pixel to clear.
+// to read it and 2 per row of its window, plus two clocks per join; 1 a listed pixel to clear.
 // The packet's events (x, y, the first mode from evms_seeded_climbs) are read through ev_j, with
 // the registered read of a block RAM: ev_x, ev_y and ev_mode belong to the ev_j of the clock before.
 `include "evms_assert.svh"
@@ -70,15 +71,16 @@ module evms_mode_links #(
   `EVMS_ASSERT_INIT("the map's words must be counted by the 16-bit event counter", BankDepth <= 65536)
 
   typedef enum logic [3:0] {
-    StReset, StIdle, StWriteAddr, StWriteData, StWriteMark, StScanRead, StScanLoad, StRowRead, StRowJoin, StClear, StDone
+    StReset, StIdle, StWriteAddr, StWriteData, StWriteMark, StScanRead, StScanLoad, StRowRead, StRowJoin, StRowApply, StClear,
+    StDone
   } state_e;
   state_e state_q, state_d;
 
   // ---- roots: one join a clock ------------------------------------------------------------------
   logic [ModeBits-1:0] root_q [ModesMax];
   logic                join_en;
-  // The roots have two read ports: join_a's (also the listed pixel's set, in_own_set) and
-  // join_b's (also rd_c's while idle).
+  // The roots have three read ports: join_a's (also the listed pixel's set, in_own_set),
+  // join_b's, and rd_c's (its own, so that what reads rd_root is not timed through the joins).
   logic [ModeBits-1:0] join_a, join_b, root_a, root_b, join_lo, join_hi;
   assign root_a = root_q[join_a];
   assign root_b = root_q[join_b];
@@ -90,7 +92,7 @@ module evms_mode_links #(
       else if (join_en && root_q[c] == join_hi) root_q[c] <= join_lo;
     end
   end
-  assign rd_root = root_b;
+  assign rd_root = root_q[rd_c];
 
   // ---- the pixel map ----------------------------------------------------------------------------
   logic                    bank_we [2];
@@ -125,6 +127,10 @@ module evms_mode_links #(
   logic [ListCountBits-1:0] k_q, k_d;             // the listed pixel being scanned or cleared
   logic [DyBits-1:0]        dy_q, dy_d;
   logic                     clearing_q, clearing_d;   // list_rd holds a pixel to clear
+  // The mode of the pixel a row's search found outside the listed pixel's set, joined the next
+  // clock: the search (the window, the set's members, the first outside) and the join (the
+  // roots' rewrite) are each a clock's logic, not one path through both.
+  logic [ModeBits-1:0]      outside_q, outside_d;
 
   // The largest dx <= LinkMax with dx^2 + dy^2 <= link2 along each row of the window (-1: none).
   // A link2 beyond 2 LinkMax^2 reaches the whole window, so the comparisons take it clamped.
@@ -222,7 +228,8 @@ module evms_mode_links #(
     clearing_d = 1'b0;
     join_en = 1'b0;
     join_a = own_mode;
-    join_b = rd_c;
+    join_b = outside_q;
+    outside_d = outside_q;
     bank_we[0] = 1'b0;
     bank_we[1] = 1'b0;
     bank_wa = word_addr(y_q, ev_word);
@@ -300,12 +307,19 @@ module evms_mode_links #(
         bank_ra[!win_word[0]] = word_addr(row_y, win_word + 17'sd1);
         mode_d = own_mode;
         if (outside_found) begin
-          join_en = 1'b1;
-          join_b = outside_mode;
+          outside_d = outside_mode;
+          state_d = StRowApply;
         end else begin
           dy_d = dy_q + 1'b1;
           state_d = StRowRead;
         end
+      end
+      StRowApply: begin
+        bank_ra[win_word[0]] = word_addr(row_y, win_word);
+        bank_ra[!win_word[0]] = word_addr(row_y, win_word + 17'sd1);
+        join_en = 1'b1;
+        join_a = mode_q;
+        state_d = StRowJoin;
       end
       // One listed pixel a clock: list_rd holds the one read the clock before.
       StClear: begin
@@ -347,6 +361,7 @@ module evms_mode_links #(
       k_q <= '0;
       dy_q <= '0;
       clearing_q <= 1'b0;
+      outside_q <= '0;
     end else begin
       state_q <= state_d;
       j_q <= j_d;
@@ -357,6 +372,7 @@ module evms_mode_links #(
       k_q <= k_d;
       dy_q <= dy_d;
       clearing_q <= clearing_d;
+      outside_q <= outside_d;
     end
   end
 endmodule
