@@ -13,8 +13,9 @@ namespace evms::hls {
 // timestamps (one SPRAM), 10-bit feature fractions and 1.15 weights so that every kernel
 // multiplier fits a 16x16 SB_MAC16, and a digit-serial shared multiplier (4 bits a clock).
 using Ice40Shape = Shape<128, 128, 64, 1, 8, 8, 8, 16, 7, 4 * 64, 10, 15, 8, 12, 4>;
-// Arty A7-35T beside a DAVIS240: the default board core, eight kernel lanes (what fits its DSPs).
-using ArtyShape = DefaultShape;
+// Arty A7-35T beside a DAVIS240: the default board core. It holds the seeded path only (the
+// default method, at about 90 cycles an event); the Gaussian path does not fit beside it.
+using ArtyShape = Shape<240, 180, 256, 8, 8, 16, 16, 16, 7, 4 * 256, 11, 16, 9, 12, 64, 64, 4, 32, 8, 0, 1>;
 
 // X(name, FixedShape, RtlShape, sensor width, sensor height, description): the fixed backend's
 // Shape, the RTL's (rtl/generated/evms_cfg_<name>.*, Verilated as Vcore_<name>), and the sensor

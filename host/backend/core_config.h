@@ -17,12 +17,17 @@
 
 namespace evms::backend {
 
-// The method the RTL core implements (the "gaussian" preset) with the packet size, cluster and
-// track counts cut to what build S holds: the register values a board of that build starts
-// with.
+// The method build S starts with: the default method (the "evms" preset, seeded climbs) when
+// the build holds only the seeded path, else the Gaussian mean shift of every event (the
+// "gaussian" preset), with the packet size, cluster and track counts cut to what the build
+// holds: the register values a board of that build starts with.
+template <class S>
+const char* build_default_preset() {
+  return S::kHasGaussianPath ? "gaussian" : "evms";
+}
 template <class S>
 Params build_default_params() {
-  Params p = preset("gaussian");
+  Params p = preset(build_default_preset<S>());
   p.packet_size = std::min(p.packet_size, S::kPacketMax);
   p.max_clusters = std::min(p.max_clusters, S::kClustersMax);
   p.max_tracks = std::min(p.max_tracks, S::kTracksMax);

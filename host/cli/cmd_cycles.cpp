@@ -29,6 +29,7 @@ struct CyclesOptions {
   std::vector<int> lanes = {1, 2, 4, 8, 16, 32, 64};
   read::SourceOptions source_options;
   Method method;
+  bool preset_chosen = false;  // by --preset or --config; else the build's reset method
 };
 
 std::vector<Event> read_events(const CyclesOptions& o, SensorSize& sensor) {
@@ -84,15 +85,23 @@ hls::StageCycles rtl_run(const std::vector<hls::EventWord>& words, const hls::Co
   return sim::stage_cycles(core.state_cycles());
 }
 
-// The method counted: the options' (by default the RTL's, --preset gaussian) with the build's sizes.
-Params method_of(const CyclesOptions& o, SensorSize sensor) { return backend::fit_core_build("rtl", o.build, o.method.resolve(sensor), o.method); }
+// The method counted: the options' over the build's reset method (backend::build_default_preset:
+// --preset evms on the Arty build, --preset gaussian on the others) unless --preset says another,
+// with the build's sizes.
+template <class S>
+Method method_of(const CyclesOptions& o) {
+  Method method = o.method;
+  if (!o.preset_chosen) method.preset = backend::build_default_preset<S>();
+  return method;
+}
 
 template <class V, class S>
 void cycles(const CyclesOptions& o) {
   SensorSize sensor;
   const std::vector<Event> events = read_events(o, sensor);
   // The cycle model is the RTL's: it counts the method the RTL implements.
-  const Params params = method_of(o, sensor);
+  const Method method = method_of<S>(o);
+  const Params params = backend::fit_core_build("rtl", o.build, method.resolve(sensor), method);
   if (std::string unsupported = backend::rtl_unsupported(params, o.build); !unsupported.empty()) {
     throw std::invalid_argument(unsupported + "; the cycle model counts the RTL's method");
   }
@@ -128,7 +137,7 @@ void cycles(const CyclesOptions& o) {
   const auto model = model_run<S>(words, cfg);
   const double n_events = static_cast<double>(model.events());
   std::printf("build %s (P = %d, multiplier latency %d), %s, packets of %d, %d clusters, %d tracks\n", o.build.c_str(), S::kLanes,
-              hls::multiplier_latency(S::kMulDigitBits), o.method.describe().c_str(), params.packet_size, params.max_clusters,
+              hls::multiplier_latency(S::kMulDigitBits), method.describe().c_str(), params.packet_size, params.max_clusters,
               params.max_tracks);
   std::printf("%s events, %s kept, %s packets, %.2f %s a packet\n", grouped(model.events()).c_str(), grouped(model.kept()).c_str(),
               grouped(model.packets()).c_str(), model.mean_sweeps(), seeded ? "climb steps" : "sweeps");
@@ -177,10 +186,11 @@ void register_cycles(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::IsMember(std::vector<int>(std::begin(hls::kModelLaneCounts), std::end(hls::kModelLaneCounts))));
   o->source_options.window.limit = 1000000;  // the cycle model holds every event it measures
-  o->method.preset = "gaussian";              // the method the RTL implements
+  o->method.preset = "gaussian";              // the method the RTL implements (the build's, unless --preset)
   add_source_options(*cmd, o->source_options);
   add_method_options(*cmd, o->method);
-  cmd->callback([o] {
+  cmd->callback([o, cmd] {
+    o->preset_chosen = cmd->get_option("--preset")->count() > 0 || o->method.preset != "gaussian";
 #define EVMS_CYCLES_OF_BUILD(name, fixed, rtl, width, height, description) \
   if (o->build == #name) return cycles<Vcore_##name, hls::rtl>(*o);
     EVMS_CORE_BUILDS(EVMS_CYCLES_OF_BUILD)

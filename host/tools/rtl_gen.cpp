@@ -111,12 +111,14 @@ struct BuildFiles {
   std::string exp_file, recip_file;
   int width, height;
   std::string description;
+  std::string preset;  // the method the reset registers hold
 };
 
 template <class S>
 BuildFiles build_files(const char* name, int width, int height, const char* description) {
   const hls::Config c = backend::core_config<S>(backend::build_default_params<S>(), {width, height});
-  return {name, shape_values<S>(), rtl_register_values(c), exp_table_file<S>(), recip_table_file<S>(), width, height, description};
+  return {name,   shape_values<S>(), rtl_register_values(c), exp_table_file<S>(), recip_table_file<S>(), width, height, description,
+          backend::build_default_preset<S>()};
 }
 
 void write(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
@@ -204,7 +206,7 @@ void write_build(const std::string& dir, const BuildFiles& b) {
   for (size_t i = 0; i < shape.size(); ++i) o << "localparam int " << shape[i] << " = " << b.shape[i] << ";\n";
   o << "localparam ExpTableFile = \"" << b.exp_file << "\";\n";
   o << "localparam RecipTableFile = \"" << b.recip_file << "\";\n";
-  o << "// Reset registers: the method of --preset gaussian, within this build's limits, for a " << b.width << "x" << b.height
+  o << "// Reset registers: the method of --preset " << b.preset << ", within this build's limits, for a " << b.width << "x" << b.height
     << " sensor.\n";
   for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
     const Register& r = kRtlRegisters[i];
@@ -233,8 +235,10 @@ void write_docs(const std::string& path, const std::vector<BuildFiles>& builds) 
     << "One description in hls/core/ makes every copy of the core's interface: the C++ `Config`, the RTL's ports and "
        "parameters, the board tops' values, the testbenches' port assignments and this page (host/tools/rtl_gen). "
        "Formats (fraction bits and units) are those of hls/core/shape.h.\n\n## Builds\n\n";
-  d << "| build | reset registers for | what it is |\n|---|---|---|\n";
-  for (const BuildFiles& b : builds) d << "| " << b.name << " | " << b.width << "x" << b.height << " | " << b.description << " |\n";
+  d << "| build | reset registers for | reset method | what it is |\n|---|---|---|---|\n";
+  for (const BuildFiles& b : builds) {
+    d << "| " << b.name << " | " << b.width << "x" << b.height << " | `--preset " << b.preset << "` | " << b.description << " |\n";
+  }
   d << "\n## Shape parameters (hls/core/shape.h)\n\n| parameter |";
   for (const BuildFiles& b : builds) d << " " << b.name << " |";
   d << "\n|---|";
@@ -249,7 +253,7 @@ void write_docs(const std::string& path, const std::vector<BuildFiles>& builds) 
   d << "\n## Registers (hls/core/registers.h)\n\n"
        "The RTL column says whether rtl/core/evms_core.sv has the register as a `cfg_` port; the others are the C++ core's "
        "only, and the rtl and board backends refuse a setting that needs them. Reset values are the build's registers for "
-       "the method of `--preset gaussian` on its sensor.\n\n| register | bits | RTL |";
+       "its reset method (the builds' table) on its sensor.\n\n| register | bits | RTL |";
   for (const BuildFiles& b : builds) d << " " << b.name << " |";
   d << " description |\n|---|---|---|";
   for (size_t k = 0; k < builds.size(); ++k) d << "---|";

@@ -144,7 +144,6 @@ module evms_core #(
   logic [15:0] ms_load_i, ms_rd_i;
   logic [FeatBits-1:0] ms_lx, ms_ly, ms_lp, ms_lt;
   logic [7:0] ms_sweeps;
-  logic [ModeBits-1:0] ms_rx, ms_ry, ms_rp, ms_rt;
   logic ms_recip_start;
   logic [63:0] ms_recip_x;
   logic mg_start, mg_done, mg_co_we;
@@ -152,6 +151,7 @@ module evms_core #(
   logic signed [7:0] mg_co_value;
   logic [7:0] mg_clusters;
   if (HasGaussianPath != 0) begin : g_gaussian
+    logic [ModeBits-1:0] ms_rx, ms_ry, ms_rp, ms_rt;   // a mode, read by the merging
     evms_mean_shift #(
       .PacketMax(PacketMax), .Lanes(Lanes), .IterationsMax(IterationsMax), .FeatBits(FeatBits), .FeatFrac(FeatFrac),
       .WeightFrac(WeightFrac), .SumFrac(SumFrac), .ExpTableLog2(ExpTableLog2), .ExpInterpBits(ExpInterpBits),
@@ -167,7 +167,7 @@ module evms_core #(
       .rd_y(ms_ry), .rd_p(ms_rp), .rd_t(ms_rt), .co_we(mg_co_we), .co_i(mg_co_i), .co_value(mg_co_value),
       .co_rdata(co_rdata), .done(mg_done), .clusters(mg_clusters));
   end else begin : g_no_gaussian
-    assign {ms_done, ms_sweeps, ms_rx, ms_ry, ms_rp, ms_rt, ms_recip_start, ms_recip_x} = '0;
+    assign {ms_done, ms_sweeps, ms_recip_start, ms_recip_x} = '0;
     assign {mg_done, mg_co_we, mg_rd_i, mg_co_i, mg_co_value, mg_clusters} = '0;
     // What only the Gaussian path reads (waived in core/evms_core.vlt).
     logic unused_gaussian_path;
@@ -243,10 +243,10 @@ module evms_core #(
                                   ws_warm_ball2};
   end
 
-  // The path a packet takes (the host refuses a cfg_seeded the build cannot follow), and its
-  // clusters.
+  // The path a packet takes, and its clusters. A build with one path takes it whatever
+  // cfg_seeded says (the host refuses a cfg_seeded the build cannot follow).
   logic seeded;
-  assign seeded = HasSeededPath != 0 && cfg_seeded;
+  assign seeded = HasSeededPath != 0 && (cfg_seeded || HasGaussianPath == 0);
   logic [7:0] clusters;
   assign clusters = seeded ? ws_clusters : mg_clusters;
 

@@ -118,9 +118,12 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("the RTL core does not implement --coast-packets 3 (add --coast-packets 0)"), std::string::npos) << r.err;
-  const auto arty = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --quiet");
+  const auto arty = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --preset gaussian --quiet");
   EXPECT_EQ(arty.exit_code, 1);
-  EXPECT_NE(arty.err.find("the RTL build 'arty' clusters by the Gaussian mean shift only"), std::string::npos) << arty.err;
+  EXPECT_NE(arty.err.find("the RTL build 'arty' clusters by seeded climbs only, not --seeding every"), std::string::npos) << arty.err;
+  const auto ice40 = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core ice40 --quiet");
+  EXPECT_EQ(ice40.exit_code, 1);
+  EXPECT_NE(ice40.err.find("the RTL build 'ice40' clusters by the Gaussian mean shift only"), std::string::npos) << ice40.err;
   const auto fixed = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --kernel epanechnikov --quiet");
   EXPECT_EQ(fixed.exit_code, 1);
   EXPECT_NE(fixed.err.find("flat kernel only"), std::string::npos) << fixed.err;
