@@ -236,6 +236,11 @@ module evms_mode_links #(
     bank_wd = marked_word;
     bank_ra[0] = word_addr(ev_y, {1'b0, ev_x >> SlotIndexBits});
     bank_ra[1] = bank_ra[0];
+    // A row of the window: read in StRowRead, and held while the row's searches and joins run.
+    if (state_q == StRowRead || state_q == StRowJoin || state_q == StRowApply) begin
+      bank_ra[win_word[0]] = word_addr(row_y, win_word);
+      bank_ra[!win_word[0]] = word_addr(row_y, win_word + 17'sd1);
+    end
     list_we = 1'b0;
     list_wa = ListIndexBits'(listed_q);
     list_wd = {y_q, x_q};
@@ -292,8 +297,6 @@ module evms_mode_links #(
         state_d = StRowRead;
       end
       StRowRead: begin
-        bank_ra[win_word[0]] = word_addr(row_y, win_word);
-        bank_ra[!win_word[0]] = word_addr(row_y, win_word + 17'sd1);
         if (row_exists) begin
           state_d = StRowJoin;
         end else begin
@@ -302,9 +305,6 @@ module evms_mode_links #(
         end
       end
       StRowJoin: begin
-        // The read address must stay while the row's joins run.
-        bank_ra[win_word[0]] = word_addr(row_y, win_word);
-        bank_ra[!win_word[0]] = word_addr(row_y, win_word + 17'sd1);
         mode_d = own_mode;
         if (outside_found) begin
           outside_d = outside_mode;
@@ -315,8 +315,6 @@ module evms_mode_links #(
         end
       end
       StRowApply: begin
-        bank_ra[win_word[0]] = word_addr(row_y, win_word);
-        bank_ra[!win_word[0]] = word_addr(row_y, win_word + 17'sd1);
         join_en = 1'b1;
         join_a = mode_q;
         state_d = StRowJoin;
