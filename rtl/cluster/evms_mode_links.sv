@@ -10,18 +10,21 @@
 //   map    the packet's pixels: a valid bit and the mode last written, PixelsPerWord pixels a
 //          word, even words in one memory and odd words in another, so that any run of
 //          2 LinkMax + 1 pixels of a row is two words read in one clock;
-//   write  each event with a mode reads its pixel's word; a marked pixel joins the two modes;
-//          the pixel takes the event's mode, and a pixel marked now goes on the list;
-//   scan   each listed pixel reads the rows y0 .. y0 + LinkMax (within the sensor and the link
-//          distance) and joins its set with every marked pixel within reach ahead of it (the
+//   write  each event with a mode reads its pixel's word; a marked pixel joins the two modes
+//          (the clock after, while the next event is read); the pixel takes the event's mode,
+//          and a pixel marked now goes on the list with the event's mode;
+//   scan   each listed pixel (its set: the members of its listed mode's set, registered) reads
+//          the rows y0 .. y0 + LinkMax (within the sensor and the link distance), registers the
+//          row's window, and joins its set with every marked pixel within reach ahead of it (the
 //          rows below, and to its right in its own row), one join every two clocks (find the
-//          first pixel outside the set and register its mode; join), until none of them lies
-//          outside its set;
+//          first pixel outside the set and register its mode; join, widening the set), until
+//          none of them lies outside its set;
 //   clear  each listed pixel's word is written zero, so the map is clear for the next packet
 //          (after reset, every word is: BankDepth clocks before ready).
 //
-// Schedule: 1 to start; 2 clocks an event (read its word; join and mark); per listed pixel 2
-// to read it and 2 per row of its window, plus two clocks per join; 1 a listed pixel to clear.
+// Schedule: 1 to start; 2 clocks an event (read its word; mark); per listed pixel 2
+// to read it, 1 to read its first row and 2 per row of its window (register the window; search
+// it while the next row is read), plus two clocks per join; 1 a listed pixel to clear.
 // The packet's events (x, y, the first mode from evms_seeded_climbs) are read through ev_j, with
 // the registered read of a block RAM: ev_x, ev_y and ev_mode belong to the ev_j of the clock before.
 `include "evms_assert.svh"
@@ -71,16 +74,17 @@ module evms_mode_links #(
   `EVMS_ASSERT_INIT("the map's words must be counted by the 16-bit event counter", BankDepth <= 65536)
 
   typedef enum logic [3:0] {
-    StReset, StIdle, StWriteAddr, StWriteData, StWriteMark, StScanRead, StScanLoad, StRowRead, StRowJoin, StRowApply, StClear,
-    StDone
+    StReset, StIdle, StWriteAddr, StWriteData, StWriteMark, StScanRead, StScanLoad, StRowRead, StRowLoad, StRowJoin,
+    StRowApply, StClear, StDone
   } state_e;
   state_e state_q, state_d;
 
   // ---- roots: one join a clock ------------------------------------------------------------------
   logic [ModeBits-1:0] root_q [ModesMax];
   logic                join_en;
-  // The roots have three read ports: join_a's (also the listed pixel's set, in_own_set),
-  // join_b's, and rd_c's (its own, so that what reads rd_root is not timed through the joins).
+  // The roots have read ports for the joined modes (join_a is always mode_q: the event's mode in
+  // the write step, the listed pixel's in the scan) and rd_c's (its own, so that what reads
+  // rd_root is not timed through the joins).
   logic [ModeBits-1:0] join_a, join_b, root_a, root_b, join_lo, join_hi;
   assign root_a = root_q[join_a];
   assign root_b = root_q[join_b];
@@ -115,18 +119,28 @@ module evms_mode_links #(
   // ---- the list of pixels this packet marked ---------------------------------------------------
   logic                     list_we;
   logic [ListIndexBits-1:0] list_wa, list_ra;
-  logic [31:0]              list_wd, list_rd;    // {y, x}
-  evms_ram_1w1r #(.Width(32), .Depth(PacketMax)) u_list (
+  // {mode, y, x}: the mode that marked the pixel. Every later mode written there joined its set,
+  // so it stands for the pixel's set in the scan.
+  localparam int ListBits = ModeBits + 32;
+  logic [ListBits-1:0]      list_wd, list_rd;
+  evms_ram_1w1r #(.Width(ListBits), .Depth(PacketMax)) u_list (
     .clk(clk), .we(list_we), .wa(list_wa), .wd(list_wd), .ra(list_ra), .rd(list_rd));
 
   // ---- registers ----------------------------------------------------------------------------------
   logic [15:0]              j_q, j_d;             // the event being written
   logic [15:0]              x_q, x_d, y_q, y_d;   // its pixel, or the listed pixel being scanned
   logic [ModeBits-1:0]      mode_q, mode_d;       // its mode, or the listed pixel's mode
+  // The modes in the listed pixel's set: set when its scan starts, widened by each join, so
+  // that the search reads registers, not the roots.
+  logic [ModesMax-1:0]      own_set_q, own_set_d;
   logic [ListCountBits-1:0] listed_q, listed_d;
   logic [ListCountBits-1:0] k_q, k_d;             // the listed pixel being scanned or cleared
   logic [DyBits-1:0]        dy_q, dy_d;
+  // The scan's window row, registered from the map's read so that the map's block RAM and the
+  // window's shift are a clock's logic and the search over the set another.
+  logic [Window*SlotBits-1:0] window_q, window_d;
   logic                     clearing_q, clearing_d;   // list_rd holds a pixel to clear
+  logic                     join_pending_q, join_pending_d;   // the write step joins mode_q and outside_q
   // The mode of the pixel a row's search found outside the listed pixel's set, joined the next
   // clock: the search (the window, the set's members, the first outside) and the join (the
   // roots' rewrite) are each a clock's logic, not one path through both.
@@ -168,6 +182,9 @@ module evms_mode_links #(
   logic [SlotIndexBits-1:0] win_offset;
   logic [2*WordBits-1:0] seg;
   logic [Window*SlotBits-1:0] window;
+  // The row read: dy in StRowRead, the next row (dy + 1) while dy's is searched in StRowJoin, so
+  // that a row with nothing outside the set goes straight to registering the next one.
+  logic [DyBits-1:0] row_dy;
   logic [15:0] row_y;
   logic row_exists;
   assign win_start = $signed(17'(x_q)) - 17'(LinkMax);
@@ -175,19 +192,16 @@ module evms_mode_links #(
   assign win_offset = win_start[SlotIndexBits-1:0];
   assign seg = win_word[0] ? {bank_rd[0], bank_rd[1]} : {bank_rd[1], bank_rd[0]};
   assign window = (Window*SlotBits)'(seg >> (32'(win_offset) * SlotBits));
-  assign row_y = y_q + 16'(dy_q);
-  assign row_exists = 32'(dy_q) <= LinkMax && half_width[dy_q] >= 0 && row_y < cfg_sensor_height;
+  assign row_dy = state_q == StRowJoin ? dy_q + 1'b1 : dy_q;
+  assign row_y = y_q + 16'(row_dy);
+  assign row_exists = 32'(row_dy) <= LinkMax && half_width[row_dy] >= 0 && row_y < cfg_sensor_height;
 
-  // The listed pixel's own mode is in row 0's data; later rows use the one kept then.
-  logic [ModeBits-1:0] own_mode;
-  logic [ModeBits-1:0] own_slot;   // marked: the pixel is listed
-  assign own_slot = window[LinkMax * SlotBits +: ModeBits];
-  assign own_mode = dy_q == 0 ? own_slot : mode_q;
-
-  // Which modes share the listed pixel's set; the first pixel of the row in reach whose mode does
-  // not.
-  logic [ModesMax-1:0] in_own_set;
-  always_comb for (int c = 0; c < ModesMax; c++) in_own_set[c] = root_q[c] == root_a;
+  // The modes whose root is root_a's, and root_b's.
+  logic [ModesMax-1:0] set_of_a, set_of_b;
+  always_comb for (int c = 0; c < ModesMax; c++) begin
+    set_of_a[c] = root_q[c] == root_a;
+    set_of_b[c] = root_q[c] == root_b;
+  end
   // The window positions i (dx = i - LinkMax) in reach: within the row's half width, within the
   // sensor (room_left, room_right: the pixels beside x0 up to LinkMax), and ahead of x0 in its own
   // row.
@@ -207,8 +221,8 @@ module evms_mode_links #(
     outside_mode = '0;
     for (int i = Window - 1; i >= 0; i--) begin
       logic [SlotBits-1:0] slot;
-      slot = window[i * SlotBits +: SlotBits];
-      if (slot[ModeBits] && !in_own_set[slot[ModeBits-1:0]] && WindowBits'(i) >= reach_lo && WindowBits'(i) <= reach_hi) begin
+      slot = window_q[i * SlotBits +: SlotBits];
+      if (slot[ModeBits] && !own_set_q[slot[ModeBits-1:0]] && WindowBits'(i) >= reach_lo && WindowBits'(i) <= reach_hi) begin
         outside_found = 1'b1;
         outside_mode = slot[ModeBits-1:0];
       end
@@ -226,24 +240,27 @@ module evms_mode_links #(
     k_d = k_q;
     dy_d = dy_q;
     clearing_d = 1'b0;
+    join_pending_d = 1'b0;
     join_en = 1'b0;
-    join_a = own_mode;
+    join_a = mode_q;
     join_b = outside_q;
     outside_d = outside_q;
+    window_d = window_q;
+    own_set_d = own_set_q;
     bank_we[0] = 1'b0;
     bank_we[1] = 1'b0;
     bank_wa = word_addr(y_q, ev_word);
     bank_wd = marked_word;
     bank_ra[0] = word_addr(ev_y, {1'b0, ev_x >> SlotIndexBits});
     bank_ra[1] = bank_ra[0];
-    // A row of the window: read in StRowRead, and held while the row's searches and joins run.
-    if (state_q == StRowRead || state_q == StRowJoin || state_q == StRowApply) begin
+    // A row of the window: read in StRowRead or StRowJoin (row_dy), registered in StRowLoad.
+    if (state_q == StRowRead || state_q == StRowJoin) begin
       bank_ra[win_word[0]] = word_addr(row_y, win_word);
       bank_ra[!win_word[0]] = word_addr(row_y, win_word + 17'sd1);
     end
     list_we = 1'b0;
     list_wa = ListIndexBits'(listed_q);
-    list_wd = {y_q, x_q};
+    list_wd = {mode_q, y_q, x_q};
     list_ra = ListIndexBits'(k_q);
     done = 1'b0;
     case (state_q)
@@ -263,8 +280,10 @@ module evms_mode_links #(
         state_d = cfg_link2 == 0 ? StDone : StWriteAddr;
       end
       StWriteAddr: state_d = StWriteData;
-      // Event j's pixel and mode are here: read its word, or pass an event without a mode.
+      // Event j's pixel and mode are here: read its word, or pass an event without a mode. The
+      // join the event before found (mode_q, outside_q) is made now.
       StWriteData: begin
+        join_en = join_pending_q;
         if (j_q == n) begin
           k_d = '0;
           state_d = StScanRead;
@@ -276,13 +295,13 @@ module evms_mode_links #(
           state_d = ev_mode < 0 ? StWriteAddr : StWriteMark;
         end
       end
-      // Its word is here (and event j + 1's pixel is being read): join a marked pixel's mode,
-      // list an unmarked pixel, and write the event's mode there.
+      // Its word is here (and event j + 1's pixel is being read): a marked pixel's mode is joined
+      // the next clock (the map's read and the roots' rewrite are not one path), an unmarked
+      // pixel is listed, and the event's mode is written there.
       StWriteMark: begin
         if (mark_slot[ModeBits]) begin
-          join_en = 1'b1;
-          join_a = mode_q;
-          join_b = mark_slot[ModeBits-1:0];
+          join_pending_d = 1'b1;
+          outside_d = mark_slot[ModeBits-1:0];
         end else begin
           list_we = 1'b1;
           listed_d = listed_q + 1'b1;
@@ -292,31 +311,38 @@ module evms_mode_links #(
       end
       StScanRead: state_d = k_q == listed_q ? StClear : StScanLoad;
       StScanLoad: begin
-        {y_d, x_d} = list_rd;
+        {mode_d, y_d, x_d} = list_rd;
         dy_d = '0;
         state_d = StRowRead;
       end
       StRowRead: begin
+        own_set_d = set_of_a;
         if (row_exists) begin
-          state_d = StRowJoin;
+          state_d = StRowLoad;
         end else begin
           k_d = k_q + 1'b1;
           state_d = StScanRead;
         end
       end
+      StRowLoad: begin
+        window_d = window;
+        state_d = StRowJoin;
+      end
       StRowJoin: begin
-        mode_d = own_mode;
         if (outside_found) begin
           outside_d = outside_mode;
           state_d = StRowApply;
-        end else begin
+        end else if (row_exists) begin   // the next row, read this clock
           dy_d = dy_q + 1'b1;
-          state_d = StRowRead;
+          state_d = StRowLoad;
+        end else begin
+          k_d = k_q + 1'b1;
+          state_d = StScanRead;
         end
       end
       StRowApply: begin
         join_en = 1'b1;
-        join_a = mode_q;
+        own_set_d = own_set_q | set_of_b;
         state_d = StRowJoin;
       end
       // One listed pixel a clock: list_rd holds the one read the clock before.
@@ -359,7 +385,10 @@ module evms_mode_links #(
       k_q <= '0;
       dy_q <= '0;
       clearing_q <= 1'b0;
+      join_pending_q <= 1'b0;
       outside_q <= '0;
+      window_q <= '0;
+      own_set_q <= '0;
     end else begin
       state_q <= state_d;
       j_q <= j_d;
@@ -370,7 +399,10 @@ module evms_mode_links #(
       k_q <= k_d;
       dy_q <= dy_d;
       clearing_q <= clearing_d;
+      join_pending_q <= join_pending_d;
       outside_q <= outside_d;
+      window_q <= window_d;
+      own_set_q <= own_set_d;
     end
   end
 endmodule
