@@ -8,13 +8,16 @@
 // the nearest mode within the merge radius or opens one; the events it reached that have no
 // mode yet take it.
 //
-// Schedule (cycles in hls/core/schedule.h's seeded model):
+// Schedule:
 //   sort    Cells + 1 clearing the cell counts, 3 a event counting, Cells + 2 for the prefix
 //           sums, 3 a event placing;
 //   climbs  per step: 3 per row of cells, then one event a clock through a 3-stage pipeline
-//           (read; squared distance; accumulate), 2 to drain, and when the ball held events a
-//           divide of SumBits + 2 clocks (x and y at once);
-//           per climb: 2 per open mode to join, 1 to decide, touched events + 2 to label.
+//           (read; difference to the climb; square, test and accumulate), 2 to drain, and when
+//           the ball held events a divide of SumBits + 2 clocks (x and y at once);
+//           per climb: one open mode a clock through the same pipeline, 2 to drain, 1 to
+//           decide, touched events + 2 to label.
+// The kernel's events and the join's modes share the pipeline's difference register and its
+// squares: a memory's read, the subtraction and the squares are not one clock's path.
 // Memories have one write port and a registered read port (common/evms_ram_1w1r). The per-event
 // flags (reached, in the current climb, labelled) are one-bit memories with one address each and
 // a combinational read (distributed RAM on a Xilinx part, not 256 registers with a decoder and a
@@ -83,7 +86,7 @@ module evms_seeded_climbs #(
   typedef enum logic [4:0] {
     StIdle, StClear, StCountRead, StCountCell, StCountWrite, StPrefix, StPlaceRead, StPlaceNext, StPlaceWrite,
     StSeedWarm, StSeedWarmLoad, StSeedEvent, StSeedEventLoad, StClimbStart, StStepInit, StRowLow, StRowHigh,
-    StRowRange, StKernel, StStepEnd, StDivide, StJoinRead, StJoinCompare, StJoinDecide, StLabel, StDone
+    StRowRange, StKernel, StStepEnd, StDivide, StJoinScan, StJoinDecide, StLabel, StDone
   } state_e;
   state_e state_q;
 
@@ -109,12 +112,15 @@ module evms_seeded_climbs #(
   logic [7:0]           step_q;
   logic [AxisBits-1:0]  row_q, row_last_q, x0_q, x1_q;
   logic [CntBits-1:0]   k_q, k_end_q;        // the row's run of sorted events
-  logic                 s1_valid_q, s2_valid_q, s2_in_q;
-  logic [CoordBits-1:0] s2_x_q, s2_y_q;
+  // The distance pipeline: s1 a point read (an event in the kernel, a mode in the join), s2 its
+  // difference to the climb registered (diff_*_q, every clock).
+  logic                 s1_valid_q, s2_valid_q;
+  logic [CoordBits-1:0] s2_x_q, s2_y_q;      // the kernel's event at s2, and its index
   logic [IdxBits-1:0]   s2_j_q;
+  logic [ModeBits-1:0]  s1_c_q, s2_c_q;      // the join's mode at s1 and s2
   logic [SumBits-1:0]   sum_x_q, sum_y_q;
   logic [CntBits-1:0]   count_q, touched_q;
-  logic [ModeBits-1:0]  scan_c_q;
+  logic [ModeCntBits-1:0] scan_c_q;         // the join's next mode to read
   logic                 best_valid_q;
   logic [ModeBits-1:0]  best_q;
   logic [63:0]          best_d2_q;
@@ -126,7 +132,7 @@ module evms_seeded_climbs #(
 
   // Where a converged climb goes: the scan of the open modes, or straight to opening one.
   state_e join_state;
-  assign join_state = modes_q == '0 ? StJoinDecide : StJoinRead;
+  assign join_state = modes_q == '0 ? StJoinDecide : StJoinScan;
   wire [7:0] iteration_cap = cfg_max_iterations < 8'(IterationsMax) ? cfg_max_iterations : 8'(IterationsMax);
 
   // ---- memories (common/evms_ram_1w1r) ----------------------------------------------------
@@ -179,7 +185,7 @@ module evms_seeded_climbs #(
   // reached: set by the kernel, read by the event seeds.
   wire [IdxBits-1:0] reached_addr = flags_clearing ? clear_index : state_q == StKernel ? s2_j_q : j_index;
   wire               reached = reached_mem[reached_addr];
-  wire               reached_we = flags_clearing || (state_q == StKernel && s2_valid_q && s2_in_q);
+  wire               reached_we = flags_clearing || (state_q == StKernel && s2_valid_q && kernel_in);
   // in_climb: set by the kernel, cleared by the labelling.
   wire [IdxBits-1:0] in_climb_addr = flags_clearing ? clear_index : state_q == StLabel ? touched_rd_q : s2_j_q;
   wire               in_climb = in_climb_mem[in_climb_addr];
@@ -188,7 +194,7 @@ module evms_seeded_climbs #(
   wire               labelled = labelled_mem[labelled_addr];
 
   // The current climb's events, in the order it reached them.
-  wire touched_we = s2_valid_q && s2_in_q && !in_climb;
+  wire touched_we = state_q == StKernel && s2_valid_q && kernel_in && !in_climb;
   evms_ram_1w1r #(.Width(IdxBits), .Depth(PacketMax)) u_touched (
     .clk, .we(touched_we), .wa(IdxBits'(touched_q)), .wd(s2_j_q), .ra(IdxBits'(t_q)), .rd(touched_rd_q));
 
@@ -252,18 +258,25 @@ module evms_seeded_climbs #(
       magnitude = DistBits'(d);
     end
   endfunction
-  logic kernel_far_x, kernel_far_y, join_far_x, join_far_y;
-  logic [DistBits-1:0] kernel_dx, kernel_dy, join_dx, join_dy;
+  // The point at s1: the kernel's event, or the join's mode.
+  wire [CoordBits-1:0] point_x = state_q == StKernel ? sorted_x_q : mode_x_q;
+  wire [CoordBits-1:0] point_y = state_q == StKernel ? sorted_y_q : mode_y_q;
+  logic far_x, far_y;
+  logic [DistBits-1:0] diff_x, diff_y;
   always_comb begin
-    kernel_dx = magnitude(mx_q, sorted_x_q, kernel_far_x);
-    kernel_dy = magnitude(my_q, sorted_y_q, kernel_far_y);
-    join_dx = magnitude(mx_q, mode_x_q, join_far_x);
-    join_dy = magnitude(my_q, mode_y_q, join_far_y);
+    diff_x = magnitude(mx_q, point_x, far_x);
+    diff_y = magnitude(my_q, point_y, far_y);
   end
-  wire [63:0] kernel_d2 = 64'(kernel_dx) * 64'(kernel_dx) + 64'(kernel_dy) * 64'(kernel_dy);
-  wire [63:0] join_d2 = 64'(join_dx) * 64'(join_dx) + 64'(join_dy) * 64'(join_dy);
-  wire kernel_in = !kernel_far_x && !kernel_far_y && kernel_d2 < ball2_q;
-  wire join_near = !join_far_x && !join_far_y && join_d2 <= cfg_merge_radius2;
+  logic [DistBits-1:0] diff_x_q, diff_y_q;
+  logic                diff_far_q;
+  always_ff @(posedge clk) begin
+    diff_x_q <= diff_x;
+    diff_y_q <= diff_y;
+    diff_far_q <= far_x || far_y;
+  end
+  wire [63:0] dist2 = 64'(diff_x_q) * 64'(diff_x_q) + 64'(diff_y_q) * 64'(diff_y_q);
+  wire kernel_in = !diff_far_q && dist2 < ball2_q;
+  wire join_near = !diff_far_q && dist2 <= cfg_merge_radius2;
 
   // The climb's cell and the rows and columns of cells its ball reaches, clamped to the grid.
   wire signed [AxisBits:0] climb_cx = $signed({1'b0, cell_of(mx_q)});
@@ -292,7 +305,7 @@ module evms_seeded_climbs #(
     cell_we = 1'b0;
     cell_wd = count_cell;
     sorted_we = 1'b0;
-    mode_ra = state_q == StJoinRead ? scan_c_q : ModeBits'(rd_c);
+    mode_ra = state_q == StJoinScan ? ModeBits'(scan_c_q) : ModeBits'(rd_c);
     unique case (state_q)
       StClear: begin
         start_we = 1'b1;
@@ -335,7 +348,7 @@ module evms_seeded_climbs #(
       done <= 1'b0;
       {j_q, c_q, pc_q, pv_q, acc_q, seed_k_q, seeding_warm_q} <= '0;
       {mx_q, my_q, ball2_q, reach_q, step_q, row_q, row_last_q, x0_q, x1_q, k_q, k_end_q} <= '0;
-      {s1_valid_q, s2_valid_q, s2_in_q, s2_x_q, s2_y_q, s2_j_q} <= '0;
+      {s1_valid_q, s2_valid_q, s2_x_q, s2_y_q, s2_j_q, s1_c_q, s2_c_q} <= '0;
       {sum_x_q, sum_y_q, count_q, touched_q, scan_c_q, best_valid_q, best_q, best_d2_q} <= '0;
       {modes_q, t_q, lv_q, climbs_q, steps_q, lost_q} <= '0;
       mode_q <= '0;
@@ -438,6 +451,8 @@ module evms_seeded_climbs #(
           state_q <= iteration_cap == '0 ? join_state : StStepInit;
           scan_c_q <= '0;
           best_valid_q <= 1'b0;
+          s1_valid_q <= 1'b0;
+          s2_valid_q <= 1'b0;
         end
         StStepInit: begin
           row_q <= climb_cy - climb_r < 0 ? '0 : AxisBits'(climb_cy - climb_r);
@@ -461,15 +476,14 @@ module evms_seeded_climbs #(
           state_q <= StKernel;
         end
         StKernel: begin
-          // Issue (the memories read k), test (squared distance), accumulate.
+          // Issue (the memories read k), the difference, then its test and the sums.
           s1_valid_q <= k_q < k_end_q;
           if (k_q < k_end_q) k_q <= k_q + 1'b1;
           s2_valid_q <= s1_valid_q;
-          s2_in_q <= kernel_in;
           s2_x_q <= sorted_x_q;
           s2_y_q <= sorted_y_q;
           s2_j_q <= event_q;
-          if (s2_valid_q && s2_in_q) begin
+          if (s2_valid_q && kernel_in) begin
             sum_x_q <= sum_x_q + SumBits'(s2_x_q);
             sum_y_q <= sum_y_q + SumBits'(s2_y_q);
             count_q <= count_q + 1'b1;
@@ -500,16 +514,20 @@ module evms_seeded_climbs #(
             state_q <= StStepInit;
           end
         end
-        // Join the nearest mode within the merge radius (ties: the older), else open one.
-        StJoinRead: state_q <= StJoinCompare;
-        StJoinCompare: begin
-          if (join_near && (!best_valid_q || join_d2 < best_d2_q)) begin
+        // Join the nearest mode within the merge radius (ties: the older, read first), else open
+        // one: issue (the modes' memory reads scan_c), the difference, the test.
+        StJoinScan: begin
+          s1_valid_q <= scan_c_q < modes_q;
+          s1_c_q <= ModeBits'(scan_c_q);
+          if (scan_c_q < modes_q) scan_c_q <= scan_c_q + 1'b1;
+          s2_valid_q <= s1_valid_q;
+          s2_c_q <= s1_c_q;
+          if (s2_valid_q && join_near && (!best_valid_q || dist2 < best_d2_q)) begin
             best_valid_q <= 1'b1;
-            best_q <= scan_c_q;
-            best_d2_q <= join_d2;
+            best_q <= s2_c_q;
+            best_d2_q <= dist2;
           end
-          scan_c_q <= scan_c_q + 1'b1;
-          state_q <= ModeCntBits'(scan_c_q) + 1'b1 == modes_q ? StJoinDecide : StJoinRead;
+          if (scan_c_q == modes_q && !s1_valid_q && !s2_valid_q) state_q <= StJoinDecide;
         end
         StJoinDecide: begin
           if (best_valid_q) begin
