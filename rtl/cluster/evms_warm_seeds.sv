@@ -109,16 +109,24 @@ module evms_warm_seeds #(
   logic signed [Sum1Bits-1:0] sum1_x, sum1_y;
   logic [63:0]                sum2_x, sum2_y;
   assign {sum_count, sum1_x, sum1_y, sum2_x, sum2_y} = sums_rd;
-  logic signed [DevBits-1:0]  dev_x, dev_y;
+  // An event's deviation from its cluster's seed, registered before its squares: the seed is
+  // the mode the event took (md at ev_mode, read in StLabelMode), so the deviation is taken
+  // in StLabelCluster, while the cluster's sums are read, and the squares and sums in
+  // StLabelAdd are a clock of their own.
+  logic signed [DevBits-1:0]  dev_x, dev_y, dev_x_q, dev_y_q;
   logic [63:0]                dev2_x, dev2_y;
   // The C++ model rounds a negative mean to -round(|S1| / n), so |mean| = round(|S1| / n).
   logic [Sum1Bits-1:0]        abs_sum1_x, abs_sum1_y;
   assign abs_sum1_x = sum1_x < 0 ? $unsigned(-sum1_x) : $unsigned(sum1_x);
   assign abs_sum1_y = sum1_y < 0 ? $unsigned(-sum1_y) : $unsigned(sum1_y);
-  assign dev_x = $signed({1'b0, ev_x}) - $signed({1'b0, seed_rd[2*CoordBits-1:CoordBits]});
-  assign dev_y = $signed({1'b0, ev_y}) - $signed({1'b0, seed_rd[CoordBits-1:0]});
-  assign dev2_x = 64'(dev_x * dev_x);
-  assign dev2_y = 64'(dev_y * dev_y);
+  assign dev_x = $signed({1'b0, ev_x}) - $signed({1'b0, md_x});
+  assign dev_y = $signed({1'b0, ev_y}) - $signed({1'b0, md_y});
+  assign dev2_x = 64'(dev_x_q * dev_x_q);
+  assign dev2_y = 64'(dev_y_q * dev_y_q);
+  always_ff @(posedge clk) begin
+    dev_x_q <= dev_x;
+    dev_y_q <= dev_y;
+  end
 
   // ---- dividers: both axes at once ------------------------------------------------------------
   logic              div_start, div_done, div_y_done;
@@ -226,11 +234,10 @@ module evms_warm_seeds #(
           state_d = StLabelCluster;
         end
       end
-      // Its cluster is here: write it, and read the cluster's seed and sums.
+      // Its cluster is here: write it, and read the cluster's sums.
       StLabelCluster: begin
         co_we = 1'b1;
         co_value = renumber_rd;
-        seed_ra = ClusterBits'(renumber_rd);
         sums_ra = ClusterBits'(renumber_rd);
         j_d = j_q + 1'b1;
         state_d = renumber_rd < 0 ? StLabelAddr : StLabelAdd;
@@ -238,7 +245,7 @@ module evms_warm_seeds #(
       StLabelAdd: begin
         sums_we = 1'b1;
         sums_wa = ClusterBits'(renumber_rd);
-        sums_wd = {sum_count + 1'b1, sum1_x + Sum1Bits'(dev_x), sum1_y + Sum1Bits'(dev_y), sum2_x + dev2_x, sum2_y + dev2_y};
+        sums_wd = {sum_count + 1'b1, sum1_x + Sum1Bits'(dev_x_q), sum1_y + Sum1Bits'(dev_y_q), sum2_x + dev2_x, sum2_y + dev2_y};
         state_d = StLabelMode;      // event j + 1 was read this clock
       end
       // Cluster c's sums and seed are being read; they stay on the read ports while its two
@@ -276,7 +283,8 @@ module evms_warm_seeds #(
   end
 
   assign ev_j = j_q;
-  assign md_c = 8'(c_q);
+  // The modes are read by c (keeping them) and, while labelling, by the event's mode (its seed).
+  assign md_c = state_q == StLabelMode ? 8'(ev_mode) : 8'(c_q);
   assign co_j = j_q;
   assign warm_k = 8'(c_q);
   assign warm_x = seed_rd[2*CoordBits-1:CoordBits];
