@@ -59,6 +59,25 @@ TEST(BackendsAgree, ACoreBuildAppliesItsOwnSizes) {
   EXPECT_NE(cycles.out.find("packets of 64, 8 clusters, 8 tracks"), std::string::npos) << cycles.out;
 }
 
+// The Arty build runs the seeded path, which the cycle model does not count: evms cycles measures
+// it on the RTL without being asked (the same figures as with --rtl), and refuses only --table,
+// which sweeps the model.
+TEST(BackendsAgree, CyclesOfTheSeededArtyBuildAreMeasuredOnTheRtl) {
+  const std::string scene = " cycles \"gen://rotation?duration-s=0.1&seed=9\" --build arty";
+  const auto plain = run_command(evms_binary() + scene);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.out.find("measured on the RTL"), std::string::npos) << plain.out;
+  const auto asked = run_command(evms_binary() + scene + " --rtl");
+  ASSERT_EQ(asked.exit_code, 0) << asked.err;
+  EXPECT_EQ(plain.out, asked.out);
+  const size_t total = plain.out.find("\ntotal");
+  ASSERT_NE(total, std::string::npos) << plain.out;
+  EXPECT_GT(std::stod(plain.out.substr(total + 6)), 10.0) << plain.out;
+  const auto table = run_command(evms_binary() + scene + " --table");
+  EXPECT_NE(table.exit_code, 0);
+  EXPECT_NE(table.err.find("--table"), std::string::npos) << table.err;
+}
+
 TEST(BackendsAgree, ACoreBuildRefusesParametersBeyondItsLimits) {
   const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --core ice40 --preset gaussian --quiet");
   EXPECT_NE(r.exit_code, 0);
