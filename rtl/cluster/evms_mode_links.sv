@@ -79,25 +79,6 @@ module evms_mode_links #(
   } state_e;
   state_e state_q, state_d;
 
-  // ---- roots: one join a clock ------------------------------------------------------------------
-  logic [ModeBits-1:0] root_q [ModesMax];
-  logic                join_en;
-  // The roots have read ports for the joined modes (join_a is always mode_q: the event's mode in
-  // the write step, the listed pixel's in the scan) and rd_c's (its own, so that what reads
-  // rd_root is not timed through the joins).
-  logic [ModeBits-1:0] join_a, join_b, root_a, root_b, join_lo, join_hi;
-  assign root_a = root_q[join_a];
-  assign root_b = root_q[join_b];
-  assign join_lo = root_a < root_b ? root_a : root_b;
-  assign join_hi = root_a < root_b ? root_b : root_a;
-  always_ff @(posedge clk) begin
-    for (int c = 0; c < ModesMax; c++) begin
-      if (start) root_q[c] <= ModeBits'(c);
-      else if (join_en && root_q[c] == join_hi) root_q[c] <= join_lo;
-    end
-  end
-  assign rd_root = root_q[rd_c];
-
   // ---- the pixel map ----------------------------------------------------------------------------
   logic                    bank_we [2];
   logic [BankAddrBits-1:0] bank_wa, bank_ra [2];
@@ -145,6 +126,26 @@ module evms_mode_links #(
   // clock: the search (the window, the set's members, the first outside) and the join (the
   // roots' rewrite) are each a clock's logic, not one path through both.
   logic [ModeBits-1:0]      outside_q, outside_d;
+
+  // ---- roots: one join a clock ------------------------------------------------------------------
+  logic [ModeBits-1:0] root_q [ModesMax];
+  logic                join_en;
+  // The roots have read ports for the two modes a join joins, both registers: mode_q (the
+  // event's mode in the write step, the listed pixel's in the scan) and outside_q (the mode found
+  // outside its set), and rd_c's (its own, so that what reads rd_root is not timed through the
+  // joins).
+  logic [ModeBits-1:0] root_a, root_b, join_lo, join_hi;
+  assign root_a = root_q[mode_q];
+  assign root_b = root_q[outside_q];
+  assign join_lo = root_a < root_b ? root_a : root_b;
+  assign join_hi = root_a < root_b ? root_b : root_a;
+  always_ff @(posedge clk) begin
+    for (int c = 0; c < ModesMax; c++) begin
+      if (start) root_q[c] <= ModeBits'(c);
+      else if (join_en && root_q[c] == join_hi) root_q[c] <= join_lo;
+    end
+  end
+  assign rd_root = root_q[rd_c];
 
   // The largest dx <= LinkMax with dx^2 + dy^2 <= link2 along each row of the window (-1: none).
   // A link2 beyond 2 LinkMax^2 reaches the whole window, so the comparisons take it clamped.
@@ -242,8 +243,6 @@ module evms_mode_links #(
     clearing_d = 1'b0;
     join_pending_d = 1'b0;
     join_en = 1'b0;
-    join_a = mode_q;
-    join_b = outside_q;
     outside_d = outside_q;
     window_d = window_q;
     own_set_d = own_set_q;
