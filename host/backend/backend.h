@@ -29,6 +29,11 @@ struct BackendStats {
   std::int64_t link_bad_frames = 0;    // frames that failed their check: the host's and the board's counts
   std::int64_t link_events_resent = 0; // event frames sent again, when the board asked or fell silent
   std::int64_t link_labels_lost = 0;   // events labelled kLabelLostOnLink
+  // Tracks mode (BackendOptions::board_keeps_labels): the events whose labels stayed on the
+  // board, and how the board labelled them; packets whose tracks and summary were not sent.
+  std::int64_t labels_kept_on_board = 0;
+  std::int64_t board_labelled = 0, board_noise = 0;
+  std::int64_t link_packets_skipped = 0;
 };
 
 struct BackendOptions {
@@ -37,6 +42,7 @@ struct BackendOptions {
   std::string core = "host";           // core build of the fixed and rtl backends: host, arty or ice40
   std::string device;                  // serial device, for the board backend
   int baud = 3000000;                  // its line rate
+  bool board_keeps_labels = false;     // the board backend's tracks mode (docs/link.md)
 };
 
 // Options for a backend that needs only the method's parameters and the sensor.
@@ -50,8 +56,10 @@ inline BackendOptions options_for(const Params& params, SensorSize sensor) {
 // The core builds (hls/core/configs.h, EVMS_CORE_BUILDS) a backend can run: "host", "arty" or
 // "ice40". Throws std::invalid_argument naming them for anything else.
 void check_core_build(const std::string& core);
-// The build a board backend talks to (evms vboard's, and the iCEBreaker's bitstream).
+// The build a board backend talks to: --core arty or ice40; the iCEBreaker's (ice40) unless
+// --core names the Arty's.
 inline constexpr const char* kBoardCoreBuild = "ice40";
+inline std::string board_build(const std::string& core) { return core == "host" ? kBoardCoreBuild : core; }
 
 // `p` (resolved from `method`) within the packet size, cluster and track counts of the build
 // `core` of `backend` (fixed: the build's C++ Shape; rtl and board: its RTL Shape; golden: no

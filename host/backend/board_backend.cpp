@@ -17,11 +17,19 @@
 // status, was lost), the host sends the outstanding frames again; the board drops copies it
 // already has, so this never duplicates an event or a label.
 //
-// The board runs its build's register values: the iCE40 build's limits (128x128, packets of
-// 64, 8 clusters, 8 tracks) and the method's defaults. Parameters that differ are refused.
+// In tracks mode (BackendOptions::board_keeps_labels) the reset frame asks the board to keep
+// the labels: the core then never waits for the line. Progress frames, which count the link's
+// events the core took, stand in for the labels as acknowledgements; the track updates and
+// summaries of whole packets come when the line is free, and the packets the board skipped are
+// counted in the status. No event comes back labelled.
+//
+// A board runs its build's register values: the iCE40 build's limits (128x128, packets of 64,
+// 8 clusters, 8 tracks) and the Gaussian method on the iCEBreaker; the Arty build's (240x180)
+// and the default method on the Arty. Parameters that differ are refused.
 #include <cstdio>
 #include <deque>
 #include <stdexcept>
+#include <type_traits>
 
 #include "hls/core/configs.h"
 #include "host/backend/core_backend.h"
@@ -32,8 +40,6 @@
 namespace evms::backend {
 namespace {
 
-using S = hls::Ice40Shape;  // kBoardCoreBuild (host/backend/backend.h)
-constexpr size_t kLinkWindow = 512;  // LINK_FIFO_DEPTH of the iCEBreaker top
 constexpr int kResendMs = 500;       // silence while waiting: send what is outstanding again
 constexpr int kSilenceMs = 10000;    // no frame for this long while waiting: the board is gone
 
@@ -42,9 +48,16 @@ std::uint64_t unwrap(link::Sequence seq, std::uint64_t oldest) {
   return oldest + static_cast<link::Sequence>(seq - static_cast<link::Sequence>(oldest));
 }
 
+// The events the board's link queue holds: the host keeps at most this many unanswered.
+// LinkFifoDepth of rtl/board/evms_icebreaker_top.sv and evms_arty_top.sv (and sim/CMakeLists.txt).
+template <class S>
+constexpr size_t kLinkWindow = std::is_same_v<S, hls::ArtyShape> ? 2048 : 512;
+
+template <class S>
 class BoardBackend final : public Backend {
  public:
-  explicit BoardBackend(const BackendOptions& o) : port_(check(o), o.baud) {
+  BoardBackend(const BackendOptions& o, const char* build)
+      : port_(check(o, build), o.baud), mode_(o.board_keeps_labels ? link::LinkMode::kTracks : link::LinkMode::kLabels) {
     // Let what the board is still sending from before go by (up to 2 s of it).
     std::uint8_t old[4096];
     for (int i = 0; i < 100 && port_.read_some(old, 20) > 0; ++i) {
@@ -58,7 +71,7 @@ class BoardBackend final : public Backend {
   void push(std::span<const Event> events, OutputSink& out) override {
     std::vector<std::uint8_t> frames;
     for (const Event& e : events) {
-      while (unanswered_.size() >= kLinkWindow) {
+      while (unanswered_.size() >= kLinkWindow<S>) {
         port_.write_all(frames);
         frames.clear();
         receive(out, true);
@@ -80,8 +93,9 @@ class BoardBackend final : public Backend {
     flushing_ = true;
     send_flush();
     while (flushing_) receive(out, true);
-    // The board labelled every event before the status: labels still missing were lost.
-    while (!unanswered_.empty()) lose_oldest(out);
+    // The board labelled every event before the status: labels still missing were lost (in
+    // tracks mode, the core took every event, and their labels stayed on the board).
+    while (!unanswered_.empty()) mode_ == link::LinkMode::kTracks ? take_oldest() : lose_oldest(out);
   }
 
   BackendStats stats() const override {
@@ -92,18 +106,23 @@ class BoardBackend final : public Backend {
                         (status_.framing_errors - at_start_.framing_errors) + unbelieved_;
     s.link_events_resent = resent_;
     s.link_labels_lost = lost_;
+    if (mode_ == link::LinkMode::kTracks) {
+      s.labels_kept_on_board = s.events_in;
+      s.board_labelled = status_.labelled, s.board_noise = status_.noise;
+      s.link_packets_skipped = status_.packets_skipped;
+    }
     return s;
   }
 
  private:
-  static const std::string& check(const BackendOptions& o) {
+  static const std::string& check(const BackendOptions& o, const char* build) {
     if (o.device.empty()) throw std::invalid_argument("the board backend needs --device (e.g. /dev/ttyUSB1, or the path evms vboard prints)");
-    if (std::string unsupported = rtl_unsupported(o.params, kBoardCoreBuild); !unsupported.empty()) throw std::invalid_argument(unsupported);
+    if (std::string unsupported = rtl_unsupported(o.params, build); !unsupported.empty()) throw std::invalid_argument(unsupported);
     if (!(o.params == build_default_params<S>()) || !(o.sensor == SensorSize{S::kMaxWidth, S::kMaxHeight})) {
-      throw std::invalid_argument("the board runs its build's settings: a " + std::to_string(S::kMaxWidth) + "x" + std::to_string(S::kMaxHeight) +
-                                  " sensor, --packet-size " + std::to_string(S::kPacketMax) + " --max-clusters " +
-                                  std::to_string(S::kClustersMax) + " --max-tracks " + std::to_string(S::kTracksMax) +
-                                  " and --preset gaussian otherwise; run with exactly those");
+      throw std::invalid_argument(std::string("the ") + build + " board runs its build's settings: a " + std::to_string(S::kMaxWidth) + "x" +
+                                  std::to_string(S::kMaxHeight) + " sensor, --packet-size " + std::to_string(S::kPacketMax) +
+                                  " --max-clusters " + std::to_string(S::kClustersMax) + " --max-tracks " + std::to_string(S::kTracksMax) +
+                                  " and the method its registers hold (evms params --core " + build + "); run with exactly those");
     }
     return o.device;
   }
@@ -116,7 +135,7 @@ class BoardBackend final : public Backend {
 
   void send_reset() {
     std::vector<std::uint8_t> reset;
-    link::append_reset(reset);
+    link::append_reset(reset, mode_);
     port_.write_all(reset);
   }
   void send_flush() {
@@ -139,6 +158,12 @@ class BoardBackend final : public Backend {
   }
   static bool echoes(const hls::LabelWord& label, const hls::EventWord& event) {
     return label.t == event.t && label.x == event.x && label.y == event.y && label.p == event.p;
+  }
+  // Tracks mode: the oldest unanswered event, which the core took; its label stays on the board.
+  void take_oldest() {
+    mapper_.forget_oldest();
+    unanswered_.pop_front();
+    ++answered_;
   }
   void lose_oldest(OutputSink& out) {
     out.on_event(mapper_.lost());
@@ -174,6 +199,10 @@ class BoardBackend final : public Backend {
         if (!started_ && f.type != link::kStatus) continue;  // output of an earlier run, before the reset's status frame
         switch (f.type) {
           case link::kLabel: {
+            if (mode_ == link::LinkMode::kTracks) {  // not a frame of this run's mode: a corruption the check missed
+              ++unbelieved_;
+              break;
+            }
             const std::uint64_t number = unwrap(link::label_sequence(f), answered_);
             const hls::LabelWord label = link::decode_label(f);
             // A frame whose corruption the check missed (one in 2^16 corrupt frames) names no
@@ -191,6 +220,18 @@ class BoardBackend final : public Backend {
           case link::kResend: {
             const std::uint64_t from = unwrap(link::decode_resend(f), answered_);
             if (from <= answered_ + unanswered_.size()) resend_from(from);
+            break;
+          }
+          case link::kProgress: {
+            // The core took the link's events up to this count (numbers since the reset, modulo
+            // 2^32; a run's unanswered events are far fewer).
+            const link::Progress p = link::decode_progress(f);
+            const std::uint64_t taken = answered_ + static_cast<std::uint32_t>(p.taken - static_cast<std::uint32_t>(answered_));
+            if (mode_ != link::LinkMode::kTracks || taken > answered_ + unanswered_.size()) {
+              ++unbelieved_;
+              break;
+            }
+            while (answered_ < taken) take_oldest();
             break;
           }
           case link::kTrack: out.on_track(mapper_.track(link::decode_track(f))); break;
@@ -219,6 +260,7 @@ class BoardBackend final : public Backend {
   }
 
   link::SerialPort port_;
+  link::LinkMode mode_;
   link::FrameDecoder decoder_;
   CoreWordMapper<S> mapper_;
   CoreStats stats_;
@@ -233,6 +275,11 @@ class BoardBackend final : public Backend {
 
 }  // namespace
 
-std::unique_ptr<Backend> make_board_backend(const BackendOptions& o) { return std::make_unique<BoardBackend>(o); }
+std::unique_ptr<Backend> make_board_backend(const BackendOptions& o) {
+  const std::string build = board_build(o.core);
+  if (build == "arty") return std::make_unique<BoardBackend<hls::ArtyShape>>(o, "arty");
+  if (build == "ice40") return std::make_unique<BoardBackend<hls::Ice40Shape>>(o, "ice40");
+  throw std::invalid_argument("the board backend runs --core ice40 (the iCEBreaker) or arty (the Arty), not " + build);
+}
 
 }  // namespace evms::backend

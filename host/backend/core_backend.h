@@ -38,6 +38,8 @@ class CoreWordMapper {
     pending_.pop_front();
     return {e, kLabelLostOnLink};
   }
+  // The oldest event not yet labelled, whose label stays where it was made (a board in tracks mode).
+  void forget_oldest() { pending_.pop_front(); }
   TimeUs to_time(std::uint32_t core_t) const {
     const std::uint32_t latest = static_cast<std::uint32_t>(latest_ - base_);
     return latest_ - static_cast<std::int32_t>(latest - core_t);

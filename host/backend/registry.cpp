@@ -48,8 +48,7 @@ Params fit_core_build(const std::string& backend, const std::string& core, Param
   check_core_build(core);
   if (backend == "golden") return p;
   const bool fixed = backend == "fixed";
-  // A board runs the build it was synthesized from, whatever --core says.
-  const std::string build = backend == "board" ? kBoardCoreBuild : core;
+  const std::string build = backend == "board" ? board_build(core) : core;
 #define EVMS_FIT_BUILD(name, fixed_shape, rtl_shape, width, height, description) \
   if (build == #name) return fixed ? fit_sizes<hls::fixed_shape>(p, method) : fit_sizes<hls::rtl_shape>(p, method);
   EVMS_CORE_BUILDS(EVMS_FIT_BUILD)

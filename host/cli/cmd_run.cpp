@@ -28,6 +28,7 @@ struct RunOptions {
   std::string device;
   std::string core = "host";
   int baud = 3000000;
+  std::string board_link = "labels";
   read::SourceOptions source_options;
   Method method;
   bool quiet = false;
@@ -37,10 +38,13 @@ struct RunOptions {
 volatile std::sig_atomic_t g_interrupted = 0;
 
 void run(const RunOptions& o) {
+  if (o.board_link != "labels" && o.backend != "board") {
+    throw std::invalid_argument("--board-link " + o.board_link + " is the board backend's; --backend is " + o.backend);
+  }
   auto source = read::open_source(o.source, o.source_options);
   const read::SourceInfo& info = source->info();
   const Params params = backend::fit_core_build(o.backend, o.core, o.method.resolve(info.sensor), o.method);
-  auto backend = backend::make_backend(o.backend, {params, info.sensor, o.core, o.device, o.baud});
+  auto backend = backend::make_backend(o.backend, {params, info.sensor, o.core, o.device, o.baud, o.board_link == "tracks"});
   Writers writers(o.out, o.format, info.sensor);
   Progress progress(!o.quiet);
 
@@ -72,7 +76,7 @@ void run(const RunOptions& o) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const backend::BackendStats s = backend->stats();
-  if (sink.events != s.events_in) {
+  if (sink.events + s.labels_kept_on_board != s.events_in) {
     throw std::logic_error("backend '" + o.backend + "' returned " + grouped(sink.events) + " labelled events for " +
                            grouped(s.events_in) + " inputs");
   }
@@ -81,8 +85,8 @@ void run(const RunOptions& o) {
   const double span_s = static_cast<double>(t_last - t_first) * 1e-6;
   std::fprintf(summary, "source      %s (%s, %s)\n", info.name.c_str(), info.format.c_str(), sensor_text(info).c_str());
   std::fprintf(summary, "backend     %s\n", o.backend.c_str());
-  std::fprintf(summary, "events in   %s over %.3f s of sensor time (%s labelled noise)\n", grouped(s.events_in).c_str(), span_s,
-              grouped(sink.noise).c_str());
+  std::fprintf(summary, "events in   %s over %.3f s of sensor time (%s labelled noise%s)\n", grouped(s.events_in).c_str(), span_s,
+              grouped(sink.noise + s.board_noise).c_str(), s.labels_kept_on_board ? ", on the board" : "");
   std::fprintf(summary, "throughput  %sevents/s (%.2f s wall clock, reading included)\n", si(s.events_in / std::max(wall, 1e-9)).c_str(), wall);
   // Packets count sweeps when every event shifts, and climb steps (summed over climbs) when seeds climb.
   std::fprintf(summary, "packets     %s, %.1f %s each", grouped(s.packets).c_str(), s.packets ? static_cast<double>(s.iterations) / s.packets : 0.0,
@@ -111,6 +115,11 @@ void run(const RunOptions& o) {
     std::fprintf(summary, "link        %s frames failed their check, %s events sent again, %s labels lost (labelled %d)\n",
                  grouped(s.link_bad_frames).c_str(), grouped(s.link_events_resent).c_str(), grouped(s.link_labels_lost).c_str(),
                  kLabelLostOnLink);
+    if (s.labels_kept_on_board) {
+      std::fprintf(summary, "board       kept the labels (tracks mode): %s events labelled with a track, %s noise; the tracks and summaries "
+                   "of %s packets were not sent (the line was busy)\n",
+                   grouped(s.board_labelled).c_str(), grouped(s.board_noise).c_str(), grouped(s.link_packets_skipped).c_str());
+    }
   }
   if (!live && !source->skipped().empty()) {
     const char* separator = "skipped     ";
@@ -160,10 +169,16 @@ void register_run(CLI::App& app) {
                                          "(events.raw, EVT 3.0) or aedat4 (events.aedat4, AEDAT 4.0); evt3 and aedat4 put the labels in labels.csv, one per event")
       ->default_val(o->format)
       ->check(CLI::IsMember({"csv", "npy", "evt3", "aedat4"}));
-  cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host (1280x720), arty or ice40 (hls/core/shape.h)")
+  cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host (1280x720), arty or ice40 (hls/core/shape.h); "
+                                     "of the board backend: ice40 (the iCEBreaker, also for host) or arty")
       ->default_val(o->core);
   cmd->add_option("--device", o->device, "serial device of the board backend (or the path evms vboard prints)");
   cmd->add_option("--baud", o->baud, "line rate of the board's serial link")->default_val(o->baud);
+  cmd->add_option("--board-link", o->board_link, "what the board sends back: labels (a label for every event, and every track update; "
+                                                 "the line's pace holds the core back) or tracks (the labels stay on the board, which runs "
+                                                 "at the sensor's rate; whole packets' track updates when the line is free, no events.csv rows)")
+      ->default_val(o->board_link)
+      ->check(CLI::IsMember({"labels", "tracks"}));
   cmd->add_flag("--quiet", o->quiet, "no progress bar");
   cmd->add_option("--threads", o->threads, "1: read, label and write in turn; 2 or more: reading, the method and writing each in a "
                                           "thread of its own (the outputs are the same bytes either way)")

@@ -1,11 +1,13 @@
-// evms vboard : the virtual board. The Verilated board top of the iCE40 build (sim/), its UART
+// evms vboard : the virtual board. The Verilated board top of a core build (sim/), its UART
 // bridged to a pseudo-terminal, so that the board backend runs end to end without hardware:
 //
 //   evms vboard &                      # prints the terminal's path, e.g. /dev/pts/3
 //   evms run SCENE --backend board --device /dev/pts/3
+//   evms vboard --build arty &         # the Arty's board: evms run ... --core arty
 //
-// Bytes written to the terminal go into the board's receive line at 4 clocks a bit; bytes the
-// board transmits come out of it. It runs until it is interrupted.
+// Bytes written to the terminal go into the board's receive line at the board's clocks a bit
+// (4 on the iCEBreaker's 12 MHz, 50 on the Arty's 100 MHz); bytes the board transmits come out
+// of it. It runs until it is interrupted.
 //
 // --error-rate R makes the line unreliable, as a UART beside a sensor can be: each byte, in
 // either direction, is hit with probability R by one fault, equally often a flipped bit, the
@@ -22,6 +24,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "Vboard_arty.h"
 #include "Vboard_ice40.h"
 #include "host/cli/commands.h"
 #include "sim/virtual_board.h"
@@ -29,11 +32,12 @@
 namespace evms::cli {
 namespace {
 
-constexpr int kClocksPerBit = 4;                // as sim/CMakeLists.txt builds the board
-constexpr std::uint64_t kBusyCycles = 400000;   // keep clocking this long after the last byte:
-                                                // the core may still be clustering a packet
+// Keep clocking this long after the last byte (the core may still be clustering a packet):
+// 33 ms of the board's time.
+constexpr double kBusySeconds = 0.033;
 
 struct VboardOptions {
+  std::string build = "ice40";
   std::string path_file;
   double error_rate = 0;
   std::uint64_t seed = 1;
@@ -66,7 +70,10 @@ class LineFaults {
   std::uniform_real_distribution<double> uniform_{0.0, 1.0};
 };
 
-void serve(const VboardOptions& o) {
+// The board's clock and UART, as sim/CMakeLists.txt builds each virtual board.
+template <class V>
+void serve(const VboardOptions& o, int clocks_per_bit, double clock_hz) {
+  const auto busy_cycles = static_cast<std::uint64_t>(kBusySeconds * clock_hz);
   const std::string& path_file = o.path_file;
   const int master = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
   if (master < 0 || grantpt(master) != 0 || unlockpt(master) != 0) {
@@ -89,11 +96,11 @@ void serve(const VboardOptions& o) {
   if (o.error_rate > 0) std::fprintf(stderr, "evms vboard: %g of the bytes each way hit by a fault (seed %llu)\n", o.error_rate,
                                      static_cast<unsigned long long>(o.seed));
   LineFaults to_board(o.error_rate, o.seed), to_host(o.error_rate, o.seed ^ 0x9E3779B97F4A7C15ull);
-  sim::VirtualBoard<Vboard_ice40> board(kClocksPerBit);
+  sim::VirtualBoard<V> board(clocks_per_bit);
   std::vector<std::uint8_t> in(4096), out;
   std::uint64_t last_activity = 0;
   for (;;) {
-    const bool busy = board.sending() || board.cycles() - last_activity < kBusyCycles;
+    const bool busy = board.sending() || board.cycles() - last_activity < busy_cycles;
     pollfd p{master, POLLIN, 0};
     if (::poll(&p, 1, busy ? 0 : 20) > 0 && (p.revents & POLLIN)) {
       const ssize_t n = ::read(master, in.data(), in.size());
@@ -121,14 +128,21 @@ void serve(const VboardOptions& o) {
 
 void register_vboard(CLI::App& app) {
   auto o = std::make_shared<VboardOptions>();
-  CLI::App* cmd = app.add_subcommand("vboard", "the virtual board: the simulated iCE40 board top behind a pseudo-terminal, for --backend board");
+  CLI::App* cmd = app.add_subcommand("vboard", "the virtual board: the simulated board top behind a pseudo-terminal, for --backend board");
+  cmd->add_option("--build", o->build, "the board's core build: ice40 (the iCEBreaker, 12 MHz) or arty (the Arty, 100 MHz); "
+                                       "evms run --core names the same")
+      ->default_val(o->build)
+      ->check(CLI::IsMember({"ice40", "arty"}));
   cmd->add_option("--path-file", o->path_file, "also write the terminal's path to this file");
   cmd->add_option("--error-rate", o->error_rate, "the chance that a byte crossing the line, either way, is hit by a fault: a flipped bit, "
                                                  "dropped or repeated")
       ->default_val(o->error_rate)
       ->check(CLI::Range(0.0, 0.1));
   cmd->add_option("--seed", o->seed, "seed of the line's faults")->default_val(o->seed);
-  cmd->callback([o] { serve(*o); });
+  cmd->callback([o] {
+    if (o->build == "arty") serve<Vboard_arty>(*o, 50, 100e6);
+    else serve<Vboard_ice40>(*o, 4, 12e6);
+  });
 }
 
 }  // namespace evms::cli

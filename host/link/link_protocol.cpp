@@ -29,12 +29,13 @@ size_t expected_length(std::uint8_t type) {
   switch (type) {
     case kEvent: return 11;
     case kFlush: return 2;
-    case kReset: return 0;
+    case kReset: return 1;
     case kLabel: return 15;
-    case kTrack: return 32;
+    case kTrack: return 33;
     case kPacket: return 12;
-    case kStatus: return 32;
+    case kStatus: return 44;
     case kResend: return 2;
+    case kProgress: return 12;
     default: return 256;  // unknown
   }
 }
@@ -65,7 +66,7 @@ void append_flush(std::vector<std::uint8_t>& out, Sequence next_event) {
   put(p, next_event, 2);
   frame(out, kFlush, p);
 }
-void append_reset(std::vector<std::uint8_t>& out) { frame(out, kReset, {}); }
+void append_reset(std::vector<std::uint8_t>& out, LinkMode mode) { frame(out, kReset, {static_cast<std::uint8_t>(mode)}); }
 
 void FrameDecoder::push(std::span<const std::uint8_t> bytes) {
   buf_.insert(buf_.end(), bytes.begin(), bytes.end());
@@ -118,7 +119,9 @@ Sequence decode_resend(const Frame& f) {
 hls::TrackWord decode_track(const Frame& f) {
   if (f.type != kTrack) throw std::logic_error("not a track frame");
   auto s = [&](size_t i) { return static_cast<std::int32_t>(get(f.payload, 4 * i, 4)); };
-  return {get(f.payload, 0, 4), s(1), s(2), s(3), s(4), s(5), s(6), s(7)};
+  hls::TrackWord w{get(f.payload, 0, 4), s(1), s(2), s(3), s(4), s(5), s(6), s(7)};
+  w.confirmed = (get(f.payload, 32, 1) & 1) != 0;
+  return w;
 }
 
 hls::PacketWord decode_packet(const Frame& f) {
@@ -129,8 +132,13 @@ hls::PacketWord decode_packet(const Frame& f) {
 
 Status decode_status(const Frame& f) {
   if (f.type != kStatus) throw std::logic_error("not a status frame");
-  return {get(f.payload, 0, 4),  get(f.payload, 4, 4),  get(f.payload, 8, 4),  get(f.payload, 12, 4),
-          get(f.payload, 16, 4), get(f.payload, 20, 4), get(f.payload, 24, 4), get(f.payload, 28, 4)};
+  auto u = [&](size_t i) { return get(f.payload, 4 * i, 4); };
+  return {u(0), u(1), u(2), u(3), u(4), u(5), u(6), u(7), u(8), u(9), u(10)};
+}
+
+Progress decode_progress(const Frame& f) {
+  if (f.type != kProgress) throw std::logic_error("not a progress frame");
+  return {get(f.payload, 0, 4), get(f.payload, 4, 4), get(f.payload, 8, 4)};
 }
 
 }  // namespace evms::link

@@ -5,9 +5,10 @@
 //   frame = 0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 //   CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF) over TYPE, LEN and PAYLOAD
 //   host -> board: 0x01 event (t u32, x u16, y u16, p u8, seq u16), 0x02 flush (seq u16: the
-//                  next event's), 0x03 reset
+//                  next event's), 0x03 reset (mode u8: labels or tracks)
 //   board -> host: 0x81 labelled event (with the label's seq u16), 0x82 track update,
-//                  0x83 packet summary, 0x84 status, 0x85 resend (seq u16 the board expects)
+//                  0x83 packet summary, 0x84 status, 0x85 resend (seq u16 the board expects),
+//                  0x86 progress (tracks mode)
 #pragma once
 
 #include <cstdint>
@@ -28,6 +29,14 @@ enum FrameType : std::uint8_t {
   kPacket = 0x83,
   kStatus = 0x84,
   kResend = 0x85,
+  kProgress = 0x86,
+};
+
+// What the board sends back for a run, chosen by the reset frame that starts it.
+enum class LinkMode : std::uint8_t {
+  kLabels = 0,  // a label frame for every event, and every track update and packet summary
+  kTracks = 1,  // labels stay on the board; whole packets' track updates and summaries when the
+                // line is free, and progress frames in place of the labels
 };
 
 // Events and labels are numbered modulo 2^16 from the reset on; the host unwraps the numbers
@@ -38,11 +47,20 @@ std::uint16_t crc16(std::span<const std::uint8_t> bytes);
 
 void append_event(std::vector<std::uint8_t>& out, const hls::EventWord& e, Sequence seq);
 void append_flush(std::vector<std::uint8_t>& out, Sequence next_event);
-void append_reset(std::vector<std::uint8_t>& out);
+void append_reset(std::vector<std::uint8_t>& out, LinkMode mode);
 
 struct Status {
   std::uint32_t timestamp_us = 0, events_received = 0, crc_errors = 0, framing_errors = 0, overruns = 0, external_events = 0,
                 tracks_started = 0, unassigned_clusters = 0;
+  // Since the run's reset: events labelled with a track, labelled noise, and packets whose
+  // track updates and summary were not sent (tracks mode: the line was busy).
+  std::uint32_t labelled = 0, noise = 0, packets_skipped = 0;
+};
+
+// Tracks mode, since the run's reset: the link's events the core took (they acknowledge the
+// host's events in place of their labels), and the events labelled with a track or as noise.
+struct Progress {
+  std::uint32_t taken = 0, labelled = 0, noise = 0;
 };
 
 struct Frame {
@@ -69,5 +87,6 @@ Sequence decode_resend(const Frame& f);
 hls::TrackWord decode_track(const Frame& f);
 hls::PacketWord decode_packet(const Frame& f);
 Status decode_status(const Frame& f);
+Progress decode_progress(const Frame& f);
 
 }  // namespace evms::link

@@ -1,18 +1,30 @@
 // The board top, generic over the core build: a DVS128-style AER receiver and the host link
-// feed the core; the core's labelled events, track updates and packet summaries go back over
-// the link. One UART (8N1, ClksPerBit clocks a bit) carries both directions (docs/link.md).
+// feed the core; the core's outputs go back over the link. One UART (8N1, ClksPerBit clocks a
+// bit) carries both directions (docs/link.md).
 //
-//   AER pins --> evms_aer_rx --+                               +--> evms_link_tx --> UART tx
-//                              +--> evms_core (labels, tracks, packets) --+
-//   UART rx --> evms_link_rx --+   (link events first, then AER)
+//   AER pins --> evms_aer_rx --+                                  labels -------------------+
+//                              +--> evms_core --+                                            +--> evms_link_tx --> UART tx
+//   UART rx --> evms_link_rx --+                +--> tracks, packets --> batch gate, queue --+
+//                (link events first, then AER)
 //
 // A reset frame from the host restarts the core and the link's queues (a new run on a board
-// that ran before, or after an aborted one) and is answered by a status frame once the core is
-// idle. The link takes events in sequence only and asks the host to resend what the line lost
-// (evms_link_rx.sv), so the core sees the host's stream exactly. After a flush from the host, once the core has released everything, a status frame
-// (timestamp, events received, check errors, framing errors, overruns, external AER events,
-// tracks started, clusters without a track slot) tells the host that the flush is complete. Backpressure reaches the AER sender (it waits for
-// its acknowledge); the link keeps at most LinkFifoDepth events in flight by protocol.
+// that ran before, or after an aborted one), sets the run's mode, and is answered by a status
+// frame once the core is idle. The link takes events in sequence only and asks the host to
+// resend what the line lost (evms_link_rx.sv), so the core sees the host's stream exactly.
+// After a flush from the host, once the core has released everything, a status frame tells
+// the host that the flush is complete.
+//
+// The two modes:
+// - labels (mode 0): every label goes to the host, and every track update and packet summary;
+//   the link's pace holds the core back (backpressure reaches the AER sender, which waits for
+//   its acknowledge), and nothing is lost. The link keeps at most LinkFifoDepth events in
+//   flight by protocol.
+// - tracks (mode 1): the labels stay on the board, counted, and the core never waits for the
+//   link, so it runs at the sensor's rate. A packet's track updates and its summary go out
+//   together, as a batch, when the queue is empty as the batch begins; otherwise the whole
+//   batch is skipped (and counted), so what reaches the host is always whole packets. When the
+//   line is free, a progress frame (link events the core took, events labelled with a track,
+//   events labelled noise) acknowledges the host's events in place of their labels.
 `include "evms_assert.svh"
 
 module evms_board #(
@@ -50,12 +62,12 @@ module evms_board #(
   logic [31:0] framing_errors;
   evms_uart_rx #(.ClksPerBit(ClksPerBit)) u_uart_rx (
     .clk(clk), .rst_n(rst_n), .rx(uart_rx), .valid(rx_valid), .data(rx_data), .framing_errors(framing_errors));
-  logic lk_valid, lk_ready, lk_p, lk_flush, soft_reset, rs_valid, rs_ready;
+  logic lk_valid, lk_ready, lk_p, lk_flush, soft_reset, labels_on_board, rs_valid, rs_ready;
   logic [31:0] lk_t, crc_errors, overruns, events_received;
   logic [15:0] lk_x, lk_y, rs_seq;
   evms_link_rx #(.FifoDepth(LinkFifoDepth)) u_link_rx (
     .clk(clk), .rst_n(rst_n), .byte_valid(rx_valid), .byte_data(rx_data), .ev_valid(lk_valid), .ev_ready(lk_ready),
-    .ev_t(lk_t), .ev_x(lk_x), .ev_y(lk_y), .ev_p(lk_p), .ev_flush(lk_flush), .soft_reset(soft_reset),
+    .ev_t(lk_t), .ev_x(lk_x), .ev_y(lk_y), .ev_p(lk_p), .ev_flush(lk_flush), .soft_reset(soft_reset), .labels_on_board(labels_on_board),
     .resend_valid(rs_valid), .resend_ready(rs_ready), .resend_seq(rs_seq), .crc_errors(crc_errors), .overruns(overruns),
     .events_received(events_received));
 
@@ -84,6 +96,7 @@ module evms_board #(
   logic [15:0] pkt_iterations;
   // The link's packet frame carries 8 bits of iterations: more saturate at 255.
   wire [7:0] pkt_iterations_sent = pkt_iterations > 16'd255 ? 8'd255 : 8'(pkt_iterations);
+  wire [95:0] pkt_payload_sent = {pkt_iterations_sent, pkt_clusters, pkt_events, pkt_t_last, pkt_t_first};
   logic [31:0] tracks_started, unassigned;
   evms_core #(
     `include "evms_core_shape_connect.svh"
@@ -99,9 +112,95 @@ module evms_board #(
     .pkt_clusters(pkt_clusters), .pkt_iterations(pkt_iterations), .idle(core_idle),
     .stat_tracks_started(tracks_started), .stat_unassigned(unassigned));
 
-  // The board runs its build's registers, whose tracker reports confirmed tracks only, so the
-  // link's track frame has no state field.
-  `EVMS_ASSERT("a board reports confirmed tracks only", !(trk_valid && !trk_confirmed), clk, run_rst_n)
+  // ---- labels: to the link, or counted on the board ------------------------------------------------
+  logic tx_lab_valid, tx_lab_ready;
+  assign tx_lab_valid = lab_valid && !labels_on_board;
+  assign lab_ready = labels_on_board || tx_lab_ready;
+  logic [31:0] labelled_q, noise_q, link_taken_q;  // since the run's reset
+  always_ff @(posedge clk or negedge run_rst_n) begin
+    if (!run_rst_n) begin
+      labelled_q <= '0;
+      noise_q <= '0;
+      link_taken_q <= '0;
+    end else begin
+      if (lab_valid && lab_ready) begin
+        if (lab_label == 32'hFFFFFFFF) noise_q <= noise_q + 1'b1;
+        else labelled_q <= labelled_q + 1'b1;
+      end
+      if (lk_valid && lk_ready && !lk_flush) link_taken_q <= link_taken_q + 1'b1;
+    end
+  end
+
+  // ---- track updates and packet summaries: the batch gate and the frame queue ------------------------
+  // A packet's track updates come before its summary (rtl/core/evms_core.sv: StTrack, then
+  // StPacket), so a batch runs from the first word after a summary to the next summary. The
+  // queue holds a whole batch: at most one update a cluster, and the summary.
+  localparam int FrameQueueDepth = 1 << $clog2(ClustersMax + 2);
+  localparam int FrameWordBits = 1 + 264;  // {is packet summary, the frame's payload}
+  logic q_in_valid, q_in_ready, q_out_valid, q_out_ready, q_out_is_packet;
+  logic [263:0] q_out_payload;
+  logic batch_open_q, batch_open_d, batch_sent_q, batch_sent_d;
+  logic [31:0] batches_skipped_q, batches_skipped_d;
+  // Words in the queue, counted here: the queue's own out_valid lags a push by its RAM's latency.
+  logic [$clog2(FrameQueueDepth):0] queued_q;
+  logic queue_push, queue_pop;
+  assign queue_push = q_in_valid && q_in_ready;
+  assign queue_pop = q_out_valid && q_out_ready;
+  logic word_valid, word_is_packet, word_admitted, word_taken;
+  logic [FrameWordBits-1:0] word;
+  wire [7:0] trk_state = {7'd0, trk_confirmed};
+  assign word_valid = trk_valid || pkt_valid;
+  assign word_is_packet = !trk_valid;
+  assign word = word_is_packet ? {1'b1, 168'd0, pkt_payload_sent}
+                               : {1'b0, trk_state, trk_zy, trk_zx, trk_vy, trk_vx, trk_y, trk_x, trk_id, trk_t};
+  // In tracks mode a batch is sent only if the queue is empty as it begins; in labels mode
+  // every batch is sent, and the queue's pace holds the core back.
+  assign word_admitted = !labels_on_board || (batch_open_q ? batch_sent_q : queued_q == '0);
+  assign q_in_valid = word_valid && word_admitted;
+  assign word_taken = word_valid && (word_admitted ? q_in_ready : 1'b1);
+  assign trk_ready = trk_valid && word_taken;
+  assign pkt_ready = !trk_valid && pkt_valid && word_taken;
+
+  always_comb begin
+    batch_open_d = batch_open_q;
+    batch_sent_d = batch_sent_q;
+    batches_skipped_d = batches_skipped_q;
+    if (word_taken) begin
+      batch_open_d = !word_is_packet;
+      batch_sent_d = word_admitted;
+      if (word_is_packet && !word_admitted) batches_skipped_d = batches_skipped_q + 1'b1;
+    end
+  end
+  always_ff @(posedge clk or negedge run_rst_n) begin
+    if (!run_rst_n) begin
+      batch_open_q <= 1'b0;
+      batch_sent_q <= 1'b0;
+      batches_skipped_q <= '0;
+      queued_q <= '0;
+    end else begin
+      if (queue_push && !queue_pop) queued_q <= queued_q + 1'b1;
+      else if (queue_pop && !queue_push) queued_q <= queued_q - 1'b1;
+      batch_open_q <= batch_open_d;
+      batch_sent_q <= batch_sent_d;
+      batches_skipped_q <= batches_skipped_d;
+    end
+  end
+
+  evms_fifo #(.Width(FrameWordBits), .Depth(FrameQueueDepth)) u_frame_queue (
+    .clk(clk), .rst_n(run_rst_n), .in_valid(q_in_valid), .in_ready(q_in_ready), .in_data(word), .out_valid(q_out_valid),
+    .out_ready(q_out_ready), .out_data({q_out_is_packet, q_out_payload}));
+  logic tx_trk_ready, tx_pkt_ready;
+  assign q_out_ready = q_out_is_packet ? tx_pkt_ready : tx_trk_ready;
+
+  // ---- progress, in tracks mode ----------------------------------------------------------------------
+  logic [95:0] progress_sent_q;
+  wire [95:0] progress_now = {noise_q, labelled_q, link_taken_q};
+  logic pg_valid, pg_ready;
+  assign pg_valid = labels_on_board && progress_now != progress_sent_q;
+  always_ff @(posedge clk or negedge run_rst_n) begin
+    if (!run_rst_n) progress_sent_q <= '0;
+    else if (pg_valid && pg_ready) progress_sent_q <= progress_now;
+  end
 
   // ---- status after a flush ---------------------------------------------------------------------
   logic flush_pending, st_valid, st_ready;
@@ -111,7 +210,7 @@ module evms_board #(
       st_valid <= 1'b0;
     end else begin
       if (in_valid && in_ready && in_flush) flush_pending <= 1'b1;
-      if (flush_pending && core_idle && !in_valid && !st_valid) begin
+      if (flush_pending && core_idle && !in_valid && queued_q == '0 && !st_valid) begin
         st_valid <= 1'b1;
         flush_pending <= 1'b0;
       end
@@ -123,13 +222,15 @@ module evms_board #(
   logic tx_valid, tx_ready;
   logic [7:0] tx_data;
   evms_link_tx u_link_tx (
-    .clk(clk), .rst_n(run_rst_n), .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y),
-    .lab_p(lab_p), .lab_label(lab_label), .trk_valid(trk_valid), .trk_ready(trk_ready),
-    .trk_payload({trk_zy, trk_zx, trk_vy, trk_vx, trk_y, trk_x, trk_id, trk_t}), .pkt_valid(pkt_valid),
-    .pkt_ready(pkt_ready), .pkt_payload({pkt_iterations_sent, pkt_clusters, pkt_events, pkt_t_last, pkt_t_first}),
-    .st_valid(st_valid), .st_ready(st_ready), .rs_valid(rs_valid), .rs_ready(rs_ready), .rs_seq(rs_seq),
-    .st_payload({unassigned, tracks_started, external_events, overruns, framing_errors, crc_errors, events_received, timestamp}),
-    .byte_valid(tx_valid), .byte_ready(tx_ready), .byte_data(tx_data));
+    .clk(clk), .rst_n(run_rst_n), .lab_valid(tx_lab_valid), .lab_ready(tx_lab_ready), .lab_t(lab_t), .lab_x(lab_x),
+    .lab_y(lab_y), .lab_p(lab_p), .lab_label(lab_label), .trk_valid(q_out_valid && !q_out_is_packet), .trk_ready(tx_trk_ready),
+    .trk_payload(q_out_payload), .pkt_valid(q_out_valid && q_out_is_packet), .pkt_ready(tx_pkt_ready),
+    .pkt_payload(q_out_payload[95:0]), .st_valid(st_valid), .st_ready(st_ready), .rs_valid(rs_valid), .rs_ready(rs_ready),
+    .rs_seq(rs_seq),
+    .st_payload({batches_skipped_q, noise_q, labelled_q, unassigned, tracks_started, external_events, overruns, framing_errors,
+                 crc_errors, events_received, timestamp}),
+    .pg_valid(pg_valid), .pg_ready(pg_ready), .pg_payload(progress_now), .byte_valid(tx_valid), .byte_ready(tx_ready),
+    .byte_data(tx_data));
   evms_uart_tx #(.ClksPerBit(ClksPerBit)) u_uart_tx (
     .clk(clk), .rst_n(run_rst_n), .valid(tx_valid), .ready(tx_ready), .data(tx_data), .tx(uart_tx));
 

@@ -2,8 +2,9 @@
 //   0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 // with CRC-16/CCITT-FALSE over TYPE, LEN and PAYLOAD. TYPE 0x01 is an event (t u32, x u16,
 // y u16, p u8, seq u16, little-endian), 0x02 a flush (seq u16 of the event after the last),
-// 0x03 a reset: it empties the FIFO at once and pulses soft_reset, with which the board
-// restarts everything behind the link. A frame with a bad check, type or length is dropped and
+// 0x03 a reset (mode u8): it empties the FIFO at once and pulses soft_reset, with which the
+// board restarts everything behind the link, and sets the run's mode: labels_on_board keeps
+// the labels on the board (mode 1) instead of sending one frame for each (mode 0). A frame with a bad check, type or length is dropped and
 // counted, and the parser hunts for the next 0xA5 0x5A.
 //
 // Events are taken in sequence only, so that the core sees exactly the host's stream however
@@ -29,6 +30,7 @@ module evms_link_rx #(
   output logic        ev_p,
   output logic        ev_flush,
   output logic        soft_reset,
+  output logic        labels_on_board,
   // A resend frame asking for the events from resend_seq on.
   output logic        resend_valid,
   input  logic        resend_ready,
@@ -53,7 +55,7 @@ module evms_link_rx #(
   assign crc_ok = {byte_data, crc_lo} == crc;
   assign is_event = crc_ok && ftype == 8'h01 && flen == 8'd11;
   assign is_flush = crc_ok && ftype == 8'h02 && flen == 8'd2;
-  assign is_reset = crc_ok && ftype == 8'h03 && flen == 8'd0;
+  assign is_reset = crc_ok && ftype == 8'h03 && flen == 8'd1;
   assign frame_seq = is_event ? {payload[10], payload[9]} : {payload[1], payload[0]};
   assign seq_ahead = frame_seq - expected_seq;  // as a signed number: > 0 means frames were lost
 
@@ -79,6 +81,7 @@ module evms_link_rx #(
       push <= 1'b0;
       push_word <= '0;
       soft_reset <= 1'b0;
+      labels_on_board <= 1'b0;
       expected_seq <= '0;
       resend_asked <= 1'b0;
       resend_valid <= 1'b0;
@@ -137,6 +140,7 @@ module evms_link_rx #(
               resend_asked <= 1'b1;
             end else if (is_reset) begin
               soft_reset <= 1'b1;
+              labels_on_board <= payload[0][0];
               expected_seq <= '0;
               resend_asked <= 1'b0;
               resend_valid <= 1'b0;

@@ -1,10 +1,10 @@
 // Board-to-host half of the serial link (docs/link.md): labelled events (0x81), track
-// updates (0x82), packet summaries (0x83), status (0x84) and resend requests (0x85) as frames
+// updates (0x82), packet summaries (0x83), status (0x84), resend requests (0x85) and progress
+// (0x86) as frames
 //   0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 // (CRC-16/CCITT-FALSE over TYPE, LEN and PAYLOAD; little-endian fields). Streams are served
 // one frame at a time, status first, then resend requests, packet summaries, track updates,
-// labelled events; a stream waits (its valid stays high) while the UART is busy, so the core
-// sees backpressure and nothing is lost. Label frames carry their number modulo 2^16, counted
+// labelled events, progress; a stream waits (its valid stays high) while the UART is busy. Label frames carry their number modulo 2^16, counted
 // from reset, so that the host finds a label frame the line destroyed.
 module evms_link_tx (
   input  logic        clk,
@@ -20,7 +20,7 @@ module evms_link_tx (
   // Track updates.
   input  logic        trk_valid,
   output logic        trk_ready,
-  input  logic [255:0] trk_payload,   // t, id, x, y, vx, vy, zx, zy (32 bits each, t lowest)
+  input  logic [263:0] trk_payload,   // t, id, x, y, vx, vy, zx, zy (32 bits each, t lowest), state (8)
   // Packet summaries.
   input  logic        pkt_valid,
   output logic        pkt_ready,
@@ -28,7 +28,11 @@ module evms_link_tx (
   // Status.
   input  logic        st_valid,
   output logic        st_ready,
-  input  logic [255:0] st_payload,    // eight 32-bit counters
+  input  logic [351:0] st_payload,    // eleven 32-bit counters
+  // Progress: three 32-bit counters.
+  input  logic        pg_valid,
+  output logic        pg_ready,
+  input  logic [95:0] pg_payload,
   // Resend requests: the number of the event the link's receiver expects.
   input  logic        rs_valid,
   output logic        rs_ready,
@@ -40,7 +44,10 @@ module evms_link_tx (
 );
   typedef enum logic [2:0] {S_IDLE, S_SYNC1, S_SYNC2, S_TYPE, S_LEN, S_PAYLOAD, S_CRC_LO, S_CRC_HI} state_e;
   state_e state;
-  logic [255:0] payload;
+  // As long as the longest frame's, the status's; each frame's payload is zero-extended to it
+  // by a sized literal (Yosys 0.23 sizes a width cast in a concatenation by its operand).
+  localparam int PayloadBits = 352;
+  logic [PayloadBits-1:0] payload;
   logic [7:0] ftype, flen, pos;
   logic [15:0] crc;
   logic [15:0] label_seq;
@@ -51,12 +58,14 @@ module evms_link_tx (
     pkt_ready = 1'b0;
     st_ready = 1'b0;
     rs_ready = 1'b0;
+    pg_ready = 1'b0;
     if (state == S_IDLE) begin
       if (st_valid) st_ready = 1'b1;
       else if (rs_valid) rs_ready = 1'b1;
       else if (pkt_valid) pkt_ready = 1'b1;
       else if (trk_valid) trk_ready = 1'b1;
       else if (lab_valid) lab_ready = 1'b1;
+      else if (pg_valid) pg_ready = 1'b1;
     end
   end
 
@@ -88,20 +97,23 @@ module evms_link_tx (
       case (state)
         S_IDLE: begin
           if (st_valid) begin
-            {ftype, flen, payload} <= {8'h84, 8'd32, st_payload};
+            {ftype, flen, payload} <= {8'h84, 8'd44, st_payload};
             state <= S_SYNC1;
           end else if (rs_valid) begin
-            {ftype, flen, payload} <= {8'h85, 8'd2, 240'd0, rs_seq};
+            {ftype, flen, payload} <= {8'h85, 8'd2, 336'd0, rs_seq};
             state <= S_SYNC1;
           end else if (pkt_valid) begin
-            {ftype, flen, payload} <= {8'h83, 8'd12, 160'd0, pkt_payload};
+            {ftype, flen, payload} <= {8'h83, 8'd12, 256'd0, pkt_payload};
             state <= S_SYNC1;
           end else if (trk_valid) begin
-            {ftype, flen, payload} <= {8'h82, 8'd32, trk_payload};
+            {ftype, flen, payload} <= {8'h82, 8'd33, 88'd0, trk_payload};
             state <= S_SYNC1;
           end else if (lab_valid) begin
-            {ftype, flen, payload} <= {8'h81, 8'd15, 136'd0, label_seq, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
+            {ftype, flen, payload} <= {8'h81, 8'd15, 232'd0, label_seq, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
             label_seq <= label_seq + 1'b1;
+            state <= S_SYNC1;
+          end else if (pg_valid) begin
+            {ftype, flen, payload} <= {8'h86, 8'd12, 256'd0, pg_payload};
             state <= S_SYNC1;
           end
           crc <= 16'hFFFF;

@@ -190,7 +190,49 @@ TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {
   const auto params = run_command(evms_binary() +
                                   " run gen://rotation?width=128\\&height=128 --backend board --device /dev/null --preset gaussian --packet-size 32 --quiet");
   EXPECT_NE(params.exit_code, 0);
-  EXPECT_NE(params.err.find("the board runs its build's settings"), std::string::npos) << params.err;
+  EXPECT_NE(params.err.find("board runs its build's settings"), std::string::npos) << params.err;
+  // Tracks mode is the board backend's.
+  const auto link_mode = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --board-link tracks --quiet");
+  EXPECT_NE(link_mode.exit_code, 0);
+  EXPECT_NE(link_mode.err.find("--board-link tracks is the board backend's"), std::string::npos) << link_mode.err;
+}
+
+// The count in "(N labelled noise" of a run's summary.
+long noise_in_summary(const std::string& out) {
+  const size_t at = out.find(" labelled noise");
+  long n = 0, scale = 1;
+  for (size_t i = at; i-- > 0 && (std::isdigit(static_cast<unsigned char>(out[i])) || out[i] == ',');) {
+    if (out[i] != ',') n += (out[i] - '0') * scale, scale *= 10;
+  }
+  return at == std::string::npos ? -1 : n;
+}
+
+// Tracks mode (--board-link tracks): the board keeps the labels and counts them, events.csv
+// has no rows, and tracks.csv holds whole packets' updates, each row one of the fixed core's,
+// in order. The events still come over the link, acknowledged by progress frames.
+TEST(BackendsAgree, TheBoardInTracksModeKeepsTheLabelsAndSendsTheFixedCoresTracks) {
+  TempDir dir;
+  VirtualBoardProcess board(dir);
+  ASSERT_FALSE(board.device().empty()) << "evms vboard did not start";
+  const std::string scene = "gen://rotation?duration-s=0.1&seed=5&width=128&height=128";
+  const std::string fixed_out = dir.path("fixed"), board_out = dir.path("board");
+  const auto fixed = run_command(evms_binary() + " run \"" + scene + "\" --quiet --backend fixed --core ice40 --out " + fixed_out + kIce40Limits);
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
+  const auto on_board = run_command(evms_binary() + " run \"" + scene + "\" --quiet --backend board --board-link tracks --device " + board.device() +
+                                    " --out " + board_out + kIce40Limits);
+  ASSERT_EQ(on_board.exit_code, 0) << on_board.err;
+  EXPECT_EQ(lines_of(read_file(board_out + "/events.csv")).size(), 2u) << "the sensor line and the header only";
+  EXPECT_NE(on_board.out.find("board       kept the labels (tracks mode)"), std::string::npos) << on_board.out;
+  EXPECT_GT(noise_in_summary(fixed.out), 0) << fixed.out;
+  EXPECT_EQ(noise_in_summary(on_board.out), noise_in_summary(fixed.out)) << on_board.out;
+  const auto fixed_tracks = lines_of(read_file(fixed_out + "/tracks.csv")), tracks = lines_of(read_file(board_out + "/tracks.csv"));
+  EXPECT_GT(tracks.size(), 2u);
+  size_t at = 0;
+  for (const std::string& row : tracks) {
+    while (at < fixed_tracks.size() && fixed_tracks[at] != row) ++at;
+    ASSERT_LT(at, fixed_tracks.size()) << "a track row the fixed core did not write: " << row;
+    ++at;
+  }
 }
 
 }  // namespace

@@ -49,6 +49,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
         case evms::link::kTrack: (void)evms::link::decode_track(f); break;
         case evms::link::kPacket: (void)evms::link::decode_packet(f); break;
         case evms::link::kStatus: (void)evms::link::decode_status(f); break;
+        case evms::link::kProgress: (void)evms::link::decode_progress(f); break;
         default: break;
       }
     }
