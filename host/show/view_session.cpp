@@ -70,7 +70,12 @@ void ViewSession::push_until(TimeUs t) {
     while (end < pending_.size() && pending_[end].t <= t) ++end;
     if (end > pending_at_) {
       if (!pending_arrival_.empty()) sink_->latency_.arrived(std::span(pending_arrival_).subspan(pending_at_, end - pending_at_));
-      backend_->push(std::span(pending_).subspan(pending_at_, end - pending_at_), *sink_);
+      const auto pushed = std::span(pending_).subspan(pending_at_, end - pending_at_);
+      backend_->push(pushed, *sink_);
+      // A board in tracks mode keeps its labels: the events are drawn as they came, unlabelled.
+      if (backend_name_ == "board" && options_.board_keeps_labels) {
+        for (const Event& e : pushed) renderer_.add(LabelledEvent{e, kNoiseLabel});
+      }
       pending_at_ = end;
     }
     if (pending_at_ < pending_.size()) return;

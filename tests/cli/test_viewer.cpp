@@ -127,6 +127,45 @@ int brightest(const show::Canvas& c, int x0, int y0, int x1, int y1) {
   return best;
 }
 
+// A board in tracks mode (evms vboard, --board-link tracks) sends no labels: the events are
+// drawn grey, and only the tracks (trails, markers, arrows) have colour.
+TEST(Viewer, ABoardInTracksModeShowsGreyEventsUnderItsTracks) {
+  TempDir dir;
+  const std::string path_file = dir.path("vboard.path");
+  BackgroundProcess vboard({evms_binary(), "vboard", "--path-file", path_file});
+  std::string device;
+  for (int i = 0; i < 200 && device.empty(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::ifstream f(path_file);
+    std::getline(f, device);
+  }
+  ASSERT_FALSE(device.empty()) << "evms vboard did not start";
+  const std::string scene = "gen://rotation?duration-s=0.3&seed=5&width=128&height=128";
+  struct Counts {
+    size_t grey = 0, coloured = 0, white = 0;
+  };
+  const auto frame = [&](const std::string& name, const std::string& options) {
+    const auto r = run_command(evms_binary() + " view \"" + scene + "\" --headless --max-frames 9 --frames " + dir.path(name) +
+                               " --preset gaussian " + options);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const Image img = read_png(dir.path(name + "/frame_000008.png"));
+    Counts c;
+    for (size_t i = 0; i + 2 < img.rgb.size(); i += 3) {
+      const int r8 = img.rgb[i], g8 = img.rgb[i + 1], b8 = img.rgb[i + 2];
+      if (r8 + g8 + b8 <= 18 + 18 + 24) continue;  // the background (host/show/frame_renderer.cpp)
+      if (r8 == g8 && g8 == b8) ++(r8 > 200 ? c.white : c.grey);
+      else ++c.coloured;
+    }
+    return c;
+  };
+  const Counts labelled = frame("labels", "--backend fixed --core ice40");
+  const Counts tracks = frame("tracks", "--backend board --board-link tracks --device " + device);
+  EXPECT_GT(tracks.grey, 300u) << "the events, unlabelled";
+  EXPECT_GT(tracks.white, 0u) << "a track's marker";
+  EXPECT_GT(labelled.coloured, 300u);
+  EXPECT_LT(tracks.coloured * 2, labelled.coloured) << "only the tracks have colour";
+}
+
 TEST(Viewer, EndedTracksFadeWithinTheCoastingTimeAndArrowsStayShort) {
   show::ViewStyle style;
   style.scale = 2;
