@@ -8,7 +8,7 @@
 //                  next event's), 0x03 reset (mode u8: labels or tracks)
 //   board -> host: 0x81 labelled event (with the label's seq u16), 0x82 track update,
 //                  0x83 packet summary, 0x84 status, 0x85 resend (seq u16 the board expects),
-//                  0x86 progress (tracks mode)
+//                  0x86 progress (the board's counts, when the line is free)
 #pragma once
 
 #include <cstdint>
@@ -57,7 +57,7 @@ struct Status {
   std::uint32_t labelled = 0, noise = 0, packets_skipped = 0;
 };
 
-// Tracks mode, since the run's reset: the link's events the core took (they acknowledge the
+// Since the run's reset: the link's events the core took (in tracks mode they acknowledge the
 // host's events in place of their labels), and the events labelled with a track or as noise.
 struct Progress {
   std::uint32_t taken = 0, labelled = 0, noise = 0;

@@ -22,9 +22,11 @@
 // - tracks (mode 1): the labels stay on the board, counted, and the core never waits for the
 //   link, so it runs at the sensor's rate. A packet's track updates and its summary go out
 //   together, as a batch, when the queue is empty as the batch begins; otherwise the whole
-//   batch is skipped (and counted), so what reaches the host is always whole packets. When the
-//   line is free, a progress frame (link events the core took, events labelled with a track,
-//   events labelled noise) acknowledges the host's events in place of their labels.
+//   batch is skipped (and counted), so what reaches the host is always whole packets.
+// In both modes, when the line is free and the counts have changed, a progress frame (link
+// events the core took, events labelled with a track, events labelled noise) tells the host
+// that the board is working; in tracks mode it acknowledges the host's events in place of
+// their labels.
 `include "evms_assert.svh"
 
 module evms_board #(
@@ -192,11 +194,13 @@ module evms_board #(
   logic tx_trk_ready, tx_pkt_ready;
   assign q_out_ready = q_out_is_packet ? tx_pkt_ready : tx_trk_ready;
 
-  // ---- progress, in tracks mode ----------------------------------------------------------------------
+  // ---- progress ----------------------------------------------------------------------------------------
+  // In both modes, so that a board busy with a packet is never silent (the host resends what
+  // is unanswered after a silence); in tracks mode it also acknowledges the link's events.
   logic [95:0] progress_sent_q;
   wire [95:0] progress_now = {noise_q, labelled_q, link_taken_q};
   logic pg_valid, pg_ready;
-  assign pg_valid = labels_on_board && progress_now != progress_sent_q;
+  assign pg_valid = progress_now != progress_sent_q;
   always_ff @(posedge clk or negedge run_rst_n) begin
     if (!run_rst_n) progress_sent_q <= '0;
     else if (pg_valid && pg_ready) progress_sent_q <= progress_now;
