@@ -162,6 +162,9 @@ module evms_board #(
   assign word_taken = word_valid && (word_admitted ? q_in_ready : 1'b1);
   assign trk_ready = trk_valid && word_taken;
   assign pkt_ready = !trk_valid && pkt_valid && word_taken;
+  // An admitted batch starts in an empty queue deep enough for it, so in tracks mode the queue
+  // never holds the core back.
+  `EVMS_ASSERT("a batch fits the frame queue", !(labels_on_board && q_in_valid && !q_in_ready), clk, run_rst_n)
 
   always_comb begin
     batch_open_d = batch_open_q;
