@@ -223,10 +223,10 @@ class BoardBackend final : public Backend {
             break;
           }
           case link::kProgress: {
-            // The core took the link's events up to this count (numbers since the reset, modulo
-            // 2^32; a run's unanswered events are far fewer).
             // In labels mode it only says the board is working: the labels acknowledge.
             if (mode_ != link::LinkMode::kTracks) break;
+            // The core took the link's events up to this count (numbers since the reset, modulo
+            // 2^32; a run's unanswered events are far fewer).
             const link::Progress p = link::decode_progress(f);
             const std::uint64_t taken = answered_ + static_cast<std::uint32_t>(p.taken - static_cast<std::uint32_t>(answered_));
             if (taken > answered_ + unanswered_.size()) {

@@ -38,13 +38,11 @@ struct RunOptions {
 volatile std::sig_atomic_t g_interrupted = 0;
 
 void run(const RunOptions& o) {
-  if (o.board_link != "labels" && o.backend != "board") {
-    throw std::invalid_argument("--board-link " + o.board_link + " is the board backend's; --backend is " + o.backend);
-  }
+  const bool keeps_labels = board_keeps_labels(o.board_link, o.backend);
   auto source = read::open_source(o.source, o.source_options);
   const read::SourceInfo& info = source->info();
   const Params params = backend::fit_core_build(o.backend, o.core, o.method.resolve(info.sensor), o.method);
-  auto backend = backend::make_backend(o.backend, {params, info.sensor, o.core, o.device, o.baud, o.board_link == "tracks"});
+  auto backend = backend::make_backend(o.backend, {params, info.sensor, o.core, o.device, o.baud, keeps_labels});
   Writers writers(o.out, o.format, info.sensor);
   Progress progress(!o.quiet);
 
@@ -174,11 +172,7 @@ void register_run(CLI::App& app) {
       ->default_val(o->core);
   cmd->add_option("--device", o->device, "serial device of the board backend (or the path evms vboard prints)");
   cmd->add_option("--baud", o->baud, "line rate of the board's serial link")->default_val(o->baud);
-  cmd->add_option("--board-link", o->board_link, "what the board sends back: labels (a label for every event, and every track update; "
-                                                 "the line's pace holds the core back) or tracks (the labels stay on the board, which runs "
-                                                 "at the sensor's rate; whole packets' track updates when the line is free, no events.csv rows)")
-      ->default_val(o->board_link)
-      ->check(CLI::IsMember({"labels", "tracks"}));
+  add_board_link_option(*cmd, o->board_link, "tracks.csv and the board's counts, no event rows");
   cmd->add_flag("--quiet", o->quiet, "no progress bar");
   cmd->add_option("--threads", o->threads, "1: read, label and write in turn; 2 or more: reading, the method and writing each in a "
                                           "thread of its own (the outputs are the same bytes either way)")

@@ -70,7 +70,8 @@ class LineFaults {
   std::uniform_real_distribution<double> uniform_{0.0, 1.0};
 };
 
-// The board's clock and UART, as sim/CMakeLists.txt builds each virtual board.
+// The board's clock and UART, as sim/CMakeLists.txt builds each virtual board (its
+// EVMS_VBOARD_<build>_* definitions).
 template <class V>
 void serve(const VboardOptions& o, int clocks_per_bit, double clock_hz) {
   const auto busy_cycles = static_cast<std::uint64_t>(kBusySeconds * clock_hz);
@@ -140,8 +141,8 @@ void register_vboard(CLI::App& app) {
       ->check(CLI::Range(0.0, 0.1));
   cmd->add_option("--seed", o->seed, "seed of the line's faults")->default_val(o->seed);
   cmd->callback([o] {
-    if (o->build == "arty") serve<Vboard_arty>(*o, 50, 100e6);
-    else serve<Vboard_ice40>(*o, 4, 12e6);
+    if (o->build == "arty") serve<Vboard_arty>(*o, EVMS_VBOARD_arty_CLOCKS_PER_BIT, EVMS_VBOARD_arty_CLOCK_HZ);
+    else serve<Vboard_ice40>(*o, EVMS_VBOARD_ice40_CLOCKS_PER_BIT, EVMS_VBOARD_ice40_CLOCK_HZ);
   });
 }
 

@@ -107,10 +107,7 @@ void view(const ViewOptions& o) {
   bo.params = backend::fit_core_build(o.backend, o.core, o.method.resolve(source->info().sensor), o.method);
   bo.core = o.core;
   bo.device = o.device;
-  if (o.board_link != "labels" && o.backend != "board") {
-    throw std::invalid_argument("--board-link " + o.board_link + " is the board backend's; --backend is " + o.backend);
-  }
-  bo.board_keeps_labels = o.board_link == "tracks";
+  bo.board_keeps_labels = board_keeps_labels(o.board_link, o.backend);
   show::ViewStyle style;
   style.scale = o.scale;
   style.track_fade_us = bo.params.coast_us;  // as long as the tracker coasts a track it lost
@@ -236,10 +233,7 @@ void add_view_command(CLI::App& app, const char* name, const char* help, bool li
       ->default_val(o->backend);
   cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host, arty or ice40")->default_val(o->core);
   cmd->add_option("--device", o->device, "serial device of the board backend");
-  cmd->add_option("--board-link", o->board_link, "what the board sends back: labels, or tracks (the labels stay on the board: the events "
-                                                 "are drawn grey, with the board's tracks over them)")
-      ->default_val(o->board_link)
-      ->check(CLI::IsMember({"labels", "tracks"}));
+  add_board_link_option(*cmd, o->board_link, "the events drawn grey, with the board's tracks over them");
   cmd->add_option("--fps", o->fps, "frames per second of sensor time")->default_val(o->fps)->check(CLI::Range(1.0, 1000.0));
   cmd->add_option("--scale", o->scale, "screen pixels per sensor pixel")->default_val(o->scale)->check(CLI::Range(1, 8));
   cmd->add_flag("--headless", o->headless, "no window: write the frames as PNG files or video (needs --frames or --video)");

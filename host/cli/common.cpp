@@ -11,6 +11,21 @@
 
 namespace evms::cli {
 
+void add_board_link_option(CLI::App& cmd, std::string& board_link, const std::string& in_tracks_mode) {
+  cmd.add_option("--board-link", board_link, "what the board sends back: labels (a label for every event, and every track update; the "
+                                              "line's pace holds the core back) or tracks (the labels stay on the board, which runs at the "
+                                              "sensor's rate, and whole packets' track updates come when the line is free; " + in_tracks_mode + ")")
+      ->default_val(board_link)
+      ->check(CLI::IsMember({"labels", "tracks"}));
+}
+
+bool board_keeps_labels(const std::string& board_link, const std::string& backend) {
+  if (board_link != "labels" && backend != "board") {
+    throw std::invalid_argument("--board-link " + board_link + " is the board backend's; --backend is " + backend);
+  }
+  return board_link == "tracks";
+}
+
 void add_source_options(CLI::App& cmd, read::SourceOptions& o) {
   const char* group = "Input";
   cmd.add_option("--width", o.width, "sensor width in px, for files whose header has no size")

@@ -24,6 +24,12 @@ void add_replay_options(CLI::App& cmd, read::SourceOptions& options, Pacing paci
 // checked as they are parsed; Method::resolve applies them over the preset.
 void add_method_options(CLI::App& cmd, Method& method);
 
+// --board-link labels|tracks: what the board backend's board sends back (docs/link.md).
+// `in_tracks_mode` says what the subcommand shows when the labels stay on the board.
+void add_board_link_option(CLI::App& cmd, std::string& board_link, const std::string& in_tracks_mode);
+// Whether --board-link keeps the labels on the board; refuses it with any backend but the board.
+bool board_keeps_labels(const std::string& board_link, const std::string& backend);
+
 // "240x180", or "240x180 assumed: ..." when the source does not say its sensor size.
 std::string sensor_text(const read::SourceInfo& info);
 

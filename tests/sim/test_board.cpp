@@ -17,8 +17,8 @@ namespace evms {
 namespace {
 
 using S = hls::Ice40Shape;
-constexpr int kCpb = 4;
-constexpr int kWindow = 512;  // events in flight: the board's link FIFO
+constexpr int kCpb = EVMS_VBOARD_ice40_CLOCKS_PER_BIT;
+constexpr int kWindow = EVMS_VBOARD_ice40_LINK_FIFO_DEPTH;  // events in flight: the board's link FIFO
 
 struct Expected {
   std::vector<hls::LabelWord> labels;
@@ -278,9 +278,8 @@ TEST(BoardAer, FourPhaseHandshake) {
     EXPECT_EQ(r.words.labels[i].x, sent[i].x) << i;
     EXPECT_EQ(r.words.labels[i].y, sent[i].y) << i;
     EXPECT_EQ(r.words.labels[i].p, sent[i].p) << i;
-    // Stamped within a few microseconds of the request (12 clocks a microsecond, two
-    // synchronizer flops).
-    EXPECT_NEAR(static_cast<double>(r.words.labels[i].t), static_cast<double>(sent[i].cycle) / 12.0, 3.0) << i;
+    // Stamped within a few microseconds of the request (two synchronizer flops).
+    EXPECT_NEAR(static_cast<double>(r.words.labels[i].t), static_cast<double>(sent[i].cycle) / (EVMS_VBOARD_ice40_CLOCK_HZ / 1e6), 3.0) << i;
   }
 }
 
@@ -297,7 +296,7 @@ namespace {
 // stamped them; the packets it skipped while the line was busy are counted.
 TEST(BoardTracksMode, AerAtThreeHundredThousandEventsASecondKeepsUp) {
   using A = hls::ArtyShape;
-  constexpr int kArtyCpb = 50, kTicksPerUs = 100;
+  constexpr int kArtyCpb = EVMS_VBOARD_arty_CLOCKS_PER_BIT, kTicksPerUs = EVMS_VBOARD_arty_CLOCK_HZ / 1000000;
   constexpr double kRate = 300e3;  // events/s
   gen::SceneConfig c;
   c.motion = gen::Motion::kRotation;
