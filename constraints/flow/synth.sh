@@ -7,15 +7,13 @@
 # on the XC7 include the DSP48E1's and block RAM's; no routing, so it is a lower bound on the
 # clock period and 1000 / logic_ns an upper bound on Fmax; it also names the path's blocks and
 # source lines).
-# The iCEBreaker top is run at its build's lane count and at P = 1, 2, 4, 8; the Arty build holds
-# the seeded path only, which has no lanes, so xc7_p8 is the Arty build and xc7_p1 .. p4 build the
-# same core.
+# Both board builds hold the seeded path only, which has no lanes (the lane count is the
+# Gaussian path's), so ice40_p1 is the iCEBreaker build and xc7_p8 the Arty build; the other
+# lane counts build the same cores.
 #
 #   constraints/flow/synth.sh [-j JOBS] [-s SEEDS] [-o REPORT.json] [-b] [CONFIG ...]
 #
-# CONFIG is ice40_p1 .. ice40_p8 or xc7_p1 .. xc7_p8 (default: the four iCE40 ones and xc7_p8).
-# The iCE40 build is P = 1 and the Arty build P = 8: ice40_p1 and xc7_p8 are the default
-# configurations.
+# CONFIG is ice40_p1 .. ice40_p8 or xc7_p1 .. xc7_p8 (default: ice40_p1 and xc7_p8).
 # -b also synthesizes each configuration with the core's blocks kept apart (keep_hierarchy on
 # the filter, mean shift, merge, centroids, tracker, multiplier and reciprocal; the rest of the
 # core and of the board top counted as theirs) and writes their resources to
@@ -41,7 +39,7 @@ done
 shift $((OPTIND - 1))
 out=$(realpath -m "$out")   # the runs work inside rtl/generated
 configs=("$@")
-[ ${#configs[@]} -eq 0 ] && configs=(ice40_p1 ice40_p2 ice40_p4 ice40_p8 xc7_p8)
+[ ${#configs[@]} -eq 0 ] && configs=(ice40_p1 xc7_p8)
 for tool in yosys nextpnr-ice40; do
   command -v $tool >/dev/null || { echo "synth.sh: $tool not found (apt install yosys nextpnr-ice40 fpga-icestorm)" >&2; exit 1; }
 done

@@ -146,7 +146,7 @@ TEST(Viewer, ABoardInTracksModeShowsGreyEventsUnderItsTracks) {
   };
   const auto frame = [&](const std::string& name, const std::string& options) {
     const auto r = run_command(evms_binary() + " view \"" + scene + "\" --headless --max-frames 9 --frames " + dir.path(name) +
-                               " --preset gaussian " + options);
+                               " " + options);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     const Image img = read_png(dir.path(name + "/frame_000008.png"));
     Counts c;

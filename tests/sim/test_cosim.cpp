@@ -252,9 +252,10 @@ long long env_count(const char* name, long long fallback) {
 }
 
 // The scene family's validation members, every type in turn, until EVMS_COSIM_EVENTS events
-// (100,000 unless set) have been compared; the last member is cut at the budget. Three members
-// of four run the default method on the host build at their own sensor; every fourth runs it on
-// the Arty build, in that build's sizes, at its 240x180. EVMS_COSIM_SHARD=k/n takes every n-th member
+// (100,000 unless set) have been compared; the last member is cut at the budget. Of every four
+// members, two run the default method on the host build at their own sensor, one on the Arty
+// build (in its sizes, at its 240x180) and one on the iCE40 build (in its sizes, at its 128x128).
+// EVMS_COSIM_SHARD=k/n takes every n-th member
 // from the k-th and 1/n of the budget, so that n processes share a long regression:
 //   EVMS_COSIM_EVENTS=10000000 EVMS_COSIM_SHARD=0/2 build/bin/test_cosim --gtest_filter=CosimRegression.SceneFamily
 // Each member prints its type, seed, build and backpressure seed, so a failure reruns alone.
@@ -270,18 +271,22 @@ TEST(CosimRegression, SceneFamily) {
   for (long long n = shard; compared < budget; n += shards) {
     const std::string type = types[static_cast<size_t>(n) % types.size()];
     const std::uint64_t seed = gen::split_seed(gen::Split::kValidation, static_cast<int>(n / static_cast<long long>(types.size())));
-    const bool board = n % 4 == 3;
+    const bool arty = n % 4 == 3, ice40 = n % 4 == 1;
     gen::FamilyPins pins;
-    if (board) pins.width = hls::ArtyShape::kMaxWidth, pins.height = hls::ArtyShape::kMaxHeight;
+    if (arty) pins.width = hls::ArtyShape::kMaxWidth, pins.height = hls::ArtyShape::kMaxHeight;
+    if (ice40) pins.width = hls::Ice40Shape::kMaxWidth, pins.height = hls::Ice40Shape::kMaxHeight;
     eval::Scene scene = eval::generate_scene(gen::family_scene(type, seed, pins));
     if (static_cast<long long>(scene.events.size()) > budget - compared) scene.events.resize(static_cast<size_t>(budget - compared));
     if (scene.events.empty()) continue;
     const std::uint64_t backpressure_seed = 7000 + static_cast<std::uint64_t>(n);
     const double ready_p = 0.5 + 0.05 * static_cast<double>(n % 10);
     const std::string name = type + "_" + std::to_string(seed);
-    if (board) {
+    if (arty) {
       expect_equal<Vcore_arty, hls::ArtyShape>(name + "_arty_default", scene.events, scene.sensor, backpressure_seed, ready_p,
                                                backend::build_default_params<hls::ArtyShape>());
+    } else if (ice40) {
+      expect_equal<Vcore_ice40, hls::Ice40Shape>(name + "_ice40_default", scene.events, scene.sensor, backpressure_seed, ready_p,
+                                                 backend::build_default_params<hls::Ice40Shape>());
     } else {
       expect_equal<Vcore_host, hls::RtlHostShape>(name + "_host_default", scene.events, scene.sensor, backpressure_seed, ready_p,
                                                   seeded_method());
@@ -355,8 +360,6 @@ TEST(Schedule, TheCycleModelCountsEveryStageOfTheRtl) {
   evicting.association = Association::kLastMeasurement;
   evicting.report_tentative = true;
   expect_schedule<Vcore_host, hls::RtlHostShape>("host_evicting", scene, {240, 180}, evicting, true);
-  expect_schedule<Vcore_ice40, hls::Ice40Shape>("ice40_6dof", scene_events(gen::Motion::kSixDof, 0.1, 128, 128, 8), {128, 128},
-                                                backend::build_default_params<hls::Ice40Shape>());
 }
 
 }  // namespace
