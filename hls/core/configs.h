@@ -10,12 +10,14 @@
 namespace evms::hls {
 
 // iCEBreaker (iCE40 UP5K) beside a DVS128: 128x128, the seeded path only (the default method),
-// packets of 256, 8 clusters and tracks, 16-bit timestamps (one SPRAM) and a digit-serial shared
-// multiplier (4 bits a clock). On the family's 128x128 members the seeded path at packets of 256
+// packets of 256 (a packet closes early when more than 256 filtered events wait in it, half the
+// pending queue, which the board's link window of 1,024 must exceed with the intake's packet),
+// 8 clusters and tracks, 16-bit timestamps (one SPRAM) and a digit-serial shared multiplier
+// (4 bits a clock). On the family's 128x128 members the seeded path at packets of 256
 // scores mean F 0.895 against the Gaussian path's 0.738 at the 64 it could afford
 // (docs/rtl.md, "Builds"). The lane count and the feature, weight and table formats are the
 // Gaussian path's, which this build does not hold.
-using Ice40Shape = Shape<128, 128, 256, 1, 8, 8, 8, 16, 7, 4 * 256, 10, 15, 8, 12, 4, 64, 4, 32, 8, 0, 1>;
+using Ice40Shape = Shape<128, 128, 256, 1, 8, 8, 8, 16, 7, 2 * 256, 10, 15, 8, 12, 4, 64, 4, 32, 8, 0, 1>;
 // Arty A7-35T beside a DAVIS240: the default board core. It holds the seeded path only (the
 // default method, at about 90 cycles an event); the Gaussian path does not fit beside it.
 using ArtyShape = Shape<240, 180, 256, 8, 8, 16, 16, 16, 7, 4 * 256, 11, 16, 9, 12, 64, 64, 4, 32, 8, 0, 1>;

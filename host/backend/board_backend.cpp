@@ -23,9 +23,10 @@
 // summaries of whole packets come when the line is free, and the packets the board skipped are
 // counted in the status. No event comes back labelled.
 //
-// A board runs its build's register values: the iCE40 build's limits (128x128, packets of 64,
-// 8 clusters, 8 tracks) and the Gaussian method on the iCEBreaker; the Arty build's (240x180)
-// and the default method on the Arty. Parameters that differ are refused.
+// A board runs its build's register values, the default method in the build's limits: the iCE40
+// build's (128x128, packets of 256, 8 clusters, 8 tracks) on the iCEBreaker, the Arty build's
+// (240x180, packets of 256, 16 clusters and tracks) on the Arty. Parameters that differ are refused.
+#include <algorithm>
 #include <cstdio>
 #include <deque>
 #include <stdexcept>
@@ -50,11 +51,16 @@ std::uint64_t unwrap(link::Sequence seq, std::uint64_t oldest) {
 
 // The events the board's link queue holds: the host keeps at most this many unanswered.
 // LinkFifoDepth of rtl/board/evms_icebreaker_top.sv and evms_arty_top.sv (and sim/CMakeLists.txt).
+// It must exceed what the core can hold unlabelled (its pending queue and its intake's packet),
+// or a noisy stretch would leave the host waiting for labels of a packet that only more events
+// can close.
 template <class S>
-constexpr size_t kLinkWindow = std::is_same_v<S, hls::ArtyShape> ? 2048 : 512;
+constexpr size_t kLinkWindow = std::is_same_v<S, hls::ArtyShape> ? 2048 : 1024;
 
 template <class S>
 class BoardBackend final : public Backend {
+  static_assert(kLinkWindow<S> > static_cast<size_t>(S::kPendingDepth + S::kPacketMax), "the link window must exceed what the core holds unlabelled");
+
  public:
   BoardBackend(const BackendOptions& o, const char* build)
       : port_(check(o, build), o.baud), mode_(o.board_keeps_labels ? link::LinkMode::kTracks : link::LinkMode::kLabels) {
@@ -108,7 +114,9 @@ class BoardBackend final : public Backend {
     s.link_labels_lost = lost_;
     if (mode_ == link::LinkMode::kTracks) {
       s.labels_kept_on_board = s.events_in;
-      s.board_labelled = status_.labelled, s.board_noise = status_.noise;
+      // The latest of the counts the status and progress frames carry (they only grow in a run).
+      s.board_labelled = std::max<std::int64_t>(status_.labelled, progress_.labelled);
+      s.board_noise = std::max<std::int64_t>(status_.noise, progress_.noise);
       s.link_packets_skipped = status_.packets_skipped;
     }
     return s;
@@ -223,11 +231,13 @@ class BoardBackend final : public Backend {
             break;
           }
           case link::kProgress: {
-            // In labels mode it only says the board is working: the labels acknowledge.
-            if (mode_ != link::LinkMode::kTracks) break;
+            // In labels mode it only says the board is working: the labels acknowledge. Before
+            // the reset's status frame it is stale.
+            if (mode_ != link::LinkMode::kTracks || !started_) break;
             // The core took the link's events up to this count (numbers since the reset, modulo
             // 2^32; a run's unanswered events are far fewer).
             const link::Progress p = link::decode_progress(f);
+            progress_.labelled = p.labelled, progress_.noise = p.noise;
             const std::uint64_t taken = answered_ + static_cast<std::uint32_t>(p.taken - static_cast<std::uint32_t>(answered_));
             if (taken > answered_ + unanswered_.size()) {
               ++unbelieved_;
@@ -271,6 +281,7 @@ class BoardBackend final : public Backend {
   std::int64_t resent_ = 0, lost_ = 0, unbelieved_ = 0;
   int silent_ms_ = 0;
   link::Status status_, at_start_;
+  link::Progress progress_;  // the latest progress frame's counts (tracks mode)
   std::uint64_t bad_at_start_ = 0;
   bool started_ = false, flushing_ = false;
 };

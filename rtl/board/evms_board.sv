@@ -32,7 +32,7 @@
 module evms_board #(
   parameter int ClkHz          = 12000000,
   parameter int ClksPerBit     = 4,
-  parameter int LinkFifoDepth  = 512,
+  parameter int LinkFifoDepth  = 2048,
   // The registers' reset values and the core build (rtl/generated/evms_cfg_<build>.svh).
   `include "evms_board_cfg_params.svh"
   `include "evms_core_shape_params.svh"
@@ -50,6 +50,11 @@ module evms_board #(
   output logic        led_busy,
   output logic        led_error
 );
+  // The host keeps LinkFifoDepth events in flight and waits for their labels; the core holds up
+  // to PendingDepth of them unlabelled until their packet closes (which only more events do, or
+  // a full pending queue), and its intake up to a packet's more.
+  `EVMS_ASSERT_INIT("the link queue must be deeper than the core's pending and intake queues", LinkFifoDepth > PendingDepth + PacketMax)
+
   // ---- sources ------------------------------------------------------------------------------
   logic aer_valid, aer_ready, aer_p;
   logic [31:0] aer_t, timestamp, external_events;
