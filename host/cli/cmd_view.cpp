@@ -88,7 +88,8 @@ class SdlWindow {
 
 void print_summary(show::ViewSession& session) {
   const auto& l = session.latency();
-  std::printf("%s: %lld events labelled, %lld dropped", session.backend_name().c_str(), static_cast<long long>(session.events()),
+  std::printf("%s: %lld events labelled%s, %lld dropped", session.backend_name().c_str(), static_cast<long long>(session.events()),
+              session.labels_on_board() ? " on the board" : "",
               static_cast<long long>(session.source().dropped()));
   if (l.count() > 0) {
     std::printf("; latency from arrival to label p50 %.0f us, p99 %.0f us, max %.0f us", l.quantile_us(0.5), l.quantile_us(0.99),

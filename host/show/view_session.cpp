@@ -72,8 +72,7 @@ void ViewSession::push_until(TimeUs t) {
       if (!pending_arrival_.empty()) sink_->latency_.arrived(std::span(pending_arrival_).subspan(pending_at_, end - pending_at_));
       const auto pushed = std::span(pending_).subspan(pending_at_, end - pending_at_);
       backend_->push(pushed, *sink_);
-      // A board in tracks mode keeps its labels: the events are drawn as they came, unlabelled.
-      if (backend_name_ == "board" && options_.board_keeps_labels) {
+      if (labels_on_board()) {
         for (const Event& e : pushed) renderer_.add(LabelledEvent{e, kNoiseLabel});
       }
       pending_at_ = end;
@@ -103,7 +102,11 @@ bool ViewSession::advance() {
 }
 
 const eval::LatencyHistogram& ViewSession::latency() const { return sink_->latency_.histogram(); }
-std::int64_t ViewSession::events() const { return sink_->events_; }
+std::int64_t ViewSession::events() const {
+  if (!labels_on_board()) return sink_->events_;
+  const backend::BackendStats s = backend_->stats();
+  return s.board_labelled + s.board_noise;
+}
 
 void ViewSession::render(Canvas& canvas) {
   char line[96];
@@ -112,10 +115,11 @@ void ViewSession::render(Canvas& canvas) {
   std::snprintf(line, sizeof line, "t %.2f s", static_cast<double>(frame_t_ - t_first_) * 1e-6);
   overlay.emplace_back(line);
   // Events per second over the last second of sensor time.
-  history_.emplace_back(frame_t_, sink_->events_);
+  const std::int64_t labelled = events();
+  history_.emplace_back(frame_t_, labelled);
   while (history_.size() > 1 && history_.front().first < frame_t_ - 1000000) history_.pop_front();
   const double span_s = static_cast<double>(frame_t_ - history_.front().first) * 1e-6;
-  const double rate = span_s > 0 ? static_cast<double>(sink_->events_ - history_.front().second) / span_s : 0.0;
+  const double rate = span_s > 0 ? static_cast<double>(labelled - history_.front().second) / span_s : 0.0;
   std::snprintf(line, sizeof line, "events/s %.0f", rate);
   overlay.emplace_back(line);
   std::snprintf(line, sizeof line, "clusters %d", sink_->clusters_);

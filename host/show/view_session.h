@@ -35,9 +35,12 @@ class ViewSession {
   void switch_backend(const std::string& name);
   const std::string& backend_name() const { return backend_name_; }
   read::EventSource& source() { return *source_; }
-  // Arrival-to-label latency of the events of a live source, and the events labelled so far.
+  // Arrival-to-label latency of the events of a live source, and the events labelled so far
+  // (by a board in tracks mode, as its progress frames count them).
   const eval::LatencyHistogram& latency() const;
   std::int64_t events() const;
+  // A board in tracks mode: its labels stay on it, and the events are drawn unlabelled.
+  bool labels_on_board() const { return backend_name_ == "board" && options_.board_keeps_labels; }
 
  private:
   class Sink;

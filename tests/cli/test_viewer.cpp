@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -143,6 +144,7 @@ TEST(Viewer, ABoardInTracksModeShowsGreyEventsUnderItsTracks) {
   const std::string scene = "gen://rotation?duration-s=0.3&seed=5&width=128&height=128";
   struct Counts {
     size_t grey = 0, coloured = 0, white = 0;
+    long labelled = -1;  // "BACKEND: N events labelled" of the summary
   };
   const auto frame = [&](const std::string& name, const std::string& options) {
     const auto r = run_command(evms_binary() + " view \"" + scene + "\" --headless --max-frames 9 --frames " + dir.path(name) +
@@ -150,6 +152,7 @@ TEST(Viewer, ABoardInTracksModeShowsGreyEventsUnderItsTracks) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     const Image img = read_png(dir.path(name + "/frame_000008.png"));
     Counts c;
+    if (const size_t at = r.out.find(": "); at != std::string::npos) c.labelled = std::atol(r.out.c_str() + at + 2);
     for (size_t i = 0; i + 2 < img.rgb.size(); i += 3) {
       const int r8 = img.rgb[i], g8 = img.rgb[i + 1], b8 = img.rgb[i + 2];
       if (r8 + g8 + b8 <= 18 + 18 + 24) continue;  // the background (host/show/frame_renderer.cpp)
@@ -164,6 +167,11 @@ TEST(Viewer, ABoardInTracksModeShowsGreyEventsUnderItsTracks) {
   EXPECT_GT(tracks.white, 0u) << "a track's marker";
   EXPECT_GT(labelled.coloured, 300u);
   EXPECT_LT(tracks.coloured * 2, labelled.coloured) << "only the tracks have colour";
+  // The board's own label counts (its latest progress frame) stand for the events it labelled:
+  // most of the fixed core's by the last frame, never more.
+  EXPECT_GT(labelled.labelled, 1000);
+  EXPECT_GT(tracks.labelled * 2, labelled.labelled);
+  EXPECT_LE(tracks.labelled, labelled.labelled);
 }
 
 TEST(Viewer, EndedTracksFadeWithinTheCoastingTimeAndArrowsStayShort) {
