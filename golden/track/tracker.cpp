@@ -24,6 +24,12 @@ double MultiTargetTracker::gate(const Measurement& z) const {
   return std::max(params_.gate_px, params_.gate_spread * z.spread);
 }
 
+bool MultiTargetTracker::sizes_match(int track_events, int measurement_events) const {
+  if (params_.size_ratio <= 0) return true;
+  const double ratio = std::max(params_.size_ratio, 1.0);
+  return std::max(track_events, measurement_events) <= ratio * std::min(track_events, measurement_events);
+}
+
 void MultiTargetTracker::report(const Track& track, const Measurement& z, std::vector<TrackUpdate>& updates) const {
   if (!track.confirmed && !params_.report_tentative) return;
   const auto& s = track.filter.state();
@@ -68,7 +74,7 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
       const Eigen::Vector2d from = params_.association == Association::kLastMeasurement ? slots_[s]->last_z
                                                                                          : slots_[s]->filter.predicted_position(z.t);
       const double d = (from - Eigen::Vector2d(z.x, z.y)).norm();
-      if (d <= gate(z)) candidates.push_back({d, s, m});
+      if (d <= gate(z) && sizes_match(slots_[s]->last_events, z.events)) candidates.push_back({d, s, m});
     }
   }
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
@@ -89,6 +95,7 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
     track.confirmed = track.confirmed || ++track.hits >= params_.confirm_hits;
     track.missed = 0;
     track.last_z = {z.x, z.y};
+    track.last_events = z.events;
     ids[c.measurement] = track.id;
     report(track, z, updates);
   }
@@ -107,7 +114,7 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
       continue;
     }
     const Measurement& z = measurements[m];
-    slots_[*slot].emplace(Track{next_id_++, KalmanFilter(z.x, z.y, z.t, params_), 1, params_.confirm_hits <= 1, 0, {z.x, z.y}});
+    slots_[*slot].emplace(Track{next_id_++, KalmanFilter(z.x, z.y, z.t, params_), 1, params_.confirm_hits <= 1, 0, {z.x, z.y}, z.events});
     slot_matched[*slot] = true;
     ids[m] = slots_[*slot]->id;
     report(*slots_[*slot], z, updates);

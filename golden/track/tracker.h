@@ -7,7 +7,8 @@
 //  2. Every (track, measurement) pair whose distance between the measurement and the track's
 //     prediction at the measurement's time is within the gate is a candidate. The gate is
 //     gate_px, or gate_spread times the measurement's spread (the RMS distance of its events
-//     from their centre) when that is larger. Pairs are taken greedily, nearest first (ties:
+//     from their centre) when that is larger; with size_ratio, a pair whose event counts (the
+//     measurement's and the track's last) differ by more than that factor is not a candidate. Pairs are taken greedily, nearest first (ties:
 //     lower track slot, then lower measurement), each track and each measurement at most
 //     once, so no two clusters share an ID.
 //  3. A matched track is predicted to its measurement's time and updated, and reported (a
@@ -76,9 +77,11 @@ class MultiTargetTracker final : public Tracker {
     bool confirmed;
     int missed = 0;  // packets in a row without a measurement
     Eigen::Vector2d last_z;  // the last measurement's position
+    int last_events = 0;     // ... and its event count
   };
 
   double gate(const Measurement& z) const;
+  bool sizes_match(int track_events, int measurement_events) const;
   std::optional<size_t> slot_for_new_track(const std::vector<bool>& matched) const;
   void report(const Track& track, const Measurement& z, std::vector<TrackUpdate>& updates) const;
 

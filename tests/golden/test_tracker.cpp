@@ -206,6 +206,33 @@ TEST(Tracker, TheGateWidensWithTheClusterSpread) {
   EXPECT_EQ(tracker.step(2000, std::vector<Measurement>{small}, updates)[0], 1);
 }
 
+// A faint object's track (10 events a packet) and a bright one's (500), both confirmed: the
+// bright cluster passes 1 px from the faint track's last measurement and 14 px from its own.
+// Without the size ratio the faint track takes it (nearest first); with it, only the bright
+// track can.
+TEST(Tracker, TheSizeRatioKeepsAFaintTrackFromTakingABrightCluster) {
+  for (const double ratio : {0.0, 8.0}) {
+    SCOPED_TRACE(ratio);
+    Params p = tracker_params();
+    p.association = Association::kLastMeasurement;
+    p.gate_px = 20;
+    p.size_ratio = ratio;
+    MultiTargetTracker tracker(p);
+    std::vector<TrackUpdate> updates;
+    Measurement faint{0, 50, 50}, bright{0, 20, 50};
+    faint.events = 10, bright.events = 500;
+    EXPECT_EQ(tracker.step(0, std::vector<Measurement>{faint, bright}, updates), (std::vector<std::int32_t>{0, 1}));
+    faint.t = bright.t = 1000, bright.x = 35;
+    EXPECT_EQ(tracker.step(1000, std::vector<Measurement>{faint, bright}, updates), (std::vector<std::int32_t>{0, 1}));
+    bright.t = 2000, bright.x = 49;
+    EXPECT_EQ(tracker.step(2000, std::vector<Measurement>{bright}, updates)[0], ratio > 0 ? 1 : 0);
+    // Within the ratio sizes do not matter: 40 events take the faint track (10) again.
+    Measurement fainter{3000, 50, 50};
+    fainter.events = 40;
+    EXPECT_EQ(tracker.step(3000, std::vector<Measurement>{fainter}, updates)[0], 0);
+  }
+}
+
 TEST(NearestCentreIds, ClustersTakeTheNearestPreviousCentreEvenTwice) {
   Params p = preset("paper");
   NearestCentreIds ids_of(p);
