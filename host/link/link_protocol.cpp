@@ -27,15 +27,11 @@ void frame(std::vector<std::uint8_t>& out, FrameType type, const std::vector<std
 
 size_t expected_length(std::uint8_t type) {
   switch (type) {
-    case kEvent: return 11;
-    case kFlush: return 2;
-    case kReset: return 1;
-    case kLabel: return 15;
-    case kTrack: return 33;
-    case kPacket: return 12;
-    case kStatus: return 44;
-    case kResend: return 2;
-    case kProgress: return 12;
+#define EVMS_LINK_FRAME_LENGTH(name, type, length, what) \
+  case k##name:                                          \
+    return length;
+    EVMS_LINK_FRAMES(EVMS_LINK_FRAME_LENGTH)
+#undef EVMS_LINK_FRAME_LENGTH
     default: return 256;  // unknown
   }
 }

@@ -1,6 +1,7 @@
 // The serial link between the host and the board top (docs/link.md), in C++: frame encoding
 // for the host's side and a decoder for the board's frames. The RTL implements the same
-// protocol in rtl/board/evms_link_rx.sv and evms_link_tx.sv.
+// protocol in rtl/board/evms_link_rx.sv and evms_link_tx.sv; both sides take the frame types
+// and lengths from host/link/link_frames.h.
 //
 //   frame = 0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 //   CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF) over TYPE, LEN and PAYLOAD
@@ -17,19 +18,14 @@
 #include <vector>
 
 #include "hls/core/words.h"
+#include "host/link/link_frames.h"
 
 namespace evms::link {
 
 enum FrameType : std::uint8_t {
-  kEvent = 0x01,
-  kFlush = 0x02,
-  kReset = 0x03,
-  kLabel = 0x81,
-  kTrack = 0x82,
-  kPacket = 0x83,
-  kStatus = 0x84,
-  kResend = 0x85,
-  kProgress = 0x86,
+#define EVMS_LINK_FRAME_TYPE(name, type, length, what) k##name = type,
+  EVMS_LINK_FRAMES(EVMS_LINK_FRAME_TYPE)
+#undef EVMS_LINK_FRAME_TYPE
 };
 
 // What the board sends back for a run, chosen by the reset frame that starts it.

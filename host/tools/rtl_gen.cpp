@@ -10,6 +10,7 @@
 //   evms_board_build_params.svh  a board top's build passed to evms_board
 //   evms_builds.cmake            the build names, for sim/CMakeLists.txt
 //   evms_cfg_registers.h         every build's reset registers, for C++17 testbenches
+//   evms_link_frames.svh         the link's frame types and lengths (host/link/link_frames.h)
 // and per build: evms_cfg_<build>.svh (its Shape and reset registers as localparams),
 // evms_cfg_<build>.cmake (the same as Verilator -G overrides), and its exp and reciprocal ROM
 // tables. Into
@@ -26,6 +27,7 @@
 #include "hls/core/configs.h"
 #include "hls/core/schedule.h"
 #include "host/backend/core_config.h"
+#include "host/link/link_frames.h"
 #include "types/params.h"
 
 namespace {
@@ -313,5 +315,18 @@ int main(int argc, char** argv) {
     if (b.name == "arty") write_interface(dir, b);
   }
   write_docs(std::string(argv[2]) + "/registers.md", builds);
+  std::ostringstream frames;
+  frames << "// " << kGeneratedBy << "\n// The link's frames (host/link/link_frames.h, docs/link.md): type codes and payload lengths.\n"
+         << "// Each side of the link includes them all and uses its own direction's: evms_link_rx.sv the host's frames,\n"
+         << "// evms_link_tx.sv the board's.\n/* verilator lint_off UNUSEDPARAM */\n";
+  char line[200];
+#define EVMS_WRITE_LINK_FRAME(name, type, length, what)                                                                          \
+  std::snprintf(line, sizeof line, "localparam logic [7:0] Frame%sType = 8'h%02X, Frame%sLen = 8'd%d;  // %s\n", #name, type, #name, \
+                length, what);                                                                                                    \
+  frames << line;
+  EVMS_LINK_FRAMES(EVMS_WRITE_LINK_FRAME)
+#undef EVMS_WRITE_LINK_FRAME
+  frames << "/* verilator lint_on UNUSEDPARAM */\n";
+  write(dir + "/evms_link_frames.svh", frames.str());
   return 0;
 }

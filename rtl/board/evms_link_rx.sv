@@ -39,6 +39,7 @@ module evms_link_rx #(
   output logic [31:0] overruns,
   output logic [31:0] events_received
 );
+  `include "evms_link_frames.svh"
   typedef enum logic [2:0] {S_SYNC1, S_SYNC2, S_TYPE, S_LEN, S_PAYLOAD, S_CRC_LO, S_CRC_HI} state_e;
   state_e state;
   logic [7:0] ftype, flen, pos;
@@ -53,9 +54,9 @@ module evms_link_rx #(
   logic crc_ok, is_event, is_flush, is_reset;
   logic [15:0] frame_seq, seq_ahead;
   assign crc_ok = {byte_data, crc_lo} == crc;
-  assign is_event = crc_ok && ftype == 8'h01 && flen == 8'd11;
-  assign is_flush = crc_ok && ftype == 8'h02 && flen == 8'd2;
-  assign is_reset = crc_ok && ftype == 8'h03 && flen == 8'd1;
+  assign is_event = crc_ok && ftype == FrameEventType && flen == FrameEventLen;
+  assign is_flush = crc_ok && ftype == FrameFlushType && flen == FrameFlushLen;
+  assign is_reset = crc_ok && ftype == FrameResetType && flen == FrameResetLen;
   assign frame_seq = is_event ? {payload[10], payload[9]} : {payload[1], payload[0]};
   assign seq_ahead = frame_seq - expected_seq;  // as a signed number: > 0 means frames were lost
 

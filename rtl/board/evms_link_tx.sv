@@ -42,6 +42,7 @@ module evms_link_tx (
   input  logic        byte_ready,
   output logic [7:0]  byte_data
 );
+  `include "evms_link_frames.svh"
   typedef enum logic [2:0] {S_IDLE, S_SYNC1, S_SYNC2, S_TYPE, S_LEN, S_PAYLOAD, S_CRC_LO, S_CRC_HI} state_e;
   state_e state;
   // As long as the longest frame's, the status's; each frame's payload is zero-extended to it
@@ -97,23 +98,23 @@ module evms_link_tx (
       case (state)
         S_IDLE: begin
           if (st_valid) begin
-            {ftype, flen, payload} <= {8'h84, 8'd44, st_payload};
+            {ftype, flen, payload} <= {FrameStatusType, FrameStatusLen, st_payload};
             state <= S_SYNC1;
           end else if (rs_valid) begin
-            {ftype, flen, payload} <= {8'h85, 8'd2, 336'd0, rs_seq};
+            {ftype, flen, payload} <= {FrameResendType, FrameResendLen, 336'd0, rs_seq};
             state <= S_SYNC1;
           end else if (pkt_valid) begin
-            {ftype, flen, payload} <= {8'h83, 8'd12, 256'd0, pkt_payload};
+            {ftype, flen, payload} <= {FramePacketType, FramePacketLen, 256'd0, pkt_payload};
             state <= S_SYNC1;
           end else if (trk_valid) begin
-            {ftype, flen, payload} <= {8'h82, 8'd33, 88'd0, trk_payload};
+            {ftype, flen, payload} <= {FrameTrackType, FrameTrackLen, 88'd0, trk_payload};
             state <= S_SYNC1;
           end else if (lab_valid) begin
-            {ftype, flen, payload} <= {8'h81, 8'd15, 232'd0, label_seq, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
+            {ftype, flen, payload} <= {FrameLabelType, FrameLabelLen, 232'd0, label_seq, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
             label_seq <= label_seq + 1'b1;
             state <= S_SYNC1;
           end else if (pg_valid) begin
-            {ftype, flen, payload} <= {8'h86, 8'd12, 256'd0, pg_payload};
+            {ftype, flen, payload} <= {FrameProgressType, FrameProgressLen, 256'd0, pg_payload};
             state <= S_SYNC1;
           end
           crc <= 16'hFFFF;
