@@ -8,9 +8,9 @@
 //     prediction at the measurement's time is within the gate is a candidate. The gate is
 //     gate_px, or gate_spread times the measurement's spread (the RMS distance of its events
 //     from their centre) when that is larger; with size_ratio, a pair whose event counts (the
-//     measurement's and the track's last) differ by more than that factor is not a candidate. Pairs are taken greedily, nearest first (ties:
-//     lower track slot, then lower measurement), each track and each measurement at most
-//     once, so no two clusters share an ID.
+//     measurement's and the track's last) differ by more than that factor is not a candidate.
+//     Pairs are taken greedily, nearest first (ties: lower track slot, then lower measurement),
+//     each track and each measurement at most once, so no two clusters share an ID.
 //  3. A matched track is predicted to its measurement's time and updated, and reported (a
 //     tentative one only with report_tentative). After confirm_hits measurements it is
 //     confirmed.
