@@ -30,7 +30,7 @@
 #include <cstdio>
 #include <deque>
 #include <stdexcept>
-#include <type_traits>
+#include <string_view>
 
 #include "hls/core/configs.h"
 #include "host/backend/core_backend.h"
@@ -49,17 +49,21 @@ std::uint64_t unwrap(link::Sequence seq, std::uint64_t oldest) {
   return oldest + static_cast<link::Sequence>(seq - static_cast<link::Sequence>(oldest));
 }
 
-// The events the board's link queue holds: the host keeps at most this many unanswered.
-// LinkFifoDepth of rtl/board/evms_icebreaker_top.sv and evms_arty_top.sv (and sim/CMakeLists.txt).
-// It must exceed what the core can hold unlabelled (its pending queue and its intake's packet),
-// or a noisy stretch would leave the host waiting for labels of a packet that only more events
-// can close.
-template <class S>
-constexpr size_t kLinkWindow = std::is_same_v<S, hls::ArtyShape> ? 2048 : 1024;
+// The events the board's link queue holds (EVMS_BOARD_BUILDS, hls/core/configs.h; 0 for a build
+// without a board): the host keeps at most this many unanswered. It must exceed what the core can
+// hold unlabelled (its pending queue and its intake's packet), or a noisy stretch would leave the
+// host waiting for labels of a packet that only more events can close.
+constexpr size_t link_window(std::string_view build) {
+#define EVMS_LINK_WINDOW_OF(name, clock_hz, clocks_per_bit, link_fifo_depth) \
+  if (build == #name) return link_fifo_depth;
+  EVMS_BOARD_BUILDS(EVMS_LINK_WINDOW_OF)
+#undef EVMS_LINK_WINDOW_OF
+  return 0;
+}
 
-template <class S>
+template <class S, size_t LinkWindow>
 class BoardBackend final : public Backend {
-  static_assert(kLinkWindow<S> > static_cast<size_t>(S::kPendingDepth + S::kPacketMax), "the link window must exceed what the core holds unlabelled");
+  static_assert(LinkWindow > static_cast<size_t>(S::kPendingDepth + S::kPacketMax), "the link window must exceed what the core holds unlabelled");
 
  public:
   BoardBackend(const BackendOptions& o, const char* build)
@@ -77,7 +81,7 @@ class BoardBackend final : public Backend {
   void push(std::span<const Event> events, OutputSink& out) override {
     std::vector<std::uint8_t> frames;
     for (const Event& e : events) {
-      while (unanswered_.size() >= kLinkWindow<S>) {
+      while (unanswered_.size() >= LinkWindow) {
         port_.write_all(frames);
         frames.clear();
         receive(out, true);
@@ -286,13 +290,24 @@ class BoardBackend final : public Backend {
   bool started_ = false, flushing_ = false;
 };
 
+template <class S, size_t LinkWindow>
+std::unique_ptr<Backend> board_backend_of(const BackendOptions& o, const char* build) {
+  if constexpr (LinkWindow == 0) {
+    throw std::invalid_argument(std::string("the board backend runs --core ice40 (the iCEBreaker) or arty (the Arty), not ") + build);
+  } else {
+    return std::make_unique<BoardBackend<S, LinkWindow>>(o, build);
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<Backend> make_board_backend(const BackendOptions& o) {
   const std::string build = board_build(o.core);
-  if (build == "arty") return std::make_unique<BoardBackend<hls::ArtyShape>>(o, "arty");
-  if (build == "ice40") return std::make_unique<BoardBackend<hls::Ice40Shape>>(o, "ice40");
-  throw std::invalid_argument("the board backend runs --core ice40 (the iCEBreaker) or arty (the Arty), not " + build);
+#define EVMS_BOARD_BACKEND_OF(name, fixed, rtl, width, height, description) \
+  if (build == #name) return board_backend_of<hls::rtl, link_window(#name)>(o, #name);
+  EVMS_CORE_BUILDS(EVMS_BOARD_BACKEND_OF)
+#undef EVMS_BOARD_BACKEND_OF
+  throw std::invalid_argument("unknown core build '" + build + "'");
 }
 
 }  // namespace evms::backend

@@ -12,7 +12,8 @@
 //   evms_cfg_registers.h         every build's reset registers, for C++17 testbenches
 //   evms_link_frames.svh         the link's frame types and lengths (host/link/link_frames.h)
 // and per build: evms_cfg_<build>.svh (its Shape and reset registers as localparams),
-// evms_cfg_<build>.cmake (the same as Verilator -G overrides), and its exp and reciprocal ROM
+// evms_cfg_<build>.cmake (the same as Verilator -G overrides; with a board build's board, from
+// EVMS_BOARD_BUILDS, in both), and its exp and reciprocal ROM
 // tables. Into
 // DOCSDIR (docs/): registers.md. A test re-runs it and compares (tests/sim/test_generated.cpp).
 //   rtl_gen RTLDIR DOCSDIR
@@ -200,7 +201,20 @@ void write_tables(const std::string& dir) {
   write(dir + "/" + recip_table_file<S>(), r.str());
 }
 
+struct Board {
+  long long clock_hz = 0, clocks_per_bit = 0, link_fifo_depth = 0;
+};
+// The board build `name` is for (EVMS_BOARD_BUILDS), or none (clock_hz 0).
+Board board_of(const std::string& name) {
+#define EVMS_BOARD_OF(build, clock_hz, clocks_per_bit, link_fifo_depth) \
+  if (name == #build) return {clock_hz, clocks_per_bit, link_fifo_depth};
+  EVMS_BOARD_BUILDS(EVMS_BOARD_OF)
+#undef EVMS_BOARD_OF
+  return {};
+}
+
 void write_build(const std::string& dir, const BuildFiles& b) {
+  const Board board = board_of(b.name);
   const auto& shape = shape_parameter_names();
   // SystemVerilog localparams, for the board tops.
   std::ostringstream o;
@@ -213,6 +227,11 @@ void write_build(const std::string& dir, const BuildFiles& b) {
   for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
     const Register& r = kRtlRegisters[i];
     o << "localparam " << sv_type(r.bits) << " " << board_parameter(r) << " = " << sv_literal(r.bits, b.registers[i]) << ";\n";
+  }
+  if (board.clock_hz) {
+    o << "// The board: its clock, its UART's clocks a bit, and its link queue's depth in events.\n"
+      << "localparam int BoardClockHz = " << board.clock_hz << ", BoardClocksPerBit = " << board.clocks_per_bit
+      << ", BoardLinkFifoDepth = " << board.link_fifo_depth << ";\n";
   }
   write(dir + "/evms_cfg_" + b.name + ".svh", o.str());
 
@@ -227,6 +246,9 @@ void write_build(const std::string& dir, const BuildFiles& b) {
   }
   v << ")\nset(EVMS_RTL_EXP_MEM_" << b.name << " " << b.exp_file << ")\n";
   v << "set(EVMS_RTL_RECIP_MEM_" << b.name << " " << b.recip_file << ")\n";
+  if (board.clock_hz) {
+    v << "set(EVMS_BOARD_" << b.name << " " << board.clock_hz << " " << board.clocks_per_bit << " " << board.link_fifo_depth << ")\n";
+  }
   write(dir + "/evms_cfg_" + b.name + ".cmake", v.str());
 
 }

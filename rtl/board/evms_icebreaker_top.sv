@@ -25,7 +25,7 @@ module evms_icebreaker_top #(
 
   logic busy, error;
   evms_board #(
-    .ClkHz(12000000), .ClksPerBit(4), .LinkFifoDepth(1024),
+    .ClkHz(BoardClockHz), .ClksPerBit(BoardClocksPerBit), .LinkFifoDepth(BoardLinkFifoDepth),
     `include "evms_board_build_params.svh"
   ) u_board (
     .clk(CLK), .rst_n(rst_n), .aer_req_n(AER_REQ_N), .aer_ack_n(AER_ACK_N), .aer_addr(AER_ADDR), .uart_rx(RX),

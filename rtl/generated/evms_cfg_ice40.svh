@@ -74,3 +74,5 @@ localparam logic [31:0] CfgLink2 = 32'd16;
 localparam logic CfgAssociateLast = 1'd1;
 localparam logic CfgEvictStale = 1'd1;
 localparam logic CfgReportTentative = 1'd1;
+// The board: its clock, its UART's clocks a bit, and its link queue's depth in events.
+localparam int BoardClockHz = 12000000, BoardClocksPerBit = 4, BoardLinkFifoDepth = 1024;
