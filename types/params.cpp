@@ -96,9 +96,9 @@ const std::array kTable = {
     ParamInfo{"gate-spread", "1", "the gate widens to this many times the cluster's spread (RMS radius of "
               "its events) when that is larger; 0 = gate-px only",
               &Params::gate_spread, 0, 100},
-    ParamInfo{"size-ratio", "1", "a cluster with more than this many times the events of its track's last cluster, or fewer "
-              "than 1/this, is not a candidate for that track (a faint object's track does not take a bright one passing "
-              "over it); 0 = off, from 1",
+    ParamInfo{"size-ratio", "1", "a (track, cluster) pair whose cluster has more than this many times the events of the "
+              "track's last cluster, or fewer than 1/this, is taken only after every pair within it (a faint object's track "
+              "does not take a bright one passing over it); 0 = off, from 1",
               &Params::size_ratio, 0, 1e6},
     ParamInfo{"confirm-hits", "packets", "measurements before a track is confirmed",
               &Params::confirm_hits, 1, 1000},

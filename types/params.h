@@ -80,9 +80,9 @@ struct Params {
   Association association = Association::kLastMeasurement;
   double gate_px = 20.0;             // association gate around the predicted position
   double gate_spread = 0.0;          // ... widened to this many times the cluster's spread
-  double size_ratio = 0.0;           // a cluster with more than this many times its track's last
-                                     // cluster's events, or fewer than 1/this, is not a candidate
-                                     // for it; 0 = off
+  double size_ratio = 4.0;           // a (track, cluster) pair whose cluster has more than this
+                                     // many times the track's last cluster's events, or fewer than
+                                     // 1/this, is taken after every pair within it; 0 = off
   int confirm_hits = 3;              // measurements before a track is confirmed
   bool report_tentative = true;      // tentative tracks report their updates (state tentative)
   TimeUs coast_us = 100000;          // a confirmed track ends after this long without a match

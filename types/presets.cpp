@@ -43,6 +43,7 @@ Params gaussian() {
   p.association = Association::kKalman;
   p.gate_px = 20.0;
   p.gate_spread = 0.0;
+  p.size_ratio = 0.0;
   p.confirm_hits = 3;
   p.coast_us = 100000;
   p.coast_packets = 0;

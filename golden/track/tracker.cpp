@@ -62,6 +62,7 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
   }
 
   struct Candidate {
+    bool sizes_differ;  // taken only after every pair whose sizes match
     double distance;
     size_t slot;
     size_t measurement;
@@ -74,12 +75,12 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
       const Eigen::Vector2d from = params_.association == Association::kLastMeasurement ? slots_[s]->last_z
                                                                                          : slots_[s]->filter.predicted_position(z.t);
       const double d = (from - Eigen::Vector2d(z.x, z.y)).norm();
-      if (d <= gate(z) && sizes_match(slots_[s]->last_events, z.events)) candidates.push_back({d, s, m});
+      if (d <= gate(z)) candidates.push_back({!sizes_match(slots_[s]->last_events, z.events), d, s, m});
     }
   }
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-    return std::tie(a.distance, a.slot, a.measurement) <
-           std::tie(b.distance, b.slot, b.measurement);
+    return std::tie(a.sizes_differ, a.distance, a.slot, a.measurement) <
+           std::tie(b.sizes_differ, b.distance, b.slot, b.measurement);
   });
 
   std::vector<std::int32_t> ids(measurements.size(), kNoiseLabel);

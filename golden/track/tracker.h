@@ -7,10 +7,13 @@
 //  2. Every (track, measurement) pair whose distance between the measurement and the track's
 //     prediction at the measurement's time is within the gate is a candidate. The gate is
 //     gate_px, or gate_spread times the measurement's spread (the RMS distance of its events
-//     from their centre) when that is larger; with size_ratio, a pair whose event counts (the
-//     measurement's and the track's last) differ by more than that factor is not a candidate.
-//     Pairs are taken greedily, nearest first (ties: lower track slot, then lower measurement),
-//     each track and each measurement at most once, so no two clusters share an ID.
+//     from their centre) when that is larger. Pairs are taken greedily, nearest first (ties:
+//     lower track slot, then lower measurement), each track and each measurement at most once,
+//     so no two clusters share an ID. With size_ratio, a pair whose event counts (the
+//     measurement's and the track's last) differ by more than that factor is taken only after
+//     every pair within it: a faint object's track does not take a bright cluster that passes
+//     over it while the bright cluster's own track wants it, yet an object that grows or shrinks
+//     fast (entering or leaving the view) keeps its track when nothing else claims it.
 //  3. A matched track is predicted to its measurement's time and updated, and reported (a
 //     tentative one only with report_tentative). After confirm_hits measurements it is
 //     confirmed.

@@ -50,6 +50,7 @@
   X(link2, std::uint32_t, 32, 0, "seeded: clusters with events within sqrt(link2) px join; 0: off")                     \
   X(associate_last, bool, 1, false, "gate against the last measurement of a track, not its prediction")                 \
   X(evict_stale, bool, 1, false, "with no free slot, take the unmatched slot measured longest ago")                     \
+  X(size_ratio_log2, std::uint8_t, 4, 0, "pairs whose event counts differ by more than 2^this are taken last; 0: off")  \
   X(report_tentative, bool, 1, false, "tentative tracks report their updates too")
 
 // Registers of the C++ core only: the filter's support count, the gate's widening by a

@@ -6,7 +6,9 @@
 //     associate_last, of its last measurement) are candidates; the gate is gate2, widened to
 //     gate_spread2 times the measurement's spread squared when that is larger. The nearest pair
 //     is taken, then the nearest among the rest, and so on (ties: lower slot, then lower
-//     measurement), so association is one-to-one;
+//     measurement), so association is one-to-one; with size_ratio_log2, pairs whose event counts
+//     (the measurement's and the track's last) differ by more than 2^size_ratio_log2 times come
+//     after every other pair (the "far" bit of the pair table, above the distance);
 //  3. matched tracks predict to their measurement's time and update; they report (tentative
 //     ones only with report_tentative);
 //  4. unmatched tentative tracks end; unmatched confirmed ones coast;
@@ -37,6 +39,8 @@ struct TrackerTrace {
 
 template <class S>
 class Tracker {
+  static_assert(S::kPacketMax < 65536, "a slot keeps its last cluster's event count in 16 bits");
+
  public:
   using Axis = KalmanAxis<S>;
 
@@ -74,8 +78,10 @@ class Tracker {
     // written by the distance pass, read by the scans, never both in one clock.
     std::uint64_t pair_d2[S::kTracksMax][S::kClustersMax];
     bool pair_within[S::kTracksMax][S::kClustersMax] = {};
+    bool pair_far[S::kTracksMax][S::kClustersMax] = {};
 #pragma HLS BIND_STORAGE variable = pair_d2 type = ram_s2p
 #pragma HLS BIND_STORAGE variable = pair_within type = ram_s2p
+#pragma HLS BIND_STORAGE variable = pair_far type = ram_s2p
   distances:
     for (int s = 0; s < S::kTracksMax; ++s) {
       if (!slot_[s].valid || s >= cfg.max_tracks) continue;
@@ -84,6 +90,7 @@ class Tracker {
         ++trace_.distances;
         pair_d2[s][k] = cfg.associate_last ? last_distance2(slot_[s], z[k]) : distance2(slot_[s], z[k]);
         pair_within[s][k] = pair_d2[s][k] <= gate2[k];
+        pair_far[s][k] = sizes_differ(slot_[s].last_events, z[k].events, cfg.size_ratio_log2);
       }
     }
 
@@ -92,6 +99,7 @@ class Tracker {
     for (int round = 0; round < S::kClustersMax; ++round) {
       int best_s = -1, best_m = -1;
       std::uint64_t best_d2 = 0;
+      bool best_far = false;
       ++trace_.scans;
     pairs:
       for (int s = 0; s < S::kTracksMax; ++s) {
@@ -101,7 +109,10 @@ class Tracker {
 #pragma HLS PIPELINE II = 1
           if (k >= m) break;
           if (meas_matched[k] || !pair_within[s][k]) continue;
-          if (best_s < 0 || pair_d2[s][k] < best_d2) best_s = s, best_m = k, best_d2 = pair_d2[s][k];
+          const bool far = pair_far[s][k];
+          if (best_s < 0 || (!far && best_far) || (far == best_far && pair_d2[s][k] < best_d2)) {
+            best_s = s, best_m = k, best_d2 = pair_d2[s][k], best_far = far;
+          }
         }
       }
       if (best_s < 0) {
@@ -120,6 +131,7 @@ class Tracker {
       if (!t.confirmed) t.confirmed = ++t.hits >= cfg.confirm_hits;
       t.missed = 0;
       t.zx = z[best_m].x, t.zy = z[best_m].y;
+      t.last_events = z[best_m].events;
       ids[best_m] = t.id;
       report(t, z[best_m], cfg, updates);
     }
@@ -151,6 +163,7 @@ class Tracker {
       t.missed = 0;
       t.t_last = z[k].t;
       t.zx = z[k].x, t.zy = z[k].y;
+      t.last_events = z[k].events;
       t.ax = {z[k].x, 0, cfg.p0_pos, 0, cfg.p0_vel};
       t.ay = {z[k].y, 0, cfg.p0_pos, 0, cfg.p0_vel};
       ids[k] = t.id;
@@ -176,8 +189,17 @@ class Tracker {
     std::uint32_t missed = 0;        // packets in a row without a measurement
     std::uint32_t t_last = 0;
     std::int32_t zx = 0, zy = 0;     // the last measurement, kPosFrac
+    std::uint16_t last_events = 0;   // ... and its event count (at most kPacketMax)
     AxisState ax, ay;
   };
+
+  // The pair's event counts differ by more than 2^log2 times (never when log2 is 0).
+  static bool sizes_differ(std::uint32_t track_events, std::uint32_t measurement_events, std::uint8_t log2) {
+    if (log2 == 0) return false;
+    const std::uint32_t hi = track_events > measurement_events ? track_events : measurement_events;
+    const std::uint32_t lo = track_events > measurement_events ? measurement_events : track_events;
+    return hi > (lo << log2);
+  }
 
   // gate2, or gate_spread2 times the spread squared when that is larger (both 2 kPosFrac
   // fraction bits).

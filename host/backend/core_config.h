@@ -61,10 +61,13 @@ inline std::string core_unsupported(const Params& p) {
   if (p.seeding == Seeding::kGrid) return "the fixed-point core seeds from events, not " + detail::setting(p, "seeding");
   if (seeded && p.labelling != Labelling::kFirst) return "the fixed-point core labels an event by the first climb that reached it, not " + detail::setting(p, "labelling");
   const Params off = preset("gaussian");
-  if (const char* name = detail::first_difference(p, off, {"packet-support", "min-density", "join-boxes", "measure", "size-ratio"})) {
+  if (const char* name = detail::first_difference(p, off, {"packet-support", "min-density", "join-boxes", "measure"})) {
     return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
   }
   if (p.association == Association::kNearestCentre) return "the fixed-point core does not implement " + detail::setting(p, "association");
+  if (p.size_ratio != 0 && !(p.size_ratio >= 2 && p.size_ratio <= 32768 && std::exp2(std::round(std::log2(p.size_ratio))) == p.size_ratio)) {
+    return "the fixed-point core compares sizes by a power of two from 2 to 32768, not " + detail::setting(p, "size-ratio");
+  }
   if (!seeded && (p.link_px > 0 || p.warm_start)) return "the fixed-point core links clusters and warm-starts only with seeded climbs (--seeding events)";
   if (seeded && (p.scale_p != 0 || p.scale_t != 0)) return "the fixed-point core's seeded climbs use position only (--scale-p 0 --scale-t 0)";
   if (seeded && (p.bandwidth < 0.01 || p.scale_xy != 1)) return "the fixed-point core's seeded climbs need --bandwidth 0.01 or more and --scale-xy 1";
@@ -161,6 +164,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.max_tracks = static_cast<std::uint8_t>(p.max_tracks);
   c.associate_last = p.association == Association::kLastMeasurement;
   c.gate_spread2 = static_cast<std::uint32_t>(rnd(p.gate_spread * p.gate_spread * std::ldexp(1.0, hls::kSpreadFrac)));
+  c.size_ratio_log2 = static_cast<std::uint8_t>(p.size_ratio == 0 ? 0 : std::lround(std::log2(p.size_ratio)));
   c.coast_packets = static_cast<std::uint32_t>(p.coast_packets);
   c.evict_stale = p.evict_stale;
   c.report_tentative = p.report_tentative;

@@ -50,6 +50,7 @@ module evms_centroid #(
   output logic [31:0] z_t,
   output logic signed [31:0] z_x,
   output logic signed [31:0] z_y,
+  output logic [15:0] z_events,            // the cluster's event count (at most PacketMax)
   output logic        done
 );
   localparam int ClusterIndexBits = ClustersMax > 1 ? $clog2(ClustersMax) : 1;
@@ -72,6 +73,12 @@ module evms_centroid #(
   logic        div_start;
 
   assign {z_t, z_x, z_y} = results[ClusterIndexBits'(z_c)];
+  // The count stays in the sums until the next packet starts, after the tracker's step.
+  logic [159:0] z_sums;
+  assign z_sums = sums_valid[ClusterIndexBits'(z_c)] ? sums[ClusterIndexBits'(z_c)] : 160'd0;
+  assign z_events = z_sums[15:0];
+  logic unused_z_sums;
+  assign unused_z_sums = ^z_sums[159:16];
   assign rd_i = i;
 
   // The sums of the cluster being added to (accumulating) or divided.

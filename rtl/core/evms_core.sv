@@ -258,6 +258,7 @@ module evms_core #(
   logic [7:0] z_c;
   logic [31:0] z_t;
   logic signed [31:0] z_x, z_y;
+  logic [15:0] z_events;
   evms_centroid #(
     .ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac), .PacketMax(PacketMax), .HasExact(HasSeededPath != 0)
   ) u_centroid (
@@ -265,7 +266,7 @@ module evms_core #(
     .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_cluster(co_rdata), .recip_start(ct_recip_start),
     .recip_x(ct_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m), .mul_start(ct_mul_start),
     .mul_a(ct_mul_a), .mul_b(ct_mul_b), .mul_done(mul_done), .mul_p(mul_p), .z_c(z_c), .z_t(z_t), .z_x(z_x), .z_y(z_y),
-    .done(ct_done));
+    .z_events(z_events), .done(ct_done));
 
   // ---- tracker ----------------------------------------------------------------------------------
   logic tk_start, tk_done, tk_recip_start, tk_mul_start;
@@ -279,9 +280,9 @@ module evms_core #(
   ) u_tracker (
     .clk(clk), .rst_n(rst_n), .cfg_gate2(cfg_gate2), .cfg_confirm_hits(cfg_confirm_hits), .cfg_coast_us(cfg_coast_us),
     .cfg_max_tracks(cfg_max_tracks), .cfg_associate_last(cfg_associate_last), .cfg_evict_stale(cfg_evict_stale),
-    .cfg_report_tentative(cfg_report_tentative), .cfg_q_third(cfg_q_third), .cfg_q_half(cfg_q_half), .cfg_q(cfg_q), .cfg_r(cfg_r),
+    .cfg_report_tentative(cfg_report_tentative), .cfg_size_ratio_log2(cfg_size_ratio_log2), .cfg_q_third(cfg_q_third), .cfg_q_half(cfg_q_half), .cfg_q(cfg_q), .cfg_r(cfg_r),
     .cfg_p0_pos(cfg_p0_pos), .cfg_p0_vel(cfg_p0_vel), .start(tk_start), .packet_time(t_last), .m(clusters), .z_c(z_c),
-    .z_t(z_t), .z_x(z_x), .z_y(z_y), .id_c(id_c), .id_of(id_of), .upd_valid(trk_valid), .upd_ready(trk_ready),
+    .z_t(z_t), .z_x(z_x), .z_y(z_y), .z_events(z_events), .id_c(id_c), .id_of(id_of), .upd_valid(trk_valid), .upd_ready(trk_ready),
     .upd_t(trk_t), .upd_id(trk_id), .upd_x(trk_x), .upd_y(trk_y), .upd_vx(trk_vx), .upd_vy(trk_vy), .upd_zx(trk_zx),
     .upd_zy(trk_zy), .upd_confirmed(trk_confirmed), .recip_start(tk_recip_start), .recip_x(tk_recip_x),
     .recip_done(recip_done), .recip_r(recip_r),

@@ -35,6 +35,7 @@
 .CfgLink2(CfgLink2),
 .CfgAssociateLast(CfgAssociateLast),
 .CfgEvictStale(CfgEvictStale),
+.CfgSizeRatioLog2(CfgSizeRatioLog2),
 .CfgReportTentative(CfgReportTentative),
 .MaxWidth(MaxWidth),
 .MaxHeight(MaxHeight),

@@ -35,4 +35,5 @@
 .cfg_link2(CfgLink2),
 .cfg_associate_last(CfgAssociateLast),
 .cfg_evict_stale(CfgEvictStale),
+.cfg_size_ratio_log2(CfgSizeRatioLog2),
 .cfg_report_tentative(CfgReportTentative),

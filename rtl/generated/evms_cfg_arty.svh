@@ -73,6 +73,7 @@ localparam logic [63:0] CfgWarmBall2Max = 64'd2473901162496;
 localparam logic [31:0] CfgLink2 = 32'd16;
 localparam logic CfgAssociateLast = 1'd1;
 localparam logic CfgEvictStale = 1'd1;
+localparam logic [3:0] CfgSizeRatioLog2 = 4'd2;
 localparam logic CfgReportTentative = 1'd1;
 // The board: its clock, its UART's clocks a bit, and its link queue's depth in events.
 localparam int BoardClockHz = 100000000, BoardClocksPerBit = 50, BoardLinkFifoDepth = 2048;

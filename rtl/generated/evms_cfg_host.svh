@@ -73,4 +73,5 @@ localparam logic [63:0] CfgWarmBall2Max = 64'd33554432;
 localparam logic [31:0] CfgLink2 = 32'd0;
 localparam logic CfgAssociateLast = 1'd0;
 localparam logic CfgEvictStale = 1'd0;
+localparam logic [3:0] CfgSizeRatioLog2 = 4'd0;
 localparam logic CfgReportTentative = 1'd0;

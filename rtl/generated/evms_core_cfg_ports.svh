@@ -35,4 +35,5 @@ input  logic [63:0] cfg_warm_ball2_max,  // seeded: radius^2 of the largest warm
 input  logic [31:0] cfg_link2,  // seeded: clusters with events within sqrt(link2) px join; 0: off
 input  logic cfg_associate_last,  // gate against the last measurement of a track, not its prediction
 input  logic cfg_evict_stale,  // with no free slot, take the unmatched slot measured longest ago
+input  logic [3:0] cfg_size_ratio_log2,  // pairs whose event counts differ by more than 2^this are taken last; 0: off
 input  logic cfg_report_tentative,  // tentative tracks report their updates too

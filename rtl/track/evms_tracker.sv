@@ -41,6 +41,7 @@ module evms_tracker #(
   input  logic        cfg_associate_last,
   input  logic        cfg_evict_stale,
   input  logic        cfg_report_tentative,
+  input  logic [3:0]  cfg_size_ratio_log2,
   input  logic signed [63:0] cfg_q_third,
   input  logic signed [63:0] cfg_q_half,
   input  logic signed [63:0] cfg_q,
@@ -55,6 +56,7 @@ module evms_tracker #(
   input  logic [31:0] z_t,
   input  logic signed [31:0] z_x,
   input  logic signed [31:0] z_y,
+  input  logic [15:0] z_events,
   // Track ID given to each measurement (-1: none), by index.
   input  logic [7:0]  id_c,
   output logic signed [31:0] id_of,
@@ -136,8 +138,10 @@ module evms_tracker #(
   // Each measurement's track ID (memory), where ids_valid says it has one this packet.
   logic signed [31:0]       ids [ClustersMax];
   logic [ClustersMax-1:0]   ids_valid;
-  // Each slot's last measurement {x, y}: a memory with one write port and a combinational read.
+  // Each slot's last measurement {x, y} and its event count: memories with one write port and a
+  // combinational read.
   logic [63:0]              s_z [TracksMax];
+  logic [15:0]              s_events [TracksMax];
   logic signed [31:0]       next_id;
 
   assign id_of = ids_valid[ClusterIndexBits'(id_c)] ? ids[ClusterIndexBits'(id_c)] : -32'sd1;
@@ -170,13 +174,15 @@ module evms_tracker #(
   logic               evict_scanned;
   logic signed [8:0]  evict_slot;
   logic [31:0]        evict_t;
-  // The pair table: {within the gate, squared distance} of each (slot, measurement), written by
-  // the distance pass and read by the rounds' scans (registered read: a pair issued in one
-  // clock is compared in the next, scan_pending_q).
+  // The pair table: {sizes far apart, within the gate, squared distance} of each (slot,
+  // measurement), written by the distance pass and read by the rounds' scans (registered read:
+  // a pair issued in one clock is compared in the next, scan_pending_q). A pair whose sizes are
+  // far apart ranks after every pair whose sizes are not (best_far).
   localparam int PairAddrBits = TrackIndexBits + ClusterIndexBits;
   logic                    pair_we;
   logic [PairAddrBits-1:0] pair_wa, pair_ra;
-  logic [64:0]             pair_wd, pair_rd;
+  logic [65:0]             pair_wd, pair_rd;
+  logic                    best_far;
   logic                    scan_pending_q;
   logic [TrackIndexBits-1:0] scan_slot_q;
   logic [7:0]              scan_meas_q;
@@ -323,6 +329,7 @@ module evms_tracker #(
       best_s <= '0;
       best_m <= '0;
       best_d2 <= '0;
+      best_far <= 1'b0;
       {d2, dt, dt2, dt3, dpred, dx} <= '0;
       zp[0] <= '0;
       zp[1] <= '0;
@@ -345,10 +352,12 @@ module evms_tracker #(
       mul_start <= 1'b0;
       recip_start <= 1'b0;
       if (upd_valid && upd_ready) upd_valid <= 1'b0;
-      if (scan_pending_q && pair_rd[64] && (best_s < 0 || pair_rd[63:0] < best_d2)) begin
+      if (scan_pending_q && pair_rd[64] &&
+          (best_s < 0 || (!pair_rd[65] && best_far) || (pair_rd[65] == best_far && pair_rd[63:0] < best_d2))) begin
         best_s <= $signed({1'b0, 8'(scan_slot_q)});
         best_m <= scan_meas_q;
         best_d2 <= pair_rd[63:0];
+        best_far <= pair_rd[65];
       end
       case (state)
         S_IDLE: if (start) begin
@@ -424,6 +433,7 @@ module evms_tracker #(
             best_s <= -9'sd1;
             best_m <= '0;
             best_d2 <= '0;
+            best_far <= 1'b0;
             s <= '0;
             k <= '0;
             state <= S_SCAN;
@@ -681,9 +691,15 @@ module evms_tracker #(
   assign pair_d2_new = d2 + 64'(mul_p);
   assign pair_we = state == S_PAIR_DY2 && mul_done;
   assign pair_wa = {si, ClusterIndexBits'(k)};
-  assign pair_wd = {pair_d2_new <= cfg_gate2, pair_d2_new};
+  // The pair's event counts differ by more than 2^cfg_size_ratio_log2 times (never when it is 0).
+  logic [15:0] events_hi, events_lo;
+  logic        pair_far;
+  assign events_hi = s_events[si] > z_events ? s_events[si] : z_events;
+  assign events_lo = s_events[si] > z_events ? z_events : s_events[si];
+  assign pair_far = cfg_size_ratio_log2 != 4'd0 && 32'(events_hi) > (32'(events_lo) << cfg_size_ratio_log2);
+  assign pair_wd = {pair_far, pair_d2_new <= cfg_gate2, pair_d2_new};
   assign pair_ra = {si, ClusterIndexBits'(k)};
-  evms_ram_1w1r #(.Width(65), .Depth(1 << PairAddrBits)) u_pair_table (
+  evms_ram_1w1r #(.Width(66), .Depth(1 << PairAddrBits)) u_pair_table (
     .clk, .we(pair_we), .wa(pair_wa), .wd(pair_wd), .ra(pair_ra), .rd(pair_rd)
   );
   always_ff @(posedge clk or negedge rst_n) begin
@@ -721,6 +737,7 @@ module evms_tracker #(
     // the measurement's track ID: the new track's, or the matched slot's.
     if (birth_now || (state == S_AX_END && axis)) begin
       s_z[kal_addr] <= {z_x, z_y};
+      s_events[kal_addr] <= z_events;
       s_t[kal_addr] <= z_t;
       ids[ClusterIndexBits'(k)] <= birth_now ? next_id : s_id[si];
     end

@@ -208,8 +208,8 @@ TEST(Tracker, TheGateWidensWithTheClusterSpread) {
 
 // A faint object's track (10 events a packet) and a bright one's (500), both confirmed: the
 // bright cluster passes 1 px from the faint track's last measurement and 14 px from its own.
-// Without the size ratio the faint track takes it (nearest first); with it, only the bright
-// track can.
+// Without the size ratio the faint track takes it (nearest first); with it, the bright track
+// does, as its sizes match.
 TEST(Tracker, TheSizeRatioKeepsAFaintTrackFromTakingABrightCluster) {
   for (const double ratio : {0.0, 8.0}) {
     SCOPED_TRACE(ratio);
@@ -231,6 +231,29 @@ TEST(Tracker, TheSizeRatioKeepsAFaintTrackFromTakingABrightCluster) {
     fainter.events = 40;
     EXPECT_EQ(tracker.step(3000, std::vector<Measurement>{fainter}, updates)[0], 0);
   }
+}
+
+// The size ratio ranks pairs; it does not forbid them. An object that grows fast (entering the
+// view, say) keeps its track when no track of its own size claims its cluster.
+TEST(Tracker, TheSizeRatioStillGivesAMismatchedClusterItsTrackWhenNoOtherClaimsIt) {
+  Params p = tracker_params();
+  p.association = Association::kLastMeasurement;
+  p.gate_px = 20;
+  p.size_ratio = 4;
+  MultiTargetTracker tracker(p);
+  std::vector<TrackUpdate> updates;
+  Measurement entering{0, 5, 50};
+  entering.events = 10;
+  EXPECT_EQ(tracker.step(0, std::vector<Measurement>{entering}, updates), (std::vector<std::int32_t>{0}));
+  entering.t = 1000, entering.x = 12, entering.events = 400;
+  EXPECT_EQ(tracker.step(1000, std::vector<Measurement>{entering}, updates), (std::vector<std::int32_t>{0}));
+  Measurement faint{2000, 30, 50}, bright{2000, 12, 50};
+  faint.events = 10, bright.events = 400;
+  EXPECT_EQ(tracker.step(2000, std::vector<Measurement>{bright, faint}, updates), (std::vector<std::int32_t>{0, 1}));
+  // Two tracks near one bright cluster: the one of its size takes it, though farther (12 px
+  // against 6).
+  bright.t = 3000, bright.x = 24;
+  EXPECT_EQ(tracker.step(3000, std::vector<Measurement>{bright}, updates), (std::vector<std::int32_t>{0}));
 }
 
 TEST(NearestCentreIds, ClustersTakeTheNearestPreviousCentreEvenTwice) {
