@@ -126,6 +126,12 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   const auto fixed = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --kernel epanechnikov --quiet");
   EXPECT_EQ(fixed.exit_code, 1);
   EXPECT_NE(fixed.err.find("flat kernel only"), std::string::npos) << fixed.err;
+  // The core compares event counts by a shift: a ratio that is not a power of two is refused.
+  const auto ratio = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --size-ratio 3 --quiet");
+  EXPECT_EQ(ratio.exit_code, 1);
+  EXPECT_NE(ratio.err.find("compares sizes by a power of two from 2 to 32768, not --size-ratio 3"), std::string::npos) << ratio.err;
+  const auto eight = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --size-ratio 8 --quiet");
+  EXPECT_EQ(eight.exit_code, 0) << eight.err;
 }
 
 // The host RTL build runs the default method (in its sizes); its labels and tracks are the
