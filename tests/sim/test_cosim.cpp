@@ -206,7 +206,8 @@ TEST(Cosim, LabelledScenesBoardBuilds) {
 }
 
 // Settings that take other paths through the core: packets closed by their span, the filter
-// off, single-hit confirmation, few clusters and tracks, a single sweep, no tolerance.
+// off, single-hit confirmation, few clusters and tracks, a single sweep, no tolerance, the
+// size ratio at its smallest and at its largest shift.
 TEST(Cosim, ParameterCorners) {
   const auto events = scene_events(gen::Motion::kTranslation, 0.12, 240, 180, 6);
   Params span = preset("gaussian");
@@ -216,12 +217,14 @@ TEST(Cosim, ParameterCorners) {
   open.filter_window_us = 0;
   open.confirm_hits = 1;
   open.min_cluster_size = 1;
+  open.size_ratio = 2;
   expect_equal<Vcore_host, hls::RtlHostShape>("corner_open", events, {240, 180}, 42, 0.5, open);
   Params tight = backend::build_default_params<hls::ArtyShape>();   // the seeded path
   tight.max_clusters = 3;
   tight.max_tracks = 2;
   tight.max_iterations = 1;
   tight.packet_size = 100;
+  tight.size_ratio = 32768;
   expect_equal<Vcore_arty, hls::ArtyShape>("corner_tight", events, {240, 180}, 43, 0.5, tight);
   Params exact = preset("gaussian");
   exact.tolerance = 0;
