@@ -90,7 +90,7 @@ struct Params {
   bool evict_stale = true;           // with every slot taken, a new cluster takes the stalest
                                      // unmatched track's slot
   double accel_psd = 100000.0;       // white-noise-acceleration spectral density, px^2/s^3
-  double meas_sigma_px = 2.0;        // centroid measurement noise (R = sigma^2 I)
+  double meas_sigma_px = 1.0;        // centroid measurement noise (R = sigma^2 I)
   double init_sigma_px = 2.0;        // initial position uncertainty (P0)
   double init_sigma_vel = 200.0;     // initial velocity uncertainty (P0), px/s
   int max_tracks = 128;              // tracks held at once
