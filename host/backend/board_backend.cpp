@@ -30,7 +30,6 @@
 #include <cstdio>
 #include <deque>
 #include <stdexcept>
-#include <string_view>
 
 #include "hls/core/configs.h"
 #include "host/backend/core_backend.h"
@@ -49,18 +48,10 @@ std::uint64_t unwrap(link::Sequence seq, std::uint64_t oldest) {
   return oldest + static_cast<link::Sequence>(seq - static_cast<link::Sequence>(oldest));
 }
 
-// The events the board's link queue holds (EVMS_BOARD_BUILDS, hls/core/configs.h; 0 for a build
-// without a board): the host keeps at most this many unanswered. It must exceed what the core can
-// hold unlabelled (its pending queue and its intake's packet), or a noisy stretch would leave the
-// host waiting for labels of a packet that only more events can close.
-constexpr size_t link_window(std::string_view build) {
-#define EVMS_LINK_WINDOW_OF(name, clock_hz, clocks_per_bit, link_fifo_depth) \
-  if (build == #name) return link_fifo_depth;
-  EVMS_BOARD_BUILDS(EVMS_LINK_WINDOW_OF)
-#undef EVMS_LINK_WINDOW_OF
-  return 0;
-}
-
+// LinkWindow: the events the board's link queue holds (board_of, host/backend/core_config.h);
+// the host keeps at most this many unanswered. It must exceed what the core can hold unlabelled
+// (its pending queue and its intake's packet), or a noisy stretch would leave the host waiting
+// for labels of a packet that only more events can close.
 template <class S, size_t LinkWindow>
 class BoardBackend final : public Backend {
   static_assert(LinkWindow > static_cast<size_t>(S::kPendingDepth + S::kPacketMax), "the link window must exceed what the core holds unlabelled");
@@ -304,7 +295,7 @@ std::unique_ptr<Backend> board_backend_of(const BackendOptions& o, const char* b
 std::unique_ptr<Backend> make_board_backend(const BackendOptions& o) {
   const std::string build = board_build(o.core);
 #define EVMS_BOARD_BACKEND_OF(name, fixed, rtl, width, height, description) \
-  if (build == #name) return board_backend_of<hls::rtl, link_window(#name)>(o, #name);
+  if (build == #name) return board_backend_of<hls::rtl, static_cast<size_t>(board_of(#name).link_fifo_depth)>(o, #name);
   EVMS_CORE_BUILDS(EVMS_BOARD_BACKEND_OF)
 #undef EVMS_BOARD_BACKEND_OF
   throw std::invalid_argument("unknown core build '" + build + "'");

@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "types/params.h"
 #include "hls/cluster/centroid.h"
@@ -16,6 +17,19 @@
 #include "hls/core/configs.h"
 
 namespace evms::backend {
+
+// The board a core build is for (EVMS_BOARD_BUILDS, hls/core/configs.h): its clock, its UART's
+// clocks a bit and its link queue's depth in events; all 0 for a build without a board.
+struct BoardOfBuild {
+  long long clock_hz = 0, clocks_per_bit = 0, link_fifo_depth = 0;
+};
+constexpr BoardOfBuild board_of(std::string_view build) {
+#define EVMS_BOARD_OF(name, clock_hz, clocks_per_bit, link_fifo_depth) \
+  if (build == #name) return {clock_hz, clocks_per_bit, link_fifo_depth};
+  EVMS_BOARD_BUILDS(EVMS_BOARD_OF)
+#undef EVMS_BOARD_OF
+  return {};
+}
 
 // The method build S starts with: the default method (the "evms" preset, seeded climbs) when
 // the build holds only the seeded path, else the Gaussian mean shift of every event (the

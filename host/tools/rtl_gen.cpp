@@ -201,20 +201,8 @@ void write_tables(const std::string& dir) {
   write(dir + "/" + recip_table_file<S>(), r.str());
 }
 
-struct Board {
-  long long clock_hz = 0, clocks_per_bit = 0, link_fifo_depth = 0;
-};
-// The board build `name` is for (EVMS_BOARD_BUILDS), or none (clock_hz 0).
-Board board_of(const std::string& name) {
-#define EVMS_BOARD_OF(build, clock_hz, clocks_per_bit, link_fifo_depth) \
-  if (name == #build) return {clock_hz, clocks_per_bit, link_fifo_depth};
-  EVMS_BOARD_BUILDS(EVMS_BOARD_OF)
-#undef EVMS_BOARD_OF
-  return {};
-}
-
 void write_build(const std::string& dir, const BuildFiles& b) {
-  const Board board = board_of(b.name);
+  const evms::backend::BoardOfBuild board = evms::backend::board_of(b.name);
   const auto& shape = shape_parameter_names();
   // SystemVerilog localparams, for the board tops.
   std::ostringstream o;
