@@ -74,11 +74,7 @@ module evms_centroid #(
 
   assign {z_t, z_x, z_y} = results[ClusterIndexBits'(z_c)];
   // The count stays in the sums until the next packet starts, after the tracker's step.
-  logic [159:0] z_sums;
-  assign z_sums = sums_valid[ClusterIndexBits'(z_c)] ? sums[ClusterIndexBits'(z_c)] : 160'd0;
-  assign z_events = z_sums[15:0];
-  logic unused_z_sums;
-  assign unused_z_sums = ^z_sums[159:16];
+  assign z_events = sums_valid[ClusterIndexBits'(z_c)] ? sums[ClusterIndexBits'(z_c)][15:0] : 16'd0;
   assign rd_i = i;
 
   // The sums of the cluster being added to (accumulating) or divided.
