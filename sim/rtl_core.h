@@ -132,7 +132,9 @@ class RtlCore {
       tracks.push_back({top_->trk_t, static_cast<std::int32_t>(top_->trk_id), static_cast<std::int32_t>(top_->trk_x),
                         static_cast<std::int32_t>(top_->trk_y), static_cast<std::int32_t>(top_->trk_vx),
                         static_cast<std::int32_t>(top_->trk_vy), static_cast<std::int32_t>(top_->trk_zx),
-                        static_cast<std::int32_t>(top_->trk_zy), top_->trk_confirmed != 0});
+                        static_cast<std::int32_t>(top_->trk_zy), top_->trk_confirmed != 0, top_->trk_events, top_->trk_x_min,
+                        top_->trk_y_min, top_->trk_x_max, top_->trk_y_max, static_cast<std::int64_t>(top_->trk_var_x),
+                        static_cast<std::int64_t>(top_->trk_var_y)});
     }
     if (top_->pkt_valid && top_->pkt_ready) {
       packets.push_back({top_->pkt_t_first, top_->pkt_t_last, static_cast<std::uint16_t>(top_->pkt_events),

@@ -26,7 +26,6 @@ struct TrackWord {
   std::int32_t x = 0, y = 0;    // filtered position, Shape::kPosFrac fraction bits, px
   std::int32_t vx = 0, vy = 0;  // filtered velocity, kPosFrac fraction bits, px per tick
   std::int32_t zx = 0, zy = 0;  // the measurement (cluster centre of mass), kPosFrac, px
-  // The fields below are the C++ core's; the RTL's track words end at zy (rtl/track).
   bool confirmed = true;        // else tentative (reported with Config::report_tentative)
   std::uint32_t events = 0;     // the cluster's events
   std::uint16_t x_min = 0, y_min = 0, x_max = 0, y_max = 0;  // its bounding box, px

@@ -238,14 +238,9 @@ class Tracker {
     w.x = t.ax.pos, w.y = t.ay.pos, w.vx = t.ax.vel, w.vy = t.ay.vel;
     w.zx = z.x, w.zy = z.y;
     w.confirmed = t.confirmed;
-    // The RTL's track words end at zy and the state (rtl/track/evms_tracker.sv). On the
-    // Gaussian path the core leaves the rest at its defaults, so that its words equal the RTL's
-    // whole; on the seeded path it fills them, and the cosimulation compares up to the state.
-    if (cfg.seeded) {
-      w.events = z.events;
-      w.x_min = z.x_min, w.y_min = z.y_min, w.x_max = z.x_max, w.y_max = z.y_max;
-      w.var_x = t.ax.p00, w.var_y = t.ay.p00;
-    }
+    w.events = z.events;
+    w.x_min = z.x_min, w.y_min = z.y_min, w.x_max = z.x_max, w.y_max = z.y_max;
+    w.var_x = t.ax.p00, w.var_y = t.ay.p00;
     updates.write(w);
   }
 

@@ -114,6 +114,9 @@ module evms_board #(
     .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y), .lab_p(lab_p),
     .lab_label(lab_label), .trk_valid(trk_valid), .trk_ready(trk_ready), .trk_t(trk_t), .trk_id(trk_id), .trk_x(trk_x),
     .trk_y(trk_y), .trk_vx(trk_vx), .trk_vy(trk_vy), .trk_zx(trk_zx), .trk_zy(trk_zy), .trk_confirmed(trk_confirmed),
+    // The link's track frames end at the state: the measurement's count and box and the
+    // variances stay on the board (docs/link.md).
+    .trk_events(), .trk_x_min(), .trk_y_min(), .trk_x_max(), .trk_y_max(), .trk_var_x(), .trk_var_y(),
     .pkt_valid(pkt_valid),
     .pkt_ready(pkt_ready), .pkt_t_first(pkt_t_first), .pkt_t_last(pkt_t_last), .pkt_events(pkt_events),
     .pkt_clusters(pkt_clusters), .pkt_iterations(pkt_iterations), .idle(core_idle),

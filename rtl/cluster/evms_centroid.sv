@@ -1,5 +1,6 @@
 // Each cluster's measurement, as hls/cluster/centroid.h: the centre of mass of its events
-// (PosFrac fraction bits) at the mean of their timestamps, rounded half up. One pass over the
+// (PosFrac fraction bits) at the mean of their timestamps, rounded half up, with their count
+// and bounding box. One pass over the
 // packet accumulates; then each cluster takes three divisions: through the reciprocal unit and
 // the shared multiplier, or, with `exact` (the seeded path), through a restoring divider
 // (math/evms_divide_rounded), NumBits + 2 clocks each.
@@ -51,14 +52,16 @@ module evms_centroid #(
   output logic signed [31:0] z_x,
   output logic signed [31:0] z_y,
   output logic [15:0] z_events,            // the cluster's event count (at most PacketMax)
+  output logic [15:0] z_x_min, z_y_min, z_x_max, z_y_max,  // the bounding box of its events
   output logic        done
 );
   localparam int ClusterIndexBits = ClustersMax > 1 ? $clog2(ClustersMax) : 1;
   typedef enum logic [3:0] {S_IDLE, S_ACC_READ, S_ACC_WAIT, S_ACC_ADD, S_DIV, S_DIV_RECIP, S_DIV_X, S_DIV_Y, S_DIV_T,
                             S_DONE, S_EXACT_X, S_EXACT_Y, S_EXACT_T} state_e;
   state_e state;
-  // Per cluster: {sx, sy, st, count}, valid when the packet has added to it.
-  logic [159:0] sums [ClustersMax];
+  // Per cluster: {x_min, y_min, x_max, y_max, sx, sy, st, count}, valid when the packet has
+  // added to it.
+  logic [223:0] sums [ClustersMax];
   logic [ClustersMax-1:0] sums_valid;
   // Per cluster: {t, x, y}, written when its last division ends.
   logic [95:0]  results [ClustersMax];
@@ -74,6 +77,8 @@ module evms_centroid #(
 
   assign {z_t, z_x, z_y} = results[ClusterIndexBits'(z_c)];
   // The count stays in the sums until the next packet starts, after the tracker's step.
+  // So do the bounding box and the count.
+  assign {z_x_min, z_y_min, z_x_max, z_y_max} = sums_valid[ClusterIndexBits'(z_c)] ? sums[ClusterIndexBits'(z_c)][223:160] : 64'd0;
   assign z_events = sums_valid[ClusterIndexBits'(z_c)] ? sums[ClusterIndexBits'(z_c)][15:0] : 16'd0;
   assign rd_i = i;
 
@@ -81,10 +86,13 @@ module evms_centroid #(
   logic [ClusterIndexBits-1:0] sum_c;
   logic [31:0]   sx, sy, count;
   logic [63:0]   st;
+  logic [15:0]   x_min, y_min, x_max, y_max;
   logic          adding;  // this cycle adds the event to its cluster's sums
   assign adding = state == S_ACC_ADD && ev_cluster >= 0;
   assign sum_c = state == S_ACC_ADD ? ClusterIndexBits'(ev_cluster) : ClusterIndexBits'(c);
-  assign {sx, sy, st, count} = sums_valid[sum_c] ? sums[sum_c] : 160'd0;
+  // A cluster's first event opens its box; with no events yet the box is that event.
+  assign {x_min, y_min, x_max, y_max, sx, sy, st, count} =
+      sums_valid[sum_c] ? sums[sum_c] : {ev_x, ev_y, ev_x, ev_y, 160'd0};
   // Time since the packet's first event, modulo 2^32 like the C++ core's uint32 difference.
   logic [31:0] age;
   assign age = ev_t - t0;
@@ -229,7 +237,8 @@ module evms_centroid #(
   assign q_rounded = 32'(evms_round_pkg::round_shift(64'(mul_p), state == S_DIV_T ? shift_t_m1 : shift_xy_m1));
 
   always_ff @(posedge clk) begin
-    if (adding) sums[sum_c] <= {sx + 32'(ev_x), sy + 32'(ev_y), st + 64'(age), count + 32'd1};
+    if (adding) sums[sum_c] <= {ev_x < x_min ? ev_x : x_min, ev_y < y_min ? ev_y : y_min, ev_x > x_max ? ev_x : x_max,
+                                ev_y > y_max ? ev_y : y_max, sx + 32'(ev_x), sy + 32'(ev_y), st + 64'(age), count + 32'd1};
     if (store) results[store_c] <= {t0 + t_q, x_q, y_q};
   end
 endmodule

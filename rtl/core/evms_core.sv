@@ -54,6 +54,13 @@ module evms_core #(
   output logic [31:0] trk_zx,
   output logic [31:0] trk_zy,
   output logic        trk_confirmed,        // else tentative (cfg_report_tentative)
+  output logic [15:0] trk_events,           // the measurement's event count ...
+  output logic [15:0] trk_x_min,            // ... and its bounding box, px
+  output logic [15:0] trk_y_min,
+  output logic [15:0] trk_x_max,
+  output logic [15:0] trk_y_max,
+  output logic [63:0] trk_var_x,            // the position variances, CovFrac fraction bits, px^2
+  output logic [63:0] trk_var_y,
   // Packet summaries out.
   output logic        pkt_valid,
   input  logic        pkt_ready,
@@ -258,7 +265,7 @@ module evms_core #(
   logic [7:0] z_c;
   logic [31:0] z_t;
   logic signed [31:0] z_x, z_y;
-  logic [15:0] z_events;
+  logic [15:0] z_events, z_x_min, z_y_min, z_x_max, z_y_max;
   evms_centroid #(
     .ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac), .PacketMax(PacketMax), .HasExact(HasSeededPath != 0)
   ) u_centroid (
@@ -266,7 +273,7 @@ module evms_core #(
     .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_cluster(co_rdata), .recip_start(ct_recip_start),
     .recip_x(ct_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m), .mul_start(ct_mul_start),
     .mul_a(ct_mul_a), .mul_b(ct_mul_b), .mul_done(mul_done), .mul_p(mul_p), .z_c(z_c), .z_t(z_t), .z_x(z_x), .z_y(z_y),
-    .z_events(z_events), .done(ct_done));
+    .z_events(z_events), .z_x_min(z_x_min), .z_y_min(z_y_min), .z_x_max(z_x_max), .z_y_max(z_y_max), .done(ct_done));
 
   // ---- tracker ----------------------------------------------------------------------------------
   logic tk_start, tk_done, tk_recip_start, tk_mul_start;
@@ -282,9 +289,11 @@ module evms_core #(
     .cfg_max_tracks(cfg_max_tracks), .cfg_associate_last(cfg_associate_last), .cfg_evict_stale(cfg_evict_stale),
     .cfg_report_tentative(cfg_report_tentative), .cfg_size_ratio_log2(cfg_size_ratio_log2), .cfg_q_third(cfg_q_third), .cfg_q_half(cfg_q_half), .cfg_q(cfg_q), .cfg_r(cfg_r),
     .cfg_p0_pos(cfg_p0_pos), .cfg_p0_vel(cfg_p0_vel), .start(tk_start), .packet_time(t_last), .m(clusters), .z_c(z_c),
-    .z_t(z_t), .z_x(z_x), .z_y(z_y), .z_events(z_events), .id_c(id_c), .id_of(id_of), .upd_valid(trk_valid), .upd_ready(trk_ready),
+    .z_t(z_t), .z_x(z_x), .z_y(z_y), .z_events(z_events), .z_x_min(z_x_min), .z_y_min(z_y_min), .z_x_max(z_x_max),
+    .z_y_max(z_y_max), .id_c(id_c), .id_of(id_of), .upd_valid(trk_valid), .upd_ready(trk_ready),
     .upd_t(trk_t), .upd_id(trk_id), .upd_x(trk_x), .upd_y(trk_y), .upd_vx(trk_vx), .upd_vy(trk_vy), .upd_zx(trk_zx),
-    .upd_zy(trk_zy), .upd_confirmed(trk_confirmed), .recip_start(tk_recip_start), .recip_x(tk_recip_x),
+    .upd_zy(trk_zy), .upd_confirmed(trk_confirmed), .upd_events(trk_events), .upd_x_min(trk_x_min), .upd_y_min(trk_y_min),
+    .upd_x_max(trk_x_max), .upd_y_max(trk_y_max), .upd_var_x(trk_var_x), .upd_var_y(trk_var_y), .recip_start(tk_recip_start), .recip_x(tk_recip_x),
     .recip_done(recip_done), .recip_r(recip_r),
     .recip_m(recip_m), .mul_start(tk_mul_start), .mul_a(tk_mul_a), .mul_b(tk_mul_b), .mul_done(mul_done), .mul_p(mul_p),
     .done(tk_done), .tracks_started(stat_tracks_started), .unassigned(stat_unassigned));

@@ -57,6 +57,7 @@ module evms_tracker #(
   input  logic signed [31:0] z_x,
   input  logic signed [31:0] z_y,
   input  logic [15:0] z_events,
+  input  logic [15:0] z_x_min, z_y_min, z_x_max, z_y_max,
   // Track ID given to each measurement (-1: none), by index.
   input  logic [7:0]  id_c,
   output logic signed [31:0] id_of,
@@ -66,6 +67,8 @@ module evms_tracker #(
   output logic [31:0] upd_t,
   output logic signed [31:0] upd_id, upd_x, upd_y, upd_vx, upd_vy, upd_zx, upd_zy,
   output logic        upd_confirmed,
+  output logic [15:0] upd_events, upd_x_min, upd_y_min, upd_x_max, upd_y_max,  // the measurement's
+  output logic signed [63:0] upd_var_x, upd_var_y,   // the position variances (p00 of each axis)
   // Shared reciprocal and multiplier.
   output logic        recip_start,
   output logic [63:0] recip_x,
@@ -223,6 +226,11 @@ module evms_tracker #(
     end
   endfunction
 
+  // An update's measurement (count, bounding box) and the slot's position variances, both axes
+  // read from the filter-state memories: a match's once filtered, a birth's as born.
+  logic [207:0] upd_extra;
+  assign upd_extra = {z_events, z_x_min, z_y_min, z_x_max, z_y_max, cov_word(kx[3*CovBits-1 -: CovBits]), cov_word(ky[3*CovBits-1 -: CovBits])};
+
   // ---- the step unit: clamp(base +- round(mul_p >> shift), bound) ---------------------------
   typedef enum logic [2:0] {SH_TICK, SH_DT2, SH_COV, SH_NOISE, SH_NOISE_P11, SH_GAIN} shift_e;
   typedef enum logic [1:0] {B_NONE, B_POS, B_COV} bound_e;
@@ -314,6 +322,7 @@ module evms_tracker #(
       done <= 1'b0;
       upd_valid <= 1'b0;
       {upd_t, upd_id, upd_x, upd_y, upd_vx, upd_vy, upd_zx, upd_zy} <= '0;
+      {upd_events, upd_x_min, upd_y_min, upd_x_max, upd_y_max, upd_var_x, upd_var_y} <= '0;
       recip_start <= 1'b0;
       recip_x <= '0;
       mul_start <= 1'b0;
@@ -602,6 +611,7 @@ module evms_tracker #(
               upd_vy <= vel_of[1];
               upd_zx <= z_x;
               upd_zy <= z_y;
+              {upd_events, upd_x_min, upd_y_min, upd_x_max, upd_y_max, upd_var_x, upd_var_y} <= upd_extra;
             end
             round_n <= round_n + 1'b1;
             state <= S_ROUND;
@@ -671,6 +681,7 @@ module evms_tracker #(
               upd_vy <= '0;
               upd_zx <= z_x;
               upd_zy <= z_y;
+              {upd_events, upd_x_min, upd_y_min, upd_x_max, upd_y_max, upd_var_x, upd_var_y} <= upd_extra;
             end
             k <= k + 1'b1;
             state <= S_BIRTH;

@@ -52,7 +52,9 @@ SC_MODULE(Testbench) {
   sc_signal<bool> rst_n, in_valid, in_ready, in_p, in_flush, lab_valid, lab_ready, lab_p, trk_valid, trk_ready, trk_confirmed, pkt_valid,
       pkt_ready, idle;
   sc_signal<uint32_t> in_t, in_x, in_y, lab_t, lab_x, lab_y, lab_label, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy,
-      pkt_t_first, pkt_t_last, pkt_events, pkt_clusters, pkt_iterations, stat_tracks_started, stat_unassigned;
+      trk_events, trk_x_min, trk_y_min, trk_x_max, trk_y_max, pkt_t_first, pkt_t_last, pkt_events, pkt_clusters, pkt_iterations,
+      stat_tracks_started, stat_unassigned;
+  sc_signal<uint64_t> trk_var_x, trk_var_y;
   // One signal per register of the RTL core (hls/core/registers.h).
 #define EVMS_CFG_SIGNAL(name, type, bits, reset, description) sc_signal<ScPortType<bits>> cfg_##name;
   EVMS_CORE_RTL_REGISTERS(EVMS_CFG_SIGNAL)
@@ -72,6 +74,8 @@ SC_MODULE(Testbench) {
     dut.lab_label(lab_label);
     dut.trk_valid(trk_valid), dut.trk_ready(trk_ready), dut.trk_t(trk_t), dut.trk_id(trk_id), dut.trk_x(trk_x), dut.trk_y(trk_y);
     dut.trk_vx(trk_vx), dut.trk_vy(trk_vy), dut.trk_zx(trk_zx), dut.trk_zy(trk_zy), dut.trk_confirmed(trk_confirmed);
+    dut.trk_events(trk_events), dut.trk_x_min(trk_x_min), dut.trk_y_min(trk_y_min), dut.trk_x_max(trk_x_max), dut.trk_y_max(trk_y_max);
+    dut.trk_var_x(trk_var_x), dut.trk_var_y(trk_var_y);
     dut.pkt_valid(pkt_valid), dut.pkt_ready(pkt_ready), dut.pkt_t_first(pkt_t_first), dut.pkt_t_last(pkt_t_last);
     dut.pkt_events(pkt_events), dut.pkt_clusters(pkt_clusters), dut.pkt_iterations(pkt_iterations), dut.idle(idle);
     dut.stat_tracks_started(stat_tracks_started), dut.stat_unassigned(stat_unassigned);

@@ -38,7 +38,7 @@ TEST(BackendsAgree, RtlEqualsFixedFileForFile) {
   const auto rtl_ice40 = run_backend(dir, "rtl_ice40", small, "--backend rtl --core ice40");
   const auto fixed_ice40 = run_backend(dir, "fixed_ice40", small, "--backend fixed --core ice40");
   EXPECT_EQ(rtl_ice40.first, fixed_ice40.first) << "events.csv differs";
-  EXPECT_EQ(rtl_track_columns(rtl_ice40.second), rtl_track_columns(fixed_ice40.second)) << "tracks.csv differs";
+  EXPECT_EQ(rtl_ice40.second, fixed_ice40.second) << "tracks.csv differs";
 }
 
 // --core ice40 alone runs that build's packet size, cluster and track counts (hls/core/configs.h),
@@ -121,7 +121,7 @@ TEST(BackendsAgree, TheBoardThroughTheVirtualBoardEqualsTheFixedCore) {
   const auto on_board = run_backend(dir, "board", scene, "--backend board --device " + board.device());
   EXPECT_GT(fixed.first.size(), 1000u);
   EXPECT_EQ(on_board.first, fixed.first) << "events.csv differs";
-  EXPECT_EQ(rtl_track_columns(on_board.second), rtl_track_columns(fixed.second)) << "tracks.csv differs";
+  EXPECT_EQ(link_track_columns(on_board.second), link_track_columns(fixed.second)) << "tracks.csv differs";
   // A second run on the same board starts from the reset frame: the same files again.
   const auto again = run_backend(dir, "board2", scene, "--backend board --device " + board.device());
   EXPECT_EQ(again, on_board);
@@ -149,7 +149,7 @@ TEST(BackendsAgree, TheBoardOverAnUnreliableLineLosesOnlyWhatItReports) {
   const std::string scene = "gen://rotation?duration-s=0.12&seed=5&width=128&height=128";
   TempDir dir;
   const auto fixed = run_backend(dir, "fixed", scene, "--backend fixed --core ice40");
-  const auto fixed_events = lines_of(fixed.first), fixed_tracks = lines_of(rtl_track_columns(fixed.second));
+  const auto fixed_events = lines_of(fixed.first), fixed_tracks = lines_of(link_track_columns(fixed.second));
   for (const char* rate : {"1e-4", "1e-3"}) {
     SCOPED_TRACE(std::string("error rate ") + rate);
     TempDir run_dir;
@@ -158,7 +158,7 @@ TEST(BackendsAgree, TheBoardOverAnUnreliableLineLosesOnlyWhatItReports) {
     const std::string out = run_dir.path("board");
     const auto r = run_command(evms_binary() + " run \"" + scene + "\" --quiet --out " + out + " --backend board --device " + board.device());
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const auto events = lines_of(read_file(out + "/events.csv")), tracks = lines_of(rtl_track_columns(read_file(out + "/tracks.csv")));
+    const auto events = lines_of(read_file(out + "/events.csv")), tracks = lines_of(link_track_columns(read_file(out + "/tracks.csv")));
     ASSERT_EQ(events.size(), fixed_events.size());
     size_t lost = 0;
     for (size_t i = 0; i < events.size(); ++i) {
@@ -231,8 +231,8 @@ TEST(BackendsAgree, TheBoardInTracksModeKeepsTheLabelsAndSendsTheFixedCoresTrack
   EXPECT_NE(on_board.out.find("board       kept the labels (tracks mode)"), std::string::npos) << on_board.out;
   EXPECT_GT(noise_in_summary(fixed.out), 0) << fixed.out;
   EXPECT_EQ(noise_in_summary(on_board.out), noise_in_summary(fixed.out)) << on_board.out;
-  const auto fixed_tracks = lines_of(rtl_track_columns(read_file(fixed_out + "/tracks.csv")));
-  const auto tracks = lines_of(rtl_track_columns(read_file(board_out + "/tracks.csv")));
+  const auto fixed_tracks = lines_of(link_track_columns(read_file(fixed_out + "/tracks.csv")));
+  const auto tracks = lines_of(link_track_columns(read_file(board_out + "/tracks.csv")));
   EXPECT_GT(tracks.size(), 2u);
   size_t at = 0;
   for (const std::string& row : tracks) {

@@ -147,7 +147,8 @@ TEST(MethodOutputs, TheRtlRunsTheDefaultMethodAsTheFixedCore) {
   const std::string labels = read_file(dir.path("rtl/events.csv"));
   EXPECT_GT(csv_rows(dir.path("rtl/tracks.csv")).size(), 10u);
   EXPECT_EQ(labels, read_file(dir.path("fixed/events.csv")));
-  EXPECT_EQ(rtl_track_columns(read_file(dir.path("rtl/tracks.csv"))), rtl_track_columns(read_file(dir.path("fixed/tracks.csv"))));
+  // Every column: the RTL's track words carry the measurement's count and box and the variances.
+  EXPECT_EQ(read_file(dir.path("rtl/tracks.csv")), read_file(dir.path("fixed/tracks.csv")));
 }
 
 TEST(MethodOutputs, ThePaperPresetRunsTheAuthorsRule) {

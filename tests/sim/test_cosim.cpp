@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <tuple>
 
 #include "Vcore_arty.h"
 #include "Vcore_arty___024root.h"
@@ -68,13 +70,18 @@ Mismatch compare(const std::vector<hls::EventWord>& words, const hls::Config& cf
     }
     while (!rtl.tracks.empty() && !want_tracks.empty()) {
       const auto a = rtl.tracks.front(), b = want_tracks.front();
-      if (a.t != b.t || a.id != b.id || a.x != b.x || a.y != b.y || a.vx != b.vx || a.vy != b.vy || a.zx != b.zx || a.zy != b.zy ||
-          a.confirmed != b.confirmed) {
-        return {"track word " + std::to_string(n_tracks) + ": rtl (t=" + std::to_string(a.t) + " id=" + std::to_string(a.id) + " x=" +
-                std::to_string(a.x) + " y=" + std::to_string(a.y) + " vx=" + std::to_string(a.vx) + " zx=" + std::to_string(a.zx) +
-                " confirmed=" + std::to_string(a.confirmed) + ") c++ (t=" + std::to_string(b.t) + " id=" + std::to_string(b.id) + " x=" + std::to_string(b.x) + " y=" +
-                std::to_string(b.y) + " vx=" + std::to_string(b.vx) + " zx=" + std::to_string(b.zx) + ")"};
-      }
+      const auto fields = [](const hls::TrackWord& w) {
+        return std::tie(w.t, w.id, w.x, w.y, w.vx, w.vy, w.zx, w.zy, w.confirmed, w.events, w.x_min, w.y_min, w.x_max, w.y_max, w.var_x,
+                        w.var_y);
+      };
+      const auto text = [](const hls::TrackWord& w) {
+        return "(t=" + std::to_string(w.t) + " id=" + std::to_string(w.id) + " x=" + std::to_string(w.x) + " y=" + std::to_string(w.y) +
+               " vx=" + std::to_string(w.vx) + " zx=" + std::to_string(w.zx) + " confirmed=" + std::to_string(w.confirmed) +
+               " events=" + std::to_string(w.events) + " box=" + std::to_string(w.x_min) + "," + std::to_string(w.y_min) + "," +
+               std::to_string(w.x_max) + "," + std::to_string(w.y_max) + " var=" + std::to_string(w.var_x) + "," +
+               std::to_string(w.var_y) + ")";
+      };
+      if (fields(a) != fields(b)) return {"track word " + std::to_string(n_tracks) + ": rtl " + text(a) + " c++ " + text(b)};
       rtl.tracks.pop_front(), want_tracks.pop_front(), ++n_tracks;
     }
     while (!rtl.packets.empty() && !want_packets.empty()) {

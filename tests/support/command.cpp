@@ -22,13 +22,13 @@ std::string read_file(const std::string& path) {
   return ss.str();
 }
 
-std::string rtl_track_columns(const std::string& tracks_csv) {
-  constexpr int kRtlColumns = 7;  // t_us,track_id,state,x,y,vx,vy
+std::string link_track_columns(const std::string& tracks_csv) {
+  constexpr int kLinkColumns = 7;  // t_us,track_id,state,x,y,vx,vy
   std::istringstream in(tracks_csv);
   std::string line, out;
   while (std::getline(in, line)) {
     size_t end = 0;
-    for (int comma = 0; comma < kRtlColumns && end != std::string::npos; ++comma) end = line.find(',', end + (comma > 0));
+    for (int comma = 0; comma < kLinkColumns && end != std::string::npos; ++comma) end = line.find(',', end + (comma > 0));
     out += (line.rfind('#', 0) == 0 ? line : line.substr(0, end)) + "\n";
   }
   return out;

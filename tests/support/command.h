@@ -20,9 +20,9 @@ std::string evms_binary();
 std::string scripted_usb_binary();
 // A file's whole contents, bytes as they are ("" when it cannot be read).
 std::string read_file(const std::string& path);
-// tracks.csv text with every line cut to the columns an RTL track word carries (t_us to vy;
-// hls/core/words.h): the RTL and board backends write the cluster's columns as 0.
-std::string rtl_track_columns(const std::string& tracks_csv);
+// tracks.csv text with every line cut to the columns the board link's track frames carry
+// (t_us to vy; docs/link.md): the board backend writes the measurement's columns as 0.
+std::string link_track_columns(const std::string& tracks_csv);
 
 // A program running in the background for the length of a test, its output discarded;
 // terminated (SIGTERM) and waited for on destruction.
