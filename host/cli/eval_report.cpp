@@ -545,7 +545,7 @@ std::string write_report(const EvalOptions& o) {
     md << paper_truth_row("validation split", e.tracking_to_events);
   }
   md << "\nTracking errors are against each object's true centre (the centroid of its outline), and against the centre of mass "
-        "of the object's labelled events over the last 10 ms (the paper's ground truth, \"the ground-truth labeled cluster "
+        "of the object's labelled events in the 10 ms around the estimate's time (the paper's ground truth, \"the ground-truth labeled cluster "
         "center\"). The estimate is the Kalman-filtered centre of mass of the events that fired, which is not the outline's "
         "centroid when some edges fire more than others (an edge parallel to the motion does not fire) or the object is "
         "partly out of view.\n\n";

@@ -39,7 +39,8 @@ class CentreLookup {
   std::vector<std::unordered_map<TimeUs, std::pair<double, double>>> per_object_;
 };
 
-// The centre of mass of each object's labelled events in (t - window, t], from prefix sums.
+// The centre of mass of each object's labelled events in (t - window/2, t + window/2], from
+// prefix sums.
 class EventCentreLookup {
  public:
   EventCentreLookup(const LabelledEvents& labelled, int objects, TimeUs window_us)
@@ -57,8 +58,8 @@ class EventCentreLookup {
   }
   std::optional<std::pair<double, double>> at(int object, TimeUs t) const {
     const Object& ob = per_object_[static_cast<size_t>(object)];
-    const size_t end = static_cast<size_t>(std::upper_bound(ob.t.begin(), ob.t.end(), t) - ob.t.begin());
-    const size_t begin = static_cast<size_t>(std::upper_bound(ob.t.begin(), ob.t.end(), t - window_us_) - ob.t.begin());
+    const size_t end = static_cast<size_t>(std::upper_bound(ob.t.begin(), ob.t.end(), t + window_us_ / 2) - ob.t.begin());
+    const size_t begin = static_cast<size_t>(std::upper_bound(ob.t.begin(), ob.t.end(), t - window_us_ / 2) - ob.t.begin());
     if (end < begin + static_cast<size_t>(kEventCentreMinEvents)) return std::nullopt;
     const double n = static_cast<double>(end - begin);
     return std::pair{(ob.sx[end] - ob.sx[begin]) / n, (ob.sy[end] - ob.sy[begin]) / n};

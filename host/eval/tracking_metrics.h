@@ -1,7 +1,10 @@
 // Tracking accuracy against two ground truths:
 //  - the object's true centre (the centre of its outline, from the generator), and
-//  - the centre of mass of the events the generator labelled as the object's over the last
-//    `event_window_us` (the paper's ground truth: "the ground-truth labeled cluster center").
+//  - the centre of mass of the events the generator labelled as the object's in the window of
+//    `event_window_us` centred on the estimate's time (the paper's ground truth: "the
+//    ground-truth labeled cluster center"). Centred, because an estimate is timed at the mean
+//    timestamp of its cluster's events: a window that ended there would trail a moving object
+//    by half of what it moves in the window.
 // They differ where some edges of a shape fire more events than others (the paper, section V,
 // explains its rectangle and hexagon by this); the first includes that offset, the second
 // measures what clustering and the Kalman filter add to it.
