@@ -85,7 +85,7 @@ struct Params {
                                      // 1/this, is taken after every pair within it; 0 = off
   int confirm_hits = 3;              // measurements before a track is confirmed
   bool report_tentative = true;      // tentative tracks report their updates (state tentative)
-  TimeUs coast_us = 100000;          // a confirmed track ends after this long without a match
+  TimeUs coast_us = 200000;          // a confirmed track ends after this long without a match
   int coast_packets = 0;             // ... or after missing this many packets; 0 = no limit
   bool evict_stale = true;           // with every slot taken, a new cluster takes the stalest
                                      // unmatched track's slot
