@@ -1,7 +1,7 @@
 // Each cluster's measurement, as hls/cluster/centroid.h: the centre of mass of its events
 // (PosFrac fraction bits) at the mean of their timestamps, rounded half up, with their count
-// and bounding box. One pass over the
-// packet accumulates; then each cluster takes three divisions: through the reciprocal unit and
+// and bounding box. One pass over the packet accumulates; then each cluster takes three
+// divisions: through the reciprocal unit and
 // the shared multiplier, or, with `exact` (the seeded path), through a restoring divider
 // (math/evms_divide_rounded), NumBits + 2 clocks each.
 //
@@ -76,8 +76,8 @@ module evms_centroid #(
   logic        div_start;
 
   assign {z_t, z_x, z_y} = results[ClusterIndexBits'(z_c)];
-  // The count stays in the sums until the next packet starts, after the tracker's step.
-  // So do the bounding box and the count.
+  // The count and the bounding box stay in the sums until the next packet starts, after the
+  // tracker's step.
   assign {z_x_min, z_y_min, z_x_max, z_y_max} = sums_valid[ClusterIndexBits'(z_c)] ? sums[ClusterIndexBits'(z_c)][223:160] : 64'd0;
   assign z_events = sums_valid[ClusterIndexBits'(z_c)] ? sums[ClusterIndexBits'(z_c)][15:0] : 16'd0;
   assign rd_i = i;
