@@ -62,6 +62,15 @@ inline const char* first_difference(const Params& p, const Params& reference, st
   return nullptr;
 }
 
+// The size_ratio_log2 register for p.size_ratio: 0 when the rule is off, k when the ratio is
+// 2^k with k from 1 to 15, and -1 for any other ratio (the core compares a count with the
+// other shifted left).
+inline int size_ratio_log2(const Params& p) {
+  if (p.size_ratio == 0) return 0;
+  const long k = std::lround(std::log2(p.size_ratio));
+  return k >= 1 && k <= 15 && std::exp2(static_cast<double>(k)) == p.size_ratio ? static_cast<int>(k) : -1;
+}
+
 }  // namespace detail
 
 // The first setting of `p` that the C++ core (hls/) does not implement, as the one line a
@@ -79,7 +88,7 @@ inline std::string core_unsupported(const Params& p) {
     return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
   }
   if (p.association == Association::kNearestCentre) return "the fixed-point core does not implement " + detail::setting(p, "association");
-  if (p.size_ratio != 0 && !(p.size_ratio >= 2 && p.size_ratio <= 32768 && std::exp2(std::round(std::log2(p.size_ratio))) == p.size_ratio)) {
+  if (detail::size_ratio_log2(p) < 0) {
     return "the fixed-point core compares sizes by a power of two from 2 to 32768, not " + detail::setting(p, "size-ratio");
   }
   if (!seeded && (p.link_px > 0 || p.warm_start)) return "the fixed-point core links clusters and warm-starts only with seeded climbs (--seeding events)";
@@ -178,7 +187,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.max_tracks = static_cast<std::uint8_t>(p.max_tracks);
   c.associate_last = p.association == Association::kLastMeasurement;
   c.gate_spread2 = static_cast<std::uint32_t>(rnd(p.gate_spread * p.gate_spread * std::ldexp(1.0, hls::kSpreadFrac)));
-  c.size_ratio_log2 = static_cast<std::uint8_t>(p.size_ratio == 0 ? 0 : std::lround(std::log2(p.size_ratio)));
+  c.size_ratio_log2 = static_cast<std::uint8_t>(detail::size_ratio_log2(p));
   c.coast_packets = static_cast<std::uint32_t>(p.coast_packets);
   c.evict_stale = p.evict_stale;
   c.report_tentative = p.report_tentative;
