@@ -68,12 +68,18 @@ class Core {
   // Consumes one input word. The output streams must have room for what a packet releases
   // (the host drains them after every word; the RTL holds them in FIFOs of the same depth).
   void process(const EventWord& in, LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
+    process_decided(in, !in.flush && filter_.accept(in, cfg_), labels, tracks, packets);
+  }
+
+  // The same, with the filter's answer for `in` decided elsewhere: by a board whose core stops
+  // at the filter (rtl/core/evms_filter_core.sv), whose verdicts the host completes with this.
+  // Given the verdicts of this core's filter, the words out are process()'s.
+  void process_decided(const EventWord& in, bool kept, LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
     if (in.flush) {
       observer_.on_word(in, false);
       close_packet(labels, tracks, packets);
       return;
     }
-    const bool kept = filter_.accept(in, cfg_);
     observer_.on_word(in, kept);
     if (!kept) {
       pending_[pending_n_++] = {in, -1};

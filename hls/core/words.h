@@ -20,6 +20,11 @@ struct LabelWord {
   std::int32_t label = -1;
 };
 
+// The label a board whose core stops at the filter (EVMS_BOARD_BUILDS, hls/core/configs.h)
+// gives an event that passed it; -1 is noise, as everywhere. The host clusters and tracks the
+// rest (Core::process_decided).
+inline constexpr std::int32_t kLabelPassedFilter = -3;
+
 struct TrackWord {
   std::uint32_t t = 0;      // measurement time
   std::int32_t id = 0;

@@ -4,12 +4,16 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <tuple>
 
 #include "hls/core/core.h"
 #include "host/backend/core_config.h"
 #include "host/eval/agreement.h"
 #include "host/eval/family_eval.h"
 #include "host/eval/evaluation.h"
+#include "host/eval/scene_run.h"
+#include "host/gen/family.h"
+#include "tests/support/filter_cut.h"
 #include "tests/support/read_all.h"
 #include "tests/support/scenes.h"
 
@@ -99,6 +103,43 @@ TEST(Core, SixteenBitTimestampsScrubStaleEntries) {
   const auto r = run_core<Board>(words_of(events), cfg);
   ASSERT_EQ(r.labels.size(), events.size());
   EXPECT_EQ(r.labels.back().label, -1) << "a stale time aliased into the window";
+}
+
+// A board whose core stops at the filter returns FilterCore's verdicts; the host runs the rest
+// with process_decided. Together they are the whole core, word for word, on a noisy scene
+// whose filtered events fill the pending queue between packets (the ice40 build's 512).
+TEST(Core, TheFilterCoresVerdictsCompletedOnTheHostAreTheWholeCore) {
+  using Board = hls::Ice40Shape;
+  const hls::Config cfg = backend::core_config<Board>(backend::build_default_params<Board>(), {128, 128});
+  gen::FamilyPins pins;
+  pins.width = pins.height = 128, pins.noise_hz = 4.0;
+  gen::SceneConfig scene = gen::family_scene("still", 1005, pins);
+  scene.duration_s = 0.2;
+  const auto words = words_of(eval::generate_scene(scene).events);
+  const CoreRun whole = run_core<Board>(words, cfg);
+
+  const std::vector<hls::LabelWord> verdicts = test::filter_core_verdicts<Board>(words, cfg);
+  ASSERT_EQ(verdicts.size(), words.size() - 1) << "one verdict an event, none for the flush";
+  size_t passed = 0, events = verdicts.size();
+  for (size_t i = 0; i < verdicts.size(); ++i) {
+    const hls::LabelWord& v = verdicts[i];
+    ASSERT_TRUE(v.label == -1 || v.label == hls::kLabelPassedFilter) << v.label;
+    ASSERT_EQ(std::tie(v.t, v.x, v.y, v.p), std::tie(words[i].t, words[i].x, words[i].y, words[i].p)) << i;
+    passed += v.label == hls::kLabelPassedFilter;
+  }
+  const test::CoreWords completed = test::completed_on_the_host<Board>(verdicts, cfg);
+  EXPECT_GT(passed, events / 10);
+  EXPECT_LT(passed, events * 9 / 10) << "a noisy scene";
+  ASSERT_EQ(completed.labels.size(), whole.labels.size());
+  for (size_t i = 0; i < whole.labels.size(); ++i) ASSERT_EQ(completed.labels[i].label, whole.labels[i].label) << i;
+  ASSERT_EQ(completed.tracks.size(), whole.tracks.size());
+  for (size_t i = 0; i < whole.tracks.size(); ++i) {
+    const hls::TrackWord &a = completed.tracks[i], &b = whole.tracks[i];
+    ASSERT_EQ(std::tie(a.t, a.id, a.x, a.y, a.vx, a.vy), std::tie(b.t, b.id, b.x, b.y, b.vx, b.vy)) << i;
+  }
+  ASSERT_EQ(completed.packets.size(), whole.packets.size());
+  for (size_t i = 0; i < whole.packets.size(); ++i) ASSERT_EQ(completed.packets[i].events, whole.packets[i].events) << i;
+  EXPECT_GT(whole.tracks.size(), 10u);
 }
 
 // ARI(fixed, golden) >= 0.99 on every scene, F within 0.01 of golden's, and track positions

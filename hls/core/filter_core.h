@@ -1,0 +1,37 @@
+// The core cut after its filter: every event labelled noise (-1) or kLabelPassedFilter, in
+// input order, with no packets and no tracks. It is what a board whose core stops at the
+// filter returns (EVMS_BOARD_BUILDS in hls/core/configs.h; rtl/core/evms_filter_core.sv), and
+// Core::process_decided completes it: fed these verdicts, Core<S> gives the words of the
+// whole core.
+#pragma once
+
+#include "hls/core/config.h"
+#include "hls/core/words.h"
+#include "hls/filter/ba_filter.h"
+#include "hls/fixed/stream.h"
+
+namespace evms::hls {
+
+template <class S>
+class FilterCore {
+ public:
+  using LabelStream = Stream<LabelWord, 2>;
+
+  void reset(const Config& cfg) {
+    cfg_ = cfg;
+    filter_.reset();
+  }
+
+  // A flush word has nothing to release: every event left at once.
+  void process(const EventWord& in, LabelStream& labels) {
+    if (in.flush) return;
+    const bool kept = filter_.accept(in, cfg_);
+    labels.write({in.t, in.x, in.y, in.p, kept ? kLabelPassedFilter : -1});
+  }
+
+ private:
+  Config cfg_;
+  BackgroundActivityFilter<S> filter_;
+};
+
+}  // namespace evms::hls
