@@ -106,6 +106,10 @@ std::string recip_table_file() {
 
 std::string sv_type(int bits) { return bits == 1 ? "logic" : "logic [" + std::to_string(bits - 1) + ":0]"; }
 std::string sv_literal(int bits, std::uint64_t v) { return std::to_string(bits) + "'d" + std::to_string(v); }
+// A table file as the RTL names it for $readmemh: relative to the folder of the module that
+// reads it (rtl/math/, rtl/cluster/), where Yosys looks when the working directory does not hold
+// it, and equally right from rtl/generated/ itself; so a synthesis run from any folder finds it.
+std::string sv_table_path(const std::string& file) { return "../generated/" + file; }
 
 struct BuildFiles {
   std::string name;
@@ -136,7 +140,8 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
     params << "parameter int " << shape[i] << " = " << defaults.shape[i] << ",\n";
     connect << "." << shape[i] << "(" << shape[i] << "),\n";
   }
-  params << "parameter ExpTableFile = \"" << defaults.exp_file << "\",\nparameter RecipTableFile = \"" << defaults.recip_file << "\"\n";
+  params << "parameter ExpTableFile = \"" << sv_table_path(defaults.exp_file) << "\",\nparameter RecipTableFile = \""
+         << sv_table_path(defaults.recip_file) << "\"\n";
   connect << ".ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)\n";
   write(dir + "/evms_core_shape_params.svh", params.str());
   write(dir + "/evms_core_shape_connect.svh", connect.str());
@@ -208,8 +213,8 @@ void write_build(const std::string& dir, const BuildFiles& b) {
   std::ostringstream o;
   o << "// " << kGeneratedBy << "\n// Core build '" << b.name << "': " << b.description << ".\n";
   for (size_t i = 0; i < shape.size(); ++i) o << "localparam int " << shape[i] << " = " << b.shape[i] << ";\n";
-  o << "localparam ExpTableFile = \"" << b.exp_file << "\";\n";
-  o << "localparam RecipTableFile = \"" << b.recip_file << "\";\n";
+  o << "localparam ExpTableFile = \"" << sv_table_path(b.exp_file) << "\";\n";
+  o << "localparam RecipTableFile = \"" << sv_table_path(b.recip_file) << "\";\n";
   o << "// Reset registers: the method of --preset " << b.preset << ", within this build's limits, for a " << b.width << "x" << b.height
     << " sensor.\n";
   for (size_t i = 0; i < kRtlRegisters.size(); ++i) {

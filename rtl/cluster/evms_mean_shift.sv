@@ -28,7 +28,7 @@ module evms_mean_shift #(
   parameter int ExpTableLog2       = 9,
   parameter int ExpInterpBits     = 8,
   parameter int RecipFrac     = 20,
-  parameter     ExpTableFile        = "exp_9_16.mem"
+  parameter     ExpTableFile        = "../generated/exp_9_16.mem"
 ) (
   input  logic        clk,
   input  logic        rst_n,

@@ -35,8 +35,8 @@ localparam int ClimbScaleFrac = 40;
 localparam int SpreadFrac = 8;
 localparam int HasGaussianPath = 0;
 localparam int HasSeededPath = 1;
-localparam ExpTableFile = "exp_9_16.mem";
-localparam RecipTableFile = "recip_8_20.mem";
+localparam ExpTableFile = "../generated/exp_9_16.mem";
+localparam RecipTableFile = "../generated/recip_8_20.mem";
 // Reset registers: the method of --preset evms, within this build's limits, for a 240x180 sensor.
 localparam logic [15:0] CfgSensorWidth = 16'd240;
 localparam logic [15:0] CfgSensorHeight = 16'd180;

@@ -35,5 +35,5 @@ parameter int ClimbScaleFrac = 40,
 parameter int SpreadFrac = 8,
 parameter int HasGaussianPath = 0,
 parameter int HasSeededPath = 1,
-parameter ExpTableFile = "exp_9_16.mem",
-parameter RecipTableFile = "recip_8_20.mem"
+parameter ExpTableFile = "../generated/exp_9_16.mem",
+parameter RecipTableFile = "../generated/recip_8_20.mem"

@@ -14,7 +14,7 @@ module evms_exp_lut #(
   parameter int    InterpBits       = 8,
   parameter int    ArgFrac       = 22,
   parameter int    ArgBits       = 64,
-  parameter        TableFile = "exp_9_16.mem"
+  parameter        TableFile = "../generated/exp_9_16.mem"
 ) (
   input  logic          clk,
   input  logic [ArgBits-1:0] u,

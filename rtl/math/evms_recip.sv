@@ -7,7 +7,7 @@
 module evms_recip #(
   parameter int TableLog2        = 8,
   parameter int RecipFrac       = 20,
-  parameter     TableFile = "recip_8_20.mem"
+  parameter     TableFile = "../generated/recip_8_20.mem"
 ) (
   input  logic        clk,
   input  logic        rst_n,
