@@ -14,4 +14,5 @@ cluster/evms_warm_seeds.sv
 cluster/evms_centroid.sv
 track/evms_tracker.sv
 core/evms_intake.sv
+core/evms_filter_core.sv
 core/evms_core.sv

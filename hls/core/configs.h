@@ -30,15 +30,19 @@ using ArtyShape = Shape<240, 180, 256, 8, 8, 16, 16, 16, 7, 4 * 256, 11, 16, 9, 
   X(arty, ArtyShape, ArtyShape, 240, 180, "Arty A7-35T beside a DAVIS240 (rtl/board/evms_arty_top.sv)") \
   X(ice40, Ice40Shape, Ice40Shape, 128, 128, "iCEBreaker (UP5K) beside a DVS128 (rtl/board/evms_icebreaker_top.sv)")
 
-// X(name, clock Hz, UART clocks a bit, link queue depth): the board each board build is for
-// (rtl/board/evms_icebreaker_top.sv, evms_arty_top.sv). rtl_gen writes them as the build's
-// Board* localparams and CMake values (the virtual boards), and the host's board backend keeps
-// at most the link queue's depth of events unanswered. The queue must be deeper than what the
-// core can hold unlabelled, its pending queue and its intake's packet (checked by
-// rtl/board/evms_board.sv and host/backend/board_backend.cpp).
-#define EVMS_BOARD_BUILDS(X)     \
-  X(ice40, 12000000, 4, 1024)   \
-  X(arty, 100000000, 50, 2048)
+// X(name, clock Hz, UART clocks a bit, link queue depth, core stops at the filter): the board
+// each board build is for (rtl/board/evms_icebreaker_top.sv, evms_arty_top.sv). rtl_gen writes
+// them as the build's Board* localparams and CMake values (the virtual boards), and the host's
+// board backend keeps at most the link queue's depth of events unanswered. The queue must be
+// deeper than what the core can hold unlabelled, its pending queue and its intake's packet
+// (checked by rtl/board/evms_board.sv and host/backend/board_backend.cpp).
+// The whole ice40 core is 5.3 times the UP5K's LUTs (docs/rtl.md, "Area"), so the iCEBreaker's
+// core stops at the filter (rtl/core/evms_filter_core.sv): the board returns each event's
+// verdict and the host runs the rest of the ice40 core on them (Core::process_decided), which
+// gives the words of the whole core.
+#define EVMS_BOARD_BUILDS(X)        \
+  X(ice40, 12000000, 4, 1024, 1)   \
+  X(arty, 100000000, 50, 2048, 0)
 
 #define EVMS_CORE_BUILD_NAME(name, fixed, rtl, width, height, description) #name,
 inline constexpr const char* kCoreBuildNames[] = {EVMS_CORE_BUILDS(EVMS_CORE_BUILD_NAME)};

@@ -26,6 +26,12 @@
 // A board runs its build's register values, the default method in the build's limits: the iCE40
 // build's (128x128, packets of 256, 8 clusters, 8 tracks) on the iCEBreaker, the Arty build's
 // (240x180, packets of 256, 16 clusters and tracks) on the Arty. Parameters that differ are refused.
+//
+// A board whose core stops at the filter (the iCEBreaker: EVMS_BOARD_BUILDS, hls/core/configs.h)
+// answers each event with its filter's verdict. The host runs the rest of the build's core on
+// the verdicts (hls::Core::process_decided), so the output is the whole core's, word for word.
+// An event whose verdict the line lost goes on as noise, and its row says lost (-2). Tracks
+// mode needs a whole core on the board, and is refused.
 #include <algorithm>
 #include <cstdio>
 #include <deque>
@@ -33,6 +39,7 @@
 
 #include "hls/core/configs.h"
 #include "host/backend/core_backend.h"
+#include "host/backend/fixed_backend.h"
 #include "host/backend/registry.h"
 #include "host/link/link_protocol.h"
 #include "host/link/serial_port.h"
@@ -59,6 +66,7 @@ class BoardBackend final : public Backend {
  public:
   BoardBackend(const BackendOptions& o, const char* build)
       : port_(check(o, build), o.baud), mode_(o.board_keeps_labels ? link::LinkMode::kTracks : link::LinkMode::kLabels) {
+    if (board_of(build).core_stops_at_filter) rest_ = std::make_unique<HostCore<S>>(core_config<S>(o.params, o.sensor));
     // Let what the board is still sending from before go by (up to 2 s of it).
     std::uint8_t old[4096];
     for (int i = 0; i < 100 && port_.read_some(old, 20) > 0; ++i) {
@@ -97,12 +105,17 @@ class BoardBackend final : public Backend {
     // The board labelled every event before the status: labels still missing were lost (in
     // tracks mode, the core took every event, and their labels stayed on the board).
     while (!unanswered_.empty()) mode_ == link::LinkMode::kTracks ? take_oldest() : lose_oldest(out);
+    if (rest_) {
+      rest_->flush();
+      drain_rest(out);
+    }
   }
 
   BackendStats stats() const override {
     BackendStats s = stats_.s;
     s.tracks_started = status_.tracks_started;
     s.unassigned_clusters = status_.unassigned_clusters;
+    if (rest_) rest_->add_tracker_stats(s);
     s.link_bad_frames = static_cast<std::int64_t>(decoder_.bad_frames() - bad_at_start_) + (status_.crc_errors - at_start_.crc_errors) +
                         (status_.framing_errors - at_start_.framing_errors) + unbelieved_;
     s.link_events_resent = resent_;
@@ -120,6 +133,10 @@ class BoardBackend final : public Backend {
  private:
   static const std::string& check(const BackendOptions& o, const char* build) {
     if (o.device.empty()) throw std::invalid_argument("the board backend needs --device (e.g. /dev/ttyUSB1, or the path evms vboard prints)");
+    if (board_of(build).core_stops_at_filter && o.board_keeps_labels) {
+      throw std::invalid_argument(std::string("the ") + build + " board's core stops at the filter and the host clusters its verdicts, so " +
+                                  "they must cross the link: --board-link tracks needs a board with the whole core (--core arty)");
+    }
     if (std::string unsupported = rtl_unsupported(o.params, build); !unsupported.empty()) throw std::invalid_argument(unsupported);
     if (!(o.params == build_default_params<S>()) || !(o.sensor == SensorSize{S::kMaxWidth, S::kMaxHeight})) {
       throw std::invalid_argument(std::string("the ") + build + " board runs its build's settings: a " + std::to_string(S::kMaxWidth) + "x" +
@@ -169,9 +186,27 @@ class BoardBackend final : public Backend {
     ++answered_;
   }
   void lose_oldest(OutputSink& out) {
-    out.on_event(mapper_.lost());
+    if (rest_) {
+      complete(unanswered_.front(), false, true, out);
+    } else {
+      out.on_event(mapper_.lost());
+    }
     unanswered_.pop_front();
     ++answered_, ++lost_;
+  }
+  // A core that stops at the filter: the rest of the core on the host takes the event with its
+  // verdict (a lost one as noise, its row marked lost), and releases what it can.
+  void complete(const hls::EventWord& event, bool kept, bool lost, OutputSink& out) {
+    rest_lost_.push_back(lost);
+    rest_->process_decided(event, kept);
+    drain_rest(out);
+  }
+  void drain_rest(OutputSink& out) {
+    rest_->drain(out, mapper_, stats_, [this](const hls::LabelWord& l) {
+      const bool lost = rest_lost_.front();
+      rest_lost_.pop_front();
+      return lost ? mapper_.lost() : mapper_.label(l);
+    });
   }
 
   // Reads what the board has sent; with `wait`, blocks until at least one frame came or, after
@@ -214,8 +249,16 @@ class BoardBackend final : public Backend {
               ++unbelieved_;
               break;
             }
+            if (rest_ && label.label != -1 && label.label != hls::kLabelPassedFilter) {  // not a verdict
+              ++unbelieved_;
+              break;
+            }
             while (answered_ < number) lose_oldest(out);
-            out.on_event(mapper_.label(label));
+            if (rest_) {
+              complete(unanswered_.front(), label.label == hls::kLabelPassedFilter, false, out);
+            } else {
+              out.on_event(mapper_.label(label));
+            }
             unanswered_.pop_front();
             ++answered_;
             break;
@@ -241,8 +284,18 @@ class BoardBackend final : public Backend {
             while (answered_ < taken) take_oldest();
             break;
           }
-          case link::kTrack: out.on_track(mapper_.track(link::decode_track(f))); break;
+          case link::kTrack:
+            if (rest_) {  // a board that stops at the filter sends none: a corruption the check missed
+              ++unbelieved_;
+              break;
+            }
+            out.on_track(mapper_.track(link::decode_track(f)));
+            break;
           case link::kPacket: {
+            if (rest_) {
+              ++unbelieved_;
+              break;
+            }
             const hls::PacketWord p = link::decode_packet(f);
             stats_.on_packet(p);
             out.on_packet(mapper_.packet(p));
@@ -271,6 +324,10 @@ class BoardBackend final : public Backend {
   link::FrameDecoder decoder_;
   CoreWordMapper<S> mapper_;
   CoreStats stats_;
+  // The rest of the core, when the board's stops at the filter; whether each event it holds
+  // lost its verdict on the line.
+  std::unique_ptr<HostCore<S>> rest_;
+  std::deque<bool> rest_lost_;
   std::deque<hls::EventWord> unanswered_;  // sent, not yet labelled: numbers answered_, answered_ + 1, ...
   std::uint64_t answered_ = 0;             // events labelled, or whose label was lost
   std::int64_t resent_ = 0, lost_ = 0, unbelieved_ = 0;

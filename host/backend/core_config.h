@@ -22,10 +22,11 @@ namespace evms::backend {
 // clocks a bit and its link queue's depth in events; all 0 for a build without a board.
 struct BoardOfBuild {
   long long clock_hz = 0, clocks_per_bit = 0, link_fifo_depth = 0;
+  bool core_stops_at_filter = false;  // the board returns verdicts; the host clusters and tracks
 };
 constexpr BoardOfBuild board_of(std::string_view build) {
-#define EVMS_BOARD_OF(name, clock_hz, clocks_per_bit, link_fifo_depth) \
-  if (build == #name) return {clock_hz, clocks_per_bit, link_fifo_depth};
+#define EVMS_BOARD_OF(name, clock_hz, clocks_per_bit, link_fifo_depth, stops_at_filter) \
+  if (build == #name) return {clock_hz, clocks_per_bit, link_fifo_depth, stops_at_filter != 0};
   EVMS_BOARD_BUILDS(EVMS_BOARD_OF)
 #undef EVMS_BOARD_OF
   return {};

@@ -9,45 +9,41 @@
 
 namespace evms::backend {
 
+// The C++ core on the host with its output streams: the fixed backend's, and the rest of the
+// core of a board that stops at the filter (host/backend/board_backend.cpp).
 template <class S>
-class FixedBackend final : public Backend {
+class HostCore {
  public:
-  explicit FixedBackend(const BackendOptions& o) : state_(std::make_unique<State>()) {
-    state_->core.reset(core_config<S>(o.params, o.sensor));
+  explicit HostCore(const hls::Config& cfg) : state_(std::make_unique<State>()) { state_->core.reset(cfg); }
+  void process(const hls::EventWord& w) { state_->core.process(w, state_->labels, state_->tracks, state_->packets); }
+  void process_decided(const hls::EventWord& w, bool kept) {
+    state_->core.process_decided(w, kept, state_->labels, state_->tracks, state_->packets);
   }
-  void push(std::span<const Event> events, OutputSink& out) override {
-    for (const Event& e : events) {
-      ++stats_.s.events_in;
-      state_->core.process(mapper_.to_word(e), state_->labels, state_->tracks, state_->packets);
-      drain(out);
+  void flush() {
+    hls::EventWord w;
+    w.flush = true;
+    process(w);
+  }
+  // Hands what the core released to `out`: each label word as label_of(word) makes it, then the
+  // track updates and packet summaries, counted in `stats`.
+  template <class LabelOf>
+  void drain(OutputSink& out, const CoreWordMapper<S>& mapper, CoreStats& stats, LabelOf&& label_of) {
+    hls::LabelWord l;
+    while (state_->labels.read(l)) out.on_event(label_of(l));
+    hls::TrackWord t;
+    while (state_->tracks.read(t)) out.on_track(mapper.track(t));
+    hls::PacketWord p;
+    while (state_->packets.read(p)) {
+      stats.on_packet(p);
+      out.on_packet(mapper.packet(p));
     }
   }
-  void finish(OutputSink& out) override {
-    hls::EventWord flush;
-    flush.flush = true;
-    state_->core.process(flush, state_->labels, state_->tracks, state_->packets);
-    drain(out);
-  }
-  BackendStats stats() const override {
-    BackendStats s = stats_.s;
+  void add_tracker_stats(BackendStats& s) const {
     s.tracks_started = state_->core.tracker().tracks_started();
     s.unassigned_clusters = state_->core.tracker().unassigned_clusters();
-    return s;
   }
 
  private:
-  void drain(OutputSink& out) {
-    hls::LabelWord l;
-    while (state_->labels.read(l)) out.on_event(mapper_.label(l));
-    hls::TrackWord t;
-    while (state_->tracks.read(t)) out.on_track(mapper_.track(t));
-    hls::PacketWord p;
-    while (state_->packets.read(p)) {
-      stats_.on_packet(p);
-      out.on_packet(mapper_.packet(p));
-    }
-  }
-
   // The core's memories are large: it lives on the heap, with its output streams.
   struct State {
     hls::Core<S> core;
@@ -56,6 +52,35 @@ class FixedBackend final : public Backend {
     typename hls::Core<S>::PacketStream packets;
   };
   std::unique_ptr<State> state_;
+};
+
+template <class S>
+class FixedBackend final : public Backend {
+ public:
+  explicit FixedBackend(const BackendOptions& o) : core_(core_config<S>(o.params, o.sensor)) {}
+  void push(std::span<const Event> events, OutputSink& out) override {
+    for (const Event& e : events) {
+      ++stats_.s.events_in;
+      core_.process(mapper_.to_word(e));
+      drain(out);
+    }
+  }
+  void finish(OutputSink& out) override {
+    core_.flush();
+    drain(out);
+  }
+  BackendStats stats() const override {
+    BackendStats s = stats_.s;
+    core_.add_tracker_stats(s);
+    return s;
+  }
+
+ private:
+  void drain(OutputSink& out) {
+    core_.drain(out, mapper_, stats_, [this](const hls::LabelWord& l) { return mapper_.label(l); });
+  }
+
+  HostCore<S> core_;
   CoreWordMapper<S> mapper_;
   CoreStats stats_;
 };

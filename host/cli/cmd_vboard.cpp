@@ -5,6 +5,9 @@
 //   evms run SCENE --backend board --device /dev/pts/3
 //   evms vboard --build arty &         # the Arty's board: evms run ... --core arty
 //
+// The iCEBreaker's board (ice40) is its bitstream's design: its core stops at the filter and the
+// host clusters and tracks its verdicts. The Arty's holds the whole core, and tracks mode.
+//
 // Bytes written to the terminal go into the board's receive line at the board's clocks a bit
 // (4 on the iCEBreaker's 12 MHz, 50 on the Arty's 100 MHz); bytes the board transmits come out
 // of it. It runs until it is interrupted.
@@ -130,8 +133,8 @@ void serve(const VboardOptions& o, int clocks_per_bit, double clock_hz) {
 void register_vboard(CLI::App& app) {
   auto o = std::make_shared<VboardOptions>();
   CLI::App* cmd = app.add_subcommand("vboard", "the virtual board: the simulated board top behind a pseudo-terminal, for --backend board");
-  cmd->add_option("--build", o->build, "the board's core build: ice40 (the iCEBreaker, 12 MHz) or arty (the Arty, 100 MHz); "
-                                       "evms run --core names the same")
+  cmd->add_option("--build", o->build, "the board's core build: ice40 (the iCEBreaker, 12 MHz; its core stops at the filter, "
+                                       "the host clusters and tracks) or arty (the Arty, 100 MHz, the whole core); evms run --core names the same")
       ->default_val(o->build)
       ->check(CLI::IsMember({"ice40", "arty"}));
   cmd->add_option("--path-file", o->path_file, "also write the terminal's path to this file");

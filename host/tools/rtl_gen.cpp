@@ -222,9 +222,11 @@ void write_build(const std::string& dir, const BuildFiles& b) {
     o << "localparam " << sv_type(r.bits) << " " << board_parameter(r) << " = " << sv_literal(r.bits, b.registers[i]) << ";\n";
   }
   if (board.clock_hz) {
-    o << "// The board: its clock, its UART's clocks a bit, and its link queue's depth in events.\n"
+    o << "// The board: its clock, its UART's clocks a bit, its link queue's depth in events, and whether\n"
+      << "// its core stops at the filter (the host clusters and tracks).\n"
       << "localparam int BoardClockHz = " << board.clock_hz << ", BoardClocksPerBit = " << board.clocks_per_bit
-      << ", BoardLinkFifoDepth = " << board.link_fifo_depth << ";\n";
+      << ", BoardLinkFifoDepth = " << board.link_fifo_depth << ", BoardCoreStopsAtFilter = " << int{board.core_stops_at_filter}
+      << ";\n";
   }
   write(dir + "/evms_cfg_" + b.name + ".svh", o.str());
 
@@ -240,7 +242,8 @@ void write_build(const std::string& dir, const BuildFiles& b) {
   v << ")\nset(EVMS_RTL_EXP_MEM_" << b.name << " " << b.exp_file << ")\n";
   v << "set(EVMS_RTL_RECIP_MEM_" << b.name << " " << b.recip_file << ")\n";
   if (board.clock_hz) {
-    v << "set(EVMS_BOARD_" << b.name << " " << board.clock_hz << " " << board.clocks_per_bit << " " << board.link_fifo_depth << ")\n";
+    v << "set(EVMS_BOARD_" << b.name << " " << board.clock_hz << " " << board.clocks_per_bit << " " << board.link_fifo_depth << " "
+      << int{board.core_stops_at_filter} << ")\n";
   }
   write(dir + "/evms_cfg_" + b.name + ".cmake", v.str());
 

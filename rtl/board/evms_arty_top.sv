@@ -27,6 +27,7 @@ module evms_arty_top #(
   logic busy, error;
   evms_board #(
     .ClkHz(BoardClockHz), .ClksPerBit(BoardClocksPerBit), .LinkFifoDepth(BoardLinkFifoDepth),
+    .CoreStopsAtFilter(BoardCoreStopsAtFilter),
     `include "evms_board_build_params.svh"
   ) u_board (
     .clk(CLK), .rst_n(rst_n), .aer_req_n(AER_REQ_N), .aer_ack_n(AER_ACK_N), .aer_addr(AER_ADDR), .uart_rx(RX),

@@ -23,6 +23,8 @@
 //   link, so it runs at the sensor's rate. A packet's track updates and its summary go out
 //   together, as a batch, when the queue is empty as the batch begins; otherwise the whole
 //   batch is skipped (and counted), so what reaches the host is always whole packets.
+// A board whose core stops at the filter (CoreStopsAtFilter) returns every event's verdict as
+// its label frame in both modes, and no track or packet frames.
 // In both modes, when the line is free and the counts have changed, a progress frame (link
 // events the core took, events labelled with a track, events labelled noise) tells the host
 // that the board is working; in tracks mode it acknowledges the host's events in place of
@@ -33,6 +35,10 @@ module evms_board #(
   parameter int ClkHz          = 12000000,
   parameter int ClksPerBit     = 4,
   parameter int LinkFifoDepth  = 2048,
+  // 1: the core stops at its filter (core/evms_filter_core.sv) and the host clusters and
+  // tracks the verdicts (a build too large for its device: EVMS_BOARD_BUILDS in
+  // hls/core/configs.h); 0: the whole core.
+  parameter int CoreStopsAtFilter = 0,
   // The registers' reset values and the core build (rtl/generated/evms_cfg_<build>.svh).
   `include "evms_board_cfg_params.svh"
   `include "evms_core_shape_params.svh"
@@ -105,27 +111,46 @@ module evms_board #(
   wire [7:0] pkt_iterations_sent = pkt_iterations > 16'd255 ? 8'd255 : 8'(pkt_iterations);
   wire [95:0] pkt_payload_sent = {pkt_iterations_sent, pkt_clusters, pkt_events, pkt_t_last, pkt_t_first};
   logic [31:0] tracks_started, unassigned;
-  evms_core #(
-    `include "evms_core_shape_connect.svh"
-  ) u_core (
-    .clk(clk), .rst_n(run_rst_n),
-    `include "evms_board_cfg_connect.svh"
-    .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y), .in_p(in_p), .in_flush(in_flush),
-    .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y), .lab_p(lab_p),
-    .lab_label(lab_label), .trk_valid(trk_valid), .trk_ready(trk_ready), .trk_t(trk_t), .trk_id(trk_id), .trk_x(trk_x),
-    .trk_y(trk_y), .trk_vx(trk_vx), .trk_vy(trk_vy), .trk_zx(trk_zx), .trk_zy(trk_zy), .trk_confirmed(trk_confirmed),
-    // The link's track frames end at the state: the measurement's count and box and the
-    // variances stay on the board (docs/link.md).
-    .trk_events(), .trk_x_min(), .trk_y_min(), .trk_x_max(), .trk_y_max(), .trk_var_x(), .trk_var_y(),
-    .pkt_valid(pkt_valid),
-    .pkt_ready(pkt_ready), .pkt_t_first(pkt_t_first), .pkt_t_last(pkt_t_last), .pkt_events(pkt_events),
-    .pkt_clusters(pkt_clusters), .pkt_iterations(pkt_iterations), .idle(core_idle),
-    .stat_tracks_started(tracks_started), .stat_unassigned(unassigned));
+  if (CoreStopsAtFilter != 0) begin : g_filter_core
+    // Every event comes back as a label frame (noise or passed); no track or packet words.
+    evms_filter_core #(
+      .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift)
+    ) u_core (
+      .clk(clk), .rst_n(run_rst_n), .cfg_filter_enabled(CfgFilterEnabled), .cfg_sensor_width(CfgSensorWidth),
+      .cfg_sensor_height(CfgSensorHeight), .cfg_filter_window(CfgFilterWindow),
+      .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y), .in_p(in_p), .in_flush(in_flush),
+      .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y), .lab_p(lab_p),
+      .lab_label(lab_label), .idle(core_idle));
+    assign {trk_valid, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy, trk_confirmed} = '0;
+    assign {pkt_valid, pkt_t_first, pkt_t_last, pkt_events, pkt_clusters, pkt_iterations} = '0;
+    assign {tracks_started, unassigned} = '0;
+    logic unused_ready;  // nothing waits on the frame queue's ready
+    assign unused_ready = ^{trk_ready, pkt_ready};
+  end else begin : g_core
+    evms_core #(
+      `include "evms_core_shape_connect.svh"
+    ) u_core (
+      .clk(clk), .rst_n(run_rst_n),
+      `include "evms_board_cfg_connect.svh"
+      .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y), .in_p(in_p), .in_flush(in_flush),
+      .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y), .lab_p(lab_p),
+      .lab_label(lab_label), .trk_valid(trk_valid), .trk_ready(trk_ready), .trk_t(trk_t), .trk_id(trk_id), .trk_x(trk_x),
+      .trk_y(trk_y), .trk_vx(trk_vx), .trk_vy(trk_vy), .trk_zx(trk_zx), .trk_zy(trk_zy), .trk_confirmed(trk_confirmed),
+      // The link's track frames end at the state: the measurement's count and box and the
+      // variances stay on the board (docs/link.md).
+      .trk_events(), .trk_x_min(), .trk_y_min(), .trk_x_max(), .trk_y_max(), .trk_var_x(), .trk_var_y(),
+      .pkt_valid(pkt_valid),
+      .pkt_ready(pkt_ready), .pkt_t_first(pkt_t_first), .pkt_t_last(pkt_t_last), .pkt_events(pkt_events),
+      .pkt_clusters(pkt_clusters), .pkt_iterations(pkt_iterations), .idle(core_idle),
+      .stat_tracks_started(tracks_started), .stat_unassigned(unassigned));
+  end
 
   // ---- labels: to the link, or counted on the board ------------------------------------------------
-  logic tx_lab_valid, tx_lab_ready;
-  assign tx_lab_valid = lab_valid && !labels_on_board;
-  assign lab_ready = labels_on_board || tx_lab_ready;
+  // A core that stops at the filter sends its verdicts in either mode: the host needs them.
+  logic keep_labels, tx_lab_valid, tx_lab_ready;
+  assign keep_labels = labels_on_board && CoreStopsAtFilter == 0;
+  assign tx_lab_valid = lab_valid && !keep_labels;
+  assign lab_ready = keep_labels || tx_lab_ready;
   logic [31:0] labelled_q, noise_q, link_taken_q;  // since the run's reset
   always_ff @(posedge clk or negedge run_rst_n) begin
     if (!run_rst_n) begin

@@ -3,4 +3,4 @@ set(EVMS_RTL_PARAMS_arty -GMaxWidth=240 -GMaxHeight=180 -GTimestampBits=16 -GTim
 set(EVMS_RTL_DEFAULTS_arty -GCfgSensorWidth=16'd240 -GCfgSensorHeight=16'd180 -GCfgFilterEnabled=1'd1 -GCfgFilterWindow=32'd234 -GCfgPacketSize=16'd256 -GCfgPacketMaxSpanUs=32'd33333 -GCfgScaleX=32'd109227 -GCfgScaleY=32'd145636 -GCfgPhiOn=32'd0 -GCfgPhiTMax=32'd0 -GCfgInvTau=64'd429497 -GCfgMaxIterations=8'd8 -GCfgTolerance=32'd524 -GCfgMergeRadius2=64'd68719476736 -GCfgMinClusterSize=16'd8 -GCfgMaxClusters=8'd16 -GCfgGate2=64'd6710886400 -GCfgConfirmHits=8'd3 -GCfgCoastUs=32'd200000 -GCfgMaxTracks=8'd16 -GCfgQThird=64'd629648864 -GCfgQHalf=64'd944473297 -GCfgQ=64'd1888946593 -GCfgR=64'd65536 -GCfgP0Pos=64'd262144 -GCfgP0Vel=64'd703687 -GCfgSeeded=1'd1 -GCfgClimbScaleX=64'd114532461227 -GCfgClimbScaleY=64'd152709948302 -GCfgWarmStart=1'd1 -GCfgWarmScale2=32'd576 -GCfgWarmBall2Max=64'd2473901162496 -GCfgLink2=32'd16 -GCfgAssociateLast=1'd1 -GCfgEvictStale=1'd1 -GCfgSizeRatioLog2=4'd2 -GCfgReportTentative=1'd1)
 set(EVMS_RTL_EXP_MEM_arty exp_9_16.mem)
 set(EVMS_RTL_RECIP_MEM_arty recip_8_20.mem)
-set(EVMS_BOARD_arty 100000000 50 2048)
+set(EVMS_BOARD_arty 100000000 50 2048 0)

@@ -75,5 +75,6 @@ localparam logic CfgAssociateLast = 1'd1;
 localparam logic CfgEvictStale = 1'd1;
 localparam logic [3:0] CfgSizeRatioLog2 = 4'd2;
 localparam logic CfgReportTentative = 1'd1;
-// The board: its clock, its UART's clocks a bit, and its link queue's depth in events.
-localparam int BoardClockHz = 100000000, BoardClocksPerBit = 50, BoardLinkFifoDepth = 2048;
+// The board: its clock, its UART's clocks a bit, its link queue's depth in events, and whether
+// its core stops at the filter (the host clusters and tracks).
+localparam int BoardClockHz = 100000000, BoardClocksPerBit = 50, BoardLinkFifoDepth = 2048, BoardCoreStopsAtFilter = 0;

@@ -128,12 +128,13 @@ int brightest(const show::Canvas& c, int x0, int y0, int x1, int y1) {
   return best;
 }
 
-// A board in tracks mode (evms vboard, --board-link tracks) sends no labels: the events are
-// drawn grey, and only the tracks (trails, markers, arrows) have colour.
+// A board in tracks mode (evms vboard --build arty, --board-link tracks: the board with the whole
+// core) sends no labels: the events are drawn grey, and only the tracks (trails, markers,
+// arrows) have colour.
 TEST(Viewer, ABoardInTracksModeShowsGreyEventsUnderItsTracks) {
   TempDir dir;
   const std::string path_file = dir.path("vboard.path");
-  BackgroundProcess vboard({evms_binary(), "vboard", "--path-file", path_file});
+  BackgroundProcess vboard({evms_binary(), "vboard", "--build", "arty", "--path-file", path_file});
   std::string device;
   for (int i = 0; i < 200 && device.empty(); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -141,13 +142,15 @@ TEST(Viewer, ABoardInTracksModeShowsGreyEventsUnderItsTracks) {
     std::getline(f, device);
   }
   ASSERT_FALSE(device.empty()) << "evms vboard did not start";
-  const std::string scene = "gen://rotation?duration-s=0.3&seed=5&width=128&height=128";
+  // 180 ms of a 240x180 scene, in 20 ms frames: short, because the Arty's virtual board
+  // simulates every clock of its 2 Mbaud line (500 clocks a byte at 100 MHz).
+  const std::string scene = "gen://rotation?duration-s=0.2&seed=5";
   struct Counts {
     size_t grey = 0, coloured = 0, white = 0;
     long labelled = -1;  // "BACKEND: N events labelled" of the summary
   };
   const auto frame = [&](const std::string& name, const std::string& options) {
-    const auto r = run_command(evms_binary() + " view \"" + scene + "\" --headless --max-frames 9 --frames " + dir.path(name) +
+    const auto r = run_command(evms_binary() + " view \"" + scene + "\" --headless --fps 50 --max-frames 9 --frames " + dir.path(name) +
                                " " + options);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     const Image img = read_png(dir.path(name + "/frame_000008.png"));
@@ -161,8 +164,8 @@ TEST(Viewer, ABoardInTracksModeShowsGreyEventsUnderItsTracks) {
     }
     return c;
   };
-  const Counts labelled = frame("labels", "--backend fixed --core ice40");
-  const Counts tracks = frame("tracks", "--backend board --board-link tracks --device " + device);
+  const Counts labelled = frame("labels", "--backend fixed --core arty");
+  const Counts tracks = frame("tracks", "--backend board --core arty --board-link tracks --device " + device);
   EXPECT_GT(tracks.grey, 300u) << "the events, unlabelled";
   EXPECT_GT(tracks.white, 0u) << "a track's marker";
   EXPECT_GT(labelled.coloured, 300u);

@@ -1,0 +1,58 @@
+// The core cut after its filter (hls/core/filter_core.h): every event leaves labelled noise
+// (-1) or passed (hls::kLabelPassedFilter, -3), in input order, and nothing else does. A board
+// whose core does not fit its device runs this in evms_core's place (CoreStopsAtFilter in
+// rtl/board/evms_board.sv); the host clusters and tracks the verdicts it returns
+// (host/backend/board_backend.cpp). It is the intake of evms_core (core/evms_intake.sv)
+// without the climb features, so its verdicts are the whole core's.
+module evms_filter_core #(
+  parameter int MaxWidth       = 128,
+  parameter int MaxHeight      = 128,
+  parameter int TimestampBits  = 16,
+  parameter int TimestampShift = 7,
+  parameter int QueueDepth     = 4     // decided words that wait for the label stream
+) (
+  input  logic        clk,
+  input  logic        rst_n,
+  input  logic        cfg_filter_enabled,
+  input  logic [15:0] cfg_sensor_width,
+  input  logic [15:0] cfg_sensor_height,
+  input  logic [31:0] cfg_filter_window,
+  // Words in.
+  input  logic        in_valid,
+  output logic        in_ready,
+  input  logic [31:0] in_t,
+  input  logic [15:0] in_x,
+  input  logic [15:0] in_y,
+  input  logic        in_p,
+  input  logic        in_flush,
+  // Labelled events out, in input order.
+  output logic        lab_valid,
+  input  logic        lab_ready,
+  output logic [31:0] lab_t,
+  output logic [15:0] lab_x,
+  output logic [15:0] lab_y,
+  output logic        lab_p,
+  output logic [31:0] lab_label,
+  output logic        idle        // ready (the filter's memory cleared) and no word held
+);
+  localparam logic [31:0] LabelNoise = 32'hFFFF_FFFF;         // -1
+  localparam logic [31:0] LabelPassedFilter = 32'hFFFF_FFFD;  // hls::kLabelPassedFilter
+
+  logic q_valid, q_pop, q_flush, q_kept, intake_empty;
+  logic [31:0] unused_climb_x, unused_climb_y;
+  evms_intake #(
+    .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift),
+    .QueueDepth(QueueDepth), .HasClimbScale(0)
+  ) u_intake (
+    .clk(clk), .rst_n(rst_n), .cfg_filter_enabled(cfg_filter_enabled), .cfg_sensor_width(cfg_sensor_width),
+    .cfg_sensor_height(cfg_sensor_height), .cfg_filter_window(cfg_filter_window), .cfg_climb_scale_x(64'd0),
+    .cfg_climb_scale_y(64'd0), .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y),
+    .in_p(in_p), .in_flush(in_flush), .q_valid(q_valid), .q_pop(q_pop), .q_t(lab_t), .q_x(lab_x), .q_y(lab_y), .q_p(lab_p),
+    .q_flush(q_flush), .q_kept(q_kept), .q_climb_x(unused_climb_x), .q_climb_y(unused_climb_y), .empty(intake_empty));
+
+  // A flush word has nothing to release here: it leaves the queue unseen.
+  assign lab_valid = q_valid && !q_flush;
+  assign q_pop = q_valid && (q_flush || lab_ready);
+  assign lab_label = q_kept ? LabelPassedFilter : LabelNoise;
+  assign idle = intake_empty && in_ready;
+endmodule
