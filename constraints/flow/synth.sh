@@ -1,21 +1,26 @@
 #!/bin/bash
 # Synthesizes the board tops with Yosys (synth_ice40 for the iCEBreaker's iCE40 UP5K,
 # synth_xilinx for the Arty's XC7A35T), places and routes the iCE40 ones that fit with
-# nextpnr-ice40 over several seeds, and writes one JSON report: LUT, FF, DSP, BRAM and SPRAM
-# use, the median Fmax, and for every configuration the logic delay of its longest
+# nextpnr-ice40 over several seeds (constraints/icebreaker.pcf, 12 MHz asked), packs the
+# best-routed seed's bitstream with icepack, and writes one JSON report: LUT, FF, DSP, BRAM and
+# SPRAM use, the routed Fmax (median and worst over the seeds), the bitstream's path, and for
+# every configuration the logic delay of its longest
 # register-to-register path (Yosys sta with the cell delays of Yosys's own cell models, which
 # on the XC7 include the DSP48E1's and block RAM's; no routing, so it is a lower bound on the
 # clock period and 1000 / logic_ns an upper bound on Fmax; it also names the path's blocks and
 # source lines).
 # Both board builds hold the seeded path only, which has no lanes (the lane count is the
-# Gaussian path's), so ice40_p1 is the iCEBreaker build and xc7_p8 the Arty build; the other
-# lane counts build the same cores.
+# Gaussian path's), so ice40_p1 is the iCEBreaker build (its core cut at the filter,
+# BoardCoreStopsAtFilter) and xc7_p8 the Arty build; the other lane counts build the same
+# cores. ice40core_p1 is the iCEBreaker top with the whole ice40 core, which does not fit the
+# UP5K: its figures say how far the core is from it.
 #
 #   constraints/flow/synth.sh [-j JOBS] [-s SEEDS] [-o REPORT.json] [-b] [CONFIG ...]
 #
-# CONFIG is ice40_p1 .. ice40_p8 or xc7_p1 .. xc7_p8 (default: ice40_p1 and xc7_p8).
+# CONFIG is ice40_p1 .. ice40_p8, ice40core_p1 .. ice40core_p8 or xc7_p1 .. xc7_p8 (default:
+# ice40_p1, ice40core_p1 and xc7_p8).
 # -b also synthesizes each configuration with the core's blocks kept apart (keep_hierarchy on
-# the filter, intake, mean shift, merge, seeded climbs, mode links, warm seeds, centroids,
+# the filter, intake, filter core, mean shift, merge, seeded climbs, mode links, warm seeds, centroids,
 # tracker, multiplier and reciprocal, those the build holds; the rest of the
 # core and of the board top counted as theirs) and writes their resources to
 # <work>/<config>/blocks.txt. Keeping them apart stops optimization across their ports, so
@@ -34,14 +39,14 @@ while getopts "j:s:o:b" opt; do
     s) seeds=$OPTARG ;;
     o) out=$OPTARG ;;
     b) blocks=true ;;
-    *) sed -n '2,19p' "$0"; exit 2 ;;
+    *) sed -n '2,25p' "$0"; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
 out=$(realpath -m "$out")   # the runs work inside rtl/generated
 configs=("$@")
-[ ${#configs[@]} -eq 0 ] && configs=(ice40_p1 xc7_p8)
-for tool in yosys nextpnr-ice40; do
+[ ${#configs[@]} -eq 0 ] && configs=(ice40_p1 ice40core_p1 xc7_p8)
+for tool in yosys nextpnr-ice40 icepack; do
   command -v $tool >/dev/null || { echo "synth.sh: $tool not found (apt install yosys nextpnr-ice40 fpga-icestorm)" >&2; exit 1; }
 done
 
@@ -55,7 +60,9 @@ while read -r f; do sources+=("$root/rtl/$f"); done < <(cat "$root/rtl/core.f" "
 share=$(dirname "$(command -v yosys)")/../share/yosys
 for family in xilinx ice40; do
   [ -f "$share/$family/cells_sim.v" ] || { echo "synth.sh: $share/$family/cells_sim.v not found (Yosys's cell models)" >&2; exit 1; }
-  sed -E '/\((CLR|PRE|R|S) => Q\)/d' "$share/$family/cells_sim.v" > "$work/timing_$family.v"
+  # written aside and renamed: another run of this script (a parallel test) may be reading it
+  sed -E '/\((CLR|PRE|R|S) => Q\)/d' "$share/$family/cells_sim.v" > "$work/timing_$family.v.$$"
+  mv -f "$work/timing_$family.v.$$" "$work/timing_$family.v"
 done
 
 # The iCE40 UP5K and the XC7A35T, for the "fits" verdict.
@@ -82,9 +89,13 @@ resources() {  # resources FAMILY FILE SECTION: "LUT FF DSP BRAM SPRAM" of SECTI
 }
 
 run_config() {
-  local name=$1 family=${1%_p*} lanes=${1#*_p} dir=$work/$1 top synth netlist timing
+  local name=$1 family=${1%_p*} lanes=${1#*_p} dir=$work/$1 top synth netlist timing cut=""
   mkdir -p "$dir"
-  rm -f "$dir/stat.json" "$dir/sta.txt" "$dir/entry.json"   # a failed run must not leave an earlier run's figures
+  rm -f "$dir/stat.json" "$dir/sta.txt" "$dir/entry.json" "$dir"/*.asc "$dir"/*.bin   # a failed run must not leave an earlier run's figures
+  if [ "$family" = ice40core ]; then
+    family=ice40
+    cut="-chparam CoreStopsAtFilterOverride 0"
+  fi
   if [ "$family" = ice40 ]; then
     top=evms_icebreaker_top
     synth="synth_ice40 -dsp -spram -top $top"
@@ -100,7 +111,7 @@ run_config() {
   yosys_on() {
     # $readmemh paths in the generated headers are relative to rtl/generated.
     (cd "$root/rtl/generated" && yosys -q -l "$dir/$1.log" -p "read_verilog -sv -I. -I$root/rtl/board -I$root/rtl/common ${sources[*]} $root/rtl/board/$top.sv;
-        hierarchy -top $top -chparam LanesOverride $lanes; $2") >/dev/null 2>"$dir/$1.warnings" || {
+        hierarchy -top $top -chparam LanesOverride $lanes $cut; $2") >/dev/null 2>"$dir/$1.warnings" || {
       echo "synth.sh: $name: yosys failed ($1 run): $(grep -m1 'ERROR' "$dir/$1.warnings" || tail -n 1 "$dir/$1.warnings")" >&2
       return 1
     }
@@ -110,7 +121,7 @@ run_config() {
   read -r lut ff dsp bram spram < <(resources "$family" "$dir/stat.json" design)
   if $blocks; then
     # Every kept module has one instance in the tops, so a module's stat is its block's.
-    yosys_on blocks "setattr -mod -set keep_hierarchy 1 *evms_ba_filter *evms_intake *evms_mean_shift *evms_merge *evms_seeded_climbs \
+    yosys_on blocks "setattr -mod -set keep_hierarchy 1 *evms_ba_filter *evms_intake *evms_filter_core *evms_mean_shift *evms_merge *evms_seeded_climbs \
         *evms_mode_links *evms_warm_seeds *evms_centroid *evms_tracker *evms_mul* *evms_recip *evms_core *evms_board; $synth; tee -q -o $dir/blocks_stat.json stat -json" || return 1
     {
       printf '%-11s %7s %7s %5s %5s %5s\n' block LUT FF DSP BRAM SPRAM
@@ -127,33 +138,41 @@ run_config() {
   logic_ns=$(awk -v p="$logic_ps" 'BEGIN { printf "%.2f", p / 1000 }')
   bound=$(awk -v p="$logic_ps" 'BEGIN { printf "%.1f", 1e6 / p }')
   critical=$(awk '/Latest arrival/ { on = 1 } on { print } /C->Q\)|Arrival histogram/ { on = 0 }' "$dir/sta.txt" | tr -d '\\' |
-    grep -oE 'u_board(\.u_[a-z0-9_]+)+|[a-z0-9_]+\.sv:[0-9]+' | sed 's/^u_board\.//' | tac | awk '!seen[$0]++' | paste -sd' ')
+    grep -oE 'u_board(\.[ug]_[a-z0-9_]+)+|[a-z0-9_]+\.sv:[0-9]+' | sed 's/^u_board\.//' | tac | awk '!seen[$0]++' | paste -sd' ')
   local fits=true
   for r in lut ff dsp bram spram; do
     awk -v u="${!r}" -v c="${capacity[${family}_$r]}" 'BEGIN { exit !(u > c) }' && fits=false
   done
-  local fmax=null
+  local fmax=null worst=null bitstream=null
   if [ "$family" = ice40 ] && [ $fits = true ]; then
-    local f=()
+    local f=() best_seed="" best=0
     for seed in $(seq 1 "$seeds"); do
       if nextpnr-ice40 --up5k --package sg48 --pcf "$root/constraints/icebreaker.pcf" --json "$dir/netlist.json" --freq 12 \
-           --seed "$seed" --report "$dir/pnr_$seed.json" --asc "$dir/top.asc" -q -l "$dir/pnr_$seed.log" >/dev/null 2>&1; then
-        f+=("$(grep -oE '"achieved": [0-9.]+' "$dir/pnr_$seed.json" | head -1 | awk '{ print $2 }')")
+           --seed "$seed" --report "$dir/pnr_$seed.json" --asc "$dir/top_$seed.asc" -q -l "$dir/pnr_$seed.log" >/dev/null 2>&1; then
+        local achieved
+        achieved=$(grep -oE '"achieved": [0-9.]+' "$dir/pnr_$seed.json" | head -1 | awk '{ print $2 }')
+        f+=("$achieved")
+        if awk -v a="$achieved" -v b="$best" 'BEGIN { exit !(a > b) }'; then best=$achieved best_seed=$seed; fi
       fi
     done
     if [ ${#f[@]} -gt 0 ]; then
       fmax=$(printf '%s\n' "${f[@]}" | sort -g | awk '{ v[NR] = $1 } END { printf "%.1f", NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }')
+      worst=$(printf '%s\n' "${f[@]}" | sort -g | head -1 | awk '{ printf "%.1f", $1 }')
+      # A seed that failed to route counts as the worst.
+      [ ${#f[@]} -eq "$seeds" ] || worst=0.0
+      icepack "$dir/top_$best_seed.asc" "$dir/$top.bin" || { echo "synth.sh: $name: icepack failed" >&2; return 1; }
+      bitstream="\"$dir/$top.bin\""
     else
       fits=false
     fi
   fi
-  printf '  "%s": {"top": "%s", "lanes": %s, "lut": %s, "ff": %s, "dsp": %s, "bram": %s, "spram": %s, "fits": %s, "fmax_mhz": %s, "logic_ns": %s, "fmax_bound_mhz": %s, "critical": "%s"}' \
-    "$name" "$top" "$lanes" "$lut" "$ff" "$dsp" "$bram" "$spram" "$fits" "$fmax" "$logic_ns" "$bound" "$critical" > "$dir/entry.json"
-  echo "synth.sh: $name done: $lut LUT, $ff FF, $dsp DSP, $bram BRAM, $spram SPRAM, fits $fits, Fmax $fmax MHz, logic path $logic_ns ns (Fmax <= $bound MHz) through $critical" >&2
+  printf '  "%s": {"top": "%s", "lanes": %s, "lut": %s, "ff": %s, "dsp": %s, "bram": %s, "spram": %s, "fits": %s, "fmax_mhz": %s, "fmax_worst_mhz": %s, "bitstream": %s, "logic_ns": %s, "fmax_bound_mhz": %s, "critical": "%s"}' \
+    "$name" "$top" "$lanes" "$lut" "$ff" "$dsp" "$bram" "$spram" "$fits" "$fmax" "$worst" "$bitstream" "$logic_ns" "$bound" "$critical" > "$dir/entry.json"
+  echo "synth.sh: $name done: $lut LUT, $ff FF, $dsp DSP, $bram BRAM, $spram SPRAM, fits $fits, routed Fmax $fmax MHz (worst $worst), logic path $logic_ns ns (Fmax <= $bound MHz) through $critical" >&2
 }
 
 for c in "${configs[@]}"; do
-  [[ $c =~ ^(ice40|xc7)_p[0-9]+$ ]] || { echo "synth.sh: unknown configuration '$c'" >&2; exit 2; }
+  [[ $c =~ ^(ice40|ice40core|xc7)_p[0-9]+$ ]] || { echo "synth.sh: unknown configuration '$c'" >&2; exit 2; }
   while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n; done
   run_config "$c" &
 done
