@@ -165,6 +165,11 @@ void cycles(const CyclesOptions& o) {
   std::printf(" %8s", "");
   if (measure_rtl) std::printf(" %14.2f", measured.total() / n_events);
   std::printf("\n");
+  if (backend::board_of(o.build).core_stops_at_filter) {
+    std::printf("\nthese are the whole %s core's cycles; its board runs it cut after the filter (the whole core does not fit the "
+                "device) and the host runs the rest: docs/rtl.md, \"Builds\"\n",
+                o.build.c_str());
+  }
   if (!modelled) {
     std::printf("\nthe seeded path, measured on the RTL (the cycle model counts the Gaussian path): climbs count in \"mean shift\", links and warm seeds in \"merge\"\n");
     return;

@@ -29,6 +29,7 @@
 
 #include "Vboard_arty.h"
 #include "Vboard_ice40.h"
+#include "host/backend/core_config.h"
 #include "host/cli/commands.h"
 #include "sim/virtual_board.h"
 
@@ -73,10 +74,12 @@ class LineFaults {
   std::uniform_real_distribution<double> uniform_{0.0, 1.0};
 };
 
-// The board's clock and UART, as sim/CMakeLists.txt builds each virtual board (its
-// EVMS_VBOARD_<build>_* definitions).
+// The board's clock and UART: its build's board (EVMS_BOARD_BUILDS, from which the virtual
+// board's Verilated parameters are generated too).
 template <class V>
-void serve(const VboardOptions& o, int clocks_per_bit, double clock_hz) {
+void serve(const VboardOptions& o, const backend::BoardOfBuild& of_build) {
+  const auto clocks_per_bit = static_cast<int>(of_build.clocks_per_bit);
+  const auto clock_hz = static_cast<double>(of_build.clock_hz);
   const auto busy_cycles = static_cast<std::uint64_t>(kBusySeconds * clock_hz);
   const std::string& path_file = o.path_file;
   const int master = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
@@ -144,8 +147,8 @@ void register_vboard(CLI::App& app) {
       ->check(CLI::Range(0.0, 0.1));
   cmd->add_option("--seed", o->seed, "seed of the line's faults")->default_val(o->seed);
   cmd->callback([o] {
-    if (o->build == "arty") serve<Vboard_arty>(*o, EVMS_VBOARD_arty_CLOCKS_PER_BIT, EVMS_VBOARD_arty_CLOCK_HZ);
-    else serve<Vboard_ice40>(*o, EVMS_VBOARD_ice40_CLOCKS_PER_BIT, EVMS_VBOARD_ice40_CLOCK_HZ);
+    if (o->build == "arty") serve<Vboard_arty>(*o, backend::board_of("arty"));
+    else serve<Vboard_ice40>(*o, backend::board_of("ice40"));
   });
 }
 

@@ -190,7 +190,9 @@ TEST(BackendsAgree, TheBoardOverAnUnreliableLineLosesOnlyWhatItReports) {
     ASSERT_EQ(rows.size(), fixed_rows.size());
     size_t lost = 0;
     for (const CsvEvent& e : rows) lost += e.label == "-2";
-    if (std::string(rate) == "1e-3") EXPECT_GT(lost, 0u) << "at this rate the line destroys some verdicts";
+    if (std::string(rate) == "1e-3") {
+      EXPECT_GT(lost, 0u) << "at this rate the line destroys some verdicts";
+    }
     EXPECT_NE(r.out.find(", " + std::to_string(lost) + " labels lost (labelled -2)"), std::string::npos) << r.out;
     const size_t link_line = r.out.find("link        ");
     ASSERT_NE(link_line, std::string::npos) << r.out;

@@ -20,8 +20,10 @@ namespace evms {
 namespace {
 
 using S = hls::Ice40Shape;
-constexpr int kCpb = EVMS_VBOARD_ice40_CLOCKS_PER_BIT;
-constexpr int kWindow = EVMS_VBOARD_ice40_LINK_FIFO_DEPTH;  // events in flight: the board's link FIFO
+// The boards the virtual boards are generated for (EVMS_BOARD_BUILDS).
+constexpr backend::BoardOfBuild kIce40 = backend::board_of("ice40"), kArty = backend::board_of("arty");
+constexpr int kCpb = static_cast<int>(kIce40.clocks_per_bit);
+constexpr int kWindow = static_cast<int>(kIce40.link_fifo_depth);  // events in flight: the board's link FIFO
 
 struct Expected {
   std::vector<hls::LabelWord> labels;
@@ -56,7 +58,7 @@ Expected cxx_core(const std::vector<hls::EventWord>& words, std::vector<size_t>*
 
 // The iCEBreaker board's words: the C++ core of its build cut at the filter.
 hls::Config board_config() {
-  static_assert(EVMS_VBOARD_ice40_CORE_STOPS_AT_FILTER == 1, "the iCEBreaker's board stops at the filter");
+  static_assert(kIce40.core_stops_at_filter, "the iCEBreaker's board stops at the filter");
   return backend::core_config<S>(backend::build_default_params<S>(), {S::kMaxWidth, S::kMaxHeight});
 }
 Expected cxx_filter_core(const std::vector<hls::EventWord>& words) {
@@ -315,7 +317,7 @@ TEST(BoardAer, FourPhaseHandshake) {
     EXPECT_EQ(r.words.labels[i].y, sent[i].y) << i;
     EXPECT_EQ(r.words.labels[i].p, sent[i].p) << i;
     // Stamped within a few microseconds of the request (two synchronizer flops).
-    EXPECT_NEAR(static_cast<double>(r.words.labels[i].t), static_cast<double>(sent[i].cycle) / (EVMS_VBOARD_ice40_CLOCK_HZ / 1e6), 3.0) << i;
+    EXPECT_NEAR(static_cast<double>(r.words.labels[i].t), static_cast<double>(sent[i].cycle) / (static_cast<double>(kIce40.clock_hz) / 1e6), 3.0) << i;
   }
 }
 
@@ -332,7 +334,8 @@ namespace {
 // stamped them; the packets it skipped while the line was busy are counted.
 TEST(BoardTracksMode, AerAtThreeHundredThousandEventsASecondKeepsUp) {
   using A = hls::ArtyShape;
-  constexpr int kArtyCpb = EVMS_VBOARD_arty_CLOCKS_PER_BIT, kTicksPerUs = EVMS_VBOARD_arty_CLOCK_HZ / 1000000;
+  static_assert(!kArty.core_stops_at_filter, "the Arty's board holds the whole core");
+  constexpr int kArtyCpb = static_cast<int>(kArty.clocks_per_bit), kTicksPerUs = static_cast<int>(kArty.clock_hz / 1000000);
   constexpr double kRate = 300e3;  // events/s
   gen::SceneConfig c;
   c.motion = gen::Motion::kRotation;
