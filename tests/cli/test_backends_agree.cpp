@@ -17,7 +17,7 @@
 #include "host/backend/core_config.h"
 #include "tests/support/command.h"
 #include "tests/support/encoders.h"
-#include "tests/support/filter_cut.h"
+#include "tests/support/core_words.h"
 
 namespace evms::test {
 namespace {

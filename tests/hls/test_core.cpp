@@ -13,7 +13,7 @@
 #include "host/eval/evaluation.h"
 #include "host/eval/scene_run.h"
 #include "host/gen/family.h"
-#include "tests/support/filter_cut.h"
+#include "tests/support/core_words.h"
 #include "tests/support/read_all.h"
 #include "tests/support/scenes.h"
 
@@ -22,32 +22,20 @@ namespace {
 
 using hls::HostShape;
 
-struct CoreRun {
-  std::vector<hls::LabelWord> labels;
-  std::vector<hls::TrackWord> tracks;
-  std::vector<hls::PacketWord> packets;
+struct CoreRun : test::CoreWords {
   std::vector<size_t> packet_after_word;  // index of the input word that closed each packet
 };
 
 template <class S>
 CoreRun run_core(const std::vector<hls::EventWord>& words, const hls::Config& cfg) {
-  auto core = std::make_unique<hls::Core<S>>();
-  auto labels = std::make_unique<typename hls::Core<S>::LabelStream>();
-  typename hls::Core<S>::TrackStream tracks;
-  typename hls::Core<S>::PacketStream packets;
-  core->reset(cfg);
-  CoreRun r;
+  test::CoreDriver<S> core(cfg);
+  std::vector<size_t> packet_after_word;
   for (size_t i = 0; i < words.size(); ++i) {
-    core->process(words[i], *labels, tracks, packets);
-    hls::LabelWord l;
-    while (labels->read(l)) r.labels.push_back(l);
-    hls::TrackWord t;
-    while (tracks.read(t)) r.tracks.push_back(t);
-    hls::PacketWord p;
-    while (packets.read(p)) r.packets.push_back(p), r.packet_after_word.push_back(i);
+    core.process(words[i]);
+    packet_after_word.resize(core.out().packets.size(), i);
   }
-  EXPECT_FALSE(labels->overflowed() || tracks.overflowed() || packets.overflowed());
-  return r;
+  EXPECT_FALSE(core.overflowed());
+  return {core.out(), packet_after_word};
 }
 
 std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {

@@ -13,7 +13,7 @@
 #include "host/eval/scene_run.h"
 #include "host/link/link_protocol.h"
 #include "sim/virtual_board.h"
-#include "tests/support/filter_cut.h"
+#include "tests/support/core_words.h"
 #include "tests/support/scenes.h"
 
 namespace evms {
@@ -25,35 +25,18 @@ constexpr backend::BoardOfBuild kIce40 = backend::board_of("ice40"), kArty = bac
 constexpr int kCpb = static_cast<int>(kIce40.clocks_per_bit);
 constexpr int kWindow = static_cast<int>(kIce40.link_fifo_depth);  // events in flight: the board's link FIFO
 
-struct Expected {
-  std::vector<hls::LabelWord> labels;
-  std::vector<hls::TrackWord> tracks;
-  std::vector<hls::PacketWord> packets;
-};
+using Expected = test::CoreWords;
 
 // The C++ core of build B with its board's registers; `batch_ends` gets, for each packet, the
 // number of track updates before its summary.
 template <class B = S>
 Expected cxx_core(const std::vector<hls::EventWord>& words, std::vector<size_t>* batch_ends = nullptr) {
-  auto core = std::make_unique<hls::Core<B>>();
-  auto labels = std::make_unique<typename hls::Core<B>::LabelStream>();
-  typename hls::Core<B>::TrackStream tracks;
-  typename hls::Core<B>::PacketStream packets;
-  core->reset(backend::core_config<B>(backend::build_default_params<B>(), {B::kMaxWidth, B::kMaxHeight}));
-  Expected e;
+  test::CoreDriver<B> core(backend::core_config<B>(backend::build_default_params<B>(), {B::kMaxWidth, B::kMaxHeight}));
   for (const auto& w : words) {
-    core->process(w, *labels, tracks, packets);
-    hls::LabelWord l;
-    while (labels->read(l)) e.labels.push_back(l);
-    hls::TrackWord t;
-    while (tracks.read(t)) e.tracks.push_back(t);
-    hls::PacketWord p;
-    while (packets.read(p)) {
-      e.packets.push_back(p);
-      if (batch_ends) batch_ends->push_back(e.tracks.size());
-    }
+    core.process(w);
+    if (batch_ends) batch_ends->resize(core.out().packets.size(), core.out().tracks.size());
   }
-  return e;
+  return core.out();
 }
 
 // The iCEBreaker board's words: the C++ core of its build cut at the filter.
@@ -197,7 +180,7 @@ TEST(BoardLink, EventsInLabelsOutEqualToTheCppCore) {
   EXPECT_LT(passed, r.words.labels.size()) << "some are noise";
   // The rest of the core on the host, given the board's verdicts, gives the whole core's words.
   const test::CoreWords completed = test::completed_on_the_host<S>(r.words.labels, board_config());
-  expect_same({completed.labels, completed.tracks, completed.packets}, cxx_core(words));
+  expect_same(completed, cxx_core(words));
   ASSERT_EQ(r.status.size(), 1u);
   EXPECT_EQ(r.status[0].events_received, words.size() - 1);
   EXPECT_EQ(r.status[0].crc_errors, 0u);
