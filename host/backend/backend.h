@@ -34,6 +34,9 @@ struct BackendStats {
   std::int64_t labels_kept_on_board = 0;
   std::int64_t board_labelled = 0, board_noise = 0;
   std::int64_t link_packets_skipped = 0;
+  // A board whose core stops at the filter: the verdicts it returned (passed, noise), which the
+  // host clustered and tracked.
+  std::int64_t board_passed = 0, board_filtered = 0;
 };
 
 struct BackendOptions {

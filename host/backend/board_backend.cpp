@@ -197,6 +197,7 @@ class BoardBackend final : public Backend {
   // A core that stops at the filter: the rest of the core on the host takes the event with its
   // verdict (a lost one as noise, its row marked lost), and releases what it can.
   void complete(const hls::EventWord& event, bool kept, bool lost, OutputSink& out) {
+    if (!lost) ++(kept ? stats_.s.board_passed : stats_.s.board_filtered);
     rest_lost_.push_back(lost);
     rest_->process_decided(event, kept);
     drain_rest(out);

@@ -113,6 +113,10 @@ void run(const RunOptions& o) {
     std::fprintf(summary, "link        %s frames failed their check, %s events sent again, %s labels lost (labelled %d)\n",
                  grouped(s.link_bad_frames).c_str(), grouped(s.link_events_resent).c_str(), grouped(s.link_labels_lost).c_str(),
                  kLabelLostOnLink);
+    if (s.board_passed + s.board_filtered > 0) {
+      std::fprintf(summary, "board       filtered (its core stops at the filter): %s events passed, %s noise; clustered and tracked on the host\n",
+                   grouped(s.board_passed).c_str(), grouped(s.board_filtered).c_str());
+    }
     if (s.labels_kept_on_board) {
       std::fprintf(summary, "board       kept the labels (tracks mode): %s events labelled with a track, %s noise; the tracks and summaries "
                    "of %s packets were not sent (the line was busy)\n",

@@ -129,9 +129,13 @@ TEST(BackendsAgree, TheBoardThroughTheVirtualBoardEqualsTheFixedCore) {
   EXPECT_GT(fixed.first.size(), 1000u);
   EXPECT_EQ(on_board.first, fixed.first) << "events.csv differs";
   EXPECT_EQ(link_track_columns(on_board.second), link_track_columns(fixed.second)) << "tracks.csv differs";
-  // A second run on the same board starts from the reset frame: the same files again.
+  // A second run on the same board starts from the reset frame: the same files again. Its
+  // summary says where the work was done.
   const auto again = run_backend(dir, "board2", scene, "--backend board --device " + board.device());
   EXPECT_EQ(again, on_board);
+  const auto said = run_command(evms_binary() + " run \"" + scene + "\" --out " + dir.path("board3") + " --backend board --device " + board.device());
+  EXPECT_NE(said.out.find("board       filtered (its core stops at the filter): "), std::string::npos) << said.out;
+  EXPECT_NE(said.out.find(" noise; clustered and tracked on the host"), std::string::npos) << said.out;
   // A scene that is mostly noise: the filtered events wait in the core with their packet's, and
   // the host's window holds more than the core can, so the run goes through.
   const std::string noisy = "gen://family/still?seed=1005&width=128&height=128&noise-hz=4&duration-s=0.1";
