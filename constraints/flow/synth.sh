@@ -39,7 +39,7 @@ while getopts "j:s:o:b" opt; do
     s) seeds=$OPTARG ;;
     o) out=$OPTARG ;;
     b) blocks=true ;;
-    *) sed -n '2,25p' "$0"; exit 2 ;;
+    *) sed -n '2,/^set -euo/p' "$0" | sed '$d'; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
