@@ -24,20 +24,29 @@ class HostCore {
     w.flush = true;
     process(w);
   }
-  // Hands what the core released to `out`: each label word as label_of(word) makes it, then the
-  // track updates and packet summaries, counted in `stats`.
+  // Hands every word the core released to the callbacks: the labels, then the track updates,
+  // then the packet summaries.
+  template <class OnLabel, class OnTrack, class OnPacket>
+  void drain(OnLabel&& on_label, OnTrack&& on_track, OnPacket&& on_packet) {
+    hls::LabelWord l;
+    while (state_->labels.read(l)) on_label(l);
+    hls::TrackWord t;
+    while (state_->tracks.read(t)) on_track(t);
+    hls::PacketWord p;
+    while (state_->packets.read(p)) on_packet(p);
+  }
+  // The same into `out` as host records: each label word as label_of(word) makes it, the track
+  // updates and summaries by `mapper`, the summaries counted in `stats`.
   template <class LabelOf>
   void drain(OutputSink& out, const CoreWordMapper<S>& mapper, CoreStats& stats, LabelOf&& label_of) {
-    hls::LabelWord l;
-    while (state_->labels.read(l)) out.on_event(label_of(l));
-    hls::TrackWord t;
-    while (state_->tracks.read(t)) out.on_track(mapper.track(t));
-    hls::PacketWord p;
-    while (state_->packets.read(p)) {
-      stats.on_packet(p);
-      out.on_packet(mapper.packet(p));
-    }
+    drain([&](const hls::LabelWord& l) { out.on_event(label_of(l)); }, [&](const hls::TrackWord& t) { out.on_track(mapper.track(t)); },
+          [&](const hls::PacketWord& p) {
+            stats.on_packet(p);
+            out.on_packet(mapper.packet(p));
+          });
   }
+  // A write into a full stream (the host drains after every word, so never).
+  bool overflowed() const { return state_->labels.overflowed() || state_->tracks.overflowed() || state_->packets.overflowed(); }
   void add_tracker_stats(BackendStats& s) const {
     s.tracks_started = state_->core.tracker().tracks_started();
     s.unassigned_clusters = state_->core.tracker().unassigned_clusters();

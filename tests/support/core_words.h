@@ -1,4 +1,4 @@
-// The C++ core driven word by word with its output streams drained into vectors, for the tests
+// The C++ core driven word by word with its output words collected in vectors, for the tests
 // that compare its words (tests/hls, tests/sim, tests/cli); and the core cut at its filter: the
 // verdicts a board that stops there returns (hls::FilterCore) and the rest of the core run on
 // them (hls::Core::process_decided), as the board backend runs it.
@@ -7,8 +7,8 @@
 #include <memory>
 #include <vector>
 
-#include "hls/core/core.h"
 #include "hls/core/filter_core.h"
+#include "host/backend/fixed_backend.h"
 
 namespace evms::test {
 
@@ -18,44 +18,33 @@ struct CoreWords {
   std::vector<hls::PacketWord> packets;
 };
 
-// One core (on the heap: its memories are large) and everything it has released so far.
+// The host's C++ core (host/backend/fixed_backend.h) and every word it has released so far.
 template <class S>
 class CoreDriver {
  public:
-  explicit CoreDriver(const hls::Config& cfg)
-      : core_(std::make_unique<hls::Core<S>>()), labels_(std::make_unique<typename hls::Core<S>::LabelStream>()) {
-    core_->reset(cfg);
-  }
+  explicit CoreDriver(const hls::Config& cfg) : core_(cfg) {}
   void process(const hls::EventWord& w) {
-    core_->process(w, *labels_, tracks_, packets_);
+    core_.process(w);
     take();
   }
   void process_decided(const hls::EventWord& w, bool kept) {
-    core_->process_decided(w, kept, *labels_, tracks_, packets_);
+    core_.process_decided(w, kept);
     take();
   }
   void flush() {
-    hls::EventWord w;
-    w.flush = true;
-    process(w);
+    core_.flush();
+    take();
   }
   const CoreWords& out() const { return out_; }
-  bool overflowed() const { return labels_->overflowed() || tracks_.overflowed() || packets_.overflowed(); }
+  bool overflowed() const { return core_.overflowed(); }
 
  private:
   void take() {
-    hls::LabelWord l;
-    while (labels_->read(l)) out_.labels.push_back(l);
-    hls::TrackWord t;
-    while (tracks_.read(t)) out_.tracks.push_back(t);
-    hls::PacketWord p;
-    while (packets_.read(p)) out_.packets.push_back(p);
+    core_.drain([&](const hls::LabelWord& l) { out_.labels.push_back(l); }, [&](const hls::TrackWord& t) { out_.tracks.push_back(t); },
+                [&](const hls::PacketWord& p) { out_.packets.push_back(p); });
   }
 
-  std::unique_ptr<hls::Core<S>> core_;
-  std::unique_ptr<typename hls::Core<S>::LabelStream> labels_;
-  typename hls::Core<S>::TrackStream tracks_;
-  typename hls::Core<S>::PacketStream packets_;
+  backend::HostCore<S> core_;
   CoreWords out_;
 };
 
