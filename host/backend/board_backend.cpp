@@ -236,6 +236,10 @@ class BoardBackend final : public Backend {
         any = true;
         silent_ms_ = 0;
         if (!started_ && f.type != link::kStatus) continue;  // output of an earlier run, before the reset's status frame
+        if (rest_ && (f.type == link::kTrack || f.type == link::kPacket)) {  // a board that stops at the filter sends none:
+          ++unbelieved_;                                                     // a corruption the check missed
+          continue;
+        }
         switch (f.type) {
           case link::kLabel: {
             if (mode_ == link::LinkMode::kTracks) {  // not a frame of this run's mode: a corruption the check missed
@@ -285,18 +289,8 @@ class BoardBackend final : public Backend {
             while (answered_ < taken) take_oldest();
             break;
           }
-          case link::kTrack:
-            if (rest_) {  // a board that stops at the filter sends none: a corruption the check missed
-              ++unbelieved_;
-              break;
-            }
-            out.on_track(mapper_.track(link::decode_track(f)));
-            break;
+          case link::kTrack: out.on_track(mapper_.track(link::decode_track(f))); break;
           case link::kPacket: {
-            if (rest_) {
-              ++unbelieved_;
-              break;
-            }
             const hls::PacketWord p = link::decode_packet(f);
             stats_.on_packet(p);
             out.on_packet(mapper_.packet(p));
