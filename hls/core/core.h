@@ -142,7 +142,7 @@ class Core {
 #pragma HLS PIPELINE II = 1
       if (k >= pending_n_) break;
       const Pending& p = pending_[k];
-      labels.write({p.e.t, p.e.x, p.e.y, p.e.p, p.index < 0 ? -1 : label_of[p.index]});
+      labels.write({p.e.t, p.e.x, p.e.y, p.e.p, p.index < 0 ? kLabelNoise : label_of[p.index]});
     }
     n_ = 0;
     pending_n_ = 0;

@@ -1,4 +1,4 @@
-// The core cut after its filter: every event labelled noise (-1) or kLabelPassedFilter, in
+// The core cut after its filter: every event labelled kLabelNoise or kLabelPassedFilter, in
 // input order, with no packets and no tracks. It is what a board whose core stops at the
 // filter returns (EVMS_BOARD_BUILDS in hls/core/configs.h; rtl/core/evms_filter_core.sv), and
 // Core::process_decided completes it: fed these verdicts, Core<S> gives the words of the
@@ -26,7 +26,7 @@ class FilterCore {
   void process(const EventWord& in, LabelStream& labels) {
     if (in.flush) return;
     const bool kept = filter_.accept(in, cfg_);
-    labels.write({in.t, in.x, in.y, in.p, kept ? kLabelPassedFilter : -1});
+    labels.write({in.t, in.x, in.y, in.p, kept ? kLabelPassedFilter : kLabelNoise});
   }
 
  private:

@@ -13,17 +13,19 @@ struct EventWord {
   bool flush = false;   // not an event: close the open packet and flush everything held
 };
 
+// The labels that are not a track's ID: noise, and what a board whose core stops at the filter
+// (EVMS_BOARD_BUILDS, hls/core/configs.h) gives an event that passed it, whose cluster the host
+// finds (Core::process_decided). host/tools/rtl_gen writes both for the RTL
+// (rtl/generated/evms_core_labels.svh).
+inline constexpr std::int32_t kLabelNoise = -1;
+inline constexpr std::int32_t kLabelPassedFilter = -3;
+
 struct LabelWord {
   std::uint32_t t = 0;
   std::uint16_t x = 0, y = 0;
   std::uint8_t p = 0;
-  std::int32_t label = -1;
+  std::int32_t label = kLabelNoise;
 };
-
-// The label a board whose core stops at the filter (EVMS_BOARD_BUILDS, hls/core/configs.h)
-// gives an event that passed it; -1 is noise, as everywhere. The host clusters and tracks the
-// rest (Core::process_decided).
-inline constexpr std::int32_t kLabelPassedFilter = -3;
 
 struct TrackWord {
   std::uint32_t t = 0;      // measurement time

@@ -5,6 +5,7 @@
 //   evms_core_shape_connect.svh  those parameters passed down, board -> core
 //   evms_core_cfg_ports.svh      the cfg_* input ports of evms_core
 //   evms_core_states.svh         the controller's state_e
+//   evms_core_labels.svh         the labels that are not a track's ID (hls/core/words.h)
 //   evms_board_cfg_params.svh    the Cfg* reset-value parameters of evms_board
 //   evms_board_cfg_connect.svh   those parameters on the core's cfg_* ports
 //   evms_board_build_params.svh  a board top's build passed to evms_board
@@ -186,6 +187,18 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
   }
   states << "} state_e;\n";
   write(dir + "/evms_core_states.svh", states.str());
+
+  std::ostringstream labels;
+  labels << "// " << kGeneratedBy << "\n// The labels that are not a track's ID (hls/core/words.h), as 32-bit label words.\n";
+  const auto label_word = [](std::int32_t v) {
+    char b[16];
+    std::snprintf(b, sizeof b, "32'h%08X", static_cast<std::uint32_t>(v));
+    return std::string(b);
+  };
+  labels << "localparam logic [31:0] LabelNoise = " << label_word(hls::kLabelNoise) << ";  // " << hls::kLabelNoise << "\n";
+  labels << "localparam logic [31:0] LabelPassedFilter = " << label_word(hls::kLabelPassedFilter) << ";  // " << hls::kLabelPassedFilter
+         << ", from a core cut after its filter\n";
+  write(dir + "/evms_core_labels.svh", labels.str());
 }
 
 template <class S>

@@ -146,6 +146,7 @@ module evms_board #(
   end
 
   // ---- labels: to the link, or counted on the board ------------------------------------------------
+  `include "evms_core_labels.svh"
   // A core that stops at the filter sends its verdicts in either mode: the host needs them.
   logic keep_labels, tx_lab_valid, tx_lab_ready;
   assign keep_labels = labels_on_board && CoreStopsAtFilter == 0;
@@ -159,7 +160,7 @@ module evms_board #(
       link_taken_q <= '0;
     end else begin
       if (lab_valid && lab_ready) begin
-        if (lab_label == 32'hFFFFFFFF) noise_q <= noise_q + 1'b1;
+        if (lab_label == LabelNoise) noise_q <= noise_q + 1'b1;
         else labelled_q <= labelled_q + 1'b1;
       end
       if (lk_valid && lk_ready && !lk_flush) link_taken_q <= link_taken_q + 1'b1;

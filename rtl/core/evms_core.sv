@@ -312,6 +312,7 @@ module evms_core #(
 
   // ---- control ------------------------------------------------------------------------------------
   `include "evms_core_states.svh"
+  `include "evms_core_labels.svh"
   state_e state /*verilator public_flat_rd*/;  // read by the cycle profile (sim/rtl_core.h)
   logic [15:0] fi;            // feature index
   logic [PendingCountBits-1:0] ri;          // release index
@@ -570,7 +571,7 @@ module evms_core #(
         StReleaseSend: if (!lab_valid || lab_ready) begin
           lab_valid <= 1'b1;
           {lab_t, lab_x, lab_y, lab_p} <= {rel_t, rel_x, rel_y, rel_p};
-          lab_label <= rel_idx < 0 || co_rdata < 0 ? 32'hFFFFFFFF : id_of;
+          lab_label <= rel_idx < 0 || co_rdata < 0 ? LabelNoise : id_of;
           if (32'(ri) + 1 < 32'(pend_n)) begin
             ri <= ri + 1'b1;
             state <= StReleaseRead;

@@ -35,8 +35,7 @@ module evms_filter_core #(
   output logic [31:0] lab_label,
   output logic        idle        // ready (the filter's memory cleared) and no word held
 );
-  localparam logic [31:0] LabelNoise = 32'hFFFF_FFFF;         // -1
-  localparam logic [31:0] LabelPassedFilter = 32'hFFFF_FFFD;  // hls::kLabelPassedFilter
+  `include "evms_core_labels.svh"
 
   logic q_valid, q_pop, q_flush, q_kept, intake_empty;
   logic [31:0] unused_climb_x, unused_climb_y;
