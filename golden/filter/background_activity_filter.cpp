@@ -4,10 +4,11 @@
 
 namespace evms::golden {
 
-BackgroundActivityFilter::BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support)
+BackgroundActivityFilter::BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support, bool warm_up)
     : sensor_(sensor),
       window_us_(window_us),
       support_(support),
+      warm_up_(warm_up),
       stride_(static_cast<size_t>(sensor.width) + 2),
       last_fired_(stride_ * (static_cast<size_t>(sensor.height) + 2), kNever) {}
 
@@ -21,7 +22,11 @@ bool BackgroundActivityFilter::accept(const Event& e) {
   const int supporters = (above[0] >= since) + (above[1] >= since) + (above[2] >= since) + (row[0] >= since) + (row[2] >= since) +
                          (below[0] >= since) + (below[1] >= since) + (below[2] >= since);
   last_fired(e.x, e.y) = e.t;
-  return supporters >= support_;
+  if (!started_) {
+    started_ = true;
+    warm_until_ = e.t + window_us_;
+  }
+  return supporters >= support_ || (warm_up_ && e.t < warm_until_);
 }
 
 int BackgroundActivityFilter::neighbours_fired_since(int x, int y, TimeUs since) const {

@@ -51,6 +51,14 @@ TEST(BackgroundActivityFilter, CornersAndBordersOfA240x180Sensor) {
   EXPECT_FALSE(f.accept({7, 0, 0, 1}));  // nothing near the top-left corner fired
 }
 
+TEST(BackgroundActivityFilter, WarmUpKeepsTheFirstWindowFromTheStreamsFirstEvent) {
+  BackgroundActivityFilter f(kSensor, 10000, 1, /*warm_up=*/true);
+  EXPECT_TRUE(f.accept({500000, 100, 50, 1}));   // the stream starts at 0.5 s, not at 0
+  EXPECT_TRUE(f.accept({509999, 10, 10, 1}));    // alone, but within the first window
+  EXPECT_FALSE(f.accept({510000, 200, 100, 1}));  // alone, and the window has passed
+  EXPECT_TRUE(f.accept({510001, 201, 100, 0}));   // supported, as without the warm-up
+}
+
 TEST(BackgroundActivityFilter, ZeroWindowKeepsEverything) {
   BackgroundActivityFilter f(kSensor, 0);
   EXPECT_TRUE(f.accept({0, 5, 5, 1}));
