@@ -65,7 +65,7 @@ void register_metrics(CLI::App& app) {
   auto o = std::make_shared<MetricsOptions>();
   CLI::App* cmd = app.add_subcommand("metrics", "score a labelling against the truth; prints 'ARI NMI P R F'");
   cmd->add_option("--truth", o->truth, "true labels, t_us,x,y,p,label (label -1 = noise)")->required();
-  cmd->add_option("--pred", o->pred, "predicted labels of the same events, same layout")->required();
+  cmd->add_option("--pred", o->pred, "predicted labels of the same events, same layout (-2, a label lost on the board's link, counts as noise)")->required();
   cmd->add_option("--chunk-events", o->chunk_events, "score chunks of N consecutive events (default 256)")->check(CLI::Range(2, 1000000000));
   cmd->add_option("--chunk-us", o->chunk_us, "score fixed time windows of N us instead")->check(CLI::Range(std::int64_t{1}, std::int64_t{1000000000000}));
   cmd->callback([o] { metrics(*o); });

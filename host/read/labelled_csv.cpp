@@ -1,6 +1,7 @@
 #include "host/read/labelled_csv.h"
 
 #include <charconv>
+#include <string>
 
 namespace evms::read {
 
@@ -37,8 +38,12 @@ bool LabelledCsvReader::next(LabelledEvent& out) {
     }
   }
   if (p != end) fail(in_.path(), InputPosition::line(in_.line()), "more than 5 fields");
-  if (v[1] < 0 || v[1] > 65535 || v[2] < 0 || v[2] > 65535 || (v[3] != 0 && v[3] != 1) || v[4] < -1 || v[4] > INT32_MAX) {
+  if (v[1] < 0 || v[1] > 65535 || v[2] < 0 || v[2] > 65535 || (v[3] != 0 && v[3] != 1)) {
     fail(in_.path(), InputPosition::line(in_.line()), "value out of range");
+  }
+  if (v[4] < kLabelLostOnLink || v[4] > INT32_MAX) {
+    fail(in_.path(), InputPosition::line(in_.line()),
+         "label " + std::to_string(v[4]) + " is not a track ID, -1 (noise) or -2 (lost on the board's link)");
   }
   out.event = {v[0], static_cast<std::uint16_t>(v[1]), static_cast<std::uint16_t>(v[2]), static_cast<std::uint8_t>(v[3])};
   out.label = static_cast<std::int32_t>(v[4]);

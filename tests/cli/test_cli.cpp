@@ -415,6 +415,18 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
   const double f = f_of(dir.path("r/events.csv"));
   EXPECT_GT(f, 0.5);
   EXPECT_LT(f, 1.0);
+  // A board run writes -2 for a label its link lost: scored as unclustered, as noise is. A
+  // label below that is refused with its line.
+  std::string lost = read_file(dir.path("r/events.csv"));
+  const size_t row = lost.find('\n', lost.find("t_us,")) + 1;
+  const size_t label = lost.rfind(',', lost.find('\n', row)) + 1;
+  lost.replace(label, lost.find('\n', row) - label, "-2");
+  EXPECT_LE(f_of(dir.write("lost.csv", lost)), f);
+  lost.replace(label, 2, "-3");
+  const auto bad = run_command(evms_binary() + " metrics --truth " + dir.path("g/labels.csv") + " --pred " + dir.write("bad.csv", lost));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("bad.csv: line 3: label -3 is not a track ID, -1 (noise) or -2 (lost on the board's link)"), std::string::npos)
+      << bad.err;
 }
 
 // A source that fails part way (a corrupt record; a camera unplugged, which reaches the run
