@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <span>
+#include <stdexcept>
 #include <string>
 
 #include "types/event.h"
@@ -63,6 +64,8 @@ void check_core_build(const std::string& core);
 // --core names the Arty's.
 inline constexpr const char* kBoardCoreBuild = "ice40";
 inline std::string board_build(const std::string& core) { return core == "host" ? kBoardCoreBuild : core; }
+// The sensor a core build is sized for (EVMS_CORE_BUILDS): the size a board's registers hold.
+SensorSize core_build_sensor(const std::string& build);
 
 // `p` (resolved from `method`) within the packet size, cluster and track counts of the build
 // `core` of `backend` (fixed: the build's C++ Shape; rtl and board: its RTL Shape; golden: no
@@ -79,6 +82,12 @@ class Backend {
   // Flushes everything still held.
   virtual void finish(OutputSink& out) = 0;
   virtual BackendStats stats() const = 0;
+  // Takes, for up to `wait_ms`, what the backend produced from input of its own, without any
+  // pushed: a board in tracks mode whose events enter at its AER pins (listening, docs/link.md).
+  // Backends that have no input of their own refuse.
+  virtual void listen(OutputSink& /*out*/, int /*wait_ms*/) {
+    throw std::invalid_argument("only the board backend listens to input of its own (--backend board --core arty)");
+  }
 };
 
 struct BackendInfo {

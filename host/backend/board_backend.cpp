@@ -33,8 +33,10 @@
 // An event whose verdict the line lost goes on as noise, and its row says lost (-2). Tracks
 // mode needs a whole core on the board, and is refused.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <deque>
+#include <set>
 #include <stdexcept>
 
 #include "hls/core/configs.h"
@@ -99,6 +101,9 @@ class BoardBackend final : public Backend {
   }
 
   void finish(OutputSink& out) override {
+    // Listening ends where the user stops it, while the board goes on with its sensor's events:
+    // there is no end of input to flush to (a flush's status waits for an idle core).
+    if (listening_) return;
     flushing_ = true;
     send_flush();
     while (flushing_) receive(out, true);
@@ -111,9 +116,29 @@ class BoardBackend final : public Backend {
     }
   }
 
+  // Listening: the events enter at the board's AER pins and none go out, so only track
+  // updates, packet summaries and progress frames come. A sensor that sees nothing moving
+  // sends nothing, so silence here is not a lost board.
+  void listen(OutputSink& out, int wait_ms) override {
+    if (mode_ != link::LinkMode::kTracks) {
+      throw std::invalid_argument("listening to the board's AER pins needs --board-link tracks: only track updates cross the line");
+    }
+    listening_ = true;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms);
+    std::uint8_t buf[4096];
+    for (;;) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()).count();
+      if (left <= 0) return;
+      const size_t n = port_.read_some(buf, static_cast<int>(left));
+      decoder_.push(std::span(buf, n));
+      take_frames(out);
+    }
+  }
+
   BackendStats stats() const override {
     BackendStats s = stats_.s;
-    s.tracks_started = status_.tracks_started;
+    // Listening, no status follows a flush: the tracks started are those whose updates came.
+    s.tracks_started = listening_ ? static_cast<std::int64_t>(listened_ids_.size()) : status_.tracks_started;
     s.unassigned_clusters = status_.unassigned_clusters;
     if (rest_) rest_->add_tracker_stats(s);
     s.link_bad_frames = static_cast<std::int64_t>(decoder_.bad_frames() - bad_at_start_) + (status_.crc_errors - at_start_.crc_errors) +
@@ -230,88 +255,99 @@ class BoardBackend final : public Backend {
         return;
       }
       decoder_.push(std::span(buf, n));
-      bool any = false;
-      link::Frame f;
-      while (decoder_.next(f)) {
-        any = true;
-        silent_ms_ = 0;
-        if (!started_ && f.type != link::kStatus) continue;  // output of an earlier run, before the reset's status frame
-        if (rest_ && (f.type == link::kTrack || f.type == link::kPacket)) {  // a board that stops at the filter sends none:
-          ++unbelieved_;                                                     // a corruption the check missed
-          continue;
-        }
-        switch (f.type) {
-          case link::kLabel: {
-            if (mode_ == link::LinkMode::kTracks) {  // not a frame of this run's mode: a corruption the check missed
-              ++unbelieved_;
-              break;
-            }
-            const std::uint64_t number = unwrap(link::label_sequence(f), answered_);
-            const hls::LabelWord label = link::decode_label(f);
-            // A frame whose corruption the check missed (one in 2^16 corrupt frames) names no
-            // event of ours, or not the event its number says: it is dropped, not believed.
-            if (number >= answered_ + unanswered_.size() || !echoes(label, unanswered_[number - answered_])) {
-              ++unbelieved_;
-              break;
-            }
-            if (rest_ && label.label != -1 && label.label != hls::kLabelPassedFilter) {  // not a verdict
-              ++unbelieved_;
-              break;
-            }
-            while (answered_ < number) lose_oldest(out);
-            if (rest_) {
-              complete(unanswered_.front(), label.label == hls::kLabelPassedFilter, false, out);
-            } else {
-              out.on_event(mapper_.label(label));
-            }
-            unanswered_.pop_front();
-            ++answered_;
-            break;
-          }
-          case link::kResend: {
-            const std::uint64_t from = unwrap(link::decode_resend(f), answered_);
-            if (from <= answered_ + unanswered_.size()) resend_from(from);
-            break;
-          }
-          case link::kProgress: {
-            // In labels mode it only says the board is working: the labels acknowledge. Before
-            // the reset's status frame it is stale.
-            if (mode_ != link::LinkMode::kTracks || !started_) break;
-            // The core took the link's events up to this count (numbers since the reset, modulo
-            // 2^32; a run's unanswered events are far fewer).
-            const link::Progress p = link::decode_progress(f);
-            progress_.labelled = p.labelled, progress_.noise = p.noise;
-            const std::uint64_t taken = answered_ + static_cast<std::uint32_t>(p.taken - static_cast<std::uint32_t>(answered_));
-            if (taken > answered_ + unanswered_.size()) {
-              ++unbelieved_;
-              break;
-            }
-            while (answered_ < taken) take_oldest();
-            break;
-          }
-          case link::kTrack: out.on_track(mapper_.track(link::decode_track(f))); break;
-          case link::kPacket: {
-            const hls::PacketWord p = link::decode_packet(f);
-            stats_.on_packet(p);
-            out.on_packet(mapper_.packet(p));
-            break;
-          }
-          case link::kStatus: {
-            const link::Status status = link::decode_status(f);
-            if (!started_) {
-              started_ = true, bad_at_start_ = decoder_.bad_frames(), status_ = at_start_ = status;
-            } else if (flushing_ && status.events_received - at_start_.events_received == static_cast<std::uint32_t>(answered_ + unanswered_.size())) {
-              // The flush's status: the board took every event (a reset's status, repeated
-              // when the first was slow, comes before any).
-              status_ = status, flushing_ = false;
-            }
-            break;
-          }
-          default: break;
-        }
-      }
+      const bool any = take_frames(out);
       if (!wait || any || n == 0) return;
     }
+  }
+
+  // Acts on every whole frame the decoder holds; says whether there was one.
+  bool take_frames(OutputSink& out) {
+    bool any = false;
+    link::Frame f;
+    while (decoder_.next(f)) {
+      any = true;
+      silent_ms_ = 0;
+      if (!started_ && f.type != link::kStatus) continue;  // output of an earlier run, before the reset's status frame
+      if (rest_ && (f.type == link::kTrack || f.type == link::kPacket)) {  // a board that stops at the filter sends none:
+        ++unbelieved_;                                                     // a corruption the check missed
+        continue;
+      }
+      switch (f.type) {
+        case link::kLabel: {
+          if (mode_ == link::LinkMode::kTracks) {  // not a frame of this run's mode: a corruption the check missed
+            ++unbelieved_;
+            break;
+          }
+          const std::uint64_t number = unwrap(link::label_sequence(f), answered_);
+          const hls::LabelWord label = link::decode_label(f);
+          // A frame whose corruption the check missed (one in 2^16 corrupt frames) names no
+          // event of ours, or not the event its number says: it is dropped, not believed.
+          if (number >= answered_ + unanswered_.size() || !echoes(label, unanswered_[number - answered_])) {
+            ++unbelieved_;
+            break;
+          }
+          if (rest_ && label.label != -1 && label.label != hls::kLabelPassedFilter) {  // not a verdict
+            ++unbelieved_;
+            break;
+          }
+          while (answered_ < number) lose_oldest(out);
+          if (rest_) {
+            complete(unanswered_.front(), label.label == hls::kLabelPassedFilter, false, out);
+          } else {
+            out.on_event(mapper_.label(label));
+          }
+          unanswered_.pop_front();
+          ++answered_;
+          break;
+        }
+        case link::kResend: {
+          const std::uint64_t from = unwrap(link::decode_resend(f), answered_);
+          if (from <= answered_ + unanswered_.size()) resend_from(from);
+          break;
+        }
+        case link::kProgress: {
+          // In labels mode it only says the board is working: the labels acknowledge. Before
+          // the reset's status frame it is stale.
+          if (mode_ != link::LinkMode::kTracks || !started_) break;
+          // The core took the link's events up to this count (numbers since the reset, modulo
+          // 2^32; a run's unanswered events are far fewer).
+          const link::Progress p = link::decode_progress(f);
+          progress_.labelled = p.labelled, progress_.noise = p.noise;
+          const std::uint64_t taken = answered_ + static_cast<std::uint32_t>(p.taken - static_cast<std::uint32_t>(answered_));
+          if (taken > answered_ + unanswered_.size()) {
+            ++unbelieved_;
+            break;
+          }
+          while (answered_ < taken) take_oldest();
+          break;
+        }
+        case link::kTrack: {
+          const TrackUpdate u = mapper_.track(link::decode_track(f));
+          if (listening_) listened_ids_.insert(u.id);
+          out.on_track(u);
+          break;
+        }
+        case link::kPacket: {
+          const hls::PacketWord p = link::decode_packet(f);
+          stats_.on_packet(p);
+          out.on_packet(mapper_.packet(p));
+          break;
+        }
+        case link::kStatus: {
+          const link::Status status = link::decode_status(f);
+          if (!started_) {
+            started_ = true, bad_at_start_ = decoder_.bad_frames(), status_ = at_start_ = status;
+          } else if (flushing_ && status.events_received - at_start_.events_received == static_cast<std::uint32_t>(answered_ + unanswered_.size())) {
+            // The flush's status: the board took every event (a reset's status, repeated
+            // when the first was slow, comes before any).
+            status_ = status, flushing_ = false;
+          }
+          break;
+        }
+        default: break;
+      }
+    }
+    return any;
   }
 
   link::SerialPort port_;
@@ -331,6 +367,8 @@ class BoardBackend final : public Backend {
   link::Progress progress_;  // the latest progress frame's counts (tracks mode)
   std::uint64_t bad_at_start_ = 0;
   bool started_ = false, flushing_ = false;
+  bool listening_ = false;             // listen() was called: the events enter at the board's AER pins
+  std::set<std::int32_t> listened_ids_;  // the track IDs whose updates came while listening
 };
 
 template <class S, size_t LinkWindow>

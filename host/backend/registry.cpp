@@ -56,6 +56,15 @@ Params fit_core_build(const std::string& backend, const std::string& core, Param
   return p;
 }
 
+SensorSize core_build_sensor(const std::string& build) {
+  check_core_build(build);
+#define EVMS_SENSOR_OF_BUILD(name, fixed_shape, rtl_shape, width, height, description) \
+  if (build == #name) return SensorSize{width, height};
+  EVMS_CORE_BUILDS(EVMS_SENSOR_OF_BUILD)
+#undef EVMS_SENSOR_OF_BUILD
+  return {};
+}
+
 std::span<const BackendInfo> backends() { return kBackends; }
 
 std::unique_ptr<Backend> make_backend(const std::string& name, const BackendOptions& options) {

@@ -32,6 +32,8 @@ struct RunOptions {
   read::SourceOptions source_options;
   Method method;
   bool quiet = false;
+  bool listen = false;
+  bool source_given = false;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 };
 
@@ -39,8 +41,11 @@ volatile std::sig_atomic_t g_interrupted = 0;
 
 void run(const RunOptions& o) {
   const bool keeps_labels = board_keeps_labels(o.board_link, o.backend);
-  auto source = read::open_source(o.source, o.source_options);
-  const read::SourceInfo& info = source->info();
+  if (o.listen) check_listening(o.backend, keeps_labels, o.source_given, o.source_options);
+  // Listening, the events enter at the board's AER pins: there is no source on the host, and
+  // the sensor is the one the board's registers hold.
+  std::unique_ptr<read::EventSource> source = o.listen ? nullptr : read::open_source(o.source, o.source_options);
+  const read::SourceInfo info = o.listen ? board_input(o.core) : source->info();
   const Params params = backend::fit_core_build(o.backend, o.core, o.method.resolve(info.sensor), o.method);
   auto backend = backend::make_backend(o.backend, {params, info.sensor, o.core, o.device, o.baud, keeps_labels});
   Writers writers(o.out, o.format, info.sensor);
@@ -49,7 +54,7 @@ void run(const RunOptions& o) {
   // Ctrl-C (or a SIGTERM) ends any source as if its input had ended, so that the outputs are
   // complete files: a live source delivers what it has buffered, a recording stops at the next
   // batch. A second Ctrl-C ends evms at once.
-  const bool live = dynamic_cast<read::LiveSource*>(source.get()) != nullptr;
+  const bool live = o.listen || dynamic_cast<read::LiveSource*>(source.get()) != nullptr;
   g_interrupted = 0;
   for (const int sig : {SIGINT, SIGTERM}) {
     std::signal(sig, [](int) {
@@ -64,9 +69,11 @@ void run(const RunOptions& o) {
   StageOptions stages;
   stages.threads = o.threads;
   // Ctrl-C ends a recording at the next batch; a live source ends on its own (end_live_sources).
-  stages.stop = [live] { return g_interrupted && !live; };
+  // Listening, Ctrl-C ends the listening.
+  stages.stop = [ends_itself = live && !o.listen] { return g_interrupted && !ends_itself; };
   stages.progress = [&progress](double fraction, std::int64_t events) { progress.update(fraction, events); };
-  const StageReport report = run_stages(*source, *backend, sink, writers, stages);
+  const StageReport report = o.listen ? listen_stages(*backend, sink, writers, stages, o.source_options.window.limit)
+                                      : run_stages(*source, *backend, sink, writers, stages);
   const std::int64_t read_ns = report.read_ns, method_ns = report.method_ns, write_ns = report.write_ns;
   const TimeUs t_first = report.t_first, t_last = report.t_last;
   const std::string& source_error = report.source_error;
@@ -80,18 +87,20 @@ void run(const RunOptions& o) {
   }
   // With the rows on standard output, the summary goes to standard error.
   std::FILE* summary = o.out == "-" ? stderr : stdout;
+  // Listening, the events are those the board took at its AER pins, as it counted them.
+  const std::int64_t events_in = o.listen ? s.board_labelled + s.board_noise : s.events_in;
   const double span_s = static_cast<double>(t_last - t_first) * 1e-6;
   std::fprintf(summary, "source      %s (%s, %s)\n", info.name.c_str(), info.format.c_str(), sensor_text(info).c_str());
   std::fprintf(summary, "backend     %s\n", o.backend.c_str());
-  std::fprintf(summary, "events in   %s over %.3f s of sensor time (%s labelled noise%s)\n", grouped(s.events_in).c_str(), span_s,
+  std::fprintf(summary, "events in   %s over %.3f s of sensor time (%s labelled noise%s)\n", grouped(events_in).c_str(), span_s,
               grouped(sink.noise + s.board_noise).c_str(), s.labels_kept_on_board ? ", on the board" : "");
-  std::fprintf(summary, "throughput  %sevents/s (%.2f s wall clock, reading included)\n", si(s.events_in / std::max(wall, 1e-9)).c_str(), wall);
+  std::fprintf(summary, "throughput  %sevents/s (%.2f s wall clock, reading included)\n", si(static_cast<double>(events_in) / std::max(wall, 1e-9)).c_str(), wall);
   // Packets count sweeps when every event shifts, and climb steps (summed over climbs) when seeds climb.
   std::fprintf(summary, "packets     %s, %.1f %s each", grouped(s.packets).c_str(), s.packets ? static_cast<double>(s.iterations) / s.packets : 0.0,
                params.seeding == Seeding::kEvery ? "mean-shift iterations" : "climb steps");
   // Counted by the backends that count them (golden).
   if (s.kernel_evaluations > 0) {
-    std::fprintf(summary, ", %.1f kernel evaluations per event", static_cast<double>(s.kernel_evaluations) / static_cast<double>(s.events_in));
+    std::fprintf(summary, ", %.1f kernel evaluations per event", static_cast<double>(s.kernel_evaluations) / static_cast<double>(events_in));
   }
   std::fprintf(summary, "\n");
   {
@@ -117,7 +126,10 @@ void run(const RunOptions& o) {
       std::fprintf(summary, "board       filtered (its core stops at the filter): %s events passed, %s noise; clustered and tracked on the host\n",
                    grouped(s.board_passed).c_str(), grouped(s.board_filtered).c_str());
     }
-    if (s.labels_kept_on_board) {
+    if (o.listen) {
+      std::fprintf(summary, "board       kept the labels (tracks mode): %s events from its AER pins labelled with a track, %s noise, "
+                   "by its last progress frame\n", grouped(s.board_labelled).c_str(), grouped(s.board_noise).c_str());
+    } else if (s.labels_kept_on_board) {
       std::fprintf(summary, "board       kept the labels (tracks mode): %s events labelled with a track, %s noise; the tracks and summaries "
                    "of %s packets were not sent (the line was busy)\n",
                    grouped(s.board_labelled).c_str(), grouped(s.board_noise).c_str(), grouped(s.link_packets_skipped).c_str());
@@ -131,7 +143,7 @@ void run(const RunOptions& o) {
     }
     std::fprintf(summary, "\n");
   }
-  if (live) {
+  if (live && source) {
     std::fprintf(summary, "live        %s events dropped while the backend was behind", grouped(source->dropped()).c_str());
     for (const auto& [kind, count] : source->skipped()) std::fprintf(summary, "; %s %s", grouped(count).c_str(), kind.c_str());
     std::fprintf(summary, "\n");
@@ -185,7 +197,11 @@ void register_run(CLI::App& app) {
   add_source_options(*cmd, o->source_options);
   add_replay_options(*cmd, o->source_options, Pacing::kRealtimeFlag);
   add_method_options(*cmd, o->method);
-  cmd->callback([o] { run(*o); });
+  add_listen_option(*cmd, o->listen);
+  cmd->callback([o, cmd] {
+    o->source_given = cmd->count("source") > 0;
+    run(*o);
+  });
 }
 
 }  // namespace evms::cli

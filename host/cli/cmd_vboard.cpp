@@ -12,6 +12,13 @@
 // (4 on the iCEBreaker's 12 MHz, 50 on the Arty's 100 MHz); bytes the board transmits come out
 // of it. It runs until it is interrupted.
 //
+// --aer SOURCE plays a recording into the board's AER pins as a DVS128 would, from the moment
+// the host first writes to the terminal (its reset frame): each event in the board's
+// microsecond its own time falls in, after the first. With `evms run --listen --backend board
+// --core arty --board-link tracks`, that is the live demo without a sensor. --aer-stamped FILE
+// then writes the events as the board stamped them, at the board's sensor size, for `evms run
+// --backend fixed --core arty` to compare with.
+//
 // --error-rate R makes the line unreliable, as a UART beside a sensor can be: each byte, in
 // either direction, is hit with probability R by one fault, equally often a flipped bit, the
 // byte dropped, or the byte repeated (--seed chooses the faults).
@@ -23,14 +30,17 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <vector>
 
 #include "Vboard_arty.h"
 #include "Vboard_ice40.h"
+#include "host/backend/backend.h"
 #include "host/backend/core_config.h"
 #include "host/cli/commands.h"
+#include "host/read/event_source.h"
 #include "sim/virtual_board.h"
 
 namespace evms::cli {
@@ -43,6 +53,7 @@ constexpr double kBusySeconds = 0.033;
 struct VboardOptions {
   std::string build = "ice40";
   std::string path_file;
+  std::string aer, aer_stamped;
   double error_rate = 0;
   std::uint64_t seed = 1;
 };
@@ -74,6 +85,40 @@ class LineFaults {
   std::uniform_real_distribution<double> uniform_{0.0, 1.0};
 };
 
+// The events a DVS128 would put on the board's AER pins: a recording of at most 128x128.
+std::vector<Event> aer_events(const std::string& source_name) {
+  auto source = read::open_source(source_name, {});
+  const SensorSize sensor = source->info().sensor;
+  if (sensor.width > 128 || sensor.height > 128) {
+    throw std::invalid_argument(source_name + ": a " + std::to_string(sensor.width) + "x" + std::to_string(sensor.height) +
+                                " sensor; the board's AER pins take a DVS128's 7-bit addresses (128x128 at most)");
+  }
+  std::vector<Event> events, batch(16384);
+  while (const size_t n = source->read(batch)) events.insert(events.end(), batch.begin(), batch.begin() + static_cast<std::ptrdiff_t>(n));
+  if (events.empty()) throw std::invalid_argument(source_name + ": no events to play into the AER pins");
+  return events;
+}
+
+// The recording on the AER pins, its first event in the board's microsecond `start_us`.
+sim::AerSender aer_sender(const std::vector<Event>& events, std::uint64_t start_us, int ticks_per_us) {
+  std::vector<sim::AerSender::Event> due;
+  due.reserve(events.size());
+  for (const Event& e : events) {
+    due.push_back({static_cast<std::uint32_t>(start_us + static_cast<std::uint64_t>(e.t - events.front().t)), e.x, e.y, e.p});
+  }
+  return sim::AerSender(std::move(due), ticks_per_us);
+}
+
+void write_stamped(const std::string& path, const std::vector<Event>& events, const sim::AerSender& sender, SensorSize sensor) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+  std::fprintf(f, "# sensor %dx%d\nt_us,x,y,p\n", sensor.width, sensor.height);
+  for (size_t i = 0; i < events.size(); ++i) {
+    std::fprintf(f, "%u,%d,%d,%d\n", sender.stamp(i), events[i].x, events[i].y, events[i].p);
+  }
+  if (std::fclose(f) != 0) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+}
+
 // The board's clock and UART: its build's board (EVMS_BOARD_BUILDS, from which the virtual
 // board's Verilated parameters are generated too).
 template <class V>
@@ -82,6 +127,7 @@ void serve(const VboardOptions& o, const backend::BoardOfBuild& of_build) {
   const auto clock_hz = static_cast<double>(of_build.clock_hz);
   const auto busy_cycles = static_cast<std::uint64_t>(kBusySeconds * clock_hz);
   const std::string& path_file = o.path_file;
+  const std::vector<Event> recording = o.aer.empty() ? std::vector<Event>{} : aer_events(o.aer);
   const int master = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
   if (master < 0 || grantpt(master) != 0 || unlockpt(master) != 0) {
     throw std::runtime_error(std::string("cannot create a pseudo-terminal: ") + std::strerror(errno));
@@ -104,20 +150,44 @@ void serve(const VboardOptions& o, const backend::BoardOfBuild& of_build) {
                                      static_cast<unsigned long long>(o.seed));
   LineFaults to_board(o.error_rate, o.seed), to_host(o.error_rate, o.seed ^ 0x9E3779B97F4A7C15ull);
   sim::VirtualBoard<V> board(clocks_per_bit);
+  const int ticks_per_us = static_cast<int>(of_build.clock_hz / 1000000);
+  std::optional<sim::AerSender> aer;  // from the host's first bytes
+  bool aer_reported = false;
   std::vector<std::uint8_t> in(4096), out;
   std::uint64_t last_activity = 0;
   for (;;) {
-    const bool busy = board.sending() || board.cycles() - last_activity < busy_cycles;
+    const bool playing = aer && !aer->done();
+    const bool busy = board.sending() || board.cycles() - last_activity < busy_cycles || playing;
     pollfd p{master, POLLIN, 0};
     if (::poll(&p, 1, busy ? 0 : 20) > 0 && (p.revents & POLLIN)) {
       const ssize_t n = ::read(master, in.data(), in.size());
       if (n > 0) {
         board.send(to_board.pass(std::span(in.data(), static_cast<size_t>(n))));
         last_activity = board.cycles();
+        if (!recording.empty() && !aer) {
+          // A millisecond on, so that the host's reset frame has restarted the core first.
+          const std::uint64_t start_us = (board.cycles() - sim::VirtualBoard<V>::kResetCycles) / static_cast<std::uint64_t>(ticks_per_us) + 1000;
+          aer.emplace(aer_sender(recording, start_us, ticks_per_us));
+          std::fprintf(stderr, "evms vboard: %zu events into the AER pins from the board's microsecond %llu\n", recording.size(),
+                       static_cast<unsigned long long>(start_us));
+        }
       }
     }
+    if (aer && aer->done() && !aer_reported) {
+      aer_reported = true;
+      std::fprintf(stderr, "evms vboard: the AER pins took all %zu events; the longest a sensor waited was %llu us\n", recording.size(),
+                   static_cast<unsigned long long>(aer->max_lag_us()));
+      if (!o.aer_stamped.empty()) write_stamped(o.aer_stamped, recording, *aer, backend::core_build_sensor(o.build));
+    }
     if (!busy && !board.sending()) continue;
-    board.run(4096);
+    if (playing) {
+      for (int i = 0; i < 4096; ++i) {
+        aer->drive(board.pins(), board.cycles());
+        board.tick();
+      }
+    } else {
+      board.run(4096);
+    }
     if (!board.received.empty()) {
       out = to_host.pass(std::vector<std::uint8_t>(board.received.begin(), board.received.end()));
       board.received.clear();
@@ -146,7 +216,16 @@ void register_vboard(CLI::App& app) {
       ->default_val(o->error_rate)
       ->check(CLI::Range(0.0, 0.1));
   cmd->add_option("--seed", o->seed, "seed of the line's faults")->default_val(o->seed);
+  cmd->add_option("--aer", o->aer, "play this recording (128x128 at most) into the board's AER pins as a DVS128 would, from the host's "
+                                   "first bytes on (--build arty; with evms run --listen, the live demo without a sensor)");
+  cmd->add_option("--aer-stamped", o->aer_stamped, "once --aer's events are all in, write them as the board stamped them (CSV at the "
+                                                   "board's sensor size), to compare with --backend fixed");
   cmd->callback([o] {
+    if (!o->aer.empty() && o->build != "arty") {
+      throw std::invalid_argument("--aer needs --build arty: the iCEBreaker's board returns a verdict for every event, and the host "
+                                  "listens only to a board that keeps its labels");
+    }
+    if (!o->aer_stamped.empty() && o->aer.empty()) throw std::invalid_argument("--aer-stamped needs --aer");
     if (o->build == "arty") serve<Vboard_arty>(*o, backend::board_of("arty"));
     else serve<Vboard_ice40>(*o, backend::board_of("ice40"));
   });

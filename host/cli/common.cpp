@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "host/backend/backend.h"
 #include "host/cli/config_file.h"
 #include "host/read/source_window.h"
 
@@ -24,6 +25,32 @@ bool board_keeps_labels(const std::string& board_link, const std::string& backen
     throw std::invalid_argument("--board-link " + board_link + " is the board backend's; --backend is " + backend);
   }
   return board_link == "tracks";
+}
+
+void add_listen_option(CLI::App& cmd, bool& listen) {
+  cmd.add_flag("--listen", listen, "no SOURCE: the events enter at the board's AER pins (a DVS128 wired to the board) and the host sends "
+                                   "none; it takes the board's tracks until Ctrl-C, or until the board has labelled --limit events "
+                                   "(--backend board --board-link tracks)");
+}
+
+void check_listening(const std::string& backend, bool keeps_labels, bool source_given, const read::SourceOptions& input) {
+  if (backend != "board" || !keeps_labels) {
+    throw std::invalid_argument("--listen takes the board's own input, and only its tracks cross the line: add --backend board --board-link tracks");
+  }
+  if (source_given) throw std::invalid_argument("--listen takes the events at the board's AER pins: name no SOURCE");
+  const read::SourceWindow& w = input.window;
+  if (w.start_us > 0 || w.duration_us > 0 || w.roi || !w.hot_pixels.empty()) {
+    throw std::invalid_argument("--listen takes --limit, not --start-us, --duration-us, --roi or --hot-pixels: the host never sees the events");
+  }
+}
+
+read::SourceInfo board_input(const std::string& core) {
+  read::SourceInfo info;
+  info.name = "the board's AER pins";
+  info.format = "DVS128 AER, listening";
+  info.sensor = backend::core_build_sensor(backend::board_build(core));
+  info.sensor_origin = "the board's build";
+  return info;
 }
 
 void add_source_options(CLI::App& cmd, read::SourceOptions& o) {

@@ -30,6 +30,16 @@ void add_board_link_option(CLI::App& cmd, std::string& board_link, const std::st
 // Whether --board-link keeps the labels on the board; refuses it with any backend but the board.
 bool board_keeps_labels(const std::string& board_link, const std::string& backend);
 
+// --listen: the events enter at the board's AER pins (a sensor wired to the board), and the
+// host sends none.
+void add_listen_option(CLI::App& cmd, bool& listen);
+// Refuses --listen with a backend other than the board in tracks mode, with a SOURCE, or with
+// an input option other than --limit, each in one line.
+void check_listening(const std::string& backend, bool board_keeps_labels, bool source_given, const read::SourceOptions& input);
+// What a listening run reports as its source: the board's AER pins, at the sensor size the
+// board's build holds.
+read::SourceInfo board_input(const std::string& core);
+
 // "240x180", or "240x180 assumed: ..." when the source does not say its sensor size.
 std::string sensor_text(const read::SourceInfo& info);
 

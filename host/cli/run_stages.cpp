@@ -11,6 +11,9 @@ namespace {
 
 // Events read at a time: one batch through the three stages.
 constexpr size_t kBatchEvents = 16384;
+// Listening: how long each wait for the board's frames lasts, so that Ctrl-C and the limit are
+// seen within it.
+constexpr int kListenMs = 100;
 
 }  // namespace
 
@@ -138,6 +141,41 @@ StageReport run_stages(read::EventSource& source, backend::Backend& backend, Col
     if (reader_failed) std::rethrow_exception(reader_failed);
     if (writer_failed) std::rethrow_exception(writer_failed);
   }
+  return report;
+}
+
+StageReport listen_stages(backend::Backend& backend, Collector& sink, Writers& writers, const StageOptions& o, std::int64_t limit) {
+  StageReport report;
+  bool any = false;
+  auto mark = std::chrono::steady_clock::now();
+  const auto lap = [&mark](std::int64_t& ns) {
+    const auto now = std::chrono::steady_clock::now();
+    ns += std::chrono::duration_cast<std::chrono::nanoseconds>(now - mark).count();
+    mark = now;
+  };
+  const auto write = [&] {
+    OutputBatch b = sink.take();
+    for (const TrackUpdate& u : b.tracks) {
+      if (!any) report.t_first = u.t, any = true;
+      report.t_last = u.t;
+    }
+    writers.write(b);
+    lap(report.write_ns);
+  };
+  for (;;) {
+    const backend::BackendStats s = backend.stats();
+    const std::int64_t on_board = s.board_labelled + s.board_noise;
+    if (o.progress) o.progress(-1.0, on_board);
+    if ((o.stop && o.stop()) || (limit > 0 && on_board >= limit)) break;
+    backend.listen(sink, kListenMs);
+    lap(report.read_ns);
+    write();
+  }
+  backend.finish(sink);
+  lap(report.method_ns);
+  write();
+  writers.close();
+  lap(report.write_ns);
   return report;
 }
 

@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cstdio>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -293,6 +294,55 @@ TEST(BackendsAgree, TheBoardInTracksModeKeepsTheLabelsAndSendsTheFixedCoresTrack
     ASSERT_LT(at, fixed_tracks.size()) << "a track row the fixed core did not write: " << row;
     ++at;
   }
+}
+
+// Listening: the events enter at the Arty's board's AER pins (the virtual board plays a
+// recording into them, as a DVS128 would), the host sends none, and the track updates that
+// come are the fixed core's on the events as the board stamped them.
+TEST(BackendsAgree, ListeningToTheBoardsAerPinsGivesTheFixedCoresTracks) {
+  TempDir dir;
+  const std::string scene = "gen://translation?duration-s=0.1&seed=3&width=128&height=128";
+  const std::string stamped = dir.path("stamped.csv");
+  VirtualBoardProcess board(dir, {"--build", "arty", "--aer", scene, "--aer-stamped", stamped});
+  ASSERT_FALSE(board.device().empty()) << "evms vboard did not start";
+  const std::string listen = evms_binary() + " run --listen --backend board --core arty --board-link tracks --quiet --device " + board.device();
+  const auto listened = run_command(listen + " --limit 4000 --out " + dir.path("listen"));
+  ASSERT_EQ(listened.exit_code, 0) << listened.err;
+  EXPECT_NE(listened.out.find("source      the board's AER pins (DVS128 AER, listening, 240x180)"), std::string::npos) << listened.out;
+  long long events_in = 0;
+  const size_t at = listened.out.find("events in   ");
+  ASSERT_NE(at, std::string::npos) << listened.out;
+  std::string count = listened.out.substr(at + 12, listened.out.find(' ', at + 12) - at - 12);
+  count.erase(std::remove(count.begin(), count.end(), ','), count.end());
+  events_in = std::stoll(count);
+  EXPECT_GE(events_in, 4000) << "the board labelled at least --limit events";
+  EXPECT_EQ(lines_of(read_file(dir.path("listen/events.csv"))).size(), 2u) << "no event rows: the labels stay on the board";
+
+  for (int i = 0; i < 1200 && !std::filesystem::exists(stamped); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_TRUE(std::filesystem::exists(stamped)) << "the virtual board did not finish playing the recording";
+  const auto fixed = run_command(evms_binary() + " run " + stamped + " --quiet --backend fixed --core arty --out " + dir.path("fixed"));
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
+  const auto fixed_tracks = lines_of(link_track_columns(read_file(dir.path("fixed/tracks.csv"))));
+  const auto tracks = lines_of(link_track_columns(read_file(dir.path("listen/tracks.csv"))));
+  EXPECT_GT(tracks.size(), 10u);
+  size_t next = 0;
+  for (const std::string& row : tracks) {
+    while (next < fixed_tracks.size() && fixed_tracks[next] != row) ++next;
+    ASSERT_LT(next, fixed_tracks.size()) << "a track row the fixed core did not write: " << row;
+    ++next;
+  }
+
+  // Listening is the board's, in tracks mode, without a source on the host: one line otherwise.
+  const auto golden = run_command(evms_binary() + " run --listen --quiet");
+  EXPECT_EQ(golden.exit_code, 1);
+  EXPECT_EQ(golden.err, "evms: --listen takes the board's own input, and only its tracks cross the line: add --backend board --board-link tracks\n");
+  const auto with_source = run_command(listen + " \"" + scene + "\"");
+  EXPECT_EQ(with_source.exit_code, 1);
+  EXPECT_EQ(with_source.err, "evms: --listen takes the events at the board's AER pins: name no SOURCE\n");
+  const auto too_large = run_command(evms_binary() + " vboard --build arty --aer gen://rotation?duration-s=0.01");
+  EXPECT_EQ(too_large.exit_code, 1);
+  EXPECT_NE(too_large.err.find("a 240x180 sensor; the board's AER pins take a DVS128's 7-bit addresses (128x128 at most)"), std::string::npos)
+      << too_large.err;
 }
 
 }  // namespace
