@@ -38,6 +38,8 @@ struct ViewOptions {
   double hold_s = 0;
   std::vector<int> window_at;
   int scale = 2;
+  bool listen = false;
+  bool source_given = false;
 };
 
 // There is no screen to show a window on.
@@ -88,9 +90,9 @@ class SdlWindow {
 
 void print_summary(show::ViewSession& session) {
   const auto& l = session.latency();
-  std::printf("%s: %lld events labelled%s, %lld dropped", session.backend_name().c_str(), static_cast<long long>(session.events()),
-              session.labels_on_board() ? " on the board" : "",
-              static_cast<long long>(session.source().dropped()));
+  std::printf("%s: %lld events labelled%s", session.backend_name().c_str(), static_cast<long long>(session.events()),
+              session.labels_on_board() ? " on the board" : "");
+  if (const read::EventSource* source = session.source()) std::printf(", %lld dropped", static_cast<long long>(source->dropped()));
   if (l.count() > 0) {
     std::printf("; latency from arrival to label p50 %.0f us, p99 %.0f us, max %.0f us", l.quantile_us(0.5), l.quantile_us(0.99),
                 static_cast<double>(l.max_ns()) * 1e-3);
@@ -103,16 +105,20 @@ void view(const ViewOptions& o) {
   // A window shows a recording at its own pace unless told otherwise; headless frames are
   // computed as fast as possible (they are the same frames either way).
   so.realtime = o.paced == -1 ? !o.headless : o.paced == 1;
-  auto source = read::open_source(o.source, so);
   backend::BackendOptions bo;
-  bo.params = backend::fit_core_build(o.backend, o.core, o.method.resolve(source->info().sensor), o.method);
+  bo.board_keeps_labels = board_keeps_labels(o.board_link, o.backend);
+  if (o.listen) check_listening(o.backend, bo.board_keeps_labels, o.source_given, o.source_options);
+  // Listening, the events enter at the board's AER pins: no source, and the board's sensor.
+  auto source = o.listen ? nullptr : read::open_source(o.source, so);
+  const SensorSize sensor = o.listen ? board_input(o.core).sensor : source->info().sensor;
+  bo.params = backend::fit_core_build(o.backend, o.core, o.method.resolve(sensor), o.method);
   bo.core = o.core;
   bo.device = o.device;
-  bo.board_keeps_labels = board_keeps_labels(o.board_link, o.backend);
   show::ViewStyle style;
   style.scale = o.scale;
   style.track_fade_us = bo.params.coast_us;  // as long as the tracker coasts a track it lost
-  show::ViewSession session(std::move(source), o.backend, bo, o.fps, style);
+  show::ViewSession session = o.listen ? show::ViewSession(show::ViewSession::Listening{}, sensor, o.backend, bo, o.fps, style)
+                                       : show::ViewSession(std::move(source), o.backend, bo, o.fps, style);
   show::Canvas canvas = session.make_canvas();
 
   const bool recording = !o.frames.empty() || !o.video.empty();
@@ -162,7 +168,7 @@ void view(const ViewOptions& o) {
   std::vector<std::string> cycle = {"golden"};
   if (backend::core_unsupported(bo.params).empty()) cycle.push_back("fixed");
   if (backend::rtl_unsupported(bo.params, bo.core).empty()) cycle.push_back("rtl");
-  auto* control = dynamic_cast<read::PlaybackControl*>(&session.source());
+  auto* control = dynamic_cast<read::PlaybackControl*>(session.source());
   bool paused = false, quit = false, more = true;
   while (!quit) {
     SDL_Event ev;
@@ -186,6 +192,7 @@ void view(const ViewOptions& o) {
           if (control) control->set_speed(control->speed() / 2);
           break;
         case SDLK_b: {
+          if (session.listening()) break;  // the other backends have no input of their own
           size_t i = 0;
           while (i < cycle.size() && cycle[i] != session.backend_name()) ++i;
           session.switch_backend(cycle[(i + 1) % cycle.size()]);
@@ -254,8 +261,10 @@ void add_view_command(CLI::App& app, const char* name, const char* help, bool li
   add_source_options(*cmd, o->source_options);
   add_replay_options(*cmd, o->source_options, live ? Pacing::kAlwaysRealtime : Pacing::kChosenByCommand);
   add_method_options(*cmd, o->method);
-  cmd->callback([o, live] {
+  add_listen_option(*cmd, o->listen);
+  cmd->callback([o, live, cmd] {
     ViewOptions run = *o;
+    run.source_given = cmd->count("source") > 0;
     // live: a recording is replayed at its own pace even headless, so that latency means
     // what it would with a camera.
     if (live) run.paced = 1;

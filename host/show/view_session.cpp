@@ -1,5 +1,6 @@
 #include "host/show/view_session.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <deque>
@@ -16,12 +17,19 @@ class ViewSession::Sink final : public OutputSink {
     ++events_;
     latency_.labelled();
   }
-  void on_track(const TrackUpdate& u) override { renderer_.add(u); }
-  void on_packet(const PacketSummary& p) override { clusters_ = p.clusters; }
+  void on_track(const TrackUpdate& u) override {
+    renderer_.add(u);
+    latest_t_ = std::max(latest_t_, u.t);
+  }
+  void on_packet(const PacketSummary& p) override {
+    clusters_ = p.clusters;
+    latest_t_ = std::max(latest_t_, p.t_last);
+  }
 
   eval::ArrivalLatency latency_;
   std::int64_t events_ = 0;
   int clusters_ = 0;
+  TimeUs latest_t_ = 0;  // the latest time a track update or packet summary carried
 
  private:
   FrameRenderer& renderer_;
@@ -29,12 +37,17 @@ class ViewSession::Sink final : public OutputSink {
 
 ViewSession::ViewSession(std::unique_ptr<read::EventSource> source, std::string backend, backend::BackendOptions options, double fps,
                          ViewStyle style)
-    : source_(std::move(source)),
-      backend_name_(std::move(backend)),
+    : ViewSession(Listening{}, source->info().sensor, std::move(backend), std::move(options), fps, style) {
+  source_ = std::move(source);
+}
+
+ViewSession::ViewSession(Listening, SensorSize sensor, std::string backend, backend::BackendOptions options, double fps, ViewStyle style)
+    : backend_name_(std::move(backend)),
       options_(std::move(options)),
-      renderer_(source_->info().sensor, style),
-      period_us_(static_cast<TimeUs>(std::llround(1e6 / fps))) {
-  options_.sensor = source_->info().sensor;
+      renderer_(sensor, style),
+      period_us_(static_cast<TimeUs>(std::llround(1e6 / fps))),
+      fps_(fps) {
+  options_.sensor = sensor;
   backend_ = backend::make_backend(backend_name_, options_);
   sink_ = std::make_unique<Sink>(renderer_);
 }
@@ -82,6 +95,14 @@ void ViewSession::push_until(TimeUs t) {
 }
 
 bool ViewSession::advance() {
+  if (listening()) {
+    // A frame's period of wall clock: the board's time runs as its sensor's does.
+    backend_->listen(*sink_, static_cast<int>(std::lround(1000.0 / fps_)));
+    ++frame_;
+    if (!started_ && sink_->latest_t_ > 0) t_first_ = sink_->latest_t_, started_ = true;
+    frame_t_ = std::max(frame_t_, sink_->latest_t_);
+    return true;
+  }
   if (ended_) return false;
   if (!started_) {
     push_until(-1);  // reads the first batch: the first frame is at the first event's time
@@ -128,8 +149,12 @@ void ViewSession::render(Canvas& canvas) {
     std::snprintf(line, sizeof line, "latency p50 %.1f ms p99 %.1f ms", l.quantile_us(0.5) * 1e-3, l.quantile_us(0.99) * 1e-3);
     overlay.emplace_back(line);
   }
-  std::snprintf(line, sizeof line, "dropped %lld", static_cast<long long>(source_->dropped()));
-  overlay.emplace_back(line);
+  if (source_) {
+    std::snprintf(line, sizeof line, "dropped %lld", static_cast<long long>(source_->dropped()));
+    overlay.emplace_back(line);
+  } else {
+    overlay.emplace_back("listening to the AER pins of the board");
+  }
   if (auto* control = dynamic_cast<read::PlaybackControl*>(source_.get())) {
     std::snprintf(line, sizeof line, "speed %gx", control->speed());
     overlay.emplace_back(line);

@@ -22,6 +22,11 @@ class ViewSession {
  public:
   ViewSession(std::unique_ptr<read::EventSource> source, std::string backend, backend::BackendOptions options, double fps,
               ViewStyle style);
+  // Listening to a board whose events enter at its AER pins (Backend::listen): no source, and
+  // each frame shows the board's tracks as they came in the frame's period of wall clock, at
+  // the latest time they carry.
+  struct Listening {};
+  ViewSession(Listening, SensorSize sensor, std::string backend, backend::BackendOptions options, double fps, ViewStyle style);
   ~ViewSession();
 
   // Processes input up to the next frame's time. Returns false once the source has ended and
@@ -34,7 +39,9 @@ class ViewSession {
   // Replaces the backend; events from now on go to the new one. Names as in --backend.
   void switch_backend(const std::string& name);
   const std::string& backend_name() const { return backend_name_; }
-  read::EventSource& source() { return *source_; }
+  // The source; none when listening.
+  read::EventSource* source() { return source_.get(); }
+  bool listening() const { return !source_; }
   // Arrival-to-label latency of the events of a live source, and the events labelled so far
   // (by a board in tracks mode, as its progress frames count them).
   const eval::LatencyHistogram& latency() const;
@@ -53,6 +60,7 @@ class ViewSession {
   std::unique_ptr<Sink> sink_;
   FrameRenderer renderer_;
   TimeUs period_us_;
+  double fps_;
   std::vector<Event> pending_;  // read, not yet pushed: later than the frame being built
   std::vector<std::int64_t> pending_arrival_;
   size_t pending_at_ = 0;

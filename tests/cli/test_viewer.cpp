@@ -177,6 +177,43 @@ TEST(Viewer, ABoardInTracksModeShowsGreyEventsUnderItsTracks) {
   EXPECT_LE(tracks.labelled, labelled.labelled);
 }
 
+// The live demo without a sensor: the virtual board plays a DVS128 recording into its AER
+// pins, and the viewer, listening, draws the board's tracks (no events reach the host).
+TEST(Viewer, ListeningToABoardsAerPinsDrawsItsTracks) {
+  TempDir dir;
+  const std::string path_file = dir.path("vboard.path");
+  BackgroundProcess vboard({evms_binary(), "vboard", "--build", "arty", "--path-file", path_file, "--aer",
+                            "gen://translation?duration-s=0.1&seed=3&width=128&height=128"});
+  std::string device;
+  for (int i = 0; i < 200 && device.empty(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::ifstream f(path_file);
+    std::getline(f, device);
+  }
+  ASSERT_FALSE(device.empty()) << "evms vboard did not start";
+  // 100 frames of 20 ms of wall clock: the simulated board runs about 60 ms of its time meanwhile.
+  const auto r = run_command(evms_binary() + " view --listen --backend board --core arty --board-link tracks --device " + device +
+                             " --headless --fps 50 --max-frames 100 --frames " + dir.path("frames"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const size_t at = r.out.find("board: ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_GT(std::atol(r.out.c_str() + at + 7), 500) << "the board's count of the events it labelled: " << r.out;
+  const Image img = read_png(dir.path("frames/frame_000099.png"));
+  size_t white = 0, coloured = 0;
+  // Below the overlay's lines of text (white too): the tracks' markers and their coloured IDs.
+  for (size_t i = static_cast<size_t>(img.width) * 3 * 60; i + 2 < img.rgb.size(); i += 3) {
+    const int r8 = img.rgb[i], g8 = img.rgb[i + 1], b8 = img.rgb[i + 2];
+    if (r8 == g8 && g8 == b8) white += r8 > 200;
+    else coloured += r8 + g8 + b8 > 18 + 18 + 24;
+  }
+  EXPECT_GT(white, 50u) << "the tracks' markers";
+  EXPECT_GT(coloured, 20u) << "the tracks' IDs";
+  // With a SOURCE, or without the board, it says so in one line.
+  const auto refused = run_command(evms_binary() + " view --listen --headless --frames " + dir.path("none"));
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("--listen takes the board's own input"), std::string::npos) << refused.err;
+}
+
 TEST(Viewer, EndedTracksFadeWithinTheCoastingTimeAndArrowsStayShort) {
   show::ViewStyle style;
   style.scale = 2;
