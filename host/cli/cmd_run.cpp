@@ -1,4 +1,5 @@
-// evms run [SOURCE] : source -> backend -> labelled events and tracks, with a summary.
+// evms run [SOURCE] : source -> backend -> labelled events and tracks, with a summary. With
+// --listen the events enter at the board's AER pins instead (docs/link.md, "Listening").
 #include <algorithm>
 #include <chrono>
 #include <csignal>

@@ -1,6 +1,7 @@
 // evms view SOURCE [--backend B] : the live viewer (SDL2), or with --headless --frames DIR the
 // same frames as PNG files. Keys: space pauses, + and - double or halve the replay speed,
-// b switches to the next backend, q or Escape quits.
+// b switches to the next backend, q or Escape quits. With --listen there is no SOURCE: a board's
+// tracks, from the events at its AER pins (docs/link.md, "Listening").
 
 #include <chrono>
 #include <cstdio>
