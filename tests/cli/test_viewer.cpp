@@ -133,14 +133,8 @@ int brightest(const show::Canvas& c, int x0, int y0, int x1, int y1) {
 // arrows) have colour.
 TEST(Viewer, ABoardInTracksModeShowsGreyEventsUnderItsTracks) {
   TempDir dir;
-  const std::string path_file = dir.path("vboard.path");
-  BackgroundProcess vboard({evms_binary(), "vboard", "--build", "arty", "--path-file", path_file});
-  std::string device;
-  for (int i = 0; i < 200 && device.empty(); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    std::ifstream f(path_file);
-    std::getline(f, device);
-  }
+  VirtualBoardProcess vboard(dir, {"--build", "arty"});
+  const std::string& device = vboard.device();
   ASSERT_FALSE(device.empty()) << "evms vboard did not start";
   // 180 ms of a 240x180 scene, in 20 ms frames: short, because the Arty's virtual board
   // simulates every clock of its 2 Mbaud line (500 clocks a byte at 100 MHz).
@@ -181,15 +175,8 @@ TEST(Viewer, ABoardInTracksModeShowsGreyEventsUnderItsTracks) {
 // pins, and the viewer, listening, draws the board's tracks (no events reach the host).
 TEST(Viewer, ListeningToABoardsAerPinsDrawsItsTracks) {
   TempDir dir;
-  const std::string path_file = dir.path("vboard.path");
-  BackgroundProcess vboard({evms_binary(), "vboard", "--build", "arty", "--path-file", path_file, "--aer",
-                            "gen://translation?duration-s=0.1&seed=3&width=128&height=128"});
-  std::string device;
-  for (int i = 0; i < 200 && device.empty(); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    std::ifstream f(path_file);
-    std::getline(f, device);
-  }
+  VirtualBoardProcess vboard(dir, {"--build", "arty", "--aer", "gen://translation?duration-s=0.1&seed=3&width=128&height=128"});
+  const std::string& device = vboard.device();
   ASSERT_FALSE(device.empty()) << "evms vboard did not start";
   // 100 frames of 20 ms of wall clock: the simulated board runs about 60 ms of its time meanwhile.
   const auto r = run_command(evms_binary() + " view --listen --backend board --core arty --board-link tracks --device " + device +

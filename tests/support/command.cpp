@@ -6,8 +6,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "tests/support/encoders.h"
 
@@ -73,6 +75,23 @@ CommandResult run_command(const std::string& command) {
   r.out = read_file(out);
   r.err = read_file(err);
   return r;
+}
+
+namespace {
+std::vector<std::string> vboard_command(const std::string& path_file, std::vector<std::string> options) {
+  std::vector<std::string> c = {evms_binary(), "vboard", "--path-file", path_file};
+  c.insert(c.end(), options.begin(), options.end());
+  return c;
+}
+}  // namespace
+
+VirtualBoardProcess::VirtualBoardProcess(const TempDir& dir, std::vector<std::string> options)
+    : path_file_(dir.path("vboard.path")), process_(vboard_command(path_file_, std::move(options))) {
+  for (int i = 0; i < 200 && device_.empty(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::ifstream f(path_file_);
+    std::getline(f, device_);
+  }
 }
 
 }  // namespace evms::test

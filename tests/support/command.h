@@ -7,6 +7,8 @@
 
 namespace evms::test {
 
+class TempDir;  // tests/support/encoders.h
+
 struct CommandResult {
   int exit_code = -1;
   std::string out, err;
@@ -35,6 +37,18 @@ class BackgroundProcess {
 
  private:
   pid_t pid_ = -1;
+};
+
+// `evms vboard` in the background, for the length of a test: device() is the terminal's path
+// it printed (empty when it did not start within 10 s).
+class VirtualBoardProcess {
+ public:
+  explicit VirtualBoardProcess(const TempDir& dir, std::vector<std::string> options = {});
+  const std::string& device() const { return device_; }
+
+ private:
+  std::string path_file_, device_;
+  BackgroundProcess process_;
 };
 
 }  // namespace evms::test
