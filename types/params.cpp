@@ -25,9 +25,9 @@ const std::array kTable = {
               &Params::filter_window_us, 0, 1e9},
     ParamInfo{"filter-support", "neighbours", "neighbours that must have fired within the window for an event to be kept",
               &Params::filter_support, 1, 8},
-    ParamInfo{"filter-warm-up", "", "keep every event of the stream's first filter window: its neighbours' history "
-              "is shorter than a window, so no rule can tell its noise yet",
-              &Params::filter_warm_up, 0, 1},
+    ParamInfo{"filter-warm-up-us", "us", "keep every event of the stream's first this long, while its neighbours' history "
+              "is too short to judge it by; 0 = off",
+              &Params::filter_warm_up_us, 0, 1e9},
     ParamInfo{"packet-support", "neighbours", "when a packet closes, its events of which fewer than this many neighbours "
               "fired while it was open (before or after them) are noise; 0 = off",
               &Params::packet_support, 0, 8},

@@ -43,7 +43,7 @@ struct Params {
   // --- background-activity filter -------------------------------------------------------
   TimeUs filter_window_us = 30000;  // neighbour support window; 0 turns the filter off
   int filter_support = 1;            // neighbours that must have fired within the window
-  bool filter_warm_up = false;       // keep every event of the stream's first window
+  TimeUs filter_warm_up_us = 0;     // keep every event of the stream's first this long; 0 = off
   int packet_support = 0;            // neighbours that must have fired while the packet was open
 
   // --- packets --------------------------------------------------------------------------

@@ -4,11 +4,11 @@
 
 namespace evms::golden {
 
-BackgroundActivityFilter::BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support, bool warm_up)
+BackgroundActivityFilter::BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support, TimeUs warm_up_us)
     : sensor_(sensor),
       window_us_(window_us),
       support_(support),
-      warm_up_(warm_up),
+      warm_up_us_(warm_up_us),
       stride_(static_cast<size_t>(sensor.width) + 2),
       last_fired_(stride_ * (static_cast<size_t>(sensor.height) + 2), kNever) {}
 
@@ -24,9 +24,9 @@ bool BackgroundActivityFilter::accept(const Event& e) {
   last_fired(e.x, e.y) = e.t;
   if (!started_) {
     started_ = true;
-    warm_until_ = e.t + window_us_;
+    warm_until_ = e.t + warm_up_us_;
   }
-  return supporters >= support_ || (warm_up_ && e.t < warm_until_);
+  return supporters >= support_ || e.t < warm_until_;
 }
 
 int BackgroundActivityFilter::neighbours_fired_since(int x, int y, TimeUs since) const {

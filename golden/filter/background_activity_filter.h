@@ -9,10 +9,10 @@
 // event, kept or not, records its time at its own pixel and so can support later
 // neighbours. A window of 0 turns the filter off: every event is kept.
 //
-// With warm_up, every event of the stream's first window is kept too: its neighbours' history
-// is shorter than the window, so an edge pixel whose neighbours have not fired yet cannot be
-// told from noise. That helps a short, dense recording and costs a noisy one (docs/sweep.md,
-// "The filter's first window"), so it is off by default.
+// With warm_up_us > 0, every event of the stream's first warm_up_us is kept too: its neighbours'
+// history is shorter than the window, so an edge pixel whose neighbours have not fired yet
+// cannot be told from noise. That helps a short, dense recording and costs a noisy one
+// (docs/sweep.md, "The filter's first window"), so it is off by default.
 #pragma once
 
 #include <cstddef>
@@ -24,7 +24,7 @@ namespace evms::golden {
 
 class BackgroundActivityFilter {
  public:
-  BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support = 1, bool warm_up = false);
+  BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support = 1, TimeUs warm_up_us = 0);
 
   // Records the event and says whether it is supported by a neighbour. Events must come in
   // non-decreasing time order.
@@ -43,9 +43,9 @@ class BackgroundActivityFilter {
   SensorSize sensor_;
   TimeUs window_us_;
   int support_;
-  bool warm_up_;
+  TimeUs warm_up_us_;
   bool started_ = false;
-  TimeUs warm_until_ = 0;               // with warm_up_, events before this time are kept; set by the first event
+  TimeUs warm_until_ = 0;               // events before this time are kept; set by the first event
   std::size_t stride_;                  // a row of the map: the sensor's width and a border pixel each side
   std::vector<TimeUs> last_fired_;  // per pixel, row-major, with a border of pixels that never fire
 };

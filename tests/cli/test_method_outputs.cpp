@@ -132,9 +132,9 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   EXPECT_NE(ratio.err.find("compares sizes by a power of two from 2 to 32768, not --size-ratio 3"), std::string::npos) << ratio.err;
   const auto eight = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --size-ratio 8 --quiet");
   EXPECT_EQ(eight.exit_code, 0) << eight.err;
-  const auto warm = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --filter-warm-up true --quiet");
+  const auto warm = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --filter-warm-up-us 30000 --quiet");
   EXPECT_EQ(warm.exit_code, 1);
-  EXPECT_NE(warm.err.find("does not implement --filter-warm-up true (only --filter-warm-up false)"), std::string::npos) << warm.err;
+  EXPECT_NE(warm.err.find("does not implement --filter-warm-up-us 30000 (only --filter-warm-up-us 0)"), std::string::npos) << warm.err;
 }
 
 // The host RTL build runs the default method (in its sizes); its labels and tracks are the

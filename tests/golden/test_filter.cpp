@@ -52,7 +52,7 @@ TEST(BackgroundActivityFilter, CornersAndBordersOfA240x180Sensor) {
 }
 
 TEST(BackgroundActivityFilter, WarmUpKeepsTheFirstWindowFromTheStreamsFirstEvent) {
-  BackgroundActivityFilter f(kSensor, 10000, 1, /*warm_up=*/true);
+  BackgroundActivityFilter f(kSensor, 10000, 1, /*warm_up_us=*/10000);
   EXPECT_TRUE(f.accept({500000, 100, 50, 1}));   // the stream starts at 0.5 s, not at 0
   EXPECT_TRUE(f.accept({509999, 10, 10, 1}));    // alone, but within the first window
   EXPECT_FALSE(f.accept({510000, 200, 100, 1}));  // alone, and the window has passed
