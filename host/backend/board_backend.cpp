@@ -21,7 +21,9 @@
 // the labels: the core then never waits for the line. Progress frames, which count the link's
 // events the core took, stand in for the labels as acknowledgements; the track updates and
 // summaries of whole packets come when the line is free, and the packets the board skipped are
-// counted in the status. No event comes back labelled.
+// counted in the status. No event comes back labelled. Listening (listen()), the host pushes no
+// events at all: they enter at the board's AER pins, and the host takes the track updates,
+// packet summaries and progress frames they bring, for as long as the caller listens.
 //
 // A board runs its build's register values, the default method in the build's limits: the iCE40
 // build's (128x128, packets of 256, 8 clusters, 8 tracks) on the iCEBreaker, the Arty build's
