@@ -307,6 +307,16 @@ TEST(BackendsAgree, ListeningToTheBoardsAerPinsGivesTheFixedCoresTracks) {
   EXPECT_GT(tracks.size(), 10u);
   expect_rows_in_order(tracks, lines_of(link_track_columns(read_file(dir.path("fixed/tracks.csv")))));
 
+  // Ctrl-C ends listening as it ends a live source: exit 0, the summary, whole files.
+  const std::string out = dir.path("interrupted"), log = dir.path("interrupted.log");
+  const auto interrupted = run_command(listen + " --out " + out + " > " + log + " 2>&1 & pid=$!; for i in $(seq 600); do [ -s " + out +
+                                       "/tracks.csv ] && break; sleep 0.05; done; sleep 0.3; kill -INT $pid; wait $pid; echo $?");
+  EXPECT_EQ(interrupted.out, "0\n") << read_file(log);
+  EXPECT_NE(read_file(log).find("outputs     "), std::string::npos) << read_file(log);
+  const std::string interrupted_tracks = read_file(out + "/tracks.csv");
+  EXPECT_EQ(interrupted_tracks.rfind("t_us,track_id,state,", 0), 0u) << interrupted_tracks;
+  EXPECT_EQ(interrupted_tracks.back(), '\n');
+
   // Listening is the board's, in tracks mode, without a source on the host: one line otherwise.
   const auto golden = run_command(evms_binary() + " run --listen --quiet");
   EXPECT_EQ(golden.exit_code, 1);
