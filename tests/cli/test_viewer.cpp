@@ -201,6 +201,30 @@ TEST(Viewer, ListeningToABoardsAerPinsDrawsItsTracks) {
   EXPECT_NE(refused.err.find("--listen takes the board's own input"), std::string::npos) << refused.err;
 }
 
+// Ctrl-C stops headless frames at the next one: the frames written are whole, the summary is
+// printed, and a recording cut short exits 130.
+TEST(Viewer, CtrlCStopsHeadlessFramesWithEveryFrameWhole) {
+  TempDir dir;
+  const std::string frames = dir.path("frames"), log = dir.path("log");
+  const auto r = run_command(evms_binary() + " view 'gen://rotation?duration-s=60' --headless --frames " + frames + " > " + log +
+                             " 2>&1 & pid=$!; for i in $(seq 600); do [ -s " + frames + "/frame_000003.png ] && break; sleep 0.05; done; "
+                             "sleep 0.3; kill -INT $pid; wait $pid; echo $?");
+  EXPECT_EQ(r.out, "130\n") << read_file(log);
+  const std::string said = read_file(log);
+  EXPECT_NE(said.find("interrupted before the end of the source"), std::string::npos) << said;
+  int written = 0;
+  std::sscanf(said.c_str(), "%d frames in", &written);
+  ASSERT_GE(written, 4) << said;
+  const auto frame = [&](int k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "/frame_%06d.png", k);
+    return frames + name;
+  };
+  EXPECT_FALSE(std::filesystem::exists(frame(written))) << "no frame after the ones it counted";
+  const Image last = read_png(frame(written - 1));
+  EXPECT_EQ(last.width, 480) << "a whole PNG of the 240x180 scene at scale 2";
+}
+
 TEST(Viewer, EndedTracksFadeWithinTheCoastingTimeAndArrowsStayShort) {
   show::ViewStyle style;
   style.scale = 2;
