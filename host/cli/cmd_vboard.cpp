@@ -16,8 +16,8 @@
 // the host first writes to the terminal (its reset frame): each event in the board's
 // microsecond its own time falls in, after the first. With `evms run --listen --backend board
 // --core arty --board-link tracks`, that is the live demo without a sensor. --aer-stamped FILE
-// then writes the events as the board stamped them, at the board's sensor size, for `evms run
-// --backend fixed --core arty` to compare with.
+// then writes the events as the board stamped them (events.txt format, at the board's sensor
+// size), for `evms run --backend fixed --core arty` to compare with.
 //
 // --error-rate R makes the line unreliable, as a UART beside a sensor can be: each byte, in
 // either direction, is hit with probability R by one fault, equally often a flipped bit, the
@@ -30,6 +30,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 #include <random>
 #include <stdexcept>
@@ -41,6 +42,7 @@
 #include "host/backend/core_config.h"
 #include "host/cli/commands.h"
 #include "host/read/event_source.h"
+#include "host/write/event_writers.h"
 #include "sim/virtual_board.h"
 
 namespace evms::cli {
@@ -109,14 +111,15 @@ sim::AerSender aer_sender(const std::vector<Event>& events, std::uint64_t start_
   return sim::AerSender(std::move(due), ticks_per_us);
 }
 
+// The recording as the board stamped it, in the events.txt format `evms gen` writes. It appears
+// under its name whole (written beside it, then renamed), so a reader waiting for it never
+// reads part of it.
 void write_stamped(const std::string& path, const std::vector<Event>& events, const sim::AerSender& sender, SensorSize sensor) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
-  std::fprintf(f, "# sensor %dx%d\nt_us,x,y,p\n", sensor.width, sensor.height);
-  for (size_t i = 0; i < events.size(); ++i) {
-    std::fprintf(f, "%u,%d,%d,%d\n", sender.stamp(i), events[i].x, events[i].y, events[i].p);
-  }
-  if (std::fclose(f) != 0) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+  const std::string part = path + ".part";
+  write::RpgEventsTxt out(part, sensor);
+  for (size_t i = 0; i < events.size(); ++i) out.write({sender.stamp(i), events[i].x, events[i].y, events[i].p});
+  out.close();
+  std::filesystem::rename(part, path);
 }
 
 // The board's clock and UART: its build's board (EVMS_BOARD_BUILDS, from which the virtual
@@ -218,8 +221,8 @@ void register_vboard(CLI::App& app) {
   cmd->add_option("--seed", o->seed, "seed of the line's faults")->default_val(o->seed);
   cmd->add_option("--aer", o->aer, "play this recording (128x128 at most) into the board's AER pins as a DVS128 would, from the host's "
                                    "first bytes on (--build arty; with evms run --listen, the live demo without a sensor)");
-  cmd->add_option("--aer-stamped", o->aer_stamped, "once --aer's events are all in, write them as the board stamped them (CSV at the "
-                                                   "board's sensor size), to compare with --backend fixed");
+  cmd->add_option("--aer-stamped", o->aer_stamped, "once --aer's events are all in, write them as the board stamped them (the events.txt "
+                                                   "format of evms gen, at the board's sensor size), to compare with --backend fixed");
   cmd->callback([o] {
     if (!o->aer.empty() && o->build != "arty") {
       throw std::invalid_argument("--aer needs --build arty: the iCEBreaker's board returns a verdict for every event, and the host "

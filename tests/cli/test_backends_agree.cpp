@@ -283,7 +283,7 @@ TEST(BackendsAgree, TheBoardInTracksModeKeepsTheLabelsAndSendsTheFixedCoresTrack
 TEST(BackendsAgree, ListeningToTheBoardsAerPinsGivesTheFixedCoresTracks) {
   TempDir dir;
   const std::string scene = "gen://translation?duration-s=0.1&seed=3&width=128&height=128";
-  const std::string stamped = dir.path("stamped.csv");
+  const std::string stamped = dir.path("stamped.txt");
   VirtualBoardProcess board(dir, {"--build", "arty", "--aer", scene, "--aer-stamped", stamped});
   ASSERT_FALSE(board.device().empty()) << "evms vboard did not start";
   const std::string listen = evms_binary() + " run --listen --backend board --core arty --board-link tracks --quiet --device " + board.device();
