@@ -15,7 +15,7 @@
 namespace evms::backend {
 
 struct BackendStats {
-  std::int64_t events_in = 0;
+  std::int64_t events_in = 0;          // pushed; a listening board's: those it took at its AER pins
   std::int64_t events_kept = 0;        // passed the background-activity filter
   std::int64_t packets = 0;
   std::int64_t clusters = 0;           // summed over packets

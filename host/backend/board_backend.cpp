@@ -148,11 +148,13 @@ class BoardBackend final : public Backend {
     s.link_events_resent = resent_;
     s.link_labels_lost = lost_;
     if (mode_ == link::LinkMode::kTracks) {
-      s.labels_kept_on_board = s.events_in;
       // The latest of the counts the status and progress frames carry (they only grow in a run).
       s.board_labelled = std::max<std::int64_t>(status_.labelled, progress_.labelled);
       s.board_noise = std::max<std::int64_t>(status_.noise, progress_.noise);
       s.link_packets_skipped = status_.packets_skipped;
+      // Listening, the events in are those the board took at its AER pins, as it counts them.
+      if (listening_) s.events_in = s.board_labelled + s.board_noise;
+      s.labels_kept_on_board = s.events_in;
     }
     return s;
   }

@@ -88,20 +88,18 @@ void run(const RunOptions& o) {
   }
   // With the rows on standard output, the summary goes to standard error.
   std::FILE* summary = o.out == "-" ? stderr : stdout;
-  // Listening, the events are those the board took at its AER pins, as it counted them.
-  const std::int64_t events_in = o.listen ? s.board_labelled + s.board_noise : s.events_in;
   const double span_s = static_cast<double>(t_last - t_first) * 1e-6;
   std::fprintf(summary, "source      %s (%s, %s)\n", info.name.c_str(), info.format.c_str(), sensor_text(info).c_str());
   std::fprintf(summary, "backend     %s\n", o.backend.c_str());
-  std::fprintf(summary, "events in   %s over %.3f s of sensor time (%s labelled noise%s)\n", grouped(events_in).c_str(), span_s,
+  std::fprintf(summary, "events in   %s over %.3f s of sensor time (%s labelled noise%s)\n", grouped(s.events_in).c_str(), span_s,
               grouped(sink.noise + s.board_noise).c_str(), s.labels_kept_on_board ? ", on the board" : "");
-  std::fprintf(summary, "throughput  %sevents/s (%.2f s wall clock, reading included)\n", si(static_cast<double>(events_in) / std::max(wall, 1e-9)).c_str(), wall);
+  std::fprintf(summary, "throughput  %sevents/s (%.2f s wall clock, reading included)\n", si(s.events_in / std::max(wall, 1e-9)).c_str(), wall);
   // Packets count sweeps when every event shifts, and climb steps (summed over climbs) when seeds climb.
   std::fprintf(summary, "packets     %s, %.1f %s each", grouped(s.packets).c_str(), s.packets ? static_cast<double>(s.iterations) / s.packets : 0.0,
                params.seeding == Seeding::kEvery ? "mean-shift iterations" : "climb steps");
   // Counted by the backends that count them (golden).
   if (s.kernel_evaluations > 0) {
-    std::fprintf(summary, ", %.1f kernel evaluations per event", static_cast<double>(s.kernel_evaluations) / static_cast<double>(events_in));
+    std::fprintf(summary, ", %.1f kernel evaluations per event", static_cast<double>(s.kernel_evaluations) / static_cast<double>(s.events_in));
   }
   std::fprintf(summary, "\n");
   {

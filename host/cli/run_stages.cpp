@@ -163,10 +163,9 @@ StageReport listen_stages(backend::Backend& backend, Collector& sink, Writers& w
     lap(report.write_ns);
   };
   for (;;) {
-    const backend::BackendStats s = backend.stats();
-    const std::int64_t on_board = s.board_labelled + s.board_noise;
-    if (o.progress) o.progress(-1.0, on_board);
-    if ((o.stop && o.stop()) || (limit > 0 && on_board >= limit)) break;
+    const std::int64_t events_in = backend.stats().events_in;
+    if (o.progress) o.progress(-1.0, events_in);
+    if ((o.stop && o.stop()) || (limit > 0 && events_in >= limit)) break;
     backend.listen(sink, kListenMs);
     lap(report.read_ns);
     write();

@@ -150,7 +150,7 @@ struct StageOptions {
 StageReport run_stages(read::EventSource& source, backend::Backend& backend, Collector& sink, Writers& writers, const StageOptions& o);
 
 // Listens to a backend with input of its own (a board whose events enter at its AER pins,
-// Backend::listen) until `o.stop` says so or the board has labelled `limit` events (0: no
+// Backend::listen) until `o.stop` says so or its input has reached `limit` events (0: no
 // limit), then flushes it; writes what `sink` kept as it comes. The report's times are those
 // of the first and last track update.
 StageReport listen_stages(backend::Backend& backend, Collector& sink, Writers& writers, const StageOptions& o, std::int64_t limit);
