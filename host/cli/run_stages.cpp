@@ -15,6 +15,14 @@ constexpr size_t kBatchEvents = 16384;
 // seen within it.
 constexpr int kListenMs = 100;
 
+// Nanoseconds since `mark`, which moves to now.
+std::int64_t since(std::chrono::steady_clock::time_point& mark) {
+  const auto now = std::chrono::steady_clock::now();
+  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now - mark).count();
+  mark = now;
+  return ns;
+}
+
 }  // namespace
 
 StageReport run_stages(read::EventSource& source, backend::Backend& backend, Collector& sink, Writers& writers, const StageOptions& o) {
@@ -24,12 +32,6 @@ StageReport run_stages(read::EventSource& source, backend::Backend& backend, Col
   bool any = false;
   std::string& source_error = report.source_error;
   std::int64_t &read_ns = report.read_ns, &method_ns = report.method_ns, &write_ns = report.write_ns;
-  const auto since = [](std::chrono::steady_clock::time_point& mark) {
-    const auto now = std::chrono::steady_clock::now();
-    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now - mark).count();
-    mark = now;
-    return ns;
-  };
   // Reading: the next batch, or an empty one at the end (or at Ctrl-C, or after a failure).
   const auto read_batch = [&](InputBatch& b) {
     b.events.resize(kBatchEvents);
@@ -148,11 +150,6 @@ StageReport listen_stages(backend::Backend& backend, Collector& sink, Writers& w
   StageReport report;
   bool any = false;
   auto mark = std::chrono::steady_clock::now();
-  const auto lap = [&mark](std::int64_t& ns) {
-    const auto now = std::chrono::steady_clock::now();
-    ns += std::chrono::duration_cast<std::chrono::nanoseconds>(now - mark).count();
-    mark = now;
-  };
   const auto write = [&] {
     OutputBatch b = sink.take();
     for (const TrackUpdate& u : b.tracks) {
@@ -160,21 +157,21 @@ StageReport listen_stages(backend::Backend& backend, Collector& sink, Writers& w
       report.t_last = u.t;
     }
     writers.write(b);
-    lap(report.write_ns);
+    report.write_ns += since(mark);
   };
   for (;;) {
     const std::int64_t events_in = backend.stats().events_in;
     if (o.progress) o.progress(-1.0, events_in);
     if ((o.stop && o.stop()) || (limit > 0 && events_in >= limit)) break;
     backend.listen(sink, kListenMs);
-    lap(report.read_ns);
+    report.read_ns += since(mark);
     write();
   }
   backend.finish(sink);
-  lap(report.method_ns);
+  report.method_ns += since(mark);
   write();
   writers.close();
-  lap(report.write_ns);
+  report.write_ns += since(mark);
   return report;
 }
 
