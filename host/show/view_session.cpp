@@ -45,8 +45,7 @@ ViewSession::ViewSession(Listening, SensorSize sensor, std::string backend, back
     : backend_name_(std::move(backend)),
       options_(std::move(options)),
       renderer_(sensor, style),
-      period_us_(static_cast<TimeUs>(std::llround(1e6 / fps))),
-      fps_(fps) {
+      period_us_(static_cast<TimeUs>(std::llround(1e6 / fps))) {
   options_.sensor = sensor;
   backend_ = backend::make_backend(backend_name_, options_);
   sink_ = std::make_unique<Sink>(renderer_);
@@ -97,7 +96,7 @@ void ViewSession::push_until(TimeUs t) {
 bool ViewSession::advance() {
   if (listening()) {
     // A frame's period of wall clock: the board's time runs as its sensor's does.
-    backend_->listen(*sink_, static_cast<int>(std::lround(1000.0 / fps_)));
+    backend_->listen(*sink_, static_cast<int>(std::lround(static_cast<double>(period_us_) * 1e-3)));
     ++frame_;
     if (!started_ && sink_->latest_t_ > 0) t_first_ = sink_->latest_t_, started_ = true;
     frame_t_ = std::max(frame_t_, sink_->latest_t_);

@@ -60,7 +60,6 @@ class ViewSession {
   std::unique_ptr<Sink> sink_;
   FrameRenderer renderer_;
   TimeUs period_us_;
-  double fps_;
   std::vector<Event> pending_;  // read, not yet pushed: later than the frame being built
   std::vector<std::int64_t> pending_arrival_;
   size_t pending_at_ = 0;
