@@ -42,11 +42,11 @@ volatile std::sig_atomic_t g_interrupted = 0;
 
 void run(const RunOptions& o) {
   const bool keeps_labels = board_keeps_labels(o.board_link, o.backend);
-  if (o.listen) check_listening(o.backend, keeps_labels, o.source_given, o.source_options);
   // Listening, the events enter at the board's AER pins: there is no source on the host, and
   // the sensor is the one the board's registers hold.
   std::unique_ptr<read::EventSource> source = o.listen ? nullptr : read::open_source(o.source, o.source_options);
-  const read::SourceInfo info = o.listen ? board_input(o.core) : source->info();
+  const read::SourceInfo info =
+      o.listen ? listening_input(o.backend, o.core, keeps_labels, o.source_given, o.source_options) : source->info();
   const Params params = backend::fit_core_build(o.backend, o.core, o.method.resolve(info.sensor), o.method);
   auto backend = backend::make_backend(o.backend, {params, info.sensor, o.core, o.device, o.baud, keeps_labels});
   Writers writers(o.out, o.format, info.sensor);

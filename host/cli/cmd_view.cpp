@@ -111,10 +111,10 @@ void view(const ViewOptions& o) {
   so.realtime = o.paced == -1 ? !o.headless : o.paced == 1;
   backend::BackendOptions bo;
   bo.board_keeps_labels = board_keeps_labels(o.board_link, o.backend);
-  if (o.listen) check_listening(o.backend, bo.board_keeps_labels, o.source_given, o.source_options);
   // Listening, the events enter at the board's AER pins: no source, and the board's sensor.
   auto source = o.listen ? nullptr : read::open_source(o.source, so);
-  const SensorSize sensor = o.listen ? board_input(o.core).sensor : source->info().sensor;
+  const SensorSize sensor =
+      o.listen ? listening_input(o.backend, o.core, bo.board_keeps_labels, o.source_given, o.source_options).sensor : source->info().sensor;
   bo.params = backend::fit_core_build(o.backend, o.core, o.method.resolve(sensor), o.method);
   bo.core = o.core;
   bo.device = o.device;

@@ -33,7 +33,8 @@ void add_listen_option(CLI::App& cmd, bool& listen) {
                                    "(--backend board --board-link tracks)");
 }
 
-void check_listening(const std::string& backend, bool keeps_labels, bool source_given, const read::SourceOptions& input) {
+read::SourceInfo listening_input(const std::string& backend, const std::string& core, bool keeps_labels, bool source_given,
+                                 const read::SourceOptions& input) {
   if (backend != "board" || !keeps_labels) {
     throw std::invalid_argument("--listen takes the board's own input, and only its tracks cross the line: add --backend board --board-link tracks");
   }
@@ -42,9 +43,6 @@ void check_listening(const std::string& backend, bool keeps_labels, bool source_
   if (w.start_us > 0 || w.duration_us > 0 || w.roi || !w.hot_pixels.empty()) {
     throw std::invalid_argument("--listen takes --limit, not --start-us, --duration-us, --roi or --hot-pixels: the host never sees the events");
   }
-}
-
-read::SourceInfo board_input(const std::string& core) {
   read::SourceInfo info;
   info.name = "the board's AER pins";
   info.format = "DVS128 AER, listening";

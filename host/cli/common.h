@@ -33,12 +33,11 @@ bool board_keeps_labels(const std::string& board_link, const std::string& backen
 // --listen: the events enter at the board's AER pins (a sensor wired to the board), and the
 // host sends none.
 void add_listen_option(CLI::App& cmd, bool& listen);
-// Refuses --listen with a backend other than the board in tracks mode, with a SOURCE, or with
-// an input option other than --limit, each in one line.
-void check_listening(const std::string& backend, bool board_keeps_labels, bool source_given, const read::SourceOptions& input);
-// What a listening run reports as its source: the board's AER pins, at the sensor size the
-// board's build holds.
-read::SourceInfo board_input(const std::string& core);
+// What a listening run reports as its source: the board's AER pins, at the sensor size the board's
+// build (`core`) holds. Refuses --listen with a backend other than the board in tracks mode,
+// with a SOURCE, or with an input option other than --limit, each in one line.
+read::SourceInfo listening_input(const std::string& backend, const std::string& core, bool board_keeps_labels, bool source_given,
+                                 const read::SourceOptions& input);
 
 // "240x180", or "240x180 assumed: ..." when the source does not say its sensor size.
 std::string sensor_text(const read::SourceInfo& info);
