@@ -2,7 +2,6 @@
 // --listen the events enter at the board's AER pins instead (docs/link.md, "Listening").
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -38,8 +37,6 @@ struct RunOptions {
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 };
 
-volatile std::sig_atomic_t g_interrupted = 0;
-
 void run(const RunOptions& o) {
   const bool keeps_labels = board_keeps_labels(o.board_link, o.backend);
   // Listening, the events enter at the board's AER pins: there is no source on the host, and
@@ -56,14 +53,7 @@ void run(const RunOptions& o) {
   // complete files: a live source delivers what it has buffered, a recording stops at the next
   // batch. A second Ctrl-C ends evms at once.
   const bool live = o.listen || dynamic_cast<read::LiveSource*>(source.get()) != nullptr;
-  g_interrupted = 0;
-  for (const int sig : {SIGINT, SIGTERM}) {
-    std::signal(sig, [](int) {
-      g_interrupted = 1;
-      read::end_live_sources();
-      std::signal(SIGINT, SIG_DFL), std::signal(SIGTERM, SIG_DFL);
-    });
-  }
+  catch_interrupts();
 
   Collector sink(writers.any());
   const auto start = std::chrono::steady_clock::now();
@@ -71,7 +61,7 @@ void run(const RunOptions& o) {
   stages.threads = o.threads;
   // Ctrl-C ends a recording at the next batch; a live source ends on its own (end_live_sources).
   // Listening, Ctrl-C ends the listening.
-  stages.stop = [ends_itself = live && !o.listen] { return g_interrupted && !ends_itself; };
+  stages.stop = [ends_itself = live && !o.listen] { return interrupted() && !ends_itself; };
   stages.progress = [&progress](double fraction, std::int64_t events) { progress.update(fraction, events); };
   const StageReport report = o.listen ? listen_stages(*backend, sink, writers, stages, o.source_options.window.limit)
                                       : run_stages(*source, *backend, sink, writers, stages);
@@ -161,7 +151,7 @@ void run(const RunOptions& o) {
     throw ExitStatus{1};
   }
   // A live source has no end but the one the user gives it; a recording cut short says so.
-  if (g_interrupted && !live) {
+  if (interrupted() && !live) {
     std::fprintf(summary, "interrupted before the end of the source: the outputs hold the events read until then\n");
     std::fflush(summary);
     throw ExitStatus{130};

@@ -4,7 +4,6 @@
 // tracks, from the events at its AER pins (docs/link.md, "Listening").
 
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -43,8 +42,6 @@ struct ViewOptions {
   bool listen = false;
   bool source_given = false;
 };
-
-volatile std::sig_atomic_t g_view_interrupted = 0;
 
 // There is no screen to show a window on.
 struct NoDisplay : std::runtime_error {
@@ -149,22 +146,16 @@ void view(const ViewOptions& o) {
   // Headless, Ctrl-C (or SIGTERM) stops at the next frame: the frames so far are whole, the
   // video is closed and the summary printed. A recording cut short exits 130, as evms run does.
   const auto write_frames = [&] {
-    g_view_interrupted = 0;
-    for (const int sig : {SIGINT, SIGTERM}) {
-      std::signal(sig, [](int) {
-        g_view_interrupted = 1;
-        std::signal(SIGINT, SIG_DFL), std::signal(SIGTERM, SIG_DFL);
-      });
-    }
+    catch_interrupts();
     bool more = true;
-    while (more && !g_view_interrupted && (o.max_frames == 0 || session.frame() + 1 < o.max_frames)) {
+    while (more && !interrupted() && (o.max_frames == 0 || session.frame() + 1 < o.max_frames)) {
       more = session.advance();
       session.render(canvas);
       save_frame();
     }
     finish();
     print_summary(session);
-    const bool recording_cut = g_view_interrupted && more && session.source() && !dynamic_cast<read::LiveSource*>(session.source());
+    const bool recording_cut = interrupted() && more && session.source() && !dynamic_cast<read::LiveSource*>(session.source());
     if (recording_cut) {
       std::printf("interrupted before the end of the source: the frames hold what was shown until then\n");
       std::fflush(stdout);

@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 
 #include "host/backend/backend.h"
 #include "host/cli/config_file.h"
+#include "host/read/live/live_source.h"
 #include "host/read/source_window.h"
 
 namespace evms::cli {
@@ -26,6 +28,23 @@ bool board_keeps_labels(const std::string& board_link, const std::string& backen
   }
   return board_link == "tracks";
 }
+
+namespace {
+volatile std::sig_atomic_t g_interrupted = 0;
+}  // namespace
+
+void catch_interrupts() {
+  g_interrupted = 0;
+  for (const int sig : {SIGINT, SIGTERM}) {
+    std::signal(sig, [](int) {
+      g_interrupted = 1;
+      read::end_live_sources();
+      std::signal(SIGINT, SIG_DFL), std::signal(SIGTERM, SIG_DFL);
+    });
+  }
+}
+
+bool interrupted() { return g_interrupted != 0; }
 
 void add_listen_option(CLI::App& cmd, bool& listen) {
   cmd.add_flag("--listen", listen, "no SOURCE: the events enter at the board's AER pins (a DVS128 wired to the board) and the host sends "

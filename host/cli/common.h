@@ -39,6 +39,12 @@ void add_listen_option(CLI::App& cmd, bool& listen);
 read::SourceInfo listening_input(const std::string& backend, const std::string& core, bool board_keeps_labels, bool source_given,
                                  const read::SourceOptions& input);
 
+// From now on, Ctrl-C (or a SIGTERM) sets interrupted() and ends every live source as if its
+// input had ended (read::end_live_sources), so that a subcommand can stop where its outputs
+// are whole; a second one ends evms at once.
+void catch_interrupts();
+bool interrupted();
+
 // "240x180", or "240x180 assumed: ..." when the source does not say its sensor size.
 std::string sensor_text(const read::SourceInfo& info);
 
