@@ -81,7 +81,7 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
   std::vector<std::string> order;
   std::int64_t events = 0, evaluations = 0, switches = 0, objects = 0;
   double wall = 0;
-  PooledErrors to_centres, to_events;
+  PooledErrors to_centres, to_events, mot_to_centres, mot_to_events;
   for (size_t i = 0; i < family.size(); ++i) {
     const SceneResult& r = scenes[i];
     auto [it, fresh] = by_type.try_emplace(family[i].type);
@@ -101,6 +101,11 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
     wall += r.wall_s;
     to_centres.add(r.tracking.all_kalman);
     to_events.add(r.tracking.all_kalman_events);
+    const ClearMot& m = r.tracking.mot;
+    out.mot.frames += m.frames, out.mot.objects += m.objects, out.mot.matches += m.matches;
+    out.mot.misses += m.misses, out.mot.false_positives += m.false_positives, out.mot.mismatches += m.mismatches;
+    mot_to_centres.add(m.to_centres);
+    mot_to_events.add(m.to_events);
   }
   const double n = static_cast<double>(std::max<size_t>(1, family.size()));
   out.mean_f /= n;
@@ -117,6 +122,8 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
   }
   out.tracking = to_centres.stats();
   out.tracking_to_events = to_events.stats();
+  out.mot.to_centres = mot_to_centres.stats();
+  out.mot.to_events = mot_to_events.stats();
   out.kernel_evaluations_per_event = events ? static_cast<double>(evaluations) / static_cast<double>(events) : 0;
   out.events_per_s = wall > 0 ? static_cast<double>(events) / wall : 0;
   out.scenes = std::move(scenes);

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <unordered_map>
+
+#include "host/eval/assignment.h"
 
 namespace evms::eval {
 namespace {
@@ -51,11 +54,13 @@ class EventCentreLookup {
       if (o < 0 || o >= objects) continue;
       Object& ob = per_object_[static_cast<size_t>(o)];
       const Event& e = labelled.events[i];
+      any_ = true;
       ob.t.push_back(e.t);
       ob.sx.push_back(ob.sx.back() + e.x);
       ob.sy.push_back(ob.sy.back() + e.y);
     }
   }
+  bool any() const { return any_; }
   std::optional<std::pair<double, double>> at(int object, TimeUs t) const {
     const Object& ob = per_object_[static_cast<size_t>(object)];
     const size_t end = static_cast<size_t>(std::upper_bound(ob.t.begin(), ob.t.end(), t + window_us_ / 2) - ob.t.begin());
@@ -72,6 +77,7 @@ class EventCentreLookup {
   };
   std::vector<Object> per_object_;
   TimeUs window_us_;
+  bool any_ = false;  // some object has a labelled event
 };
 
 struct Accumulator {
@@ -89,6 +95,94 @@ struct Accumulator {
     return s;
   }
 };
+
+// CLEAR MOT over the frames of the truth's time span (tracking_metrics.h).
+ClearMot clear_mot(std::span<const TrackUpdate> updates, const CentreLookup& centres, const EventCentreLookup& event_centres,
+                   int objects, double tau_px, double radius_px) {
+  ClearMot mot;
+  TimeUs first = -1, last = -1;
+  for (int o = 0; o < objects; ++o) {
+    for (const auto& [ms, xy] : centres.samples(o)) {
+      first = first < 0 ? ms * 1000 : std::min(first, ms * 1000);
+      last = std::max(last, ms * 1000);
+    }
+  }
+  if (first < 0) return mot;
+  std::vector<size_t> order(updates.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return updates[a].t < updates[b].t; });
+  std::map<std::int32_t, size_t> latest;                 // track -> its latest update so far
+  std::vector<std::int32_t> previous(static_cast<size_t>(objects), -1);  // each object's last matched track
+  Accumulator to_centres, to_events;
+  size_t next = 0;
+  constexpr double kPairFirst = 1e9;  // a pair's weight: this minus its distance, so more pairs always win
+  for (TimeUs t = (first + kMotFrameUs - 1) / kMotFrameUs * kMotFrameUs; t <= last; t += kMotFrameUs) {
+    while (next < order.size() && updates[order[next]].t <= t) latest[updates[order[next]].id] = order[next], ++next;
+    std::vector<int> present_objects;
+    for (int o = 0; o < objects; ++o) {
+      if (centres.at(o, t) && (!event_centres.any() || event_centres.at(o, t))) present_objects.push_back(o);
+    }
+    std::vector<const TrackUpdate*> tracks;
+    for (const auto& [id, i] : latest) {
+      if (t - updates[i].t <= kMotTrackWindowUs) tracks.push_back(&updates[i]);
+    }
+    ++mot.frames;
+    mot.objects += static_cast<std::int64_t>(present_objects.size());
+    // distance[k][j]: object present_objects[k] to tracks[j], or infinity without a truth then.
+    const double kFar = std::numeric_limits<double>::infinity();
+    std::vector<std::vector<double>> distance(present_objects.size(), std::vector<double>(tracks.size(), kFar));
+    for (size_t k = 0; k < present_objects.size(); ++k) {
+      for (size_t j = 0; j < tracks.size(); ++j) {
+        if (const auto c = centres.at(present_objects[k], tracks[j]->t)) distance[k][j] = std::hypot(tracks[j]->x - c->first, tracks[j]->y - c->second);
+      }
+    }
+    std::vector<int> match(present_objects.size(), -1);
+    std::vector<bool> taken(tracks.size(), false);
+    for (size_t k = 0; k < present_objects.size(); ++k) {
+      for (size_t j = 0; j < tracks.size(); ++j) {
+        if (tracks[j]->id == previous[static_cast<size_t>(present_objects[k])] && !taken[j] && distance[k][j] <= radius_px) {
+          match[k] = static_cast<int>(j), taken[j] = true;
+        }
+      }
+    }
+    std::vector<size_t> rows, cols;
+    for (size_t k = 0; k < present_objects.size(); ++k) if (match[k] < 0) rows.push_back(k);
+    for (size_t j = 0; j < tracks.size(); ++j) if (!taken[j]) cols.push_back(j);
+    const bool transpose = rows.size() > cols.size();
+    std::vector<std::vector<double>> weight(transpose ? cols.size() : rows.size(),
+                                            std::vector<double>(transpose ? rows.size() : cols.size(), 0.0));
+    for (size_t a = 0; a < rows.size(); ++a) {
+      for (size_t b = 0; b < cols.size(); ++b) {
+        const double d = distance[rows[a]][cols[b]];
+        (transpose ? weight[b][a] : weight[a][b]) = d <= radius_px ? kPairFirst - d : 0.0;
+      }
+    }
+    const std::vector<int> assigned = max_weight_assignment(weight);
+    for (size_t r = 0; r < assigned.size(); ++r) {
+      if (assigned[r] < 0) continue;
+      const size_t k = rows[transpose ? static_cast<size_t>(assigned[r]) : r], j = cols[transpose ? r : static_cast<size_t>(assigned[r])];
+      if (distance[k][j] <= radius_px) match[k] = static_cast<int>(j), taken[j] = true;
+    }
+    for (size_t k = 0; k < present_objects.size(); ++k) {
+      const int o = present_objects[k];
+      if (match[k] < 0) {
+        ++mot.misses;
+        continue;
+      }
+      const TrackUpdate& u = *tracks[static_cast<size_t>(match[k])];
+      ++mot.matches;
+      std::int32_t& was = previous[static_cast<size_t>(o)];
+      mot.mismatches += was >= 0 && was != u.id;
+      was = u.id;
+      to_centres.errors.push_back(distance[k][static_cast<size_t>(match[k])]);
+      if (const auto m = event_centres.at(o, u.t)) to_events.errors.push_back(std::hypot(u.x - m->first, u.y - m->second));
+    }
+    for (size_t j = 0; j < tracks.size(); ++j) mot.false_positives += !taken[j];
+  }
+  mot.to_centres = to_centres.stats(tau_px);
+  mot.to_events = to_events.stats(tau_px);
+  return mot;
+}
 
 }  // namespace
 
@@ -174,6 +268,7 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   report.all_raw = all_raw.stats(tau_px);
   report.all_kalman_events = all_kalman_events.stats(tau_px);
   report.velocity_error = all_velocity.stats(0).mean;
+  report.mot = clear_mot(updates, lookup, event_lookup, objects, tau_px, association_radius_px);
   return report;
 }
 

@@ -46,8 +46,36 @@ struct ObjectTracking {
   double coverage = 0;
 };
 
+// CLEAR MOT (Bernardin and Stiefelhagen 2008), in frames of `kMotFrameUs`: the standard
+// multi-object tracking scores, where each object is matched to at most one track at a time, so
+// that a second track on one object (a fragment) is a false positive, not a second estimate.
+//  - An object is present at a frame's time when its true centre is known there and, when the
+//    labelled events are given, it has a labelled centre there (it fired: a still object
+//    that fires nothing cannot be tracked by its events).
+//  - A track is present when it was updated within `kMotTrackWindowUs` before, and stands at
+//    its latest estimate, which is compared with the truth at that estimate's own time.
+//  - An object keeps its previous frame's track while that track is present and within the
+//    association radius. The others are matched one to one (Hungarian): the most pairs first,
+//    then the least total distance; a pair beyond the radius never.
+//  - Unmatched objects are misses and unmatched tracks false positives. An object matched to
+//    another track than at its previous match is a mismatch.
+// MOTA = 1 - (misses + false positives + mismatches) / objects present, summed over frames;
+// MOTP is the mean distance of the matched pairs.
+inline constexpr TimeUs kMotFrameUs = 10000;       // the scoring chunk (family_eval.h)
+inline constexpr TimeUs kMotTrackWindowUs = 34000;  // a packet spans at most 33.3 ms by default
+
+struct ClearMot {
+  std::int64_t frames = 0, objects = 0, matches = 0, misses = 0, false_positives = 0, mismatches = 0;
+  ErrorStats to_centres;  // matched pairs: the estimate against the object's true centre (MOTP)
+  ErrorStats to_events;   // ... against the centre of its labelled events, where it has one
+  double mota() const {
+    return objects ? 1.0 - static_cast<double>(misses + false_positives + mismatches) / static_cast<double>(objects) : 0.0;
+  }
+};
+
 struct TrackingReport {
   std::vector<ObjectTracking> objects;
+  ClearMot mot;
   std::int64_t spurious_updates = 0;   // updates of tracks associated with no object
   ErrorStats all_kalman, all_raw;      // pooled over every object, against the true centres
   ErrorStats all_kalman_events;        // pooled, against the labelled events' centres (paper)

@@ -152,6 +152,69 @@ TEST(TrackingMetrics, TheLabelledEventsCentreIsTakenAroundTheEstimatesTime) {
   EXPECT_NEAR(r.all_kalman.mean, 0.5, 1e-9);  // y: 49.5 against the true 50
 }
 
+// CLEAR MOT matches an object to one track at a time: a second track 10 px off the same object
+// is a false positive in every frame, where the per-update error counts it as a second estimate.
+TEST(TrackingMetrics, ClearMotCountsASecondTrackOnAnObjectAsAFalsePositive) {
+  std::vector<gen::TruthSample> centres;
+  for (TimeUs t = 0; t <= 100000; t += 1000) centres.push_back({t, 0, 50, 50, 10});
+  std::vector<TrackUpdate> updates;
+  for (TimeUs t = 5000; t <= 100000; t += 5000) {
+    updates.push_back({t, 1, 51, 50, 0, 0, 51, 50});
+    updates.push_back({t, 2, 60, 50, 0, 0, 60, 50});
+  }
+  const TrackingReport r = tracking_report(updates, centres, 1, 2.5);
+  EXPECT_NEAR(r.all_kalman.mean, 5.5, 1e-9);  // both tracks' updates, 1 and 10 px off
+  const ClearMot& m = r.mot;
+  EXPECT_EQ(m.frames, 11);  // 0, 10, ..., 100 ms
+  EXPECT_EQ(m.objects, 11);
+  EXPECT_EQ(m.misses, 1);  // at 0 ms no track has been updated yet
+  EXPECT_EQ(m.matches, 10);
+  EXPECT_EQ(m.false_positives, 10);
+  EXPECT_EQ(m.mismatches, 0);
+  EXPECT_NEAR(m.mota(), 1.0 - 11.0 / 11.0, 1e-12);
+  EXPECT_NEAR(m.to_centres.mean, 1.0, 1e-9);
+  EXPECT_DOUBLE_EQ(m.to_centres.within, 1.0);
+}
+
+// An object keeps its track while that track stays present and within the radius, even when a
+// nearer one appears; when its track is gone, taking another is one mismatch.
+TEST(TrackingMetrics, ClearMotKeepsAnObjectsTrackAndCountsTheSwitchWhenItEnds) {
+  std::vector<gen::TruthSample> centres;
+  for (TimeUs t = 0; t <= 150000; t += 1000) centres.push_back({t, 0, 50, 50, 10});
+  std::vector<TrackUpdate> updates;
+  for (TimeUs t = 0; t <= 60000; t += 5000) updates.push_back({t, 4, 51, 50, 0, 0, 51, 50});
+  for (TimeUs t = 50000; t <= 150000; t += 5000) updates.push_back({t, 5, 50.5, 50, 0, 0, 50.5, 50});
+  const ClearMot m = tracking_report(updates, centres, 1, 2.5).mot;
+  // Track 4 is present until 60 + 34 ms, so in the frames 0 .. 90 ms; track 5 from 50 ms.
+  EXPECT_EQ(m.frames, 16);
+  EXPECT_EQ(m.objects, 16);
+  EXPECT_EQ(m.matches, 16);
+  EXPECT_EQ(m.misses, 0);
+  EXPECT_EQ(m.false_positives, 5);  // track 5 at 50 .. 90 ms, while the object keeps track 4
+  EXPECT_EQ(m.mismatches, 1);       // at 100 ms
+  EXPECT_NEAR(m.mota(), 1.0 - 6.0 / 16.0, 1e-12);
+  EXPECT_NEAR(m.to_centres.mean, (10 * 1.0 + 6 * 0.5) / 16.0, 1e-9);
+}
+
+// With the labelled events given, an object is present only while it fires: an event camera
+// cannot see a still object, so its frames without events are not misses.
+TEST(TrackingMetrics, ClearMotCountsAnObjectOnlyWhileItFires) {
+  std::vector<gen::TruthSample> centres;
+  std::vector<Event> events;
+  std::vector<std::int32_t> truth;
+  for (TimeUs t = 0; t <= 100000; t += 1000) {
+    centres.push_back({t, 0, 50, 50, 10});
+    if (t > 50000) continue;
+    for (int k = 0; k < 4; ++k) events.push_back({t, 50, static_cast<std::uint16_t>(48 + k), 1}), truth.push_back(0);
+  }
+  const std::vector<TrackUpdate> none;
+  EXPECT_EQ(tracking_report(none, centres, 1).mot.misses, 11);
+  const ClearMot fired = tracking_report(none, centres, 1, 2.5, 15.0, 20000, {events, truth}).mot;
+  EXPECT_EQ(fired.objects, 6);  // 0 .. 50 ms: the 10 ms window around 60 ms holds none of its events
+  EXPECT_EQ(fired.misses, 6);
+  EXPECT_EQ(fired.false_positives, 0);
+}
+
 TEST(Evaluation, OcclusionChunksAreRecognised) {
   Scene s;
   for (TimeUs t = 0; t < 4000; t += 10) s.events.push_back({t, 0, 0, 0}), s.truth.push_back(0);
@@ -211,7 +274,8 @@ TEST(EvalCommand, WritesTheReportWithEveryFigure) {
   std::stringstream report;
   report << std::ifstream(dir.path("ev/report.md")).rdbuf();
   for (const char* section : {"Table I", "KM (true k)", "## Targets", "Clusters over time", "Cost against speed",
-                              "F against bandwidth", "## Tracking", "Share", "Real recordings", "## The scene family", "| still |"}) {
+                              "F against bandwidth", "## Tracking", "Share", "Real recordings", "## The scene family", "| still |",
+                              "CLEAR MOT over the split", "one track per object at a time (CLEAR MOT's MOTP"}) {
     EXPECT_NE(report.str().find(section), std::string::npos) << section;
   }
   for (const char* fig : {"clusters_translation.svg", "ops_vs_speed.svg", "f_vs_speed.svg", "f_vs_bandwidth.svg",
@@ -231,6 +295,7 @@ TEST(SweepCommand, PrintsATablePerParameter) {
   EXPECT_NE(r.out.find("## packet-size"), std::string::npos);
   EXPECT_NE(r.out.find("| 1000 |"), std::string::npos);
   EXPECT_NE(r.out.find("| packet-size | rotation | still | mean F |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| within 2.5 px | MOTA | MOTP px | MOTP to events' centre px | within 2.5 px |"), std::string::npos) << r.out;
 }
 
 // --sensor, --objects and --noise-hz pin the family's members (not the paper's scenes).
