@@ -1,5 +1,6 @@
 #include "types/params.h"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -28,6 +29,10 @@ const std::array kTable = {
     ParamInfo{"filter-warm-up-us", "us", "keep every event of the stream's first this long, while its neighbours' history "
               "is too short to judge it by; 0 = off",
               &Params::filter_warm_up_us, 0, 1e9},
+    ParamInfo{"filter-noise-hz", "Hz", "when the events no neighbour supported came at this rate a pixel or more over the "
+              "last 32.8 ms, the filter asks one more supporting neighbour of each event for the next 32.8 ms (a noisy "
+              "sensor's background activity supports itself within a long window); 0 = off",
+              &Params::filter_noise_hz, 0, 1e6},
     ParamInfo{"packet-support", "neighbours", "when a packet closes, its events of which fewer than this many neighbours "
               "fired while it was open (before or after them) are noise; 0 = off",
               &Params::packet_support, 0, 8},
@@ -133,6 +138,12 @@ constexpr bool kIsEnum = std::is_enum_v<T>;
 }  // namespace
 
 std::span<const ParamInfo> param_table() { return kTable; }
+
+std::int64_t filter_noise_count(const Params& p, SensorSize sensor) {
+  if (p.filter_noise_hz <= 0) return 0;
+  const double per_interval = p.filter_noise_hz * sensor.width * sensor.height * static_cast<double>(TimeUs{1} << kFilterNoiseIntervalLog2) * 1e-6;
+  return std::max<std::int64_t>(1, static_cast<std::int64_t>(per_interval));
+}
 
 const ParamInfo* find_param(const std::string& name) {
   for (const ParamInfo& info : kTable) {

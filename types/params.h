@@ -44,6 +44,8 @@ struct Params {
   TimeUs filter_window_us = 30000;  // neighbour support window; 0 turns the filter off
   int filter_support = 1;            // neighbours that must have fired within the window
   TimeUs filter_warm_up_us = 0;     // keep every event of the stream's first this long; 0 = off
+  double filter_noise_hz = 0.7;      // unsupported events a pixel a second that make the filter ask
+                                     // one more neighbour (filter_noise_count); 0 = off
   int packet_support = 0;            // neighbours that must have fired while the packet was open
 
   // --- packets --------------------------------------------------------------------------
@@ -116,6 +118,13 @@ struct ParamInfo {
   double max;
   Choices choices = {};  // enumerated parameters: the value names
 };
+
+// The filter's noise check, in intervals of 2^kFilterNoiseIntervalLog2 us of event time (32.8 ms):
+// when an interval held at least filter_noise_count(...) events that no neighbour supported, the
+// next interval's events need one more supporting neighbour. The count is --filter-noise-hz a
+// pixel a second over the sensor and the interval, rounded down, at least 1; 0 = off.
+inline constexpr int kFilterNoiseIntervalLog2 = 15;
+std::int64_t filter_noise_count(const Params& p, SensorSize sensor);
 
 std::span<const ParamInfo> param_table();
 const ParamInfo* find_param(const std::string& name);

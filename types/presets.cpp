@@ -15,6 +15,7 @@ Params gaussian() {
   Params p;
   p.filter_window_us = 10000;
   p.filter_support = 1;
+  p.filter_noise_hz = 0;
   p.packet_support = 0;
   p.packet_size = 256;
   p.packet_max_span_us = 0;

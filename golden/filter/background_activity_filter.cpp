@@ -4,11 +4,13 @@
 
 namespace evms::golden {
 
-BackgroundActivityFilter::BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support, TimeUs warm_up_us)
+BackgroundActivityFilter::BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support, TimeUs warm_up_us,
+                                                   std::int64_t noise_count)
     : sensor_(sensor),
       window_us_(window_us),
       support_(support),
       warm_up_us_(warm_up_us),
+      noise_count_(noise_count),
       stride_(static_cast<size_t>(sensor.width) + 2),
       last_fired_(stride_ * (static_cast<size_t>(sensor.height) + 2), kNever) {}
 
@@ -22,11 +24,20 @@ bool BackgroundActivityFilter::accept(const Event& e) {
   const int supporters = (above[0] >= since) + (above[1] >= since) + (above[2] >= since) + (row[0] >= since) + (row[2] >= since) +
                          (below[0] >= since) + (below[1] >= since) + (below[2] >= since);
   last_fired(e.x, e.y) = e.t;
+  const TimeUs interval = e.t >> kFilterNoiseIntervalLog2;
   if (!started_) {
     started_ = true;
     warm_until_ = e.t + warm_up_us_;
+    interval_ = interval;
   }
-  return supporters >= support_ || e.t < warm_until_;
+  if (noise_count_ > 0) {
+    if (interval != interval_) {
+      noisy_ = interval == interval_ + 1 && unsupported_ >= noise_count_;
+      interval_ = interval, unsupported_ = 0;
+    }
+    unsupported_ += supporters == 0;
+  }
+  return supporters >= support_ + (noisy_ ? 1 : 0) || e.t < warm_until_;
 }
 
 int BackgroundActivityFilter::neighbours_fired_since(int x, int y, TimeUs since) const {

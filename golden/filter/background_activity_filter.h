@@ -9,6 +9,13 @@
 // event, kept or not, records its time at its own pixel and so can support later
 // neighbours. A window of 0 turns the filter off: every event is kept.
 //
+// With noise_count > 0 the filter watches its own noise: it counts, in intervals of
+// 2^kFilterNoiseIntervalLog2 us of event time (types/params.h), the events that no neighbour
+// supported at all. An interval that held noise_count or more makes the next one noisy, and in a
+// noisy interval an event needs support + 1 neighbours. A long window keeps the sparse edges of
+// slow objects, but at a noisy sensor's rate it lets background activity support itself; the
+// count tells the two apart. An interval that follows an empty one is never noisy.
+//
 // With warm_up_us > 0, every event of the stream's first warm_up_us is kept too: its neighbours'
 // history is shorter than the window, so an edge pixel whose neighbours have not fired yet
 // cannot be told from noise. That helps a short, dense recording and costs a noisy one
@@ -16,15 +23,18 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "types/event.h"
+#include "types/params.h"
 
 namespace evms::golden {
 
 class BackgroundActivityFilter {
  public:
-  BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support = 1, TimeUs warm_up_us = 0);
+  BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support = 1, TimeUs warm_up_us = 0,
+                           std::int64_t noise_count = 0);
 
   // Records the event and says whether it is supported by a neighbour. Events must come in
   // non-decreasing time order.
@@ -44,7 +54,11 @@ class BackgroundActivityFilter {
   TimeUs window_us_;
   int support_;
   TimeUs warm_up_us_;
+  std::int64_t noise_count_;
   bool started_ = false;
+  TimeUs interval_ = 0;                 // the current noise interval (time >> kFilterNoiseIntervalLog2)
+  std::int64_t unsupported_ = 0;        // events of it that no neighbour supported
+  bool noisy_ = false;                  // the previous interval held noise_count_ or more
   TimeUs warm_until_ = 0;               // events before this time are kept; set by the first event
   std::size_t stride_;                  // a row of the map: the sensor's width and a border pixel each side
   std::vector<TimeUs> last_fired_;  // per pixel, row-major, with a border of pixels that never fire

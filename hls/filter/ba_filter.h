@@ -9,6 +9,12 @@
 // modulo the word; so that a stale time cannot alias into the window a wrap later, every
 // event also scrubs the next two memory entries, clearing them once older than half the wrap
 // period (4.2 s at 16 bits; at 240x180 a full sweep takes 21,600 events).
+//
+// The noise check (golden/filter/background_activity_filter.h): in intervals of 2^15 us it
+// counts the events no neighbour supported; an interval with filter_noise_count or more of them
+// makes the next one noisy, and there an event needs one more supporting neighbour. An interval
+// is t >> 15 of the 32-bit time, 17 bits, so that the time's wrap is one interval step, as in
+// the RTL (rtl/filter/evms_ba_filter.sv); the count saturates at 2^24 - 1.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +31,10 @@ class BackgroundActivityFilter {
   void reset() {
     for (int i = 0; i < S::kMaxWidth * S::kMaxHeight; ++i) stamp_[i] = 0;
     scrub_ = 0;
+    started_ = false;
+    noisy_ = false;
+    interval_ = 0;
+    unsupported_ = 0;
   }
 
   bool accept(const EventWord& e, const Config& cfg) {
@@ -49,7 +59,16 @@ class BackgroundActivityFilter {
       if (then != 0 && static_cast<Stamp>(now - then) >= kHalfWrap) stamp_[scrub_] = 0;
       scrub_ = scrub_ + 1 == S::kMaxWidth * S::kMaxHeight ? 0 : scrub_ + 1;
     }
-    return supporters >= cfg.filter_support;
+    const std::uint32_t interval = e.t >> kNoiseIntervalLog2;
+    if (!started_) started_ = true, interval_ = interval;
+    if (cfg.filter_noise_count != 0) {
+      if (interval != interval_) {
+        noisy_ = interval == ((interval_ + 1) & kIntervalMask) && unsupported_ >= cfg.filter_noise_count;
+        interval_ = interval, unsupported_ = 0;
+      }
+      if (supporters == 0 && unsupported_ < kCountMax) ++unsupported_;
+    }
+    return supporters >= cfg.filter_support + (noisy_ ? 1 : 0);
   }
 
  private:
@@ -57,6 +76,11 @@ class BackgroundActivityFilter {
   using Stamp = std::conditional_t<S::kTimestampBits == 16, std::uint16_t, std::uint32_t>;
   static constexpr Stamp kHalfWrap = static_cast<Stamp>(Stamp{1} << (S::kTimestampBits - 1));
   static constexpr int kScrubPerEvent = 2;
+  static constexpr int kNoiseIntervalLog2 = 15;  // types/params.h: kFilterNoiseIntervalLog2
+  static constexpr std::uint32_t kIntervalMask = (std::uint32_t{1} << (32 - kNoiseIntervalLog2)) - 1;
+  static constexpr std::uint32_t kCountMax = (std::uint32_t{1} << 24) - 1;
+  bool started_ = false, noisy_ = false;
+  std::uint32_t interval_ = 0, unsupported_ = 0;
   Stamp stamp_[S::kMaxWidth * S::kMaxHeight] = {};
   int scrub_ = 0;
 };

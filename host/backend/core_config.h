@@ -143,6 +143,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   need(p.seeding == Seeding::kEvery || p.warm_max_bandwidth <= S::kReachMax * p.bandwidth,
        "the core's warm balls reach at most " + std::to_string(S::kReachMax) + " bandwidths (--warm-max-bandwidth)");
   need(p.filter_support <= 8, "--filter-support is at most 8");
+  need(filter_noise_count(p, sensor) < (std::int64_t{1} << 24), "--filter-noise-hz is too large for the core's 24-bit count");
   const bool seeded = p.seeding != Seeding::kEvery;
   // One phi unit in normalized feature space: h for the flat ball (|dphi|^2 < 1), h sqrt(2)
   // for the Gaussian (exp(-|dphi|^2)).
@@ -159,6 +160,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.filter_enabled = p.filter_window_us > 0;
   c.filter_window = static_cast<std::uint32_t>(p.filter_window_us >> S::kTimestampShift);
   c.filter_support = static_cast<std::uint8_t>(p.filter_support);
+  c.filter_noise_count = static_cast<std::uint32_t>(filter_noise_count(p, sensor));
   c.packet_size = static_cast<std::uint16_t>(p.packet_size);
   c.packet_max_span_us = static_cast<std::uint32_t>(std::min<TimeUs>(p.packet_max_span_us, 0xFFFFFFFF));
   c.scale_x = static_cast<std::uint32_t>(rnd(p.scale_xy / (side_x * unit) * std::ldexp(1.0, S::kCoordScaleFrac)));

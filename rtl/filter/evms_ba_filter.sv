@@ -4,7 +4,10 @@
 //   - outside the configured sensor: noise, no memory access;
 //   - else read the (up to) 8 neighbours inside the sensor, keep when one holds a time t' != 0
 //     with (now - t') mod 2^TimestampBits <= window, where now = t >> TimestampShift; write now (or 1 for 0)
-//     to the own pixel; then scrub two entries: clear each whose age is at least half the wrap.
+//     to the own pixel; then scrub two entries: clear each whose age is at least half the wrap;
+//   - the noise check: the events no neighbour supported are counted in intervals of 2^15 us
+//     (t[31:15]); an interval with cfg_noise_count or more of them makes the next one noisy,
+//     and there an event needs two supporting neighbours instead of one (cfg_noise_count 0: off).
 // After reset the RAM is cleared, one word a cycle; ready stays low until then.
 module evms_ba_filter #(
   parameter int MaxWidth  = 240,
@@ -18,6 +21,7 @@ module evms_ba_filter #(
   input  logic [15:0] cfg_width,
   input  logic [15:0] cfg_height,
   input  logic [31:0] cfg_window,
+  input  logic [23:0] cfg_noise_count,
   output logic        ready,
   input  logic        start,
   input  logic [31:0] t,
@@ -47,7 +51,15 @@ module evms_ba_filter #(
   logic [AddrBits-1:0] clear_addr, scrub;
   logic [3:0]    k;            // neighbour being addressed (0..8)
   logic [1:0]    pending_cmp;  // [0]: address registered last cycle; [1]: rdata holds that neighbour
-  logic          supported;
+  logic [3:0]    supporters;   // neighbours that fired within the window, 0..8
+  // The noise check: the current interval, its unsupported events (saturating), and whether
+  // the previous interval was noisy.
+  localparam int IntervalBits = 17;
+  localparam logic [23:0] CountMax = '1;
+  logic                    started_q, noisy_q;
+  logic [IntervalBits-1:0] interval_q;
+  logic [23:0]             unsupported_q;
+  wire  [IntervalBits-1:0] interval = t[31:15];
   logic [TimestampBits-1:0] now;
   logic [15:0]   ex, ey;
   logic          scrub_second;
@@ -77,7 +89,11 @@ module evms_ba_filter #(
       wdata <= '0;
       k <= '0;
       pending_cmp <= '0;
-      supported <= 1'b0;
+      supporters <= '0;
+      started_q <= 1'b0;
+      noisy_q <= 1'b0;
+      interval_q <= '0;
+      unsupported_q <= '0;
       now <= '0;
       ex <= '0;
       ey <= '0;
@@ -106,13 +122,22 @@ module evms_ba_filter #(
             now <= TimestampBits'(t >> TimestampShift);
             k <= '0;
             pending_cmp <= '0;
-            supported <= 1'b0;
+            supporters <= '0;
             state <= S_READ;
+            // A new interval latches whether the one before it was noisy.
+            if (!started_q) begin
+              started_q <= 1'b1;
+              interval_q <= interval;
+            end else if (cfg_noise_count != 0 && interval != interval_q) begin
+              noisy_q <= interval == interval_q + 1'b1 && unsupported_q >= cfg_noise_count;
+              interval_q <= interval;
+              unsupported_q <= '0;
+            end
           end
         end
         S_READ: begin
           // Address neighbour k (when inside); the RAM answers two cycles later.
-          if (pending_cmp[1] && rdata != 0 && 32'(TimestampBits'(now - rdata)) <= cfg_window) supported <= 1'b1;
+          if (pending_cmp[1] && rdata != 0 && 32'(TimestampBits'(now - rdata)) <= cfg_window) supporters <= supporters + 1'b1;
           pending_cmp <= {pending_cmp[0], 1'b0};
           if (k <= 8) begin
             if (n_inside) begin
@@ -146,7 +171,8 @@ module evms_ba_filter #(
           state <= scrub_second ? S_DONE : S_SCRUB_READ;
         end
         S_DONE: begin
-          kept <= supported;
+          kept <= supporters >= (noisy_q ? 4'd2 : 4'd1);
+          if (cfg_noise_count != 0 && supporters == 0 && unsupported_q != CountMax) unsupported_q <= unsupported_q + 1'b1;
           done <= 1'b1;
           state <= S_IDLE;
         end

@@ -4,6 +4,7 @@
 .CfgSensorHeight(CfgSensorHeight),
 .CfgFilterEnabled(CfgFilterEnabled),
 .CfgFilterWindow(CfgFilterWindow),
+.CfgFilterNoiseCount(CfgFilterNoiseCount),
 .CfgPacketSize(CfgPacketSize),
 .CfgPacketMaxSpanUs(CfgPacketMaxSpanUs),
 .CfgScaleX(CfgScaleX),

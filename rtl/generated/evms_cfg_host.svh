@@ -42,6 +42,7 @@ localparam logic [15:0] CfgSensorWidth = 16'd1280;
 localparam logic [15:0] CfgSensorHeight = 16'd720;
 localparam logic CfgFilterEnabled = 1'd1;
 localparam logic [31:0] CfgFilterWindow = 32'd10000;
+localparam logic [23:0] CfgFilterNoiseCount = 24'd0;
 localparam logic [15:0] CfgPacketSize = 16'd256;
 localparam logic [31:0] CfgPacketMaxSpanUs = 32'd0;
 localparam logic [31:0] CfgScaleX = 32'd7241;

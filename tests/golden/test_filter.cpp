@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "golden/filter/background_activity_filter.h"
+#include "types/params.h"
 
 namespace evms::golden {
 namespace {
@@ -57,6 +58,34 @@ TEST(BackgroundActivityFilter, WarmUpKeepsTheFirstWindowFromTheStreamsFirstEvent
   EXPECT_TRUE(f.accept({509999, 10, 10, 1}));    // alone, but within the first window
   EXPECT_FALSE(f.accept({510000, 200, 100, 1}));  // alone, and the window has passed
   EXPECT_TRUE(f.accept({510001, 201, 100, 0}));   // supported, as without the warm-up
+}
+
+// With a noise count of 3: an interval of 2^15 us that held 3 events no neighbour supported
+// makes the next interval ask two neighbours; an interval after a quiet one, or after an empty
+// one, asks one again.
+TEST(BackgroundActivityFilter, ANoisyIntervalMakesTheNextAskOneMoreNeighbour) {
+  constexpr TimeUs kInterval = TimeUs{1} << kFilterNoiseIntervalLog2;
+  BackgroundActivityFilter f(kSensor, 1000000, 1, 0, /*noise_count=*/3);
+  for (int k = 0; k < 3; ++k) EXPECT_FALSE(f.accept({100 + k, static_cast<std::uint16_t>(20 + 40 * k), 20, 1}));  // unsupported
+  f.accept({kInterval + 0, 100, 100, 1});                    // unsupported, the next interval's first
+  EXPECT_FALSE(f.accept({kInterval + 1, 101, 100, 1}));     // one neighbour is not enough now
+  EXPECT_TRUE(f.accept({kInterval + 2, 100, 101, 1}));      // two are: (100, 100) and (101, 100)
+  // The noisy interval itself held only one unsupported event: the next one asks one neighbour.
+  EXPECT_TRUE(f.accept({2 * kInterval, 102, 100, 1}));
+  // Without the count, one neighbour is enough in the second interval too.
+  BackgroundActivityFilter plain(kSensor, 1000000);
+  for (int k = 0; k < 3; ++k) plain.accept({100 + k, static_cast<std::uint16_t>(20 + 40 * k), 20, 1});
+  plain.accept({kInterval + 0, 100, 100, 1});
+  EXPECT_TRUE(plain.accept({kInterval + 1, 101, 100, 1}));
+}
+
+TEST(BackgroundActivityFilter, AnIntervalAfterAnEmptyOneIsNotNoisy) {
+  constexpr TimeUs kInterval = TimeUs{1} << kFilterNoiseIntervalLog2;
+  BackgroundActivityFilter f(kSensor, 10 * kInterval, 1, 0, /*noise_count=*/2);
+  f.accept({0, 20, 20, 1});
+  f.accept({1, 60, 20, 1});                                  // two unsupported in interval 0
+  f.accept({2 * kInterval, 100, 100, 1});                    // interval 1 was empty
+  EXPECT_TRUE(f.accept({2 * kInterval + 1, 101, 100, 1}));  // one neighbour is enough
 }
 
 TEST(BackgroundActivityFilter, ZeroWindowKeepsEverything) {

@@ -241,6 +241,53 @@ TEST(Cosim, ParameterCorners) {
   expect_equal<Vcore_host, hls::RtlHostShape>("corner_exact", events, {240, 180}, 44, 0.9, exact);
 }
 
+// A sensor noisy enough that the filter's noise check asks two neighbours (hls/filter/ba_filter.h):
+// the C++ core's labels differ from those with the check off, and the RTL's equal the C++ core's
+// on the host and the iCE40 builds, and with the smallest count, which makes every interval after
+// one unsupported event noisy.
+TEST(Cosim, NoisySensorMakesTheFilterAskTwoNeighbours) {
+  gen::SceneConfig c;
+  c.motion = gen::Motion::kTranslation;
+  c.duration_s = 0.15;
+  c.width = 128, c.height = 128;
+  c.noise_hz = 4.0;
+  c.seed = 8;
+  const std::vector<Event> events = eval::generate_scene(c).events;
+  const auto labels_of = [&](const Params& p) {
+    const hls::Config cfg = backend::core_config<hls::Ice40Shape>(p, {128, 128});
+    auto core = std::make_unique<hls::Core<hls::Ice40Shape>>();
+    auto labels = std::make_unique<hls::Core<hls::Ice40Shape>::LabelStream>();
+    hls::Core<hls::Ice40Shape>::TrackStream tracks;
+    hls::Core<hls::Ice40Shape>::PacketStream packets;
+    core->reset(cfg);
+    std::vector<std::int32_t> out;
+    for (const auto& w : words_of(events)) {
+      core->process(w, *labels, tracks, packets);
+      hls::LabelWord l;
+      while (labels->read(l)) out.push_back(l.label);
+      hls::TrackWord t;
+      while (tracks.read(t)) {}
+      hls::PacketWord k;
+      while (packets.read(k)) {}
+    }
+    return out;
+  };
+  Params checked = backend::build_default_params<hls::Ice40Shape>(), unchecked = checked;
+  unchecked.filter_noise_hz = 0;
+  ASSERT_GT(backend::core_config<hls::Ice40Shape>(checked, {128, 128}).filter_noise_count, 0u);
+  const auto with_check = labels_of(checked), without = labels_of(unchecked);
+  ASSERT_EQ(with_check.size(), without.size());
+  size_t noise_only_with_check = 0;
+  for (size_t i = 0; i < with_check.size(); ++i) noise_only_with_check += with_check[i] == hls::kLabelNoise && without[i] != hls::kLabelNoise;
+  EXPECT_GT(noise_only_with_check, 200u) << "the noise check never asked two neighbours";
+  expect_equal<Vcore_ice40, hls::Ice40Shape>("noisy_ice40", events, {128, 128}, 45, 0.6, checked);
+  expect_equal<Vcore_host, hls::RtlHostShape>("noisy_host", events, {128, 128}, 46, 0.7, seeded_method());
+  Params always = seeded_method();
+  always.filter_noise_hz = 1e-6;  // a count of 1
+  ASSERT_EQ(backend::core_config<hls::RtlHostShape>(always, {128, 128}).filter_noise_count, 1u);
+  expect_equal<Vcore_host, hls::RtlHostShape>("noisy_host_count1", events, {128, 128}, 47, 0.5, always);
+}
+
 // The regression over every real recording, on the host build, by both clustering paths.
 void expect_equal_on_real_recordings(const Params& method, std::uint64_t seed) {
   const std::string dir = test::shared_data_dir();
