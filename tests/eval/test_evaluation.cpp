@@ -152,11 +152,17 @@ TEST(TrackingMetrics, TheLabelledEventsCentreIsTakenAroundTheEstimatesTime) {
   EXPECT_NEAR(r.all_kalman.mean, 0.5, 1e-9);  // y: 49.5 against the true 50
 }
 
+// The true centre of one still object at (50, 50), sampled every millisecond up to `until_us`.
+std::vector<gen::TruthSample> still_object_centres(TimeUs until_us) {
+  std::vector<gen::TruthSample> centres;
+  for (TimeUs t = 0; t <= until_us; t += 1000) centres.push_back({t, 0, 50, 50, 10});
+  return centres;
+}
+
 // CLEAR MOT matches an object to one track at a time: a second track 10 px off the same object
 // is a false positive in every frame, where the per-update error counts it as a second estimate.
 TEST(TrackingMetrics, ClearMotCountsASecondTrackOnAnObjectAsAFalsePositive) {
-  std::vector<gen::TruthSample> centres;
-  for (TimeUs t = 0; t <= 100000; t += 1000) centres.push_back({t, 0, 50, 50, 10});
+  const std::vector<gen::TruthSample> centres = still_object_centres(100000);
   std::vector<TrackUpdate> updates;
   for (TimeUs t = 5000; t <= 100000; t += 5000) {
     updates.push_back({t, 1, 51, 50, 0, 0, 51, 50});
@@ -179,8 +185,7 @@ TEST(TrackingMetrics, ClearMotCountsASecondTrackOnAnObjectAsAFalsePositive) {
 // An object keeps its track while that track stays present and within the radius, even when a
 // nearer one appears; when its track is gone, taking another is one mismatch.
 TEST(TrackingMetrics, ClearMotKeepsAnObjectsTrackAndCountsTheSwitchWhenItEnds) {
-  std::vector<gen::TruthSample> centres;
-  for (TimeUs t = 0; t <= 150000; t += 1000) centres.push_back({t, 0, 50, 50, 10});
+  const std::vector<gen::TruthSample> centres = still_object_centres(150000);
   std::vector<TrackUpdate> updates;
   for (TimeUs t = 0; t <= 60000; t += 5000) updates.push_back({t, 4, 51, 50, 0, 0, 51, 50});
   for (TimeUs t = 50000; t <= 150000; t += 5000) updates.push_back({t, 5, 50.5, 50, 0, 0, 50.5, 50});
@@ -199,14 +204,12 @@ TEST(TrackingMetrics, ClearMotKeepsAnObjectsTrackAndCountsTheSwitchWhenItEnds) {
 // With the labelled events given, an object is present only while it fires: an event camera
 // cannot see a still object, so its frames without events are not misses.
 TEST(TrackingMetrics, ClearMotCountsAnObjectOnlyWhileItFires) {
-  std::vector<gen::TruthSample> centres;
-  std::vector<Event> events;
-  std::vector<std::int32_t> truth;
-  for (TimeUs t = 0; t <= 100000; t += 1000) {
-    centres.push_back({t, 0, 50, 50, 10});
-    if (t > 50000) continue;
-    for (int k = 0; k < 4; ++k) events.push_back({t, 50, static_cast<std::uint16_t>(48 + k), 1}), truth.push_back(0);
+  const std::vector<gen::TruthSample> centres = still_object_centres(100000);
+  std::vector<Event> events;  // four a millisecond until 50 ms, then none
+  for (TimeUs t = 0; t <= 50000; t += 1000) {
+    for (int k = 0; k < 4; ++k) events.push_back({t, 50, static_cast<std::uint16_t>(48 + k), 1});
   }
+  const std::vector<std::int32_t> truth(events.size(), 0);
   const std::vector<TrackUpdate> none;
   EXPECT_EQ(tracking_report(none, centres, 1).mot.misses, 11);
   const ClearMot fired = tracking_report(none, centres, 1, 2.5, 15.0, 20000, {events, truth}).mot;
