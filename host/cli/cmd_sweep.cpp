@@ -132,10 +132,11 @@ void print_scenes(const std::vector<eval::FamilyScene>& family, const std::vecto
   std::printf("\n| scene | events | noise |");
   for (const Method& m : methods) {
     const char* name = m.settings.empty() ? m.preset.c_str() : m.settings.back().second.c_str();
-    std::printf(" F %s | IDF1 %s | track err px %s | centroid err px %s | err to events' centre px %s |", name, name, name, name, name);
+    std::printf(" F %s | IDF1 %s | track err px %s | centroid err px %s | err to events' centre px %s | MOTA %s | false tracks/frame %s |", name,
+                name, name, name, name, name, name);
   }
   std::printf("\n|---|---|---|");
-  for (size_t m = 0; m < methods.size(); ++m) std::printf("---|---|---|---|---|");
+  for (size_t m = 0; m < methods.size(); ++m) std::printf("---|---|---|---|---|---|---|");
   std::printf("\n");
   for (size_t i = 0; i < family.size(); ++i) {
     const auto& s = family[i];
@@ -144,8 +145,9 @@ void print_scenes(const std::vector<eval::FamilyScene>& family, const std::vecto
                 gen::describe(s.scene.config).c_str(), s.scene.events.size(), 100.0 * truth_noise / std::max<size_t>(1, s.scene.events.size()));
     for (const auto& r : results) {
       const eval::TrackingReport& t = r.scenes[i].tracking;
-      std::printf(" %.3f | %.3f | %.2f | %.2f | %.2f |", r.scenes[i].scores.f, r.scenes[i].identity.idf1, t.all_kalman.mean,
-                  t.all_raw.mean, t.all_kalman_events.mean);
+      const double false_per_frame = t.mot.frames ? static_cast<double>(t.mot.false_positives) / static_cast<double>(t.mot.frames) : 0.0;
+      std::printf(" %.3f | %.3f | %.2f | %.2f | %.2f | %.3f | %.2f |", r.scenes[i].scores.f, r.scenes[i].identity.idf1, t.all_kalman.mean,
+                  t.all_raw.mean, t.all_kalman_events.mean, t.mot.mota(), false_per_frame);
     }
     std::printf("\n");
   }
@@ -245,7 +247,7 @@ void register_sweep(CLI::App& app) {
   cmd->add_option("--split", o->split, "the split --vary measures on (the search tunes on tuning and checks on validation)")
       ->default_val(o->split)
       ->check(CLI::IsMember({"tuning", "validation"}));
-  cmd->add_flag("--per-scene", o->per_scene, "every member's F, IDF1 and tracking errors (the Kalman estimate's and the raw centroid's) too (presets and --vary)");
+  cmd->add_flag("--per-scene", o->per_scene, "every member's F, IDF1, tracking errors (the Kalman estimate's and the raw centroid's), MOTA and false tracks a frame too (presets and --vary)");
   cmd->add_option("--rounds", o->rounds, "passes of --search over the grid")->default_val(o->rounds)->check(CLI::Range(1, 20));
   cmd->add_option("--backend", o->backend, "implementation to measure")->default_val(o->backend);
   cmd->add_option("--sensor", o->pins.width, "the family's members on this sensor instead of the seed's draw: WxH")

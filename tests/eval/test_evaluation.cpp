@@ -309,7 +309,10 @@ TEST(SweepCommand, PinsTheMembersSensorShapesAndNoise) {
   EXPECT_NE(r.out.find("| rotation 1: rotation 200x150,  3 shapes (0 moving), speed"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("noise 0.50 Hz"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| paper-rotation 1: rotation 240x180, poster of 9 shapes"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("| F 0.04 | IDF1 0.04 | track err px 0.04 | centroid err px 0.04 | err to events' centre px 0.04 |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| F 0.04 | IDF1 0.04 | track err px 0.04 | centroid err px 0.04 | err to events' centre px 0.04 | MOTA 0.04 | "
+                       "false tracks/frame 0.04 |"),
+            std::string::npos)
+      << r.out;
   const auto bad = test::run_command(test::evms_binary() + " sweep --types rotation --seeds 1 --sensor 200");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("--sensor: expected WxH"), std::string::npos) << bad.err;
