@@ -7,7 +7,10 @@ namespace evms::eval {
 
 using std::size_t;
 
-std::vector<int> max_weight_assignment(const std::vector<std::vector<double>>& weight) {
+namespace {
+
+// The method itself, for rows <= columns.
+std::vector<int> assign_rows(const std::vector<std::vector<double>>& weight) {
   const int n = static_cast<int>(weight.size());
   const int m = n ? static_cast<int>(weight[0].size()) : 0;
   constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -50,6 +53,22 @@ std::vector<int> max_weight_assignment(const std::vector<std::vector<double>>& w
   for (int j = 1; j <= m; ++j) {
     if (p[static_cast<size_t>(j)] > 0) column[static_cast<size_t>(p[static_cast<size_t>(j)] - 1)] = j - 1;
   }
+  return column;
+}
+
+}  // namespace
+
+std::vector<int> max_weight_assignment(const std::vector<std::vector<double>>& weight) {
+  const size_t rows = weight.size(), columns = rows ? weight[0].size() : 0;
+  if (rows <= columns) return assign_rows(weight);
+  // More rows than columns: match every column to a row, on the transpose.
+  std::vector<std::vector<double>> transposed(columns, std::vector<double>(rows));
+  for (size_t r = 0; r < rows; ++r) {
+    for (size_t c = 0; c < columns; ++c) transposed[c][r] = weight[r][c];
+  }
+  const std::vector<int> row_of_column = assign_rows(transposed);
+  std::vector<int> column(rows, -1);
+  for (size_t c = 0; c < columns; ++c) column[static_cast<size_t>(row_of_column[c])] = static_cast<int>(c);
   return column;
 }
 

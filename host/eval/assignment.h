@@ -6,8 +6,9 @@
 
 namespace evms::eval {
 
-// The assignment of rows to distinct columns (rows <= columns) that maximizes the total weight:
-// Hungarian method with potentials on the cost -weight. Returns the column of each row.
+// The one-to-one assignment of rows and columns that matches every row or every column, whichever
+// are fewer, and maximizes the total weight: Hungarian method with potentials on the cost
+// -weight. Returns the column of each row, -1 for a row left over when columns are fewer.
 std::vector<int> max_weight_assignment(const std::vector<std::vector<double>>& weight);
 
 }  // namespace evms::eval

@@ -22,8 +22,7 @@ IdentityScores identity_scores(std::span<const Event> events, std::span<const st
   int r = 0, c = 0;
   for (auto& [key, row] : object_row) row = r++;
   for (auto& [key, col] : id_column) col = c++;
-  const int columns = std::max(c, r);  // padded so that every object can be matched
-  std::vector<std::vector<double>> common(static_cast<size_t>(r), std::vector<double>(static_cast<size_t>(columns), 0.0));
+  std::vector<std::vector<double>> common(static_cast<size_t>(r), std::vector<double>(static_cast<size_t>(c), 0.0));
   double truth_events = 0, predicted_events = 0;
   for (size_t i = 0; i < events.size(); ++i) {
     truth_events += truth[i] >= 0;

@@ -148,19 +148,17 @@ ClearMot clear_mot(std::span<const TrackUpdate> updates, const CentreLookup& cen
     std::vector<size_t> rows, cols;
     for (size_t k = 0; k < present_objects.size(); ++k) if (match[k] < 0) rows.push_back(k);
     for (size_t j = 0; j < tracks.size(); ++j) if (!taken[j]) cols.push_back(j);
-    const bool transpose = rows.size() > cols.size();
-    std::vector<std::vector<double>> weight(transpose ? cols.size() : rows.size(),
-                                            std::vector<double>(transpose ? rows.size() : cols.size(), 0.0));
+    std::vector<std::vector<double>> weight(rows.size(), std::vector<double>(cols.size()));
     for (size_t a = 0; a < rows.size(); ++a) {
       for (size_t b = 0; b < cols.size(); ++b) {
         const double d = distance[rows[a]][cols[b]];
-        (transpose ? weight[b][a] : weight[a][b]) = d <= radius_px ? kPairFirst - d : 0.0;
+        weight[a][b] = d <= radius_px ? kPairFirst - d : 0.0;
       }
     }
     const std::vector<int> assigned = max_weight_assignment(weight);
-    for (size_t r = 0; r < assigned.size(); ++r) {
-      if (assigned[r] < 0) continue;
-      const size_t k = rows[transpose ? static_cast<size_t>(assigned[r]) : r], j = cols[transpose ? r : static_cast<size_t>(assigned[r])];
+    for (size_t a = 0; a < rows.size(); ++a) {
+      if (assigned[a] < 0) continue;
+      const size_t k = rows[a], j = cols[static_cast<size_t>(assigned[a])];
       if (distance[k][j] <= radius_px) match[k] = static_cast<int>(j), taken[j] = true;
     }
     for (size_t k = 0; k < present_objects.size(); ++k) {

@@ -52,6 +52,38 @@ TEST(Assignment, MaxWeightAssignmentIsOptimalOnEveryRandomMatrixUpTo5x6) {
   EXPECT_EQ(checked, 40 * (6 + 5 + 4 + 3 + 2));
 }
 
+// More rows than columns: every column is matched to a distinct row, the rest get -1, and the
+// total is the best over the transposed problem's assignments.
+TEST(Assignment, MoreRowsThanColumnsMatchEveryColumn) {
+  std::mt19937 rng(20261126);
+  std::uniform_int_distribution<int> weight(-20, 20);
+  for (int columns = 1; columns <= 4; ++columns) {
+    for (int rows = columns + 1; rows <= 6; ++rows) {
+      for (int trial = 0; trial < 20; ++trial) {
+        std::vector<std::vector<double>> w(static_cast<size_t>(rows), std::vector<double>(static_cast<size_t>(columns)));
+        for (auto& row : w) for (double& x : row) x = weight(rng);
+        std::vector<std::vector<double>> t(static_cast<size_t>(columns), std::vector<double>(static_cast<size_t>(rows)));
+        for (int r = 0; r < rows; ++r) for (int c = 0; c < columns; ++c) t[static_cast<size_t>(c)][static_cast<size_t>(r)] = w[static_cast<size_t>(r)][static_cast<size_t>(c)];
+        const std::vector<int> col = max_weight_assignment(w);
+        ASSERT_EQ(col.size(), w.size());
+        std::vector<bool> used(static_cast<size_t>(columns), false);
+        double total = 0;
+        int matched = 0;
+        for (size_t r = 0; r < w.size(); ++r) {
+          if (col[r] < 0) continue;
+          ASSERT_LT(col[r], columns);
+          ASSERT_FALSE(used[static_cast<size_t>(col[r])]) << "column " << col[r] << " assigned twice";
+          used[static_cast<size_t>(col[r])] = true;
+          total += w[r][static_cast<size_t>(col[r])];
+          ++matched;
+        }
+        ASSERT_EQ(matched, columns);
+        ASSERT_DOUBLE_EQ(total, best_total(t)) << rows << "x" << columns << " trial " << trial;
+      }
+    }
+  }
+}
+
 TEST(Assignment, NoRowsGiveNoAssignment) { EXPECT_TRUE(max_weight_assignment({}).empty()); }
 
 }  // namespace
