@@ -145,9 +145,8 @@ void print_scenes(const std::vector<eval::FamilyScene>& family, const std::vecto
                 gen::describe(s.scene.config).c_str(), s.scene.events.size(), 100.0 * truth_noise / std::max<size_t>(1, s.scene.events.size()));
     for (const auto& r : results) {
       const eval::TrackingReport& t = r.scenes[i].tracking;
-      const double false_per_frame = t.mot.frames ? static_cast<double>(t.mot.false_positives) / static_cast<double>(t.mot.frames) : 0.0;
       std::printf(" %.3f | %.3f | %.2f | %.2f | %.2f | %.3f | %.2f |", r.scenes[i].scores.f, r.scenes[i].identity.idf1, t.all_kalman.mean,
-                  t.all_raw.mean, t.all_kalman_events.mean, t.mot.mota(), false_per_frame);
+                  t.all_raw.mean, t.all_kalman_events.mean, t.mot.mota(), t.mot.false_positives_per_frame());
     }
     std::printf("\n");
   }

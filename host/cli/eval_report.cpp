@@ -516,11 +516,12 @@ std::string write_report(const EvalOptions& o) {
        << fmt("%.0f %%", 100 * family_results[0].tracking_to_events.within) << "), paper preset "
        << fmt("%.2f", family_results[1].tracking_to_events.mean) << " px (" << fmt("%.0f %%", 100 * family_results[1].tracking_to_events.within)
        << ").\n\n";
-    md << "CLEAR MOT over the split (`host/eval/tracking_metrics.h`: one track per object at a time, 10 ms frames): E-MS MOTA "
-       << fmt("%.3f", family_results[0].mot.mota()) << ", MOTP " << fmt("%.2f", family_results[0].mot.to_centres.mean) << " px ("
-       << fmt("%.2f", family_results[0].mot.to_events.mean) << " px to the labelled events' centre, " << fmt("%.0f %%", 100 * family_results[0].mot.to_events.within)
-       << " within 2.5 px); paper preset MOTA " << fmt("%.3f", family_results[1].mot.mota()) << ", MOTP " << fmt("%.2f", family_results[1].mot.to_centres.mean)
-       << " px (" << fmt("%.2f", family_results[1].mot.to_events.mean) << " px, " << fmt("%.0f %%", 100 * family_results[1].mot.to_events.within) << ").\n\n";
+    const auto mot_text = [](const ClearMot& m) {
+      return "MOTA " + fmt("%.3f", m.mota()) + ", MOTP " + fmt("%.2f", m.to_centres.mean) + " px (" + fmt("%.2f", m.to_events.mean) +
+             " px to the labelled events' centre, " + fmt("%.0f %%", 100 * m.to_events.within) + " within 2.5 px)";
+    };
+    md << "CLEAR MOT over the split (`host/eval/tracking_metrics.h`: one track per object at a time, 10 ms frames): E-MS "
+       << mot_text(family_results[0].mot) << "; paper preset " << mot_text(family_results[1].mot) << ".\n\n";
   }
 
   md << "## Targets\n\n| target | scene | reached | |\n|---|---|---|---|\n";

@@ -102,8 +102,7 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
     to_centres.add(r.tracking.all_kalman);
     to_events.add(r.tracking.all_kalman_events);
     const ClearMot& m = r.tracking.mot;
-    out.mot.frames += m.frames, out.mot.objects += m.objects, out.mot.matches += m.matches;
-    out.mot.misses += m.misses, out.mot.false_positives += m.false_positives, out.mot.mismatches += m.mismatches;
+    out.mot.add_counts(m);
     mot_to_centres.add(m.to_centres);
     mot_to_events.add(m.to_events);
   }

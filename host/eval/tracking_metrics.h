@@ -71,6 +71,12 @@ struct ClearMot {
   double mota() const {
     return objects ? 1.0 - static_cast<double>(misses + false_positives + mismatches) / static_cast<double>(objects) : 0.0;
   }
+  double false_positives_per_frame() const { return frames ? static_cast<double>(false_positives) / static_cast<double>(frames) : 0.0; }
+  // Adds another run's counts (its error statistics pool elsewhere: host/eval/family_eval.cpp).
+  void add_counts(const ClearMot& m) {
+    frames += m.frames, objects += m.objects, matches += m.matches;
+    misses += m.misses, false_positives += m.false_positives, mismatches += m.mismatches;
+  }
 };
 
 struct TrackingReport {
