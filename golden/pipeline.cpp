@@ -39,8 +39,8 @@ Pipeline::Pipeline(const Params& params, SensorSize sensor)
 void Pipeline::push(const Event& e, OutputSink& out) {
   ++stats_.events_in;
   if (!filter_.accept(e)) {
-    pending_.push_back({e, -1});
-    if (packet_.empty()) close_packet(out);  // nothing to wait for: flush at once
+    pending_.push_back({e, -1, filter_.support_asked()});
+    if (packet_.empty()) flush_settled_noise(e.t, out);  // no packet to wait for
     return;
   }
   ++stats_.events_kept;
@@ -48,14 +48,41 @@ void Pipeline::push(const Event& e, OutputSink& out) {
       e.t - packet_.front().t > params_.packet_max_span_us) {
     close_packet(out);
   }
-  pending_.push_back({e, static_cast<int>(packet_.size())});
+  pending_.push_back({e, static_cast<int>(packet_.size()), 0});
   packet_.push_back(e);
   if (static_cast<int>(packet_.size()) >= params_.packet_size) close_packet(out);
 }
 
 void Pipeline::finish(OutputSink& out) { close_packet(out); }
 
+void Pipeline::flush_settled_noise(TimeUs now, OutputSink& out) {
+  // Without the look-ahead a dropped event is settled at once; with it, once its neighbours' time is up.
+  size_t settled = pending_.size();
+  if (params_.filter_look_ahead_us > 0) {
+    settled = 0;
+    while (settled < pending_.size() && pending_[settled].event.t + params_.filter_look_ahead_us < now) ++settled;
+  }
+  if (settled == 0) return;
+  labelled_.clear();
+  for (size_t k = 0; k < settled; ++k) labelled_.push_back({pending_[k].event, kNoiseLabel});
+  out.on_events(labelled_);
+  pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(settled));
+}
+
+void Pipeline::look_ahead() {
+  packet_.clear();
+  for (Pending& p : pending_) {
+    if (p.packet_index < 0) {
+      if (filter_.neighbours_fired_after(p.event.x, p.event.y, p.event.t, p.event.t + params_.filter_look_ahead_us) < p.support_asked) continue;
+      ++stats_.events_kept;
+    }
+    p.packet_index = static_cast<int>(packet_.size());
+    packet_.push_back(p.event);
+  }
+}
+
 void Pipeline::close_packet(OutputSink& out) {
+  if (params_.filter_look_ahead_us > 0) look_ahead();
   label_of_packet_event_.assign(packet_.size(), kNoiseLabel);
   std::vector<std::int32_t>& label_of_packet_event = label_of_packet_event_;
   if (!packet_.empty()) {

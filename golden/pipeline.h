@@ -46,6 +46,12 @@ class Pipeline {
 
  private:
   void close_packet(OutputSink& out);
+  // With --filter-look-ahead-us: puts back into the packet, in input order, the pending events
+  // the filter dropped whose neighbours have fired since.
+  void look_ahead();
+  // Hands out, as noise, the pending events (all dropped, no packet being open) whose verdict can
+  // no longer change at time `now`.
+  void flush_settled_noise(TimeUs now, OutputSink& out);
 
   Params params_;
   SensorSize sensor_;
@@ -58,6 +64,7 @@ class Pipeline {
   struct Pending {
     Event event;
     int packet_index;  // index into packet_, or -1 when filtered
+    int support_asked; // the neighbours the filter asked of it
   };
   std::vector<Pending> pending_;
   std::vector<TrackUpdate> updates_;

@@ -33,6 +33,10 @@ const std::array kTable = {
               "last 32.8 ms, the filter asks one more supporting neighbour of each event for the next 32.8 ms (a noisy "
               "sensor's background activity supports itself within a long window); 0 = off",
               &Params::filter_noise_hz, 0, 1e6},
+    ParamInfo{"filter-look-ahead-us", "us", "an event the filter dropped is kept after all when, by the time its packet "
+              "closes, as many neighbours as the filter asked of it fired within this long after it (the first events of an "
+              "edge have no history to be judged by); 0 = off",
+              &Params::filter_look_ahead_us, 0, 1e9},
     ParamInfo{"packet-support", "neighbours", "when a packet closes, its events of which fewer than this many neighbours "
               "fired while it was open (before or after them) are noise; 0 = off",
               &Params::packet_support, 0, 8},

@@ -46,6 +46,8 @@ struct Params {
   TimeUs filter_warm_up_us = 0;     // keep every event of the stream's first this long; 0 = off
   double filter_noise_hz = 0.7;      // unsupported events a pixel a second that make the filter ask
                                      // one more neighbour (filter_noise_count); 0 = off
+  TimeUs filter_look_ahead_us = 0;   // a dropped event is kept after all when neighbours fired
+                                     // within this long after it, before its packet closed; 0 = off
   int packet_support = 0;            // neighbours that must have fired while the packet was open
 
   // --- packets --------------------------------------------------------------------------

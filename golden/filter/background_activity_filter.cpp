@@ -1,6 +1,7 @@
 #include "golden/filter/background_activity_filter.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace evms::golden {
 
@@ -41,9 +42,16 @@ bool BackgroundActivityFilter::accept(const Event& e) {
 }
 
 int BackgroundActivityFilter::neighbours_fired_since(int x, int y, TimeUs since) const {
+  return neighbours_fired_after(x, y, since - 1, std::numeric_limits<TimeUs>::max());
+}
+
+int BackgroundActivityFilter::neighbours_fired_after(int x, int y, TimeUs after, TimeUs until) const {
   int fired = 0;
   for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) fired += (dx != 0 || dy != 0) && last_fired(x + dx, y + dy) >= since;
+    for (int dx = -1; dx <= 1; ++dx) {
+      const TimeUs t = last_fired(x + dx, y + dy);
+      fired += (dx != 0 || dy != 0) && t > after && t <= until;
+    }
   }
   return fired;
 }

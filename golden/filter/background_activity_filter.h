@@ -20,6 +20,9 @@
 // history is shorter than the window, so an edge pixel whose neighbours have not fired yet
 // cannot be told from noise. That helps a short, dense recording and costs a noisy one
 // (docs/sweep.md, "The filter's first window"), so it is off by default.
+//
+// The filter only looks back. golden/pipeline.h can look ahead as well (--filter-look-ahead-us),
+// with neighbours_fired_after() once the events after a dropped one have been recorded.
 #pragma once
 
 #include <cstddef>
@@ -42,6 +45,10 @@ class BackgroundActivityFilter {
 
   // How many of (x, y)'s 8 neighbours fired at or after `since` (their latest event).
   int neighbours_fired_since(int x, int y, TimeUs since) const;
+  // How many of (x, y)'s 8 neighbours' latest events lie in (after, until].
+  int neighbours_fired_after(int x, int y, TimeUs after, TimeUs until) const;
+  // The supporting neighbours the last event accept() judged was asked for.
+  int support_asked() const { return support_ + (noisy_ ? 1 : 0); }
 
  private:
   // Longer ago than any window: a time difference to it cannot overflow, as times are at most

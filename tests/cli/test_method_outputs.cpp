@@ -135,6 +135,9 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   const auto warm = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --filter-warm-up-us 30000 --quiet");
   EXPECT_EQ(warm.exit_code, 1);
   EXPECT_NE(warm.err.find("does not implement --filter-warm-up-us 30000 (only --filter-warm-up-us 0)"), std::string::npos) << warm.err;
+  const auto ahead = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --filter-look-ahead-us 10000 --quiet");
+  EXPECT_EQ(ahead.exit_code, 1);
+  EXPECT_NE(ahead.err.find("does not implement --filter-look-ahead-us 10000 (only --filter-look-ahead-us 0)"), std::string::npos) << ahead.err;
 }
 
 // The host RTL build runs the default method (in its sizes); its labels and tracks are the

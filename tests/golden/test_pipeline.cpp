@@ -96,6 +96,49 @@ TEST(Pipeline, NoiseAmongABlobIsLabelledNoise) {
   EXPECT_EQ(noise_labelled, noise_total);
 }
 
+// The first event of an edge has no neighbour's history to be judged by, so the filter drops it;
+// with the look-ahead its neighbours that fire after it bring it back into its cluster, while an
+// event whose neighbours stay quiet stays noise, and every label still leaves in input order.
+TEST(Pipeline, LookAheadKeepsAnEdgesFirstEventAndStillDropsALoneOne) {
+  std::vector<Event> events;
+  TimeUs t = 0;
+  for (int round = 0; round < 3; ++round) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) events.push_back({t++, static_cast<std::uint16_t>(100 + dx), static_cast<std::uint16_t>(50 + dy), 1});
+    }
+    if (round == 0) events.push_back({t++, 200, 150, 1});  // alone
+  }
+  Params look;
+  look.filter_look_ahead_us = 10000;
+  const CollectingSink plain = run(events, Params{});
+  const CollectingSink ahead = run(events, look);
+  ASSERT_EQ(plain.events.size(), events.size());
+  ASSERT_EQ(ahead.events.size(), events.size());
+  for (size_t i = 0; i < events.size(); ++i) EXPECT_EQ(ahead.events[i].event.t, events[i].t);
+  EXPECT_EQ(plain.events[0].label, kNoiseLabel);  // the edge's first event: no history
+  EXPECT_NE(plain.events[1].label, kNoiseLabel);
+  EXPECT_EQ(ahead.events[0].label, ahead.events[1].label);
+  EXPECT_EQ(plain.events[9].label, kNoiseLabel);  // the lone event, either way
+  EXPECT_EQ(ahead.events[9].label, kNoiseLabel);
+}
+
+// While no packet is open, a dropped event waits out its look-ahead before it leaves as noise.
+TEST(Pipeline, LookAheadHoldsADroppedEventOnlyForItsLookAhead) {
+  Params look;
+  look.filter_look_ahead_us = 10000;
+  Pipeline pipeline(look, kSensor);
+  CollectingSink sink;
+  pipeline.push({0, 10, 10, 1}, sink);
+  pipeline.push({10000, 100, 100, 1}, sink);  // its look-ahead is not over yet
+  EXPECT_TRUE(sink.events.empty());
+  pipeline.push({10001, 200, 100, 1}, sink);  // now it is: the first leaves
+  ASSERT_EQ(sink.events.size(), 1u);
+  EXPECT_EQ(sink.events[0].event.t, 0);
+  EXPECT_EQ(sink.events[0].label, kNoiseLabel);
+  pipeline.finish(sink);
+  EXPECT_EQ(sink.events.size(), 3u);
+}
+
 TEST(Pipeline, LaterPacketsLabelTheirOwnEvents) {
   // The authors' code read events of later packets from the wrong index. A blob that jumps
   // between packets must be labelled where it is, in every packet.
