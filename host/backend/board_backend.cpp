@@ -33,7 +33,9 @@
 // answers each event with its filter's verdict. The host runs the rest of the build's core on
 // the verdicts (hls::Core::process_decided), so the output is the whole core's, word for word.
 // An event whose verdict the line lost goes on as noise, and its row says lost (-2). Tracks
-// mode needs a whole core on the board, and is refused.
+// mode needs a whole core on the board, and is refused. Listening to such a board, every event
+// that enters at its AER pins comes back with its verdict, and the host clusters and tracks them
+// as they come, at the line's rate.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -104,8 +106,15 @@ class BoardBackend final : public Backend {
 
   void finish(OutputSink& out) override {
     // Listening ends where the user stops it, while the board goes on with its sensor's events:
-    // there is no end of input to flush to (a flush's status waits for an idle core).
-    if (listening_) return;
+    // there is no end of input to flush to (a flush's status waits for an idle core). The rest
+    // of the core on the host closes its open packet on the events that came.
+    if (listening_) {
+      if (rest_) {
+        rest_->flush();
+        drain_rest(out);
+      }
+      return;
+    }
     flushing_ = true;
     send_flush();
     while (flushing_) receive(out, true);
@@ -122,7 +131,7 @@ class BoardBackend final : public Backend {
   // updates, packet summaries and progress frames come. A sensor that sees nothing moving
   // sends nothing, so silence here is not a lost board.
   void listen(OutputSink& out, int wait_ms) override {
-    if (mode_ != link::LinkMode::kTracks) {
+    if (mode_ != link::LinkMode::kTracks && !rest_) {
       throw std::invalid_argument("listening to the board's AER pins needs --board-link tracks: only track updates cross the line");
     }
     listening_ = true;
@@ -239,6 +248,28 @@ class BoardBackend final : public Backend {
     });
   }
 
+  // Listening to a board that stops at the filter: each label frame brings an event the board
+  // took at its AER pins, with its verdict, and the rest of the core on the host takes it. A gap
+  // in the numbers is events the line destroyed; no one has them to send again, so they are
+  // counted as labels lost, and their rows are missing.
+  void take_stamped(const link::Frame& f, OutputSink& out) {
+    const hls::LabelWord label = link::decode_label(f);
+    if (label.label != -1 && label.label != hls::kLabelPassedFilter) {  // not a verdict: a corruption the check missed
+      ++unbelieved_;
+      return;
+    }
+    const std::uint64_t number = unwrap(link::label_sequence(f), answered_);
+    // The run starts at the first event after the reset's status: the sensor never stopped, and
+    // events the board labelled before it said it was ready went by as stale.
+    if (!stamped_any_) answered_ = number, stamped_any_ = true;
+    lost_ += static_cast<std::int64_t>(number - answered_);
+    answered_ = number + 1;
+    ++stats_.s.events_in;
+    const hls::EventWord event{label.t, label.x, label.y, label.p, false};
+    mapper_.stamped(event);
+    complete(event, label.label == hls::kLabelPassedFilter, false, out);
+  }
+
   // Reads what the board has sent; with `wait`, blocks until at least one frame came or, after
   // kResendMs of silence, the outstanding frames were sent again.
   void receive(OutputSink& out, bool wait) {
@@ -278,6 +309,10 @@ class BoardBackend final : public Backend {
       }
       switch (f.type) {
         case link::kLabel: {
+          if (listening_ && rest_) {
+            take_stamped(f, out);
+            break;
+          }
           if (mode_ == link::LinkMode::kTracks) {  // not a frame of this run's mode: a corruption the check missed
             ++unbelieved_;
             break;
@@ -372,6 +407,7 @@ class BoardBackend final : public Backend {
   std::uint64_t bad_at_start_ = 0;
   bool started_ = false, flushing_ = false;
   bool listening_ = false;             // listen() was called: the events enter at the board's AER pins
+  bool stamped_any_ = false;           // listening to a board that stops at the filter: an event came
   std::set<std::int32_t> listened_ids_;  // the track IDs whose updates came while listening
 };
 

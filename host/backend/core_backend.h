@@ -17,11 +17,22 @@ template <class S>
 class CoreWordMapper {
  public:
   hls::EventWord to_word(const Event& e) {
-    // Core time starts at 1: the filter's memory reserves 0 for "never fired".
-    if (!started_) base_ = e.t - 1, started_ = true;
+    // Core time starts at 1 or later: the filter's memory reserves 0 for "never fired". The
+    // offset is a whole number of 2^16 us, so that core time keeps the host's phase within the
+    // filter's 16-bit stamps and its 2^15 us noise intervals: a board's own stamps (its AER
+    // pins) and the same events read back from a file then give the same words' results.
+    if (!started_) base_ = ((e.t - 1) >> 16) << 16, started_ = true;
     latest_ = e.t;
     pending_.push_back(e);
     return {static_cast<std::uint32_t>(e.t - base_), e.x, e.y, e.p, false};
+  }
+  // An event that entered at the board's AER pins, as the board stamped it: kept for its label
+  // like to_word's, at the board's microsecond (its 32-bit counter widened past its wrap).
+  void stamped(const hls::EventWord& w) {
+    const TimeUs t = started_ ? latest_ + static_cast<std::int32_t>(w.t - static_cast<std::uint32_t>(latest_)) : TimeUs{w.t};
+    started_ = true;
+    latest_ = t;
+    pending_.push_back({t, w.x, w.y, w.p});
   }
   // The oldest event not yet labelled, with its label; the word must be its echo.
   LabelledEvent label(const hls::LabelWord& w) {

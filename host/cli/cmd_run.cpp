@@ -108,14 +108,16 @@ void run(const RunOptions& o) {
               grouped(sink.confirmed).c_str(), grouped(sink.track_rows).c_str());
   if (s.unassigned_clusters) std::fprintf(summary, "            %s clusters found no free track slot (labelled noise)\n", grouped(s.unassigned_clusters).c_str());
   if (o.backend == "board") {
-    std::fprintf(summary, "link        %s frames failed their check, %s events sent again, %s labels lost (labelled %d)\n",
+    // Listening, a lost label's event never reached the host: it has no row to mark.
+    const std::string lost_rows = o.listen ? "their events have no rows" : "labelled " + std::to_string(kLabelLostOnLink);
+    std::fprintf(summary, "link        %s frames failed their check, %s events sent again, %s labels lost (%s)\n",
                  grouped(s.link_bad_frames).c_str(), grouped(s.link_events_resent).c_str(), grouped(s.link_labels_lost).c_str(),
-                 kLabelLostOnLink);
+                 lost_rows.c_str());
     if (s.board_passed + s.board_filtered > 0) {
       std::fprintf(summary, "board       filtered (its core stops at the filter): %s events passed, %s noise; clustered and tracked on the host\n",
                    grouped(s.board_passed).c_str(), grouped(s.board_filtered).c_str());
     }
-    if (o.listen) {
+    if (o.listen && s.board_passed + s.board_filtered == 0) {
       std::fprintf(summary, "board       kept the labels (tracks mode): %s events from its AER pins labelled with a track, %s noise, "
                    "by its last progress frame\n", grouped(s.board_labelled).c_str(), grouped(s.board_noise).c_str());
     } else if (s.labels_kept_on_board) {

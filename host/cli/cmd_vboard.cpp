@@ -15,9 +15,10 @@
 // --aer SOURCE plays a recording into the board's AER pins as a DVS128 would, from the moment
 // the host first writes to the terminal (its reset frame): each event in the board's
 // microsecond its own time falls in, after the first. With `evms run --listen --backend board
-// --core arty --board-link tracks`, that is the live demo without a sensor. --aer-stamped FILE
-// then writes the events as the board stamped them (events.txt format, at the board's sensor
-// size), for `evms run --backend fixed --core arty` to compare with.
+// --core arty --board-link tracks` (or `--core ice40`, whose board sends each event's verdict),
+// that is the live demo without a sensor. --aer-stamped FILE then writes the events as the board
+// stamped them (events.txt format, at the board's sensor size), for `evms run --backend fixed
+// --core arty` (or ice40) to compare with.
 //
 // --error-rate R makes the line unreliable, as a UART beside a sensor can be: each byte, in
 // either direction, is hit with probability R by one fault, equally often a flipped bit, the
@@ -168,8 +169,14 @@ void serve(const VboardOptions& o, const backend::BoardOfBuild& of_build) {
         board.send(to_board.pass(std::span(in.data(), static_cast<size_t>(n))));
         last_activity = board.cycles();
         if (!recording.empty() && !aer) {
-          // A millisecond on, so that the host's reset frame has restarted the core first.
-          const std::uint64_t start_us = (board.cycles() - sim::VirtualBoard<V>::kResetCycles) / static_cast<std::uint64_t>(ticks_per_us) + 1000;
+          // Once the host's reset frame has restarted the core and the board has said so (a label
+          // sent before the reset's status frame is not the run's): the filter forgets its pixels'
+          // times a pixel a clock (rtl/filter/evms_ba_filter.sv), 1.4 ms on the iCEBreaker, and a
+          // millisecond more covers the reset frame and the status.
+          const SensorSize sensor = backend::core_build_sensor(o.build);
+          const std::uint64_t clear_us = static_cast<std::uint64_t>(sensor.width) * sensor.height / static_cast<std::uint64_t>(ticks_per_us);
+          const std::uint64_t start_us =
+              (board.cycles() - sim::VirtualBoard<V>::kResetCycles) / static_cast<std::uint64_t>(ticks_per_us) + clear_us + 1000;
           aer.emplace(aer_sender(recording, start_us, ticks_per_us));
           std::fprintf(stderr, "evms vboard: %zu events into the AER pins from the board's microsecond %llu\n", recording.size(),
                        static_cast<unsigned long long>(start_us));
@@ -220,14 +227,10 @@ void register_vboard(CLI::App& app) {
       ->check(CLI::Range(0.0, 0.1));
   cmd->add_option("--seed", o->seed, "seed of the line's faults")->default_val(o->seed);
   cmd->add_option("--aer", o->aer, "play this recording (128x128 at most) into the board's AER pins as a DVS128 would, from the host's "
-                                   "first bytes on (--build arty; with evms run --listen, the live demo without a sensor)");
+                                   "first bytes on (with evms run --listen, the live demo without a sensor)");
   cmd->add_option("--aer-stamped", o->aer_stamped, "once --aer's events are all in, write them as the board stamped them (the events.txt "
                                                    "format of evms gen, at the board's sensor size), to compare with --backend fixed");
   cmd->callback([o] {
-    if (!o->aer.empty() && o->build != "arty") {
-      throw std::invalid_argument("--aer needs --build arty: the iCEBreaker's board returns a verdict for every event, and the host "
-                                  "listens only to a board that keeps its labels");
-    }
     if (!o->aer_stamped.empty() && o->aer.empty()) throw std::invalid_argument("--aer-stamped needs --aer");
     if (o->build == "arty") serve<Vboard_arty>(*o, backend::board_of("arty"));
     else serve<Vboard_ice40>(*o, backend::board_of("ice40"));

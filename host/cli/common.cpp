@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "host/backend/backend.h"
+#include "host/backend/core_config.h"
 #include "host/cli/config_file.h"
 #include "host/read/live/live_source.h"
 #include "host/read/source_window.h"
@@ -49,13 +50,16 @@ bool interrupted() { return g_interrupted != 0; }
 void add_listen_option(CLI::App& cmd, bool& listen) {
   cmd.add_flag("--listen", listen, "no SOURCE: the events enter at the board's AER pins (a DVS128 wired to the board) and the host sends "
                                    "none; it takes the board's tracks until Ctrl-C, or until the board has labelled --limit events "
-                                   "(--backend board --board-link tracks)");
+                                   "(--backend board: --board-link tracks with --core arty; with --core ice40 the board's filter "
+                                   "verdicts come, and the host clusters and tracks them)");
 }
 
 read::SourceInfo listening_input(const std::string& backend, const std::string& core, bool keeps_labels, bool source_given,
                                  const read::SourceOptions& input) {
-  if (backend != "board" || !keeps_labels) {
-    throw std::invalid_argument("--listen takes the board's own input, and only its tracks cross the line: add --backend board --board-link tracks");
+  const bool filter_on_board = backend == "board" && backend::board_of(backend::board_build(core)).core_stops_at_filter;
+  if (backend != "board" || (!keeps_labels && !filter_on_board)) {
+    throw std::invalid_argument("--listen takes the board's own input: add --backend board, and --board-link tracks for a board with the whole "
+                                "core (--core arty), whose labels stay on it");
   }
   if (source_given) throw std::invalid_argument("--listen takes the events at the board's AER pins: name no SOURCE");
   const read::SourceWindow& w = input.window;

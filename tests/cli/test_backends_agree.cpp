@@ -325,7 +325,8 @@ TEST(BackendsAgree, ListeningToTheBoardsAerPinsGivesTheFixedCoresTracks) {
   // Listening is the board's, in tracks mode, without a source on the host: one line otherwise.
   const auto golden = run_command(evms_binary() + " run --listen --quiet");
   EXPECT_EQ(golden.exit_code, 1);
-  EXPECT_EQ(golden.err, "evms: --listen takes the board's own input, and only its tracks cross the line: add --backend board --board-link tracks\n");
+  EXPECT_EQ(golden.err, "evms: --listen takes the board's own input: add --backend board, and --board-link tracks for a board with the whole "
+                        "core (--core arty), whose labels stay on it\n");
   const auto with_source = run_command(listen + " \"" + scene + "\"");
   EXPECT_EQ(with_source.exit_code, 1);
   EXPECT_EQ(with_source.err, "evms: --listen takes the events at the board's AER pins: name no SOURCE\n");
@@ -333,6 +334,45 @@ TEST(BackendsAgree, ListeningToTheBoardsAerPinsGivesTheFixedCoresTracks) {
   EXPECT_EQ(too_large.exit_code, 1);
   EXPECT_NE(too_large.err.find("a 240x180 sensor; the board's AER pins take a DVS128's 7-bit addresses (128x128 at most)"), std::string::npos)
       << too_large.err;
+}
+
+// Listening to the iCEBreaker's board, whose core stops at the filter: every event that enters
+// at its AER pins comes back with its verdict (the sensor waits for the line), and the host
+// clusters and tracks them, so the rows of both files are the fixed ice40 core's on the events as
+// the board stamped them, byte for byte.
+TEST(BackendsAgree, ListeningToTheIcebreakersAerPinsGivesTheFixedCoresLabels) {
+  TempDir dir;
+  const std::string scene = "gen://translation?duration-s=0.1&seed=3&width=128&height=128";
+  const auto info = run_command(evms_binary() + " info \"" + scene + "\"");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const size_t at = info.out.find("events      ");
+  ASSERT_NE(at, std::string::npos) << info.out;
+  std::string count;
+  for (size_t i = at + 12; i < info.out.size() && (std::isdigit(static_cast<unsigned char>(info.out[i])) || info.out[i] == ','); ++i) {
+    if (info.out[i] != ',') count += info.out[i];
+  }
+  const std::string stamped = dir.path("stamped.txt");
+  VirtualBoardProcess board(dir, {"--build", "ice40", "--aer", scene, "--aer-stamped", stamped});
+  ASSERT_FALSE(board.device().empty()) << "evms vboard did not start";
+  // Until every event of the recording came: the sensor waits for the line, so the board takes
+  // the last of them only while the host reads.
+  const auto listened = run_command("timeout 120 " + evms_binary() + " run --listen --backend board --core ice40 --device " + board.device() +
+                                    " --limit " + count + " --out " + dir.path("listen"));
+  ASSERT_EQ(listened.exit_code, 0) << listened.err;
+  EXPECT_EQ(events_in_summary(listened.out), std::stol(count)) << listened.out;
+  EXPECT_NE(listened.out.find("0 labels lost"), std::string::npos) << listened.out;
+  EXPECT_NE(listened.out.find("clustered and tracked on the host"), std::string::npos) << listened.out;
+
+  for (int i = 0; i < 1200 && !std::filesystem::exists(stamped); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_TRUE(std::filesystem::exists(stamped)) << "the virtual board did not finish playing the recording";
+  const auto fixed = run_command(evms_binary() + " run " + stamped + " --quiet --backend fixed --core ice40 --out " + dir.path("fixed"));
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
+  const std::string events = read_file(dir.path("listen/events.csv"));
+  EXPECT_EQ(lines_of(events).size(), static_cast<size_t>(std::stol(count)) + 2) << "a row for every event, under the two header lines";
+  EXPECT_EQ(events, read_file(dir.path("fixed/events.csv")));
+  const std::string tracks = read_file(dir.path("listen/tracks.csv"));
+  EXPECT_GT(lines_of(tracks).size(), 10u);
+  EXPECT_EQ(tracks, read_file(dir.path("fixed/tracks.csv")));
 }
 
 }  // namespace
