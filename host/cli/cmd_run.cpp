@@ -117,7 +117,7 @@ void run(const RunOptions& o) {
       std::fprintf(summary, "board       filtered (its core stops at the filter): %s events passed, %s noise; clustered and tracked on the host\n",
                    grouped(s.board_passed).c_str(), grouped(s.board_filtered).c_str());
     }
-    if (o.listen && s.board_passed + s.board_filtered == 0) {
+    if (s.labels_kept_on_board && o.listen) {
       std::fprintf(summary, "board       kept the labels (tracks mode): %s events from its AER pins labelled with a track, %s noise, "
                    "by its last progress frame\n", grouped(s.board_labelled).c_str(), grouped(s.board_noise).c_str());
     } else if (s.labels_kept_on_board) {
