@@ -308,7 +308,14 @@ class BoardBackend final : public Backend {
         continue;
       }
       switch (f.type) {
-        case link::kLabel: {
+        case link::kLabel:
+        case link::kVerdict: {
+          // A board that stops at the filter sends verdicts, a whole core labels: the other is a
+          // corruption the check missed.
+          if ((f.type == link::kVerdict) != (rest_ != nullptr)) {
+            ++unbelieved_;
+            break;
+          }
           if (listening_ && rest_) {
             take_stamped(f, out);
             break;

@@ -14,4 +14,5 @@
   X(Packet, 0x83, 12, "board to host: a packet summary")                                                        \
   X(Status, 0x84, 44, "board to host: the board's counters")                                                    \
   X(Resend, 0x85, 2, "board to host: the number of the event the board expects")                                \
-  X(Progress, 0x86, 12, "board to host: the link's events the core took, events labelled, noise")
+  X(Progress, 0x86, 12, "board to host: the link's events the core took, events labelled, noise")               \
+  X(Verdict, 0x87, 9, "board to host: the filter's verdict on an event, with the label's number (a core that stops at the filter)")

@@ -97,12 +97,20 @@ bool FrameDecoder::next(Frame& out) {
 }
 
 hls::LabelWord decode_label(const Frame& f) {
+  if (f.type == kVerdict) {
+    // x and y in a byte each (the boards whose cores stop at the filter are 256x256 at most);
+    // flags: bit 0 the polarity, bit 1 passed the filter.
+    const std::uint32_t flags = get(f.payload, 6, 1);
+    return {get(f.payload, 0, 4), static_cast<std::uint16_t>(get(f.payload, 4, 1)), static_cast<std::uint16_t>(get(f.payload, 5, 1)),
+            static_cast<std::uint8_t>(flags & 1), (flags & 2) != 0 ? hls::kLabelPassedFilter : -1};
+  }
   if (f.type != kLabel) throw std::logic_error("not a label frame");
   return {get(f.payload, 0, 4), static_cast<std::uint16_t>(get(f.payload, 4, 2)), static_cast<std::uint16_t>(get(f.payload, 6, 2)),
           static_cast<std::uint8_t>(get(f.payload, 8, 1)), static_cast<std::int32_t>(get(f.payload, 9, 4))};
 }
 
 Sequence label_sequence(const Frame& f) {
+  if (f.type == kVerdict) return static_cast<Sequence>(get(f.payload, 7, 2));
   if (f.type != kLabel) throw std::logic_error("not a label frame");
   return static_cast<Sequence>(get(f.payload, 13, 2));
 }

@@ -9,7 +9,8 @@
 //                  next event's), 0x03 reset (mode u8: labels or tracks)
 //   board -> host: 0x81 labelled event (with the label's seq u16), 0x82 track update,
 //                  0x83 packet summary, 0x84 status, 0x85 resend (seq u16 the board expects),
-//                  0x86 progress (the board's counts, when the line is free)
+//                  0x86 progress (the board's counts, when the line is free), 0x87 verdict (a
+//                  labelled event's frame from a board whose core stops at the filter)
 #pragma once
 
 #include <cstdint>
@@ -77,6 +78,8 @@ class FrameDecoder {
   std::uint64_t bad_ = 0;
 };
 
+// A label frame or a verdict frame (a board whose core stops at the filter: label -1 or
+// hls::kLabelPassedFilter), and its number.
 hls::LabelWord decode_label(const Frame& f);
 Sequence label_sequence(const Frame& f);
 Sequence decode_resend(const Frame& f);

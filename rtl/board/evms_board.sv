@@ -24,7 +24,7 @@
 //   together, as a batch, when the queue is empty as the batch begins; otherwise the whole
 //   batch is skipped (and counted), so what reaches the host is always whole packets.
 // A board whose core stops at the filter (CoreStopsAtFilter) returns every event's verdict as
-// its label frame in both modes, and no track or packet frames.
+// a verdict frame (0x87) in both modes, and no track or packet frames.
 // In both modes, when the line is free and the counts have changed, a progress frame (link
 // events the core took, events labelled with a track, events labelled noise) tells the host
 // that the board is working; in tracks mode it acknowledges the host's events in place of
@@ -60,6 +60,7 @@ module evms_board #(
   // to PendingDepth of them unlabelled until their packet closes (which only more events do, or
   // a full pending queue), and its intake up to a packet's more.
   `EVMS_ASSERT_INIT("the link queue must be deeper than the core's pending and intake queues", LinkFifoDepth > PendingDepth + PacketMax)
+  `EVMS_ASSERT_INIT("a verdict frame holds x and y in a byte each", CoreStopsAtFilter == 0 || (MaxWidth <= 256 && MaxHeight <= 256))
 
   // ---- sources ------------------------------------------------------------------------------
   logic aer_valid, aer_ready, aer_p;
@@ -263,7 +264,7 @@ module evms_board #(
   // ---- link back to the host ----------------------------------------------------------------------
   logic tx_valid, tx_ready;
   logic [7:0] tx_data;
-  evms_link_tx u_link_tx (
+  evms_link_tx #(.LabelsAreVerdicts(CoreStopsAtFilter)) u_link_tx (
     .clk(clk), .rst_n(run_rst_n), .lab_valid(tx_lab_valid), .lab_ready(tx_lab_ready), .lab_t(lab_t), .lab_x(lab_x),
     .lab_y(lab_y), .lab_p(lab_p), .lab_label(lab_label), .trk_valid(q_out_valid && !q_out_is_packet), .trk_ready(tx_trk_ready),
     .trk_payload(q_out_payload), .pkt_valid(q_out_valid && q_out_is_packet), .pkt_ready(tx_pkt_ready),

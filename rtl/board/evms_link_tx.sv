@@ -1,12 +1,16 @@
-// Board-to-host half of the serial link (docs/link.md): labelled events (0x81), track
-// updates (0x82), packet summaries (0x83), status (0x84), resend requests (0x85) and progress
-// (0x86) as frames
+// Board-to-host half of the serial link (docs/link.md): labelled events (0x81, or 0x87 with
+// LabelsAreVerdicts: a filter's verdict, x and y in a byte each), track updates (0x82), packet
+// summaries (0x83), status (0x84), resend requests (0x85) and progress (0x86) as frames
 //   0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 // (CRC-16/CCITT-FALSE over TYPE, LEN and PAYLOAD; little-endian fields). Streams are served
 // one frame at a time, status first, then resend requests, packet summaries, track updates,
 // labelled events, progress; a stream waits (its valid stays high) while the UART is busy. Label frames carry their number modulo 2^16, counted
 // from reset, so that the host finds a label frame the line destroyed.
-module evms_link_tx (
+module evms_link_tx #(
+  // 1: the labels are a filter's verdicts (-1 noise, anything else passed) on a sensor of
+  // 256x256 at most, sent as 15-byte verdict frames instead of 21-byte label frames.
+  parameter int LabelsAreVerdicts = 0
+) (
   input  logic        clk,
   input  logic        rst_n,
   // Labelled events.
@@ -110,7 +114,12 @@ module evms_link_tx (
             {ftype, flen, payload} <= {FrameTrackType, FrameTrackLen, 88'd0, trk_payload};
             state <= S_SYNC1;
           end else if (lab_valid) begin
-            {ftype, flen, payload} <= {FrameLabelType, FrameLabelLen, 232'd0, label_seq, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
+            if (LabelsAreVerdicts != 0) begin
+              {ftype, flen, payload} <= {FrameVerdictType, FrameVerdictLen, 280'd0, label_seq, 6'd0, lab_label != 32'hFFFF_FFFF, lab_p,
+                                         lab_y[7:0], lab_x[7:0], lab_t};
+            end else begin
+              {ftype, flen, payload} <= {FrameLabelType, FrameLabelLen, 232'd0, label_seq, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
+            end
             label_seq <= label_seq + 1'b1;
             state <= S_SYNC1;
           end else if (pg_valid) begin

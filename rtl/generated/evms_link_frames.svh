@@ -12,4 +12,5 @@ localparam logic [7:0] FramePacketType = 8'h83, FramePacketLen = 8'd12;  // boar
 localparam logic [7:0] FrameStatusType = 8'h84, FrameStatusLen = 8'd44;  // board to host: the board's counters
 localparam logic [7:0] FrameResendType = 8'h85, FrameResendLen = 8'd2;  // board to host: the number of the event the board expects
 localparam logic [7:0] FrameProgressType = 8'h86, FrameProgressLen = 8'd12;  // board to host: the link's events the core took, events labelled, noise
+localparam logic [7:0] FrameVerdictType = 8'h87, FrameVerdictLen = 8'd9;  // board to host: the filter's verdict on an event, with the label's number (a core that stops at the filter)
 /* verilator lint_on UNUSEDPARAM */

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "hls/core/configs.h"
+#include "host/backend/core_backend.h"
 #include "host/backend/core_config.h"
 #include "tests/support/command.h"
 #include "tests/support/encoders.h"
@@ -195,12 +196,12 @@ TEST(BackendsAgree, TheBoardOverAnUnreliableLineLosesOnlyWhatItReports) {
     EXPECT_GT(bad_frames, 0) << "the line made no errors: " << r.out;
 
     // The ice40 core with the lost verdicts noise: the board's filter and the rest of the core
-    // on the host, on the words the backend made (times from 1).
+    // on the host, on the words the backend made (its mapper's core times).
     const hls::Config cfg = backend::core_config<S>(backend::build_default_params<S>(), {S::kMaxWidth, S::kMaxHeight});
     std::vector<hls::EventWord> words;
+    backend::CoreWordMapper<S> mapper;
     for (const CsvEvent& e : rows) {
-      words.push_back({static_cast<std::uint32_t>(e.t - rows[0].t + 1), static_cast<std::uint16_t>(e.x), static_cast<std::uint16_t>(e.y),
-                       static_cast<std::uint8_t>(e.p), false});
+      words.push_back(mapper.to_word({e.t, static_cast<std::uint16_t>(e.x), static_cast<std::uint16_t>(e.y), static_cast<std::uint8_t>(e.p)}));
     }
     std::vector<hls::LabelWord> verdicts = test::filter_core_verdicts<S>(words, cfg);
     ASSERT_EQ(verdicts.size(), rows.size());

@@ -44,7 +44,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     evms::link::Frame f;
     while (frames.next(f)) {
       switch (f.type) {
-        case evms::link::kLabel: (void)evms::link::decode_label(f), (void)evms::link::label_sequence(f); break;
+        case evms::link::kLabel:
+        case evms::link::kVerdict: (void)evms::link::decode_label(f), (void)evms::link::label_sequence(f); break;
         case evms::link::kResend: (void)evms::link::decode_resend(f); break;
         case evms::link::kTrack: (void)evms::link::decode_track(f); break;
         case evms::link::kPacket: (void)evms::link::decode_packet(f); break;

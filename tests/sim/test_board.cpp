@@ -53,6 +53,7 @@ Expected cxx_filter_core(const std::vector<hls::EventWord>& words) {
 struct Received {
   Expected words;
   std::vector<link::Sequence> label_seqs;
+  size_t verdict_frames = 0;  // of the labels, those that came as verdict frames
   std::vector<link::Sequence> resends;  // the numbers the board asked for again
   std::vector<link::Status> status;
   std::vector<link::Progress> progress;
@@ -69,6 +70,8 @@ void collect(sim::VirtualBoard<V>& board, link::FrameDecoder& decoder, Received&
   while (decoder.next(f)) {
     switch (f.type) {
       case link::kLabel:
+      case link::kVerdict:
+        r.verdict_frames += f.type == link::kVerdict;
         r.words.labels.push_back(link::decode_label(f));
         r.label_seqs.push_back(link::label_sequence(f));
         break;
@@ -188,7 +191,9 @@ TEST(BoardLink, EventsInLabelsOutEqualToTheCppCore) {
   EXPECT_EQ(r.status[0].overruns, 0u);
   EXPECT_EQ(r.bad_frames, 0u);
   EXPECT_TRUE(r.resends.empty());
-  // Label frames are numbered in order from the reset.
+  // The verdicts come as verdict frames (15 bytes, not a label frame's 21), numbered in order
+  // from the reset.
+  EXPECT_EQ(r.verdict_frames, r.words.labels.size());
   for (size_t i = 0; i < r.label_seqs.size(); ++i) ASSERT_EQ(r.label_seqs[i], static_cast<link::Sequence>(i)) << i;
 }
 
