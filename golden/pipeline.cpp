@@ -62,11 +62,14 @@ void Pipeline::flush_settled_noise(TimeUs now, OutputSink& out) {
     settled = 0;
     while (settled < pending_.size() && pending_[settled].event.t + params_.filter_look_ahead_us < now) ++settled;
   }
-  if (settled == 0) return;
+  if (settled > 0) hand_out_as_noise(settled, out);
+}
+
+void Pipeline::hand_out_as_noise(size_t count, OutputSink& out) {
   labelled_.clear();
-  for (size_t k = 0; k < settled; ++k) labelled_.push_back({pending_[k].event, kNoiseLabel});
+  for (size_t k = 0; k < count; ++k) labelled_.push_back({pending_[k].event, kNoiseLabel});
   out.on_events(labelled_);
-  pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(settled));
+  pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(count));
 }
 
 void Pipeline::look_ahead() {
@@ -158,9 +161,7 @@ void Pipeline::close_packet(OutputSink& out) {
     out.on_packet({packet_.front().t, packet_.back().t, static_cast<int>(packet_.size()),
                    clusters.count, clusters.iterations});
   } else {
-    labelled_.clear();
-    for (const Pending& p : pending_) labelled_.push_back({p.event, kNoiseLabel});
-    out.on_events(labelled_);
+    hand_out_as_noise(pending_.size(), out);
   }
   pending_.clear();
   packet_.clear();

@@ -52,6 +52,8 @@ class Pipeline {
   // Hands out, as noise, the pending events (all dropped, no packet being open) whose verdict can
   // no longer change at time `now`.
   void flush_settled_noise(TimeUs now, OutputSink& out);
+  // Hands out the first `count` pending events as noise.
+  void hand_out_as_noise(size_t count, OutputSink& out);
 
   Params params_;
   SensorSize sensor_;
