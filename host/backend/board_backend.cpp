@@ -248,16 +248,12 @@ class BoardBackend final : public Backend {
     });
   }
 
-  // Listening to a board that stops at the filter: each label frame brings an event the board
+  // Listening to a board that stops at the filter: each verdict frame brings an event the board
   // took at its AER pins, with its verdict, and the rest of the core on the host takes it. A gap
   // in the numbers is events the line destroyed; no one has them to send again, so they are
   // counted as labels lost, and their rows are missing.
   void take_stamped(const link::Frame& f, OutputSink& out) {
     const hls::LabelWord label = link::decode_label(f);
-    if (label.label != -1 && label.label != hls::kLabelPassedFilter) {  // not a verdict: a corruption the check missed
-      ++unbelieved_;
-      return;
-    }
     const std::uint64_t number = unwrap(link::label_sequence(f), answered_);
     // The run starts at the first event after the reset's status: the sensor never stopped, and
     // events the board labelled before it said it was ready went by as stale.
@@ -310,8 +306,8 @@ class BoardBackend final : public Backend {
       switch (f.type) {
         case link::kLabel:
         case link::kVerdict: {
-          // A board that stops at the filter sends verdicts, a whole core labels: the other is a
-          // corruption the check missed.
+          // A board that stops at the filter sends verdicts (noise or passed, nothing else), a whole
+          // core labels: the other is a corruption the check missed.
           if ((f.type == link::kVerdict) != (rest_ != nullptr)) {
             ++unbelieved_;
             break;
@@ -329,10 +325,6 @@ class BoardBackend final : public Backend {
           // A frame whose corruption the check missed (one in 2^16 corrupt frames) names no
           // event of ours, or not the event its number says: it is dropped, not believed.
           if (number >= answered_ + unanswered_.size() || !echoes(label, unanswered_[number - answered_])) {
-            ++unbelieved_;
-            break;
-          }
-          if (rest_ && label.label != -1 && label.label != hls::kLabelPassedFilter) {  // not a verdict
             ++unbelieved_;
             break;
           }
