@@ -187,12 +187,8 @@ TEST(BackendsAgree, TheBoardOverAnUnreliableLineLosesOnlyWhatItReports) {
       EXPECT_GT(lost, 0u) << "at this rate the line destroys some verdicts";
     }
     EXPECT_NE(r.out.find(", " + std::to_string(lost) + " labels lost (labelled -2)"), std::string::npos) << r.out;
-    const size_t link_line = r.out.find("link        ");
-    ASSERT_NE(link_line, std::string::npos) << r.out;
-    long bad_frames = 0;  // "1,140 frames failed their check"
-    for (size_t i = link_line + 12; i < r.out.size() && (std::isdigit(static_cast<unsigned char>(r.out[i])) || r.out[i] == ','); ++i) {
-      if (r.out[i] != ',') bad_frames = bad_frames * 10 + (r.out[i] - '0');
-    }
+    const long bad_frames = number_after(r.out, "link        ");  // "1,140 frames failed their check"
+    ASSERT_NE(bad_frames, -1) << r.out;
     EXPECT_GT(bad_frames, 0) << "the line made no errors: " << r.out;
 
     // The ice40 core with the lost verdicts noise: the board's filter and the rest of the core
@@ -245,18 +241,10 @@ TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {
   EXPECT_NE(cut.err.find("the ice40 board's core stops at the filter"), std::string::npos) << cut.err;
 }
 
-// The count in "(N labelled noise" of a run's summary.
 // The count of "events in   N" in a run's summary; -1 when it has none.
-long events_in_summary(const std::string& out) {
-  const size_t at = out.find("events in   ");
-  if (at == std::string::npos) return -1;
-  long n = 0;
-  for (size_t i = at + 12; i < out.size() && (std::isdigit(static_cast<unsigned char>(out[i])) || out[i] == ','); ++i) {
-    if (out[i] != ',') n = n * 10 + (out[i] - '0');
-  }
-  return n;
-}
+long events_in_summary(const std::string& out) { return number_after(out, "events in   "); }
 
+// The count in "(N labelled noise" of a run's summary.
 long noise_in_summary(const std::string& out) {
   const size_t at = out.find(" labelled noise");
   long n = 0, scale = 1;
@@ -346,12 +334,9 @@ TEST(BackendsAgree, ListeningToTheIcebreakersAerPinsGivesTheFixedCoresLabels) {
   const std::string scene = "gen://translation?duration-s=0.1&seed=3&width=128&height=128";
   const auto info = run_command(evms_binary() + " info \"" + scene + "\"");
   ASSERT_EQ(info.exit_code, 0) << info.err;
-  const size_t at = info.out.find("events      ");
-  ASSERT_NE(at, std::string::npos) << info.out;
-  std::string count;
-  for (size_t i = at + 12; i < info.out.size() && (std::isdigit(static_cast<unsigned char>(info.out[i])) || info.out[i] == ','); ++i) {
-    if (info.out[i] != ',') count += info.out[i];
-  }
+  const long recording_events = number_after(info.out, "events      ");
+  ASSERT_NE(recording_events, -1) << info.out;
+  const std::string count = std::to_string(recording_events);
   const std::string stamped = dir.path("stamped.txt");
   VirtualBoardProcess board(dir, {"--build", "ice40", "--aer", scene, "--aer-stamped", stamped});
   ASSERT_FALSE(board.device().empty()) << "evms vboard did not start";
@@ -360,7 +345,7 @@ TEST(BackendsAgree, ListeningToTheIcebreakersAerPinsGivesTheFixedCoresLabels) {
   const auto listened = run_command("timeout 120 " + evms_binary() + " run --listen --backend board --core ice40 --device " + board.device() +
                                     " --limit " + count + " --out " + dir.path("listen"));
   ASSERT_EQ(listened.exit_code, 0) << listened.err;
-  EXPECT_EQ(events_in_summary(listened.out), std::stol(count)) << listened.out;
+  EXPECT_EQ(events_in_summary(listened.out), recording_events) << listened.out;
   EXPECT_NE(listened.out.find("0 labels lost"), std::string::npos) << listened.out;
   EXPECT_NE(listened.out.find("clustered and tracked on the host"), std::string::npos) << listened.out;
 
@@ -369,7 +354,7 @@ TEST(BackendsAgree, ListeningToTheIcebreakersAerPinsGivesTheFixedCoresLabels) {
   const auto fixed = run_command(evms_binary() + " run " + stamped + " --quiet --backend fixed --core ice40 --out " + dir.path("fixed"));
   ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
   const std::string events = read_file(dir.path("listen/events.csv"));
-  EXPECT_EQ(lines_of(events).size(), static_cast<size_t>(std::stol(count)) + 2) << "a row for every event, under the two header lines";
+  EXPECT_EQ(lines_of(events).size(), static_cast<size_t>(recording_events) + 2) << "a row for every event, under the two header lines";
   EXPECT_EQ(events, read_file(dir.path("fixed/events.csv")));
   const std::string tracks = read_file(dir.path("listen/tracks.csv"));
   EXPECT_GT(lines_of(tracks).size(), 10u);

@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -472,12 +471,8 @@ TEST(Cli, CtrlCLeavesCompleteOutputs) {
                                "kill -INT $pid; wait $pid; echo $?");
     ASSERT_EQ(r.out, std::to_string(c.exit_code) + "\n") << read_file(log);
     const std::string summary = read_file(log);
-    const size_t at = summary.find("events in   ");
-    ASSERT_NE(at, std::string::npos) << summary;
-    std::int64_t events = 0;
-    for (size_t i = at + 12; i < summary.size() && (std::isdigit(static_cast<unsigned char>(summary[i])) || summary[i] == ','); ++i) {
-      if (summary[i] != ',') events = events * 10 + (summary[i] - '0');
-    }
+    const std::int64_t events = number_after(summary, "events in   ");
+    ASSERT_NE(events, -1) << summary;
     EXPECT_NE(summary.find("outputs     "), std::string::npos) << summary;
     EXPECT_EQ(summary.find("interrupted before the end") != std::string::npos, c.exit_code == 130) << summary;
     const std::string rows = read_file(out + "/events.csv"), tracks = read_file(out + "/tracks.csv");

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -22,6 +23,16 @@ std::string read_file(const std::string& path) {
   std::stringstream ss;
   ss << std::ifstream(path, std::ios::binary).rdbuf();
   return ss.str();
+}
+
+long number_after(const std::string& text, const std::string& label) {
+  const size_t at = text.find(label);
+  if (at == std::string::npos) return -1;
+  long n = 0;
+  for (size_t i = at + label.size(); i < text.size() && (std::isdigit(static_cast<unsigned char>(text[i])) || text[i] == ','); ++i) {
+    if (text[i] != ',') n = n * 10 + (text[i] - '0');
+  }
+  return n;
 }
 
 std::string link_track_columns(const std::string& tracks_csv) {

@@ -22,6 +22,9 @@ std::string evms_binary();
 std::string scripted_usb_binary();
 // A file's whole contents, bytes as they are ("" when it cannot be read).
 std::string read_file(const std::string& path);
+// The number that follows `label` in a summary's text, its digits grouped by commas
+// ("events in   12,345"); -1 when the text has no `label`.
+long number_after(const std::string& text, const std::string& label);
 // tracks.csv text with every line cut to the columns the board link's track frames carry
 // (t_us to vy; docs/link.md): the board backend writes the measurement's columns as 0.
 std::string link_track_columns(const std::string& tracks_csv);
