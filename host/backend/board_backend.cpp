@@ -374,7 +374,10 @@ class BoardBackend final : public Backend {
         case link::kStatus: {
           const link::Status status = link::decode_status(f);
           if (!started_) {
+            // The run starts here. The frames after it wait in the decoder for the run to take
+            // them: a listening run's first verdicts can come in the same read.
             started_ = true, bad_at_start_ = decoder_.bad_frames(), status_ = at_start_ = status;
+            return true;
           } else if (flushing_ && status.events_received - at_start_.events_received == static_cast<std::uint32_t>(answered_ + unanswered_.size())) {
             // The flush's status: the board took every event (a reset's status, repeated
             // when the first was slow, comes before any).
