@@ -28,7 +28,7 @@ struct BackendStats {
   std::int64_t track_ns = 0;           // measuring clusters and tracking them
   // The board's serial link (the board backend only).
   std::int64_t link_bad_frames = 0;    // frames that failed their check: the host's and the board's counts
-  std::int64_t link_events_resent = 0; // event frames sent again, when the board asked or fell silent
+  std::int64_t link_events_resent = 0; // events sent again, when the board asked or fell silent
   std::int64_t link_labels_lost = 0;   // events labelled kLabelLostOnLink
   // Tracks mode (BackendOptions::board_keeps_labels): the events whose labels stayed on the
   // board, and how the board labelled them; packets whose tracks and summary were not sent.

@@ -84,24 +84,18 @@ class BoardBackend final : public Backend {
   }
 
   void push(std::span<const Event> events, OutputSink& out) override {
-    std::vector<std::uint8_t> frames;
     for (const Event& e : events) {
       while (unanswered_.size() >= LinkWindow) {
-        port_.write_all(frames);
-        frames.clear();
+        send_unsent();
         receive(out, true);
       }
-      const hls::EventWord word = mapper_.to_word(e);
-      link::append_event(frames, word, static_cast<link::Sequence>(answered_ + unanswered_.size()));
-      unanswered_.push_back(word);
+      unanswered_.push_back(mapper_.to_word(e));
+      ++unsent_;
       ++stats_.s.events_in;
-      if (frames.size() >= 64 * 15) {
-        port_.write_all(frames);
-        frames.clear();
-      }
+      if (unsent_ >= static_cast<size_t>(link::kBatchEntries)) send_unsent();
       receive(out, false);
     }
-    port_.write_all(frames);
+    send_unsent();
   }
 
   void finish(OutputSink& out) override {
@@ -202,17 +196,27 @@ class BoardBackend final : public Backend {
     port_.write_all(flush);
   }
   // Every event from number `from` on again (go-back-N), and the flush if it was sent. Each
-  // lost event frame costs a resend of everything in flight after it. The window stays whole:
+  // lost events frame costs a resend of everything in flight after it. The window stays whole:
   // the core holds the events of an open packet (and the filtered ones among them) unlabelled
   // until the packet closes, so a window below what it can hold would wait forever.
+  // The events not yet sent go with them.
   void resend_from(std::uint64_t from) {
-    std::vector<std::uint8_t> frames;
-    for (std::uint64_t n = from; n < answered_ + unanswered_.size(); ++n) {
-      link::append_event(frames, unanswered_[n - answered_], static_cast<link::Sequence>(n));
-      ++resent_;
-    }
-    port_.write_all(frames);
+    const size_t at = static_cast<size_t>(from - answered_), sent = unanswered_.size() - unsent_;
+    if (at < sent) resent_ += static_cast<std::int64_t>(sent - at);
+    send_from(at);
     if (flushing_) send_flush();
+  }
+  // The unanswered events that were never sent (the last unsent_ of them).
+  void send_unsent() {
+    if (unsent_ > 0) send_from(unanswered_.size() - unsent_);
+  }
+  // The unanswered events from the at-th on, in events frames.
+  void send_from(size_t at) {
+    const std::vector<hls::EventWord> words(unanswered_.begin() + static_cast<std::ptrdiff_t>(at), unanswered_.end());
+    std::vector<std::uint8_t> frames;
+    link::append_events(frames, words, static_cast<link::Sequence>(answered_ + at));
+    port_.write_all(frames);
+    unsent_ = 0;
   }
   static bool echoes(const hls::LabelWord& label, const hls::EventWord& event) {
     return label.t == event.t && label.x == event.x && label.y == event.y && label.p == event.p;
@@ -252,9 +256,9 @@ class BoardBackend final : public Backend {
   // took at its AER pins, with its verdict, and the rest of the core on the host takes it. A gap
   // in the numbers is events the line destroyed; no one has them to send again, so they are
   // counted as labels lost, and their rows are missing.
-  void take_stamped(const link::Frame& f, OutputSink& out) {
-    const hls::LabelWord label = link::decode_label(f);
-    const std::uint64_t number = unwrap(link::label_sequence(f), answered_);
+  void take_stamped(const link::NumberedLabel& numbered, OutputSink& out) {
+    const hls::LabelWord& label = numbered.label;
+    const std::uint64_t number = unwrap(numbered.seq, answered_);
     // The run starts at the first event after the reset's status: the sensor never stopped, and
     // events the board labelled before it said it was ready went by as stale.
     if (!stamped_any_) answered_ = number, stamped_any_ = true;
@@ -264,6 +268,26 @@ class BoardBackend final : public Backend {
     const hls::EventWord event{label.t, label.x, label.y, label.p, false};
     mapper_.stamped(event);
     complete(event, label.label == hls::kLabelPassedFilter, false, out);
+  }
+
+  // A label of an event the host sent.
+  void take_label(const link::NumberedLabel& numbered, OutputSink& out) {
+    const std::uint64_t number = unwrap(numbered.seq, answered_);
+    const hls::LabelWord& label = numbered.label;
+    // A frame whose corruption the check missed (one in 2^16 corrupt frames) names no
+    // event of ours, or not the event its number says: it is dropped, not believed.
+    if (number >= answered_ + unanswered_.size() || !echoes(label, unanswered_[number - answered_])) {
+      ++unbelieved_;
+      return;
+    }
+    while (answered_ < number) lose_oldest(out);
+    if (rest_) {
+      complete(unanswered_.front(), label.label == hls::kLabelPassedFilter, false, out);
+    } else {
+      out.on_event(mapper_.label(label));
+    }
+    unanswered_.pop_front();
+    ++answered_;
   }
 
   // Reads what the board has sent; with `wait`, blocks until at least one frame came or, after
@@ -312,30 +336,17 @@ class BoardBackend final : public Backend {
             ++unbelieved_;
             break;
           }
+          const std::vector<link::NumberedLabel> labels = link::decode_labels(f);
+          if (labels.empty()) ++unbelieved_;
           if (listening_ && rest_) {
-            take_stamped(f, out);
+            for (const link::NumberedLabel& l : labels) take_stamped(l, out);
             break;
           }
           if (mode_ == link::LinkMode::kTracks) {  // not a frame of this run's mode: a corruption the check missed
             ++unbelieved_;
             break;
           }
-          const std::uint64_t number = unwrap(link::label_sequence(f), answered_);
-          const hls::LabelWord label = link::decode_label(f);
-          // A frame whose corruption the check missed (one in 2^16 corrupt frames) names no
-          // event of ours, or not the event its number says: it is dropped, not believed.
-          if (number >= answered_ + unanswered_.size() || !echoes(label, unanswered_[number - answered_])) {
-            ++unbelieved_;
-            break;
-          }
-          while (answered_ < number) lose_oldest(out);
-          if (rest_) {
-            complete(unanswered_.front(), label.label == hls::kLabelPassedFilter, false, out);
-          } else {
-            out.on_event(mapper_.label(label));
-          }
-          unanswered_.pop_front();
-          ++answered_;
+          for (const link::NumberedLabel& l : labels) take_label(l, out);
           break;
         }
         case link::kResend: {
@@ -400,7 +411,8 @@ class BoardBackend final : public Backend {
   // lost its verdict on the line.
   std::unique_ptr<HostCore<S>> rest_;
   std::deque<bool> rest_lost_;
-  std::deque<hls::EventWord> unanswered_;  // sent, not yet labelled: numbers answered_, answered_ + 1, ...
+  std::deque<hls::EventWord> unanswered_;  // taken, not yet labelled: numbers answered_, answered_ + 1, ...
+  size_t unsent_ = 0;                      // the last of them, not yet sent (they wait to fill an events frame)
   std::uint64_t answered_ = 0;             // events labelled, or whose label was lost
   std::int64_t resent_ = 0, lost_ = 0, unbelieved_ = 0;
   int silent_ms_ = 0;

@@ -5,8 +5,10 @@
 // The payloads' layouts are in docs/link.md.
 #pragma once
 
+#include <cstdint>
+
 #define EVMS_LINK_FRAMES(X)                                                                                      \
-  X(Event, 0x01, 11, "host to board: an event (t u32, x u16, y u16, p u8, seq u16)")                            \
+  X(Events, 0x01, 134, "host to board: up to 32 events, and the first one's number (the length says how many)")   \
   X(Flush, 0x02, 2, "host to board: the next event's number; answered by a status frame once all is released") \
   X(Reset, 0x03, 1, "host to board: restart the core and the link; the run's mode (labels or tracks)")          \
   X(Label, 0x81, 15, "board to host: a labelled event, with the label's number")                                \
@@ -15,4 +17,26 @@
   X(Status, 0x84, 44, "board to host: the board's counters")                                                    \
   X(Resend, 0x85, 2, "board to host: the number of the event the board expects")                                \
   X(Progress, 0x86, 12, "board to host: the link's events the core took, events labelled, noise")               \
-  X(Verdict, 0x87, 9, "board to host: the filter's verdict on an event, with the label's number (a core that stops at the filter)")
+  X(Verdict, 0x87, 134, "board to host: up to 32 events with the filter's verdicts, and the first one's label number (a core that stops at the filter)")
+
+// The events frame and the verdict frame carry a batch of events (docs/link.md): the first
+// event's time (u32) and number (u16), then an entry of a u32 for each event: x in bits 0-7, y in
+// 8-15, the polarity in bit 16, passed the filter in bit 17 (verdicts; 0 in events frames),
+// present in bit 18, and in bits 19-31 the microseconds since the previous event of the batch (0
+// for the first). An events frame holds 1 to kBatchEntries entries, all present, and its length
+// says how many; a verdict frame always holds kBatchEntries, the present ones first and the
+// others zeros. An event more than kBatchGapMax microseconds after the previous one starts the
+// next frame. The boards that speak it are 256x256 at most.
+#define EVMS_LINK_BATCH_LAYOUT(X) \
+  X(BatchEntries, 32)             \
+  X(BatchHeaderBytes, 6)          \
+  X(BatchEntryBytes, 4)           \
+  X(BatchGapBits, 13)
+
+namespace evms::link {
+#define EVMS_LINK_BATCH_CONSTANT(name, value) inline constexpr int k##name = value;
+EVMS_LINK_BATCH_LAYOUT(EVMS_LINK_BATCH_CONSTANT)
+#undef EVMS_LINK_BATCH_CONSTANT
+inline constexpr std::uint32_t kBatchGapMax = (std::uint32_t{1} << kBatchGapBits) - 1;
+static_assert(kBatchHeaderBytes + kBatchEntries * kBatchEntryBytes <= 255, "a frame's length is a byte");
+}  // namespace evms::link

@@ -25,7 +25,7 @@ void frame(std::vector<std::uint8_t>& out, FrameType type, const std::vector<std
   put(out, c, 2);
 }
 
-size_t expected_length(std::uint8_t type) {
+constexpr size_t expected_length(std::uint8_t type) {
   switch (type) {
 #define EVMS_LINK_FRAME_LENGTH(name, type, length, what) \
   case k##name:                                          \
@@ -47,14 +47,22 @@ std::uint16_t crc16(std::span<const std::uint8_t> bytes) {
   return c;
 }
 
-void append_event(std::vector<std::uint8_t>& out, const hls::EventWord& e, Sequence seq) {
-  std::vector<std::uint8_t> p;
-  put(p, e.t, 4);
-  put(p, e.x, 2);
-  put(p, e.y, 2);
-  put(p, e.p, 1);
-  put(p, seq, 2);
-  frame(out, kEvent, p);
+void append_events(std::vector<std::uint8_t>& out, std::span<const hls::EventWord> events, Sequence first) {
+  for (size_t i = 0; i < events.size();) {
+    std::vector<std::uint8_t> p;
+    put(p, events[i].t, 4);
+    put(p, static_cast<Sequence>(first + i), 2);
+    std::uint32_t previous = events[i].t;
+    for (int k = 0; k < kBatchEntries && i < events.size(); ++k, ++i) {
+      const hls::EventWord& e = events[i];
+      const std::uint32_t gap = e.t - previous;
+      if (k > 0 && gap > kBatchGapMax) break;  // the next frame starts at this event's time
+      if (e.x > 0xFF || e.y > 0xFF) throw std::invalid_argument("an events frame carries x and y in a byte each (boards of 256x256 at most)");
+      put(p, std::uint32_t{e.x} | std::uint32_t{e.y} << 8 | std::uint32_t{e.p & 1u} << 16 | 1u << 18 | gap << 19, kBatchEntryBytes);
+      previous = e.t;
+    }
+    frame(out, kEvents, p);
+  }
 }
 
 void append_flush(std::vector<std::uint8_t>& out, Sequence next_event) {
@@ -96,23 +104,35 @@ bool FrameDecoder::next(Frame& out) {
   return true;
 }
 
-hls::LabelWord decode_label(const Frame& f) {
-  if (f.type == kVerdict) {
-    // x and y in a byte each (the boards whose cores stop at the filter are 256x256 at most);
-    // flags: bit 0 the polarity, bit 1 passed the filter.
-    const std::uint32_t flags = get(f.payload, 6, 1);
-    return {get(f.payload, 0, 4), static_cast<std::uint16_t>(get(f.payload, 4, 1)), static_cast<std::uint16_t>(get(f.payload, 5, 1)),
-            static_cast<std::uint8_t>(flags & 1), (flags & 2) != 0 ? hls::kLabelPassedFilter : -1};
+std::vector<NumberedLabel> decode_labels(const Frame& f) {
+  if (f.type == kLabel) {
+    return {{static_cast<Sequence>(get(f.payload, 13, 2)),
+             {get(f.payload, 0, 4), static_cast<std::uint16_t>(get(f.payload, 4, 2)), static_cast<std::uint16_t>(get(f.payload, 6, 2)),
+              static_cast<std::uint8_t>(get(f.payload, 8, 1)), static_cast<std::int32_t>(get(f.payload, 9, 4))}}};
   }
-  if (f.type != kLabel) throw std::logic_error("not a label frame");
-  return {get(f.payload, 0, 4), static_cast<std::uint16_t>(get(f.payload, 4, 2)), static_cast<std::uint16_t>(get(f.payload, 6, 2)),
-          static_cast<std::uint8_t>(get(f.payload, 8, 1)), static_cast<std::int32_t>(get(f.payload, 9, 4))};
-}
-
-Sequence label_sequence(const Frame& f) {
-  if (f.type == kVerdict) return static_cast<Sequence>(get(f.payload, 7, 2));
-  if (f.type != kLabel) throw std::logic_error("not a label frame");
-  return static_cast<Sequence>(get(f.payload, 13, 2));
+  if (f.type != kVerdict) throw std::logic_error("not a label or verdict frame");
+  static_assert(expected_length(kVerdict) == kBatchHeaderBytes + kBatchEntries * kBatchEntryBytes &&
+                    expected_length(kEvents) == expected_length(kVerdict),
+                "host/link/link_frames.h: a batch of kBatchEntries fills the longest events frame and every verdict frame");
+  std::vector<NumberedLabel> out;
+  std::uint32_t t = get(f.payload, 0, 4);
+  const auto first = static_cast<Sequence>(get(f.payload, 4, 2));
+  for (int k = 0; k < kBatchEntries; ++k) {
+    const std::uint32_t entry = get(f.payload, static_cast<size_t>(kBatchHeaderBytes + k * kBatchEntryBytes), kBatchEntryBytes);
+    const bool present = (entry >> 18) & 1;
+    const std::uint32_t gap = entry >> 19;
+    if (!present) {
+      if (entry != 0) return {};  // an absent entry is all zeros
+      continue;
+    }
+    // The present entries come first, and the first is at the frame's own time.
+    if (static_cast<int>(out.size()) != k || (k == 0 && gap != 0)) return {};
+    t += gap;
+    out.push_back({static_cast<Sequence>(first + k),
+                   {t, static_cast<std::uint16_t>(entry & 0xFF), static_cast<std::uint16_t>((entry >> 8) & 0xFF),
+                    static_cast<std::uint8_t>((entry >> 16) & 1), ((entry >> 17) & 1) != 0 ? hls::kLabelPassedFilter : -1}});
+  }
+  return out;
 }
 
 Sequence decode_resend(const Frame& f) {

@@ -5,12 +5,12 @@
 //
 //   frame = 0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 //   CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF) over TYPE, LEN and PAYLOAD
-//   host -> board: 0x01 event (t u32, x u16, y u16, p u8, seq u16), 0x02 flush (seq u16: the
+//   host -> board: 0x01 events (up to 32, numbered from the first), 0x02 flush (seq u16: the
 //                  next event's), 0x03 reset (mode u8: labels or tracks)
 //   board -> host: 0x81 labelled event (with the label's seq u16), 0x82 track update,
 //                  0x83 packet summary, 0x84 status, 0x85 resend (seq u16 the board expects),
-//                  0x86 progress (the board's counts, when the line is free), 0x87 verdict (a
-//                  labelled event's frame from a board whose core stops at the filter)
+//                  0x86 progress (the board's counts, when the line is free), 0x87 verdicts (up
+//                  to 32 events with their verdicts, from a board whose core stops at the filter)
 #pragma once
 
 #include <cstdint>
@@ -42,7 +42,9 @@ using Sequence = std::uint16_t;
 
 std::uint16_t crc16(std::span<const std::uint8_t> bytes);
 
-void append_event(std::vector<std::uint8_t>& out, const hls::EventWord& e, Sequence seq);
+// Events numbered from `first` on, in events frames of up to kBatchEntries (fewer when an event
+// comes more than kBatchGapMax us after the previous one).
+void append_events(std::vector<std::uint8_t>& out, std::span<const hls::EventWord> events, Sequence first);
 void append_flush(std::vector<std::uint8_t>& out, Sequence next_event);
 void append_reset(std::vector<std::uint8_t>& out, LinkMode mode);
 
@@ -78,10 +80,15 @@ class FrameDecoder {
   std::uint64_t bad_ = 0;
 };
 
-// A label frame or a verdict frame (a board whose core stops at the filter: label -1 or
-// hls::kLabelPassedFilter), and its number.
-hls::LabelWord decode_label(const Frame& f);
-Sequence label_sequence(const Frame& f);
+// A label and its number (modulo 2^16 from the reset on).
+struct NumberedLabel {
+  Sequence seq;
+  hls::LabelWord label;
+};
+// A label frame's label, or a verdict frame's verdicts (a board whose core stops at the filter:
+// label -1 or hls::kLabelPassedFilter), in order. Empty for a verdict frame that breaks its
+// layout (none present, a present entry after an absent one): a corruption the CRC missed.
+std::vector<NumberedLabel> decode_labels(const Frame& f);
 Sequence decode_resend(const Frame& f);
 hls::TrackWord decode_track(const Frame& f);
 hls::PacketWord decode_packet(const Frame& f);

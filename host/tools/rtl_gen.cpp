@@ -350,13 +350,17 @@ int main(int argc, char** argv) {
   frames << "// " << kGeneratedBy << "\n// The link's frames (host/link/link_frames.h, docs/link.md): type codes and payload lengths.\n"
          << "// Each side of the link includes them all and uses its own direction's: evms_link_rx.sv the host's frames,\n"
          << "// evms_link_tx.sv the board's.\n/* verilator lint_off UNUSEDPARAM */\n";
-  char line[200];
+  char line[300];
 #define EVMS_WRITE_LINK_FRAME(name, type, length, what)                                                                          \
   std::snprintf(line, sizeof line, "localparam logic [7:0] Frame%sType = 8'h%02X, Frame%sLen = 8'd%d;  // %s\n", #name, type, #name, \
                 length, what);                                                                                                    \
   frames << line;
   EVMS_LINK_FRAMES(EVMS_WRITE_LINK_FRAME)
 #undef EVMS_WRITE_LINK_FRAME
+  frames << "// The events and verdict frames' layout (host/link/link_frames.h).\n";
+#define EVMS_WRITE_BATCH_CONSTANT(name, value) frames << "localparam int " #name " = " << (value) << ";\n";
+  EVMS_LINK_BATCH_LAYOUT(EVMS_WRITE_BATCH_CONSTANT)
+#undef EVMS_WRITE_BATCH_CONSTANT
   frames << "/* verilator lint_on UNUSEDPARAM */\n";
   write(dir + "/evms_link_frames.svh", frames.str());
   return 0;

@@ -1,14 +1,22 @@
-// Board-to-host half of the serial link (docs/link.md): labelled events (0x81, or 0x87 with
-// LabelsAreVerdicts: a filter's verdict, x and y in a byte each), track updates (0x82), packet
+// Board-to-host half of the serial link (docs/link.md): labelled events (0x81, or with
+// LabelsAreVerdicts up to BatchEntries filter's verdicts in one 0x87), track updates (0x82), packet
 // summaries (0x83), status (0x84), resend requests (0x85) and progress (0x86) as frames
 //   0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 // (CRC-16/CCITT-FALSE over TYPE, LEN and PAYLOAD; little-endian fields). Streams are served
 // one frame at a time, status first, then resend requests, packet summaries, track updates,
 // labelled events, progress; a stream waits (its valid stays high) while the UART is busy. Label frames carry their number modulo 2^16, counted
 // from reset, so that the host finds a label frame the line destroyed.
+//
+// A verdict frame is streamed: it opens with the first verdict, and as the UART takes the last
+// byte of an entry, the next entry is the verdict then waiting, if one is and it is at most
+// 2^BatchGapBits - 1 us after the previous one. Once none is, the frame's other entries go
+// out absent (zeros). So a busy line carries BatchEntries verdicts a frame, and a verdict
+// never waits for a frame to fill.
+`include "evms_assert.svh"
+
 module evms_link_tx #(
   // 1: the labels are a filter's verdicts (-1 noise, anything else passed) on a sensor of
-  // 256x256 at most, sent as 15-byte verdict frames instead of 21-byte label frames.
+  // 256x256 at most, sent in verdict frames (4 bytes a verdict) instead of 21-byte label frames.
   parameter int LabelsAreVerdicts = 0
 ) (
   input  logic        clk,
@@ -56,6 +64,31 @@ module evms_link_tx #(
   logic [7:0] ftype, flen, pos;
   logic [15:0] crc;
   logic [15:0] label_seq;
+  // A verdict frame: still taking verdicts, and the previous one's time.
+  logic verdicts_open;
+  logic [31:0] verdict_t;
+  logic [31:0] verdict_gap;
+  // Whether the verdict waiting is within reach of the previous one, judged a clock after it
+  // came (its fields hold while it waits): the ready then reads registers, not a subtraction.
+  logic gap_fits_q, gap_known_q;
+  logic [7:0] next_pos;
+  logic next_is_entry, take_verdict;
+  assign verdict_gap = lab_t - verdict_t;
+  // The UART takes the byte before an entry's first: the header's BatchHeaderBytes, then
+  // entries of BatchEntryBytes (a power of two). It is registered: pos moves only as the UART
+  // takes a byte, once in a character's 10 bits.
+  localparam int EntryMask = BatchEntryBytes - 1;
+  localparam int EntryPhase = BatchHeaderBytes % BatchEntryBytes;
+  logic next_is_entry_q;
+  assign next_pos = pos + 8'd1;
+  assign next_is_entry = {24'd0, next_pos} >= BatchHeaderBytes + BatchEntryBytes && next_pos < flen &&
+                         ({24'd0, next_pos} & EntryMask) == EntryPhase;
+  assign take_verdict = LabelsAreVerdicts != 0 && state == S_PAYLOAD && verdicts_open && byte_ready && next_is_entry_q && lab_valid &&
+                        gap_known_q && gap_fits_q;
+  `EVMS_ASSERT_INIT("a verdict entry's length is a power of two", (BatchEntryBytes & (BatchEntryBytes - 1)) == 0)
+  // An entry's fields below its gap: present, passed, polarity, y, x.
+  logic [31-BatchGapBits:0] verdict_fields;
+  assign verdict_fields = {1'b1, lab_label != 32'hFFFF_FFFF, lab_p, lab_y[7:0], lab_x[7:0]};
 
   always_comb begin
     lab_ready = 1'b0;
@@ -72,6 +105,7 @@ module evms_link_tx #(
       else if (lab_valid) lab_ready = 1'b1;
       else if (pg_valid) pg_ready = 1'b1;
     end
+    if (take_verdict) lab_ready = 1'b1;
   end
 
   always_comb begin
@@ -98,9 +132,18 @@ module evms_link_tx #(
       pos <= '0;
       crc <= 16'hFFFF;
       label_seq <= '0;
+      verdicts_open <= 1'b0;
+      verdict_t <= '0;
+      gap_fits_q <= 1'b0;
+      gap_known_q <= 1'b0;
+      next_is_entry_q <= 1'b0;
     end else begin
+      next_is_entry_q <= next_is_entry;
+      gap_fits_q <= verdict_gap[31:BatchGapBits] == '0;
+      gap_known_q <= lab_valid && !lab_ready;
       case (state)
         S_IDLE: begin
+          verdicts_open <= 1'b0;  // open only in a verdict frame, from its start
           if (st_valid) begin
             {ftype, flen, payload} <= {FrameStatusType, FrameStatusLen, st_payload};
             state <= S_SYNC1;
@@ -115,8 +158,9 @@ module evms_link_tx #(
             state <= S_SYNC1;
           end else if (lab_valid) begin
             if (LabelsAreVerdicts != 0) begin
-              {ftype, flen, payload} <= {FrameVerdictType, FrameVerdictLen, 280'd0, label_seq, 6'd0, lab_label != 32'hFFFF_FFFF, lab_p,
-                                         lab_y[7:0], lab_x[7:0], lab_t};
+              {ftype, flen, payload} <= {FrameVerdictType, FrameVerdictLen, 272'd0, {{BatchGapBits{1'b0}}, verdict_fields}, label_seq, lab_t};
+              verdicts_open <= 1'b1;
+              verdict_t <= lab_t;
             end else begin
               {ftype, flen, payload} <= {FrameLabelType, FrameLabelLen, 232'd0, label_seq, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
             end
@@ -143,7 +187,15 @@ module evms_link_tx #(
             end
             S_PAYLOAD: begin
               crc <= evms_crc16_pkg::crc16_byte(crc, payload[7:0]);
-              payload <= payload >> 8;
+              // Past the header and the first entry the register holds zeros: an entry taken
+              // goes into its lowest bytes, and once none is taken the frame stays closed.
+              payload <= (payload >> 8) | {320'd0, take_verdict ? {verdict_gap[BatchGapBits-1:0], verdict_fields} : 32'd0};
+              if (take_verdict) begin
+                verdict_t <= lab_t;
+                label_seq <= label_seq + 1'b1;
+              end else if (next_is_entry_q) begin
+                verdicts_open <= 1'b0;
+              end
               pos <= pos + 1'b1;
               if (pos + 1'b1 == flen) state <= S_CRC_LO;
             end

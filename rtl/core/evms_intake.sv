@@ -134,7 +134,7 @@ module evms_intake #(
   // Never full: words are taken only while fewer than QueueDepth wait.
   logic fifo_in_ready;
   evms_fifo #(.Width(WordBits), .Depth(QueueDepth)) u_queue (
-    .clk(clk), .rst_n(rst_n), .in_valid(push), .in_ready(fifo_in_ready), .in_data(push_word), .out_valid(q_valid),
+    .clk(clk), .rst_n(rst_n), .in_valid(push), .in_ready(fifo_in_ready), .in_data(push_word), .in_commit(1'b0), .in_rollback(1'b0), .out_valid(q_valid),
     .out_ready(q_pop), .out_data(head_word));
   `EVMS_ASSERT("the intake never pushes into a full queue", !push || fifo_in_ready, clk, rst_n)
 

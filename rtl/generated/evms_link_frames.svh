@@ -3,7 +3,7 @@
 // Each side of the link includes them all and uses its own direction's: evms_link_rx.sv the host's frames,
 // evms_link_tx.sv the board's.
 /* verilator lint_off UNUSEDPARAM */
-localparam logic [7:0] FrameEventType = 8'h01, FrameEventLen = 8'd11;  // host to board: an event (t u32, x u16, y u16, p u8, seq u16)
+localparam logic [7:0] FrameEventsType = 8'h01, FrameEventsLen = 8'd134;  // host to board: up to 32 events, and the first one's number (the length says how many)
 localparam logic [7:0] FrameFlushType = 8'h02, FrameFlushLen = 8'd2;  // host to board: the next event's number; answered by a status frame once all is released
 localparam logic [7:0] FrameResetType = 8'h03, FrameResetLen = 8'd1;  // host to board: restart the core and the link; the run's mode (labels or tracks)
 localparam logic [7:0] FrameLabelType = 8'h81, FrameLabelLen = 8'd15;  // board to host: a labelled event, with the label's number
@@ -12,5 +12,10 @@ localparam logic [7:0] FramePacketType = 8'h83, FramePacketLen = 8'd12;  // boar
 localparam logic [7:0] FrameStatusType = 8'h84, FrameStatusLen = 8'd44;  // board to host: the board's counters
 localparam logic [7:0] FrameResendType = 8'h85, FrameResendLen = 8'd2;  // board to host: the number of the event the board expects
 localparam logic [7:0] FrameProgressType = 8'h86, FrameProgressLen = 8'd12;  // board to host: the link's events the core took, events labelled, noise
-localparam logic [7:0] FrameVerdictType = 8'h87, FrameVerdictLen = 8'd9;  // board to host: the filter's verdict on an event, with the label's number (a core that stops at the filter)
+localparam logic [7:0] FrameVerdictType = 8'h87, FrameVerdictLen = 8'd134;  // board to host: up to 32 events with the filter's verdicts, and the first one's label number (a core that stops at the filter)
+// The events and verdict frames' layout (host/link/link_frames.h).
+localparam int BatchEntries = 32;
+localparam int BatchHeaderBytes = 6;
+localparam int BatchEntryBytes = 4;
+localparam int BatchGapBits = 13;
 /* verilator lint_on UNUSEDPARAM */

@@ -45,7 +45,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     while (frames.next(f)) {
       switch (f.type) {
         case evms::link::kLabel:
-        case evms::link::kVerdict: (void)evms::link::decode_label(f), (void)evms::link::label_sequence(f); break;
+        case evms::link::kVerdict: (void)evms::link::decode_labels(f); break;
         case evms::link::kResend: (void)evms::link::decode_resend(f); break;
         case evms::link::kTrack: (void)evms::link::decode_track(f); break;
         case evms::link::kPacket: (void)evms::link::decode_packet(f); break;

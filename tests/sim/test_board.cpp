@@ -53,12 +53,15 @@ Expected cxx_filter_core(const std::vector<hls::EventWord>& words) {
 struct Received {
   Expected words;
   std::vector<link::Sequence> label_seqs;
-  size_t verdict_frames = 0;  // of the labels, those that came as verdict frames
+  size_t verdict_frames = 0;  // verdict frames received
+  size_t verdicts = 0;        // of the labels, those that came in verdict frames
+  std::uint32_t widest_gap_in_a_frame = 0;  // us between consecutive verdicts of one frame
   std::vector<link::Sequence> resends;  // the numbers the board asked for again
   std::vector<link::Status> status;
   std::vector<link::Progress> progress;
   std::vector<size_t> batch_ends;  // for each packet summary, the track updates received before it
   std::uint64_t bad_frames = 0;
+  size_t corrupted_from = SIZE_MAX;  // run_link: the first event of the frame it corrupted
 };
 
 template <class V>
@@ -70,11 +73,17 @@ void collect(sim::VirtualBoard<V>& board, link::FrameDecoder& decoder, Received&
   while (decoder.next(f)) {
     switch (f.type) {
       case link::kLabel:
-      case link::kVerdict:
+      case link::kVerdict: {
+        const std::vector<link::NumberedLabel> labels = link::decode_labels(f);
+        for (size_t k = 0; k < labels.size(); ++k) {
+          if (f.type == link::kVerdict && k > 0) r.widest_gap_in_a_frame = std::max(r.widest_gap_in_a_frame, labels[k].label.t - labels[k - 1].label.t);
+          r.words.labels.push_back(labels[k].label);
+          r.label_seqs.push_back(labels[k].seq);
+          r.verdicts += f.type == link::kVerdict;
+        }
         r.verdict_frames += f.type == link::kVerdict;
-        r.words.labels.push_back(link::decode_label(f));
-        r.label_seqs.push_back(link::label_sequence(f));
         break;
+      }
       case link::kTrack: r.words.tracks.push_back(link::decode_track(f)); break;
       case link::kPacket:
         r.words.packets.push_back(link::decode_packet(f));
@@ -101,44 +110,49 @@ void await_ready(sim::VirtualBoard<V>& board, link::FrameDecoder& decoder, Recei
   r = Received{};
 }
 
-// Streams `frames` (one per event, numbered from 0, then a flush) keeping at most kWindow
-// events in flight, and going back to the frame the board asks for again, as the host does.
-// The first copy of frame `corrupt` (if any) has a payload bit flipped on the line.
-Received run_link(const std::vector<std::vector<std::uint8_t>>& frames, size_t corrupt = SIZE_MAX) {
+// Events from[0] .. from[count - 1], numbered from `from`, in events frames of up to
+// kBatchEntries, as the host sends them.
+std::vector<std::uint8_t> events_frames(const std::vector<hls::EventWord>& words, size_t from, size_t count) {
+  std::vector<std::uint8_t> bytes;
+  link::append_events(bytes, std::span(words).subspan(from, count), static_cast<link::Sequence>(from));
+  return bytes;
+}
+
+// Streams `words` (numbered from 0, then a flush) in events frames of up to kBatchEntries,
+// keeping at most kWindow events in flight, and going back to the event the board asks for
+// again, as the host does. The first frame sent from event `corrupt` on (if any) has a payload
+// bit flipped on the line; r.corrupted_from is its first event.
+Received run_link(const std::vector<hls::EventWord>& words, size_t corrupt = SIZE_MAX) {
   sim::VirtualBoard<Vboard_ice40> board(kCpb);
   link::FrameDecoder decoder;
   Received r;
   await_ready(board, decoder, r);
   size_t next = 0;
+  bool flush_sent = false;
   size_t resends_seen = 0;
   std::uint64_t guard = 0;
   while (r.status.empty()) {
-    if (next < frames.size() && !board.sending() && next < r.words.labels.size() + kWindow) {
-      std::vector<std::uint8_t> frame = frames[next];
-      if (next == corrupt) frame[6] ^= 0x10, corrupt = SIZE_MAX;
-      board.send(frame);
-      ++next;
+    if (!board.sending() && next < words.size() && next < r.words.labels.size() + kWindow) {
+      const size_t count = std::min({static_cast<size_t>(link::kBatchEntries), words.size() - next, r.words.labels.size() + kWindow - next});
+      std::vector<std::uint8_t> frames = events_frames(words, next, count);
+      if (next >= corrupt) frames[6] ^= 0x10, r.corrupted_from = next, corrupt = SIZE_MAX;
+      board.send(frames);
+      next += count;
+    } else if (!board.sending() && next == words.size() && !flush_sent) {
+      std::vector<std::uint8_t> flush;
+      link::append_flush(flush, static_cast<link::Sequence>(words.size()));
+      board.send(flush);
+      flush_sent = true;
     }
     board.run(64);
     collect(board, decoder, r);
-    for (; resends_seen < r.resends.size(); ++resends_seen) next = r.resends[resends_seen];  // fewer than 2^16 frames here
+    for (; resends_seen < r.resends.size(); ++resends_seen) next = r.resends[resends_seen], flush_sent = false;  // fewer than 2^16 events here  // fewer than 2^16 events here
     if (++guard > 5000000) {
       ADD_FAILURE() << "no status frame after the flush";
       break;
     }
   }
   return r;
-}
-
-std::vector<std::vector<std::uint8_t>> link_frames(const std::vector<hls::EventWord>& words) {
-  std::vector<std::vector<std::uint8_t>> frames;
-  for (const auto& w : words) {
-    frames.emplace_back();
-    link::append_event(frames.back(), w, static_cast<link::Sequence>(frames.size() - 1));
-  }
-  frames.emplace_back();
-  link::append_flush(frames.back(), static_cast<link::Sequence>(words.size()));
-  return frames;
 }
 
 void expect_same(const Expected& got, const Expected& want) {
@@ -172,7 +186,7 @@ std::vector<hls::EventWord> scene_words(double duration_s) {
 
 TEST(BoardLink, EventsInLabelsOutEqualToTheCppCore) {
   auto words = scene_words(0.04);
-  const Received r = run_link(link_frames(words));
+  const Received r = run_link(words);
   hls::EventWord flush;
   flush.flush = true;
   words.push_back(flush);
@@ -191,18 +205,71 @@ TEST(BoardLink, EventsInLabelsOutEqualToTheCppCore) {
   EXPECT_EQ(r.status[0].overruns, 0u);
   EXPECT_EQ(r.bad_frames, 0u);
   EXPECT_TRUE(r.resends.empty());
-  // The verdicts come as verdict frames (15 bytes, not a label frame's 21), numbered in order
-  // from the reset.
-  EXPECT_EQ(r.verdict_frames, r.words.labels.size());
+  // The verdicts come in verdict frames, numbered in order from the reset, several to a frame
+  // while the line is busy: the host's events come 32 to a frame as fast as the line takes them.
+  EXPECT_EQ(r.verdicts, r.words.labels.size());
+  EXPECT_LT(r.verdict_frames * 4, r.verdicts) << "more than four verdicts a frame on average";
   for (size_t i = 0; i < r.label_seqs.size(); ++i) ASSERT_EQ(r.label_seqs[i], static_cast<link::Sequence>(i)) << i;
+}
+
+// An events frame and a verdict frame hold events at most kBatchGapMax us apart: a quiet
+// stretch longer than that starts the next frame either way, and nothing is lost or mistimed
+// across it.
+TEST(BoardLink, AQuietStretchStartsTheNextFrameBothWays) {
+  auto words = scene_words(0.02);
+  const size_t half = words.size() / 2;
+  for (size_t i = half; i < words.size(); ++i) words[i].t += 3 * link::kBatchGapMax;
+  const Received r = run_link(words);
+  hls::EventWord flush;
+  flush.flush = true;
+  words.push_back(flush);
+  expect_same(r.words, cxx_filter_core(words));
+  EXPECT_EQ(r.verdicts, words.size() - 1);
+  EXPECT_GT(r.widest_gap_in_a_frame, 0u);
+  EXPECT_LE(r.widest_gap_in_a_frame, link::kBatchGapMax);
+  for (size_t i = 0; i < r.label_seqs.size(); ++i) ASSERT_EQ(r.label_seqs[i], static_cast<link::Sequence>(i)) << i;
+}
+
+// The host believes a verdict frame only in its layout: present entries first, the first at the
+// frame's own time, absent entries all zeros.
+TEST(BoardLink, AVerdictFrameOutOfItsLayoutIsNotBelieved) {
+  const auto frame_of = [](const std::vector<std::uint32_t>& entries) {
+    link::Frame f{link::kVerdict, std::vector<std::uint8_t>(static_cast<size_t>(link::kBatchHeaderBytes + link::kBatchEntries * link::kBatchEntryBytes), 0)};
+    const std::uint32_t t = 1000;
+    const link::Sequence seq = 65535;
+    for (int b = 0; b < 4; ++b) f.payload[static_cast<size_t>(b)] = static_cast<std::uint8_t>(t >> (8 * b));
+    for (int b = 0; b < 2; ++b) f.payload[static_cast<size_t>(4 + b)] = static_cast<std::uint8_t>(seq >> (8 * b));
+    for (size_t k = 0; k < entries.size(); ++k) {
+      for (int b = 0; b < 4; ++b) f.payload[static_cast<size_t>(link::kBatchHeaderBytes) + 4 * k + static_cast<size_t>(b)] = static_cast<std::uint8_t>(entries[k] >> (8 * b));
+    }
+    return f;
+  };
+  const auto entry = [](std::uint32_t x, std::uint32_t y, bool p, bool passed, std::uint32_t gap) {
+    return x | y << 8 | std::uint32_t{p} << 16 | std::uint32_t{passed} << 17 | 1u << 18 | gap << 19;
+  };
+  const auto two = link::decode_labels(frame_of({entry(3, 4, true, false, 0), entry(127, 126, false, true, link::kBatchGapMax)}));
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_EQ(two[0].seq, 65535);
+  EXPECT_EQ(two[1].seq, 0) << "numbers wrap modulo 2^16";
+  EXPECT_EQ(two[0].label.t, 1000u);
+  EXPECT_EQ(two[1].label.t, 1000u + link::kBatchGapMax);
+  EXPECT_EQ(two[0].label.x, 3);
+  EXPECT_EQ(two[0].label.y, 4);
+  EXPECT_EQ(two[0].label.p, 1);
+  EXPECT_EQ(two[0].label.label, -1);
+  EXPECT_EQ(two[1].label.x, 127);
+  EXPECT_EQ(two[1].label.label, hls::kLabelPassedFilter);
+  EXPECT_TRUE(link::decode_labels(frame_of({})).empty()) << "no verdict present";
+  EXPECT_TRUE(link::decode_labels(frame_of({0, entry(1, 1, false, true, 0)})).empty()) << "a present entry after an absent one";
+  EXPECT_TRUE(link::decode_labels(frame_of({entry(1, 1, false, true, 5)})).empty()) << "the first entry away from the frame's time";
+  EXPECT_TRUE(link::decode_labels(frame_of({entry(1, 1, false, true, 0), 7})).empty()) << "an absent entry that is not zeros";
 }
 
 // A frame the line corrupts is counted and dropped, the frames after it are refused until the
 // board has asked for it once, and the core sees the whole stream in order.
 TEST(BoardLink, ACorruptEventFrameIsAskedForAgainAndNothingIsLost) {
-  auto words = scene_words(0.015);
-  const size_t corrupt = words.size() / 2;
-  const Received r = run_link(link_frames(words), corrupt);
+  auto words = scene_words(0.05);
+  const Received r = run_link(words, words.size() / 2);
   hls::EventWord flush;
   flush.flush = true;
   words.push_back(flush);
@@ -210,22 +277,25 @@ TEST(BoardLink, ACorruptEventFrameIsAskedForAgainAndNothingIsLost) {
   ASSERT_EQ(r.status.size(), 1u);
   EXPECT_EQ(r.status[0].crc_errors, 1u);
   EXPECT_EQ(r.status[0].events_received, words.size() - 1);
-  ASSERT_EQ(r.resends.size(), 1u);
-  EXPECT_EQ(r.resends[0], corrupt);
+  EXPECT_EQ(r.status[0].overruns, 0u);
+  ASSERT_EQ(r.resends.size(), 1u) << "frames in flight behind the corrupt one do not ask again";
+  EXPECT_EQ(r.resends[0], r.corrupted_from) << "the board asks again from the corrupt frame's first event, whose entries it forgot";
 }
 
 // A flush whose number is ahead of the board's count (its last events were lost) is answered
 // by a resend request, not a status.
 TEST(BoardLink, AFlushAfterLostEventsAsksForThem) {
   auto words = scene_words(0.004);
-  auto frames = link_frames(words);
-  const size_t last = words.size() - 1;
-  frames[last][6] ^= 0x01;  // every copy of the last event is corrupt: the board never has it
+  const size_t last = words.size() - 5;  // the last frame: five events
   sim::VirtualBoard<Vboard_ice40> board(kCpb);
   link::FrameDecoder decoder;
   Received r;
   await_ready(board, decoder, r);
-  for (const auto& f : frames) board.send(f);
+  for (size_t from = 0; from < last; from += link::kBatchEntries) board.send(events_frames(words, from, std::min<size_t>(link::kBatchEntries, last - from)));
+  std::vector<std::uint8_t> lost = events_frames(words, last, 5), flush;
+  lost[6] ^= 0x01;  // the line corrupts the last frame: the board never has its events
+  link::append_flush(flush, static_cast<link::Sequence>(words.size()));
+  board.send(lost), board.send(flush);
   for (int guard = 0; r.resends.empty() && guard < 200000; ++guard) {
     board.run(64);
     collect(board, decoder, r);
@@ -234,10 +304,7 @@ TEST(BoardLink, AFlushAfterLostEventsAsksForThem) {
   EXPECT_EQ(r.resends[0], last);
   EXPECT_TRUE(r.status.empty());
   // The good copy and the flush again: now the status comes.
-  std::vector<std::uint8_t> event, flush;
-  link::append_event(event, words[last], static_cast<link::Sequence>(last));
-  link::append_flush(flush, static_cast<link::Sequence>(words.size()));
-  board.send(event), board.send(flush);
+  board.send(events_frames(words, last, 5)), board.send(flush);
   for (int guard = 0; r.status.empty() && guard < 2000000; ++guard) {
     board.run(64);
     collect(board, decoder, r);
