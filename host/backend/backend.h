@@ -84,8 +84,11 @@ class Backend {
   virtual BackendStats stats() const = 0;
   // Takes, for up to `wait_ms`, what the backend produced from input of its own, without any
   // pushed: a board in tracks mode whose events enter at its AER pins (listening, docs/link.md).
-  // Backends that have no input of their own refuse.
-  virtual void listen(OutputSink& /*out*/, int /*wait_ms*/) {
+  // With `limit` (0: none) it takes at most that many events in all, where the events come
+  // back one by one (a board that stops at the filter), and returns once it has them; a board
+  // that keeps its labels counts them, and it returns once the count reached `limit`. Backends
+  // that have no input of their own refuse.
+  virtual void listen(OutputSink& /*out*/, int /*wait_ms*/, std::int64_t /*limit*/ = 0) {
     throw std::invalid_argument("only the board backend listens to input of its own (--backend board --core arty)");
   }
 };

@@ -124,16 +124,17 @@ class BoardBackend final : public Backend {
   // Listening: the events enter at the board's AER pins and none go out, so only track
   // updates, packet summaries and progress frames come. A sensor that sees nothing moving
   // sends nothing, so silence here is not a lost board.
-  void listen(OutputSink& out, int wait_ms) override {
+  void listen(OutputSink& out, int wait_ms, std::int64_t limit) override {
     if (mode_ != link::LinkMode::kTracks && !rest_) {
       throw std::invalid_argument("listening to the board's AER pins needs --board-link tracks: only track updates cross the line");
     }
     listening_ = true;
+    listen_limit_ = limit;
     const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms);
     std::uint8_t buf[4096];
     for (;;) {
       const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now()).count();
-      if (left <= 0) return;
+      if (left <= 0 || (limit > 0 && stats().events_in >= limit)) return;
       const size_t n = port_.read_some(buf, static_cast<int>(left));
       decoder_.push(std::span(buf, n));
       take_frames(out);
@@ -257,6 +258,7 @@ class BoardBackend final : public Backend {
   // in the numbers is events the line destroyed; no one has them to send again, so they are
   // counted as labels lost, and their rows are missing.
   void take_stamped(const link::NumberedLabel& numbered, OutputSink& out) {
+    if (listen_limit_ > 0 && stats_.s.events_in >= listen_limit_) return;  // the user's --limit: the sensor goes on
     const hls::LabelWord& label = numbered.label;
     const std::uint64_t number = unwrap(numbered.seq, answered_);
     // The run starts at the first event after the reset's status: the sensor never stopped, and
@@ -422,6 +424,7 @@ class BoardBackend final : public Backend {
   bool started_ = false, flushing_ = false;
   bool listening_ = false;             // listen() was called: the events enter at the board's AER pins
   bool stamped_any_ = false;           // listening to a board that stops at the filter: an event came
+  std::int64_t listen_limit_ = 0;      // listening: the most events to take (0: no limit)
   std::set<std::int32_t> listened_ids_;  // the track IDs whose updates came while listening
 };
 

@@ -163,7 +163,7 @@ StageReport listen_stages(backend::Backend& backend, Collector& sink, Writers& w
     const std::int64_t events_in = backend.stats().events_in;
     if (o.progress) o.progress(-1.0, events_in);
     if ((o.stop && o.stop()) || (limit > 0 && events_in >= limit)) break;
-    backend.listen(sink, kListenMs);
+    backend.listen(sink, kListenMs, limit);
     report.read_ns += since(mark);
     write();
   }

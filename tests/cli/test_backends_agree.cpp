@@ -361,5 +361,20 @@ TEST(BackendsAgree, ListeningToTheIcebreakersAerPinsGivesTheFixedCoresLabels) {
   EXPECT_EQ(tracks, read_file(dir.path("fixed/tracks.csv")));
 }
 
+// --limit takes at most that many of the sensor's events, though the board's frames bring
+// them 32 at a time and the sensor goes on.
+TEST(BackendsAgree, ListeningWithALimitTakesExactlyThatManyEvents) {
+  TempDir dir;
+  const std::string scene = "gen://translation?duration-s=0.1&seed=3&width=128&height=128";
+  VirtualBoardProcess board(dir, {"--build", "ice40", "--aer", scene});
+  ASSERT_FALSE(board.device().empty()) << "evms vboard did not start";
+  const long limit = 1001;
+  const auto listened = run_command("timeout 120 " + evms_binary() + " run --listen --backend board --core ice40 --device " + board.device() +
+                                    " --limit " + std::to_string(limit) + " --out " + dir.path("listen"));
+  ASSERT_EQ(listened.exit_code, 0) << listened.err;
+  EXPECT_EQ(events_in_summary(listened.out), limit) << listened.out;
+  EXPECT_EQ(lines_of(read_file(dir.path("listen/events.csv"))).size(), static_cast<size_t>(limit) + 2) << "a row for each event taken";
+}
+
 }  // namespace
 }  // namespace evms::test
