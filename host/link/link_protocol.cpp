@@ -47,6 +47,16 @@ std::uint16_t crc16(std::span<const std::uint8_t> bytes) {
   return c;
 }
 
+std::uint32_t pack_entry(const BatchEntry& e) {
+  return std::uint32_t{e.x} | std::uint32_t{e.y} << 8 | std::uint32_t{e.p & 1u} << 16 | std::uint32_t{e.passed} << 17 |
+         std::uint32_t{e.present} << 18 | e.gap << (32 - kBatchGapBits);
+}
+
+BatchEntry unpack_entry(std::uint32_t word) {
+  return {static_cast<std::uint8_t>(word & 0xFF), static_cast<std::uint8_t>((word >> 8) & 0xFF), static_cast<std::uint8_t>((word >> 16) & 1),
+          ((word >> 17) & 1) != 0, ((word >> 18) & 1) != 0, word >> (32 - kBatchGapBits)};
+}
+
 void append_events(std::vector<std::uint8_t>& out, std::span<const hls::EventWord> events, Sequence first) {
   for (size_t i = 0; i < events.size();) {
     std::vector<std::uint8_t> p;
@@ -58,7 +68,7 @@ void append_events(std::vector<std::uint8_t>& out, std::span<const hls::EventWor
       const std::uint32_t gap = e.t - previous;
       if (k > 0 && gap > kBatchGapMax) break;  // the next frame starts at this event's time
       if (e.x > 0xFF || e.y > 0xFF) throw std::invalid_argument("an events frame carries x and y in a byte each (boards of 256x256 at most)");
-      put(p, std::uint32_t{e.x} | std::uint32_t{e.y} << 8 | std::uint32_t{e.p & 1u} << 16 | 1u << 18 | gap << 19, kBatchEntryBytes);
+      put(p, pack_entry({static_cast<std::uint8_t>(e.x), static_cast<std::uint8_t>(e.y), e.p, false, true, gap}), kBatchEntryBytes);
       previous = e.t;
     }
     frame(out, kEvents, p);
@@ -118,19 +128,16 @@ std::vector<NumberedLabel> decode_labels(const Frame& f) {
   std::uint32_t t = get(f.payload, 0, 4);
   const auto first = static_cast<Sequence>(get(f.payload, 4, 2));
   for (int k = 0; k < kBatchEntries; ++k) {
-    const std::uint32_t entry = get(f.payload, static_cast<size_t>(kBatchHeaderBytes + k * kBatchEntryBytes), kBatchEntryBytes);
-    const bool present = (entry >> 18) & 1;
-    const std::uint32_t gap = entry >> 19;
-    if (!present) {
-      if (entry != 0) return {};  // an absent entry is all zeros
+    const std::uint32_t word = get(f.payload, static_cast<size_t>(kBatchHeaderBytes + k * kBatchEntryBytes), kBatchEntryBytes);
+    const BatchEntry e = unpack_entry(word);
+    if (!e.present) {
+      if (word != 0) return {};  // an absent entry is all zeros
       continue;
     }
     // The present entries come first, and the first is at the frame's own time.
-    if (static_cast<int>(out.size()) != k || (k == 0 && gap != 0)) return {};
-    t += gap;
-    out.push_back({static_cast<Sequence>(first + k),
-                   {t, static_cast<std::uint16_t>(entry & 0xFF), static_cast<std::uint16_t>((entry >> 8) & 0xFF),
-                    static_cast<std::uint8_t>((entry >> 16) & 1), ((entry >> 17) & 1) != 0 ? hls::kLabelPassedFilter : -1}});
+    if (static_cast<int>(out.size()) != k || (k == 0 && e.gap != 0)) return {};
+    t += e.gap;
+    out.push_back({static_cast<Sequence>(first + k), {t, e.x, e.y, e.p, e.passed ? hls::kLabelPassedFilter : -1}});
   }
   return out;
 }

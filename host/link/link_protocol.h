@@ -42,6 +42,16 @@ using Sequence = std::uint16_t;
 
 std::uint16_t crc16(std::span<const std::uint8_t> bytes);
 
+// An entry of an events frame or a verdict frame, and its u32 (host/link/link_frames.h).
+struct BatchEntry {
+  std::uint8_t x = 0, y = 0, p = 0;
+  bool passed = false;   // verdicts: passed the filter
+  bool present = false;
+  std::uint32_t gap = 0;  // microseconds since the previous entry, below 2^kBatchGapBits
+};
+std::uint32_t pack_entry(const BatchEntry& e);
+BatchEntry unpack_entry(std::uint32_t word);
+
 // Events numbered from `first` on, in events frames of up to kBatchEntries (fewer when an event
 // comes more than kBatchGapMax us after the previous one).
 void append_events(std::vector<std::uint8_t>& out, std::span<const hls::EventWord> events, Sequence first);

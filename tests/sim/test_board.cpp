@@ -244,8 +244,8 @@ TEST(BoardLink, AVerdictFrameOutOfItsLayoutIsNotBelieved) {
     }
     return f;
   };
-  const auto entry = [](std::uint32_t x, std::uint32_t y, bool p, bool passed, std::uint32_t gap) {
-    return x | y << 8 | std::uint32_t{p} << 16 | std::uint32_t{passed} << 17 | 1u << 18 | gap << 19;
+  const auto entry = [](std::uint8_t x, std::uint8_t y, bool p, bool passed, std::uint32_t gap) {
+    return link::pack_entry({x, y, static_cast<std::uint8_t>(p), passed, true, gap});
   };
   const auto two = link::decode_labels(frame_of({entry(3, 4, true, false, 0), entry(127, 126, false, true, link::kBatchGapMax)}));
   ASSERT_EQ(two.size(), 2u);
