@@ -197,7 +197,7 @@ module evms_link_rx #(
                 overruns <= overruns + 1'b1;
                 resend_valid <= 1'b1;
                 resend_asked <= 1'b1;
-              end else if (frame_ahead && (frame_taken != 0 || !resend_asked)) begin
+              end else if (frame_ahead && !resend_asked) begin  // entries are consecutive: none was taken
                 resend_valid <= 1'b1;
                 resend_asked <= 1'b1;
               end
