@@ -13,7 +13,10 @@
 // the line corrupts it (go-back-N): the event numbered expected_seq goes into a FIFO of
 // FifoDepth words for the core, an older number is a resent copy and is dropped, and a newer
 // one means frames were lost: it is dropped and a resend of expected_seq is asked for once
-// (resend_valid, until the link's transmitter takes it), not again until an event is taken.
+// (resend_valid, until the link's transmitter takes it), not again until an event is taken or
+// the host is seen to have started over: an events frame ahead whose first number is not after
+// the previous ahead frame's (last_ahead_seq) is a resend whose first frame the line destroyed,
+// and waiting for the host's silence timer would cost it 500 ms.
 // A flush whose number is not expected_seq asks again: events before it are missing. The host
 // keeps at most FifoDepth events in flight, so the FIFO does not overrun; if it does anyway,
 // the word is counted and asked for again.
@@ -57,6 +60,7 @@ module evms_link_rx #(
   logic [7:0] crc_lo;
   logic [15:0] expected_seq;
   logic resend_asked;  // since the last event taken
+  logic [15:0] last_ahead_seq;  // since then: the first number of the last frame ahead, or the flush's
   assign resend_seq = expected_seq;
 
   // Within an events frame, until its check: the next entry's number and time base, the number
@@ -84,7 +88,11 @@ module evms_link_rx #(
 
   // The frame that ends with this byte: its check, and a flush's number against expected_seq.
   logic crc_ok, is_events, is_flush, is_reset;
-  logic [15:0] flush_ahead;
+  logic [15:0] flush_ahead, frame_first_seq, since_last_ahead;
+  logic frame_started_over;
+  assign frame_first_seq = {header[5], header[4]};
+  assign since_last_ahead = frame_first_seq - last_ahead_seq;
+  assign frame_started_over = since_last_ahead == 16'd0 || since_last_ahead[15];
   assign crc_ok = {byte_data, crc_lo} == crc;
   assign is_events = crc_ok && ftype == FrameEventsType;
   assign is_flush = crc_ok && ftype == FrameFlushType && flen == FrameFlushLen;
@@ -119,6 +127,7 @@ module evms_link_rx #(
       expected_seq <= '0;
       resend_asked <= 1'b0;
       resend_valid <= 1'b0;
+      last_ahead_seq <= '0;
       for (int k = 0; k < BatchHeaderBytes; k++) header[k] <= '0;
       entry_low <= '0;
       entry_seq <= '0;
@@ -197,10 +206,11 @@ module evms_link_rx #(
                 overruns <= overruns + 1'b1;
                 resend_valid <= 1'b1;
                 resend_asked <= 1'b1;
-              end else if (frame_ahead && !resend_asked) begin  // entries are consecutive: none was taken
+              end else if (frame_ahead && (!resend_asked || frame_started_over)) begin  // entries are consecutive: none was taken
                 resend_valid <= 1'b1;
                 resend_asked <= 1'b1;
               end
+              if (frame_overrun || frame_ahead) last_ahead_seq <= frame_first_seq;
             end else if (is_flush && flush_ahead == 16'd0 && fifo_ready) begin
               push <= 1'b1;
               commit <= 1'b1;
@@ -212,6 +222,7 @@ module evms_link_rx #(
             end else if (is_flush) begin
               resend_valid <= 1'b1;
               resend_asked <= 1'b1;
+              last_ahead_seq <= {header[1], header[0]};
             end else if (is_reset) begin
               soft_reset <= 1'b1;
               labels_on_board <= header[0][0];

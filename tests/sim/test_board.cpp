@@ -121,8 +121,10 @@ std::vector<std::uint8_t> events_frames(const std::vector<hls::EventWord>& words
 // Streams `words` (numbered from 0, then a flush) in events frames of up to kBatchEntries,
 // keeping at most kWindow events in flight, and going back to the event the board asks for
 // again, as the host does. The first frame sent from event `corrupt` on (if any) has a payload
-// bit flipped on the line; r.corrupted_from is its first event.
-Received run_link(const std::vector<hls::EventWord>& words, size_t corrupt = SIZE_MAX) {
+// bit flipped on the line; r.corrupted_from is its first event. The first frames of the first
+// `corrupt_resends` resends are flipped too. A board that says nothing for the host's silence
+// timer (500 ms) while events are unanswered fails the run: the host would have had to wait.
+Received run_link(const std::vector<hls::EventWord>& words, size_t corrupt = SIZE_MAX, size_t corrupt_resends = 0) {
   sim::VirtualBoard<Vboard_ice40> board(kCpb);
   link::FrameDecoder decoder;
   Received r;
@@ -130,12 +132,18 @@ Received run_link(const std::vector<hls::EventWord>& words, size_t corrupt = SIZ
   size_t next = 0;
   bool flush_sent = false;
   size_t resends_seen = 0;
-  std::uint64_t guard = 0;
+  bool corrupt_next = false;  // the next frame is a resend's first
+  std::uint64_t guard = 0, quiet_clocks = 0;
+  const auto silence_clocks = static_cast<std::uint64_t>(kIce40.clock_hz / 2);
   while (r.status.empty()) {
     if (!board.sending() && next < words.size() && next < r.words.labels.size() + kWindow) {
       const size_t count = std::min({static_cast<size_t>(link::kBatchEntries), words.size() - next, r.words.labels.size() + kWindow - next});
       std::vector<std::uint8_t> frames = events_frames(words, next, count);
-      if (next >= corrupt) frames[6] ^= 0x10, r.corrupted_from = next, corrupt = SIZE_MAX;
+      if (next >= corrupt || corrupt_next) {
+        frames[6] ^= 0x10;
+        if (next >= corrupt) r.corrupted_from = next, corrupt = SIZE_MAX;
+        corrupt_next = false;
+      }
       board.send(frames);
       next += count;
     } else if (!board.sending() && next == words.size() && !flush_sent) {
@@ -144,9 +152,18 @@ Received run_link(const std::vector<hls::EventWord>& words, size_t corrupt = SIZ
       board.send(flush);
       flush_sent = true;
     }
+    const size_t heard = r.words.labels.size() + r.resends.size() + r.progress.size();
     board.run(64);
     collect(board, decoder, r);
-    for (; resends_seen < r.resends.size(); ++resends_seen) next = r.resends[resends_seen], flush_sent = false;  // fewer than 2^16 events here  // fewer than 2^16 events here
+    for (; resends_seen < r.resends.size(); ++resends_seen) {
+      next = r.resends[resends_seen], flush_sent = false;  // fewer than 2^16 events here
+      if (corrupt_resends > 0) --corrupt_resends, corrupt_next = true;
+    }
+    quiet_clocks = r.words.labels.size() + r.resends.size() + r.progress.size() == heard && !board.sending() ? quiet_clocks + 64 : 0;
+    if (quiet_clocks > silence_clocks) {
+      ADD_FAILURE() << "the board said nothing for 500 ms with " << next - r.words.labels.size() << " events unanswered";
+      break;
+    }
     if (++guard > 5000000) {
       ADD_FAILURE() << "no status frame after the flush";
       break;
@@ -280,6 +297,25 @@ TEST(BoardLink, ACorruptEventFrameIsAskedForAgainAndNothingIsLost) {
   EXPECT_EQ(r.status[0].overruns, 0u);
   ASSERT_EQ(r.resends.size(), 1u) << "frames in flight behind the corrupt one do not ask again";
   EXPECT_EQ(r.resends[0], r.corrupted_from) << "the board asks again from the corrupt frame's first event, whose entries it forgot";
+}
+
+// When the line also destroys the first frame of the resend the board asked for, the frames
+// after it are ahead again, but numbered from before those the board last saw: the host has
+// started over, so the board asks again at once instead of leaving the host to its silence
+// timer.
+TEST(BoardLink, AResendWhoseFirstFrameIsLostIsAskedForAgainAtOnce) {
+  auto words = scene_words(0.3);
+  ASSERT_GT(words.size(), 64u + 2 * kWindow) << "the window fills before the flush: only the board can ask";
+  const Received r = run_link(words, 64, 2);
+  hls::EventWord flush;
+  flush.flush = true;
+  words.push_back(flush);
+  expect_same(r.words, cxx_filter_core(words));
+  ASSERT_EQ(r.status.size(), 1u);
+  EXPECT_EQ(r.status[0].crc_errors, 3u);
+  EXPECT_EQ(r.status[0].events_received, words.size() - 1);
+  ASSERT_EQ(r.resends.size(), 3u) << "one request for the corrupt frame and one for each resend that lost its first frame";
+  for (const link::Sequence seq : r.resends) EXPECT_EQ(seq, r.corrupted_from);
 }
 
 // A flush whose number is ahead of the board's count (its last events were lost) is answered
