@@ -79,16 +79,16 @@ std::vector<std::string> types_of(const SweepOptions& o) {
 void print_header(const std::vector<std::string>& types, const char* first) {
   std::printf("| %s |", first);
   for (const auto& t : types) std::printf(" %s |", t.c_str());
-  std::printf(" mean F | worst type | ARI | IDF1 | ID switches/object | track err px | within 2.5 px | err to events' centre px | within 2.5 px | MOTA | MOTP px | MOTP to events' centre px | within 2.5 px | kernel evals/event | events/s |\n|---|");
-  for (size_t i = 0; i < types.size() + 15; ++i) std::printf("---|");
+  std::printf(" mean F | worst type | ARI | IDF1 | ID switches/object | track err px | within 2.5 px | velocity err px/s | err to events' centre px | within 2.5 px | MOTA | MOTP px | MOTP to events' centre px | within 2.5 px | kernel evals/event | events/s |\n|---|");
+  for (size_t i = 0; i < types.size() + 16; ++i) std::printf("---|");
   std::printf("\n");
 }
 
 void print_row(const std::string& label, const eval::FamilyResult& r) {
   std::printf("| %s |", label.c_str());
   for (const auto& t : r.types) std::printf(" %.3f |", t.f);
-  std::printf(" **%.3f** | %.3f | %.3f | %.3f | %.1f | %.2f | %.2f | %.2f | %.2f | %.3f | %.2f | %.2f | %.2f | %.0f | %s |\n", r.mean_f,
-              r.worst_type_f, r.mean_ari, r.idf1, r.id_switches_per_object, r.tracking.mean, r.tracking.within, r.tracking_to_events.mean,
+  std::printf(" **%.3f** | %.3f | %.3f | %.3f | %.1f | %.2f | %.2f | %.1f | %.2f | %.2f | %.3f | %.2f | %.2f | %.2f | %.0f | %s |\n", r.mean_f,
+              r.worst_type_f, r.mean_ari, r.idf1, r.id_switches_per_object, r.tracking.mean, r.tracking.within, r.velocity.mean, r.tracking_to_events.mean,
               r.tracking_to_events.within, r.mot.mota(), r.mot.to_centres.mean, r.mot.to_events.mean, r.mot.to_events.within,
               r.kernel_evaluations_per_event, si(r.events_per_s).c_str());
   std::fflush(stdout);

@@ -81,7 +81,7 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
   std::vector<std::string> order;
   std::int64_t events = 0, evaluations = 0, switches = 0, objects = 0;
   double wall = 0;
-  PooledErrors to_centres, to_events, mot_to_centres, mot_to_events;
+  PooledErrors to_centres, to_events, velocity, mot_to_centres, mot_to_events;
   for (size_t i = 0; i < family.size(); ++i) {
     const SceneResult& r = scenes[i];
     auto [it, fresh] = by_type.try_emplace(family[i].type);
@@ -101,6 +101,7 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
     wall += r.wall_s;
     to_centres.add(r.tracking.all_kalman);
     to_events.add(r.tracking.all_kalman_events);
+    velocity.add(r.tracking.all_velocity);
     const ClearMot& m = r.tracking.mot;
     out.mot.add_counts(m);
     mot_to_centres.add(m.to_centres);
@@ -121,6 +122,7 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
   }
   out.tracking = to_centres.stats();
   out.tracking_to_events = to_events.stats();
+  out.velocity = velocity.stats();
   out.mot.to_centres = mot_to_centres.stats();
   out.mot.to_events = mot_to_events.stats();
   out.kernel_evaluations_per_event = events ? static_cast<double>(evaluations) / static_cast<double>(events) : 0;

@@ -265,7 +265,7 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   report.all_kalman = all_kalman.stats(tau_px);
   report.all_raw = all_raw.stats(tau_px);
   report.all_kalman_events = all_kalman_events.stats(tau_px);
-  report.velocity_error = all_velocity.stats(0).mean;
+  report.all_velocity = all_velocity.stats(0);
   report.mot = clear_mot(updates, lookup, event_lookup, objects, tau_px, association_radius_px);
   return report;
 }

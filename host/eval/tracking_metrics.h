@@ -85,7 +85,7 @@ struct TrackingReport {
   std::int64_t spurious_updates = 0;   // updates of tracks associated with no object
   ErrorStats all_kalman, all_raw;      // pooled over every object, against the true centres
   ErrorStats all_kalman_events;        // pooled, against the labelled events' centres (paper)
-  double velocity_error = 0;           // pooled, px/s
+  ErrorStats all_velocity;             // pooled |v_kalman - v_true|, px/s (true: central difference)
 };
 
 // The events with their true labels (object index or -1), for the paper's ground truth; empty

@@ -71,7 +71,7 @@ TEST(TrackingMetrics, ErrorsWithinTauAndAssociation) {
   std::vector<TrackUpdate> updates;
   for (TimeUs t = 5000; t <= 95000; t += 10000) {
     updates.push_back({t, 7, 50.0 + t * 1e-4 + 3.0, 50, 100, 0, 50.0 + t * 1e-4 + 4.0, 50});  // 3 px off (raw 4)
-    updates.push_back({t + 500, 9, 151, 100, 0, 0, 150, 100});                              // 1 px off (raw 0)
+    updates.push_back({t + 500, 9, 151, 100, 0, 30, 150, 100});                             // 1 px off (raw 0), 30 px/s off
     updates.push_back({t, 11, 10, 170, 0, 0, 10, 170});                                     // near nothing
   }
   const TrackingReport r = tracking_report(updates, centres, 2, 2.5);
@@ -86,9 +86,12 @@ TEST(TrackingMetrics, ErrorsWithinTauAndAssociation) {
   EXPECT_NEAR(r.objects[1].kalman.mean, 1.0, 1e-9);
   EXPECT_DOUBLE_EQ(r.objects[1].kalman.within, 1.0);
   EXPECT_DOUBLE_EQ(r.objects[1].raw.mean, 0.0);
+  EXPECT_NEAR(r.objects[1].velocity_error, 30.0, 1e-6);
   EXPECT_EQ(r.spurious_updates, 10);
   EXPECT_EQ(r.all_kalman.samples, 20);
   EXPECT_DOUBLE_EQ(r.all_kalman.within, 0.5);
+  EXPECT_EQ(r.all_velocity.samples, 20);
+  EXPECT_NEAR(r.all_velocity.mean, 15.0, 1e-6);
 }
 
 // The paper's ground truth: the centre of mass of the object's labelled events over the last
