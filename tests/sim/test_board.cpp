@@ -282,19 +282,26 @@ TEST(BoardLink, AVerdictFrameOutOfItsLayoutIsNotBelieved) {
   EXPECT_TRUE(link::decode_labels(frame_of({entry(1, 1, false, true, 0), 7})).empty()) << "an absent entry that is not zeros";
 }
 
-// A frame the line corrupts is counted and dropped, the frames after it are refused until the
-// board has asked for it once, and the core sees the whole stream in order.
-TEST(BoardLink, ACorruptEventFrameIsAskedForAgainAndNothingIsLost) {
-  auto words = scene_words(0.05);
-  const Received r = run_link(words, words.size() / 2);
+// After a run_link whose line corrupted `corrupted` frames: every event reached the core once,
+// in order, and came back as the C++ core's verdict.
+void expect_whole_stream(std::vector<hls::EventWord> words, const Received& r, std::uint32_t corrupted) {
+  const size_t events = words.size();
   hls::EventWord flush;
   flush.flush = true;
   words.push_back(flush);
   expect_same(r.words, cxx_filter_core(words));
   ASSERT_EQ(r.status.size(), 1u);
-  EXPECT_EQ(r.status[0].crc_errors, 1u);
-  EXPECT_EQ(r.status[0].events_received, words.size() - 1);
+  EXPECT_EQ(r.status[0].crc_errors, corrupted);
+  EXPECT_EQ(r.status[0].events_received, events);
   EXPECT_EQ(r.status[0].overruns, 0u);
+}
+
+// A frame the line corrupts is counted and dropped, the frames after it are refused until the
+// board has asked for it once, and the core sees the whole stream in order.
+TEST(BoardLink, ACorruptEventFrameIsAskedForAgainAndNothingIsLost) {
+  const auto words = scene_words(0.05);
+  const Received r = run_link(words, words.size() / 2);
+  expect_whole_stream(words, r, 1);
   ASSERT_EQ(r.resends.size(), 1u) << "frames in flight behind the corrupt one do not ask again";
   EXPECT_EQ(r.resends[0], r.corrupted_from) << "the board asks again from the corrupt frame's first event, whose entries it forgot";
 }
@@ -304,16 +311,10 @@ TEST(BoardLink, ACorruptEventFrameIsAskedForAgainAndNothingIsLost) {
 // started over, so the board asks again at once instead of leaving the host to its silence
 // timer.
 TEST(BoardLink, AResendWhoseFirstFrameIsLostIsAskedForAgainAtOnce) {
-  auto words = scene_words(0.3);
+  const auto words = scene_words(0.3);
   ASSERT_GT(words.size(), 64u + 2 * kWindow) << "the window fills before the flush: only the board can ask";
   const Received r = run_link(words, 64, 2);
-  hls::EventWord flush;
-  flush.flush = true;
-  words.push_back(flush);
-  expect_same(r.words, cxx_filter_core(words));
-  ASSERT_EQ(r.status.size(), 1u);
-  EXPECT_EQ(r.status[0].crc_errors, 3u);
-  EXPECT_EQ(r.status[0].events_received, words.size() - 1);
+  expect_whole_stream(words, r, 3);
   ASSERT_EQ(r.resends.size(), 3u) << "one request for the corrupt frame and one for each resend that lost its first frame";
   for (const link::Sequence seq : r.resends) EXPECT_EQ(seq, r.corrupted_from);
 }
