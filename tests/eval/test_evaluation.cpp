@@ -8,6 +8,7 @@
 
 #include "host/eval/chunks.h"
 #include "host/eval/evaluation.h"
+#include "host/eval/family_eval.h"
 #include "host/eval/kmeans.h"
 #include "host/eval/tracking_metrics.h"
 #include "tests/support/command.h"
@@ -331,4 +332,34 @@ TEST(SweepCommand, UnknownTypesAndParametersAreOneLine) {
 }
 
 }  // namespace
+
+// What `evms sweep` prints is the family's pooling of its members: F the mean over members,
+// the worst type the lowest of the types' means, and the tracking errors (position, velocity)
+// pooled over every estimate of every member, so that a member with many estimates weighs
+// more. Two short members of two types, run by the defaults.
+TEST(FamilyEval, ThePooledScoresAreTheMembersScoresPooled) {
+  std::vector<eval::FamilyScene> family = eval::generate_family(gen::Split::kValidation, 1, {"still", "rotation"}, 2,
+                                                                gen::FamilyPins{128, 128, 3, 0.1});
+  ASSERT_EQ(family.size(), 2u);
+  const eval::FamilyResult r = eval::evaluate_family(family, Method{}, "golden", 2);
+  ASSERT_EQ(r.scenes.size(), 2u);
+  ASSERT_EQ(r.types.size(), 2u);
+  EXPECT_NEAR(r.mean_f, (r.scenes[0].scores.f + r.scenes[1].scores.f) / 2, 1e-12);
+  EXPECT_NEAR(r.worst_type_f, std::min(r.scenes[0].scores.f, r.scenes[1].scores.f), 1e-12);
+  std::int64_t positions = 0, velocities = 0;
+  double position_sum = 0, velocity_sum = 0;
+  for (const eval::SceneResult& s : r.scenes) {
+    ASSERT_GT(s.tracking.all_velocity.samples, 0) << "each member's confirmed tracks have velocities to score";
+    positions += s.tracking.all_kalman.samples;
+    velocities += s.tracking.all_velocity.samples;
+    position_sum += s.tracking.all_kalman.mean * static_cast<double>(s.tracking.all_kalman.samples);
+    velocity_sum += s.tracking.all_velocity.mean * static_cast<double>(s.tracking.all_velocity.samples);
+  }
+  EXPECT_EQ(r.tracking.samples, positions);
+  EXPECT_EQ(r.velocity.samples, velocities);
+  EXPECT_NEAR(r.tracking.mean, position_sum / static_cast<double>(positions), 1e-9);
+  EXPECT_NEAR(r.velocity.mean, velocity_sum / static_cast<double>(velocities), 1e-9);
+  EXPECT_GT(r.velocity.mean, 0) << "no estimate's velocity is exactly the truth";
+}
+
 }  // namespace evms::eval
