@@ -515,7 +515,8 @@ std::string write_report(const EvalOptions& o) {
        << "paper's ground truth): E-MS " << fmt("%.2f", family_results[0].tracking_to_events.mean) << " px ("
        << fmt("%.0f %%", 100 * family_results[0].tracking_to_events.within) << "), paper preset "
        << fmt("%.2f", family_results[1].tracking_to_events.mean) << " px (" << fmt("%.0f %%", 100 * family_results[1].tracking_to_events.within)
-       << ").\n\n";
+       << "). The tracks' velocities against the objects' true velocities (the central difference of the true centre): E-MS "
+       << fmt("%.1f", family_results[0].velocity.mean) << " px/s, paper preset " << fmt("%.1f", family_results[1].velocity.mean) << " px/s.\n\n";
     const auto mot_text = [](const ClearMot& m) {
       return "MOTA " + fmt("%.3f", m.mota()) + ", MOTP " + fmt("%.2f", m.to_centres.mean) + " px (" + fmt("%.2f", m.to_events.mean) +
              " px to the labelled events' centre, " + fmt("%.0f %%", 100 * m.to_events.within) + " within 2.5 px)";
