@@ -331,8 +331,6 @@ TEST(SweepCommand, UnknownTypesAndParametersAreOneLine) {
   EXPECT_NE(param.err.find("unknown parameter 'bandwith'"), std::string::npos) << param.err;
 }
 
-}  // namespace
-
 // What `evms sweep` prints is the family's pooling of its members: F the mean over members,
 // the worst type the lowest of the types' means, and the tracking errors (position, velocity)
 // pooled over every estimate of every member, so that a member with many estimates weighs
@@ -361,5 +359,7 @@ TEST(FamilyEval, ThePooledScoresAreTheMembersScoresPooled) {
   EXPECT_NEAR(r.velocity.mean, velocity_sum / static_cast<double>(velocities), 1e-9);
   EXPECT_GT(r.velocity.mean, 0) << "no estimate's velocity is exactly the truth";
 }
+
+}  // namespace
 
 }  // namespace evms::eval
