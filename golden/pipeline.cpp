@@ -32,7 +32,7 @@ Pipeline::Pipeline(const Params& params, SensorSize sensor)
       sensor_(sensor),
       filter_(sensor, params.filter_window_us, params.filter_support, params.filter_warm_up_us, filter_noise_count(params, sensor)),
       clusterer_(params, sensor),
-      tracker_(make_tracker(params)) {
+      tracker_(make_tracker(params, sensor)) {
   packet_.reserve(static_cast<size_t>(params.packet_size));
 }
 

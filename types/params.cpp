@@ -125,8 +125,12 @@ const std::array kTable = {
               "track measured longest ago",
               &Params::evict_stale, 0, 1},
     ParamInfo{"accel-psd", "px^2/s^3",
-              "process noise: spectral density of the white-noise acceleration",
+              "process noise: spectral density of the white-noise acceleration, on a sensor accel-psd-width px wide",
               &Params::accel_psd, 0, kBig},
+    ParamInfo{"accel-psd-width", "px",
+              "the sensor width at which accel-psd holds: on a sensor W px wide the process noise is accel-psd "
+              "(W / this)^2, as a k times finer sensor sees k times faster motion; 0 = accel-psd on every sensor",
+              &Params::accel_psd_width, 0, 1e5},
     ParamInfo{"meas-sigma-px", "px", "standard deviation of a centroid measurement",
               &Params::meas_sigma_px, 1e-6, 1e6},
     ParamInfo{"init-sigma-px", "px", "initial standard deviation of a new track's position",
@@ -147,6 +151,12 @@ std::int64_t filter_noise_count(const Params& p, SensorSize sensor) {
   if (p.filter_noise_hz <= 0) return 0;
   const double per_interval = p.filter_noise_hz * sensor.width * sensor.height * static_cast<double>(TimeUs{1} << kFilterNoiseIntervalLog2) * 1e-6;
   return std::max<std::int64_t>(1, static_cast<std::int64_t>(per_interval));
+}
+
+double accel_psd_at(const Params& p, SensorSize sensor) {
+  if (p.accel_psd_width <= 0) return p.accel_psd;
+  const double k = sensor.width / p.accel_psd_width;
+  return p.accel_psd * k * k;
 }
 
 const ParamInfo* find_param(const std::string& name) {

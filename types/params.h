@@ -94,7 +94,9 @@ struct Params {
   int coast_packets = 0;             // ... or after missing this many packets; 0 = no limit
   bool evict_stale = true;           // with every slot taken, a new cluster takes the stalest
                                      // unmatched track's slot
-  double accel_psd = 100000.0;       // white-noise-acceleration spectral density, px^2/s^3
+  double accel_psd = 100000.0;       // white-noise-acceleration spectral density, px^2/s^3, ...
+  double accel_psd_width = 240;      // ... on a sensor this wide, scaled by (W / this)^2 on a sensor
+                                     // W px wide (accel_psd_at); 0 = accel_psd on every sensor
   double meas_sigma_px = 1.0;        // centroid measurement noise (R = sigma^2 I)
   double init_sigma_px = 2.0;        // initial position uncertainty (P0)
   double init_sigma_vel = 200.0;     // initial velocity uncertainty (P0), px/s
@@ -127,6 +129,12 @@ struct ParamInfo {
 // pixel a second over the sensor and the interval, rounded down, at least 1; 0 = off.
 inline constexpr int kFilterNoiseIntervalLog2 = 15;
 std::int64_t filter_noise_count(const Params& p, SensorSize sensor);
+
+// The process noise of the tracks' filters on `sensor`, px^2/s^3: accel_psd, scaled by the
+// square of the sensor's width over accel_psd_width when that is set. A scene seen by a sensor
+// with k times the pixels across moves k times as many pixels a second, so its accelerations'
+// spectral density is k^2 times larger.
+double accel_psd_at(const Params& p, SensorSize sensor);
 
 std::span<const ParamInfo> param_table();
 const ParamInfo* find_param(const std::string& name);

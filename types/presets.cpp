@@ -51,6 +51,7 @@ Params gaussian() {
   p.evict_stale = false;
   p.report_tentative = false;
   p.accel_psd = 1000.0;
+  p.accel_psd_width = 0;
   p.meas_sigma_px = 2.0;
   p.init_sigma_px = 2.0;
   p.init_sigma_vel = 200.0;

@@ -7,9 +7,12 @@
 
 namespace evms::golden {
 
-std::unique_ptr<Tracker> make_tracker(const Params& params) {
+std::unique_ptr<Tracker> make_tracker(const Params& params, SensorSize sensor) {
   if (params.association == Association::kNearestCentre) return std::make_unique<NearestCentreIds>(params);
-  return std::make_unique<MultiTargetTracker>(params);
+  Params on_sensor = params;  // the filters take the process noise of this sensor
+  on_sensor.accel_psd = accel_psd_at(params, sensor);
+  on_sensor.accel_psd_width = 0;
+  return std::make_unique<MultiTargetTracker>(on_sensor);
 }
 
 MultiTargetTracker::MultiTargetTracker(const Params& params)

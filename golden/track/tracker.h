@@ -59,7 +59,8 @@ class Tracker {
   virtual std::int64_t unassigned_clusters() const { return 0; }
 };
 
-std::unique_ptr<Tracker> make_tracker(const Params& params);
+// The tracker `params` choose, its filters' process noise that of `sensor` (accel_psd_at).
+std::unique_ptr<Tracker> make_tracker(const Params& params, SensorSize sensor);
 
 class MultiTargetTracker final : public Tracker {
  public:

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <initializer_list>
 #include <stdexcept>
@@ -15,6 +17,7 @@
 #include "hls/cluster/seeded_climbs.h"
 #include "hls/core/config.h"
 #include "hls/core/configs.h"
+#include "hls/track/kalman_axis.h"
 
 namespace evms::backend {
 
@@ -123,6 +126,19 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   return {};
 }
 
+// The largest process noise the core's filter takes, px^2/s^3: q/3 (kNoiseFrac fraction bits, per
+// tick^3) times dt^3 of the longest step (kMaxDt, kCovFrac fraction bits), plus the half that
+// rounds its shift, must be a signed 64-bit number (hls/track/kalman_axis.h).
+template <class S>
+double max_accel_psd() {
+  const int longest_step_log2 = std::bit_width(hls::KalmanAxis<S>::kMaxDt) - 1 - S::kTickLog2;  // ticks
+  const int dt3_bits = 3 * longest_step_log2 + S::kCovFrac;
+  const std::int64_t q_third_max = (INT64_MAX - (std::int64_t{1} << (S::kNoiseFrac - 1))) >> dt3_bits;
+  const double tick_s = std::ldexp(1.0, S::kTickLog2) * 1e-6;
+  // rnd(q_tick / 3 * 2^kNoiseFrac) <= q_third_max, with a margin of one part in 2^20 for the rounding
+  return 3 * std::ldexp(static_cast<double>(q_third_max) * (1 - 0x1p-20), -S::kNoiseFrac) / (tick_s * tick_s * tick_s);
+}
+
 template <class S>
 hls::Config core_config(const Params& p, SensorSize sensor) {
   auto need = [](bool ok, const std::string& what) {
@@ -194,7 +210,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.coast_packets = static_cast<std::uint32_t>(p.coast_packets);
   c.evict_stale = p.evict_stale;
   c.report_tentative = p.report_tentative;
-  const double q_tick = p.accel_psd * tick_s * tick_s * tick_s;  // px^2 / tick^3
+  const double q_tick = accel_psd_at(p, sensor) * tick_s * tick_s * tick_s;  // px^2 / tick^3
   c.q_third = rnd(q_tick / 3 * std::ldexp(1.0, S::kNoiseFrac));
   c.q_half = rnd(q_tick / 2 * std::ldexp(1.0, S::kNoiseFrac));
   c.q = rnd(q_tick * std::ldexp(1.0, S::kNoiseFrac));
@@ -205,7 +221,9 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   // The core's 64-bit products stay exact only below these (docs/hls.md, "Formats").
   need(c.r < (std::int64_t{1} << 35) && c.p0_pos < (std::int64_t{1} << 35) && c.p0_vel < (std::int64_t{1} << 35),
        "--meas-sigma-px, --init-sigma-px or --init-sigma-vel is too large for the core's covariance words");
-  need(c.q < (std::int64_t{1} << 31), "--accel-psd is too large for the core (at most 1e5 px^2/s^3)");
+  need(accel_psd_at(p, sensor) <= max_accel_psd<S>(),
+       "--accel-psd is too large for the core: at most " + std::to_string(static_cast<long long>(max_accel_psd<S>())) +
+           " px^2/s^3 on this sensor, --accel-psd-width included");
   need(c.inv_tau <= (std::uint64_t{1} << 32), "--tau-us must be at least 1 us for the core");
   return c;
 }

@@ -256,6 +256,41 @@ TEST(Tracker, TheSizeRatioStillGivesAMismatchedClusterItsTrackWhenNoOtherClaimsI
   EXPECT_EQ(tracker.step(3000, std::vector<Measurement>{bright}, updates), (std::vector<std::int32_t>{0}));
 }
 
+// The defaults' process noise is given for a 240-pixel-wide sensor and grows with the square of
+// the width: on a 480-wide sensor the tracks are those of four times the noise without scaling.
+TEST(Tracker, TheProcessNoiseScalesWithTheSquareOfTheSensorWidth) {
+  const Params p;
+  ASSERT_GT(p.accel_psd_width, 0);
+  EXPECT_DOUBLE_EQ(accel_psd_at(p, {240, 180}), p.accel_psd);
+  EXPECT_DOUBLE_EQ(accel_psd_at(p, {480, 360}), 4 * p.accel_psd);
+  EXPECT_DOUBLE_EQ(accel_psd_at(p, {120, 90}), p.accel_psd / 4);
+  Params unscaled = p;
+  unscaled.accel_psd = 4 * p.accel_psd;
+  unscaled.accel_psd_width = 0;
+  EXPECT_DOUBLE_EQ(accel_psd_at(unscaled, {128, 128}), unscaled.accel_psd) << "width 0: the same on every sensor";
+
+  const auto scaled = make_tracker(p, {480, 360}), fixed = make_tracker(unscaled, {128, 128});
+  const auto at_240 = make_tracker(p, {240, 180});
+  std::vector<TrackUpdate> a, b, c;
+  gen::Random rng(5);
+  double x = 100, vx = 0;
+  for (TimeUs t = 10000; t < 1000000; t += 10000) {
+    vx += 300 * rng.normal();  // a jerky target, so that the process noise shows
+    x += vx * 0.01;
+    const std::vector<Measurement> z{{t, x + rng.normal(), 200, 50, 3}};
+    scaled->step(t, z, a), fixed->step(t, z, b), at_240->step(t, z, c);
+  }
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.size(), 90u);
+  double apart_from_240 = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].x, b[i].x) << i;
+    ASSERT_EQ(a[i].vx, b[i].vx) << i;
+    apart_from_240 = std::max(apart_from_240, std::abs(a[i].vx - c[i].vx));
+  }
+  EXPECT_GT(apart_from_240, 1.0) << "px/s: the 240-wide sensor's filter is another filter";
+}
+
 TEST(NearestCentreIds, ClustersTakeTheNearestPreviousCentreEvenTwice) {
   Params p = preset("paper");
   NearestCentreIds ids_of(p);

@@ -94,6 +94,51 @@ TEST(KalmanAxisFixed, FollowsTheDoubleFilter) {
   EXPECT_LT(worst_vel, 0.5);    // px/s, on a target moving at 80 px/s
 }
 
+// The largest process noise the core takes (backend::max_accel_psd): its q/3 times the longest
+// step's dt^3, with its rounding half, is the largest number in the filter, and the filter still
+// follows the double one over steps up to the longest (kMaxDt); one step more noise is refused.
+// After a 262 ms coast, a filter this loose has taken a velocity of 10^4 px/s from 1 px of
+// measurement noise over a short step, so its position moves thousands of px, and the gain's 20
+// fraction bits of that innovation bound the worst difference; on average it is 1e-4 px.
+TEST(KalmanAxisFixed, TheLargestProcessNoiseTheCoreTakesFollowsTheDoubleFilter) {
+  Params p;
+  p.accel_psd_width = 0;
+  p.accel_psd = backend::max_accel_psd<S>();
+  const Config cfg = backend::core_config<S>(p, {240, 180});
+  EXPECT_GT(cfg.q_third, std::int64_t{1} << 34) << "the largest product is near 2^63";
+  Params over = p;
+  over.accel_psd *= 1.001;
+  EXPECT_THROW(backend::core_config<S>(over, {240, 180}), std::invalid_argument);
+
+  const double pos_unit = std::ldexp(1.0, -S::kPosFrac);
+  gen::Random rng(14);
+  AxisState a{0, 0, cfg.p0_pos, 0, cfg.p0_vel};
+  AxisDouble d{0, 0, p.init_sigma_px * p.init_sigma_px, 0, p.init_sigma_vel * p.init_sigma_vel};
+  double truth = 0, v = 0, worst_pos = 0, sum_pos = 0, worst_from_z = 0;
+  constexpr int kUpdates = 200000;
+  for (int k = 0; k < kUpdates; ++k) {
+    const std::uint32_t dt = k % 500 == 0 ? KalmanAxis<S>::kMaxDt : 100 + static_cast<std::uint32_t>(rng.below(20000));
+    v += 200 * rng.normal();
+    truth += v * dt * 1e-6;
+    if (std::abs(truth) > 1000 || std::abs(v) > 5000) truth = 0, v = 0;
+    const auto zq = static_cast<std::int32_t>(std::lround((truth + rng.normal()) / pos_unit));
+    KalmanAxis<S>::predict(a, dt, cfg);
+    KalmanAxis<S>::update(a, zq, cfg);
+    d.predict(dt * 1e-6, p.accel_psd);
+    d.update(zq * pos_unit, p.meas_sigma_px * p.meas_sigma_px);
+    ASSERT_GT(a.p00, 0) << k;
+    ASSERT_GT(a.p11, 0) << k;
+    ASSERT_LT(a.p00, KalmanAxis<S>::kCovMax) << k << ": saturated";
+    const double apart = std::abs(a.pos * pos_unit - d.pos);
+    worst_pos = std::max(worst_pos, apart);
+    sum_pos += apart;
+    worst_from_z = std::max(worst_from_z, std::abs(a.pos - zq) * pos_unit);
+  }
+  EXPECT_LT(worst_pos, 0.05);              // px
+  EXPECT_LT(sum_pos / kUpdates, 0.001);    // px
+  EXPECT_GT(worst_from_z, 0.01) << "the filter is not just its measurement";
+}
+
 // Symmetric by construction (one p01 per axis); positive definite over 10^6 updates with
 // steps from 100 us to 60 ms, including long coasts.
 TEST(KalmanAxisFixed, CovarianceStaysPositiveOverAMillionUpdates) {
