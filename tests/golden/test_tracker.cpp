@@ -269,7 +269,7 @@ TEST(Tracker, TheProcessNoiseScalesWithTheSquareOfTheSensorWidth) {
   unscaled.accel_psd_width = 0;
   EXPECT_DOUBLE_EQ(accel_psd_at(unscaled, {128, 128}), unscaled.accel_psd) << "width 0: the same on every sensor";
 
-  const auto scaled = make_tracker(p, {480, 360}), fixed = make_tracker(unscaled, {128, 128});
+  const auto scaled = make_tracker(p, {480, 360}), given = make_tracker(unscaled, {128, 128});
   const auto at_240 = make_tracker(p, {240, 180});
   std::vector<TrackUpdate> a, b, c;
   gen::Random rng(5);
@@ -278,7 +278,7 @@ TEST(Tracker, TheProcessNoiseScalesWithTheSquareOfTheSensorWidth) {
     vx += 300 * rng.normal();  // a jerky target, so that the process noise shows
     x += vx * 0.01;
     const std::vector<Measurement> z{{t, x + rng.normal(), 200, 50, 3}};
-    scaled->step(t, z, a), fixed->step(t, z, b), at_240->step(t, z, c);
+    scaled->step(t, z, a), given->step(t, z, b), at_240->step(t, z, c);
   }
   ASSERT_EQ(a.size(), b.size());
   ASSERT_GT(a.size(), 90u);

@@ -149,7 +149,7 @@ void expect_agreement(const eval::Scene& scene, const char* what) {
 }
 
 // The default method (seeded climbs): every 10 ms chunk's ARI between the fixed core's labels
-// and golden's at least 0.99.
+// and golden's at least 0.99, and the median track update within 0.25 px of golden's.
 void expect_chunk_agreement(const eval::Scene& scene, const std::string& what) {
   SCOPED_TRACE(what);
   const Params p;
@@ -165,6 +165,10 @@ void expect_chunk_agreement(const eval::Scene& scene, const std::string& what) {
   }
   EXPECT_GE(chunks, 1);
   EXPECT_GE(worst, 0.99) << "the least agreeing 10 ms chunk";
+  // The tracks too, which the labels cannot show: the filters' noise for this sensor included.
+  const auto a = eval::agreement(scene.events, golden, fixed, {});
+  EXPECT_LT(a.track_median_px, 0.25);
+  EXPECT_GT(a.track_matched, 9 * a.track_unmatched);
 }
 
 // Each type's first validation member, its first 0.25 s (a 640x480 member makes up to 5 M
