@@ -126,6 +126,12 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   return {};
 }
 
+// The core's unit of time for velocities and covariances, in seconds (2^kTickLog2 us).
+template <class S>
+constexpr double tick_seconds() {
+  return static_cast<double>(std::int64_t{1} << S::kTickLog2) * 1e-6;
+}
+
 // The largest process noise the core's filter takes, px^2/s^3: q/3 (kNoiseFrac fraction bits, per
 // tick^3) times dt^3 of the longest step (kMaxDt, kCovFrac fraction bits), plus the half that
 // rounds its shift, must be a signed 64-bit number (hls/track/kalman_axis.h).
@@ -134,7 +140,7 @@ double max_accel_psd() {
   const int longest_step_log2 = std::bit_width(hls::KalmanAxis<S>::kMaxDt) - 1 - S::kTickLog2;  // ticks
   const int dt3_bits = 3 * longest_step_log2 + S::kCovFrac;
   const std::int64_t q_third_max = (INT64_MAX - (std::int64_t{1} << (S::kNoiseFrac - 1))) >> dt3_bits;
-  const double tick_s = std::ldexp(1.0, S::kTickLog2) * 1e-6;
+  const double tick_s = tick_seconds<S>();
   // rnd(q_tick / 3 * 2^kNoiseFrac) <= q_third_max, with a margin of one part in 2^20 for the rounding
   return 3 * std::ldexp(static_cast<double>(q_third_max) * (1 - 0x1p-20), -S::kNoiseFrac) / (tick_s * tick_s * tick_s);
 }
@@ -167,7 +173,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   const double side_x = p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.width;
   const double side_y = p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.height;
   const double feat = std::ldexp(1.0, S::kFeatFrac);
-  const double tick_s = std::ldexp(1.0, S::kTickLog2) * 1e-6;
+  const double tick_s = tick_seconds<S>();
   auto rnd = [](double v) { return static_cast<std::int64_t>(std::llround(v)); };
 
   hls::Config c;
@@ -210,7 +216,8 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.coast_packets = static_cast<std::uint32_t>(p.coast_packets);
   c.evict_stale = p.evict_stale;
   c.report_tentative = p.report_tentative;
-  const double q_tick = accel_psd_at(p, sensor) * tick_s * tick_s * tick_s;  // px^2 / tick^3
+  const double accel_psd = accel_psd_at(p, sensor);
+  const double q_tick = accel_psd * tick_s * tick_s * tick_s;  // px^2 / tick^3
   c.q_third = rnd(q_tick / 3 * std::ldexp(1.0, S::kNoiseFrac));
   c.q_half = rnd(q_tick / 2 * std::ldexp(1.0, S::kNoiseFrac));
   c.q = rnd(q_tick * std::ldexp(1.0, S::kNoiseFrac));
@@ -221,8 +228,9 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   // The core's 64-bit products stay exact only below these (docs/hls.md, "Formats").
   need(c.r < (std::int64_t{1} << 35) && c.p0_pos < (std::int64_t{1} << 35) && c.p0_vel < (std::int64_t{1} << 35),
        "--meas-sigma-px, --init-sigma-px or --init-sigma-vel is too large for the core's covariance words");
-  need(accel_psd_at(p, sensor) <= max_accel_psd<S>(),
-       "--accel-psd is too large for the core: at most " + std::to_string(static_cast<long long>(max_accel_psd<S>())) +
+  const double accel_psd_max = max_accel_psd<S>();
+  need(accel_psd <= accel_psd_max,
+       "--accel-psd is too large for the core: at most " + std::to_string(static_cast<long long>(accel_psd_max)) +
            " px^2/s^3 on this sensor, --accel-psd-width included");
   need(c.inv_tau <= (std::uint64_t{1} << 32), "--tau-us must be at least 1 us for the core");
   return c;
@@ -235,7 +243,7 @@ constexpr double core_px(std::int32_t raw) {
 }
 template <class S>
 constexpr double core_px_per_s(std::int32_t raw) {
-  return core_px<S>(raw) / (static_cast<double>(std::int64_t{1} << S::kTickLog2) * 1e-6);
+  return core_px<S>(raw) / tick_seconds<S>();
 }
 
 }  // namespace evms::backend
