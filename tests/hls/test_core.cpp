@@ -130,6 +130,13 @@ TEST(Core, TheFilterCoresVerdictsCompletedOnTheHostAreTheWholeCore) {
   EXPECT_GT(whole.tracks.size(), 10u);
 }
 
+// The fixed core's track updates against golden's: the median within 0.25 px, and more than
+// nine in ten matched.
+void expect_tracks_agree(const eval::Agreement& a) {
+  EXPECT_LT(a.track_median_px, 0.25);
+  EXPECT_GT(a.track_matched, 9 * a.track_unmatched);
+}
+
 // ARI(fixed, golden) >= 0.99 on every scene, F within 0.01 of golden's, and track positions
 // within 0.25 px of golden's (the median update; a borderline gate or merge decision can send
 // one track along another path for a while, which the mean would weigh).
@@ -140,8 +147,7 @@ void expect_agreement(const eval::Scene& scene, const char* what) {
   const auto fixed = eval::run_backend("fixed", p, scene.sensor, scene.events);
   const auto a = eval::agreement(scene.events, golden, fixed, {});
   EXPECT_GE(a.labels.ari, 0.99);
-  EXPECT_LT(a.track_median_px, 0.25);
-  EXPECT_GT(a.track_matched, 9 * a.track_unmatched);
+  expect_tracks_agree(a);
   if (!scene.truth.empty()) {
     const auto fg = eval::score_chunks(scene, golden.labels, {}), ff = eval::score_chunks(scene, fixed.labels, {});
     EXPECT_NEAR(ff.f, fg.f, 0.01);
@@ -166,9 +172,7 @@ void expect_chunk_agreement(const eval::Scene& scene, const std::string& what) {
   EXPECT_GE(chunks, 1);
   EXPECT_GE(worst, 0.99) << "the least agreeing 10 ms chunk";
   // The tracks too, which the labels cannot show: the filters' noise for this sensor included.
-  const auto a = eval::agreement(scene.events, golden, fixed, {});
-  EXPECT_LT(a.track_median_px, 0.25);
-  EXPECT_GT(a.track_matched, 9 * a.track_unmatched);
+  expect_tracks_agree(eval::agreement(scene.events, golden, fixed, {}));
 }
 
 // Each type's first validation member, its first 0.25 s (a 640x480 member makes up to 5 M
