@@ -1,6 +1,6 @@
 // The core builds evms knows by name: the host/simulation core and the two boards. Everything
 // that lists the builds is made from EVMS_CORE_BUILDS: the host's --core and --build choices
-// (host/backend/core_builds.h), the RTL generator's files (host/tools/rtl_gen writes each
+// (host/backend/backend.h, registry.cpp), the RTL generator's files (host/tools/rtl_gen writes each
 // build's parameters, reset values and tables into rtl/generated/, and the build list for CMake),
 // and the cosimulation, which checks each RTL build against the C++ core of the same Shape.
 #pragma once

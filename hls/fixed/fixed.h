@@ -9,7 +9,7 @@
 // to (or constructed as) a narrower type. Widths are limited to 64 bits signed and 63 bits
 // unsigned, and the result of an operation must fit those limits too (a static_assert says
 // so). Quantization and overflow modes behave as SystemC's SC_TRN ... SC_RND_CONV and SC_WRAP,
-// SC_SAT, SC_SAT_ZERO, SC_SAT_SYM; tests/hls/test_fixed.cpp checks them bit for bit against
+// SC_SAT, SC_SAT_ZERO, SC_SAT_SYM; tests/hls/test_fixed_vs_systemc.cpp checks them bit for bit against
 // sc_fixed and sc_ufixed.
 //
 // HLS: header-only, no heap, no exceptions, no iostreams; every size is a template argument.
