@@ -94,6 +94,14 @@ const std::array kTable = {
               &Params::link_px, 0, 100},
     ParamInfo{"join-boxes", "", "with seeded climbs, clusters whose bounding boxes overlap become one",
               &Params::join_boxes, 0, 1},
+    ParamInfo{"split-balance", "1", "with seeded climbs, a cluster whose events form two or more separate parts, each "
+              "holding both polarities (|ON - OFF| below this times its events), becomes one cluster per part: two "
+              "objects the warm ball held together, not the two edges of one object (golden only); 0 = off",
+              &Params::split_balance, 0, 1},
+    ParamInfo{"split-share", "1", "with --split-balance, the parts that count: at least this share of the cluster's "
+              "events (the others join the nearest)", &Params::split_share, 0, 1},
+    ParamInfo{"split-cell", "h", "with --split-balance, a part is 8-connected cells of this many bandwidths a side",
+              &Params::split_cell, 0.05, 10},
     ParamInfo{"max-clusters", "clusters",
               "clusters per packet; modes that would open a further one become noise",
               &Params::max_clusters, 1, 256},

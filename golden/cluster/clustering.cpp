@@ -30,7 +30,7 @@ PacketClusters every_event(const FeatureMatrix& features, const Params& params) 
 }  // namespace
 
 PacketClusterer::PacketClusterer(const Params& params, SensorSize sensor)
-    : params_(params), sensor_(sensor), sensor_area_(feature_area(sensor, params)), links_(sensor) {}
+    : params_(params), sensor_(sensor), sensor_area_(feature_area(sensor, params)), links_(sensor), split_(params, sensor) {}
 
 PacketClusters PacketClusterer::cluster(std::span<const Event> events, const FeatureMatrix& features,
                                         const std::vector<Eigen::Vector4d>& warm_modes, const std::vector<double>& warm_spreads) {
@@ -55,7 +55,7 @@ PacketClusters PacketClusterer::cluster(std::span<const Event> events, const Fea
 }
 
 PacketClusters PacketClusterer::finish(std::span<const Event> events, const FeatureMatrix& features, std::vector<int> raw) {
-  const std::vector<Eigen::Vector4d>& modes = climbs_.modes();
+  std::vector<Eigen::Vector4d> modes = climbs_.modes();
   const auto n = raw.size();
   PacketClusters result;
   result.iterations = climbs_.iterations();
@@ -67,6 +67,7 @@ PacketClusters PacketClusterer::finish(std::span<const Event> events, const Feat
   }
   if (params_.link_px > 0) links_.join(events, params_.link_px, static_cast<int>(modes.size()), raw);
   if (params_.join_boxes) join_overlapping_boxes(events, raw);
+  if (params_.split_balance > 0) split_.split(events, features, modes, raw);
   std::vector<int> size(modes.size(), 0);
   for (int c : raw) {
     if (c >= 0) ++size[static_cast<size_t>(c)];

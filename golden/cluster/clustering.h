@@ -11,6 +11,8 @@
 // With seeded climbs, a mode whose ball held fewer than min_density times the events that a
 // uniform spread of the packet over the sensor would put in a ball of radius h is noise, and so
 // are the events it would label: a cluster of background activity is no denser than that.
+// With split_balance, a cluster that holds two objects apart from each other is then split in
+// two (polarity_split.h).
 // Either way, clusters with fewer than min_cluster_size events become noise, and of the rest
 // the first max_clusters in the order they opened are kept (the others become noise). The
 // survivors are numbered 0.. in that order. There is no randomness.
@@ -22,6 +24,7 @@
 #include "golden/cluster/features.h"
 #include "golden/cluster/mode_links.h"
 #include "golden/cluster/packet_grid.h"
+#include "golden/cluster/polarity_split.h"
 #include "golden/cluster/seeded_climbs.h"
 
 namespace evms::golden {
@@ -57,6 +60,7 @@ class PacketClusterer {
   PacketGrid cells_;      // cells of h, the seeds of grid seeding
   SeededClimbs climbs_;
   ModeLinks links_;
+  PolaritySplit split_;
 };
 
 // One packet on its own.

@@ -138,6 +138,9 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   const auto ahead = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --filter-look-ahead-us 10000 --quiet");
   EXPECT_EQ(ahead.exit_code, 1);
   EXPECT_NE(ahead.err.find("does not implement --filter-look-ahead-us 10000 (only --filter-look-ahead-us 0)"), std::string::npos) << ahead.err;
+  const auto split = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --split-balance 0.3 --quiet");
+  EXPECT_EQ(split.exit_code, 1);
+  EXPECT_NE(split.err.find("does not implement --split-balance 0.3 (only --split-balance 0)"), std::string::npos) << split.err;
 }
 
 // The host RTL build runs the default method (in its sizes); its labels and tracks are the

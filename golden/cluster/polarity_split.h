@@ -1,0 +1,60 @@
+// Two objects that one cluster holds, told from the two edges of one object by their polarities.
+//
+// A cluster's parts are the 8-connected sets of the cells its events occupy, cells of
+// split_cell bandwidths a side on the (x, y) features. A part is large when it holds at least
+// split_share of the cluster's events and at least min_cluster_size. A cluster with two or more
+// large parts, each of them holding both polarities (|ON - OFF| below split_balance times its
+// events), becomes one cluster per large part, and each small part joins the large part whose
+// centre is nearest.
+//
+// Why polarity: an object moving over its background fires its leading edge in one polarity and
+// its trailing edge in the other, and its edges parallel to the motion do not fire, so a
+// translating outline falls apart into two parts of one polarity each, which the warm ball and
+// the links rightly keep as one cluster. Two objects that the warm ball holds together after
+// they touched are two parts of both polarities each. docs/sweep.md ("Splitting two objects by
+// their polarities") has the measurements.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "golden/cluster/features.h"
+#include "types/event.h"
+#include "types/params.h"
+
+namespace evms::golden {
+
+class PolaritySplit {
+ public:
+  PolaritySplit(const Params& params, SensorSize sensor);
+
+  // `cluster_of`: per event, a cluster in 0 .. modes.size() - 1, or -1. Each cluster split gives
+  // its parts' events new clusters, appended to `modes`; every part of a split cluster takes the
+  // mean of its events' features as its mode.
+  void split(std::span<const Event> events, const FeatureMatrix& features, std::vector<Eigen::Vector4d>& modes,
+             std::vector<int>& cluster_of);
+
+ private:
+  int find(int a);
+  void unite(int a, int b);
+  // The parts of one cluster's events `members`: part_[i] is the lowest member index of i's part.
+  void find_parts(std::span<const int> members, const FeatureMatrix& features);
+
+  Params params_;
+  double cell_;                    // cell side, feature units
+  int cells_x_ = 0, cells_y_ = 0;
+  std::vector<int> first_in_cell_;  // per cell: the first member of the current cluster in it, or -1
+  std::vector<int> touched_;        // the cells the current cluster occupies
+  std::vector<int> root_;           // per event: union-find over the current cluster's members
+  struct Part {
+    int events = 0, on = 0;
+    double x = 0, y = 0;
+    int cluster = -1;  // the cluster a large part becomes
+  };
+  std::vector<Part> part_;          // per event: the sums of the part it is the root of
+  std::vector<int> start_, members_, fill_;  // each cluster's events, in event order
+};
+
+}  // namespace evms::golden
