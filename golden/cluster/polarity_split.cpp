@@ -7,8 +7,13 @@
 
 namespace evms::golden {
 
-PolaritySplit::PolaritySplit(const Params& params, SensorSize sensor) : params_(params), cell_(params.split_cell * params.bandwidth) {
+PolaritySplit::PolaritySplit(const Params& params, SensorSize sensor) : params_(params) {
+  if (params.split_balance <= 0) return;
   const Eigen::Vector2d px = feature_pixels(sensor, params);
+  // Cells of at least two pixels (along the axis where pixels are larger): neighbouring pixels
+  // then always fall in the same or neighbouring cells, whatever the rounding of their features,
+  // so a solid object is one part; finer cells would tell no more and only grow the grid.
+  cell_ = std::max(params.split_cell * params.bandwidth, 2 * params.scale_xy / std::min(px.x(), px.y()));
   // Features run from 0 to scale_xy * (sensor side - 1) / px; one cell more for the edge.
   cells_x_ = static_cast<int>(params.scale_xy * sensor.width / px.x() / cell_) + 2;
   cells_y_ = static_cast<int>(params.scale_xy * sensor.height / px.y() / cell_) + 2;

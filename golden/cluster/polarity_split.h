@@ -1,11 +1,11 @@
 // Two objects that one cluster holds, told from the two edges of one object by their polarities.
 //
 // A cluster's parts are the 8-connected sets of the cells its events occupy, cells of
-// split_cell bandwidths a side on the (x, y) features. A part is large when it holds at least
-// split_share of the cluster's events and at least min_cluster_size. A cluster with two or more
-// large parts, each of them holding both polarities (|ON - OFF| below split_balance times its
-// events), becomes one cluster per large part, and each small part joins the large part whose
-// centre is nearest.
+// split_cell bandwidths a side on the (x, y) features (at least two pixels). A part is large
+// when it holds at least split_share of the cluster's events and at least min_cluster_size. A
+// cluster with two or more large parts, each of them holding both polarities (|ON - OFF| below
+// split_balance times its events), becomes one cluster per large part, and each small part
+// joins the large part whose centre is nearest.
 //
 // Why polarity: an object moving over its background fires its leading edge in one polarity and
 // its trailing edge in the other, and its edges parallel to the motion do not fire, so a
@@ -43,7 +43,7 @@ class PolaritySplit {
   void find_parts(std::span<const int> members, const FeatureMatrix& features);
 
   Params params_;
-  double cell_;                    // cell side, feature units
+  double cell_ = 0;                // cell side, feature units (at least a pixel's)
   int cells_x_ = 0, cells_y_ = 0;
   std::vector<int> first_in_cell_;  // per cell: the first member of the current cluster in it, or -1
   std::vector<int> touched_;        // the cells the current cluster occupies

@@ -112,6 +112,22 @@ TEST(PolaritySplit, ClustersTooSmallForTwoLargePartsAndOtherClustersAreLeftAlone
   EXPECT_EQ(cluster_of[150], 2) << "the second part of cluster 0 opens after the clusters there were";
 }
 
+TEST(PolaritySplit, CellsAreNoFinerThanTwoPixels) {
+  // At h = 1e-4 the cells would be 0.06 px across on this sensor, 2 * 10^8 of them; cells of
+  // two pixels along y (3.6 px along x) are 1.3 * 10^5, a solid square is one part, and two
+  // squares apart are two.
+  constexpr SensorSize kLarge{1280, 720};
+  Params p = splitting();
+  p.bandwidth = 1e-4;
+  const auto events = concat(square(20, 20, 10, kChecker), square(1000, 600, 10, kChecker));
+  const FeatureMatrix features = packet_features(events, kLarge, p);
+  std::vector<int> cluster_of(events.size(), 0);
+  std::vector<Eigen::Vector4d> modes(1, Eigen::Vector4d::Zero());
+  PolaritySplit(p, kLarge).split(events, features, modes, cluster_of);
+  EXPECT_EQ(modes.size(), 2u);
+  EXPECT_NE(cluster_of.front(), cluster_of.back());
+}
+
 TEST(PolaritySplit, TheClustererSplitsWhatTheWarmBallHeldTogether) {
   // One warm mode between two objects 60 px apart whose ball reaches both: without the split
   // they are one cluster, with it two.
