@@ -14,16 +14,6 @@ ModeLinks::ModeLinks(SensorSize sensor)
       row_marked_(static_cast<size_t>(sensor.height), 0),
       row_words_(2 * static_cast<size_t>(sensor.height), 0) {}
 
-int ModeLinks::find(int c) {
-  while (root_[static_cast<size_t>(c)] != c) c = root_[static_cast<size_t>(c)] = root_[static_cast<size_t>(root_[static_cast<size_t>(c)])];
-  return c;
-}
-
-void ModeLinks::unite(int a, int b) {
-  const int ra = find(a), rb = find(b);
-  if (ra != rb) root_[static_cast<size_t>(std::max(ra, rb))] = std::min(ra, rb);
-}
-
 void ModeLinks::collect_runs(int y) {
   const std::uint64_t* row = &marked_[static_cast<size_t>(y) * static_cast<size_t>(words_per_row_)];
   const int* modes = &mode_[static_cast<size_t>(y) * static_cast<size_t>(sensor_.width)];
@@ -53,13 +43,12 @@ void ModeLinks::join_row(int mode, int y, int x0, int x1) {
     // The marked pixels of another mode: most near a run share its mode.
     std::uint64_t other = 0;
     for (int k = 0; k < len; ++k) other |= static_cast<std::uint64_t>(modes[x + k] != mode) << k;
-    for (std::uint64_t bits = marked & other; bits != 0; bits &= bits - 1) unite(mode, modes[x + std::countr_zero(bits)]);
+    for (std::uint64_t bits = marked & other; bits != 0; bits &= bits - 1) sets_.unite(mode, modes[x + std::countr_zero(bits)]);
   }
 }
 
 void ModeLinks::join(std::span<const Event> events, double link_px, int modes, std::vector<int>& mode_of) {
-  root_.resize(static_cast<size_t>(modes));
-  for (int c = 0; c < modes; ++c) root_[static_cast<size_t>(c)] = c;
+  sets_.reset(modes);
   if (link_px != reach_for_) {
     // Row dy of the disc spans dx with dx^2 + dy^2 <= link_px^2.
     half_width_.clear();
@@ -80,7 +69,7 @@ void ModeLinks::join(std::span<const Event> events, double link_px, int modes, s
     const std::uint64_t bit = std::uint64_t{1} << (x % 64);
     int& mode = mode_[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)];
     if (word(x, y) & bit) {
-      unite(mode_of[i], mode);
+      sets_.unite(mode_of[i], mode);
     } else {
       word(x, y) |= bit;
       written_.push_back(static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(w) + static_cast<std::uint32_t>(x));
@@ -99,7 +88,7 @@ void ModeLinks::join(std::span<const Event> events, double link_px, int modes, s
     collect_runs(y);
     for (size_t k = 0; k < runs_.size(); ++k) {
       const Run& run = runs_[k];
-      if (k + 1 < runs_.size() && runs_[k + 1].x0 - run.x1 <= half_width_[0] && runs_[k + 1].mode != run.mode) unite(run.mode, runs_[k + 1].mode);
+      if (k + 1 < runs_.size() && runs_[k + 1].x0 - run.x1 <= half_width_[0] && runs_[k + 1].mode != run.mode) sets_.unite(run.mode, runs_[k + 1].mode);
       for (int dy = 1; dy < static_cast<int>(half_width_.size()) && y + dy < h; ++dy) {
         if (!row_marked_[static_cast<size_t>(y + dy)]) continue;
         const int a = half_width_[static_cast<size_t>(dy)];
@@ -113,7 +102,7 @@ void ModeLinks::join(std::span<const Event> events, double link_px, int modes, s
   }
   for (const int y : rows_) row_marked_[static_cast<size_t>(y)] = 0;
   for (int& c : mode_of) {
-    if (c >= 0) c = find(c);
+    if (c >= 0) c = sets_.find(c);
   }
 }
 

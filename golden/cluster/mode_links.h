@@ -18,6 +18,7 @@
 #include <span>
 #include <vector>
 
+#include "golden/cluster/union_find.h"
 #include "types/event.h"
 
 namespace evms::golden {
@@ -33,8 +34,6 @@ class ModeLinks {
   struct Run {
     int x0, x1, mode;  // pixels x0 .. x1 of the row, all marked, all of this mode
   };
-  int find(int c);
-  void unite(int a, int b);
   // Row y's runs, appended to runs_.
   void collect_runs(int y);
   // Joins `mode` with the marked pixels of another mode among x0 .. x1 of row y.
@@ -49,7 +48,7 @@ class ModeLinks {
   std::vector<std::uint8_t> row_marked_;  // per row: in rows_
   std::vector<int> row_words_;          // per row: the first and one past the last word marked (2 entries)
   std::vector<Run> runs_;               // the runs of one row
-  std::vector<int> root_;               // per mode
+  UnionFind sets_;                      // over the modes
   std::vector<int> half_width_;         // per row offset dy = 0 .. r: the reach along the row
   double reach_for_ = -1;
 };

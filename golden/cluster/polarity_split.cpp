@@ -20,29 +20,19 @@ PolaritySplit::PolaritySplit(const Params& params, SensorSize sensor) : params_(
   first_in_cell_.assign(static_cast<size_t>(cells_x_) * static_cast<size_t>(cells_y_), -1);
 }
 
-int PolaritySplit::find(int a) {
-  while (root_[static_cast<size_t>(a)] != a) a = root_[static_cast<size_t>(a)] = root_[static_cast<size_t>(root_[static_cast<size_t>(a)])];
-  return a;
-}
-
-void PolaritySplit::unite(int a, int b) {
-  a = find(a), b = find(b);
-  if (a != b) root_[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
-}
-
 void PolaritySplit::find_parts(std::span<const int> members, const FeatureMatrix& features) {
   touched_.clear();
   for (const int i : members) {
     const auto cx = std::clamp(static_cast<int>(features(0, i) / cell_), 0, cells_x_ - 1);
     const auto cy = std::clamp(static_cast<int>(features(1, i) / cell_), 0, cells_y_ - 1);
     const int c = cy * cells_x_ + cx;
-    root_[static_cast<size_t>(i)] = i;
+    sets_.make_set(i);
     int& first = first_in_cell_[static_cast<size_t>(c)];
     if (first < 0) {
       first = i;
       touched_.push_back(c);
     } else {
-      unite(first, i);
+      sets_.unite(first, i);
     }
   }
   // Each occupied cell joins its occupied neighbours ahead of it (the other four see it).
@@ -52,84 +42,75 @@ void PolaritySplit::find_parts(std::span<const int> members, const FeatureMatrix
       const int nx = cx + dx, ny = cy + dy;
       if (nx < 0 || nx >= cells_x_ || ny >= cells_y_) continue;
       const int near = first_in_cell_[static_cast<size_t>(ny * cells_x_ + nx)];
-      if (near >= 0) unite(first_in_cell_[static_cast<size_t>(c)], near);
+      if (near >= 0) sets_.unite(first_in_cell_[static_cast<size_t>(c)], near);
     }
   }
   for (const int c : touched_) first_in_cell_[static_cast<size_t>(c)] = -1;
-  for (const int i : members) root_[static_cast<size_t>(i)] = find(i);
+  for (const int i : members) part_of_[static_cast<size_t>(i)] = sets_.find(i);
 }
 
 void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& features, std::vector<Eigen::Vector4d>& modes,
                           std::vector<int>& cluster_of) {
   const auto n = cluster_of.size();
-  root_.resize(n);
+  sets_.resize(static_cast<int>(n));
+  part_of_.resize(n);
+  part_.resize(n);  // every entry is Part{} between clusters: each cluster resets the entries it used
   // The members of each cluster, in event order.
   const size_t clusters = modes.size();
-  std::vector<int>& start = start_;
-  std::vector<int>& members = members_;
-  start.assign(clusters + 1, 0);
-  members.resize(n);
+  start_.assign(clusters + 1, 0);
+  members_.resize(n);
   for (const int c : cluster_of) {
-    if (c >= 0) ++start[static_cast<size_t>(c) + 1];
+    if (c >= 0) ++start_[static_cast<size_t>(c) + 1];
   }
-  for (size_t c = 0; c < clusters; ++c) start[c + 1] += start[c];
-  fill_.assign(start.begin(), start.end() - 1);
-  std::vector<int>& fill = fill_;
+  for (size_t c = 0; c < clusters; ++c) start_[c + 1] += start_[c];
+  fill_.assign(start_.begin(), start_.end() - 1);
   for (size_t i = 0; i < n; ++i) {
-    if (cluster_of[i] >= 0) members[static_cast<size_t>(fill[static_cast<size_t>(cluster_of[i])]++)] = static_cast<int>(i);
+    if (cluster_of[i] >= 0) members_[static_cast<size_t>(fill_[static_cast<size_t>(cluster_of[i])]++)] = static_cast<int>(i);
   }
 
-  std::vector<Part>& part = part_;
-  part.resize(n);  // every entry is Part{} between clusters: each cluster resets the entries it used
-  std::vector<int> remade;  // the clusters of split clusters' parts
   for (size_t c = 0; c < clusters; ++c) {
-    const std::span<const int> in(members.data() + start[c], static_cast<size_t>(start[c + 1] - start[c]));
+    const std::span<const int> in(members_.data() + start_[c], static_cast<size_t>(start_[c + 1] - start_[c]));
     if (in.size() < 2 * static_cast<size_t>(params_.min_cluster_size)) continue;
     find_parts(in, features);
     for (const int i : in) {
-      Part& q = part[static_cast<size_t>(root_[static_cast<size_t>(i)])];
-      ++q.events, q.on += events[static_cast<size_t>(i)].p > 0, q.x += events[static_cast<size_t>(i)].x, q.y += events[static_cast<size_t>(i)].y;
+      const Event& e = events[static_cast<size_t>(i)];
+      Part& q = part_[static_cast<size_t>(part_of_[static_cast<size_t>(i)])];
+      ++q.events, q.on += e.p > 0, q.x += e.x, q.y += e.y;
     }
     const double least = std::max<double>(params_.min_cluster_size, params_.split_share * static_cast<double>(in.size()));
-    std::vector<int> large;
+    large_.clear();
     bool every_large_part_balanced = true;
     for (const int i : in) {
-      if (root_[static_cast<size_t>(i)] != i || part[static_cast<size_t>(i)].events < least) continue;
-      const Part& q = part[static_cast<size_t>(i)];
-      large.push_back(i);
+      Part& q = part_[static_cast<size_t>(i)];
+      if (part_of_[static_cast<size_t>(i)] != i || q.events < least) continue;
+      q.large = static_cast<int>(large_.size());
+      large_.push_back(i);
       every_large_part_balanced = every_large_part_balanced && std::abs(2 * q.on - q.events) < params_.split_balance * q.events;
     }
-    if (large.size() >= 2 && every_large_part_balanced) {
-      for (size_t k = 0; k < large.size(); ++k) {
-        part[static_cast<size_t>(large[k])].cluster = k == 0 ? static_cast<int>(c) : static_cast<int>(modes.size());
-        remade.push_back(part[static_cast<size_t>(large[k])].cluster);
-        if (k > 0) modes.emplace_back(Eigen::Vector4d::Zero());
-      }
+    if (large_.size() >= 2 && every_large_part_balanced) {
+      // Large part k becomes cluster c (k = 0) or a new one; each takes its events' mean as its mode.
+      std::vector<Eigen::Vector4d> sum(large_.size(), Eigen::Vector4d::Zero());
+      std::vector<int> count(large_.size(), 0);
       for (const int i : in) {
-        const Part& q = part[static_cast<size_t>(root_[static_cast<size_t>(i)])];
-        int to = q.cluster;
-        if (to < 0) {  // a small part: to the large part with the nearest centre
+        const Part& q = part_[static_cast<size_t>(part_of_[static_cast<size_t>(i)])];
+        int k = q.large;
+        if (k < 0) {  // a small part: to the large part with the nearest centre
           double best = std::numeric_limits<double>::infinity();
-          for (const int r : large) {
-            const Part& l = part[static_cast<size_t>(r)];
+          for (const int r : large_) {
+            const Part& l = part_[static_cast<size_t>(r)];
             const double dx = q.x / q.events - l.x / l.events, dy = q.y / q.events - l.y / l.events;
-            if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, to = l.cluster;
+            if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, k = l.large;
           }
         }
-        cluster_of[static_cast<size_t>(i)] = to;
+        cluster_of[static_cast<size_t>(i)] = k == 0 ? static_cast<int>(c) : static_cast<int>(modes.size()) + k - 1;
+        sum[static_cast<size_t>(k)] += features.col(i);
+        ++count[static_cast<size_t>(k)];
       }
+      modes[c] = sum[0] / count[0];
+      for (size_t k = 1; k < large_.size(); ++k) modes.push_back(sum[k] / count[k]);
     }
-    for (const int i : in) part[static_cast<size_t>(i)] = Part{};
+    for (const int i : in) part_[static_cast<size_t>(i)] = Part{};
   }
-  if (remade.empty()) return;
-  std::vector<Eigen::Vector4d> sum(modes.size(), Eigen::Vector4d::Zero());
-  std::vector<int> count(modes.size(), 0);
-  for (size_t i = 0; i < n; ++i) {
-    if (cluster_of[i] < 0) continue;
-    sum[static_cast<size_t>(cluster_of[i])] += features.col(static_cast<Eigen::Index>(i));
-    ++count[static_cast<size_t>(cluster_of[i])];
-  }
-  for (const int c : remade) modes[static_cast<size_t>(c)] = sum[static_cast<size_t>(c)] / count[static_cast<size_t>(c)];
 }
 
 }  // namespace evms::golden

@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 
 #include "golden/cluster/features.h"
+#include "golden/cluster/union_find.h"
 #include "types/event.h"
 #include "types/params.h"
 
@@ -37,24 +38,25 @@ class PolaritySplit {
              std::vector<int>& cluster_of);
 
  private:
-  int find(int a);
-  void unite(int a, int b);
-  // The parts of one cluster's events `members`: part_[i] is the lowest member index of i's part.
+  // The parts of one cluster's events `members`: afterwards part_of_[i] is the smallest member of
+  // i's part, for each member i.
   void find_parts(std::span<const int> members, const FeatureMatrix& features);
 
   Params params_;
-  double cell_ = 0;                // cell side, feature units (at least a pixel's)
+  double cell_ = 0;                 // cell side, feature units (at least two pixels)
   int cells_x_ = 0, cells_y_ = 0;
   std::vector<int> first_in_cell_;  // per cell: the first member of the current cluster in it, or -1
   std::vector<int> touched_;        // the cells the current cluster occupies
-  std::vector<int> root_;           // per event: union-find over the current cluster's members
+  UnionFind sets_;                  // over the events: the current cluster's parts
+  std::vector<int> part_of_;        // per event of the current cluster: its part's smallest member
   struct Part {
     int events = 0, on = 0;
     double x = 0, y = 0;
-    int cluster = -1;  // the cluster a large part becomes
+    int large = -1;  // for a large part: its index among the cluster's large parts
   };
-  std::vector<Part> part_;          // per event: the sums of the part it is the root of
+  std::vector<Part> part_;          // per event: the sums of the part it is the smallest member of
   std::vector<int> start_, members_, fill_;  // each cluster's events, in event order
+  std::vector<int> large_;          // the current cluster's large parts (their smallest members)
 };
 
 }  // namespace evms::golden
