@@ -96,11 +96,11 @@ const std::array kTable = {
               &Params::join_boxes, 0, 1},
     ParamInfo{"split-balance", "1", "with seeded climbs, a cluster whose events form two or more separate parts, each "
               "holding both polarities (|ON - OFF| below this times its events), becomes one cluster per part: two "
-              "objects the warm ball held together, not the two edges of one object (golden only); 0 = off",
+              "objects the warm ball held together, not the two edges of one object (golden and fixed, in steps of 1/256); 0 = off",
               &Params::split_balance, 0, 1},
     ParamInfo{"split-share", "1", "with --split-balance, the parts that count: at least this share of the cluster's "
-              "events (the others join the nearest)", &Params::split_share, 0, 1},
-    ParamInfo{"split-cell", "h", "with --split-balance, a part is 8-connected cells of this many bandwidths a side",
+              "events, in steps of 1/256 (the others join the nearest)", &Params::split_share, 0, 1},
+    ParamInfo{"split-cell", "h", "with --split-balance, a part is 8-connected cells of this many bandwidths a side (at least 2 px)",
               &Params::split_cell, 0.05, 10},
     ParamInfo{"max-clusters", "clusters",
               "clusters per packet; modes that would open a further one become noise",
@@ -165,6 +165,24 @@ double accel_psd_at(const Params& p, SensorSize sensor) {
   if (p.accel_psd_width <= 0) return p.accel_psd;
   const double k = sensor.width / p.accel_psd_width;
   return p.accel_psd * k * k;
+}
+
+SplitRule split_rule(const Params& p, SensorSize sensor) {
+  SplitRule rule;
+  if (p.split_balance <= 0) return rule;
+  // The pixels of one feature unit along x and y (golden/cluster/features.cpp).
+  const double unit_x = (p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.width) / p.scale_xy;
+  const double unit_y = (p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.height) / p.scale_xy;
+  auto scale = [&](double unit) {
+    const double side = std::max(2.0, p.split_cell * p.bandwidth * unit);
+    return static_cast<std::uint32_t>(std::min(std::ldexp(1.0, kSplitCellFrac - 1), std::round(std::ldexp(1.0, kSplitCellFrac) / side)));
+  };
+  rule.cell_scale_x = scale(unit_x);
+  rule.cell_scale_y = scale(unit_y);
+  auto fraction = [](double v) { return static_cast<std::uint32_t>(std::lround(std::ldexp(v, kSplitFractionFrac))); };
+  rule.balance = std::max<std::uint32_t>(1, fraction(p.split_balance));
+  rule.share = fraction(p.split_share);
+  return rule;
 }
 
 const ParamInfo* find_param(const std::string& name) {

@@ -140,6 +140,23 @@ std::int64_t filter_noise_count(const Params& p, SensorSize sensor);
 // spectral density is k^2 times larger.
 double accel_psd_at(const Params& p, SensorSize sensor);
 
+// The polarity split's rule in integers, which golden (golden/cluster/polarity_split.h) and the
+// fixed-point core (hls/cluster/polarity_split.h) share so that they find the same parts:
+//   - an event at (x, y) px lies in cell ((x * cell_scale_x) >> kSplitCellFrac, (y * cell_scale_y)
+//     >> kSplitCellFrac): cells of split_cell bandwidths a side on the (x, y) features, at least two
+//     pixels along each axis (neighbouring pixels then lie in the same or neighbouring cells);
+//   - a part of `events` events, `on` of them ON, of a cluster of `size` events is large when
+//     events << kSplitFractionFrac >= share * size (and events >= min_cluster_size), and holds both
+//     polarities when |2 on - events| << kSplitFractionFrac < balance * events.
+// balance = 0 turns the split off.
+inline constexpr int kSplitCellFrac = 16;
+inline constexpr int kSplitFractionFrac = 8;
+struct SplitRule {
+  std::uint32_t cell_scale_x = 0, cell_scale_y = 0;  // 2^kSplitCellFrac / cell side in px, rounded
+  std::uint32_t balance = 0, share = 0;              // split_balance, split_share: kSplitFractionFrac fraction bits
+};
+SplitRule split_rule(const Params& p, SensorSize sensor);
+
 std::span<const ParamInfo> param_table();
 const ParamInfo* find_param(const std::string& name);
 

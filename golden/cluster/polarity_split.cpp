@@ -7,24 +7,26 @@
 
 namespace evms::golden {
 
-PolaritySplit::PolaritySplit(const Params& params, SensorSize sensor) : params_(params) {
-  if (params.split_balance <= 0) return;
-  const Eigen::Vector2d px = feature_pixels(sensor, params);
-  // Cells of at least two pixels (along the axis where pixels are larger): neighbouring pixels
-  // then always fall in the same or neighbouring cells, whatever the rounding of their features,
-  // so a solid object is one part; finer cells would tell no more and only grow the grid.
-  cell_ = std::max(params.split_cell * params.bandwidth, 2 * params.scale_xy / std::min(px.x(), px.y()));
-  // Features run from 0 to scale_xy * (sensor side - 1) / px; one cell more for the edge.
-  cells_x_ = static_cast<int>(params.scale_xy * sensor.width / px.x() / cell_) + 2;
-  cells_y_ = static_cast<int>(params.scale_xy * sensor.height / px.y() / cell_) + 2;
+namespace {
+
+// A part's centre along one axis, 1/16 px, rounded half up.
+std::int64_t centre(std::int64_t sum, int events) { return (32 * sum + events) / (2 * std::int64_t{events}); }
+
+}  // namespace
+
+PolaritySplit::PolaritySplit(const Params& params, SensorSize sensor) : params_(params), rule_(split_rule(params, sensor)) {
+  if (rule_.balance == 0) return;
+  cells_x_ = static_cast<int>((static_cast<std::uint64_t>(sensor.width) * rule_.cell_scale_x) >> kSplitCellFrac) + 1;
+  cells_y_ = static_cast<int>((static_cast<std::uint64_t>(sensor.height) * rule_.cell_scale_y) >> kSplitCellFrac) + 1;
   first_in_cell_.assign(static_cast<size_t>(cells_x_) * static_cast<size_t>(cells_y_), -1);
 }
 
-void PolaritySplit::find_parts(std::span<const int> members, const FeatureMatrix& features) {
+void PolaritySplit::find_parts(std::span<const Event> events, std::span<const int> members) {
   touched_.clear();
   for (const int i : members) {
-    const auto cx = std::clamp(static_cast<int>(features(0, i) / cell_), 0, cells_x_ - 1);
-    const auto cy = std::clamp(static_cast<int>(features(1, i) / cell_), 0, cells_y_ - 1);
+    const Event& e = events[static_cast<size_t>(i)];
+    const int cx = std::min(cells_x_ - 1, static_cast<int>((std::uint64_t{e.x} * rule_.cell_scale_x) >> kSplitCellFrac));
+    const int cy = std::min(cells_y_ - 1, static_cast<int>((std::uint64_t{e.y} * rule_.cell_scale_y) >> kSplitCellFrac));
     const int c = cy * cells_x_ + cx;
     sets_.make_set(i);
     int& first = first_in_cell_[static_cast<size_t>(c)];
@@ -71,21 +73,23 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
   for (size_t c = 0; c < clusters; ++c) {
     const std::span<const int> in(members_.data() + start_[c], static_cast<size_t>(start_[c + 1] - start_[c]));
     if (in.size() < 2 * static_cast<size_t>(params_.min_cluster_size)) continue;
-    find_parts(in, features);
+    find_parts(events, in);
     for (const int i : in) {
       const Event& e = events[static_cast<size_t>(i)];
       Part& q = part_[static_cast<size_t>(part_of_[static_cast<size_t>(i)])];
       ++q.events, q.on += e.p > 0, q.x += e.x, q.y += e.y;
     }
-    const double least = std::max<double>(params_.min_cluster_size, params_.split_share * static_cast<double>(in.size()));
+    const auto size = static_cast<std::int64_t>(in.size());
     large_.clear();
     bool every_large_part_balanced = true;
     for (const int i : in) {
       Part& q = part_[static_cast<size_t>(i)];
-      if (part_of_[static_cast<size_t>(i)] != i || q.events < least) continue;
+      const std::int64_t events_q = std::int64_t{q.events} << kSplitFractionFrac;
+      if (part_of_[static_cast<size_t>(i)] != i || q.events < params_.min_cluster_size || events_q < rule_.share * size) continue;
       q.large = static_cast<int>(large_.size());
       large_.push_back(i);
-      every_large_part_balanced = every_large_part_balanced && std::abs(2 * q.on - q.events) < params_.split_balance * q.events;
+      const std::int64_t imbalance_q = std::int64_t{std::abs(2 * q.on - q.events)} << kSplitFractionFrac;
+      every_large_part_balanced = every_large_part_balanced && imbalance_q < std::int64_t{rule_.balance} * q.events;
     }
     if (large_.size() >= 2 && every_large_part_balanced) {
       // Large part k becomes cluster c (k = 0) or a new one; each takes its events' mean as its mode.
@@ -95,10 +99,10 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
         const Part& q = part_[static_cast<size_t>(part_of_[static_cast<size_t>(i)])];
         int k = q.large;
         if (k < 0) {  // a small part: to the large part with the nearest centre
-          double best = std::numeric_limits<double>::infinity();
+          std::int64_t best = std::numeric_limits<std::int64_t>::max();
           for (const int r : large_) {
             const Part& l = part_[static_cast<size_t>(r)];
-            const double dx = q.x / q.events - l.x / l.events, dy = q.y / q.events - l.y / l.events;
+            const std::int64_t dx = centre(q.x, q.events) - centre(l.x, l.events), dy = centre(q.y, q.events) - centre(l.y, l.events);
             if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, k = l.large;
           }
         }

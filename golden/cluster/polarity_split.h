@@ -5,7 +5,9 @@
 // when it holds at least split_share of the cluster's events and at least min_cluster_size. A
 // cluster with two or more large parts, each of them holding both polarities (|ON - OFF| below
 // split_balance times its events), becomes one cluster per large part, and each small part
-// joins the large part whose centre is nearest.
+// joins the large part whose centre is nearest (centres in 1/16 px, rounded; ties: the part
+// whose first event came first). The cells and thresholds are integers (SplitRule,
+// types/params.h), so the fixed-point core (hls/cluster/polarity_split.h) finds the same parts.
 //
 // Why polarity: an object moving over its background fires its leading edge in one polarity and
 // its trailing edge in the other, and its edges parallel to the motion do not fire, so a
@@ -40,10 +42,10 @@ class PolaritySplit {
  private:
   // The parts of one cluster's events `members`: afterwards part_of_[i] is the smallest member of
   // i's part, for each member i.
-  void find_parts(std::span<const int> members, const FeatureMatrix& features);
+  void find_parts(std::span<const Event> events, std::span<const int> members);
 
   Params params_;
-  double cell_ = 0;                 // cell side, feature units (at least two pixels)
+  SplitRule rule_;
   int cells_x_ = 0, cells_y_ = 0;
   std::vector<int> first_in_cell_;  // per cell: the first member of the current cluster in it, or -1
   std::vector<int> touched_;        // the cells the current cluster occupies
@@ -51,7 +53,7 @@ class PolaritySplit {
   std::vector<int> part_of_;        // per event of the current cluster: its part's smallest member
   struct Part {
     int events = 0, on = 0;
-    double x = 0, y = 0;
+    std::int64_t x = 0, y = 0;  // sums of the events' pixel coordinates
     int large = -1;  // for a large part: its index among the cluster's large parts
   };
   std::vector<Part> part_;          // per event: the sums of the part it is the smallest member of

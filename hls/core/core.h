@@ -16,6 +16,7 @@
 #include "hls/cluster/centroid.h"
 #include "hls/cluster/features.h"
 #include "hls/cluster/link.h"
+#include "hls/cluster/polarity_split.h"
 #include "hls/cluster/mean_shift.h"
 #include "hls/cluster/merge.h"
 #include "hls/cluster/seeded_climbs.h"
@@ -35,6 +36,7 @@ struct PacketTrace {
   int kept = 0;        // in the packet (0: only noise was released)
   int sweeps = 0;       // Gaussian sweeps, or seeded climb steps
   int clusters = 0;
+  int splits_left_whole = 0;  // clusters the polarity split left whole: no room in the mode table
   MergeTrace merge;
   ClimbTrace climbs;
   TrackerTrace track;
@@ -60,6 +62,7 @@ class Core {
     filter_.reset();
     tracker_.reset();
     links_.reset();
+    split_.reset();
     warm_.count = 0;
     n_ = 0;
     pending_n_ = 0;
@@ -114,6 +117,7 @@ class Core {
         Modes<S> modes;
         climbs_.run(phi, n_, cfg_, warm_, mode_of, modes, trace.climbs);
         links_.run(packet_, n_, modes.count, cfg_, mode_of);
+        trace.splits_left_whole = split_.run(packet_, phi, n_, cfg_, mode_of, modes);
         clusters = keep_clusters<S>(mode_of, n_, modes, cfg_, cluster_of, warm_);
         warm_balls<S>(phi, n_, cluster_of, cfg_, warm_);
         sweeps = trace.climbs.steps;
@@ -158,6 +162,7 @@ class Core {
   Tracker<S> tracker_;
   SeededClimbs<S> climbs_;
   ModeLinks<S> links_;
+  PolaritySplit<S> split_;
   Modes<S> warm_;                // the previous packet's cluster modes
   PacketEvents<S> packet_;
   int n_ = 0;

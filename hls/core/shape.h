@@ -19,6 +19,10 @@ inline constexpr int kClimbFrac = 8;
 inline constexpr int kClimbScaleFrac = 40;
 // Fraction bits of a spread squared and of the registers that scale one (hls/cluster/centroid.h).
 inline constexpr int kSpreadFrac = 8;
+// The polarity split's cell scales and fractions (hls/cluster/polarity_split.h): a cell index is
+// (x * scale) >> kSplitCellFrac; balance and share carry kSplitFractionFrac fraction bits.
+inline constexpr int kSplitCellFrac = 16;
+inline constexpr int kSplitFractionFrac = 8;
 
 template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsMax, int ClustersMax, int TracksMax,
           int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,

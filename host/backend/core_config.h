@@ -88,7 +88,7 @@ inline std::string core_unsupported(const Params& p) {
   if (p.seeding == Seeding::kGrid) return "the fixed-point core seeds from events, not " + detail::setting(p, "seeding");
   if (seeded && p.labelling != Labelling::kFirst) return "the fixed-point core labels an event by the first climb that reached it, not " + detail::setting(p, "labelling");
   const Params off = preset("gaussian");
-  if (const char* name = detail::first_difference(p, off, {"filter-warm-up-us", "filter-look-ahead-us", "packet-support", "min-density", "join-boxes", "split-balance", "measure"})) {
+  if (const char* name = detail::first_difference(p, off, {"filter-warm-up-us", "filter-look-ahead-us", "packet-support", "min-density", "join-boxes", "measure"})) {
     return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
   }
   if (p.association == Association::kNearestCentre) return "the fixed-point core does not implement " + detail::setting(p, "association");
@@ -104,8 +104,8 @@ inline std::string core_unsupported(const Params& p) {
 // The first setting of `p` that RTL build `build` (hls/core/configs.h, and a board built from
 // it) does not implement. Every build implements the numbers of its clustering paths (the
 // Gaussian mean shift of every event, the seeded climbs, or both: Shape::kHasGaussianPath,
-// kHasSeededPath) and the tracker's policies but the gate's widening by the spread and coasting
-// by packets.
+// kHasSeededPath) and the tracker's policies but the gate's widening by the spread, coasting
+// by packets and the polarity split.
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
   bool gaussian_path = false, seeded_path = false;
@@ -120,7 +120,7 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!seeded && !gaussian_path) return "the RTL build '" + build + "' clusters by seeded climbs only, not " + detail::setting(p, "seeding");
   const Params rtl = preset("gaussian");
-  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets"})) {
+  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets", "split-balance"})) {
     return "the RTL core does not implement " + detail::setting(p, name) + " (add --" + name + " " + param_text(rtl, *find_param(name)) + ")";
   }
   return {};
@@ -214,6 +214,12 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.gate_spread2 = static_cast<std::uint32_t>(rnd(p.gate_spread * p.gate_spread * std::ldexp(1.0, hls::kSpreadFrac)));
   c.size_ratio_log2 = static_cast<std::uint8_t>(detail::size_ratio_log2(p));
   c.coast_packets = static_cast<std::uint32_t>(p.coast_packets);
+  static_assert(hls::kSplitCellFrac == kSplitCellFrac && hls::kSplitFractionFrac == kSplitFractionFrac);
+  const SplitRule split = seeded ? split_rule(p, sensor) : SplitRule{};  // golden splits the seeded path's clusters only
+  c.split_balance = static_cast<std::uint16_t>(split.balance);
+  c.split_share = static_cast<std::uint16_t>(split.share);
+  c.split_cell_scale_x = split.cell_scale_x;
+  c.split_cell_scale_y = split.cell_scale_y;
   c.evict_stale = p.evict_stale;
   c.report_tentative = p.report_tentative;
   const double accel_psd = accel_psd_at(p, sensor);

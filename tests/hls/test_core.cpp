@@ -156,9 +156,8 @@ void expect_agreement(const eval::Scene& scene, const char* what) {
 
 // The default method (seeded climbs): every 10 ms chunk's ARI between the fixed core's labels
 // and golden's at least 0.99, and the median track update within 0.25 px of golden's.
-void expect_chunk_agreement(const eval::Scene& scene, const std::string& what) {
+void expect_chunk_agreement(const eval::Scene& scene, const std::string& what, const Params& p = {}) {
   SCOPED_TRACE(what);
-  const Params p;
   const auto golden = eval::run_backend("golden", p, scene.sensor, scene.events);
   const auto fixed = eval::run_backend("fixed", p, scene.sensor, scene.events);
   double worst = 1;
@@ -188,6 +187,20 @@ TEST(CoreAgreesWithGolden, TheDefaultMethodOnTheFamilysValidationSplit) {
   }
   for (const std::string& type : eval::kPaperSceneTypes) {
     expect_chunk_agreement(first_quarter_second(eval::member_scene(type, seed)), type);
+  }
+}
+
+// The polarity split on the types it changes most (docs/sweep.md, "Splitting two objects by their
+// polarities").
+TEST(CoreAgreesWithGolden, ThePolaritySplitOnTheFamilysValidationSplit) {
+  Params p;
+  p.split_balance = 0.3;
+  for (const char* type : {"crossing", "translation", "shake", "rotation"}) {
+    for (int k = 0; k < 2; ++k) {
+      gen::SceneConfig c = gen::family_scene(type, gen::split_seed(gen::Split::kValidation, k));
+      c.duration_s = std::min(c.duration_s, 0.25);
+      expect_chunk_agreement(eval::generate_scene(c), std::string(type) + " " + std::to_string(c.seed), p);
+    }
   }
 }
 

@@ -1,0 +1,260 @@
+// Two objects that one cluster holds, told from the two edges of one object by their polarities
+// (golden/cluster/polarity_split.h states the rule and why): a cluster whose events form two or
+// more large parts, 8-connected sets of cells, each part holding both polarities, becomes one
+// cluster per large part; each small part joins the large part whose centre is nearest.
+//
+// Integers throughout, the same as golden's (SplitRule in types/params.h):
+//   cell of (x, y)    ((x * split_cell_scale_x) >> kSplitCellFrac, likewise y); a scale is at most
+//                     2^(kSplitCellFrac - 1), so cells are at least two pixels a side
+//   large part        events >= min_cluster_size and events << kSplitFractionFrac >= split_share * size
+//   both polarities   |2 on - events| << kSplitFractionFrac < split_balance * events
+//   part centre       1/16 px, (32 sum + events) / (2 events); nearest by squared distance, ties to
+//                     the part whose first event came first
+//   split mode        the mean of the part's climb features, rounded half up
+// The first large part keeps the cluster's mode, the others open modes after the existing ones in
+// the order of their first events. A cluster whose parts would not fit in the mode table
+// (kModesMax) stays whole, and is counted (golden has no such table: a departure, docs/hls.md).
+//
+// In hardware form: the cluster's events, bucketed by mode, each write the first event of its cell
+// into a cell map (or join it); each occupied cell joins its occupied neighbours ahead of it; the
+// parts' sums accumulate at their roots; the cells written are cleared from a list, not by a pass
+// over the map.
+#pragma once
+
+#include <cstdint>
+
+#include "hls/cluster/features.h"
+#include "hls/cluster/seeded_climbs.h"
+#include "hls/core/config.h"
+
+namespace evms::hls {
+
+template <class S>
+class PolaritySplit {
+ public:
+  static constexpr int kCellsX = S::kMaxWidth / 2 + 1, kCellsY = S::kMaxHeight / 2 + 1;
+
+  void reset() {
+  clear:
+    for (int c = 0; c < kCellsX * kCellsY; ++c) first_in_cell_[c] = -1;
+  }
+
+  // mode_of: per event its mode after the links (-1: none). Returns the clusters left whole because
+  // the mode table had no room for their parts.
+  int run(const PacketEvents<S>& ev, const Features<S>& phi, int n, const Config& cfg, std::int16_t mode_of[S::kPacketMax],
+          Modes<S>& modes) {
+    if (cfg.split_balance == 0) return 0;
+    bucket(mode_of, n, modes.count);
+    const int clusters = modes.count;
+    int left_whole = 0;
+  clusters_loop:
+    for (int c = 0; c < S::kModesMax; ++c) {
+      if (c >= clusters) break;
+      const int first = start_[c], size = start_[c + 1] - start_[c];
+      if (size < 2 * cfg.min_cluster_size) continue;
+      find_parts(ev, first, size, cfg);
+      const int large = large_parts(ev, first, size, cfg);
+      if (large < 2 || !balanced_) continue;
+      if (modes.count + large - 1 > S::kModesMax) {
+        ++left_whole;
+        continue;
+      }
+      reassign(phi, first, size, large, c, mode_of, modes);
+    }
+    return left_whole;
+  }
+
+ private:
+  // members_[start_[c] .. start_[c + 1]) are mode c's events, in event order.
+  void bucket(const std::int16_t mode_of[S::kPacketMax], int n, int count) {
+  zero:
+    for (int c = 0; c <= S::kModesMax; ++c) {
+      if (c > count) break;
+      start_[c] = 0;
+    }
+  sizes:
+    for (int j = 0; j < S::kPacketMax; ++j) {
+      if (j >= n) break;
+      if (mode_of[j] >= 0) ++start_[mode_of[j] + 1];
+    }
+  prefix:
+    for (int c = 0; c < S::kModesMax; ++c) {
+      if (c >= count) break;
+      start_[c + 1] += start_[c];
+      fill_[c] = start_[c];
+    }
+  place:
+    for (int j = 0; j < S::kPacketMax; ++j) {
+      if (j >= n) break;
+      if (mode_of[j] >= 0) members_[fill_[mode_of[j]]++] = static_cast<std::int16_t>(j);
+    }
+  }
+
+  static int cell_of(const PacketEvents<S>& ev, int j, const Config& cfg) {
+    const int cx = static_cast<int>((std::uint64_t{ev.x[j]} * cfg.split_cell_scale_x) >> kSplitCellFrac);
+    const int cy = static_cast<int>((std::uint64_t{ev.y[j]} * cfg.split_cell_scale_y) >> kSplitCellFrac);
+    return cy * kCellsX + cx;
+  }
+
+  // Afterwards root_[j] leads to the smallest member of j's part, for each member j.
+  void find_parts(const PacketEvents<S>& ev, int first, int size, const Config& cfg) {
+    int touched = 0;
+  cells:
+    for (int k = 0; k < S::kPacketMax; ++k) {
+#pragma HLS PIPELINE II = 1
+      if (k >= size) break;
+      const int j = members_[first + k];
+      const int cell = cell_of(ev, j, cfg);
+      root_[j] = static_cast<std::int16_t>(j);
+      if (first_in_cell_[cell] < 0) {
+        first_in_cell_[cell] = static_cast<std::int16_t>(j);
+        touched_[touched++] = cell;
+      } else {
+        unite(first_in_cell_[cell], j);
+      }
+    }
+    // The four neighbours ahead of a cell; the other four see it.
+    static constexpr int kAheadX[4] = {1, -1, 0, 1}, kAheadY[4] = {0, 1, 1, 1};
+  neighbours:
+    for (int k = 0; k < S::kPacketMax; ++k) {
+      if (k >= touched) break;
+      const int cx = touched_[k] % kCellsX, cy = touched_[k] / kCellsX;
+      for (int a = 0; a < 4; ++a) {
+#pragma HLS PIPELINE II = 1
+        const int nx = cx + kAheadX[a], ny = cy + kAheadY[a];
+        if (nx < 0 || nx >= kCellsX || ny >= kCellsY) continue;
+        const int near = first_in_cell_[ny * kCellsX + nx];
+        if (near >= 0) unite(first_in_cell_[touched_[k]], near);
+      }
+    }
+  uncover:
+    for (int k = 0; k < S::kPacketMax; ++k) {
+#pragma HLS PIPELINE II = 1
+      if (k >= touched) break;
+      first_in_cell_[touched_[k]] = -1;
+    }
+  }
+
+  // Sums each part at its root and numbers the large parts (large_of_, in the order of their
+  // roots); sets balanced_ when every large part holds both polarities. Returns their count.
+  int large_parts(const PacketEvents<S>& ev, int first, int size, const Config& cfg) {
+  clear:
+    for (int k = 0; k < S::kPacketMax; ++k) {
+#pragma HLS PIPELINE II = 1
+      if (k >= size) break;
+      const int j = members_[first + k];
+      events_[j] = on_[j] = 0;
+      sum_x_[j] = sum_y_[j] = 0;
+      large_of_[j] = -1;
+    }
+  sums:
+    for (int k = 0; k < S::kPacketMax; ++k) {
+      if (k >= size) break;
+      const int j = members_[first + k];
+      const int r = find(j);
+      part_of_[j] = static_cast<std::int16_t>(r);
+      ++events_[r];
+      on_[r] += ev.p[j] != 0;
+      sum_x_[r] += ev.x[j];
+      sum_y_[r] += ev.y[j];
+    }
+    int large = 0;
+    balanced_ = true;
+  large_loop:
+    for (int k = 0; k < S::kPacketMax; ++k) {
+#pragma HLS PIPELINE II = 1
+      if (k >= size) break;
+      const int j = members_[first + k];
+      if (part_of_[j] != j || events_[j] < cfg.min_cluster_size ||
+          (std::int64_t{events_[j]} << kSplitFractionFrac) < std::int64_t{cfg.split_share} * size) {
+        continue;
+      }
+      large_of_[j] = static_cast<std::int16_t>(large);
+      large_root_[large++] = static_cast<std::int16_t>(j);
+      const std::int64_t imbalance = 2 * on_[j] - events_[j];
+      const std::int64_t imbalance_q = (imbalance < 0 ? -imbalance : imbalance) << kSplitFractionFrac;
+      balanced_ = balanced_ && imbalance_q < std::int64_t{cfg.split_balance} * events_[j];
+    }
+    return large;
+  }
+
+  // A part's centre along one axis, 1/16 px, rounded half up.
+  static std::int64_t centre(std::int64_t sum, int events) { return (32 * sum + events) / (2 * std::int64_t{events}); }
+
+  // Large part k takes mode c (k = 0) or mode modes.count + k - 1; a small part the large part
+  // with the nearest centre. Each large part's mode is its events' mean.
+  void reassign(const Features<S>& phi, int first, int size, int large, int c, std::int16_t mode_of[S::kPacketMax],
+                Modes<S>& modes) {
+  zero:
+    for (int k = 0; k < S::kPacketMax; ++k) {
+      if (k >= large) break;
+      mean_x_[k] = mean_y_[k] = 0;
+      count_[k] = 0;
+    }
+  members_loop:
+    for (int m = 0; m < S::kPacketMax; ++m) {
+      if (m >= size) break;
+      const int j = members_[first + m];
+      const int r = part_of_[j];
+      int k = large_of_[r];
+      if (k < 0) {
+        std::int64_t best = 0;
+      nearest:
+        for (int l = 0; l < S::kPacketMax; ++l) {
+#pragma HLS PIPELINE II = 1
+          if (l >= large) break;
+          const int q = large_root_[l];
+          const std::int64_t dx = centre(sum_x_[r], events_[r]) - centre(sum_x_[q], events_[q]);
+          const std::int64_t dy = centre(sum_y_[r], events_[r]) - centre(sum_y_[q], events_[q]);
+          if (k < 0 || dx * dx + dy * dy < best) best = dx * dx + dy * dy, k = l;
+        }
+      }
+      mode_of[j] = static_cast<std::int16_t>(k == 0 ? c : modes.count + k - 1);
+      mean_x_[k] += phi.x[j];
+      mean_y_[k] += phi.y[j];
+      ++count_[k];
+    }
+  modes_loop:
+    for (int k = 0; k < S::kPacketMax; ++k) {
+      if (k >= large) break;
+      const int m = k == 0 ? c : modes.count + k - 1;
+      modes.x[m] = (2 * mean_x_[k] + count_[k]) / (2 * count_[k]);
+      modes.y[m] = (2 * mean_y_[k] + count_[k]) / (2 * count_[k]);
+      modes.p[m] = modes.t[m] = 0;  // the climbs' features are (x, y) only
+    }
+    modes.count += large - 1;
+  }
+
+  int find(int j) {
+  walk:
+    for (int k = 0; k < S::kPacketMax; ++k) {
+      if (root_[j] == j) break;
+      root_[j] = root_[root_[j]];  // path halving: the sets stay the same
+      j = root_[j];
+    }
+    return j;
+  }
+
+  void unite(int a, int b) {
+    const int ra = find(a), rb = find(b);
+    if (ra < rb) root_[rb] = static_cast<std::int16_t>(ra);
+    else if (rb < ra) root_[ra] = static_cast<std::int16_t>(rb);
+  }
+
+  std::int16_t first_in_cell_[kCellsX * kCellsY];  // the first event of the current cluster in a cell, or -1
+  std::int32_t touched_[S::kPacketMax];            // the cells the current cluster occupies
+  std::int16_t root_[S::kPacketMax];               // union-find over the packet's events
+  std::int32_t start_[S::kModesMax + 1], fill_[S::kModesMax];
+  std::int16_t members_[S::kPacketMax];
+  // Per part, at its root: its events, its ON events and the sums of their pixel coordinates.
+  std::int32_t events_[S::kPacketMax], on_[S::kPacketMax];
+  std::int64_t sum_x_[S::kPacketMax], sum_y_[S::kPacketMax];
+  std::int16_t part_of_[S::kPacketMax];   // per member: its part's root
+  std::int16_t large_of_[S::kPacketMax];  // per root: its index among the large parts, or -1
+  std::int16_t large_root_[S::kPacketMax];
+  std::int64_t mean_x_[S::kPacketMax], mean_y_[S::kPacketMax];  // per large part: its features' sums
+  std::int32_t count_[S::kPacketMax];
+  bool balanced_ = true;
+};
+
+}  // namespace evms::hls
