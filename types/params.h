@@ -79,7 +79,7 @@ struct Params {
   double link_px = 4;                // seeded climbs: clusters with events this close become one
   bool join_boxes = false;           // seeded climbs: clusters whose bounding boxes overlap become one
   int max_clusters = 128;            // modes beyond this many clusters become noise
-  double split_balance = 0;          // seeded climbs: a cluster of two or more separate parts that each
+  double split_balance = 0.3;        // seeded climbs: a cluster of two or more separate parts that each
                                      // hold both polarities is split (golden/cluster/polarity_split.h); 0 = off
   double split_share = 0.1;          // ... counting the parts of at least this share of its events
   double split_cell = 0.5;           // ... parts of 8-connected cells this many bandwidths a side

@@ -39,6 +39,7 @@ Params gaussian() {
   p.min_density = 0;
   p.link_px = 0;
   p.join_boxes = false;
+  p.split_balance = 0;
   p.max_clusters = 16;
   p.measure = Measure::kCentroid;
   p.association = Association::kKalman;

@@ -38,7 +38,7 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 // The method build S starts with: the default method (the "evms" preset, seeded climbs) when
 // the build holds only the seeded path, else the Gaussian mean shift of every event (the
 // "gaussian" preset), with the packet size, cluster and track counts cut to what the build
-// holds: the register values a board of that build starts with.
+// holds and without the polarity split: the register values a board of that build starts with.
 template <class S>
 const char* build_default_preset() {
   return S::kHasGaussianPath ? "gaussian" : "evms";
@@ -46,6 +46,7 @@ const char* build_default_preset() {
 template <class S>
 Params build_default_params() {
   Params p = preset(build_default_preset<S>());
+  p.split_balance = 0;  // the RTL does not hold the polarity split (fit_core_build in backend.h)
   p.packet_size = std::min(p.packet_size, S::kPacketMax);
   p.max_clusters = std::min(p.max_clusters, S::kClustersMax);
   p.max_tracks = std::min(p.max_tracks, S::kTracksMax);

@@ -28,13 +28,14 @@ void check_core_build(const std::string& core) {
 
 namespace {
 
+bool set_by_user(const Method& method, const char* name) {
+  return std::any_of(method.settings.begin(), method.settings.end(), [&](const auto& setting) { return setting.first == name; });
+}
+
 template <class S>
 Params fit_sizes(Params p, const Method& method) {
-  auto set_by_user = [&](const char* name) {
-    return std::any_of(method.settings.begin(), method.settings.end(), [&](const auto& setting) { return setting.first == name; });
-  };
   auto fit = [&](int& value, const char* name, int build_max) {
-    if (!set_by_user(name)) value = std::min(value, build_max);
+    if (!set_by_user(method, name)) value = std::min(value, build_max);
   };
   fit(p.packet_size, "packet-size", S::kPacketMax);
   fit(p.max_clusters, "max-clusters", S::kClustersMax);
@@ -49,6 +50,10 @@ Params fit_core_build(const std::string& backend, const std::string& core, Param
   if (backend == "golden") return p;
   const bool fixed = backend == "fixed";
   const std::string build = backend == "board" ? board_build(core) : core;
+  // The RTL does not hold the polarity split: an RTL build, and the C++ core of a board's build
+  // (which stands for that board), run without it unless the command line asks (then the RTL
+  // refuses it).
+  if ((!fixed || build != "host") && !set_by_user(method, "split-balance")) p.split_balance = 0;
 #define EVMS_FIT_BUILD(name, fixed_shape, rtl_shape, width, height, description) \
   if (build == #name) return fixed ? fit_sizes<hls::fixed_shape>(p, method) : fit_sizes<hls::rtl_shape>(p, method);
   EVMS_CORE_BUILDS(EVMS_FIT_BUILD)

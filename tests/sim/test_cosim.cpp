@@ -18,6 +18,7 @@
 #include "hls/core/configs.h"
 #include "hls/core/core.h"
 #include "hls/core/schedule.h"
+#include "host/backend/backend.h"
 #include "host/backend/core_config.h"
 #include "host/eval/scene_run.h"
 #include "host/gen/family.h"
@@ -163,14 +164,9 @@ std::vector<Event> scene_events(gen::Motion m, double duration_s, int width, int
 }
 
 // The default method (seeded climbs, links, warm seeds; the tracker's last-measurement gating,
-// eviction of the stalest track and tentative reports) in the host build's sizes.
-Params seeded_method() {
-  Params p;
-  p.packet_size = hls::RtlHostShape::kPacketMax;
-  p.max_clusters = hls::RtlHostShape::kClustersMax;
-  p.max_tracks = hls::RtlHostShape::kTracksMax;
-  return p;
-}
+// eviction of the stalest track and tentative reports) as the host RTL build runs it: in its
+// sizes, without the polarity split.
+Params seeded_method() { return backend::fit_core_build("rtl", "host", Params{}, {}); }
 
 TEST(Cosim, SeededPathHostBuild) {
   for (auto m : {gen::Motion::kTranslation, gen::Motion::kRotation, gen::Motion::kSixDof}) {
