@@ -16,6 +16,7 @@
 #include <cstdint>
 
 #include "hls/cluster/features.h"
+#include "hls/cluster/union_find.h"
 #include "hls/core/config.h"
 
 namespace evms::hls {
@@ -32,7 +33,7 @@ class ModeLinks {
   roots:
     for (int c = 0; c < S::kModesMax; ++c) {
       if (c >= modes) break;
-      parent_[c] = static_cast<std::int16_t>(c);
+      sets_.make_set(c);
     }
     if (cfg.link2 != 0) {
       int listed = 0;
@@ -43,7 +44,7 @@ class ModeLinks {
         if (first_mode[j] < 0) continue;
         const int pixel = ev.y[j] * S::kMaxWidth + ev.x[j];
         if (is_marked(ev.x[j], ev.y[j])) {
-          join(first_mode[j], mode_[pixel]);
+          sets_.unite(first_mode[j], mode_[pixel]);
         } else {
           mark(ev.x[j], ev.y[j], true);
           listed_[listed++] = pixel;
@@ -72,7 +73,7 @@ class ModeLinks {
             const int x = x0 + dx, y = y0 + dy;
             if (x < 0 || x >= cfg.sensor_width || y >= cfg.sensor_height || !is_marked(x, y)) continue;
             const int other = mode_[y * S::kMaxWidth + x];
-            if (other != mode) join(mode, other);
+            if (other != mode) sets_.unite(mode, other);
           }
         }
       }
@@ -86,7 +87,7 @@ class ModeLinks {
   resolve:
     for (int j = 0; j < S::kPacketMax; ++j) {
       if (j >= n) break;
-      if (first_mode[j] >= 0) first_mode[j] = find(first_mode[j]);
+      if (first_mode[j] >= 0) first_mode[j] = static_cast<std::int16_t>(sets_.find(first_mode[j]));
     }
   }
 
@@ -100,25 +101,10 @@ class ModeLinks {
     word = on ? word | bit : word & ~bit;
   }
 
-  int find(int c) const {
-  walk:
-    for (int k = 0; k < S::kModesMax; ++k) {
-      if (parent_[c] == c) break;
-      c = parent_[c];
-    }
-    return c;
-  }
-
-  void join(int a, int b) {
-    const int ra = find(a), rb = find(b);
-    if (ra < rb) parent_[rb] = static_cast<std::int16_t>(ra);
-    else if (rb < ra) parent_[ra] = static_cast<std::int16_t>(rb);
-  }
-
   std::uint64_t marked_[S::kMaxHeight * kWordsPerRow] = {};  // one bit a pixel: written by this packet
   std::int16_t mode_[S::kMaxWidth * S::kMaxHeight] = {};     // the mode last written there (where marked)
   std::int32_t listed_[S::kPacketMax] = {};                 // the pixels this packet marked
-  std::int16_t parent_[S::kModesMax] = {};
+  UnionFind<S::kModesMax> sets_;                          // the modes' sets
 };
 
 }  // namespace evms::hls

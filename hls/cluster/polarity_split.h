@@ -25,6 +25,7 @@
 
 #include "hls/cluster/features.h"
 #include "hls/cluster/seeded_climbs.h"
+#include "hls/cluster/union_find.h"
 #include "hls/core/config.h"
 
 namespace evms::hls {
@@ -96,7 +97,7 @@ class PolaritySplit {
     return cy * kCellsX + cx;
   }
 
-  // Afterwards root_[j] leads to the smallest member of j's part, for each member j.
+  // Afterwards sets_ holds the parts of the cluster's events, each named by its smallest member.
   void find_parts(const PacketEvents<S>& ev, int first, int size, const Config& cfg) {
     int touched = 0;
   cells:
@@ -105,12 +106,12 @@ class PolaritySplit {
       if (k >= size) break;
       const int j = members_[first + k];
       const int cell = cell_of(ev, j, cfg);
-      root_[j] = static_cast<std::int16_t>(j);
+      sets_.make_set(j);
       if (first_in_cell_[cell] < 0) {
         first_in_cell_[cell] = static_cast<std::int16_t>(j);
         touched_[touched++] = cell;
       } else {
-        unite(first_in_cell_[cell], j);
+        sets_.unite(first_in_cell_[cell], j);
       }
     }
     // The four neighbours ahead of a cell; the other four see it.
@@ -124,7 +125,7 @@ class PolaritySplit {
         const int nx = cx + kAheadX[a], ny = cy + kAheadY[a];
         if (nx < 0 || nx >= kCellsX || ny >= kCellsY) continue;
         const int near = first_in_cell_[ny * kCellsX + nx];
-        if (near >= 0) unite(first_in_cell_[touched_[k]], near);
+        if (near >= 0) sets_.unite(first_in_cell_[touched_[k]], near);
       }
     }
   uncover:
@@ -151,7 +152,7 @@ class PolaritySplit {
     for (int k = 0; k < S::kPacketMax; ++k) {
       if (k >= size) break;
       const int j = members_[first + k];
-      const int r = find(j);
+      const int r = sets_.find(j);
       part_of_[j] = static_cast<std::int16_t>(r);
       ++events_[r];
       on_[r] += ev.p[j] != 0;
@@ -225,25 +226,9 @@ class PolaritySplit {
     modes.count += large - 1;
   }
 
-  int find(int j) {
-  walk:
-    for (int k = 0; k < S::kPacketMax; ++k) {
-      if (root_[j] == j) break;
-      root_[j] = root_[root_[j]];  // path halving: the sets stay the same
-      j = root_[j];
-    }
-    return j;
-  }
-
-  void unite(int a, int b) {
-    const int ra = find(a), rb = find(b);
-    if (ra < rb) root_[rb] = static_cast<std::int16_t>(ra);
-    else if (rb < ra) root_[ra] = static_cast<std::int16_t>(rb);
-  }
-
   std::int16_t first_in_cell_[kCellsX * kCellsY];  // the first event of the current cluster in a cell, or -1
   std::int32_t touched_[S::kPacketMax];            // the cells the current cluster occupies
-  std::int16_t root_[S::kPacketMax];               // union-find over the packet's events
+  UnionFind<S::kPacketMax> sets_;                  // the current cluster's parts, over the packet's events
   std::int32_t start_[S::kModesMax + 1], fill_[S::kModesMax];
   std::int16_t members_[S::kPacketMax];
   // Per part, at its root: its events, its ON events and the sums of their pixel coordinates.
