@@ -14,7 +14,8 @@ std::int64_t centre(std::int64_t sum, int events) { return (32 * sum + events) /
 
 }  // namespace
 
-PolaritySplit::PolaritySplit(const Params& params, SensorSize sensor) : params_(params), rule_(split_rule(params, sensor)) {
+PolaritySplit::PolaritySplit(const Params& params, SensorSize sensor)
+    : min_cluster_size_(params.min_cluster_size), rule_(split_rule(params, sensor)) {
   if (rule_.balance == 0) return;
   cells_x_ = static_cast<int>((static_cast<std::uint64_t>(sensor.width) * rule_.cell_scale_x) >> kSplitCellFrac) + 1;
   cells_y_ = static_cast<int>((static_cast<std::uint64_t>(sensor.height) * rule_.cell_scale_y) >> kSplitCellFrac) + 1;
@@ -72,7 +73,7 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
 
   for (size_t c = 0; c < clusters; ++c) {
     const std::span<const int> in(members_.data() + start_[c], static_cast<size_t>(start_[c + 1] - start_[c]));
-    if (in.size() < 2 * static_cast<size_t>(params_.min_cluster_size)) continue;
+    if (in.size() < 2 * static_cast<size_t>(min_cluster_size_)) continue;
     find_parts(events, in);
     for (const int i : in) {
       const Event& e = events[static_cast<size_t>(i)];
@@ -85,7 +86,7 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
     for (const int i : in) {
       Part& q = part_[static_cast<size_t>(i)];
       const std::int64_t events_q = std::int64_t{q.events} << kSplitFractionFrac;
-      if (part_of_[static_cast<size_t>(i)] != i || q.events < params_.min_cluster_size || events_q < rule_.share * size) continue;
+      if (part_of_[static_cast<size_t>(i)] != i || q.events < min_cluster_size_ || events_q < rule_.share * size) continue;
       q.large = static_cast<int>(large_.size());
       large_.push_back(i);
       const std::int64_t imbalance_q = std::int64_t{std::abs(2 * q.on - q.events)} << kSplitFractionFrac;
@@ -96,16 +97,18 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
       std::vector<Eigen::Vector4d> sum(large_.size(), Eigen::Vector4d::Zero());
       std::vector<int> count(large_.size(), 0);
       for (const int i : in) {
-        const Part& q = part_[static_cast<size_t>(part_of_[static_cast<size_t>(i)])];
-        int k = q.large;
-        if (k < 0) {  // a small part: to the large part with the nearest centre
+        Part& q = part_[static_cast<size_t>(part_of_[static_cast<size_t>(i)])];
+        if (q.large < 0) {  // a small part, at its first event: to the large part with the nearest centre
           std::int64_t best = std::numeric_limits<std::int64_t>::max();
+          int nearest = 0;
           for (const int r : large_) {
             const Part& l = part_[static_cast<size_t>(r)];
             const std::int64_t dx = centre(q.x, q.events) - centre(l.x, l.events), dy = centre(q.y, q.events) - centre(l.y, l.events);
-            if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, k = l.large;
+            if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, nearest = l.large;
           }
+          q.large = nearest;
         }
+        const int k = q.large;
         cluster_of[static_cast<size_t>(i)] = k == 0 ? static_cast<int>(c) : static_cast<int>(modes.size()) + k - 1;
         sum[static_cast<size_t>(k)] += features.col(i);
         ++count[static_cast<size_t>(k)];

@@ -44,7 +44,7 @@ class PolaritySplit {
   // i's part, for each member i.
   void find_parts(std::span<const Event> events, std::span<const int> members);
 
-  Params params_;
+  int min_cluster_size_;
   SplitRule rule_;
   int cells_x_ = 0, cells_y_ = 0;
   std::vector<int> first_in_cell_;  // per cell: the first member of the current cluster in it, or -1
@@ -54,7 +54,7 @@ class PolaritySplit {
   struct Part {
     int events = 0, on = 0;
     std::int64_t x = 0, y = 0;  // sums of the events' pixel coordinates
-    int large = -1;  // for a large part: its index among the cluster's large parts
+    int large = -1;  // the large part its events go to: its own index among them, or the nearest one's
   };
   std::vector<Part> part_;          // per event: the sums of the part it is the smallest member of
   std::vector<int> start_, members_, fill_;  // each cluster's events, in event order

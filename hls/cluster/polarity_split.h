@@ -198,7 +198,7 @@ class PolaritySplit {
       const int j = members_[first + m];
       const int r = part_of_[j];
       int k = large_of_[r];
-      if (k < 0) {
+      if (k < 0) {  // a small part, at its first event: to the large part with the nearest centre
         std::int64_t best = 0;
       nearest:
         for (int l = 0; l < S::kPacketMax; ++l) {
@@ -209,6 +209,7 @@ class PolaritySplit {
           const std::int64_t dy = centre(sum_y_[r], events_[r]) - centre(sum_y_[q], events_[q]);
           if (k < 0 || dx * dx + dy * dy < best) best = dx * dx + dy * dy, k = l;
         }
+        large_of_[r] = static_cast<std::int16_t>(k);
       }
       mode_of[j] = static_cast<std::int16_t>(k == 0 ? c : modes.count + k - 1);
       mean_x_[k] += phi.x[j];
@@ -235,7 +236,7 @@ class PolaritySplit {
   std::int32_t events_[S::kPacketMax], on_[S::kPacketMax];
   std::int64_t sum_x_[S::kPacketMax], sum_y_[S::kPacketMax];
   std::int16_t part_of_[S::kPacketMax];   // per member: its part's root
-  std::int16_t large_of_[S::kPacketMax];  // per root: its index among the large parts, or -1
+  std::int16_t large_of_[S::kPacketMax];  // per root: the large part its events go to (its own index, or the nearest one's), or -1
   std::int16_t large_root_[S::kPacketMax];
   std::int64_t mean_x_[S::kPacketMax], mean_y_[S::kPacketMax];  // per large part: its features' sums
   std::int32_t count_[S::kPacketMax];

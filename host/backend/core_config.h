@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include "types/params.h"
 #include "hls/cluster/centroid.h"
@@ -43,10 +44,15 @@ template <class S>
 const char* build_default_preset() {
   return S::kHasGaussianPath ? "gaussian" : "evms";
 }
+// Whether build S holds the polarity split: only the host's C++ core does; the RTL does not, and
+// a board's C++ core stands for its board.
+template <class S>
+inline constexpr bool kHoldsPolaritySplit = std::is_same_v<S, hls::HostShape>;
+
 template <class S>
 Params build_default_params() {
   Params p = preset(build_default_preset<S>());
-  p.split_balance = 0;  // the RTL does not hold the polarity split (fit_core_build in backend.h)
+  if (!kHoldsPolaritySplit<S>) p.split_balance = 0;
   p.packet_size = std::min(p.packet_size, S::kPacketMax);
   p.max_clusters = std::min(p.max_clusters, S::kClustersMax);
   p.max_tracks = std::min(p.max_tracks, S::kTracksMax);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "hls/core/configs.h"
+#include "host/backend/core_config.h"
 
 namespace evms::backend {
 
@@ -32,6 +33,8 @@ bool set_by_user(const Method& method, const char* name) {
   return std::any_of(method.settings.begin(), method.settings.end(), [&](const auto& setting) { return setting.first == name; });
 }
 
+// The method within build S: its sizes, and without the polarity split where S does not hold it
+// (kHoldsPolaritySplit), unless the command line set them.
 template <class S>
 Params fit_sizes(Params p, const Method& method) {
   auto fit = [&](int& value, const char* name, int build_max) {
@@ -40,6 +43,7 @@ Params fit_sizes(Params p, const Method& method) {
   fit(p.packet_size, "packet-size", S::kPacketMax);
   fit(p.max_clusters, "max-clusters", S::kClustersMax);
   fit(p.max_tracks, "max-tracks", S::kTracksMax);
+  if (!kHoldsPolaritySplit<S> && !set_by_user(method, "split-balance")) p.split_balance = 0;
   return p;
 }
 
@@ -50,10 +54,6 @@ Params fit_core_build(const std::string& backend, const std::string& core, Param
   if (backend == "golden") return p;
   const bool fixed = backend == "fixed";
   const std::string build = backend == "board" ? board_build(core) : core;
-  // The RTL does not hold the polarity split: an RTL build, and the C++ core of a board's build
-  // (which stands for that board), run without it unless the command line asks (then the RTL
-  // refuses it).
-  if ((!fixed || build != "host") && !set_by_user(method, "split-balance")) p.split_balance = 0;
 #define EVMS_FIT_BUILD(name, fixed_shape, rtl_shape, width, height, description) \
   if (build == #name) return fixed ? fit_sizes<hls::fixed_shape>(p, method) : fit_sizes<hls::rtl_shape>(p, method);
   EVMS_CORE_BUILDS(EVMS_FIT_BUILD)
