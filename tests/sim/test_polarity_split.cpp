@@ -1,0 +1,227 @@
+// Block-level cosimulation of rtl/cluster/evms_polarity_split.sv against PolaritySplit in
+// hls/cluster/polarity_split.h: one instance of each takes a run of packets (the cell map must
+// be clear again after each cluster), and every event's mode, the mode count and every mode's
+// position must be equal. The seed is printed (EVMS_SEED=N repeats a run); a mismatch repeats
+// the run with an FST trace (sim/verilated_block.h).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "Vpolarity_split.h"
+#include "hls/cluster/polarity_split.h"
+#include "hls/core/shape.h"
+#include "sim/verilated_block.h"
+
+namespace evms {
+namespace {
+
+using S = hls::RtlHostShape;
+static_assert(EVMS_SPLIT_MaxWidth == S::kMaxWidth && EVMS_SPLIT_MaxHeight == S::kMaxHeight && EVMS_SPLIT_PacketMax == S::kPacketMax &&
+                  EVMS_SPLIT_ModesMax == S::kModesMax,
+              "sim/CMakeLists.txt builds the block at RtlHostShape's sizes");
+
+struct Packet {
+  std::unique_ptr<hls::PacketEvents<S>> events = std::make_unique<hls::PacketEvents<S>>();
+  std::unique_ptr<hls::Features<S>> phi = std::make_unique<hls::Features<S>>();
+  std::vector<std::int16_t> mode;          // after the links, -1 for none
+  std::vector<std::int64_t> mode_x, mode_y;  // the climbs' mode positions
+  hls::Config cfg{};
+};
+
+// Blobs (filled discs or rings) of both polarities or mostly one, dealt to a few modes, and
+// scattered events of none, on sensors up to the Shape's, under the rule's settings: cells of 2 to
+// 44 px, shares from none to a fifth, balances from a tenth to any; some packets with a mode table
+// nearly full, where a split finds no room.
+Packet draw_packet(std::mt19937_64& rng) {
+  Packet p;
+  auto below = [&](int k) { return static_cast<int>(rng() % static_cast<std::uint64_t>(k)); };
+  auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const int width = std::vector<int>{128, 240, 346, 640, 1280}[static_cast<size_t>(below(5))];
+  const int height = std::min(width, std::vector<int>{128, 180, 260, 480, 720}[static_cast<size_t>(below(5))]);
+  p.cfg.split_balance = std::vector<std::uint16_t>{26, 77, 128, 256}[static_cast<size_t>(below(4))];
+  p.cfg.split_share = std::vector<std::uint16_t>{0, 13, 26, 51}[static_cast<size_t>(below(4))];
+  p.cfg.split_cell_scale_x = std::vector<std::uint32_t>{32768, 16384, 7000, 3000, 1500}[static_cast<size_t>(below(5))];
+  p.cfg.split_cell_scale_y = below(3) == 0 ? std::vector<std::uint32_t>{32768, 9000, 1500}[static_cast<size_t>(below(3))] : p.cfg.split_cell_scale_x;
+  p.cfg.min_cluster_size = static_cast<std::uint16_t>(std::vector<int>{2, 4, 8, 16}[static_cast<size_t>(below(4))]);
+  const int modes = below(3) == 0 ? S::kModesMax - below(2) : 1 + below(5);
+  const int n = 16 + below(S::kPacketMax - 15), blobs = 2 + below(6);
+  struct Blob {
+    double x, y, radius, on_share;
+    bool ring;
+    int mode;
+  };
+  std::vector<Blob> blob;
+  for (int b = 0; b < blobs; ++b) {
+    blob.push_back({uniform(0, width - 1), uniform(0, height - 1), uniform(0.5, 30), std::vector<double>{0.5, 0.5, 0.45, 0.9, 0.05}[static_cast<size_t>(below(5))],
+                    below(3) == 0, below(std::min(modes, 4))});
+  }
+  for (int j = 0; j < n; ++j) {
+    int x = below(width), y = below(height), mode = -1, on = below(2);
+    if (below(20) != 0) {
+      const Blob& b = blob[static_cast<size_t>(below(blobs))];
+      const double r = b.ring ? b.radius : uniform(0, b.radius), a = uniform(0, 2 * M_PI);
+      x = static_cast<int>(std::clamp(std::lround(b.x + r * std::cos(a)), 0L, static_cast<long>(width - 1)));
+      y = static_cast<int>(std::clamp(std::lround(b.y + r * std::sin(a)), 0L, static_cast<long>(height - 1)));
+      mode = b.mode;
+      on = uniform(0, 1) < b.on_share;
+    }
+    p.events->x[j] = static_cast<std::uint16_t>(x), p.events->y[j] = static_cast<std::uint16_t>(y), p.events->p[j] = static_cast<std::uint8_t>(on);
+    // Climb features: the pixel in 1/4096 px with a fraction of its own, as the climbs' scales give.
+    p.phi->x[j] = static_cast<std::uint32_t>(x * 4096 + below(4096));
+    p.phi->y[j] = static_cast<std::uint32_t>(y * 4096 + below(4096));
+    p.mode.push_back(static_cast<std::int16_t>(mode));
+  }
+  for (int m = 0; m < modes; ++m) {
+    p.mode_x.push_back(below(width) * 4096);
+    p.mode_y.push_back(below(height) * 4096);
+  }
+  return p;
+}
+
+struct Result {
+  std::vector<std::int16_t> mode;
+  std::vector<std::int64_t> mode_x, mode_y;
+  bool operator==(const Result&) const = default;
+};
+
+// left_whole: the clusters the model left whole for want of room in the mode table.
+std::vector<Result> run_model(const std::vector<Packet>& run, int* left_whole = nullptr) {
+  auto split = std::make_unique<hls::PolaritySplit<S>>();
+  split->reset();
+  std::vector<Result> out;
+  for (const Packet& p : run) {
+    std::int16_t mode[S::kPacketMax];
+    std::copy(p.mode.begin(), p.mode.end(), mode);
+    auto modes = std::make_unique<hls::Modes<S>>();
+    modes->count = static_cast<int>(p.mode_x.size());
+    std::copy(p.mode_x.begin(), p.mode_x.end(), modes->x);
+    std::copy(p.mode_y.begin(), p.mode_y.end(), modes->y);
+    const int n = static_cast<int>(p.mode.size());
+    const int whole = split->run(*p.events, *p.phi, n, p.cfg, mode, *modes);
+    if (left_whole) *left_whole += whole;
+    out.push_back({{mode, mode + n}, {modes->x, modes->x + modes->count}, {modes->y, modes->y + modes->count}});
+  }
+  return out;
+}
+
+struct RtlRun {
+  std::vector<Result> results;
+  std::uint64_t cycles = 0, events = 0;
+};
+
+RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
+  sim::VerilatedBlock<Vpolarity_split> rtl(trace_path);
+  RtlRun r;
+  for (int k = 0; !rtl->ready; ++k) {
+    rtl.tick();
+    if (k > 1'000'000) throw std::runtime_error("the block never left reset");
+  }
+  for (const Packet& p : run) {
+    const int n = static_cast<int>(p.mode.size());
+    rtl->n = static_cast<std::uint16_t>(n);
+    rtl->mode_count = static_cast<std::uint16_t>(p.mode_x.size());
+    rtl->cfg_min_cluster_size = p.cfg.min_cluster_size;
+    rtl->cfg_split_balance = p.cfg.split_balance;
+    rtl->cfg_split_share = p.cfg.split_share;
+    rtl->cfg_split_cell_scale_x = p.cfg.split_cell_scale_x;
+    rtl->cfg_split_cell_scale_y = p.cfg.split_cell_scale_y;
+    rtl->start = 1;
+    // The packet's memories answer ev_j the clock after, as a block RAM's registered read does.
+    auto tick_with_memories = [&] {
+      const int j = rtl->ev_j;
+      rtl.tick();
+      const bool in = j < n;
+      rtl->ev_x = in ? p.events->x[j] : 0, rtl->ev_y = in ? p.events->y[j] : 0, rtl->ev_p = in ? p.events->p[j] : 0;
+      rtl->ev_mode = static_cast<std::uint16_t>(in ? p.mode[static_cast<size_t>(j)] : 0);
+      rtl->ev_fx = in ? p.phi->x[j] : 0, rtl->ev_fy = in ? p.phi->y[j] : 0;
+    };
+    tick_with_memories();
+    rtl->start = 0;
+    std::uint64_t cycles = 1;
+    for (; !rtl->done; ++cycles) {
+      tick_with_memories();
+      if (cycles > 10'000'000) throw std::runtime_error("the block did not finish");
+    }
+    const int count = rtl->modes_after;
+    rtl.tick();
+    r.cycles += cycles, r.events += static_cast<std::uint64_t>(n);
+    Result got;
+    for (int j = 0; j < n; ++j) {
+      rtl->rd_j = static_cast<std::uint16_t>(j);
+      rtl.tick();
+      got.mode.push_back(static_cast<std::int16_t>(rtl->rd_mode));
+    }
+    for (int m = 0; m < count; ++m) {
+      rtl->rd_c = static_cast<std::uint8_t>(m);
+      rtl.tick();
+      const bool climbs = !rtl->rd_moved;
+      if (climbs && m >= static_cast<int>(p.mode_x.size())) throw std::runtime_error("a new mode was not given a position");
+      got.mode_x.push_back(climbs ? p.mode_x[static_cast<size_t>(m)] : static_cast<std::int64_t>(rtl->rd_mode_x));
+      got.mode_y.push_back(climbs ? p.mode_y[static_cast<size_t>(m)] : static_cast<std::int64_t>(rtl->rd_mode_y));
+    }
+    r.results.push_back(got);
+  }
+  return r;
+}
+
+std::string difference(const std::vector<Result>& want, const std::vector<Result>& got) {
+  for (size_t k = 0; k < want.size(); ++k) {
+    if (want[k] == got[k]) continue;
+    std::ostringstream o;
+    o << "packet " << k << ": ";
+    if (want[k].mode_x.size() != got[k].mode_x.size()) {
+      o << got[k].mode_x.size() << " modes, want " << want[k].mode_x.size();
+      return o.str();
+    }
+    for (size_t j = 0; j < want[k].mode.size(); ++j) {
+      if (want[k].mode[j] != got[k].mode[j]) {
+        o << "event " << j << ": mode " << got[k].mode[j] << ", want " << want[k].mode[j];
+        return o.str();
+      }
+    }
+    for (size_t m = 0; m < want[k].mode_x.size(); ++m) {
+      o << "mode " << m << ": (" << got[k].mode_x[m] << ", " << got[k].mode_y[m] << "), want (" << want[k].mode_x[m] << ", " << want[k].mode_y[m] << ") ";
+    }
+    return o.str();
+  }
+  return "";
+}
+
+TEST(PolaritySplitRtl, EveryEventsModeAndEveryModesPositionEqualTheCppModelOverRunsOfPackets) {
+  const std::uint64_t seed = sim::cosim_seed();
+  std::mt19937_64 rng(seed);
+  std::uint64_t cycles = 0, events = 0;
+  int packets = 0, split = 0, whole_for_room = 0;
+  for (int r = 0; r < 8; ++r) {
+    std::vector<Packet> run;
+    for (int k = 0; k < 25; ++k) run.push_back(draw_packet(rng));
+    const std::vector<Result> want = run_model(run, &whole_for_room);
+    const RtlRun got = run_rtl(run, "");
+    if (const std::string d = difference(want, got.results); !d.empty()) {
+      const std::string trace = sim::cosim_trace_path("polarity_split", seed);
+      run_rtl(run, trace);
+      FAIL() << "seed " << seed << ", run " << r << ": " << d << "; trace in " << trace;
+    }
+    cycles += got.cycles, events += got.events;
+    for (size_t k = 0; k < run.size(); ++k) {
+      ++packets;
+      split += want[k].mode_x.size() > run[k].mode_x.size();
+    }
+  }
+  std::printf("%d packets, %d split, %d clusters left whole for want of room, %.1f cycles an event\n", packets, split, whole_for_room,
+              static_cast<double>(cycles) / static_cast<double>(events));
+  // Both outcomes, many times: the packets reach the rule's every branch.
+  EXPECT_GT(split, packets / 8) << "too few packets split to test the split";
+  EXPECT_LT(split, packets * 4 / 5) << "too few packets stayed whole to test the rule";
+  EXPECT_GT(whole_for_room, 0) << "no cluster was left whole for want of room in the mode table";
+}
+
+}  // namespace
+}  // namespace evms
