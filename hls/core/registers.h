@@ -52,16 +52,16 @@
   X(associate_last, bool, 1, false, "gate against the last measurement of a track, not its prediction")                 \
   X(evict_stale, bool, 1, false, "with no free slot, take the unmatched slot measured longest ago")                     \
   X(size_ratio_log2, std::uint8_t, 4, 0, "pairs whose event counts differ by more than 2^this are taken last; 0: off")  \
-  X(report_tentative, bool, 1, false, "tentative tracks report their updates too")
-
-// Registers of the C++ core only: the filter's support count, the gate's widening by a
-// cluster's spread, coasting by packets and the polarity split. The RTL refuses a setting that
-// needs them (host/backend/core_config.h).
-#define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
-  X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
-  X(gate_spread2, std::uint32_t, 32, 0, "widening of the gate by the spread of the cluster, squared, kSpreadFrac bits") \
-  X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never")       \
-  X(split_balance, std::uint16_t, 16, 0, "seeded: parts hold both polarities when |2 ON - events| < this * events, kSplitFractionFrac bits; 0: no split") \
+  X(report_tentative, bool, 1, false, "tentative tracks report their updates too")                                     \
+  X(split_balance, std::uint16_t, 16, 0, "seeded: parts hold both polarities when |2 ON - events| < this * events, kSplitFractionFrac bits; 0: no split (the only setting of a build without HasPolaritySplit)") \
   X(split_share, std::uint16_t, 16, 0, "seeded: a part is large with at least this share of its cluster, kSplitFractionFrac bits") \
   X(split_cell_scale_x, std::uint32_t, 32, 0, "seeded: a split cell's column is (x * this) >> kSplitCellFrac (at most 2^15)") \
   X(split_cell_scale_y, std::uint32_t, 32, 0, "seeded: a split cell's row is (y * this) >> kSplitCellFrac (at most 2^15)")
+
+// Registers of the C++ core only: the filter's support count, the gate's widening by a
+// cluster's spread and coasting by packets. The RTL refuses a setting that needs them
+// (host/backend/core_config.h).
+#define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
+  X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
+  X(gate_spread2, std::uint32_t, 32, 0, "widening of the gate by the spread of the cluster, squared, kSpreadFrac bits") \
+  X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never")

@@ -68,6 +68,7 @@ constexpr const char* kStageNames[kStageCount] = {"accept",     "filter", "packe
   X(Merge, kMerge)                     \
   X(Climb, kMeanShift)                 \
   X(Link, kMerge)                      \
+  X(Split, kMerge)                     \
   X(Warm, kMerge)                      \
   X(Centroid, kCentroid)               \
   X(Track, kTrack)                     \

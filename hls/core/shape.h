@@ -27,7 +27,7 @@ inline constexpr int kSplitFractionFrac = 8;
 template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsMax, int ClustersMax, int TracksMax,
           int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,
           int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4,
-          int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0>
+          int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0, int HasPolaritySplit = 0>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -51,6 +51,10 @@ struct Shape {
   static constexpr int kHasGaussianPath = HasGaussianPath;
   static constexpr int kHasSeededPath = HasSeededPath;
   static_assert(HasGaussianPath || HasSeededPath, "a core clusters by at least one path");
+  // Whether the build holds the polarity split after the seeded path's links
+  // (hls/cluster/polarity_split.h, rtl/cluster/evms_polarity_split.sv); a build without it runs
+  // the method with --split-balance 0, and the host refuses any other setting for it.
+  static constexpr int kHasPolaritySplit = HasPolaritySplit;
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;
@@ -66,6 +70,8 @@ struct Shape {
   static constexpr int kClimbFrac = hls::kClimbFrac;
   static constexpr int kClimbScaleFrac = hls::kClimbScaleFrac;
   static constexpr int kSpreadFrac = hls::kSpreadFrac;
+  static constexpr int kSplitCellFrac = hls::kSplitCellFrac;
+  static constexpr int kSplitFractionFrac = hls::kSplitFractionFrac;
   // Tracker words.
   static constexpr int kPosFrac = PosFrac;
   static constexpr int kTickLog2 = 14;           // 16.384 ms
@@ -115,8 +121,11 @@ struct Shape {
   X(ClimbFrac)                       \
   X(ClimbScaleFrac)                  \
   X(SpreadFrac)                      \
+  X(SplitCellFrac)                   \
+  X(SplitFractionFrac)               \
   X(HasGaussianPath)                 \
-  X(HasSeededPath)
+  X(HasSeededPath)                   \
+  X(HasPolaritySplit)
 
 // The default board build: a DAVIS240-class sensor, the defaults of docs/sweep.md, a 16-bit
 // timestamp per pixel in 128 us units (one iCE40 SPRAM word), and eight kernel lanes: 88 of an
@@ -127,10 +136,10 @@ using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // method's default packets (3,000 events), clusters and tracks (128 each), and a pending queue
 // deep enough that noisy recordings (a third noise, say) never close a packet early, as golden
 // never does.
-using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8>;
+using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1>;
 // The RTL's host-simulation build: HostShape's sensor, words and tables with smaller packet,
-// cluster and track sizes, and both clustering paths. For settings within those sizes the two
-// give the same words.
-using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 4, 32, 8, 1, 1>;
+// cluster and track sizes, both clustering paths and the polarity split. For settings within
+// those sizes the two give the same words.
+using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 4, 32, 8, 1, 1, 1>;
 
 }  // namespace evms::hls

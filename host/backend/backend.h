@@ -71,9 +71,9 @@ SensorSize core_build_sensor(const std::string& build);
 // `core` of `backend` (fixed: the build's C++ Shape; rtl and board: its RTL Shape; golden: no
 // limits): each of the three that the method's preset makes larger than the build holds is cut
 // to the build's, unless the command line set it (then the backend refuses it with a one-line
-// error). So `--core ice40` alone runs the iCE40 build's sizes. The RTL builds, and the fixed
-// backend with a board's build (arty, ice40), also run without the polarity split
-// (--split-balance 0), which the RTL does not hold, unless the command line set it.
+// error). So `--core ice40` alone runs the iCE40 build's sizes. The board builds (arty, ice40),
+// in every backend, also run without the polarity split (--split-balance 0), which they do not
+// hold (Shape::kHasPolaritySplit), unless the command line set it.
 Params fit_core_build(const std::string& backend, const std::string& core, Params p, const Method& method);
 
 class Backend {

@@ -39,15 +39,16 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 // The method build S starts with: the default method (the "evms" preset, seeded climbs) when
 // the build holds only the seeded path, else the Gaussian mean shift of every event (the
 // "gaussian" preset), with the packet size, cluster and track counts cut to what the build
-// holds and without the polarity split: the register values a board of that build starts with.
+// holds and without the polarity split where it does not hold it: the register values a board
+// of that build starts with.
 template <class S>
 const char* build_default_preset() {
   return S::kHasGaussianPath ? "gaussian" : "evms";
 }
-// Whether build S holds the polarity split: only the host's C++ core does; the RTL does not, and
-// a board's C++ core stands for its board.
+// Whether build S holds the polarity split (Shape::kHasPolaritySplit): the host's C++ core and
+// RTL build do, the boards' builds do not, and a board's C++ core stands for its board.
 template <class S>
-inline constexpr bool kHoldsPolaritySplit = std::is_same_v<S, hls::HostShape>;
+inline constexpr bool kHoldsPolaritySplit = S::kHasPolaritySplit != 0;
 
 template <class S>
 Params build_default_params() {
@@ -111,13 +112,16 @@ inline std::string core_unsupported(const Params& p) {
 // The first setting of `p` that RTL build `build` (hls/core/configs.h, and a board built from
 // it) does not implement. Every build implements the numbers of its clustering paths (the
 // Gaussian mean shift of every event, the seeded climbs, or both: Shape::kHasGaussianPath,
-// kHasSeededPath) and the tracker's policies but the gate's widening by the spread, coasting
-// by packets and the polarity split.
+// kHasSeededPath), the polarity split where it holds it (kHasPolaritySplit) and the tracker's
+// policies but the gate's widening by the spread and coasting by packets.
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
-  bool gaussian_path = false, seeded_path = false;
-#define EVMS_PATHS_OF_BUILD(name, fixed, rtl, width, height, description) \
-  if (build == #name) gaussian_path = hls::rtl::kHasGaussianPath != 0, seeded_path = hls::rtl::kHasSeededPath != 0;
+  bool gaussian_path = false, seeded_path = false, polarity_split = false;
+#define EVMS_PATHS_OF_BUILD(name, fixed, rtl, width, height, description)                                             \
+  if (build == #name) {                                                                                               \
+    gaussian_path = hls::rtl::kHasGaussianPath != 0, seeded_path = hls::rtl::kHasSeededPath != 0;                     \
+    polarity_split = hls::rtl::kHasPolaritySplit != 0;                                                                \
+  }
   EVMS_CORE_BUILDS(EVMS_PATHS_OF_BUILD)
 #undef EVMS_PATHS_OF_BUILD
   const bool seeded = p.seeding != Seeding::kEvery;
@@ -127,8 +131,11 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!seeded && !gaussian_path) return "the RTL build '" + build + "' clusters by seeded climbs only, not " + detail::setting(p, "seeding");
   const Params rtl = preset("gaussian");
-  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets", "split-balance"})) {
+  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets"})) {
     return "the RTL core does not implement " + detail::setting(p, name) + " (add --" + name + " " + param_text(rtl, *find_param(name)) + ")";
+  }
+  if (!polarity_split && seeded && p.split_balance != 0) {
+    return "the RTL build '" + build + "' does not hold the polarity split, not " + detail::setting(p, "split-balance") + " (add --split-balance 0)";
   }
   return {};
 }

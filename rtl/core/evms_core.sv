@@ -6,8 +6,9 @@
 // Clustering takes one of two paths, chosen by cfg_seeded among those the build holds
 // (HasGaussianPath, HasSeededPath): the Gaussian mean shift of every event and the merging of
 // its modes, or the seeded climbs with the flat kernel (cluster/evms_seeded_climbs.sv), the
-// links of clusters that touch (cluster/evms_mode_links.sv) and the clusters kept with their
-// warm seeds for the next packet (cluster/evms_warm_seeds.sv).
+// links of clusters that touch (cluster/evms_mode_links.sv), in a build that holds it the polarity
+// split (cluster/evms_polarity_split.sv), and the clusters kept with their warm seeds for the next
+// packet (cluster/evms_warm_seeds.sv).
 //
 // Word by word, as the controller takes it from the intake: an event that passed the filter (or
 // is noise) joins the pending queue, and,
@@ -207,7 +208,24 @@ module evms_core #(
   logic [7:0] warm_count;   // the seeds the last seeded packet left
   // The links' representative of an event's first mode.
   wire [ModeIndexBits-1:0] first_mode = ModeIndexBits'(cl_rd_mode);
-  assign ws_ev_mode = cl_rd_mode < 0 ? -16'sd1 : 16'(lk_rd_root);
+  logic signed [15:0] linked_mode;
+  assign linked_mode = cl_rd_mode < 0 ? -16'sd1 : 16'(lk_rd_root);
+  // The polarity split (cluster/evms_polarity_split.sv), in a build that holds it and with
+  // cfg_split_balance set, runs between the links and the warm seeds: it reads an event's pixel,
+  // linked mode and climb features, and the warm seeds then read each event's mode and the moved
+  // modes' positions from it.
+  logic sp_ready, sp_start, sp_done, sp_rd_moved;
+  logic [15:0] sp_ev_j, sp_mode_count;
+  logic signed [15:0] sp_rd_mode;
+  logic [31:0] sp_rd_mode_x, sp_rd_mode_y;
+  logic split_on;
+  assign split_on = HasPolaritySplit != 0 && cfg_split_balance != 0;
+  assign ws_ev_mode = split_on ? sp_rd_mode : linked_mode;
+  logic [15:0] ws_mode_count;
+  logic [31:0] ws_md_x, ws_md_y;
+  assign ws_mode_count = split_on ? sp_mode_count : cl_mode_count;
+  assign ws_md_x = split_on && sp_rd_moved ? sp_rd_mode_x : cl_rd_mode_x;
+  assign ws_md_y = split_on && sp_rd_moved ? sp_rd_mode_y : cl_rd_mode_y;
   if (HasSeededPath != 0) begin : g_seeded
     logic [15:0] climbs_unused, modes_lost_unused;
     evms_seeded_climbs #(
@@ -231,24 +249,45 @@ module evms_core #(
       .PacketMax(PacketMax), .ModesMax(ModesMax), .ClustersMax(ClustersMax), .UnitShift(UnitShift), .SpreadFrac(SpreadFrac),
       .CoordBits(32)
     ) u_warm_seeds (
-      .clk(clk), .rst_n(rst_n), .start(ws_start), .n(16'(n)), .mode_count(cl_mode_count),
+      .clk(clk), .rst_n(rst_n), .start(ws_start), .n(16'(n)), .mode_count(ws_mode_count),
       .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_max_clusters(cfg_max_clusters), .cfg_warm_scale2(cfg_warm_scale2),
       .cfg_warm_ball2_max(cfg_warm_ball2_max), .ev_j(ws_ev_j), .ev_mode(ws_ev_mode), .ev_x(cl_rd_x), .ev_y(cl_rd_y),
-      .md_c(ws_md_c), .md_x(cl_rd_mode_x), .md_y(cl_rd_mode_y), .co_we(ws_co_we), .co_j(ws_co_j), .co_value(ws_co_value),
+      .md_c(ws_md_c), .md_x(ws_md_x), .md_y(ws_md_y), .co_we(ws_co_we), .co_j(ws_co_j), .co_value(ws_co_value),
       .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),
       .done(ws_done), .clusters(ws_clusters));
+    if (HasPolaritySplit != 0) begin : g_split
+      evms_polarity_split #(
+        .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .PacketMax(PacketMax), .ModesMax(ModesMax), .CoordBits(32),
+        .SplitCellFrac(SplitCellFrac), .SplitFractionFrac(SplitFractionFrac)
+      ) u_split (
+        .clk(clk), .rst_n(rst_n), .ready(sp_ready), .start(sp_start), .n(16'(n)), .mode_count(cl_mode_count),
+        .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_split_balance(cfg_split_balance), .cfg_split_share(cfg_split_share),
+        .cfg_split_cell_scale_x(cfg_split_cell_scale_x), .cfg_split_cell_scale_y(cfg_split_cell_scale_y), .ev_j(sp_ev_j),
+        .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_p(rd_pk_p), .ev_mode(linked_mode), .ev_fx(cl_rd_x), .ev_fy(cl_rd_y),
+        .done(sp_done), .modes_after(sp_mode_count), .rd_j(ws_ev_j), .rd_mode(sp_rd_mode), .rd_c(ws_md_c),
+        .rd_moved(sp_rd_moved), .rd_mode_x(sp_rd_mode_x), .rd_mode_y(sp_rd_mode_y));
+    end else begin : g_no_split
+      assign {sp_done, sp_ev_j, sp_mode_count, sp_rd_mode, sp_rd_moved, sp_rd_mode_x, sp_rd_mode_y} = '0;
+      assign sp_ready = 1'b1;
+      // What only the polarity split reads (waived in core/evms_core.vlt).
+      logic unused_split;
+      assign unused_split = ^{sp_start, cfg_split_share, cfg_split_cell_scale_x, cfg_split_cell_scale_y};
+    end
   end else begin : g_no_seeded
     assign {cl_done, cl_mode_count, cl_steps, cl_rd_mode, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y} = '0;
     assign {lk_done, lk_ev_j, lk_rd_root} = '0;
     assign lk_ready = 1'b1;
     assign {ws_done, ws_co_we, ws_warm_we, ws_ev_j, ws_co_j, ws_md_c, ws_clusters, ws_warm_k, ws_co_value} = '0;
     assign {ws_warm_x, ws_warm_y, ws_warm_ball2} = '0;
+    assign {sp_done, sp_ev_j, sp_mode_count, sp_rd_mode, sp_rd_moved, sp_rd_mode_x, sp_rd_mode_y} = '0;
+    assign sp_ready = 1'b1;
     // What only the seeded path reads (waived in core/evms_core.vlt).
     logic unused_seeded_path;
     assign unused_seeded_path = ^{cfg_warm_start, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we, cl_load_i, cl_lx, cl_ly,
                                   cl_start, cl_mode_count, cl_rd_j, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, first_mode, lk_start,
                                   warm_count, ws_ev_mode, ws_md_c, ws_start, ws_warm_we, ws_warm_k, ws_warm_x, ws_warm_y,
-                                  ws_warm_ball2};
+                                  ws_warm_ball2, sp_start, linked_mode, ws_mode_count, ws_md_x, ws_md_y, cfg_split_share,
+                                  cfg_split_cell_scale_x, cfg_split_cell_scale_y};
   end
 
   // The path a packet takes, and its clusters. A build with one path takes it whatever
@@ -340,8 +379,8 @@ module evms_core #(
   assign pend_we = take_noise || state == StAppend;
   wire [15:0] append_index = 16'(n);  // named: Yosys 0.23 sizes a cast inside a concatenation by its operand
   assign pend_wdata = state == StAppend ? {e_t, e_x, e_y, e_p, append_index} : {q_t, q_x, q_y, q_p, 16'hFFFF};
-  assign rd_pk_i = state == StCentroid ? ct_rd_i : (state == StLink ? lk_ev_j : fi);
-  assign cl_rd_j = state == StLink ? lk_ev_j : ws_ev_j;
+  assign rd_pk_i = state == StCentroid ? ct_rd_i : (state == StLink ? lk_ev_j : (state == StSplit ? sp_ev_j : fi));
+  assign cl_rd_j = state == StLink ? lk_ev_j : (state == StSplit ? sp_ev_j : ws_ev_j);
   assign co_i = state == StMerge ? mg_co_i : (state == StCentroid ? ct_rd_i :
                 (state == StReleaseWait ? pend_rdata[15:0] : 16'(rel_idx)));
   assign ms_rd_i = mg_rd_i;
@@ -382,8 +421,8 @@ module evms_core #(
 
   // The controller takes a decided word from the intake while idle; the links clear their
   // memory after reset (as the filter does, which holds in_ready low meanwhile).
-  assign q_pop = state == StIdle && q_valid && lk_ready;
-  assign idle = in_ready && intake_empty && state == StIdle && lk_ready && pend_n == 0 && !lab_valid && !trk_valid && !pkt_valid;
+  assign q_pop = state == StIdle && q_valid && lk_ready && sp_ready;
+  assign idle = in_ready && intake_empty && state == StIdle && lk_ready && sp_ready && pend_n == 0 && !lab_valid && !trk_valid && !pkt_valid;
   assign id_c = co_rdata >= 0 ? 8'(co_rdata) : 8'd0;
 
   // Issues a * b on the controller's port of the shared multiplier; the product comes back with mul_done.
@@ -414,6 +453,7 @@ module evms_core #(
       {cl_lx, cl_ly} <= '0;
       cl_start <= 1'b0;
       lk_start <= 1'b0;
+      sp_start <= 1'b0;
       ws_start <= 1'b0;
       warm_count <= '0;
       ct_start <= 1'b0;
@@ -433,6 +473,7 @@ module evms_core #(
       cl_load_we <= 1'b0;
       cl_start <= 1'b0;
       lk_start <= 1'b0;
+      sp_start <= 1'b0;
       ws_start <= 1'b0;
       ct_start <= 1'b0;
       tk_start <= 1'b0;
@@ -530,6 +571,11 @@ module evms_core #(
           state <= StLink;
         end
         StLink: if (lk_done) begin
+          sp_start <= split_on;
+          ws_start <= !split_on;
+          state <= split_on ? StSplit : StWarm;
+        end
+        StSplit: if (sp_done) begin
           ws_start <= 1'b1;
           state <= StWarm;
         end

@@ -38,3 +38,7 @@
 .cfg_evict_stale(CfgEvictStale),
 .cfg_size_ratio_log2(CfgSizeRatioLog2),
 .cfg_report_tentative(CfgReportTentative),
+.cfg_split_balance(CfgSplitBalance),
+.cfg_split_share(CfgSplitShare),
+.cfg_split_cell_scale_x(CfgSplitCellScaleX),
+.cfg_split_cell_scale_y(CfgSplitCellScaleY),

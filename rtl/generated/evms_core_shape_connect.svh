@@ -33,6 +33,9 @@
 .ClimbFrac(ClimbFrac),
 .ClimbScaleFrac(ClimbScaleFrac),
 .SpreadFrac(SpreadFrac),
+.SplitCellFrac(SplitCellFrac),
+.SplitFractionFrac(SplitFractionFrac),
 .HasGaussianPath(HasGaussianPath),
 .HasSeededPath(HasSeededPath),
+.HasPolaritySplit(HasPolaritySplit),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

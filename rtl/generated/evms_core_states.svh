@@ -17,12 +17,13 @@ typedef enum logic [4:0] {
   StMerge,  // 13: merge
   StClimb,  // 14: mean shift
   StLink,  // 15: merge
-  StWarm,  // 16: merge
-  StCentroid,  // 17: centroids
-  StTrack,  // 18: tracking
-  StPacket,  // 19: packet control
-  StReleaseRead,  // 20: release
-  StReleaseWait,  // 21: release
-  StReleaseCluster,  // 22: release
-  StReleaseSend  // 23: release
+  StSplit,  // 16: merge
+  StWarm,  // 17: merge
+  StCentroid,  // 18: centroids
+  StTrack,  // 19: tracking
+  StPacket,  // 20: packet control
+  StReleaseRead,  // 21: release
+  StReleaseWait,  // 22: release
+  StReleaseCluster,  // 23: release
+  StReleaseSend  // 24: release
 } state_e;

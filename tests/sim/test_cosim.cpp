@@ -163,9 +163,9 @@ std::vector<Event> scene_events(gen::Motion m, double duration_s, int width, int
   return eval::generate_scene(c).events;
 }
 
-// The default method (seeded climbs, links, warm seeds; the tracker's last-measurement gating,
-// eviction of the stalest track and tentative reports) as the host RTL build runs it: in its
-// sizes, without the polarity split.
+// The default method (seeded climbs, links, the polarity split, warm seeds; the tracker's
+// last-measurement gating, eviction of the stalest track and tentative reports) as the host RTL
+// build runs it: in its sizes.
 Params seeded_method() { return backend::fit_core_build("rtl", "host", Params{}, {}); }
 
 TEST(Cosim, SeededPathHostBuild) {
