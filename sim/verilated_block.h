@@ -1,6 +1,7 @@
-// What the block-level cosimulations (tests/sim/test_seeded_climbs.cpp, test_mode_links.cpp)
-// share: the run's seed, drawn anew and printed (EVMS_SEED=N repeats a run), and one Verilated
-// block with its clock, its reset and, when a mismatch is being repeated, an FST trace.
+// What the block-level cosimulations (tests/sim/test_seeded_climbs.cpp, test_mode_links.cpp,
+// test_polarity_split.cpp, test_warm_seeds.cpp) share: the run's seed, drawn anew and printed
+// (EVMS_SEED=N repeats a run), and one Verilated block with its clock, its reset, its start and
+// done and, when a mismatch is being repeated, an FST trace.
 #pragma once
 
 #include <verilated.h>
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <memory>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 namespace evms::sim {
@@ -52,6 +54,29 @@ class VerilatedBlock {
   VerilatedBlock& operator=(const VerilatedBlock&) = delete;
 
   Model* operator->() { return model_.get(); }
+
+  // Clocks until the block's ready is set: a block that clears a memory after reset.
+  void tick_until_ready() {
+    for (std::uint64_t k = 0; !model_->ready; ++k) {
+      if (k > 10'000'000) throw std::runtime_error("the block never left reset");
+      tick();
+    }
+  }
+
+  // Raises start for one clock and clocks until the block's one-clock done, each clock by
+  // `clock` (tick(), or a tick that also answers the block's memory reads); returns the clocks.
+  template <class Clock>
+  std::uint64_t run_until_done(Clock&& clock, std::uint64_t limit) {
+    model_->start = 1;
+    clock();
+    model_->start = 0;
+    std::uint64_t clocks = 1;
+    for (; !model_->done; ++clocks) {
+      if (clocks > limit) throw std::runtime_error("the block did not finish");
+      clock();
+    }
+    return clocks;
+  }
   void tick() {
     model_->clk = 0;
     model_->eval();

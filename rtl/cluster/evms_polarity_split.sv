@@ -503,21 +503,27 @@ module evms_polarity_split #(
     endcase
   end
 
-  // The register files, written by the states above. Each is written in a loop over its entries
-  // (a file with a clear or a join is written whole in one clock).
+  // The register files, written by the states above (a clear or a join writes a whole file in
+  // one clock).
   wire new_cell = state_q == StCellMap && !map_rd[PartBits];
   wire [PartBits-1:0] old_cell = map_rd[PartBits-1:0];
   always_ff @(posedge clk) begin
-    for (int c = 0; c < ModesMax; c++) begin
-      if (state_q == StIdle && start) size_q[c] <= '0;
-      else if (state_q == StCountData && ev_mode >= 0 && ModeBits'(ev_mode) == ModeBits'(c)) size_q[c] <= size_q[c] + 1'b1;
+    if (state_q == StIdle && start) begin
+      for (int c = 0; c < ModesMax; c++) size_q[c] <= '0;
+    end else if (state_q == StCountData && ev_mode >= 0) begin
+      size_q[ModeBits'(ev_mode)] <= size_q[ModeBits'(ev_mode)] + 1'b1;
     end
   end
+  // The whole table is rewritten by a join only (the test is outside the loop, so that a
+  // simulator does not walk the table every clock).
   always_comb begin
-    for (int t = 0; t < PacketMax; t++) begin
-      root_d[32'(t) * PartBits +: PartBits] = root_q[32'(t) * PartBits +: PartBits];
-      if (new_cell && PartBits'(cells_q) == PartBits'(t)) root_d[32'(t) * PartBits +: PartBits] = PartBits'(t);
-      else if (join_en && root_q[32'(t) * PartBits +: PartBits] == join_hi) root_d[32'(t) * PartBits +: PartBits] = join_lo;
+    root_d = root_q;
+    if (new_cell) begin
+      root_d[32'(cells_part) * PartBits +: PartBits] = cells_part;
+    end else if (join_en) begin
+      for (int t = 0; t < PacketMax; t++) begin
+        if (root_q[32'(t) * PartBits +: PartBits] == join_hi) root_d[32'(t) * PartBits +: PartBits] = join_lo;
+      end
     end
   end
   always_ff @(posedge clk) root_q <= root_d;
@@ -558,16 +564,16 @@ module evms_polarity_split #(
   wire clear_means = state_q == StLargeCentre && 32'(m_q) == 32'(large_q);
   wire move_event = state_q == StMoveData && mode_rd == $signed(c_q);
   always_ff @(posedge clk) begin
-    for (int m = 0; m < ModesMax; m++) begin
-      if (clear_means) begin
+    if (clear_means) begin
+      for (int m = 0; m < ModesMax; m++) begin
         mean_x_q[m] <= '0;
         mean_y_q[m] <= '0;
         mean_n_q[m] <= '0;
-      end else if (move_event && ev_target == ModeBits'(m)) begin
-        mean_x_q[m] <= mean_x_q[m] + MeanBits'(ev_fx);
-        mean_y_q[m] <= mean_y_q[m] + MeanBits'(ev_fy);
-        mean_n_q[m] <= mean_n_q[m] + 1'b1;
       end
+    end else if (move_event) begin
+      mean_x_q[ev_target] <= mean_x_q[ev_target] + MeanBits'(ev_fx);
+      mean_y_q[ev_target] <= mean_y_q[ev_target] + MeanBits'(ev_fy);
+      mean_n_q[ev_target] <= mean_n_q[ev_target] + 1'b1;
     end
   end
   always_ff @(posedge clk) begin

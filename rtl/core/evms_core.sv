@@ -255,39 +255,36 @@ module evms_core #(
       .md_c(ws_md_c), .md_x(ws_md_x), .md_y(ws_md_y), .co_we(ws_co_we), .co_j(ws_co_j), .co_value(ws_co_value),
       .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),
       .done(ws_done), .clusters(ws_clusters));
-    if (HasPolaritySplit != 0) begin : g_split
-      evms_polarity_split #(
-        .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .PacketMax(PacketMax), .ModesMax(ModesMax), .CoordBits(32),
-        .SplitCellFrac(SplitCellFrac), .SplitFractionFrac(SplitFractionFrac)
-      ) u_split (
-        .clk(clk), .rst_n(rst_n), .ready(sp_ready), .start(sp_start), .n(16'(n)), .mode_count(cl_mode_count),
-        .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_split_balance(cfg_split_balance), .cfg_split_share(cfg_split_share),
-        .cfg_split_cell_scale_x(cfg_split_cell_scale_x), .cfg_split_cell_scale_y(cfg_split_cell_scale_y), .ev_j(sp_ev_j),
-        .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_p(rd_pk_p), .ev_mode(linked_mode), .ev_fx(cl_rd_x), .ev_fy(cl_rd_y),
-        .done(sp_done), .modes_after(sp_mode_count), .rd_j(ws_ev_j), .rd_mode(sp_rd_mode), .rd_c(ws_md_c),
-        .rd_moved(sp_rd_moved), .rd_mode_x(sp_rd_mode_x), .rd_mode_y(sp_rd_mode_y));
-    end else begin : g_no_split
-      assign {sp_done, sp_ev_j, sp_mode_count, sp_rd_mode, sp_rd_moved, sp_rd_mode_x, sp_rd_mode_y} = '0;
-      assign sp_ready = 1'b1;
-      // What only the polarity split reads (waived in core/evms_core.vlt).
-      logic unused_split;
-      assign unused_split = ^{sp_start, cfg_split_share, cfg_split_cell_scale_x, cfg_split_cell_scale_y};
-    end
   end else begin : g_no_seeded
     assign {cl_done, cl_mode_count, cl_steps, cl_rd_mode, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y} = '0;
     assign {lk_done, lk_ev_j, lk_rd_root} = '0;
     assign lk_ready = 1'b1;
     assign {ws_done, ws_co_we, ws_warm_we, ws_ev_j, ws_co_j, ws_md_c, ws_clusters, ws_warm_k, ws_co_value} = '0;
     assign {ws_warm_x, ws_warm_y, ws_warm_ball2} = '0;
-    assign {sp_done, sp_ev_j, sp_mode_count, sp_rd_mode, sp_rd_moved, sp_rd_mode_x, sp_rd_mode_y} = '0;
-    assign sp_ready = 1'b1;
     // What only the seeded path reads (waived in core/evms_core.vlt).
     logic unused_seeded_path;
     assign unused_seeded_path = ^{cfg_warm_start, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we, cl_load_i, cl_lx, cl_ly,
                                   cl_start, cl_mode_count, cl_rd_j, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, first_mode, lk_start,
                                   warm_count, ws_ev_mode, ws_md_c, ws_start, ws_warm_we, ws_warm_k, ws_warm_x, ws_warm_y,
-                                  ws_warm_ball2, sp_start, linked_mode, ws_mode_count, ws_md_x, ws_md_y, cfg_split_share,
-                                  cfg_split_cell_scale_x, cfg_split_cell_scale_y};
+                                  ws_warm_ball2, linked_mode, ws_mode_count, ws_md_x, ws_md_y};
+  end
+  if (HasSeededPath != 0 && HasPolaritySplit != 0) begin : g_split
+    evms_polarity_split #(
+      .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .PacketMax(PacketMax), .ModesMax(ModesMax), .CoordBits(32),
+      .SplitCellFrac(SplitCellFrac), .SplitFractionFrac(SplitFractionFrac)
+    ) u_split (
+      .clk(clk), .rst_n(rst_n), .ready(sp_ready), .start(sp_start), .n(16'(n)), .mode_count(cl_mode_count),
+      .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_split_balance(cfg_split_balance), .cfg_split_share(cfg_split_share),
+      .cfg_split_cell_scale_x(cfg_split_cell_scale_x), .cfg_split_cell_scale_y(cfg_split_cell_scale_y), .ev_j(sp_ev_j),
+      .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_p(rd_pk_p), .ev_mode(linked_mode), .ev_fx(cl_rd_x), .ev_fy(cl_rd_y),
+      .done(sp_done), .modes_after(sp_mode_count), .rd_j(ws_ev_j), .rd_mode(sp_rd_mode), .rd_c(ws_md_c),
+      .rd_moved(sp_rd_moved), .rd_mode_x(sp_rd_mode_x), .rd_mode_y(sp_rd_mode_y));
+  end else begin : g_no_split
+    assign {sp_done, sp_ev_j, sp_mode_count, sp_rd_mode, sp_rd_moved, sp_rd_mode_x, sp_rd_mode_y} = '0;
+    assign sp_ready = 1'b1;
+    // What only the polarity split reads (waived in core/evms_core.vlt).
+    logic unused_split;
+    assign unused_split = ^{sp_start, cfg_split_share, cfg_split_cell_scale_x, cfg_split_cell_scale_y};
   end
 
   // The path a packet takes, and its clusters. A build with one path takes it whatever
@@ -419,8 +416,8 @@ module evms_core #(
     end
   endfunction
 
-  // The controller takes a decided word from the intake while idle; the links clear their
-  // memory after reset (as the filter does, which holds in_ready low meanwhile).
+  // The controller takes a decided word from the intake while idle; the links and the polarity
+  // split clear their maps after reset (as the filter does, which holds in_ready low meanwhile).
   assign q_pop = state == StIdle && q_valid && lk_ready && sp_ready;
   assign idle = in_ready && intake_empty && state == StIdle && lk_ready && sp_ready && pend_n == 0 && !lab_valid && !trk_valid && !pkt_valid;
   assign id_c = co_rdata >= 0 ? 8'(co_rdata) : 8'd0;

@@ -91,17 +91,13 @@ struct RtlRun {
 RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
   sim::VerilatedBlock<Vmode_links> rtl(trace_path);
   RtlRun r;
-  for (int k = 0; !rtl->ready; ++k) {
-    rtl.tick();
-    if (k > 1'000'000) throw std::runtime_error("the block never left reset");
-  }
+  rtl.tick_until_ready();
   for (const Packet& p : run) {
     const int n = static_cast<int>(p.first_mode.size());
     rtl->n = static_cast<std::uint16_t>(n);
     rtl->cfg_link2 = p.cfg.link2;
     rtl->cfg_sensor_width = p.cfg.sensor_width;
     rtl->cfg_sensor_height = p.cfg.sensor_height;
-    rtl->start = 1;
     // The packet's memories answer ev_j the clock after, as a block RAM's registered read does.
     auto tick_with_memories = [&] {
       const int j = rtl->ev_j;
@@ -110,13 +106,7 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
       rtl->ev_x = in ? p.events.x[j] : 0, rtl->ev_y = in ? p.events.y[j] : 0;
       rtl->ev_mode = static_cast<std::uint16_t>(in ? p.first_mode[static_cast<size_t>(j)] : 0);
     };
-    tick_with_memories();
-    rtl->start = 0;
-    std::uint64_t cycles = 1;
-    for (; !rtl->done; ++cycles) {
-      tick_with_memories();
-      if (cycles > 10'000'000) throw std::runtime_error("the block did not finish");
-    }
+    const std::uint64_t cycles = rtl.run_until_done(tick_with_memories, 10'000'000);
     r.cycles += cycles, r.events += static_cast<std::uint64_t>(n);
     std::vector<std::int16_t> modes;
     for (int j = 0; j < n; ++j) {

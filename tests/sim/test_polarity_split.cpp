@@ -119,10 +119,7 @@ struct RtlRun {
 RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
   sim::VerilatedBlock<Vpolarity_split> rtl(trace_path);
   RtlRun r;
-  for (int k = 0; !rtl->ready; ++k) {
-    rtl.tick();
-    if (k > 1'000'000) throw std::runtime_error("the block never left reset");
-  }
+  rtl.tick_until_ready();
   for (const Packet& p : run) {
     const int n = static_cast<int>(p.mode.size());
     rtl->n = static_cast<std::uint16_t>(n);
@@ -132,7 +129,6 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
     rtl->cfg_split_share = p.cfg.split_share;
     rtl->cfg_split_cell_scale_x = p.cfg.split_cell_scale_x;
     rtl->cfg_split_cell_scale_y = p.cfg.split_cell_scale_y;
-    rtl->start = 1;
     // The packet's memories answer ev_j the clock after, as a block RAM's registered read does.
     auto tick_with_memories = [&] {
       const int j = rtl->ev_j;
@@ -142,13 +138,7 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
       rtl->ev_mode = static_cast<std::uint16_t>(in ? p.mode[static_cast<size_t>(j)] : 0);
       rtl->ev_fx = in ? p.phi->x[j] : 0, rtl->ev_fy = in ? p.phi->y[j] : 0;
     };
-    tick_with_memories();
-    rtl->start = 0;
-    std::uint64_t cycles = 1;
-    for (; !rtl->done; ++cycles) {
-      tick_with_memories();
-      if (cycles > 10'000'000) throw std::runtime_error("the block did not finish");
-    }
+    const std::uint64_t cycles = rtl.run_until_done(tick_with_memories, 10'000'000);
     const int count = rtl->modes_after;
     rtl.tick();
     r.cycles += cycles, r.events += static_cast<std::uint64_t>(n);

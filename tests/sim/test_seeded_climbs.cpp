@@ -122,14 +122,8 @@ Result run_rtl(const Case& c, const std::string& trace_path) {
   rtl->cfg_max_iterations = c.cfg.max_iterations;
   rtl->cfg_tolerance = c.cfg.tolerance;
   rtl->cfg_merge_radius2 = c.cfg.merge_radius2;
-  rtl->start = 1;
-  rtl.tick();
-  rtl->start = 0;
   Result r;
-  for (r.cycles = 1; !rtl->done; ++r.cycles) {
-    rtl.tick();
-    if (r.cycles > 50'000'000) throw std::runtime_error("the engine did not finish");
-  }
+  r.cycles = rtl.run_until_done([&] { rtl.tick(); }, 50'000'000);
   for (int j = 0; j < c.n; ++j) {
     rtl->rd_j = static_cast<std::uint16_t>(j);
     rtl.tick();

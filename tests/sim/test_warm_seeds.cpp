@@ -113,13 +113,7 @@ Result run_rtl(const Case& c, const std::string& trace_path) {
     rtl->md_y = k < c.modes.count ? static_cast<std::uint32_t>(c.modes.y[k]) : 0;
     rtl->eval();   // the write ports depend on the data read
   };
-  rtl->start = 1;
-  tick();
-  rtl->start = 0;
-  for (r.cycles = 1; !rtl->done; ++r.cycles) {
-    tick();
-    if (r.cycles > 10'000'000) throw std::runtime_error("the block did not finish");
-  }
+  r.cycles = rtl.run_until_done(tick, 10'000'000);
   r.clusters = rtl->clusters;
   seeds.resize(3 * static_cast<size_t>(std::min<int>(r.clusters, S::kClustersMax)));
   r.seeds = seeds;
