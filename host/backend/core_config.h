@@ -44,15 +44,10 @@ template <class S>
 const char* build_default_preset() {
   return S::kHasGaussianPath ? "gaussian" : "evms";
 }
-// Whether build S holds the polarity split (Shape::kHasPolaritySplit): the host's C++ core and
-// RTL build do, the boards' builds do not, and a board's C++ core stands for its board.
-template <class S>
-inline constexpr bool kHoldsPolaritySplit = S::kHasPolaritySplit != 0;
-
 template <class S>
 Params build_default_params() {
   Params p = preset(build_default_preset<S>());
-  if (!kHoldsPolaritySplit<S>) p.split_balance = 0;
+  if (!S::kHasPolaritySplit) p.split_balance = 0;  // the board builds; a board's C++ core stands for its board
   p.packet_size = std::min(p.packet_size, S::kPacketMax);
   p.max_clusters = std::min(p.max_clusters, S::kClustersMax);
   p.max_tracks = std::min(p.max_tracks, S::kTracksMax);

@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "hls/core/configs.h"
-#include "host/backend/core_config.h"
 
 namespace evms::backend {
 
@@ -34,7 +33,7 @@ bool set_by_user(const Method& method, const char* name) {
 }
 
 // The method within build S: its sizes, and without the polarity split where S does not hold it
-// (kHoldsPolaritySplit), unless the command line set them.
+// (Shape::kHasPolaritySplit), unless the command line set them.
 template <class S>
 Params fit_sizes(Params p, const Method& method) {
   auto fit = [&](int& value, const char* name, int build_max) {
@@ -43,7 +42,7 @@ Params fit_sizes(Params p, const Method& method) {
   fit(p.packet_size, "packet-size", S::kPacketMax);
   fit(p.max_clusters, "max-clusters", S::kClustersMax);
   fit(p.max_tracks, "max-tracks", S::kTracksMax);
-  if (!kHoldsPolaritySplit<S> && !set_by_user(method, "split-balance")) p.split_balance = 0;
+  if (!S::kHasPolaritySplit && !set_by_user(method, "split-balance")) p.split_balance = 0;
   return p;
 }
 

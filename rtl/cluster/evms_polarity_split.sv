@@ -37,7 +37,8 @@
 // DivBits + 2 clocks per part and one clock per large part per small part, 2 an event of the
 // packet (move) and the divisions of its new modes.
 // The packet's events (pixel and polarity, linked mode, climb features) are read through ev_j
-// with the registered read of a block RAM. After done, while idle, the result is read with the
+// with the registered read of a block RAM; an event is not held: it stays on the read ports
+// while ev_j does. After done, while idle, the result is read with the
 // same timing: rd_mode (the event's mode) at rd_j, and at rd_c rd_moved, and where it is set the
 // mode's new position rd_mode_x, rd_mode_y; a mode not moved keeps the climbs' position.
 `include "evms_assert.svh"
@@ -107,7 +108,6 @@ module evms_polarity_split #(
 
   logic [15:0]         j_q, j_d;                 // event
   logic [15:0]         c_q, c_d;                 // the cluster being checked
-  logic [15:0]         clusters_q, clusters_d;   // the clusters to check: mode_count at start
   logic [15:0]         count_q, count_d;         // modes so far
   logic [CntBits-1:0]  k_q, k_d;                 // a cell (part)
   logic [CntBits-1:0]  cells_q, cells_d;         // the cluster's cells
@@ -115,11 +115,9 @@ module evms_polarity_split #(
   logic                balanced_q, balanced_d;   // every large part so far holds both polarities
   logic [ModeBits:0]   m_q, m_d;                 // a large part
   logic [1:0]          ahead_q, ahead_d;         // the neighbour being read
-  logic [CxBits-1:0]   cx_q, cx_d;               // the cell being linked
+  logic [CxBits-1:0]   cx_q, cx_d;               // the listed cell being linked
   logic [CyBits-1:0]   cy_q, cy_d;
-  logic [CellBits-1:0] cell_q, cell_d;           // the event's cell; the cell being cleared after reset
-  logic                p_q, p_d;
-  logic [15:0]         x_q, x_d, y_q, y_d;
+  logic [CellBits-1:0] cell_q, cell_d;           // the cell being cleared after reset
   logic [CentreBits-1:0] small_x_q, small_x_d, small_y_q, small_y_d;   // the small part's centre
   logic [63:0]         best_q, best_d;           // the nearest large part's squared distance so far
   logic [ModeBits-1:0] best_m_q, best_m_d;
@@ -145,7 +143,7 @@ module evms_polarity_split #(
   logic                     list_we;
   logic [CyBits+CxBits-1:0] list_rd;
   evms_ram_1w1r #(.Width(CyBits + CxBits), .Depth(PacketMax)) u_list (
-    .clk, .we(list_we), .wa(PartBits'(cells_q)), .wd({cy_q, cx_q}), .ra(PartBits'(k_q)), .rd(list_rd));
+    .clk, .we(list_we), .wa(PartBits'(cells_q)), .wd({ev_cy, ev_cx}), .ra(PartBits'(k_q)), .rd(list_rd));
   // Each event's cell (while its cluster is checked) and its mode.
   logic                  cell_of_we, mode_we;
   logic [PartBits-1:0]   cell_of_wd, cell_of_rd;
@@ -245,7 +243,6 @@ module evms_polarity_split #(
     state_d = state_q;
     j_d = j_q;
     c_d = c_q;
-    clusters_d = clusters_q;
     count_d = count_q;
     k_d = k_q;
     cells_d = cells_q;
@@ -256,9 +253,6 @@ module evms_polarity_split #(
     cx_d = cx_q;
     cy_d = cy_q;
     cell_d = cell_q;
-    p_d = p_q;
-    x_d = x_q;
-    y_d = y_q;
     small_x_d = small_x_q;
     small_y_d = small_y_q;
     best_d = best_q;
@@ -289,7 +283,6 @@ module evms_polarity_split #(
       end
       StIdle: if (start) begin
         j_d = '0;
-        clusters_d = mode_count;
         count_d = mode_count;
         state_d = StCountAddr;
       end
@@ -304,7 +297,7 @@ module evms_polarity_split #(
         j_d = '0;
         k_d = '0;
         cells_d = '0;
-        if (c_q == clusters_q) begin
+        if (c_q == mode_count) begin
           state_d = StDone;
         end else if (32'(cluster_size) < 2 * 32'(cfg_min_cluster_size)) begin
           c_d = c_q + 1'b1;
@@ -318,10 +311,6 @@ module evms_polarity_split #(
       end
       // Event j and its mode are here: a member reads its cell.
       StCellData: begin
-        cell_d = ev_cell;
-        cx_d = ev_cx;
-        cy_d = ev_cy;
-        {p_d, x_d, y_d} = {ev_p, ev_x, ev_y};
         if (mode_rd == $signed(c_q)) begin
           state_d = StCellMap;
         end else begin
@@ -329,11 +318,13 @@ module evms_polarity_split #(
           state_d = StCellAddr;
         end
       end
-      // Its cell's entry is here: an empty cell takes the next number.
+      // Its cell's entry is here (the event is still on the read ports): an empty cell takes the
+      // next number.
       StCellMap: begin
         cell_of_we = 1'b1;
         if (!map_rd[PartBits]) begin
           map_we = 1'b1;
+          map_wa = ev_cell;
           map_wd = {1'b1, cells_part};
           list_we = 1'b1;
           cell_of_wd = PartBits'(cells_q);
@@ -532,14 +523,14 @@ module evms_polarity_split #(
   always_ff @(posedge clk) begin
     if (new_cell) begin
       part_events_q[PartBits'(cells_q)] <= CntBits'(1);
-      part_on_q[PartBits'(cells_q)] <= CntBits'(p_q);
-      part_x_q[PartBits'(cells_q)] <= SumBits'(x_q);
-      part_y_q[PartBits'(cells_q)] <= SumBits'(y_q);
+      part_on_q[PartBits'(cells_q)] <= CntBits'(ev_p);
+      part_x_q[PartBits'(cells_q)] <= SumBits'(ev_x);
+      part_y_q[PartBits'(cells_q)] <= SumBits'(ev_y);
     end else if (state_q == StCellMap) begin
       part_events_q[old_cell] <= part_events_q[old_cell] + 1'b1;
-      part_on_q[old_cell] <= part_on_q[old_cell] + CntBits'(p_q);
-      part_x_q[old_cell] <= part_x_q[old_cell] + SumBits'(x_q);
-      part_y_q[old_cell] <= part_y_q[old_cell] + SumBits'(y_q);
+      part_on_q[old_cell] <= part_on_q[old_cell] + CntBits'(ev_p);
+      part_x_q[old_cell] <= part_x_q[old_cell] + SumBits'(ev_x);
+      part_y_q[old_cell] <= part_y_q[old_cell] + SumBits'(ev_y);
     end else if (merge_cell) begin
       part_events_q[k_root] <= part_events_q[k_root] + k_events;
       part_on_q[k_root] <= part_on_q[k_root] + k_on;
@@ -593,7 +584,6 @@ module evms_polarity_split #(
       state_q <= StReset;
       j_q <= '0;
       c_q <= '0;
-      clusters_q <= '0;
       count_q <= '0;
       k_q <= '0;
       cells_q <= '0;
@@ -604,9 +594,6 @@ module evms_polarity_split #(
       cx_q <= '0;
       cy_q <= '0;
       cell_q <= '0;
-      p_q <= 1'b0;
-      x_q <= '0;
-      y_q <= '0;
       small_x_q <= '0;
       small_y_q <= '0;
       best_q <= '0;
@@ -615,7 +602,6 @@ module evms_polarity_split #(
       state_q <= state_d;
       j_q <= j_d;
       c_q <= c_d;
-      clusters_q <= clusters_d;
       count_q <= count_d;
       k_q <= k_d;
       cells_q <= cells_d;
@@ -626,9 +612,6 @@ module evms_polarity_split #(
       cx_q <= cx_d;
       cy_q <= cy_d;
       cell_q <= cell_d;
-      p_q <= p_d;
-      x_q <= x_d;
-      y_q <= y_d;
       small_x_q <= small_x_d;
       small_y_q <= small_y_d;
       best_q <= best_d;
