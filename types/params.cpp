@@ -100,6 +100,8 @@ const std::array kTable = {
               &Params::split_balance, 0, 1},
     ParamInfo{"split-share", "1", "with --split-balance, the parts that count: at least this share of the cluster's "
               "events, in steps of 1/256 (the others join the nearest)", &Params::split_share, 0, 1},
+    ParamInfo{"split-min-events", "events", "with --split-balance, the parts that count hold at least this many events "
+              "(and min-cluster-size): a sparse part's polarities say little", &Params::split_min_events, 1, 65535},
     ParamInfo{"split-cell", "h", "with --split-balance, a part is 8-connected cells of this many bandwidths a side (at least 2 px)",
               &Params::split_cell, 0.05, 10},
     ParamInfo{"max-clusters", "clusters",
@@ -182,6 +184,7 @@ SplitRule split_rule(const Params& p, SensorSize sensor) {
   auto fraction = [](double v) { return static_cast<std::uint32_t>(std::lround(std::ldexp(v, kSplitFractionFrac))); };
   rule.balance = std::max<std::uint32_t>(1, fraction(p.split_balance));
   rule.share = fraction(p.split_share);
+  rule.min_events = static_cast<std::uint32_t>(std::max(p.split_min_events, p.min_cluster_size));
   return rule;
 }
 

@@ -82,6 +82,7 @@ struct Params {
   double split_balance = 0.3;        // seeded climbs: a cluster of two or more separate parts that each
                                      // hold both polarities is split (golden/cluster/polarity_split.h); 0 = off
   double split_share = 0.1;          // ... counting the parts of at least this share of its events
+  int split_min_events = 64;         // ... and of at least this many events
   double split_cell = 0.5;           // ... parts of 8-connected cells this many bandwidths a side
 
   // --- tracker --------------------------------------------------------------------------
@@ -146,14 +147,16 @@ double accel_psd_at(const Params& p, SensorSize sensor);
 //     >> kSplitCellFrac): cells of split_cell bandwidths a side on the (x, y) features, at least two
 //     pixels along each axis (neighbouring pixels then lie in the same or neighbouring cells);
 //   - a part of `events` events, `on` of them ON, of a cluster of `size` events is large when
-//     events << kSplitFractionFrac >= share * size (and events >= min_cluster_size), and holds both
-//     polarities when |2 on - events| << kSplitFractionFrac < balance * events.
+//     events << kSplitFractionFrac >= share * size and events >= min_events, and holds both
+//     polarities when |2 on - events| << kSplitFractionFrac < balance * events. A cluster of fewer
+//     than 2 min_events events has no two large parts, so it is not looked at.
 // balance = 0 turns the split off.
 inline constexpr int kSplitCellFrac = 16;
 inline constexpr int kSplitFractionFrac = 8;
 struct SplitRule {
   std::uint32_t cell_scale_x = 0, cell_scale_y = 0;  // 2^kSplitCellFrac / cell side in px, rounded
   std::uint32_t balance = 0, share = 0;              // split_balance, split_share: kSplitFractionFrac fraction bits
+  std::uint32_t min_events = 0;                      // the larger of split_min_events and min_cluster_size
 };
 SplitRule split_rule(const Params& p, SensorSize sensor);
 

@@ -15,7 +15,7 @@ std::int64_t centre(std::int64_t sum, int events) { return (32 * sum + events) /
 }  // namespace
 
 PolaritySplit::PolaritySplit(const Params& params, SensorSize sensor)
-    : min_cluster_size_(params.min_cluster_size), rule_(split_rule(params, sensor)) {
+    : rule_(split_rule(params, sensor)) {
   if (rule_.balance == 0) return;
   cells_x_ = static_cast<int>((static_cast<std::uint64_t>(sensor.width) * rule_.cell_scale_x) >> kSplitCellFrac) + 1;
   cells_y_ = static_cast<int>((static_cast<std::uint64_t>(sensor.height) * rule_.cell_scale_y) >> kSplitCellFrac) + 1;
@@ -73,7 +73,7 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
 
   for (size_t c = 0; c < clusters; ++c) {
     const std::span<const int> in(members_.data() + start_[c], static_cast<size_t>(start_[c + 1] - start_[c]));
-    if (in.size() < 2 * static_cast<size_t>(min_cluster_size_)) continue;
+    if (in.size() < 2 * static_cast<size_t>(rule_.min_events)) continue;
     find_parts(events, in);
     for (const int i : in) {
       const Event& e = events[static_cast<size_t>(i)];
@@ -86,7 +86,7 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
     for (const int i : in) {
       Part& q = part_[static_cast<size_t>(i)];
       const std::int64_t events_q = std::int64_t{q.events} << kSplitFractionFrac;
-      if (part_of_[static_cast<size_t>(i)] != i || q.events < min_cluster_size_ || events_q < rule_.share * size) continue;
+      if (part_of_[static_cast<size_t>(i)] != i || q.events < static_cast<int>(rule_.min_events) || events_q < rule_.share * size) continue;
       q.large = static_cast<int>(large_.size());
       large_.push_back(i);
       const std::int64_t imbalance_q = std::int64_t{std::abs(2 * q.on - q.events)} << kSplitFractionFrac;

@@ -2,7 +2,9 @@
 //
 // A cluster's parts are the 8-connected sets of the cells its events occupy, cells of
 // split_cell bandwidths a side on the (x, y) features (at least two pixels). A part is large
-// when it holds at least split_share of the cluster's events and at least min_cluster_size. A
+// when it holds at least split_share of the cluster's events and at least split_min_events (and
+// min_cluster_size): a part of a few events may look balanced by chance, and a sparse outline,
+// such as a shape spinning slowly near the centre of a rotation, falls into such parts. A
 // cluster with two or more large parts, each of them holding both polarities (|ON - OFF| below
 // split_balance times its events), becomes one cluster per large part, and each small part
 // joins the large part whose centre is nearest (centres in 1/16 px, rounded; ties: the part
@@ -44,7 +46,6 @@ class PolaritySplit {
   // i's part, for each member i.
   void find_parts(std::span<const Event> events, std::span<const int> members);
 
-  int min_cluster_size_;
   SplitRule rule_;
   int cells_x_ = 0, cells_y_ = 0;
   std::vector<int> first_in_cell_;  // per cell: the first member of the current cluster in it, or -1

@@ -6,7 +6,7 @@
 // Integers throughout, the same as golden's (SplitRule in types/params.h):
 //   cell of (x, y)    ((x * split_cell_scale_x) >> kSplitCellFrac, likewise y); a scale is at most
 //                     2^(kSplitCellFrac - 1), so cells are at least two pixels a side
-//   large part        events >= min_cluster_size and events << kSplitFractionFrac >= split_share * size
+//   large part        events >= split_min_events and events << kSplitFractionFrac >= split_share * size
 //   both polarities   |2 on - events| << kSplitFractionFrac < split_balance * events
 //   part centre       1/16 px, (32 sum + events) / (2 events); nearest by squared distance, ties to
 //                     the part whose first event came first
@@ -52,7 +52,7 @@ class PolaritySplit {
     for (int c = 0; c < S::kModesMax; ++c) {
       if (c >= clusters) break;
       const int first = start_[c], size = start_[c + 1] - start_[c];
-      if (size < 2 * cfg.min_cluster_size) continue;
+      if (size < 2 * cfg.split_min_events) continue;
       find_parts(ev, first, size, cfg);
       const int large = large_parts(ev, first, size, cfg);
       if (large < 2 || !balanced_) continue;
@@ -166,7 +166,7 @@ class PolaritySplit {
 #pragma HLS PIPELINE II = 1
       if (k >= size) break;
       const int j = members_[first + k];
-      if (part_of_[j] != j || events_[j] < cfg.min_cluster_size ||
+      if (part_of_[j] != j || events_[j] < cfg.split_min_events ||
           (std::int64_t{events_[j]} << kSplitFractionFrac) < std::int64_t{cfg.split_share} * size) {
         continue;
       }

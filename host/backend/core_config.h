@@ -226,6 +226,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   const SplitRule split = seeded ? split_rule(p, sensor) : SplitRule{};  // golden splits the seeded path's clusters only
   c.split_balance = static_cast<std::uint16_t>(split.balance);
   c.split_share = static_cast<std::uint16_t>(split.share);
+  c.split_min_events = static_cast<std::uint16_t>(split.min_events);
   c.split_cell_scale_x = split.cell_scale_x;
   c.split_cell_scale_y = split.cell_scale_y;
   c.evict_stale = p.evict_stale;

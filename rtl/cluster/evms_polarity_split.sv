@@ -8,7 +8,7 @@
 // first-occupied cell, and the cells are numbered in the order of their first events.
 //   count  each event's mode after the links is copied into this block's mode memory, and each
 //          mode's events are counted (registers);
-//   cells  per cluster of at least 2 cfg_min_cluster_size events, each of its events (in event
+//   cells  per cluster of at least 2 cfg_split_min_events events, each of its events (in event
 //          order, found by a pass over the packet) reads its cell in the cell map; an empty cell
 //          takes the next cell number and goes on the list; the event's cell and the cell's sums
 //          (events, ON events, x, y) are kept;
@@ -19,7 +19,7 @@
 //   clear  each listed cell is cleared from the list, so the map is clear for the next cluster
 //          (after reset, every cell is: Cells clocks before ready), and each cell's sums are
 //          added to its root's;
-//   large  the roots, in order, are the parts: large with cfg_min_cluster_size events and
+//   large  the roots, in order, are the parts: large with cfg_split_min_events events and
 //          cfg_split_share of the cluster (SplitFractionFrac fraction bits), and balanced when
 //          |2 ON - events| << SplitFractionFrac < cfg_split_balance * events;
 //   near   when the cluster splits, every part's centre (1/16 px, rounded half up) is divided
@@ -58,7 +58,7 @@ module evms_polarity_split #(
   input  logic                        start,
   input  logic [15:0]                 n,
   input  logic [15:0]                 mode_count,
-  input  logic [15:0]                 cfg_min_cluster_size,
+  input  logic [15:0]                 cfg_split_min_events,
   input  logic [15:0]                 cfg_split_balance,
   input  logic [15:0]                 cfg_split_share,
   input  logic [31:0]                 cfg_split_cell_scale_x,
@@ -216,7 +216,7 @@ module evms_polarity_split #(
   assign cluster_size = size_q[ModeBits'(c_q)];
   assign k_root = root_q[32'(k_part) * PartBits +: PartBits];
   assign k_is_root = k_root == k_part;
-  assign k_is_large = k_is_root && 32'(k_events) >= 32'(cfg_min_cluster_size) &&
+  assign k_is_large = k_is_root && 32'(k_events) >= 32'(cfg_split_min_events) &&
                       (64'(k_events) << SplitFractionFrac) >= 64'(cfg_split_share) * 64'(cluster_size);
   assign k_imbalance = 2 * (CntBits + 1)'(k_on) >= (CntBits + 1)'(k_events) ? 2 * (CntBits + 1)'(k_on) - (CntBits + 1)'(k_events)
                                                                                 : (CntBits + 1)'(k_events) - 2 * (CntBits + 1)'(k_on);
@@ -299,7 +299,7 @@ module evms_polarity_split #(
         cells_d = '0;
         if (c_q == mode_count) begin
           state_d = StDone;
-        end else if (32'(cluster_size) < 2 * 32'(cfg_min_cluster_size)) begin
+        end else if (32'(cluster_size) < 2 * 32'(cfg_split_min_events)) begin
           c_d = c_q + 1'b1;
         end else begin
           state_d = StCellAddr;

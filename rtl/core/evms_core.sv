@@ -274,7 +274,7 @@ module evms_core #(
       .SplitCellFrac(SplitCellFrac), .SplitFractionFrac(SplitFractionFrac)
     ) u_split (
       .clk(clk), .rst_n(rst_n), .ready(sp_ready), .start(sp_start), .n(16'(n)), .mode_count(cl_mode_count),
-      .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_split_balance(cfg_split_balance), .cfg_split_share(cfg_split_share),
+      .cfg_split_min_events(cfg_split_min_events), .cfg_split_balance(cfg_split_balance), .cfg_split_share(cfg_split_share),
       .cfg_split_cell_scale_x(cfg_split_cell_scale_x), .cfg_split_cell_scale_y(cfg_split_cell_scale_y), .ev_j(sp_ev_j),
       .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_p(rd_pk_p), .ev_mode(linked_mode), .ev_fx(cl_rd_x), .ev_fy(cl_rd_y),
       .done(sp_done), .modes_after(sp_mode_count), .rd_j(ws_ev_j), .rd_mode(sp_rd_mode), .rd_c(ws_md_c),
@@ -284,7 +284,7 @@ module evms_core #(
     assign sp_ready = 1'b1;
     // What only the polarity split reads (waived in core/evms_core.vlt).
     logic unused_split;
-    assign unused_split = ^{sp_start, cfg_split_share, cfg_split_cell_scale_x, cfg_split_cell_scale_y};
+    assign unused_split = ^{sp_start, cfg_split_share, cfg_split_min_events, cfg_split_cell_scale_x, cfg_split_cell_scale_y};
   end
 
   // The path a packet takes, and its clusters. A build with one path takes it whatever

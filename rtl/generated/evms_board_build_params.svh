@@ -40,6 +40,7 @@
 .CfgReportTentative(CfgReportTentative),
 .CfgSplitBalance(CfgSplitBalance),
 .CfgSplitShare(CfgSplitShare),
+.CfgSplitMinEvents(CfgSplitMinEvents),
 .CfgSplitCellScaleX(CfgSplitCellScaleX),
 .CfgSplitCellScaleY(CfgSplitCellScaleY),
 .MaxWidth(MaxWidth),

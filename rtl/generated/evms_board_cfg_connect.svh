@@ -40,5 +40,6 @@
 .cfg_report_tentative(CfgReportTentative),
 .cfg_split_balance(CfgSplitBalance),
 .cfg_split_share(CfgSplitShare),
+.cfg_split_min_events(CfgSplitMinEvents),
 .cfg_split_cell_scale_x(CfgSplitCellScaleX),
 .cfg_split_cell_scale_y(CfgSplitCellScaleY),

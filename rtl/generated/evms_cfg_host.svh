@@ -81,5 +81,6 @@ localparam logic [3:0] CfgSizeRatioLog2 = 4'd0;
 localparam logic CfgReportTentative = 1'd0;
 localparam logic [15:0] CfgSplitBalance = 16'd0;
 localparam logic [15:0] CfgSplitShare = 16'd0;
+localparam logic [15:0] CfgSplitMinEvents = 16'd0;
 localparam logic [31:0] CfgSplitCellScaleX = 32'd0;
 localparam logic [31:0] CfgSplitCellScaleY = 32'd0;

@@ -81,6 +81,7 @@ localparam logic [3:0] CfgSizeRatioLog2 = 4'd2;
 localparam logic CfgReportTentative = 1'd1;
 localparam logic [15:0] CfgSplitBalance = 16'd0;
 localparam logic [15:0] CfgSplitShare = 16'd0;
+localparam logic [15:0] CfgSplitMinEvents = 16'd0;
 localparam logic [31:0] CfgSplitCellScaleX = 32'd0;
 localparam logic [31:0] CfgSplitCellScaleY = 32'd0;
 // The board: its clock, its UART's clocks a bit, its link queue's depth in events, and whether

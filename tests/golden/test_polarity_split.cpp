@@ -95,7 +95,7 @@ TEST(PolaritySplit, ASmallPartJoinsTheNearestLargePart) {
 
 TEST(PolaritySplit, ClustersTooSmallForTwoLargePartsAndOtherClustersAreLeftAlone) {
   Params p = splitting();
-  const auto a = square(20, 20, 2, kChecker), b = square(100, 60, 2, kChecker);  // 4 + 4 events, under 2 x min_cluster_size
+  const auto a = square(20, 20, 2, kChecker), b = square(100, 60, 2, kChecker);  // 4 + 4 events, under 2 x split_min_events
   const Split s = split_one_cluster(concat(a, b), p);
   EXPECT_EQ(s.modes.size(), 1u);
   // Noise (-1) stays noise, and a second cluster keeps its number.
@@ -110,6 +110,23 @@ TEST(PolaritySplit, ClustersTooSmallForTwoLargePartsAndOtherClustersAreLeftAlone
   EXPECT_EQ(cluster_of[199], -1);
   for (size_t i = 200; i < events.size(); ++i) EXPECT_EQ(cluster_of[i], 1);
   EXPECT_EQ(cluster_of[150], 2) << "the second part of cluster 0 opens after the clusters there were";
+}
+
+TEST(PolaritySplit, PartsOfFewerThanSplitMinEventsDoNotCount) {
+  // Two parts of 49 events each, both polarities evenly: under the default 64 events a part, so
+  // the cluster stays whole (a sparse outline's parts look balanced by chance); counted from 49.
+  const auto events = concat(square(20, 20, 7, kChecker), square(100, 60, 7, kChecker));
+  Params p = splitting();
+  ASSERT_EQ(p.split_min_events, 64);
+  EXPECT_EQ(split_one_cluster(events, p).modes.size(), 1u);
+  p.split_min_events = 49;
+  EXPECT_EQ(split_one_cluster(events, p).modes.size(), 2u);
+  p.split_min_events = 50;
+  EXPECT_EQ(split_one_cluster(events, p).modes.size(), 1u);
+  // min_cluster_size bounds it from below as well.
+  p.split_min_events = 1;
+  p.min_cluster_size = 50;
+  EXPECT_EQ(split_one_cluster(events, p).modes.size(), 1u);
 }
 
 TEST(PolaritySplit, CellsAreNoFinerThanTwoPixels) {

@@ -37,6 +37,7 @@ Case random_case(gen::Random& rng) {
   c.params.split_cell = std::array{0.3, 0.5, 1.0}[rng.below(3)];
   c.params.bandwidth = std::array{0.02, 0.04, 0.08}[rng.below(3)];
   c.params.min_cluster_size = static_cast<int>(std::array{4, 8, 16}[rng.below(3)]);
+  c.params.split_min_events = static_cast<int>(std::array{1, 8, 32, 64, 128}[rng.below(5)]);
   c.modes = 1 + static_cast<int>(rng.below(4));
   const int blobs = 2 + static_cast<int>(rng.below(6));
   for (int b = 0; b < blobs; ++b) {

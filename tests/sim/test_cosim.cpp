@@ -173,6 +173,12 @@ TEST(Cosim, SeededPathHostBuild) {
     expect_equal<Vcore_host, hls::RtlHostShape>(std::string("seeded_host_") + gen::motion_name(m), scene_events(m, 0.25, 240, 180, 3),
                                                 {240, 180}, 61, 0.8, seeded_method());
   }
+  // Packets of this build's 256 events seldom hold a cluster of two parts of the default 64
+  // events; parts of 8 make the polarity split part clusters in most packets.
+  Params small_parts = seeded_method();
+  small_parts.split_min_events = 8;
+  expect_equal<Vcore_host, hls::RtlHostShape>("seeded_host_small_parts", scene_events(gen::Motion::kTranslation, 0.25, 240, 180, 3),
+                                              {240, 180}, 64, 0.8, small_parts);
   // Fewer slots than objects: births evict the stalest tracks.
   Params evicting = seeded_method();
   evicting.max_tracks = 3;

@@ -49,7 +49,7 @@ Packet draw_packet(std::mt19937_64& rng) {
   p.cfg.split_share = std::vector<std::uint16_t>{0, 13, 26, 51}[static_cast<size_t>(below(4))];
   p.cfg.split_cell_scale_x = std::vector<std::uint32_t>{32768, 16384, 7000, 3000, 1500}[static_cast<size_t>(below(5))];
   p.cfg.split_cell_scale_y = below(3) == 0 ? std::vector<std::uint32_t>{32768, 9000, 1500}[static_cast<size_t>(below(3))] : p.cfg.split_cell_scale_x;
-  p.cfg.min_cluster_size = static_cast<std::uint16_t>(std::vector<int>{2, 4, 8, 16}[static_cast<size_t>(below(4))]);
+  p.cfg.split_min_events = static_cast<std::uint16_t>(std::vector<int>{2, 4, 8, 16}[static_cast<size_t>(below(4))]);
   const int modes = below(3) == 0 ? S::kModesMax - below(2) : 1 + below(5);
   const int n = 16 + below(S::kPacketMax - 15), blobs = 2 + below(6);
   struct Blob {
@@ -124,7 +124,7 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
     const int n = static_cast<int>(p.mode.size());
     rtl->n = static_cast<std::uint16_t>(n);
     rtl->mode_count = static_cast<std::uint16_t>(p.mode_x.size());
-    rtl->cfg_min_cluster_size = p.cfg.min_cluster_size;
+    rtl->cfg_split_min_events = p.cfg.split_min_events;
     rtl->cfg_split_balance = p.cfg.split_balance;
     rtl->cfg_split_share = p.cfg.split_share;
     rtl->cfg_split_cell_scale_x = p.cfg.split_cell_scale_x;
