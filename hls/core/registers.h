@@ -55,7 +55,7 @@
   X(report_tentative, bool, 1, false, "tentative tracks report their updates too")                                     \
   X(split_balance, std::uint16_t, 16, 0, "seeded: parts hold both polarities when |2 ON - events| < this * events, kSplitFractionFrac bits; 0: no split (the only setting of a build without HasPolaritySplit)") \
   X(split_share, std::uint16_t, 16, 0, "seeded: a part is large with at least this share of its cluster, kSplitFractionFrac bits") \
-  X(split_min_events, std::uint16_t, 16, 0, "seeded: ... and at least this many events (clusters of fewer than twice this are not looked at)") \
+  X(split_min_events, std::uint16_t, 16, 0, "seeded: a part is large with at least this many events too; a cluster of fewer than twice this is not looked at") \
   X(split_cell_scale_x, std::uint32_t, 32, 0, "seeded: a split cell's column is (x * this) >> kSplitCellFrac (at most 2^15)") \
   X(split_cell_scale_y, std::uint32_t, 32, 0, "seeded: a split cell's row is (y * this) >> kSplitCellFrac (at most 2^15)")
 

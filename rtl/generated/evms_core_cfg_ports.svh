@@ -40,6 +40,6 @@ input  logic [3:0] cfg_size_ratio_log2,  // pairs whose event counts differ by m
 input  logic cfg_report_tentative,  // tentative tracks report their updates too
 input  logic [15:0] cfg_split_balance,  // seeded: parts hold both polarities when |2 ON - events| < this * events, kSplitFractionFrac bits; 0: no split (the only setting of a build without HasPolaritySplit)
 input  logic [15:0] cfg_split_share,  // seeded: a part is large with at least this share of its cluster, kSplitFractionFrac bits
-input  logic [15:0] cfg_split_min_events,  // seeded: ... and at least this many events (clusters of fewer than twice this are not looked at)
+input  logic [15:0] cfg_split_min_events,  // seeded: a part is large with at least this many events too; a cluster of fewer than twice this is not looked at
 input  logic [31:0] cfg_split_cell_scale_x,  // seeded: a split cell's column is (x * this) >> kSplitCellFrac (at most 2^15)
 input  logic [31:0] cfg_split_cell_scale_y,  // seeded: a split cell's row is (y * this) >> kSplitCellFrac (at most 2^15)
