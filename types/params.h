@@ -67,7 +67,7 @@ struct Params {
   Labelling labelling = Labelling::kFirst;  // for seeded climbs (not kEvery)
   bool warm_start = true;            // the previous packet's modes seed the first climbs
   double warm_scale = 2;             // ... each with bandwidth max(h, this times its cluster's spread)
-  double warm_max_bandwidth = 0.12;  // ... but at most this
+  double warm_max_bandwidth = 0.14;  // ... but at most this
   double label_reach = 1.0;          // labelling nearest: events this many h from every mode are noise
   double bandwidth = 0.04;           // kernel bandwidth h on the normalized feature space
   int max_iterations = 8;            // iteration cap

@@ -9,7 +9,7 @@
 namespace evms::hls::generated {
 
 inline constexpr std::uint64_t kHostRegisters[kRtlRegisterCount] = {1280u, 720u, 1u, 10000u, 0u, 256u, 0u, 7241u, 12872u, 0u, 72408u, 429497u, 8u, 72u, 8388608u, 8u, 16u, 6710886400u, 3u, 100000u, 16u, 6296489u, 9444733u, 18889466u, 262144u, 262144u, 703687u, 0u, 0u, 0u, 0u, 0u, 33554432u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u};
-inline constexpr std::uint64_t kArtyRegisters[kRtlRegisterCount] = {240u, 180u, 1u, 234u, 990u, 256u, 33333u, 109227u, 145636u, 0u, 0u, 429497u, 8u, 524u, 68719476736u, 8u, 16u, 6710886400u, 3u, 200000u, 16u, 629648864u, 944473297u, 1888946593u, 65536u, 262144u, 703687u, 1u, 114532461227u, 152709948302u, 1u, 1024u, 2473901162496u, 16u, 1u, 1u, 2u, 1u, 0u, 0u, 0u, 0u, 0u};
-inline constexpr std::uint64_t kIce40Registers[kRtlRegisterCount] = {128u, 128u, 1u, 234u, 375u, 256u, 33333u, 204800u, 204800u, 0u, 0u, 429497u, 8u, 262u, 17179869184u, 8u, 8u, 6710886400u, 3u, 200000u, 8u, 179100121u, 268650182u, 537300364u, 65536u, 262144u, 703687u, 1u, 214748364800u, 214748364800u, 1u, 1024u, 618475290624u, 16u, 1u, 1u, 2u, 1u, 0u, 0u, 0u, 0u, 0u};
+inline constexpr std::uint64_t kArtyRegisters[kRtlRegisterCount] = {240u, 180u, 1u, 234u, 990u, 256u, 33333u, 109227u, 145636u, 0u, 0u, 429497u, 8u, 524u, 68719476736u, 8u, 16u, 6710886400u, 3u, 200000u, 16u, 629648864u, 944473297u, 1888946593u, 65536u, 262144u, 703687u, 1u, 114532461227u, 152709948302u, 1u, 1024u, 3367254360064u, 16u, 1u, 1u, 2u, 1u, 0u, 0u, 0u, 0u, 0u};
+inline constexpr std::uint64_t kIce40Registers[kRtlRegisterCount] = {128u, 128u, 1u, 234u, 375u, 256u, 33333u, 204800u, 204800u, 0u, 0u, 429497u, 8u, 262u, 17179869184u, 8u, 8u, 6710886400u, 3u, 200000u, 8u, 179100121u, 268650182u, 537300364u, 65536u, 262144u, 703687u, 1u, 214748364800u, 214748364800u, 1u, 1024u, 841813590016u, 16u, 1u, 1u, 2u, 1u, 0u, 0u, 0u, 0u, 0u};
 
 }  // namespace evms::hls::generated

@@ -114,7 +114,7 @@ TEST(SeededClimbs, TheLinkDoesNotJoinShapesAGapApart) {
 TEST(SeededClimbs, AWarmSeedClimbsWithItsClustersSize) {
   // A ring of radius 30 px and a warm seed 10 px inside its right edge. With h (9.6 px) the
   // seed's ball holds nothing; with its own bandwidth (1.5 times its cluster's spread of 30 px,
-  // capped at 0.12, 28.8 px at 240 wide) it reaches a wide arc of the ring first.
+  // capped at 0.14, 33.6 px at 240 wide) it reaches a wide arc of the ring first.
   Params p = seeded();
   p.link_px = 0;
   p.warm_start = true;

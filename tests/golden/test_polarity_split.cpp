@@ -153,7 +153,7 @@ TEST(PolaritySplit, TheClustererSplitsWhatTheWarmBallHeldTogether) {
   p.split_balance = 0;
   const FeatureMatrix features = packet_features(events, kSensor, p);
   const std::vector<Eigen::Vector4d> warm{{94.5 / 240, 84.5 / 180, 0, 0}};
-  const std::vector<double> spread{0.06};  // a ball of 2 x 0.06 = 0.12 (the ceiling), 29 px: reaches both squares
+  const std::vector<double> spread{0.06};  // a ball of 2 x 0.06 = 0.12, 29 px: reaches both squares
   const PacketClusters whole = cluster_packet(events, features, p, warm, spread, kSensor);
   EXPECT_EQ(whole.count, 1);
   p.split_balance = 0.3;
