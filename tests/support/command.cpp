@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <fstream>
@@ -23,6 +24,17 @@ std::string read_file(const std::string& path) {
   std::stringstream ss;
   ss << std::ifstream(path, std::ios::binary).rdbuf();
   return ss.str();
+}
+
+::testing::AssertionResult same_text(const std::string& a, const std::string& b) {
+  if (a == b) return ::testing::AssertionSuccess() << "the texts are the same " << a.size() << " bytes";
+  size_t at = 0;
+  while (at < a.size() && at < b.size() && a[at] == b[at]) ++at;
+  const size_t line_start = at == 0 ? 0 : a.rfind('\n', at - 1) + 1;  // npos + 1 is 0
+  const auto line = static_cast<long>(std::count(a.begin(), a.begin() + static_cast<long>(line_start), '\n')) + 1;
+  auto line_of = [&](const std::string& s) { return s.substr(line_start, std::min<size_t>(s.find('\n', line_start) - line_start, 200)); };
+  return ::testing::AssertionFailure() << "the texts (" << a.size() << " and " << b.size() << " bytes) differ from line " << line
+                                       << ": \"" << line_of(a) << "\" against \"" << line_of(b) << "\"";
 }
 
 long number_after(const std::string& text, const std::string& label) {

@@ -1,6 +1,8 @@
 // Runs the evms program (or any command) in a test and captures what it printed.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <string>
 #include <sys/types.h>
 #include <vector>
@@ -22,6 +24,9 @@ std::string evms_binary();
 std::string scripted_usb_binary();
 // A file's whole contents, bytes as they are ("" when it cannot be read).
 std::string read_file(const std::string& path);
+// Whether two texts (a program's output files) are equal; when they are not, the message names
+// their sizes and the first line that differs instead of printing both whole.
+::testing::AssertionResult same_text(const std::string& a, const std::string& b);
 // The number that follows `label` in a summary's text, its digits grouped by commas
 // ("events in   12,345"); -1 when the text has no `label`.
 long number_after(const std::string& text, const std::string& label);
