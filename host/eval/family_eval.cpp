@@ -81,7 +81,7 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
   std::vector<std::string> order;
   std::int64_t events = 0, evaluations = 0, switches = 0, objects = 0;
   double wall = 0;
-  PooledErrors to_centres, to_events, velocity, mot_to_centres, mot_to_events;
+  PooledErrors to_centres, to_events, events_centre, velocity, mot_to_centres, mot_to_events;
   for (size_t i = 0; i < family.size(); ++i) {
     const SceneResult& r = scenes[i];
     auto [it, fresh] = by_type.try_emplace(family[i].type);
@@ -101,6 +101,7 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
     wall += r.wall_s;
     to_centres.add(r.tracking.all_kalman);
     to_events.add(r.tracking.all_kalman_events);
+    events_centre.add(r.tracking.all_events_centre);
     velocity.add(r.tracking.all_velocity);
     const ClearMot& m = r.tracking.mot;
     out.mot.add_counts(m);
@@ -122,6 +123,7 @@ FamilyResult summarise(const std::vector<FamilyScene>& family, std::vector<Scene
   }
   out.tracking = to_centres.stats();
   out.tracking_to_events = to_events.stats();
+  out.events_centre = events_centre.stats();
   out.velocity = velocity.stats();
   out.mot.to_centres = mot_to_centres.stats();
   out.mot.to_events = mot_to_events.stats();

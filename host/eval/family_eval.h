@@ -57,6 +57,7 @@ struct FamilyResult {
   double worst_type_f = 0;                // the lowest of the types' means
   ErrorStats tracking;                    // pooled over every scene: Kalman estimate against the true centre
   ErrorStats tracking_to_events;          // ... against the centre of the object's labelled events (the paper's)
+  ErrorStats events_centre;               // pooled: the labelled events' centre against the true centre (TrackingReport::all_events_centre)
   ErrorStats velocity;                    // pooled: the Kalman velocity against the true centre's, px/s
   ClearMot mot;                           // CLEAR MOT, summed and pooled over every scene
   double idf1 = 0;                        // mean over scenes

@@ -212,7 +212,7 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   TrackingReport report;
   std::vector<Accumulator> kalman(static_cast<size_t>(objects)), raw(static_cast<size_t>(objects)),
       kalman_events(static_cast<size_t>(objects));
-  Accumulator all_kalman, all_raw, all_velocity, all_kalman_events;
+  Accumulator all_kalman, all_raw, all_velocity, all_kalman_events, all_events_centre;
   std::vector<Accumulator> velocity(static_cast<size_t>(objects));
   std::vector<std::vector<TimeUs>> update_times(static_cast<size_t>(objects));
   for (const TrackUpdate& u : updates) {
@@ -222,13 +222,15 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
       continue;
     }
     update_times[static_cast<size_t>(o)].push_back(u.t);
-    if (const auto m = event_lookup.at(o, u.t)) {
+    const auto m = event_lookup.at(o, u.t);
+    if (m) {
       const double e = std::hypot(u.x - m->first, u.y - m->second);
       kalman_events[static_cast<size_t>(o)].errors.push_back(e);
       all_kalman_events.errors.push_back(e);
     }
     const auto c = lookup.at(o, u.t);
     if (!c) continue;
+    if (m) all_events_centre.errors.push_back(std::hypot(m->first - c->first, m->second - c->second));
     const double ek = std::hypot(u.x - c->first, u.y - c->second), er = std::hypot(u.zx - c->first, u.zy - c->second);
     kalman[static_cast<size_t>(o)].errors.push_back(ek);
     raw[static_cast<size_t>(o)].errors.push_back(er);
@@ -265,6 +267,7 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   report.all_kalman = all_kalman.stats(tau_px);
   report.all_raw = all_raw.stats(tau_px);
   report.all_kalman_events = all_kalman_events.stats(tau_px);
+  report.all_events_centre = all_events_centre.stats(tau_px);
   report.all_velocity = all_velocity.stats(0);
   report.mot = clear_mot(updates, lookup, event_lookup, objects, tau_px, association_radius_px);
   return report;

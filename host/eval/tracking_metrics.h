@@ -18,7 +18,8 @@
 // For each object, every update of its tracks at a time when its true centre is known is one
 // estimate, whose error is the distance to that centre. Reported side by side for the
 // Kalman-filtered estimate and the raw cluster centroid of the same update, and (when the
-// events are given) against the labelled events' centre. Coverage is the
+// events are given) against the labelled events' centre, beside the labelled events' centre's
+// own distance from the true centre at the same estimates. Coverage is the
 // share of the object's true-centre samples that have one of its track updates within
 // `coverage_window_us` before them.
 #pragma once
@@ -85,6 +86,10 @@ struct TrackingReport {
   std::int64_t spurious_updates = 0;   // updates of tracks associated with no object
   ErrorStats all_kalman, all_raw;      // pooled over every object, against the true centres
   ErrorStats all_kalman_events;        // pooled, against the labelled events' centres (paper)
+  // Pooled over the estimates where both truths are known: the labelled events' centre against
+  // the true centre, which is what a track sitting on its object's events' centre of mass would
+  // score against the outline's centre (the part of all_kalman that no centroid tracker removes).
+  ErrorStats all_events_centre;
   ErrorStats all_velocity;             // pooled |v_kalman - v_true|, px/s (true: central difference)
 };
 

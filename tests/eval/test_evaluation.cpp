@@ -128,8 +128,14 @@ TEST(TrackingMetrics, LabelledEventsCentreIsThePapersGroundTruth) {
   EXPECT_NEAR(r.all_kalman_events.mean, 0.0, 1e-9);
   EXPECT_DOUBLE_EQ(r.all_kalman_events.within, 1.0);
   EXPECT_EQ(r.objects[0].kalman_events.samples, 6);
+  // The labelled events' centre (55, 49) is itself 5.1 px from the outline's centre at each of
+  // the six estimates: all of the track's error against the outline.
+  EXPECT_EQ(r.all_events_centre.samples, 6);
+  EXPECT_NEAR(r.all_events_centre.mean, std::hypot(5.0, 1.0), 1e-9);
+  EXPECT_DOUBLE_EQ(r.all_events_centre.within, 0.0);
   // Without the events the paper's statistics stay empty.
   EXPECT_EQ(tracking_report(updates, centres, 1).all_kalman_events.samples, 0);
+  EXPECT_EQ(tracking_report(updates, centres, 1).all_events_centre.samples, 0);
 }
 
 // An estimate is timed at the mean timestamp of its events, so the labelled events' centre it is
@@ -302,6 +308,7 @@ TEST(SweepCommand, PrintsATablePerParameter) {
   EXPECT_NE(r.out.find("## packet-size"), std::string::npos);
   EXPECT_NE(r.out.find("| 1000 |"), std::string::npos);
   EXPECT_NE(r.out.find("| packet-size | rotation | still | mean F |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| track err px | within 2.5 px | events' centre's own err px | within 2.5 px | velocity err px/s |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| within 2.5 px | MOTA | MOTP px | MOTP to events' centre px | within 2.5 px |"), std::string::npos) << r.out;
 }
 
@@ -313,7 +320,7 @@ TEST(SweepCommand, PinsTheMembersSensorShapesAndNoise) {
   EXPECT_NE(r.out.find("| rotation 1: rotation 200x150,  3 shapes (0 moving), speed"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("noise 0.50 Hz"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| paper-rotation 1: rotation 240x180, poster of 9 shapes"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("| F 0.04 | IDF1 0.04 | track err px 0.04 | centroid err px 0.04 | err to events' centre px 0.04 | MOTA 0.04 | "
+  EXPECT_NE(r.out.find("| F 0.04 | IDF1 0.04 | track err px 0.04 | centroid err px 0.04 | events' centre's own err px 0.04 | err to events' centre px 0.04 | MOTA 0.04 | "
                        "false tracks/frame 0.04 |"),
             std::string::npos)
       << r.out;
