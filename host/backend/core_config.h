@@ -35,18 +35,14 @@ constexpr BoardOfBuild board_of(std::string_view build) {
   return {};
 }
 
-// The method build S starts with: the default method (the "evms" preset, seeded climbs) when
-// the build holds only the seeded path, else the Gaussian mean shift of every event (the
-// "gaussian" preset), with the packet size, cluster and track counts cut to what the build
-// holds and without the polarity split where it does not hold it: the register values a board
-// of that build starts with.
-template <class S>
-const char* build_default_preset() {
-  return S::kHasGaussianPath ? "gaussian" : "evms";
-}
+// The method every build starts with: the default method (the "evms" preset, which every
+// build's seeded path holds), with the packet size, cluster and track counts cut to what build
+// S holds and without the polarity split where it does not hold it: the register values a
+// board of that build starts with. The host build's Gaussian path is --preset gaussian.
+inline constexpr const char* kBuildResetPreset = "evms";
 template <class S>
 Params build_default_params() {
-  Params p = preset(build_default_preset<S>());
+  Params p = preset(kBuildResetPreset);
   if (!S::kHasPolaritySplit) p.split_balance = 0;  // the board builds; a board's C++ core stands for its board
   p.packet_size = std::min(p.packet_size, S::kPacketMax);
   p.max_clusters = std::min(p.max_clusters, S::kClustersMax);

@@ -1,8 +1,8 @@
 // evms cycles SOURCE [--build host|arty|ice40] [--rtl] [--table] : clocks per event of a core
 // build, stage by stage, from the cycle model (hls/core/schedule.h) fed by the C++ core, and,
-// with --rtl, measured on the Verilated RTL beside it. The model counts the Gaussian path; the
-// seeded path (--seeding events, the Arty build's reset method) is measured on the RTL whether or
-// not --rtl is given.
+// with --rtl, measured on the Verilated RTL beside it. The model counts the Gaussian path (the
+// host build's --preset gaussian); the seeded path (the default method, every build's reset
+// method) is measured on the RTL whether or not --rtl is given.
 #include <cstdio>
 
 #include "Vcore_arty.h"
@@ -29,8 +29,7 @@ struct CyclesOptions {
   bool table = false;
   std::vector<int> lanes = {1, 2, 4, 8, 16, 32, 64};
   read::SourceOptions source_options;
-  Method method;
-  bool preset_chosen = false;  // by --preset or --config; else the build's reset method
+  Method method;  // the defaults unless told another, in the build's sizes
 };
 
 std::vector<Event> read_events(const CyclesOptions& o, SensorSize& sensor) {
@@ -86,22 +85,12 @@ hls::StageCycles rtl_run(const std::vector<hls::EventWord>& words, const hls::Co
   return sim::stage_cycles(core.state_cycles());
 }
 
-// The method counted: the options' over the build's reset method (backend::build_default_preset:
-// --preset evms on the Arty build, --preset gaussian on the others) unless --preset says another,
-// with the build's sizes.
-template <class S>
-Method method_of(const CyclesOptions& o) {
-  Method method = o.method;
-  if (!o.preset_chosen) method.preset = backend::build_default_preset<S>();
-  return method;
-}
-
 template <class V, class S>
 void cycles(const CyclesOptions& o) {
   SensorSize sensor;
   const std::vector<Event> events = read_events(o, sensor);
   // The cycle model is the RTL's: it counts the method the RTL implements.
-  const Method method = method_of<S>(o);
+  const Method& method = o.method;
   const Params params = backend::fit_core_build("rtl", o.build, method.resolve(sensor), method);
   if (std::string unsupported = backend::rtl_unsupported(params, o.build); !unsupported.empty()) {
     throw std::invalid_argument(unsupported + "; the cycle model counts the RTL's method");
@@ -109,7 +98,7 @@ void cycles(const CyclesOptions& o) {
   if (events.empty()) throw std::runtime_error(o.source + ": no events");
   const bool seeded = params.seeding != Seeding::kEvery;
   if (seeded && o.table) {
-    throw std::invalid_argument("--table sweeps the cycle model, which counts the Gaussian path only; without --table the seeded path is measured on the RTL");
+    throw std::invalid_argument("--table sweeps the cycle model, which counts the Gaussian path only (--preset gaussian on the host build); without --table the seeded path is measured on the RTL");
   }
   const bool measure_rtl = o.rtl || seeded;
   const auto words = words_of<S>(events);
@@ -193,11 +182,9 @@ void register_cycles(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::IsMember(std::vector<int>(std::begin(hls::kModelLaneCounts), std::end(hls::kModelLaneCounts))));
   o->source_options.window.limit = 1000000;  // the cycle model holds every event it measures
-  o->method.preset = "gaussian";              // the method the RTL implements (the build's, unless --preset)
   add_source_options(*cmd, o->source_options);
   add_method_options(*cmd, o->method);
-  cmd->callback([o, cmd] {
-    o->preset_chosen = cmd->get_option("--preset")->count() > 0 || o->method.preset != "gaussian";
+  cmd->callback([o] {
 #define EVMS_CYCLES_OF_BUILD(name, fixed, rtl, width, height, description) \
   if (o->build == #name) return cycles<Vcore_##name, hls::rtl>(*o);
     EVMS_CORE_BUILDS(EVMS_CYCLES_OF_BUILD)

@@ -126,7 +126,7 @@ template <class S>
 BuildFiles build_files(const char* name, int width, int height, const char* description) {
   const hls::Config c = backend::core_config<S>(backend::build_default_params<S>(), {width, height});
   return {name,   shape_values<S>(), rtl_register_values(c), exp_table_file<S>(), recip_table_file<S>(), width, height, description,
-          backend::build_default_preset<S>()};
+          backend::kBuildResetPreset};
 }
 
 void write(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
