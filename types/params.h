@@ -43,7 +43,7 @@ struct Params {
   // --- background-activity filter -------------------------------------------------------
   TimeUs filter_window_us = 30000;  // neighbour support window; 0 turns the filter off
   int filter_support = 1;            // neighbours that must have fired within the window
-  TimeUs filter_warm_up_us = 0;     // keep every event of the stream's first this long; 0 = off
+  TimeUs filter_warm_up_us = 10000;  // keep every event of the stream's first this long; 0 = off
   double filter_noise_hz = 0.7;      // unsupported events a pixel a second that make the filter ask
                                      // one more neighbour (filter_noise_count); 0 = off
   TimeUs filter_look_ahead_us = 0;   // a dropped event is kept after all when neighbours fired

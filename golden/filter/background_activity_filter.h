@@ -18,8 +18,9 @@
 //
 // With warm_up_us > 0, every event of the stream's first warm_up_us is kept too: its neighbours'
 // history is shorter than the window, so an edge pixel whose neighbours have not fired yet
-// cannot be told from noise. That helps a short, dense recording and costs a noisy one
-// (docs/sweep.md, "The filter's first window"), so it is off by default.
+// cannot be told from noise. A short, dense recording keeps its first edges, and the scene
+// family scores the same with it as without (docs/sweep.md, "The filter's first window").
+// hls/filter/ba_filter.h keeps the same events.
 //
 // The filter only looks back. golden/pipeline.h can look ahead as well (--filter-look-ahead-us),
 // with neighbours_fired_after() once the events after a dropped one have been recorded.

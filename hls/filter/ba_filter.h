@@ -15,6 +15,11 @@
 // makes the next one noisy, and there an event needs one more supporting neighbour. An interval
 // is t >> 15 of the 32-bit time, 17 bits, so that the time's wrap is one interval step, as in
 // the RTL (rtl/filter/evms_ba_filter.sv); the count saturates at 2^24 - 1.
+//
+// The warm-up: every event less than filter_warm_up us after the first event the filter judged
+// is kept, because its neighbours' history is shorter than the window. The difference is taken
+// of the 32-bit times, and the first event at or past the warm-up ends it for good, so that the
+// time's wrap cannot bring it back.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +37,8 @@ class BackgroundActivityFilter {
     for (int i = 0; i < S::kMaxWidth * S::kMaxHeight; ++i) stamp_[i] = 0;
     scrub_ = 0;
     started_ = false;
+    warming_ = false;
+    warm_start_ = 0;
     noisy_ = false;
     interval_ = 0;
     unsupported_ = 0;
@@ -60,7 +67,12 @@ class BackgroundActivityFilter {
       scrub_ = scrub_ + 1 == S::kMaxWidth * S::kMaxHeight ? 0 : scrub_ + 1;
     }
     const std::uint32_t interval = e.t >> kNoiseIntervalLog2;
-    if (!started_) started_ = true, interval_ = interval;
+    if (!started_) started_ = true, interval_ = interval, warm_start_ = e.t, warming_ = cfg.filter_warm_up != 0;
+    bool warm = false;
+    if (warming_) {
+      warm = static_cast<std::uint32_t>(e.t - warm_start_) < cfg.filter_warm_up;
+      warming_ = warm;
+    }
     if (cfg.filter_noise_count != 0) {
       if (interval != interval_) {
         noisy_ = interval == ((interval_ + 1) & kIntervalMask) && unsupported_ >= cfg.filter_noise_count;
@@ -68,7 +80,7 @@ class BackgroundActivityFilter {
       }
       if (supporters == 0 && unsupported_ < kCountMax) ++unsupported_;
     }
-    return supporters >= cfg.filter_support + (noisy_ ? 1 : 0);
+    return supporters >= cfg.filter_support + (noisy_ ? 1 : 0) || warm;
   }
 
  private:
@@ -79,8 +91,8 @@ class BackgroundActivityFilter {
   static constexpr int kNoiseIntervalLog2 = 15;  // types/params.h: kFilterNoiseIntervalLog2
   static constexpr std::uint32_t kIntervalMask = (std::uint32_t{1} << (32 - kNoiseIntervalLog2)) - 1;
   static constexpr std::uint32_t kCountMax = (std::uint32_t{1} << 24) - 1;
-  bool started_ = false, noisy_ = false;
-  std::uint32_t interval_ = 0, unsupported_ = 0;
+  bool started_ = false, warming_ = false, noisy_ = false;
+  std::uint32_t interval_ = 0, unsupported_ = 0, warm_start_ = 0;
   Stamp stamp_[S::kMaxWidth * S::kMaxHeight] = {};
   int scrub_ = 0;
 };

@@ -86,7 +86,7 @@ inline std::string core_unsupported(const Params& p) {
   if (p.seeding == Seeding::kGrid) return "the fixed-point core seeds from events, not " + detail::setting(p, "seeding");
   if (seeded && p.labelling != Labelling::kFirst) return "the fixed-point core labels an event by the first climb that reached it, not " + detail::setting(p, "labelling");
   const Params off = preset("gaussian");
-  if (const char* name = detail::first_difference(p, off, {"filter-warm-up-us", "filter-look-ahead-us", "packet-support", "min-density", "join-boxes", "measure"})) {
+  if (const char* name = detail::first_difference(p, off, {"filter-look-ahead-us", "packet-support", "min-density", "join-boxes", "measure"})) {
     return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
   }
   if (p.association == Association::kNearestCentre) return "the fixed-point core does not implement " + detail::setting(p, "association");
@@ -187,6 +187,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.filter_window = static_cast<std::uint32_t>(p.filter_window_us >> S::kTimestampShift);
   c.filter_support = static_cast<std::uint8_t>(p.filter_support);
   c.filter_noise_count = static_cast<std::uint32_t>(filter_noise_count(p, sensor));
+  c.filter_warm_up = static_cast<std::uint32_t>(p.filter_warm_up_us);  // at most 1e9 (types/params.cpp)
   c.packet_size = static_cast<std::uint16_t>(p.packet_size);
   c.packet_max_span_us = static_cast<std::uint32_t>(std::min<TimeUs>(p.packet_max_span_us, 0xFFFFFFFF));
   c.scale_x = static_cast<std::uint32_t>(rnd(p.scale_xy / (side_x * unit) * std::ldexp(1.0, S::kCoordScaleFrac)));

@@ -7,7 +7,9 @@
 //     to the own pixel; then scrub two entries: clear each whose age is at least half the wrap;
 //   - the noise check: the events no neighbour supported are counted in intervals of 2^15 us
 //     (t[31:15]); an interval with cfg_noise_count or more of them makes the next one noisy,
-//     and there an event needs two supporting neighbours instead of one (cfg_noise_count 0: off).
+//     and there an event needs two supporting neighbours instead of one (cfg_noise_count 0: off);
+//   - the warm-up: an event less than cfg_warm_up us after the first event judged is kept
+//     (cfg_warm_up 0: off); the first event at or past it ends the warm-up for good.
 // After reset the RAM is cleared, one word a cycle; ready stays low until then.
 module evms_ba_filter #(
   parameter int MaxWidth  = 240,
@@ -22,6 +24,7 @@ module evms_ba_filter #(
   input  logic [15:0] cfg_height,
   input  logic [31:0] cfg_window,
   input  logic [23:0] cfg_noise_count,
+  input  logic [31:0] cfg_warm_up,
   output logic        ready,
   input  logic        start,
   input  logic [31:0] t,
@@ -57,6 +60,11 @@ module evms_ba_filter #(
   localparam int IntervalBits = 17;
   localparam logic [23:0] CountMax = '1;
   logic                    started_q, noisy_q;
+  // The warm-up: the first judged event's time, whether the warm-up still runs, and whether it
+  // keeps the event being judged.
+  logic [31:0]             warm_start_q;
+  logic                    warming_q, warm_keep_q;
+  wire                     warm_within = t - warm_start_q < cfg_warm_up;
   logic [IntervalBits-1:0] interval_q;
   logic [23:0]             unsupported_q;
   wire  [IntervalBits-1:0] interval = t[31:15];
@@ -92,6 +100,9 @@ module evms_ba_filter #(
       supporters <= '0;
       started_q <= 1'b0;
       noisy_q <= 1'b0;
+      warm_start_q <= '0;
+      warming_q <= 1'b0;
+      warm_keep_q <= 1'b0;
       interval_q <= '0;
       unsupported_q <= '0;
       now <= '0;
@@ -128,10 +139,17 @@ module evms_ba_filter #(
             if (!started_q) begin
               started_q <= 1'b1;
               interval_q <= interval;
-            end else if (cfg_noise_count != 0 && interval != interval_q) begin
-              noisy_q <= interval == interval_q + 1'b1 && unsupported_q >= cfg_noise_count;
-              interval_q <= interval;
-              unsupported_q <= '0;
+              warm_start_q <= t;
+              warming_q <= cfg_warm_up != 0;
+              warm_keep_q <= cfg_warm_up != 0;
+            end else begin
+              if (cfg_noise_count != 0 && interval != interval_q) begin
+                noisy_q <= interval == interval_q + 1'b1 && unsupported_q >= cfg_noise_count;
+                interval_q <= interval;
+                unsupported_q <= '0;
+              end
+              warm_keep_q <= warming_q && warm_within;
+              if (!warm_within) warming_q <= 1'b0;
             end
           end
         end
@@ -171,7 +189,7 @@ module evms_ba_filter #(
           state <= scrub_second ? S_DONE : S_SCRUB_READ;
         end
         S_DONE: begin
-          kept <= supporters >= (noisy_q ? 4'd2 : 4'd1);
+          kept <= supporters >= (noisy_q ? 4'd2 : 4'd1) || warm_keep_q;
           if (cfg_noise_count != 0 && supporters == 0 && unsupported_q != CountMax) unsupported_q <= unsupported_q + 1'b1;
           done <= 1'b1;
           state <= S_IDLE;

@@ -5,6 +5,7 @@
 .CfgFilterEnabled(CfgFilterEnabled),
 .CfgFilterWindow(CfgFilterWindow),
 .CfgFilterNoiseCount(CfgFilterNoiseCount),
+.CfgFilterWarmUp(CfgFilterWarmUp),
 .CfgPacketSize(CfgPacketSize),
 .CfgPacketMaxSpanUs(CfgPacketMaxSpanUs),
 .CfgScaleX(CfgScaleX),

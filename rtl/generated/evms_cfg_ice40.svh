@@ -46,6 +46,7 @@ localparam logic [15:0] CfgSensorHeight = 16'd128;
 localparam logic CfgFilterEnabled = 1'd1;
 localparam logic [31:0] CfgFilterWindow = 32'd234;
 localparam logic [23:0] CfgFilterNoiseCount = 24'd375;
+localparam logic [31:0] CfgFilterWarmUp = 32'd10000;
 localparam logic [15:0] CfgPacketSize = 16'd256;
 localparam logic [31:0] CfgPacketMaxSpanUs = 32'd33333;
 localparam logic [31:0] CfgScaleX = 32'd204800;

@@ -421,8 +421,10 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
   std::string lost = read_file(dir.path("r/events.csv"));
   const size_t row = lost.find('\n', lost.find("t_us,")) + 1;
   const size_t label = lost.rfind(',', lost.find('\n', row)) + 1;
-  lost.replace(label, lost.find('\n', row) - label, "-2");
-  EXPECT_LE(f_of(dir.write("lost.csv", lost)), f);
+  lost.replace(label, lost.find('\n', row) - label, "-1");
+  const double f_noise = f_of(dir.write("noise.csv", lost));
+  lost.replace(label, 2, "-2");
+  EXPECT_DOUBLE_EQ(f_of(dir.write("lost.csv", lost)), f_noise);
   lost.replace(label, 2, "-3");
   const auto bad = run_command(evms_binary() + " metrics --truth " + dir.path("g/labels.csv") + " --pred " + dir.write("bad.csv", lost));
   EXPECT_EQ(bad.exit_code, 1);
@@ -491,7 +493,9 @@ TEST(Cli, CtrlCLeavesCompleteOutputs) {
 
 TEST(Cli, MemoryIsFlatInTheInputLength) {
   // The same scene, 4x longer: peak memory must not grow with it. The filter window is
-  // minimal so that almost nothing reaches the clustering and the test stays quick. The
+  // minimal and the stream's first events are judged too, so that almost nothing reaches the
+  // clustering and the test stays quick (a packet left open holds every dropped event after it
+  // until a kept one closes it: golden/pipeline.cpp). The
   // shorter input is long enough for every buffer to have reached its working size (a few
   // MB are allocated once, between 200 k and 400 k events).
 #ifdef __SANITIZE_ADDRESS__
@@ -501,7 +505,7 @@ TEST(Cli, MemoryIsFlatInTheInputLength) {
   auto small = sample_events(400000, {240, 180}, 3), large = sample_events(1600000, {240, 180}, 3);
   const std::string a = dir.write("a.txt", rpg_text(small)), b = dir.write("b.txt", rpg_text(large));
   small.clear(), large.clear();
-  const std::string cmd = evms_binary() + " run --quiet --filter-window-us 1 --out " + dir.path("o") + " ";
+  const std::string cmd = evms_binary() + " run --quiet --filter-window-us 1 --filter-warm-up-us 0 --out " + dir.path("o") + " ";
   const auto ra = run_command(cmd + a), rb = run_command(cmd + b);
   ASSERT_EQ(ra.exit_code, 0) << ra.err;
   ASSERT_EQ(rb.exit_code, 0) << rb.err;

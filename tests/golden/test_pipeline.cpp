@@ -108,9 +108,11 @@ TEST(Pipeline, LookAheadKeepsAnEdgesFirstEventAndStillDropsALoneOne) {
     }
     if (round == 0) events.push_back({t++, 200, 150, 1});  // alone
   }
-  Params look;
+  Params cold;
+  cold.filter_warm_up_us = 0;  // the stream's first events are judged too
+  Params look = cold;
   look.filter_look_ahead_us = 10000;
-  const CollectingSink plain = run(events, Params{});
+  const CollectingSink plain = run(events, cold);
   const CollectingSink ahead = run(events, look);
   ASSERT_EQ(plain.events.size(), events.size());
   ASSERT_EQ(ahead.events.size(), events.size());
@@ -125,6 +127,7 @@ TEST(Pipeline, LookAheadKeepsAnEdgesFirstEventAndStillDropsALoneOne) {
 // While no packet is open, a dropped event waits out its look-ahead before it leaves as noise.
 TEST(Pipeline, LookAheadHoldsADroppedEventOnlyForItsLookAhead) {
   Params look;
+  look.filter_warm_up_us = 0;  // the stream's first events are judged too
   look.filter_look_ahead_us = 10000;
   Pipeline pipeline(look, kSensor);
   CollectingSink sink;

@@ -24,15 +24,17 @@
 #include "host/gen/family.h"
 #include "sim/rtl_core.h"
 #include "sim/rtl_profile.h"
+#include "tests/support/core_words.h"
 #include "tests/support/read_all.h"
 #include "tests/support/scenes.h"
 
 namespace evms {
 namespace {
 
-std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {
+// The core's 32-bit times, the first event's at `first_time` (later ones wrap past 2^32).
+std::vector<hls::EventWord> words_of(const std::vector<Event>& events, std::uint32_t first_time = 1) {
   std::vector<hls::EventWord> w;
-  const TimeUs base = events.empty() ? 0 : events.front().t - 1;
+  const TimeUs base = events.empty() ? 0 : events.front().t - first_time;
   for (const Event& e : events) w.push_back({static_cast<std::uint32_t>(e.t - base), e.x, e.y, e.p, false});
   hls::EventWord flush;
   flush.flush = true;
@@ -127,11 +129,11 @@ Mismatch compare(const std::vector<hls::EventWord>& words, const hls::Config& cf
 
 template <class V, class S>
 void expect_equal(const std::string& name, const std::vector<Event>& events, SensorSize sensor, std::uint64_t seed, double ready_p,
-                  const Params& params = preset("gaussian")) {
+                  const Params& params = preset("gaussian"), std::uint32_t first_time = 1) {
   std::printf("cosim %s: %zu events, seed %llu, ready probability %.2f\n", name.c_str(), events.size(),
               static_cast<unsigned long long>(seed), ready_p);
   const hls::Config cfg = backend::core_config<S>(params, sensor);
-  const auto words = words_of(events);
+  const auto words = words_of(events, first_time);
   const Mismatch m = compare<V, S>(words, cfg, seed, ready_p, "");
   if (m.any()) {
     const std::string trace = (std::filesystem::temp_directory_path() / ("evms_cosim_" + name + "_" + std::to_string(seed) + ".fst")).string();
@@ -288,6 +290,38 @@ TEST(Cosim, NoisySensorMakesTheFilterAskTwoNeighbours) {
   always.filter_noise_hz = 1e-6;  // a count of 1
   ASSERT_EQ(backend::core_config<hls::RtlHostShape>(always, {128, 128}).filter_noise_count, 1u);
   expect_equal<Vcore_host, hls::RtlHostShape>("noisy_host_count1", events, {128, 128}, 47, 0.5, always);
+}
+
+// The filter's warm-up keeps every event of the stream's first 30 ms here (hls/filter/ba_filter.h):
+// the C++ core keeps events it would drop without it, and the RTL's words equal the C++ core's on
+// the iCE40 and host builds, also when the 32-bit time wraps 20 ms into the stream.
+TEST(Cosim, TheFiltersWarmUpKeepsTheStreamsFirstEvents) {
+  gen::SceneConfig c;
+  c.motion = gen::Motion::kTranslation;
+  c.duration_s = 0.1;
+  c.width = 128, c.height = 128;
+  c.noise_hz = 2.0;
+  c.seed = 9;
+  const std::vector<Event> events = eval::generate_scene(c).events;
+  Params warm = backend::build_default_params<hls::Ice40Shape>(), cold = warm;
+  warm.filter_warm_up_us = 30000, cold.filter_warm_up_us = 0;
+  const auto kept_of = [&](const Params& p) {
+    test::CoreDriver<hls::Ice40Shape> core(backend::core_config<hls::Ice40Shape>(p, {128, 128}));
+    for (const auto& w : words_of(events)) core.process(w);
+    std::vector<bool> kept;
+    for (const hls::LabelWord& l : core.out().labels) kept.push_back(l.label != hls::kLabelNoise);
+    return kept;
+  };
+  const auto with_warm_up = kept_of(warm), without = kept_of(cold);
+  ASSERT_EQ(with_warm_up.size(), without.size());
+  size_t kept_only_warm = 0;
+  for (size_t i = 0; i < without.size(); ++i) kept_only_warm += with_warm_up[i] && !without[i];
+  EXPECT_GT(kept_only_warm, 100u) << "the warm-up kept no event the window dropped";
+  expect_equal<Vcore_ice40, hls::Ice40Shape>("warm_up_ice40", events, {128, 128}, 48, 0.6, warm);
+  Params host = seeded_method();
+  host.filter_warm_up_us = 30000;
+  expect_equal<Vcore_host, hls::RtlHostShape>("warm_up_host", events, {128, 128}, 49, 0.7, host);
+  expect_equal<Vcore_host, hls::RtlHostShape>("warm_up_host_wrap", events, {128, 128}, 50, 0.7, host, 0xFFFFFFFFu - 20000u);
 }
 
 // The regression over every real recording, on the host build, by both clustering paths.
