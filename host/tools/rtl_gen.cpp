@@ -119,14 +119,12 @@ struct BuildFiles {
   std::string exp_file, recip_file;
   int width, height;
   std::string description;
-  std::string preset;  // the method the reset registers hold
 };
 
 template <class S>
 BuildFiles build_files(const char* name, int width, int height, const char* description) {
   const hls::Config c = backend::core_config<S>(backend::build_default_params<S>(), {width, height});
-  return {name,   shape_values<S>(), rtl_register_values(c), exp_table_file<S>(), recip_table_file<S>(), width, height, description,
-          backend::kBuildResetPreset};
+  return {name,   shape_values<S>(), rtl_register_values(c), exp_table_file<S>(), recip_table_file<S>(), width, height, description};
 }
 
 void write(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
@@ -228,7 +226,7 @@ void write_build(const std::string& dir, const BuildFiles& b) {
   for (size_t i = 0; i < shape.size(); ++i) o << "localparam int " << shape[i] << " = " << b.shape[i] << ";\n";
   o << "localparam ExpTableFile = \"" << sv_table_path(b.exp_file) << "\";\n";
   o << "localparam RecipTableFile = \"" << sv_table_path(b.recip_file) << "\";\n";
-  o << "// Reset registers: the method of --preset " << b.preset << ", within this build's limits, for a " << b.width << "x" << b.height
+  o << "// Reset registers: the method of --preset " << backend::kBuildResetPreset << ", within this build's limits, for a " << b.width << "x" << b.height
     << " sensor.\n";
   for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
     const Register& r = kRtlRegisters[i];
@@ -270,7 +268,7 @@ void write_docs(const std::string& path, const std::vector<BuildFiles>& builds) 
        "Formats (fraction bits and units) are those of hls/core/shape.h.\n\n## Builds\n\n";
   d << "| build | reset registers for | reset method | what it is |\n|---|---|---|---|\n";
   for (const BuildFiles& b : builds) {
-    d << "| " << b.name << " | " << b.width << "x" << b.height << " | `--preset " << b.preset << "` | " << b.description << " |\n";
+    d << "| " << b.name << " | " << b.width << "x" << b.height << " | `--preset " << backend::kBuildResetPreset << "` | " << b.description << " |\n";
   }
   d << "\n## Shape parameters (hls/core/shape.h)\n\n| parameter |";
   for (const BuildFiles& b : builds) d << " " << b.name << " |";
