@@ -75,14 +75,21 @@ TEST(BaFilterAgreesWithGolden, EveryDecisionOnRandomStreams) {
   EXPECT_GT(kept_by_warm_up_only, 100) << "the warm-up kept nothing the window would not have";
 }
 
+// Shape S's whole sensor, a window of 2 stored time units (at most 256 us) and the warm-up.
+template <class S>
+hls::Config warm_up_config(std::uint32_t warm_up) {
+  hls::Config cfg;
+  cfg.sensor_width = S::kMaxWidth, cfg.sensor_height = S::kMaxHeight;
+  cfg.filter_enabled = true, cfg.filter_window = 2, cfg.filter_support = 1, cfg.filter_warm_up = warm_up;
+  return cfg;
+}
+
 // Isolated events, 700 us apart, that no neighbour ever supports: the warm-up alone keeps them.
 template <class S>
 std::vector<bool> kept_alone(std::uint32_t t0, std::uint32_t warm_up, int events) {
   auto filter = std::make_unique<hls::BackgroundActivityFilter<S>>();
   filter->reset();
-  hls::Config cfg;
-  cfg.sensor_width = S::kMaxWidth, cfg.sensor_height = S::kMaxHeight;
-  cfg.filter_enabled = true, cfg.filter_window = 2, cfg.filter_support = 1, cfg.filter_warm_up = warm_up;
+  const hls::Config cfg = warm_up_config<S>(warm_up);
   std::vector<bool> kept;
   for (int k = 0; k < events; ++k) {
     const auto x = static_cast<std::uint16_t>((7 * k) % (S::kMaxWidth / 3) * 3), y = static_cast<std::uint16_t>((7 * k) / (S::kMaxWidth / 3) * 3);
@@ -114,9 +121,7 @@ TEST(BaFilterWarmUp, CountsMicrosecondsFromTheFirstEventOnEveryShape) {
 TEST(BaFilterWarmUp, EndsForGoodAcrossTheTimesWrap) {
   auto filter = std::make_unique<hls::BackgroundActivityFilter<hls::Ice40Shape>>();
   filter->reset();
-  hls::Config cfg;
-  cfg.sensor_width = 128, cfg.sensor_height = 128;
-  cfg.filter_enabled = true, cfg.filter_window = 2, cfg.filter_support = 1, cfg.filter_warm_up = 10000;
+  const hls::Config cfg = warm_up_config<hls::Ice40Shape>(10000);
   EXPECT_TRUE(filter->accept({1000, 10, 10, 1, false}, cfg));
   EXPECT_FALSE(filter->accept({20000, 40, 40, 1, false}, cfg));
   // Nearly 2^32 us (71.6 minutes) on, in steps that the stamps' scrubbing follows.
