@@ -19,8 +19,11 @@ namespace evms::hls {
 // Gaussian path's, which this build does not hold.
 using Ice40Shape = Shape<128, 128, 256, 1, 8, 8, 8, 16, 7, 2 * 256, 10, 15, 8, 12, 4, 64, 4, 32, 8, 0, 1>;
 // Arty A7-35T beside a DAVIS240: the default board core. It holds the seeded path only (the
-// default method, at about 90 cycles an event); the Gaussian path does not fit beside it.
-using ArtyShape = Shape<240, 180, 256, 8, 8, 16, 16, 16, 7, 4 * 256, 11, 16, 9, 12, 64, 64, 4, 32, 8, 0, 1>;
+// default method, at about 56 cycles an event); the Gaussian path does not fit beside it.
+// Packets of 512: on the 240x180 scenes with seven shapes they score 0.003-0.011 more F than
+// 256, and 1,024 would take 59 of the XC7A35T's 50 block RAMs (docs/rtl.md, "Builds"). The
+// pending queue stays 1,024, so that the link window (2,048) exceeds it and the intake's packet.
+using ArtyShape = Shape<240, 180, 512, 8, 8, 16, 16, 16, 7, 4 * 256, 11, 16, 9, 12, 64, 64, 4, 32, 8, 0, 1>;
 
 // X(name, FixedShape, RtlShape, sensor width, sensor height, description): the fixed backend's
 // Shape, the RTL's (rtl/generated/evms_cfg_<name>.*, Verilated as Vcore_<name>), and the sensor
@@ -36,7 +39,7 @@ using ArtyShape = Shape<240, 180, 256, 8, 8, 16, 16, 16, 7, 4 * 256, 11, 16, 9, 
 // board backend keeps at most the link queue's depth of events unanswered. The queue must be
 // deeper than what the core can hold unlabelled, its pending queue and its intake's packet
 // (checked by rtl/board/evms_board.sv and host/backend/board_backend.cpp).
-// The whole ice40 core is 5.3 times the UP5K's LUTs (docs/rtl.md, "Area"), so the iCEBreaker's
+// The whole ice40 core is 5.4 times the UP5K's LUTs (docs/rtl.md, "Area"), so the iCEBreaker's
 // core stops at the filter (rtl/core/evms_filter_core.sv): the board returns each event's
 // verdict and the host runs the rest of the ice40 core on them (Core::process_decided), which
 // gives the words of the whole core.

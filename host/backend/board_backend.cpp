@@ -27,7 +27,7 @@
 //
 // A board runs its build's register values, the default method in the build's limits: the iCE40
 // build's (128x128, packets of 256, 8 clusters, 8 tracks) on the iCEBreaker, the Arty build's
-// (240x180, packets of 256, 16 clusters and tracks) on the Arty. Parameters that differ are refused.
+// (240x180, packets of 512, 16 clusters and tracks) on the Arty. Parameters that differ are refused.
 //
 // A board whose core stops at the filter (the iCEBreaker: EVMS_BOARD_BUILDS, hls/core/configs.h)
 // answers each event with its filter's verdict. The host runs the rest of the build's core on
