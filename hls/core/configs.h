@@ -22,8 +22,8 @@ using Ice40Shape = Shape<128, 128, 256, 1, 8, 8, 8, 16, 7, 2 * 256, 10, 15, 8, 1
 // default method, at about 56 cycles an event); the Gaussian path does not fit beside it.
 // Packets of 512: on the 240x180 scenes with seven shapes they score 0.003-0.011 more F than
 // 256, and 1,024 would take 59 of the XC7A35T's 50 block RAMs (docs/rtl.md, "Builds"). The
-// pending queue stays 1,024, so that the link window (2,048) exceeds it and the intake's packet.
-using ArtyShape = Shape<240, 180, 512, 8, 8, 16, 16, 16, 7, 4 * 256, 11, 16, 9, 12, 64, 64, 4, 32, 8, 0, 1>;
+// pending queue holds two packets, so that the link window (2,048) exceeds it and the intake's packet.
+using ArtyShape = Shape<240, 180, 512, 8, 8, 16, 16, 16, 7, 2 * 512, 11, 16, 9, 12, 64, 64, 4, 32, 8, 0, 1>;
 
 // X(name, FixedShape, RtlShape, sensor width, sensor height, description): the fixed backend's
 // Shape, the RTL's (rtl/generated/evms_cfg_<name>.*, Verilated as Vcore_<name>), and the sensor
