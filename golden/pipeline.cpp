@@ -30,7 +30,8 @@ class StageClock {
 Pipeline::Pipeline(const Params& params, SensorSize sensor)
     : params_(params),
       sensor_(sensor),
-      filter_(sensor, params.filter_window_us, params.filter_support, params.filter_warm_up_us, filter_noise_count(params, sensor)),
+      filter_(sensor, params.filter_window_us, params.filter_support, params.filter_warm_up_us, filter_noise_count(params, sensor),
+              filter_quiet_count(params, sensor), params.filter_quiet_window_us),
       clusterer_(params, sensor),
       tracker_(make_tracker(params, sensor)) {
   packet_.reserve(static_cast<size_t>(params.packet_size));

@@ -33,6 +33,12 @@ const std::array kTable = {
               "last 32.8 ms, the filter asks one more supporting neighbour of each event for the next 32.8 ms (a noisy "
               "sensor's background activity supports itself within a long window); 0 = off",
               &Params::filter_noise_hz, 0, 1e6},
+    ParamInfo{"filter-quiet-hz", "Hz", "when the events no neighbour supported within the window came at less than this "
+              "rate a pixel over the last 32.8 ms, the next 32.8 ms judge events by --filter-quiet-window-us instead (a quiet "
+              "sensor's slow edges fire their neighbours far apart); 0 = off",
+              &Params::filter_quiet_hz, 0, 1e6},
+    ParamInfo{"filter-quiet-window-us", "us", "the filter's window in an interval that follows a quiet one (--filter-quiet-hz)",
+              &Params::filter_quiet_window_us, 0, 1e9},
     ParamInfo{"filter-look-ahead-us", "us", "an event the filter dropped is kept after all when, by the time its packet "
               "closes, as many neighbours as the filter asked of it fired within this long after it (the first events of an "
               "edge have no history to be judged by); 0 = off",
@@ -157,11 +163,17 @@ constexpr bool kIsEnum = std::is_enum_v<T>;
 
 std::span<const ParamInfo> param_table() { return kTable; }
 
-std::int64_t filter_noise_count(const Params& p, SensorSize sensor) {
-  if (p.filter_noise_hz <= 0) return 0;
-  const double per_interval = p.filter_noise_hz * sensor.width * sensor.height * static_cast<double>(TimeUs{1} << kFilterNoiseIntervalLog2) * 1e-6;
+namespace {
+// Events a pixel a second over the sensor and one filter interval, rounded down, at least 1; 0 = off.
+std::int64_t events_per_filter_interval(double hz, SensorSize sensor) {
+  if (hz <= 0) return 0;
+  const double per_interval = hz * sensor.width * sensor.height * static_cast<double>(TimeUs{1} << kFilterNoiseIntervalLog2) * 1e-6;
   return std::max<std::int64_t>(1, static_cast<std::int64_t>(per_interval));
 }
+}  // namespace
+
+std::int64_t filter_noise_count(const Params& p, SensorSize sensor) { return events_per_filter_interval(p.filter_noise_hz, sensor); }
+std::int64_t filter_quiet_count(const Params& p, SensorSize sensor) { return events_per_filter_interval(p.filter_quiet_hz, sensor); }
 
 double accel_psd_at(const Params& p, SensorSize sensor) {
   if (p.accel_psd_width <= 0) return p.accel_psd;

@@ -46,6 +46,9 @@ struct Params {
   TimeUs filter_warm_up_us = 10000;  // keep every event of the stream's first this long; 0 = off
   double filter_noise_hz = 0.7;      // unsupported events a pixel a second that make the filter ask
                                      // one more neighbour (filter_noise_count); 0 = off
+  double filter_quiet_hz = 0.25;     // unsupported events a pixel a second below which the next
+                                     // interval's window is filter_quiet_window_us; 0 = off
+  TimeUs filter_quiet_window_us = 100000;  // the window after a quiet interval
   TimeUs filter_look_ahead_us = 0;   // a dropped event is kept after all when neighbours fired
                                      // within this long after it, before its packet closed; 0 = off
   int packet_support = 0;            // neighbours that must have fired while the packet was open
@@ -134,6 +137,7 @@ struct ParamInfo {
 // pixel a second over the sensor and the interval, rounded down, at least 1; 0 = off.
 inline constexpr int kFilterNoiseIntervalLog2 = 15;
 std::int64_t filter_noise_count(const Params& p, SensorSize sensor);
+std::int64_t filter_quiet_count(const Params& p, SensorSize sensor);
 
 // The process noise of the tracks' filters on `sensor`, px^2/s^3: accel_psd, scaled by the
 // square of the sensor's width over accel_psd_width when that is set. A scene seen by a sensor

@@ -16,6 +16,7 @@ Params gaussian() {
   p.filter_window_us = 10000;
   p.filter_support = 1;
   p.filter_noise_hz = 0;
+  p.filter_quiet_hz = 0;
   p.filter_warm_up_us = 0;
   p.packet_support = 0;
   p.packet_size = 256;

@@ -6,12 +6,14 @@
 namespace evms::golden {
 
 BackgroundActivityFilter::BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support, TimeUs warm_up_us,
-                                                   std::int64_t noise_count)
+                                                   std::int64_t noise_count, std::int64_t quiet_count, TimeUs quiet_window_us)
     : sensor_(sensor),
       window_us_(window_us),
       support_(support),
       warm_up_us_(warm_up_us),
       noise_count_(noise_count),
+      quiet_count_(quiet_count),
+      quiet_window_us_(quiet_window_us),
       stride_(static_cast<size_t>(sensor.width) + 2),
       last_fired_(stride_ * (static_cast<size_t>(sensor.height) + 2), kNever) {}
 
@@ -21,9 +23,12 @@ bool BackgroundActivityFilter::accept(const Event& e) {
   const TimeUs* above = &last_fired(e.x - 1, e.y - 1);
   const TimeUs* row = above + stride_;
   const TimeUs* below = row + stride_;
-  const TimeUs since = e.t - window_us_;
-  const int supporters = (above[0] >= since) + (above[1] >= since) + (above[2] >= since) + (row[0] >= since) + (row[2] >= since) +
-                         (below[0] >= since) + (below[1] >= since) + (below[2] >= since);
+  const auto fired_since = [&](TimeUs since) {
+    return (above[0] >= since) + (above[1] >= since) + (above[2] >= since) + (row[0] >= since) + (row[2] >= since) +
+           (below[0] >= since) + (below[1] >= since) + (below[2] >= since);
+  };
+  const int supporters = fired_since(e.t - window_us_);
+  const int quiet_supporters = quiet_count_ > 0 ? fired_since(e.t - quiet_window_us_) : supporters;
   last_fired(e.x, e.y) = e.t;
   const TimeUs interval = e.t >> kFilterNoiseIntervalLog2;
   if (!started_) {
@@ -31,14 +36,15 @@ bool BackgroundActivityFilter::accept(const Event& e) {
     warm_until_ = e.t + warm_up_us_;
     interval_ = interval;
   }
-  if (noise_count_ > 0) {
+  if (noise_count_ > 0 || quiet_count_ > 0) {
     if (interval != interval_) {
-      noisy_ = interval == interval_ + 1 && unsupported_ >= noise_count_;
+      noisy_ = noise_count_ > 0 && interval == interval_ + 1 && unsupported_ >= noise_count_;
+      quiet_ = quiet_count_ > 0 && unsupported_ < quiet_count_;
       interval_ = interval, unsupported_ = 0;
     }
     unsupported_ += supporters == 0;
   }
-  return supporters >= support_ + (noisy_ ? 1 : 0) || e.t < warm_until_;
+  return (quiet_ ? quiet_supporters : supporters) >= support_ + (noisy_ ? 1 : 0) || e.t < warm_until_;
 }
 
 int BackgroundActivityFilter::neighbours_fired_since(int x, int y, TimeUs since) const {

@@ -38,7 +38,7 @@ namespace evms::golden {
 class BackgroundActivityFilter {
  public:
   BackgroundActivityFilter(SensorSize sensor, TimeUs window_us, int support = 1, TimeUs warm_up_us = 0,
-                           std::int64_t noise_count = 0);
+                           std::int64_t noise_count = 0, std::int64_t quiet_count = 0, TimeUs quiet_window_us = 0);
 
   // Records the event and says whether it is supported by a neighbour. Events must come in
   // non-decreasing time order.
@@ -67,6 +67,9 @@ class BackgroundActivityFilter {
   TimeUs interval_ = 0;                 // the current noise interval (time >> kFilterNoiseIntervalLog2)
   std::int64_t unsupported_ = 0;        // events of it that no neighbour supported
   bool noisy_ = false;                  // the previous interval held noise_count_ or more
+  std::int64_t quiet_count_;
+  TimeUs quiet_window_us_;
+  bool quiet_ = false;                  // the previous interval held fewer than quiet_count_
   TimeUs warm_until_ = 0;               // events before this time are kept; set by the first event
   std::size_t stride_;                  // a row of the map: the sensor's width and a border pixel each side
   std::vector<TimeUs> last_fired_;  // per pixel, row-major, with a border of pixels that never fire

@@ -20,6 +20,8 @@
   X(filter_enabled, bool, 1, true, "background-activity filter on")                                                     \
   X(filter_window, std::uint32_t, 32, 78, "filter window, stored time units (2^kTimestampShift us)")                    \
   X(filter_noise_count, std::uint32_t, 24, 0, "unsupported events in 2^15 us that make the next 2^15 us ask one more neighbour; 0: off") \
+  X(filter_quiet_count, std::uint32_t, 24, 0, "unsupported events in 2^15 us below which the next 2^15 us judge by filter_quiet_window; 0: off") \
+  X(filter_quiet_window, std::uint32_t, 32, 0, "filter window after a quiet interval, stored time units (2^kTimestampShift us)") \
   X(filter_warm_up, std::uint32_t, 32, 0, "keep every event of the stream's first this many us (from the first event the filter judges); 0: off") \
   X(packet_size, std::uint16_t, 16, 256, "kept events that close a packet (at most kPacketMax)")                        \
   X(packet_max_span_us, std::uint32_t, 32, 0, "a packet also closes when it would span more than this, us; 0: never")   \

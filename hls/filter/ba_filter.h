@@ -16,6 +16,10 @@
 // is t >> 15 of the 32-bit time, 17 bits, so that the time's wrap is one interval step, as in
 // the RTL (rtl/filter/evms_ba_filter.sv); the count saturates at 2^24 - 1.
 //
+// The quiet window: an interval with fewer than filter_quiet_count unsupported events (counted
+// against filter_window) makes the next one quiet, and there an event is judged by its
+// neighbours within filter_quiet_window instead.
+//
 // The warm-up: every event less than filter_warm_up us after the first event the filter judged
 // is kept, because its neighbours' history is shorter than the window. The difference is taken
 // of the 32-bit times, and the first event at or past the warm-up ends it for good, so that the
@@ -40,6 +44,7 @@ class BackgroundActivityFilter {
     warming_ = false;
     warm_start_ = 0;
     noisy_ = false;
+    quiet_ = false;
     interval_ = 0;
     unsupported_ = 0;
   }
@@ -48,14 +53,16 @@ class BackgroundActivityFilter {
     if (!cfg.filter_enabled) return true;
     if (e.x >= cfg.sensor_width || e.y >= cfg.sensor_height) return false;
     const Stamp now = static_cast<Stamp>(e.t >> S::kTimestampShift);
-    int supporters = 0;
+    int supporters = 0, quiet_supporters = 0;
   neighbours:
     for (int k = 0; k < 9; ++k) {
 #pragma HLS PIPELINE II = 1
       const int nx = e.x + k % 3 - 1, ny = e.y + k / 3 - 1;
       if (k == 4 || nx < 0 || ny < 0 || nx >= cfg.sensor_width || ny >= cfg.sensor_height) continue;
       const Stamp then = stamp_[ny * S::kMaxWidth + nx];
-      if (then != 0 && static_cast<Stamp>(now - then) <= cfg.filter_window) ++supporters;
+      const Stamp age = static_cast<Stamp>(now - then);
+      if (then != 0 && age <= cfg.filter_window) ++supporters;
+      if (then != 0 && age <= cfg.filter_quiet_window) ++quiet_supporters;
     }
     stamp_[e.y * S::kMaxWidth + e.x] = now == 0 ? 1 : now;
   scrub:
@@ -73,14 +80,15 @@ class BackgroundActivityFilter {
       warm = static_cast<std::uint32_t>(e.t - warm_start_) < cfg.filter_warm_up;
       warming_ = warm;
     }
-    if (cfg.filter_noise_count != 0) {
+    if (cfg.filter_noise_count != 0 || cfg.filter_quiet_count != 0) {
       if (interval != interval_) {
-        noisy_ = interval == ((interval_ + 1) & kIntervalMask) && unsupported_ >= cfg.filter_noise_count;
+        noisy_ = cfg.filter_noise_count != 0 && interval == ((interval_ + 1) & kIntervalMask) && unsupported_ >= cfg.filter_noise_count;
+        quiet_ = cfg.filter_quiet_count != 0 && unsupported_ < cfg.filter_quiet_count;
         interval_ = interval, unsupported_ = 0;
       }
       if (supporters == 0 && unsupported_ < kCountMax) ++unsupported_;
     }
-    return supporters >= cfg.filter_support + (noisy_ ? 1 : 0) || warm;
+    return (quiet_ ? quiet_supporters : supporters) >= cfg.filter_support + (noisy_ ? 1 : 0) || warm;
   }
 
  private:
@@ -91,7 +99,7 @@ class BackgroundActivityFilter {
   static constexpr int kNoiseIntervalLog2 = 15;  // types/params.h: kFilterNoiseIntervalLog2
   static constexpr std::uint32_t kIntervalMask = (std::uint32_t{1} << (32 - kNoiseIntervalLog2)) - 1;
   static constexpr std::uint32_t kCountMax = (std::uint32_t{1} << 24) - 1;
-  bool started_ = false, warming_ = false, noisy_ = false;
+  bool started_ = false, warming_ = false, noisy_ = false, quiet_ = false;
   std::uint32_t interval_ = 0, unsupported_ = 0, warm_start_ = 0;
   Stamp stamp_[S::kMaxWidth * S::kMaxHeight] = {};
   int scrub_ = 0;

@@ -170,6 +170,11 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
        "the core's warm balls reach at most " + std::to_string(S::kReachMax) + " bandwidths (--warm-max-bandwidth)");
   need(p.filter_support <= 8, "--filter-support is at most 8");
   need(filter_noise_count(p, sensor) < (std::int64_t{1} << 24), "--filter-noise-hz is too large for the core's 24-bit count");
+  need(filter_quiet_count(p, sensor) < (std::int64_t{1} << 24), "--filter-quiet-hz is too large for the core's 24-bit count");
+  // hls/filter/ba_filter.h clears a pixel's time once it is half the timestamps' wrap old.
+  constexpr TimeUs kFilterWindowMax = (TimeUs{1} << (S::kTimestampBits - 1 + S::kTimestampShift)) - 1;
+  need(p.filter_window_us <= kFilterWindowMax && p.filter_quiet_window_us <= kFilterWindowMax,
+       "the core's filter windows reach at most " + std::to_string(kFilterWindowMax) + " us (--filter-window-us, --filter-quiet-window-us)");
   const bool seeded = p.seeding != Seeding::kEvery;
   // One phi unit in normalized feature space: h for the flat ball (|dphi|^2 < 1), h sqrt(2)
   // for the Gaussian (exp(-|dphi|^2)).
@@ -187,6 +192,8 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.filter_window = static_cast<std::uint32_t>(p.filter_window_us >> S::kTimestampShift);
   c.filter_support = static_cast<std::uint8_t>(p.filter_support);
   c.filter_noise_count = static_cast<std::uint32_t>(filter_noise_count(p, sensor));
+  c.filter_quiet_count = static_cast<std::uint32_t>(filter_quiet_count(p, sensor));
+  c.filter_quiet_window = static_cast<std::uint32_t>(p.filter_quiet_window_us >> S::kTimestampShift);
   c.filter_warm_up = static_cast<std::uint32_t>(p.filter_warm_up_us);  // at most 1e9 (types/params.cpp)
   c.packet_size = static_cast<std::uint16_t>(p.packet_size);
   c.packet_max_span_us = static_cast<std::uint32_t>(std::min<TimeUs>(p.packet_max_span_us, 0xFFFFFFFF));

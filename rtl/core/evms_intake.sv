@@ -27,6 +27,8 @@ module evms_intake #(
   input  logic [15:0] cfg_sensor_height,
   input  logic [31:0] cfg_filter_window,
   input  logic [23:0] cfg_filter_noise_count,
+  input  logic [23:0] cfg_filter_quiet_count,
+  input  logic [31:0] cfg_filter_quiet_window,
   input  logic [31:0] cfg_filter_warm_up,
   input  logic [63:0] cfg_climb_scale_x,
   input  logic [63:0] cfg_climb_scale_y,
@@ -67,7 +69,8 @@ module evms_intake #(
   logic f_ready, f_start, f_done, f_kept;
   evms_ba_filter #(.MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift)) u_filter (
     .clk(clk), .rst_n(rst_n), .cfg_enabled(cfg_filter_enabled), .cfg_width(cfg_sensor_width), .cfg_height(cfg_sensor_height),
-    .cfg_window(cfg_filter_window), .cfg_noise_count(cfg_filter_noise_count), .cfg_warm_up(cfg_filter_warm_up), .ready(f_ready), .start(f_start), .t(in_t), .x(in_x), .y(in_y), .done(f_done), .kept(f_kept));
+    .cfg_window(cfg_filter_window), .cfg_noise_count(cfg_filter_noise_count), .cfg_quiet_count(cfg_filter_quiet_count),
+    .cfg_quiet_window(cfg_filter_quiet_window), .cfg_warm_up(cfg_filter_warm_up), .ready(f_ready), .start(f_start), .t(in_t), .x(in_x), .y(in_y), .done(f_done), .kept(f_kept));
 
   assign in_ready = f_ready && !busy_q && 32'(taken_q) < QueueDepth;
   wire take = in_valid && in_ready;

@@ -8,6 +8,9 @@
 //   - the noise check: the events no neighbour supported are counted in intervals of 2^15 us
 //     (t[31:15]); an interval with cfg_noise_count or more of them makes the next one noisy,
 //     and there an event needs two supporting neighbours instead of one (cfg_noise_count 0: off);
+//   - the quiet window: an interval with fewer than cfg_quiet_count of them (counted against
+//     cfg_window) makes the next one quiet, and there an event's supporters are its neighbours
+//     within cfg_quiet_window (cfg_quiet_count 0: off);
 //   - the warm-up: an event less than cfg_warm_up us after the first event judged is kept
 //     (cfg_warm_up 0: off); the first event at or past it ends the warm-up for good.
 // After reset the RAM is cleared, one word a cycle; ready stays low until then.
@@ -24,6 +27,8 @@ module evms_ba_filter #(
   input  logic [15:0] cfg_height,
   input  logic [31:0] cfg_window,
   input  logic [23:0] cfg_noise_count,
+  input  logic [23:0] cfg_quiet_count,
+  input  logic [31:0] cfg_quiet_window,
   input  logic [31:0] cfg_warm_up,
   output logic        ready,
   input  logic        start,
@@ -55,11 +60,12 @@ module evms_ba_filter #(
   logic [3:0]    k;            // neighbour being addressed (0..8)
   logic [1:0]    pending_cmp;  // [0]: address registered last cycle; [1]: rdata holds that neighbour
   logic [3:0]    supporters;   // neighbours that fired within the window, 0..8
+  logic [3:0]    quiet_supporters;  // neighbours that fired within the quiet window, 0..8
   // The noise check: the current interval, its unsupported events (saturating), and whether
   // the previous interval was noisy.
   localparam int IntervalBits = 17;
   localparam logic [23:0] CountMax = '1;
-  logic                    started_q, noisy_q;
+  logic                    started_q, noisy_q, quiet_q;
   // The warm-up: the first judged event's time, whether the warm-up still runs, and whether it
   // keeps the event being judged.
   logic [31:0]             warm_start_q;
@@ -69,6 +75,7 @@ module evms_ba_filter #(
   logic [23:0]             unsupported_q;
   wire  [IntervalBits-1:0] interval = t[31:15];
   logic [TimestampBits-1:0] now;
+  wire  [31:0]              age = 32'(TimestampBits'(now - rdata));  // of the neighbour rdata holds
   logic [15:0]   ex, ey;
   logic          scrub_second;
 
@@ -98,8 +105,10 @@ module evms_ba_filter #(
       k <= '0;
       pending_cmp <= '0;
       supporters <= '0;
+      quiet_supporters <= '0;
       started_q <= 1'b0;
       noisy_q <= 1'b0;
+      quiet_q <= 1'b0;
       warm_start_q <= '0;
       warming_q <= 1'b0;
       warm_keep_q <= 1'b0;
@@ -134,6 +143,7 @@ module evms_ba_filter #(
             k <= '0;
             pending_cmp <= '0;
             supporters <= '0;
+            quiet_supporters <= '0;
             state <= S_READ;
             // A new interval latches whether the one before it was noisy.
             if (!started_q) begin
@@ -143,8 +153,9 @@ module evms_ba_filter #(
               warming_q <= cfg_warm_up != 0;
               warm_keep_q <= cfg_warm_up != 0;
             end else begin
-              if (cfg_noise_count != 0 && interval != interval_q) begin
-                noisy_q <= interval == interval_q + 1'b1 && unsupported_q >= cfg_noise_count;
+              if ((cfg_noise_count != 0 || cfg_quiet_count != 0) && interval != interval_q) begin
+                noisy_q <= cfg_noise_count != 0 && interval == interval_q + 1'b1 && unsupported_q >= cfg_noise_count;
+                quiet_q <= cfg_quiet_count != 0 && unsupported_q < cfg_quiet_count;
                 interval_q <= interval;
                 unsupported_q <= '0;
               end
@@ -155,7 +166,8 @@ module evms_ba_filter #(
         end
         S_READ: begin
           // Address neighbour k (when inside); the RAM answers two cycles later.
-          if (pending_cmp[1] && rdata != 0 && 32'(TimestampBits'(now - rdata)) <= cfg_window) supporters <= supporters + 1'b1;
+          if (pending_cmp[1] && rdata != 0 && age <= cfg_window) supporters <= supporters + 1'b1;
+          if (pending_cmp[1] && rdata != 0 && age <= cfg_quiet_window) quiet_supporters <= quiet_supporters + 1'b1;
           pending_cmp <= {pending_cmp[0], 1'b0};
           if (k <= 8) begin
             if (n_inside) begin
@@ -189,8 +201,8 @@ module evms_ba_filter #(
           state <= scrub_second ? S_DONE : S_SCRUB_READ;
         end
         S_DONE: begin
-          kept <= supporters >= (noisy_q ? 4'd2 : 4'd1) || warm_keep_q;
-          if (cfg_noise_count != 0 && supporters == 0 && unsupported_q != CountMax) unsupported_q <= unsupported_q + 1'b1;
+          kept <= (quiet_q ? quiet_supporters : supporters) >= (noisy_q ? 4'd2 : 4'd1) || warm_keep_q;
+          if ((cfg_noise_count != 0 || cfg_quiet_count != 0) && supporters == 0 && unsupported_q != CountMax) unsupported_q <= unsupported_q + 1'b1;
           done <= 1'b1;
           state <= S_IDLE;
         end

@@ -5,6 +5,8 @@
 .CfgFilterEnabled(CfgFilterEnabled),
 .CfgFilterWindow(CfgFilterWindow),
 .CfgFilterNoiseCount(CfgFilterNoiseCount),
+.CfgFilterQuietCount(CfgFilterQuietCount),
+.CfgFilterQuietWindow(CfgFilterQuietWindow),
 .CfgFilterWarmUp(CfgFilterWarmUp),
 .CfgPacketSize(CfgPacketSize),
 .CfgPacketMaxSpanUs(CfgPacketMaxSpanUs),

@@ -5,6 +5,8 @@
 .cfg_filter_enabled(CfgFilterEnabled),
 .cfg_filter_window(CfgFilterWindow),
 .cfg_filter_noise_count(CfgFilterNoiseCount),
+.cfg_filter_quiet_count(CfgFilterQuietCount),
+.cfg_filter_quiet_window(CfgFilterQuietWindow),
 .cfg_filter_warm_up(CfgFilterWarmUp),
 .cfg_packet_size(CfgPacketSize),
 .cfg_packet_max_span_us(CfgPacketMaxSpanUs),

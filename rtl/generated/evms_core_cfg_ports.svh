@@ -5,6 +5,8 @@ input  logic [15:0] cfg_sensor_height,  // sensor height, px
 input  logic cfg_filter_enabled,  // background-activity filter on
 input  logic [31:0] cfg_filter_window,  // filter window, stored time units (2^kTimestampShift us)
 input  logic [23:0] cfg_filter_noise_count,  // unsupported events in 2^15 us that make the next 2^15 us ask one more neighbour; 0: off
+input  logic [23:0] cfg_filter_quiet_count,  // unsupported events in 2^15 us below which the next 2^15 us judge by filter_quiet_window; 0: off
+input  logic [31:0] cfg_filter_quiet_window,  // filter window after a quiet interval, stored time units (2^kTimestampShift us)
 input  logic [31:0] cfg_filter_warm_up,  // keep every event of the stream's first this many us (from the first event the filter judges); 0: off
 input  logic [15:0] cfg_packet_size,  // kept events that close a packet (at most kPacketMax)
 input  logic [31:0] cfg_packet_max_span_us,  // a packet also closes when it would span more than this, us; 0: never

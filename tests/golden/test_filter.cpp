@@ -88,6 +88,26 @@ TEST(BackgroundActivityFilter, AnIntervalAfterAnEmptyOneIsNotNoisy) {
   EXPECT_TRUE(f.accept({2 * kInterval + 1, 101, 100, 1}));  // one neighbour is enough
 }
 
+// With a quiet count of 2 and a quiet window of 10 ms beside the 1 ms window: an interval that
+// held fewer than 2 events no neighbour supported within 1 ms makes the next one judge by 10 ms;
+// an interval that held 2 or more does not. The count is against the 1 ms window, so the long
+// window cannot hide the noise that would end it.
+TEST(BackgroundActivityFilter, AQuietIntervalMakesTheNextJudgeByTheQuietWindow) {
+  constexpr TimeUs kInterval = TimeUs{1} << kFilterNoiseIntervalLog2;
+  BackgroundActivityFilter f(kSensor, 1000, 1, 0, /*noise_count=*/0, /*quiet_count=*/2, /*quiet_window_us=*/10000);
+  EXPECT_FALSE(f.accept({100, 20, 20, 1}));                       // interval 0: one unsupported event
+  EXPECT_FALSE(f.accept({kInterval + 0, 100, 100, 1}));          // interval 0 is not judged quiet until it ends
+  EXPECT_TRUE(f.accept({kInterval + 5000, 101, 100, 1}));        // 5 ms after its neighbour: within the quiet window
+  // Interval 1 now holds 2 events unsupported within 1 ms (the second kept by the 10 ms), and a third:
+  EXPECT_FALSE(f.accept({2 * kInterval - 5000, 60, 60, 1}));
+  EXPECT_FALSE(f.accept({2 * kInterval + 0, 61, 60, 1}));        // so interval 2 is not quiet: 5 ms is too old again
+  // Without the quiet count, 5 ms is too old for the 1 ms window.
+  BackgroundActivityFilter plain(kSensor, 1000);
+  plain.accept({100, 20, 20, 1});
+  plain.accept({kInterval + 0, 100, 100, 1});
+  EXPECT_FALSE(plain.accept({kInterval + 5000, 101, 100, 1}));
+}
+
 TEST(BackgroundActivityFilter, ZeroWindowKeepsEverything) {
   BackgroundActivityFilter f(kSensor, 0);
   EXPECT_TRUE(f.accept({0, 5, 5, 1}));

@@ -1,6 +1,6 @@
 // The fixed-point background-activity filter (hls/filter/ba_filter.h) against golden's
 // (golden/filter/background_activity_filter.h): with 32-bit stamps in microseconds (HostShape)
-// it keeps exactly the events golden keeps, warm-up and noise check included; and its warm-up
+// it keeps exactly the events golden keeps, warm-up, noise check and quiet window included; and its warm-up
 // counts microseconds on every Shape, from the stream's first event, across the 32-bit time's
 // wrap, and never again after it ended.
 #include <gtest/gtest.h>
@@ -47,32 +47,39 @@ std::vector<Event> random_stream(std::uint32_t seed, TimeUs t0, SensorSize senso
 TEST(BaFilterAgreesWithGolden, EveryDecisionOnRandomStreams) {
   constexpr SensorSize kSensor{240, 180};
   auto fixed = std::make_unique<hls::BackgroundActivityFilter<hls::HostShape>>();
-  int compared = 0, kept_by_warm_up_only = 0;
+  constexpr TimeUs kQuietWindowUs = 40000;
+  int compared = 0, kept_by_warm_up_only = 0, kept_by_quiet_window_only = 0;
   std::uint32_t seed = 1;
   for (const TimeUs warm_up : {0, 1000, 10000, 60000}) {
     for (const std::int64_t noise_count : {0, 3, 40}) {
-      for (const TimeUs t0 : {TimeUs{1000}, TimeUs{5000000}, TimeUs{123456789}}) {
-        SCOPED_TRACE(testing::Message() << "seed " << seed << ", warm-up " << warm_up << " us, noise count " << noise_count << ", start "
-                                        << t0 << " us");
-        golden::BackgroundActivityFilter reference(kSensor, 10000, 1, warm_up, noise_count);
-        golden::BackgroundActivityFilter no_warm_up(kSensor, 10000, 1, 0, noise_count);
-        hls::Config cfg;
-        cfg.sensor_width = kSensor.width, cfg.sensor_height = kSensor.height;
-        cfg.filter_enabled = true, cfg.filter_window = 10000, cfg.filter_support = 1;
-        cfg.filter_noise_count = static_cast<std::uint32_t>(noise_count), cfg.filter_warm_up = static_cast<std::uint32_t>(warm_up);
-        fixed->reset();
-        for (const Event& e : random_stream(seed, t0, kSensor, 4000)) {
-          const bool expected = reference.accept(e);
-          kept_by_warm_up_only += expected && !no_warm_up.accept(e);
-          ASSERT_EQ(fixed->accept({static_cast<std::uint32_t>(e.t), e.x, e.y, e.p, false}, cfg), expected) << "event at " << e.t << " us";
-          ++compared;
+      for (const std::int64_t quiet_count : {0, 60, 1000}) {  // 1000: every interval of the stream is quiet
+        for (const TimeUs t0 : {TimeUs{1000}, TimeUs{5000000}, TimeUs{123456789}}) {
+          SCOPED_TRACE(testing::Message() << "seed " << seed << ", warm-up " << warm_up << " us, noise count " << noise_count
+                                          << ", quiet count " << quiet_count << ", start " << t0 << " us");
+          golden::BackgroundActivityFilter reference(kSensor, 10000, 1, warm_up, noise_count, quiet_count, kQuietWindowUs);
+          golden::BackgroundActivityFilter no_warm_up(kSensor, 10000, 1, 0, noise_count, quiet_count, kQuietWindowUs);
+          golden::BackgroundActivityFilter never_quiet(kSensor, 10000, 1, warm_up, noise_count);
+          hls::Config cfg;
+          cfg.sensor_width = kSensor.width, cfg.sensor_height = kSensor.height;
+          cfg.filter_enabled = true, cfg.filter_window = 10000, cfg.filter_support = 1;
+          cfg.filter_noise_count = static_cast<std::uint32_t>(noise_count), cfg.filter_warm_up = static_cast<std::uint32_t>(warm_up);
+          cfg.filter_quiet_count = static_cast<std::uint32_t>(quiet_count), cfg.filter_quiet_window = kQuietWindowUs;
+          fixed->reset();
+          for (const Event& e : random_stream(seed, t0, kSensor, 4000)) {
+            const bool expected = reference.accept(e);
+            kept_by_warm_up_only += expected && !no_warm_up.accept(e);
+            kept_by_quiet_window_only += expected && !never_quiet.accept(e);
+            ASSERT_EQ(fixed->accept({static_cast<std::uint32_t>(e.t), e.x, e.y, e.p, false}, cfg), expected) << "event at " << e.t << " us";
+            ++compared;
+          }
+          ++seed;
         }
-        ++seed;
       }
     }
   }
-  EXPECT_EQ(compared, 4 * 3 * 3 * 4000);
+  EXPECT_EQ(compared, 4 * 3 * 3 * 3 * 4000);
   EXPECT_GT(kept_by_warm_up_only, 100) << "the warm-up kept nothing the window would not have";
+  EXPECT_GT(kept_by_quiet_window_only, 1000) << "the quiet window kept nothing the window would not have";
 }
 
 // Shape S's whole sensor, a window of 2 stored time units (at most 256 us) and the warm-up.

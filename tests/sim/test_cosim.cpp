@@ -246,8 +246,9 @@ TEST(Cosim, ParameterCorners) {
 }
 
 // A 128x128 scene under camera translation with this much background activity a pixel.
-std::vector<Event> translation_128(double duration_s, double noise_hz, std::uint64_t seed) {
+std::vector<Event> translation_128(double duration_s, double noise_hz, std::uint64_t seed, double speed = 1.0) {
   gen::SceneConfig c;
+  c.speed = speed;
   c.motion = gen::Motion::kTranslation;
   c.duration_s = duration_s;
   c.width = 128, c.height = 128;
@@ -285,6 +286,25 @@ TEST(Cosim, NoisySensorMakesTheFilterAskTwoNeighbours) {
   always.filter_noise_hz = 1e-6;  // a count of 1
   ASSERT_EQ(backend::core_config<hls::RtlHostShape>(always, {128, 128}).filter_noise_count, 1u);
   expect_equal<Vcore_host, hls::RtlHostShape>("noisy_host_count1", events, {128, 128}, 47, 0.5, always);
+}
+
+// A slow scene (a quarter of the speed) on a quiet sensor (0.05 Hz a pixel of background
+// activity) makes the filter judge the intervals after quiet ones by its 100 ms quiet window
+// (hls/filter/ba_filter.h): the C++ core keeps events it would drop with the quiet window off, and
+// the RTL's words equal the C++ core's on the iCE40 and host builds, also when the 32-bit time
+// wraps 50 ms into the stream.
+TEST(Cosim, AQuietSensorsFilterJudgesByTheQuietWindow) {
+  const std::vector<Event> events = translation_128(0.4, 0.05, 10, 0.25);
+  Params quiet = backend::build_default_params<hls::Ice40Shape>(), plain = quiet;
+  plain.filter_quiet_hz = 0;
+  ASSERT_GT(backend::core_config<hls::Ice40Shape>(quiet, {128, 128}).filter_quiet_count, 0u);
+  const auto with_quiet = ice40_labels(events, quiet), without = ice40_labels(events, plain);
+  ASSERT_EQ(with_quiet.size(), without.size());
+  size_t kept_only_quiet = 0;
+  for (size_t i = 0; i < without.size(); ++i) kept_only_quiet += with_quiet[i] != hls::kLabelNoise && without[i] == hls::kLabelNoise;
+  EXPECT_GT(kept_only_quiet, 100u) << "the quiet window kept no event the window dropped";
+  expect_equal<Vcore_ice40, hls::Ice40Shape>("quiet_ice40", events, {128, 128}, 52, 0.6, quiet);
+  expect_equal<Vcore_host, hls::RtlHostShape>("quiet_host_wrap", events, {128, 128}, 53, 0.7, seeded_method(), 0xFFFFFFFFu - 50000u);
 }
 
 // The filter's warm-up keeps every event of the stream's first 30 ms here (hls/filter/ba_filter.h):
