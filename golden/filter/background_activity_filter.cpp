@@ -28,7 +28,6 @@ bool BackgroundActivityFilter::accept(const Event& e) {
            (below[0] >= since) + (below[1] >= since) + (below[2] >= since);
   };
   const int supporters = fired_since(e.t - window_us_);
-  const int quiet_supporters = quiet_count_ > 0 ? fired_since(e.t - quiet_window_us_) : supporters;
   last_fired(e.x, e.y) = e.t;
   const TimeUs interval = e.t >> kFilterNoiseIntervalLog2;
   if (!started_) {
@@ -44,7 +43,8 @@ bool BackgroundActivityFilter::accept(const Event& e) {
     }
     unsupported_ += supporters == 0;
   }
-  return (quiet_ ? quiet_supporters : supporters) >= support_ + (noisy_ ? 1 : 0) || e.t < warm_until_;
+  // The own pixel, written above, is not among the neighbours fired_since reads.
+  return (quiet_ ? fired_since(e.t - quiet_window_us_) : supporters) >= support_ + (noisy_ ? 1 : 0) || e.t < warm_until_;
 }
 
 int BackgroundActivityFilter::neighbours_fired_since(int x, int y, TimeUs since) const {
