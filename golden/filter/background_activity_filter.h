@@ -16,6 +16,12 @@
 // slow objects, but at a noisy sensor's rate it lets background activity support itself; the
 // count tells the two apart. An interval that follows an empty one is never noisy.
 //
+// With quiet_count > 0 the same count, always taken against `window`, also marks quiet
+// intervals: an interval that held fewer than quiet_count makes the next one quiet, and in a
+// quiet interval an event's supporters are its neighbours that fired within quiet_window_us. The
+// edges of slow objects fire their neighbours far apart, and on a quiet sensor a long window lets
+// little background activity through (docs/sweep.md, "The filter's quiet window").
+//
 // With warm_up_us > 0, every event of the stream's first warm_up_us is kept too: its neighbours'
 // history is shorter than the window, so an edge pixel whose neighbours have not fired yet
 // cannot be told from noise. A short, dense recording keeps its first edges, and the scene
