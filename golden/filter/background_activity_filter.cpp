@@ -35,14 +35,12 @@ bool BackgroundActivityFilter::accept(const Event& e) {
     warm_until_ = e.t + warm_up_us_;
     interval_ = interval;
   }
-  if (noise_count_ > 0 || quiet_count_ > 0) {
-    if (interval != interval_) {
-      noisy_ = noise_count_ > 0 && interval == interval_ + 1 && unsupported_ >= noise_count_;
-      quiet_ = quiet_count_ > 0 && unsupported_ < quiet_count_;
-      interval_ = interval, unsupported_ = 0;
-    }
-    unsupported_ += supporters == 0;
+  if (interval != interval_) {
+    noisy_ = noise_count_ > 0 && interval == interval_ + 1 && unsupported_ >= noise_count_;
+    quiet_ = quiet_count_ > 0 && unsupported_ < quiet_count_;
+    interval_ = interval, unsupported_ = 0;
   }
+  unsupported_ += supporters == 0;
   // The own pixel, written above, is not among the neighbours fired_since reads.
   return (quiet_ ? fired_since(e.t - quiet_window_us_) : supporters) >= support_ + (noisy_ ? 1 : 0) || e.t < warm_until_;
 }

@@ -80,14 +80,12 @@ class BackgroundActivityFilter {
       warm = static_cast<std::uint32_t>(e.t - warm_start_) < cfg.filter_warm_up;
       warming_ = warm;
     }
-    if (cfg.filter_noise_count != 0 || cfg.filter_quiet_count != 0) {
-      if (interval != interval_) {
-        noisy_ = cfg.filter_noise_count != 0 && interval == ((interval_ + 1) & kIntervalMask) && unsupported_ >= cfg.filter_noise_count;
-        quiet_ = cfg.filter_quiet_count != 0 && unsupported_ < cfg.filter_quiet_count;
-        interval_ = interval, unsupported_ = 0;
-      }
-      if (supporters == 0 && unsupported_ < kCountMax) ++unsupported_;
+    if (interval != interval_) {
+      noisy_ = cfg.filter_noise_count != 0 && interval == ((interval_ + 1) & kIntervalMask) && unsupported_ >= cfg.filter_noise_count;
+      quiet_ = cfg.filter_quiet_count != 0 && unsupported_ < cfg.filter_quiet_count;
+      interval_ = interval, unsupported_ = 0;
     }
+    if (supporters == 0 && unsupported_ < kCountMax) ++unsupported_;
     return (quiet_ ? quiet_supporters : supporters) >= cfg.filter_support + (noisy_ ? 1 : 0) || warm;
   }
 

@@ -153,7 +153,7 @@ module evms_ba_filter #(
               warming_q <= cfg_warm_up != 0;
               warm_keep_q <= cfg_warm_up != 0;
             end else begin
-              if ((cfg_noise_count != 0 || cfg_quiet_count != 0) && interval != interval_q) begin
+              if (interval != interval_q) begin
                 noisy_q <= cfg_noise_count != 0 && interval == interval_q + 1'b1 && unsupported_q >= cfg_noise_count;
                 quiet_q <= cfg_quiet_count != 0 && unsupported_q < cfg_quiet_count;
                 interval_q <= interval;
@@ -202,7 +202,7 @@ module evms_ba_filter #(
         end
         S_DONE: begin
           kept <= (quiet_q ? quiet_supporters : supporters) >= (noisy_q ? 4'd2 : 4'd1) || warm_keep_q;
-          if ((cfg_noise_count != 0 || cfg_quiet_count != 0) && supporters == 0 && unsupported_q != CountMax) unsupported_q <= unsupported_q + 1'b1;
+          if (supporters == 0 && unsupported_q != CountMax) unsupported_q <= unsupported_q + 1'b1;
           done <= 1'b1;
           state <= S_IDLE;
         end
