@@ -40,9 +40,10 @@ ClusteringScores score_chunks(const Scene& scene, std::span<const std::int32_t> 
   return average.mean();
 }
 
-TrackingReport scene_tracking(std::span<const TrackUpdate> updates, const Scene& scene, double tau_px) {
+TrackingReport scene_tracking(std::span<const TrackUpdate> updates, const Scene& scene, std::span<const std::int32_t> labels,
+                              double tau_px) {
   return tracking_report(updates, scene.centres, static_cast<int>(scene.object_names.size()), tau_px, 15.0, 20000,
-                         {scene.events, scene.truth});
+                         {scene.events, scene.truth, labels});
 }
 
 Evaluation evaluate(const Scene& scene, const Params& params, const std::string& backend, Chunking chunking, double tau_px) {
@@ -50,7 +51,7 @@ Evaluation evaluate(const Scene& scene, const Params& params, const std::string&
   e.run = run_backend(backend, params, scene.sensor, scene.events);
   e.scores = score_chunks(scene, e.run.labels, chunking, &e.chunks);
   e.scores_clear = score_chunks(scene, e.run.labels, chunking, &e.chunks_clear, true);
-  e.tracking = scene_tracking(e.run.tracks, scene, tau_px);
+  e.tracking = scene_tracking(e.run.tracks, scene, e.run.labels, tau_px);
   const double span = scene.events.size() > 1 ? static_cast<double>(scene.events.back().t - scene.events.front().t) * 1e-6 : 0;
   if (span > 0) {
     e.events_per_s_sensor = static_cast<double>(scene.events.size()) / span;

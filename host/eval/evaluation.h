@@ -32,8 +32,10 @@ ClusteringScores score_chunks(const Scene& scene, std::span<const std::int32_t> 
 std::vector<bool> overlap_by_ms(const Scene& scene);
 
 // A generated scene's tracking against both ground truths: its objects' true centres and the
-// centres of their labelled events (tracking_metrics.h).
-TrackingReport scene_tracking(std::span<const TrackUpdate> updates, const Scene& scene, double tau_px = 2.5);
+// centres of their labelled events, each track owned by the object whose events it labelled
+// most (`labels`, the run's; tracking_metrics.h).
+TrackingReport scene_tracking(std::span<const TrackUpdate> updates, const Scene& scene, std::span<const std::int32_t> labels,
+                              double tau_px = 2.5);
 
 Evaluation evaluate(const Scene& scene, const Params& params, const std::string& backend, Chunking chunking,
                     double tau_px = 2.5);

@@ -40,7 +40,7 @@ SceneResult run_member(const FamilyScene& member, const Method& method, const st
   for (const TrackUpdate& u : run.tracks) {
     if (u.state == TrackState::kConfirmed) confirmed.push_back(u);
   }
-  r.tracking = scene_tracking(confirmed, scene);
+  r.tracking = scene_tracking(confirmed, scene, run.labels);
   r.identity = identity_scores(scene.events, scene.truth, run.labels);
   r.events = static_cast<std::int64_t>(scene.events.size());
   r.noise_share = r.events ? static_cast<double>(std::count(run.labels.begin(), run.labels.end(), kNoiseLabel)) / static_cast<double>(r.events) : 0;

@@ -190,7 +190,20 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   const CentreLookup lookup(centres, objects);
   const EventCentreLookup event_lookup(labelled, objects, event_window_us);
   std::map<std::int32_t, std::vector<int>> votes;  // track -> votes per object
+  const bool by_labels = !labelled.predicted.empty() && labelled.predicted.size() == labelled.truth.size();
+  std::map<std::int32_t, std::int64_t> noise_votes;  // track -> its events that were noise
+  if (by_labels) {
+    for (const TrackUpdate& u : updates) votes[u.id].resize(static_cast<size_t>(objects), 0);
+    for (size_t i = 0; i < labelled.truth.size(); ++i) {
+      const auto v = votes.find(labelled.predicted[i]);
+      if (v == votes.end()) continue;
+      const std::int32_t o = labelled.truth[i];
+      if (o >= 0 && o < objects) ++v->second[static_cast<size_t>(o)];
+      else ++noise_votes[labelled.predicted[i]];
+    }
+  }
   for (const TrackUpdate& u : updates) {
+    if (by_labels) break;
     int best = -1;
     double best_d = association_radius_px;
     for (int o = 0; o < objects; ++o) {
@@ -206,8 +219,35 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   std::map<std::int32_t, int> owner;
   for (const auto& [id, v] : votes) {
     const auto it = std::max_element(v.begin(), v.end());
-    owner[id] = (it == v.end() || *it == 0) ? -1 : static_cast<int>(it - v.begin());
+    owner[id] = (it == v.end() || *it == 0 || *it < noise_votes[id]) ? -1 : static_cast<int>(it - v.begin());
   }
+
+  // With the run's labels, each update belongs to the object whose events its track labelled
+  // in the window around it (an estimate is measured from those events), or, when the track
+  // labelled none there, to the track's owner.
+  std::unordered_map<std::int32_t, std::vector<size_t>> labelled_by;  // track -> its events, in time order
+  if (by_labels) {
+    for (size_t i = 0; i < labelled.predicted.size(); ++i) {
+      if (votes.count(labelled.predicted[i])) labelled_by[labelled.predicted[i]].push_back(i);
+    }
+  }
+  const auto update_owner = [&](const TrackUpdate& u) {
+    const int whole = owner[u.id];
+    if (!by_labels) return whole;
+    const std::vector<size_t>& mine = labelled_by[u.id];
+    const auto time_of = [&](size_t i) { return labelled.events[i].t; };
+    auto it = std::upper_bound(mine.begin(), mine.end(), u.t - event_window_us / 2, [&](TimeUs t, size_t i) { return t < time_of(i); });
+    std::vector<std::int64_t> count(static_cast<size_t>(objects), 0);
+    std::int64_t noise = 0, any = 0;
+    for (; it != mine.end() && time_of(*it) <= u.t + event_window_us / 2; ++it, ++any) {
+      const std::int32_t o = labelled.truth[*it];
+      if (o >= 0 && o < objects) ++count[static_cast<size_t>(o)];
+      else ++noise;
+    }
+    if (any == 0) return whole;
+    const auto best = std::max_element(count.begin(), count.end());
+    return *best == 0 || *best < noise ? -1 : static_cast<int>(best - count.begin());
+  };
 
   TrackingReport report;
   std::vector<Accumulator> kalman(static_cast<size_t>(objects)), raw(static_cast<size_t>(objects)),
@@ -216,7 +256,7 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   std::vector<Accumulator> velocity(static_cast<size_t>(objects));
   std::vector<std::vector<TimeUs>> update_times(static_cast<size_t>(objects));
   for (const TrackUpdate& u : updates) {
-    const int o = owner[u.id];
+    const int o = update_owner(u);
     if (o < 0) {
       ++report.spurious_updates;
       continue;

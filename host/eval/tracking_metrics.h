@@ -9,14 +9,26 @@
 // explains its rectangle and hexagon by this); the first includes that offset, the second
 // measures what clustering and the Kalman filter add to it.
 //
-// Association of tracks to objects: at every update of a track, the object whose true centre
-// (interpolated between the millisecond samples) is nearest votes for it, if it is within
-// `association_radius_px`. A track belongs to the object with most votes (ties: the lower
-// object index); tracks without a vote belong to none and are counted as spurious. An object
-// may own several tracks in turn (after it left the view, say).
+// Association of estimates to objects:
+//  - With the run's labels (`LabelledEvents::predicted`), each update is an estimate of the
+//    object whose events its track labelled most in the `event_window_us` around it (ties: the
+//    lower object index), or of none (spurious) when more of those events were noise than any
+//    one object's. Where the track labelled no event in that window, the update goes with the
+//    track's owner: the object whose events it labelled most over its life. An estimate is
+//    scored against what it was measured from: a cluster that merged two objects is an error
+//    of the object most of its events came from, a track that followed one object and then
+//    another (an identity switch, which IDF1 counts) is scored on each in turn, and an object
+//    whose outline reaches past the sensor's edge has no true centre to score its track
+//    against, however near a small neighbour's centre it stands.
+//  - Without them, at every update of a track the object whose true centre (interpolated
+//    between the millisecond samples) is nearest votes for it, if it is within
+//    `association_radius_px`. A track belongs to the object with most votes (ties: the lower
+//    object index) and each of its updates is an estimate of that object; tracks without a vote
+//    belong to none and are counted as spurious.
+// An object may own several tracks in turn (after it left the view, say).
 //
-// For each object, every update of its tracks at a time when its true centre is known is one
-// estimate, whose error is the distance to that centre. Reported side by side for the
+// For each object, every estimate of it at a time when its true centre is known counts, its
+// error the distance to that centre. Reported side by side for the
 // Kalman-filtered estimate and the raw cluster centroid of the same update, and (when the
 // events are given) against the labelled events' centre, beside the labelled events' centre's
 // own distance from the true centre at the same estimates. Coverage is the
@@ -94,10 +106,13 @@ struct TrackingReport {
 };
 
 // The events with their true labels (object index or -1), for the paper's ground truth; empty
-// spans leave the *_events statistics empty.
+// spans leave the *_events statistics empty. `predicted`, the run's labels of the same events
+// (track ID or -1), makes each estimate's object the one its track's events came from; empty,
+// the nearest true centre decides.
 struct LabelledEvents {
   std::span<const Event> events;
   std::span<const std::int32_t> truth;
+  std::span<const std::int32_t> predicted = {};
 };
 
 inline constexpr TimeUs kEventCentreWindowUs = 10000;  // the scoring chunk (family_eval.h)

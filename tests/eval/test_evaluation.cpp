@@ -95,6 +95,78 @@ TEST(TrackingMetrics, ErrorsWithinTauAndAssociation) {
   EXPECT_NEAR(r.all_velocity.mean, 15.0, 1e-6);
 }
 
+// With the run's labels, a track belongs to the object whose events it labelled. Object 0 is a
+// large shape whose outline reaches past the sensor's edge, so it has no true centre; object 1
+// is a small shape 10 px from where object 0's track stands. By nearest centre, object 0's track
+// would be scored against object 1's centre; by its events it is object 0's, which has no centre
+// to score it against, while track 2 (object 1's) is, and track 3, mostly noise, is spurious.
+TEST(TrackingMetrics, ATrackBelongsToTheObjectWhoseEventsItLabelled) {
+  std::vector<gen::TruthSample> centres;
+  for (TimeUs t = 0; t <= 50000; t += 1000) centres.push_back({t, 1, 40, 40, 3});
+  std::vector<Event> events;
+  std::vector<std::int32_t> truth, predicted;
+  for (TimeUs t = 0; t <= 50000; t += 1000) {
+    for (int k = 0; k < 6; ++k) {
+      events.push_back({t + k, static_cast<std::uint16_t>(2 + 10 * k), 50, 1}), truth.push_back(0), predicted.push_back(1);
+    }
+    events.push_back({t + 10, 40, 40, 1}), truth.push_back(1), predicted.push_back(2);
+    events.push_back({t + 11, 41, 41, 0}), truth.push_back(1), predicted.push_back(2);
+    events.push_back({t + 12, 90, 10, 0}), truth.push_back(-1), predicted.push_back(3);
+    events.push_back({t + 13, 91, 11, 0}), truth.push_back(-1), predicted.push_back(3);
+    events.push_back({t + 14, 27, 50, 1}), truth.push_back(0), predicted.push_back(3);  // at object 0's mean
+  }
+  std::vector<TrackUpdate> updates;
+  // 0.1 ms past the millisecond, so that no window's edge splits a millisecond's events.
+  for (TimeUs t = 10100; t <= 45000; t += 10000) {
+    updates.push_back({t, 1, 30, 48, 0, 0, 30, 48});   // on object 0's events, 8.2 px from object 1's centre
+    updates.push_back({t, 2, 40.5, 40, 0, 0, 40.5, 40});
+    updates.push_back({t, 3, 91, 10, 0, 0, 91, 10});
+  }
+  const TrackingReport by_centre = tracking_report(updates, centres, 2, 2.5);
+  EXPECT_EQ(by_centre.objects[1].tracks, (std::vector<std::int32_t>{1, 2}));
+  EXPECT_EQ(by_centre.all_kalman.samples, 8);
+
+  const TrackingReport by_labels = tracking_report(updates, centres, 2, 2.5, 15.0, 20000, {events, truth, predicted});
+  EXPECT_EQ(by_labels.objects[0].tracks, (std::vector<std::int32_t>{1}));
+  EXPECT_EQ(by_labels.objects[1].tracks, (std::vector<std::int32_t>{2}));
+  EXPECT_EQ(by_labels.spurious_updates, 4);  // track 3: two of its three events a millisecond are noise
+  EXPECT_EQ(by_labels.all_kalman.samples, 4);
+  EXPECT_NEAR(by_labels.all_kalman.mean, 0.5, 1e-9);
+  EXPECT_EQ(by_labels.objects[0].kalman.samples, 0);
+  // Object 0's events' centre (27, 50) is still the paper's ground truth for its track.
+  EXPECT_EQ(by_labels.objects[0].kalman_events.samples, 4);
+  EXPECT_NEAR(by_labels.objects[0].kalman_events.mean, std::hypot(3.0, 2.0), 1e-9);
+}
+
+// A track that follows object 0 and then object 1, 40 px away (an identity switch, IDF1's to
+// count), is scored at each update against the object its events then came from: its estimates
+// sit 0.5 px from each in turn, where the track's owner alone would put half of them 40 px off.
+TEST(TrackingMetrics, EachEstimateIsScoredAgainstTheObjectItWasMeasuredFrom) {
+  std::vector<gen::TruthSample> centres;
+  std::vector<Event> events;
+  std::vector<std::int32_t> truth, predicted;
+  for (TimeUs t = 0; t <= 80000; t += 1000) {
+    centres.push_back({t, 0, 20, 50, 3});
+    centres.push_back({t, 1, 60, 50, 3});
+    const int followed = t < 50000 ? 0 : 1;  // object 0 for 50 ms, then object 1 for 31 ms
+    for (int k = 0; k < 4; ++k) {
+      events.push_back({t + k, static_cast<std::uint16_t>(followed ? 60 : 20), static_cast<std::uint16_t>(49 + k % 2), 1});
+      truth.push_back(followed), predicted.push_back(7);
+    }
+  }
+  std::vector<TrackUpdate> updates;
+  for (TimeUs t = 10100; t <= 75000; t += 10000) {
+    const double x = t < 50000 ? 20.5 : 60.5;
+    updates.push_back({t, 7, x, 50, 0, 0, x, 50});
+  }
+  const TrackingReport r = tracking_report(updates, centres, 2, 2.5, 15.0, 20000, {events, truth, predicted});
+  EXPECT_EQ(r.objects[0].tracks, (std::vector<std::int32_t>{7}));  // the track's owner: most of its events
+  EXPECT_EQ(r.objects[0].kalman.samples, 4);                         // 10.1 .. 40.1 ms
+  EXPECT_EQ(r.objects[1].kalman.samples, 3);                         // 50.1 .. 70.1 ms
+  EXPECT_NEAR(r.all_kalman.mean, 0.5, 1e-9);
+  EXPECT_DOUBLE_EQ(r.all_kalman.within, 1.0);
+}
+
 // The paper's ground truth: the centre of mass of the object's labelled events over the last
 // 10 ms. An object whose right edge fires three events for each of its left edge's has that
 // centre 5 px right of its outline's centre (left edge at x = 40, right at 60: (40 + 3 * 60) / 4
