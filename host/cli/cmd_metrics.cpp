@@ -1,21 +1,55 @@
-// evms metrics --truth LABELS.csv --pred EVENTS.csv : clustering scores of a labelling,
-// printed as one line "ARI NMI P R F" (means over chunks). Both files hold the same events
-// in the same order; the chunks are N consecutive events or fixed time windows.
+// evms metrics --truth LABELS.csv --pred EVENTS.csv [--tracks TRACKS.csv] : clustering scores
+// of a labelling, printed as one line "ARI NMI P R F" (means over chunks). Both files hold the
+// same events in the same order; the chunks are N consecutive events or fixed time windows.
+// With the run's tracks.csv, two lines follow: identity (IDF1, ID switches) and the confirmed
+// tracks' error against the centre of each object's labelled events in the 10 ms around each
+// estimate (the paper's ground truth), each estimate scored against the object its track's
+// events came from (host/eval/tracking_metrics.h), as `evms sweep` scores them.
+#include <algorithm>
 #include <cstdio>
+#include <map>
 
 #include "host/cli/commands.h"
 #include "host/cli/common.h"
 #include "host/eval/clustering_metrics.h"
+#include "host/eval/identity_metrics.h"
+#include "host/eval/tracking_metrics.h"
 #include "host/read/input_error.h"
 #include "host/read/labelled_csv.h"
+#include "host/read/tracks_csv.h"
 
 namespace evms::cli {
 namespace {
 
 struct MetricsOptions {
-  std::string truth, pred;
+  std::string truth, pred, tracks;
   std::int64_t chunk_events = 0, chunk_us = 0;
 };
+
+// The identity and tracking lines of `--tracks`. Object labels may be any non-negative
+// integers; the scores index them densely.
+void print_tracking(const std::string& tracks_path, const std::vector<Event>& events, const std::vector<std::int32_t>& truth,
+                    const std::vector<std::int32_t>& predicted) {
+  std::vector<TrackUpdate> confirmed;
+  for (const TrackUpdate& u : read::read_tracks_csv(tracks_path)) {
+    if (u.state == TrackState::kConfirmed) confirmed.push_back(u);
+  }
+  std::map<std::int32_t, std::int32_t> dense;
+  for (std::int32_t label : truth) {
+    if (label >= 0) dense.emplace(label, 0);
+  }
+  std::int32_t next = 0;
+  for (auto& [label, index] : dense) index = next++;
+  std::vector<std::int32_t> objects(truth.size());
+  for (size_t i = 0; i < truth.size(); ++i) objects[i] = truth[i] >= 0 ? dense[truth[i]] : -1;
+  const eval::IdentityScores id = eval::identity_scores(events, objects, predicted);
+  std::printf("IDF1 %.6f ID-precision %.6f ID-recall %.6f ID-switches %lld objects %lld\n", id.idf1, id.id_precision, id.id_recall,
+              static_cast<long long>(id.id_switches), static_cast<long long>(id.objects));
+  const eval::TrackingReport r = eval::tracking_report(confirmed, {}, next, 2.5, 15.0, 20000, {events, objects, predicted});
+  const eval::ErrorStats& e = r.all_kalman_events;
+  std::printf("tracking %.6f px within-2.5px %.6f estimates %lld (confirmed tracks against the labelled events' centre; %s updates on noise)\n",
+              e.mean, e.within, static_cast<long long>(e.samples), grouped(r.spurious_updates).c_str());
+}
 
 void metrics(const MetricsOptions& o) {
   if (o.chunk_events > 0 && o.chunk_us > 0) throw std::invalid_argument("give --chunk-us or --chunk-events, not both");
@@ -23,6 +57,8 @@ void metrics(const MetricsOptions& o) {
   read::LabelledCsvReader truth(o.truth), pred(o.pred);
   eval::ScoreAverage average;
   std::vector<std::int32_t> t_labels, p_labels;
+  std::vector<Event> all_events;              // with --tracks: every event and both labels
+  std::vector<std::int32_t> all_truth, all_pred;
   TimeUs window_end = 0;
   bool first = true;
   auto flush = [&] {
@@ -48,6 +84,13 @@ void metrics(const MetricsOptions& o) {
       if (first) window_end = a.event.t + o.chunk_us;
       while (a.event.t >= window_end) flush(), window_end += o.chunk_us;
     }
+    if (!o.tracks.empty()) {
+      if (!all_events.empty() && a.event.t < all_events.back().t) {
+        throw read::InputError(o.truth + ": line " + std::to_string(truth.line()) + ": t_us " + std::to_string(a.event.t) +
+                               " is earlier than the row before (--tracks scores events in time order)");
+      }
+      all_events.push_back(a.event), all_truth.push_back(a.label), all_pred.push_back(b.label);
+    }
     first = false;
     t_labels.push_back(a.label);
     p_labels.push_back(b.label);
@@ -57,6 +100,7 @@ void metrics(const MetricsOptions& o) {
   if (average.chunks() == 0) throw std::invalid_argument(o.truth + ": fewer than 2 events: nothing to score");
   const auto s = average.mean();
   std::printf("%.6f %.6f %.6f %.6f %.6f\n", s.ari, s.nmi, s.precision, s.recall, s.f);
+  if (!o.tracks.empty()) print_tracking(o.tracks, all_events, all_truth, all_pred);
 }
 
 }  // namespace
@@ -67,6 +111,8 @@ void register_metrics(CLI::App& app) {
   cmd->add_option("--truth", o->truth, "true labels, t_us,x,y,p,label (label -1 = noise)")->required();
   cmd->add_option("--pred", o->pred, "predicted labels of the same events, same layout (-2, a label lost on the board's link, counts as noise)")->required();
   cmd->add_option("--chunk-events", o->chunk_events, "score chunks of N consecutive events (default 256)")->check(CLI::Range(2, 1000000000));
+  cmd->add_option("--tracks", o->tracks, "the run's tracks.csv: also print IDF1 and ID switches, and the confirmed tracks' error against the "
+                 "centre of each object's labelled events (two more lines)");
   cmd->add_option("--chunk-us", o->chunk_us, "score fixed time windows of N us instead")->check(CLI::Range(std::int64_t{1}, std::int64_t{1000000000000}));
   cmd->callback([o] { metrics(*o); });
 }

@@ -432,6 +432,53 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
       << bad.err;
 }
 
+// evms metrics --tracks scores identity and the confirmed tracks against the labelled events'
+// centre. Object 7 fires at x = 10 and x = 30 in turn (its centre x = 20, y = 50) for 60 ms,
+// labelled track 3; the confirmed updates stand 1 px right of that centre, and a tentative one
+// far away does not count. Bad rows of the tracks file stop with the file and line.
+TEST(Cli, MetricsScoresTracksAgainstTheLabelledEvents) {
+  TempDir dir;
+  std::string truth = "t_us,x,y,p,label\n", pred = truth;
+  for (int t = 0; t < 60000; t += 100) {
+    const std::string row = std::to_string(t) + "," + (t % 200 ? "30" : "10") + ",50,1,";
+    truth += row + "7\n", pred += row + "3\n";
+  }
+  const std::string header = "t_us,track_id,state,x,y,vx,vy,events\n";
+  std::string tracks = header;
+  for (int t = 10050; t <= 50050; t += 10000) tracks += std::to_string(t) + ",3,confirmed,21,50,0,0,100\n";
+  tracks += "55050,3,tentative,90,10,0,0,100\n";
+  const std::string files = " --truth " + dir.write("truth.csv", truth) + " --pred " + dir.write("pred.csv", pred);
+  const auto r = run_command(evms_binary() + " metrics --chunk-us 10000" + files + " --tracks " + dir.write("tracks.csv", tracks));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  double f[5], idf1 = 0, err = -1, within = -1;
+  long long switches = -1, objects = -1, estimates = -1;
+  const size_t second = r.out.find('\n') + 1, third = r.out.find('\n', second) + 1;
+  ASSERT_EQ(std::sscanf(r.out.c_str(), "%lf %lf %lf %lf %lf", &f[0], &f[1], &f[2], &f[3], &f[4]), 5) << r.out;
+  EXPECT_DOUBLE_EQ(f[4], 1.0);
+  ASSERT_EQ(std::sscanf(r.out.c_str() + second, "IDF1 %lf ID-precision %*f ID-recall %*f ID-switches %lld objects %lld", &idf1, &switches,
+                        &objects), 3) << r.out;
+  EXPECT_DOUBLE_EQ(idf1, 1.0);
+  EXPECT_EQ(switches, 0);
+  EXPECT_EQ(objects, 1);
+  ASSERT_EQ(std::sscanf(r.out.c_str() + third, "tracking %lf px within-2.5px %lf estimates %lld", &err, &within, &estimates), 3) << r.out;
+  EXPECT_NEAR(err, 1.0, 1e-6);
+  EXPECT_DOUBLE_EQ(within, 1.0);
+  EXPECT_EQ(estimates, 5);
+
+  const auto bad = [&](const std::string& name, const std::string& text) {
+    const auto b = run_command(evms_binary() + " metrics" + files + " --tracks " + dir.write(name, text));
+    EXPECT_EQ(b.exit_code, 1) << name;
+    EXPECT_EQ(std::count(b.err.begin(), b.err.end(), '\n'), 1) << b.err;
+    return b.err;
+  };
+  EXPECT_NE(bad("h.csv", "t_us,id,x,y\n").find("h.csv: line 1: bad header: expected 't_us,track_id,state,x,y,vx,vy' first"), std::string::npos);
+  EXPECT_NE(bad("s.csv", header + "10050,3,lost,21,50,0,0,100\n").find("s.csv: line 2: state 'lost' is neither tentative nor confirmed"),
+            std::string::npos);
+  EXPECT_NE(bad("n.csv", header + "10050,3,confirmed,21,50,0,0\n").find("n.csv: line 2: 7 fields where the header has 8"), std::string::npos);
+  EXPECT_NE(bad("x.csv", header + "10050,3,confirmed,nan,50,0,0,1\n").find("x.csv: line 2: x 'nan' is not a finite number"), std::string::npos);
+  EXPECT_NE(bad("i.csv", header + "10050,-4,confirmed,21,50,0,0,1\n").find("i.csv: line 2: track_id '-4' is not a track ID"), std::string::npos);
+}
+
 // A source that fails part way (a corrupt record; a camera unplugged, which reaches the run
 // the same way as a paced replay's failure does): the events before the failure are labelled
 // and written, the summary printed, and the cause is one line with a non-zero exit.
