@@ -9,7 +9,7 @@ set -eu
 cd "$(dirname "$0")/../.."
 seconds=${1:-20}
 [ $# -gt 0 ] && shift
-targets=${*:-"aedat2 aedat3 aedat4 evt2 evt3 dat csv text ros2 streams config"}
+targets=${*:-"aedat2 aedat3 aedat4 evt2 evt3 dat csv text ros2 streams config scoring"}
 command -v clang++ >/dev/null || { echo "fuzz: clang++ is not installed (apt install clang)"; exit 1; }
 if [ ! -f build-fuzz/CMakeCache.txt ]; then
   cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DEVMS_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
@@ -34,6 +34,7 @@ for t in $targets; do
     ros2) cut_from ros2/libcaer_rollover/libcaer_rollover_0.db3 16 65536 "$corpus/shared" ;;
     csv) printf '10,1,2,1\n20,3,4,0\n' >"$corpus/seed" ;;
     text) printf '0.000010 1 2 1\n0.000020 3 4 0\n' >"$corpus/seed" ;;
+    scoring) printf '10,1,2,1,3\n20,3,4,0,-1\n10050,3,confirmed,21.5,50,-3e2,0,100\n' >"$corpus/seed" ;;
     config) [ -x build/bin/evms ] && build/bin/evms params --config >"$corpus/defaults" || printf 'preset: paper\nbandwidth: 0.2\n' >"$corpus/seed" ;;
   esac
   dict=""
