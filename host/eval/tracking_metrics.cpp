@@ -190,31 +190,34 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   const CentreLookup lookup(centres, objects);
   const EventCentreLookup event_lookup(labelled, objects, event_window_us);
   std::map<std::int32_t, std::vector<int>> votes;  // track -> votes per object
-  const bool by_labels = !labelled.predicted.empty() && labelled.predicted.size() == labelled.truth.size();
-  std::map<std::int32_t, std::int64_t> noise_votes;  // track -> its events that were noise
+  std::map<std::int32_t, std::int64_t> noise_votes;  // track -> its events that were noise (with the run's labels)
+  std::unordered_map<std::int32_t, std::vector<size_t>> labelled_by;  // track -> its events, in time order
+  const bool by_labels = !labelled.predicted.empty() && labelled.predicted.size() == labelled.truth.size() &&
+                         labelled.events.size() == labelled.truth.size();
   if (by_labels) {
     for (const TrackUpdate& u : updates) votes[u.id].resize(static_cast<size_t>(objects), 0);
     for (size_t i = 0; i < labelled.truth.size(); ++i) {
       const auto v = votes.find(labelled.predicted[i]);
       if (v == votes.end()) continue;
+      labelled_by[v->first].push_back(i);
       const std::int32_t o = labelled.truth[i];
       if (o >= 0 && o < objects) ++v->second[static_cast<size_t>(o)];
-      else ++noise_votes[labelled.predicted[i]];
+      else ++noise_votes[v->first];
     }
-  }
-  for (const TrackUpdate& u : updates) {
-    if (by_labels) break;
-    int best = -1;
-    double best_d = association_radius_px;
-    for (int o = 0; o < objects; ++o) {
-      const auto c = lookup.at(o, u.t);
-      if (!c) continue;
-      const double d = std::hypot(u.x - c->first, u.y - c->second);
-      if (d <= best_d) best = o, best_d = d;
+  } else {
+    for (const TrackUpdate& u : updates) {
+      int best = -1;
+      double best_d = association_radius_px;
+      for (int o = 0; o < objects; ++o) {
+        const auto c = lookup.at(o, u.t);
+        if (!c) continue;
+        const double d = std::hypot(u.x - c->first, u.y - c->second);
+        if (d <= best_d) best = o, best_d = d;
+      }
+      auto& v = votes[u.id];
+      v.resize(static_cast<size_t>(objects), 0);
+      if (best >= 0) ++v[static_cast<size_t>(best)];
     }
-    auto& v = votes[u.id];
-    v.resize(static_cast<size_t>(objects), 0);
-    if (best >= 0) ++v[static_cast<size_t>(best)];
   }
   std::map<std::int32_t, int> owner;
   for (const auto& [id, v] : votes) {
@@ -225,16 +228,12 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   // With the run's labels, each update belongs to the object whose events its track labelled
   // in the window around it (an estimate is measured from those events), or, when the track
   // labelled none there, to the track's owner.
-  std::unordered_map<std::int32_t, std::vector<size_t>> labelled_by;  // track -> its events, in time order
-  if (by_labels) {
-    for (size_t i = 0; i < labelled.predicted.size(); ++i) {
-      if (votes.count(labelled.predicted[i])) labelled_by[labelled.predicted[i]].push_back(i);
-    }
-  }
   const auto update_owner = [&](const TrackUpdate& u) {
     const int whole = owner[u.id];
     if (!by_labels) return whole;
-    const std::vector<size_t>& mine = labelled_by[u.id];
+    const auto labelled_events = labelled_by.find(u.id);
+    if (labelled_events == labelled_by.end()) return whole;
+    const std::vector<size_t>& mine = labelled_events->second;
     const auto time_of = [&](size_t i) { return labelled.events[i].t; };
     auto it = std::upper_bound(mine.begin(), mine.end(), u.t - event_window_us / 2, [&](TimeUs t, size_t i) { return t < time_of(i); });
     std::vector<std::int64_t> count(static_cast<size_t>(objects), 0);
@@ -246,7 +245,7 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
     }
     if (any == 0) return whole;
     const auto best = std::max_element(count.begin(), count.end());
-    return *best == 0 || *best < noise ? -1 : static_cast<int>(best - count.begin());
+    return best == count.end() || *best == 0 || *best < noise ? -1 : static_cast<int>(best - count.begin());
   };
 
   TrackingReport report;

@@ -464,6 +464,13 @@ TEST(Cli, MetricsScoresTracksAgainstTheLabelledEvents) {
   EXPECT_NEAR(err, 1.0, 1e-6);
   EXPECT_DOUBLE_EQ(within, 1.0);
   EXPECT_EQ(estimates, 5);
+  // A truth of noise alone holds no object, so nothing is an estimate.
+  std::string noise = truth;
+  for (size_t at = noise.find(",7\n"); at != std::string::npos; at = noise.find(",7\n", at)) noise.replace(at, 3, ",-1\n");
+  const auto none = run_command(evms_binary() + " metrics --truth " + dir.write("noise.csv", noise) + " --pred " + dir.path("pred.csv") +
+                                " --tracks " + dir.path("tracks.csv"));
+  ASSERT_EQ(none.exit_code, 0) << none.err;
+  EXPECT_NE(none.out.find("estimates 0 "), std::string::npos) << none.out;
 
   const auto bad = [&](const std::string& name, const std::string& text) {
     const auto b = run_command(evms_binary() + " metrics" + files + " --tracks " + dir.write(name, text));
