@@ -228,6 +228,7 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   // With the run's labels, each update belongs to the object whose events its track labelled
   // in the window around it (an estimate is measured from those events), or, when the track
   // labelled none there, to the track's owner.
+  std::vector<std::int64_t> count(static_cast<size_t>(objects));  // update_owner's tally, reused
   const auto update_owner = [&](const TrackUpdate& u) {
     const int whole = owner[u.id];
     if (!by_labels) return whole;
@@ -236,7 +237,7 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
     const std::vector<size_t>& mine = labelled_events->second;
     const auto time_of = [&](size_t i) { return labelled.events[i].t; };
     auto it = std::upper_bound(mine.begin(), mine.end(), u.t - event_window_us / 2, [&](TimeUs t, size_t i) { return t < time_of(i); });
-    std::vector<std::int64_t> count(static_cast<size_t>(objects), 0);
+    std::fill(count.begin(), count.end(), 0);
     std::int64_t noise = 0, any = 0;
     for (; it != mine.end() && time_of(*it) <= u.t + event_window_us / 2; ++it, ++any) {
       const std::int32_t o = labelled.truth[*it];

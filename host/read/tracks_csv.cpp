@@ -1,5 +1,6 @@
 #include "host/read/tracks_csv.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -10,8 +11,7 @@
 namespace evms::read {
 namespace {
 
-constexpr const char* kColumns[] = {"t_us", "track_id", "state", "x", "y", "vx", "vy"};
-constexpr size_t kRequired = sizeof(kColumns) / sizeof(kColumns[0]);
+constexpr std::string_view kLayout = "t_us,track_id,state,x,y,vx,vy";  // the columns read; more may follow
 
 // The comma-separated fields of one line.
 std::vector<std::string_view> split(std::string_view line) {
@@ -38,13 +38,11 @@ std::vector<TrackUpdate> read_tracks_csv(const std::string& path) {
   bool more = false;
   while ((more = in.next_line(line)) && line.rfind('#', 0) == 0) {
   }
-  const std::string layout = "t_us,track_id,state,x,y,vx,vy";
+  const std::string layout(kLayout);
   if (!more) fail(path, InputPosition::line(in.line()), "empty: expected a header '" + layout + ",...'");
-  const std::vector<std::string_view> header = split(line);
-  for (size_t i = 0; i < kRequired; ++i) {
-    if (i >= header.size() || header[i] != kColumns[i]) {
-      fail(path, InputPosition::line(in.line()), "bad header: expected '" + layout + "' first (evms run's tracks.csv)");
-    }
+  const std::vector<std::string_view> header = split(line), columns = split(kLayout);
+  if (header.size() < columns.size() || !std::equal(columns.begin(), columns.end(), header.begin())) {
+    fail(path, InputPosition::line(in.line()), "bad header: expected '" + layout + "' first (evms run's tracks.csv)");
   }
   std::vector<TrackUpdate> updates;
   while (in.next_line(line)) {
@@ -70,7 +68,7 @@ std::vector<TrackUpdate> read_tracks_csv(const std::string& path) {
     double* const value[] = {&u.x, &u.y, &u.vx, &u.vy};
     for (size_t i = 0; i < 4; ++i) {
       if (!parse_whole(f[3 + i], *value[i]) || !std::isfinite(*value[i])) {
-        fail(path, where, std::string(kColumns[3 + i]) + " '" + printable(f[3 + i]) + "' is not a finite number");
+        fail(path, where, std::string(columns[3 + i]) + " '" + printable(f[3 + i]) + "' is not a finite number");
       }
     }
     u.t = t, u.id = static_cast<std::int32_t>(id);
