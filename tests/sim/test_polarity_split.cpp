@@ -207,9 +207,11 @@ TEST(PolaritySplitRtl, EveryEventsModeAndEveryModesPositionEqualTheCppModelOverR
   }
   std::printf("%d packets, %d split, %d clusters left whole for want of room, %.1f cycles an event\n", packets, split, whole_for_room,
               static_cast<double>(cycles) / static_cast<double>(events));
-  // Both outcomes, many times: the packets reach the rule's every branch.
-  EXPECT_GT(split, packets / 8) << "too few packets split to test the split";
-  EXPECT_LT(split, packets * 4 / 5) << "too few packets stayed whole to test the rule";
+  // Both outcomes, many times: the packets reach the rule's every branch. The bounds are far
+  // in the tails of what random seeds give (over 300 seeds, 23 to 53 of the 200 packets split),
+  // so a seed drawn in CI does not fail them by chance.
+  EXPECT_GE(split, 10) << "too few packets split to test the split";
+  EXPECT_GE(packets - split, 10) << "too few packets stayed whole to test the rule";
   EXPECT_GT(whole_for_room, 0) << "no cluster was left whole for want of room in the mode table";
 }
 
