@@ -23,17 +23,23 @@ LiveBuffer::LiveBuffer(size_t capacity) : events_(std::max<size_t>(capacity, 1))
 void LiveBuffer::push(std::span<const Event> events, std::int64_t arrival_ns) {
   {
     std::lock_guard lock(mutex_);
-    const size_t room = events_.size() - size_;
-    const size_t n = std::min(room, events.size());
-    for (size_t i = 0; i < n; ++i) {
-      const size_t at = (head_ + size_ + i) % events_.size();
-      events_[at] = events[i];
-      arrival_[at] = arrival_ns;
+    // Once the sources are ended, what arrives is past the input's end, not a drop: a source
+    // that never falls quiet (a camera watching a busy scene, a replay) ends here.
+    if (g_end_requested.load()) {
+      closed_ = true;
+    } else {
+      const size_t room = events_.size() - size_;
+      const size_t n = std::min(room, events.size());
+      for (size_t i = 0; i < n; ++i) {
+        const size_t at = (head_ + size_ + i) % events_.size();
+        events_[at] = events[i];
+        arrival_[at] = arrival_ns;
+      }
+      size_ += n;
+      dropped_ += static_cast<std::int64_t>(events.size() - n);
     }
-    size_ += n;
-    dropped_ += static_cast<std::int64_t>(events.size() - n);
   }
-  ready_.notify_one();
+  ready_.notify_all();
 }
 
 void LiveBuffer::close() {
