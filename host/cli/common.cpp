@@ -133,7 +133,7 @@ void add_method_options(CLI::App& cmd, Method& method) {
   for (const char* name : preset_names()) presets += std::string(presets.empty() ? "" : ", ") + name;
   cmd.add_option("--preset", method.preset,
                  "named settings the parameters below start from: evms (the defaults), paper (the authors' published "
-                 "code), gaussian (the paper's text; what the RTL implements)")
+                 "code), gaussian (the paper's text; the host RTL build holds it beside the default method)")
       ->default_val(method.preset)
       ->check(CLI::IsMember(std::vector<std::string>(preset_names().begin(), preset_names().end())))
       ->group("Method parameters");
