@@ -50,7 +50,10 @@ void info(const InfoOptions& o) {
     std::printf("x range     %d..%d\n", xmin, xmax);
     std::printf("y range     %d..%d\n", ymin, ymax);
     std::printf("mean rate   %sevents/s\n", duration > 0 ? si(count / duration).c_str() : "- ");
-    std::printf("peak rate   %sevents/s (over 10 ms windows)\n", si(peak * 1e6 / kWindow).c_str());
+    // A recording shorter than a window has one partial window: its peak is its mean, not the
+    // count spread over the whole window.
+    if (t1 - t0 >= kWindow || duration <= 0) std::printf("peak rate   %sevents/s (over 10 ms windows)\n", si(peak * 1e6 / kWindow).c_str());
+    else std::printf("peak rate   %sevents/s (the mean: the recording is shorter than a 10 ms window)\n", si(count / duration).c_str());
     std::printf("first       ");
     for (const Event& e : first) std::printf("(%lld,%d,%d,%d) ", static_cast<long long>(e.t), e.x, e.y, e.p);
     std::printf("\n");
