@@ -12,8 +12,10 @@
 //   accept      1 per input word (the controller takes it from the intake's queue)
 //   filter      the controller's clocks waiting for the intake: the filter takes 19..21 clocks
 //               an event (21 inside the sensor, less on its last row and column; 1 when it is
-//               off or the event is outside the sensor), at least 3 with the climb features
-//               and 3 more through the queue, but runs while the controller clusters
+//               off or the event is outside the sensor), plus 3 for each entry its time
+//               scrubber owes (hls/filter/ba_filter.h) or the RAM's size after a long gap, at
+//               least 3 with the climb features and 3 more through the queue, but runs while
+//               the controller clusters
 //   features    5 + 4 (L + 1) per kept event (three products and the decay table)
 //   mean shift  3 + sweeps ((n - 1) max(C + 1, R + 10) + C + R + 19) per packet: each point is
 //               read (1) and issues C chunks while the previous one's terms drain through the
@@ -38,6 +40,7 @@
 
 #include "hls/core/config.h"
 #include "hls/core/core.h"
+#include "hls/filter/ba_filter.h"
 
 namespace evms::hls {
 
@@ -152,7 +155,7 @@ class ScheduleCounter {
     ++words_;
     if (w.flush) ++flushes_;
     if (kept) ++kept_;
-    word_.filter = w.flush ? 1 : filter_cycles(w, cfg_);
+    word_.filter = w.flush ? 1 : filter_cycles(w);
     // The take (accept) and, for a kept event, its append (packet control).
     for (int l = 0; l < kModelLaneCountsN; ++l) lanes_[l].word_cost = 1 + (kept ? 1 : 0);
     word_.open = true;
@@ -193,12 +196,21 @@ class ScheduleCounter {
   std::int64_t evict_scans() const { return evict_scans_; }
   double mean_sweeps() const { return packets_ ? static_cast<double>(sweeps_) / static_cast<double>(packets_) : 0.0; }
 
-  static int filter_cycles(const EventWord& w, const Config& cfg) {
-    if (!cfg.filter_enabled || w.x >= cfg.sensor_width || w.y >= cfg.sensor_height) return 1;
+  // The filter's clocks for an event word; follows the time scrubber's state across words.
+  int filter_cycles(const EventWord& w) {
+    if (!cfg_.filter_enabled || w.x >= cfg_.sensor_width || w.y >= cfg_.sensor_height) return 1;
+    // Before the reads, the scrubber's owed entries (three clocks each: address, wait, decide)
+    // or the whole RAM's clear, one word a clock.
+    int scrub = 0;
+    if (filter_started_) {
+      const auto owed = BackgroundActivityFilter<S>::time_scrub(filter_last_t_, w.t);
+      scrub = owed.clear_all ? BackgroundActivityFilter<S>::kPixels : 3 * owed.entries;
+    }
+    filter_started_ = true, filter_last_t_ = w.t;
     // The filter waits two clocks for the RAM after the last neighbour inside the sensor it
     // reads; neighbours are read row by row, so the bottom row and the right column end sooner.
-    if (w.y + 1 >= cfg.sensor_height) return 19;
-    return w.x + 1 >= cfg.sensor_width ? 20 : 21;
+    if (w.y + 1 >= cfg_.sensor_height) return scrub + 19;
+    return scrub + (w.x + 1 >= cfg_.sensor_width ? 20 : 21);
   }
 
  private:
@@ -258,6 +270,8 @@ class ScheduleCounter {
   }
 
   Config cfg_;
+  bool filter_started_ = false;
+  std::uint32_t filter_last_t_ = 0;
   OpenWord word_;
   Timeline lanes_[kModelLaneCountsN];
   std::int64_t words_ = 0, flushes_ = 0, packets_ = 0, kept_ = 0, sweeps_ = 0, evict_scans_ = 0;

@@ -6,9 +6,21 @@
 //   16 bits, 128 us units (DefaultShape): one iCE40 SPRAM word per pixel, so 240x180 fits the
 //     UP5K's four SPRAMs; the window is then compared in 128 us units.
 // Zero means "never fired" (a time that would store as zero stores as one). Times wrap
-// modulo the word; so that a stale time cannot alias into the window a wrap later, every
-// event also scrubs the next two memory entries, clearing them once older than half the wrap
-// period (4.2 s at 16 bits; at 240x180 a full sweep takes 21,600 events).
+// modulo the word; so that a stale time cannot alias into the window a wrap later, a scrubber
+// clears every entry once it is half the wrap period old (4.2 s at 16 bits). Its pointer
+// advances by events and by time:
+//   - before an event's neighbours are read, one entry for each 2^kSweepLog2 us boundary the
+//     event time crossed since the last judged event, at most the whole memory, so that a whole
+//     sweep takes at most an eighth of the wrap (16 us an entry at 240x180, 64 us at 128x128);
+//   - after a gap of more than a quarter of the wrap (2.1 s at 16 bits: more than 2^(kWrapLog2 - 2
+//     - kSweepLog2) boundaries) every entry is that old, past any window, and the whole memory
+//     is cleared instead;
+//   - after the event's own time is written, two more entries.
+// An entry is then visited at most 3/8 of the wrap apart, so it is cleared before its age can
+// wrap, however sparse the events (by events alone, a quiet 128x128 sensor under 2,000 events a
+// second would keep noise golden drops). The host limits the windows to a quarter of the wrap
+// (host/backend/core_config.h), so clearing an entry older than every window changes no
+// decision.
 //
 // The noise check (golden/filter/background_activity_filter.h): in intervals of 2^15 us it
 // counts the events no neighbour supported; an interval with filter_noise_count or more of them
@@ -38,8 +50,9 @@ template <class S>
 class BackgroundActivityFilter {
  public:
   void reset() {
-    for (int i = 0; i < S::kMaxWidth * S::kMaxHeight; ++i) stamp_[i] = 0;
+    for (int i = 0; i < kPixels; ++i) stamp_[i] = 0;
     scrub_ = 0;
+    last_t_ = 0;
     started_ = false;
     warming_ = false;
     warm_start_ = 0;
@@ -53,6 +66,8 @@ class BackgroundActivityFilter {
     if (!cfg.filter_enabled) return true;
     if (e.x >= cfg.sensor_width || e.y >= cfg.sensor_height) return false;
     const Stamp now = static_cast<Stamp>(e.t >> S::kTimestampShift);
+    if (started_) scrub_for_time(e.t, now);
+    last_t_ = e.t;
     int supporters = 0, quiet_supporters = 0;
   neighbours:
     for (int k = 0; k < 9; ++k) {
@@ -66,13 +81,7 @@ class BackgroundActivityFilter {
     }
     stamp_[e.y * S::kMaxWidth + e.x] = now == 0 ? 1 : now;
   scrub:
-    for (int k = 0; k < kScrubPerEvent; ++k) {
-      // Clears entries older than half the wrap period, so that stale times cannot alias
-      // into the window a wrap later.
-      const Stamp then = stamp_[scrub_];
-      if (then != 0 && static_cast<Stamp>(now - then) >= kHalfWrap) stamp_[scrub_] = 0;
-      scrub_ = scrub_ + 1 == S::kMaxWidth * S::kMaxHeight ? 0 : scrub_ + 1;
-    }
+    for (int k = 0; k < kScrubPerEvent; ++k) scrub_one(now);
     const std::uint32_t interval = e.t >> kNoiseIntervalLog2;
     if (!started_) started_ = true, interval_ = interval, warm_start_ = e.t, warming_ = cfg.filter_warm_up != 0;
     bool warm = false;
@@ -89,17 +98,73 @@ class BackgroundActivityFilter {
     return (quiet_ ? quiet_supporters : supporters) >= cfg.filter_support + (noisy_ ? 1 : 0) || warm;
   }
 
+  // What the time scrubber owes an event at time t after the last judged event at last_t: the
+  // entries it visits (one for each 2^kSweepLog2 us boundary crossed, with the 32-bit time's
+  // wrap; at most the whole memory), or a clear of the whole memory after a gap of more than a
+  // quarter of the wrap. The cycle model (hls/core/schedule.h) counts its clocks from it.
+  struct TimeScrub {
+    bool clear_all;
+    int entries;
+  };
+  static TimeScrub time_scrub(std::uint32_t last_t, std::uint32_t t) {
+    const std::uint32_t crossed = ((t >> kSweepLog2) - (last_t >> kSweepLog2)) & kSweepMask;
+    if (crossed > kClearCrossings) return {true, kPixels};
+    return {false, crossed >= static_cast<std::uint32_t>(kPixels) ? kPixels : static_cast<int>(crossed)};
+  }
+  static constexpr int kPixels = S::kMaxWidth * S::kMaxHeight;
+
  private:
   static_assert(S::kTimestampBits == 16 || S::kTimestampBits == 32, "timestamp memory words are 16 or 32 bits");
   using Stamp = std::conditional_t<S::kTimestampBits == 16, std::uint16_t, std::uint32_t>;
   static constexpr Stamp kHalfWrap = static_cast<Stamp>(Stamp{1} << (S::kTimestampBits - 1));
+  // $clog2 of SystemVerilog, at compile time.
+  static constexpr int ceil_log2(int n) {
+    int bits = 0;
+    while ((1 << bits) < n) ++bits;
+    return bits;
+  }
   static constexpr int kScrubPerEvent = 2;
   static constexpr int kNoiseIntervalLog2 = 15;  // types/params.h: kFilterNoiseIntervalLog2
   static constexpr std::uint32_t kIntervalMask = (std::uint32_t{1} << (32 - kNoiseIntervalLog2)) - 1;
   static constexpr std::uint32_t kCountMax = (std::uint32_t{1} << 24) - 1;
+  // The time scrubber's pace: one entry each 2^kSweepLog2 us sweeps the memory within an eighth
+  // of the wrap; more than kClearCrossings of them (a gap of more than a quarter of the wrap)
+  // clear it whole.
+  static constexpr int kWrapLog2 = S::kTimestampBits + S::kTimestampShift;
+  static constexpr int kSweepLog2 = kWrapLog2 - 3 - ceil_log2(kPixels);
+  static_assert(kSweepLog2 >= 0 && kWrapLog2 <= 32, "the memory is too large to sweep within an eighth of the wrap");
+  static constexpr std::uint32_t kClearCrossings = std::uint32_t{1} << (kWrapLog2 - 2 - kSweepLog2);
+  static constexpr std::uint32_t kSweepMask = static_cast<std::uint32_t>((std::uint64_t{1} << (32 - kSweepLog2)) - 1);
+
+  // Scrubbing owed for the time since the last judged event, before this event's neighbours are
+  // read.
+  void scrub_for_time(std::uint32_t t, Stamp now) {
+    const TimeScrub owed = time_scrub(last_t_, t);
+    if (owed.clear_all) {
+    clear:
+      for (int i = 0; i < kPixels; ++i) {
+#pragma HLS PIPELINE II = 1
+        stamp_[i] = 0;
+      }
+      return;
+    }
+  sweep:
+    for (int k = 0; k < kPixels; ++k) {
+      if (k >= owed.entries) break;
+      scrub_one(now);
+    }
+  }
+
+  // Clears the entry at the scrub pointer when it is half the wrap period old, and moves on.
+  void scrub_one(Stamp now) {
+    const Stamp then = stamp_[scrub_];
+    if (then != 0 && static_cast<Stamp>(now - then) >= kHalfWrap) stamp_[scrub_] = 0;
+    scrub_ = scrub_ + 1 == kPixels ? 0 : scrub_ + 1;
+  }
+
   bool started_ = false, warming_ = false, noisy_ = false, quiet_ = false;
-  std::uint32_t interval_ = 0, unsupported_ = 0, warm_start_ = 0;
-  Stamp stamp_[S::kMaxWidth * S::kMaxHeight] = {};
+  std::uint32_t interval_ = 0, unsupported_ = 0, warm_start_ = 0, last_t_ = 0;
+  Stamp stamp_[kPixels] = {};
   int scrub_ = 0;
 };
 

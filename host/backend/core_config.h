@@ -171,8 +171,9 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   need(p.filter_support <= 8, "--filter-support is at most 8");
   need(filter_noise_count(p, sensor) < (std::int64_t{1} << 24), "--filter-noise-hz is too large for the core's 24-bit count");
   need(filter_quiet_count(p, sensor) < (std::int64_t{1} << 24), "--filter-quiet-hz is too large for the core's 24-bit count");
-  // hls/filter/ba_filter.h clears a pixel's time once it is half the timestamps' wrap old.
-  constexpr TimeUs kFilterWindowMax = (TimeUs{1} << (S::kTimestampBits - 1 + S::kTimestampShift)) - 1;
+  // hls/filter/ba_filter.h clears every pixel's time after a gap of a quarter of the timestamps'
+  // wrap, so no window may reach that far.
+  constexpr TimeUs kFilterWindowMax = (TimeUs{1} << (S::kTimestampBits - 2 + S::kTimestampShift)) - 1;
   need(p.filter_window_us <= kFilterWindowMax && p.filter_quiet_window_us <= kFilterWindowMax,
        "the core's filter windows reach at most " + std::to_string(kFilterWindowMax) + " us (--filter-window-us, --filter-quiet-window-us)");
   const bool seeded = p.seeding != Seeding::kEvery;

@@ -2,9 +2,12 @@
 // One event at a time: start with (t, x, y) -> done with kept, about 15 cycles later.
 //   - filter off: kept at once, no memory access;
 //   - outside the configured sensor: noise, no memory access;
-//   - else read the (up to) 8 neighbours inside the sensor, keep when one holds a time t' != 0
-//     with (now - t') mod 2^TimestampBits <= window, where now = t >> TimestampShift; write now (or 1 for 0)
-//     to the own pixel; then scrub two entries: clear each whose age is at least half the wrap;
+//   - else first scrub for the time since the last judged event: one entry for each 2^SweepLog2
+//     us boundary crossed (at most the whole RAM), clearing each whose age is at least half the
+//     wrap, or, after a gap of more than a quarter of the wrap, clear the whole RAM; then read the
+//     (up to) 8 neighbours inside the sensor, keep when one holds a time t' != 0 with
+//     (now - t') mod 2^TimestampBits <= window, where now = t >> TimestampShift; write now (or 1
+//     for 0) to the own pixel; then scrub two more entries;
 //   - the noise check: the events no neighbour supported are counted in intervals of 2^15 us
 //     (t[31:15]); an interval with cfg_noise_count or more of them makes the next one noisy,
 //     and there an event needs two supporting neighbours instead of one (cfg_noise_count 0: off);
@@ -41,6 +44,14 @@ module evms_ba_filter #(
   localparam int Pixels = MaxWidth * MaxHeight;
   localparam int AddrBits = $clog2(Pixels);
   localparam logic [TimestampBits-1:0] HalfWrap = TimestampBits'(1) << (TimestampBits - 1);
+  // The time scrubber's pace (hls/filter/ba_filter.h): one entry each 2^SweepLog2 us sweeps the
+  // RAM within an eighth of the wrap; more than ClearCrossings of them (a gap of more than a
+  // quarter of the wrap) clear it whole.
+  localparam int WrapLog2 = TimestampBits + TimestampShift;
+  localparam int SweepLog2 = WrapLog2 - 3 - AddrBits;
+  localparam int CrossedBits = 32 - SweepLog2;
+  localparam logic [CrossedBits-1:0] ClearCrossings = CrossedBits'(1) << (AddrBits + 1);
+  localparam int OwedBits = AddrBits + 1;
 
   logic [TimestampBits-1:0] ram [0:Pixels-1];
   logic [AddrBits-1:0]      addr;
@@ -57,6 +68,15 @@ module evms_ba_filter #(
   typedef enum logic [3:0] {S_CLEAR, S_IDLE, S_READ, S_WRITE, S_SCRUB_READ, S_SCRUB_WAIT, S_SCRUB_DECIDE, S_DONE} state_e;
   state_e state;
   logic [AddrBits-1:0] clear_addr, scrub;
+  // The scrubber: the last judged event's time in 2^SweepLog2 us units, the entries it still
+  // owes this event (for time, before the reads; then two after the write), whether they are the
+  // ones before the reads, and whether a whole clear is this event's (then the reads follow it).
+  logic [CrossedBits-1:0] last_sweep_q;
+  logic [OwedBits-1:0]    owed_q;
+  logic                   owed_before_reads_q;
+  logic                   clear_then_read_q;
+  wire  [CrossedBits-1:0] crossed = CrossedBits'(t >> SweepLog2) - last_sweep_q;
+  wire  [OwedBits-1:0]    owed = crossed >= CrossedBits'(Pixels) ? OwedBits'(Pixels) : OwedBits'(crossed);
   logic [3:0]    k;            // neighbour being addressed (0..8)
   logic [1:0]    pending_cmp;  // [0]: address registered last cycle; [1]: rdata holds that neighbour
   logic [3:0]    supporters;   // neighbours that fired within the window, 0..8
@@ -77,7 +97,6 @@ module evms_ba_filter #(
   logic [TimestampBits-1:0] now;
   wire  [31:0]              age = 32'(TimestampBits'(now - rdata));  // of the neighbour rdata holds
   logic [15:0]   ex, ey;
-  logic          scrub_second;
 
   // Neighbour k of the event, and whether it is inside the sensor (and not the pixel itself).
   // k / 3 and k % 3 by comparison: a '/' or '%' here would synthesize a 32-bit divider.
@@ -97,6 +116,10 @@ module evms_ba_filter #(
       state <= S_CLEAR;
       clear_addr <= '0;
       scrub <= '0;
+      last_sweep_q <= '0;
+      owed_q <= '0;
+      owed_before_reads_q <= 1'b0;
+      clear_then_read_q <= 1'b0;
       done <= 1'b0;
       kept <= 1'b0;
       we <= 1'b0;
@@ -117,7 +140,6 @@ module evms_ba_filter #(
       now <= '0;
       ex <= '0;
       ey <= '0;
-      scrub_second <= 1'b0;
     end else begin
       done <= 1'b0;
       we <= 1'b0;
@@ -127,7 +149,10 @@ module evms_ba_filter #(
           addr <= clear_addr;
           wdata <= '0;
           clear_addr <= clear_addr + 1'b1;
-          if (32'(clear_addr) == Pixels - 1) state <= S_IDLE;
+          if (32'(clear_addr) == Pixels - 1) begin
+            state <= clear_then_read_q ? S_READ : S_IDLE;
+            clear_then_read_q <= 1'b0;
+          end
         end
         S_IDLE: if (start) begin
           if (!cfg_enabled) begin
@@ -144,7 +169,19 @@ module evms_ba_filter #(
             pending_cmp <= '0;
             supporters <= '0;
             quiet_supporters <= '0;
-            state <= S_READ;
+            last_sweep_q <= CrossedBits'(t >> SweepLog2);
+            // Scrubbing owed for the time since the last judged event comes before the reads.
+            if (started_q && crossed > ClearCrossings) begin
+              clear_addr <= '0;
+              clear_then_read_q <= 1'b1;
+              state <= S_CLEAR;
+            end else if (started_q && owed != 0) begin
+              owed_q <= owed;
+              owed_before_reads_q <= 1'b1;
+              state <= S_SCRUB_READ;
+            end else begin
+              state <= S_READ;
+            end
             // A new interval latches whether the one before it was noisy.
             if (!started_q) begin
               started_q <= 1'b1;
@@ -183,7 +220,8 @@ module evms_ba_filter #(
           we <= 1'b1;
           addr <= AddrBits'(32'(ey) * MaxWidth + 32'(ex));
           wdata <= now == 0 ? TimestampBits'(1) : now;
-          scrub_second <= 1'b0;
+          owed_q <= OwedBits'(2);
+          owed_before_reads_q <= 1'b0;
           state <= S_SCRUB_READ;
         end
         S_SCRUB_READ: begin
@@ -197,8 +235,9 @@ module evms_ba_filter #(
             wdata <= '0;
           end
           scrub <= 32'(scrub) == Pixels - 1 ? '0 : scrub + 1'b1;
-          scrub_second <= 1'b1;
-          state <= scrub_second ? S_DONE : S_SCRUB_READ;
+          owed_q <= owed_q - 1'b1;
+          if (owed_q != 1) state <= S_SCRUB_READ;
+          else state <= owed_before_reads_q ? S_READ : S_DONE;
         end
         S_DONE: begin
           kept <= (quiet_q ? quiet_supporters : supporters) >= (noisy_q ? 4'd2 : 4'd1) || warm_keep_q;

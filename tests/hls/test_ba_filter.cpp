@@ -5,7 +5,9 @@
 // wrap, and never again after it ended.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <random>
 #include <vector>
@@ -141,5 +143,48 @@ TEST(BaFilterWarmUp, EndsForGoodAcrossTheTimesWrap) {
   EXPECT_FALSE(filter->accept({1000u + 5000u, 70, 10, 1, false}, cfg)) << "the warm-up came back after the wrap";
 }
 
+// A quiet sensor on the board builds' 16-bit stamps (128 us units, an 8.4 s wrap): noise at 300
+// events a second, too few for two scrubs an event to sweep the memory within half the wrap,
+// with silences of 3 s and 9 s (longer than the wrap). Every time is a whole number of stored
+// units, so the stored ages are exact and the filter must keep exactly the events golden keeps,
+// the quiet window's 100 ms included: a pixel's time never ages into the window a wrap later.
+template <class S>
+void expect_golden_decisions_on_a_quiet_sensor() {
+  const SensorSize sensor{S::kMaxWidth, S::kMaxHeight};
+  constexpr TimeUs kUnit = TimeUs{1} << S::kTimestampShift;
+  constexpr double kRate = 300;
+  ASSERT_LT(2 * kRate * static_cast<double>(TimeUs{1} << (S::kTimestampBits - 1 + S::kTimestampShift)) * 1e-6, sensor.width * sensor.height)
+      << "the events alone sweep the memory: the test would not need the time scrubber";
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  golden::BackgroundActivityFilter reference(sensor, 30000, 1, 0, 0, 1000, 100000);
+  auto fixed = std::make_unique<hls::BackgroundActivityFilter<S>>();
+  fixed->reset();
+  hls::Config cfg;
+  cfg.sensor_width = static_cast<std::uint16_t>(sensor.width), cfg.sensor_height = static_cast<std::uint16_t>(sensor.height);
+  cfg.filter_enabled = true, cfg.filter_window = 30000 / kUnit, cfg.filter_support = 1;
+  cfg.filter_quiet_count = 1000, cfg.filter_quiet_window = 100000 / kUnit;
+  TimeUs t = 5 * kUnit;
+  int events = 0, kept = 0;
+  for (int k = 0; t < 60'000'000; ++k) {
+    t += static_cast<TimeUs>(-std::log(1 - unit(rng)) / kRate * 1e6) / kUnit * kUnit + kUnit;
+    if (k == 3000) t += 3'000'000 / kUnit * kUnit;
+    if (k == 9000) t += 9'000'000 / kUnit * kUnit;
+    const Event e{t, static_cast<std::uint16_t>(rng() % static_cast<std::uint32_t>(sensor.width)),
+                  static_cast<std::uint16_t>(rng() % static_cast<std::uint32_t>(sensor.height)), 1};
+    const bool expected = reference.accept(e);
+    ASSERT_EQ(fixed->accept({static_cast<std::uint32_t>(e.t), e.x, e.y, e.p, false}, cfg), expected) << "event " << events << " at " << e.t << " us";
+    ++events, kept += expected;
+  }
+  EXPECT_GT(events, 12000);
+  EXPECT_GT(kept, 10) << "too few events kept to compare the windows";
+}
+
+TEST(BaFilterAgreesWithGolden, AQuietSensorsStaleTimesNeverSupportOnTheBoardBuilds) {
+  expect_golden_decisions_on_a_quiet_sensor<hls::Ice40Shape>();
+  expect_golden_decisions_on_a_quiet_sensor<hls::ArtyShape>();
+}
+
 }  // namespace
 }  // namespace evms
+
