@@ -69,12 +69,12 @@ module evms_ba_filter #(
   state_e state;
   logic [AddrBits-1:0] clear_addr, scrub;
   // The scrubber: the last judged event's time in 2^SweepLog2 us units, the entries it still
-  // owes this event (for time, before the reads; then two after the write), whether they are the
-  // ones before the reads, and whether a whole clear is this event's (then the reads follow it).
+  // owes this event (for time, before the reads; then two after the write), and whether they are
+  // the ones before the reads. A whole clear after reset has no event; one after a long gap
+  // (started_q) is an event's, whose reads follow it.
   logic [CrossedBits-1:0] last_sweep_q;
   logic [OwedBits-1:0]    owed_q;
   logic                   owed_before_reads_q;
-  logic                   clear_then_read_q;
   wire  [CrossedBits-1:0] crossed = CrossedBits'(t >> SweepLog2) - last_sweep_q;
   wire  [OwedBits-1:0]    owed = crossed >= CrossedBits'(Pixels) ? OwedBits'(Pixels) : OwedBits'(crossed);
   logic [3:0]    k;            // neighbour being addressed (0..8)
@@ -119,7 +119,6 @@ module evms_ba_filter #(
       last_sweep_q <= '0;
       owed_q <= '0;
       owed_before_reads_q <= 1'b0;
-      clear_then_read_q <= 1'b0;
       done <= 1'b0;
       kept <= 1'b0;
       we <= 1'b0;
@@ -149,10 +148,7 @@ module evms_ba_filter #(
           addr <= clear_addr;
           wdata <= '0;
           clear_addr <= clear_addr + 1'b1;
-          if (32'(clear_addr) == Pixels - 1) begin
-            state <= clear_then_read_q ? S_READ : S_IDLE;
-            clear_then_read_q <= 1'b0;
-          end
+          if (32'(clear_addr) == Pixels - 1) state <= started_q ? S_READ : S_IDLE;
         end
         S_IDLE: if (start) begin
           if (!cfg_enabled) begin
@@ -173,7 +169,6 @@ module evms_ba_filter #(
             // Scrubbing owed for the time since the last judged event comes before the reads.
             if (started_q && crossed > ClearCrossings) begin
               clear_addr <= '0;
-              clear_then_read_q <= 1'b1;
               state <= S_CLEAR;
             end else if (started_q && owed != 0) begin
               owed_q <= owed;
