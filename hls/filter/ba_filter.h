@@ -50,7 +50,7 @@ template <class S>
 class BackgroundActivityFilter {
  public:
   void reset() {
-    for (int i = 0; i < kPixels; ++i) stamp_[i] = 0;
+    clear_stamps();
     scrub_ = 0;
     last_t_ = 0;
     started_ = false;
@@ -141,17 +141,22 @@ class BackgroundActivityFilter {
   void scrub_for_time(std::uint32_t t, Stamp now) {
     const TimeScrub owed = time_scrub(last_t_, t);
     if (owed.clear_all) {
-    clear:
-      for (int i = 0; i < kPixels; ++i) {
-#pragma HLS PIPELINE II = 1
-        stamp_[i] = 0;
-      }
+      clear_stamps();
       return;
     }
   sweep:
     for (int k = 0; k < kPixels; ++k) {
       if (k >= owed.entries) break;
       scrub_one(now);
+    }
+  }
+
+  // Every pixel "never fired": at reset, and after a gap longer than every window.
+  void clear_stamps() {
+  clear:
+    for (int i = 0; i < kPixels; ++i) {
+#pragma HLS PIPELINE II = 1
+      stamp_[i] = 0;
     }
   }
 

@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <memory>
 #include <random>
 #include <vector>
@@ -187,4 +186,3 @@ TEST(BaFilterAgreesWithGolden, AQuietSensorsStaleTimesNeverSupportOnTheBoardBuil
 
 }  // namespace
 }  // namespace evms
-

@@ -39,7 +39,7 @@ void LiveBuffer::push(std::span<const Event> events, std::int64_t arrival_ns) {
       dropped_ += static_cast<std::int64_t>(events.size() - n);
     }
   }
-  ready_.notify_all();
+  ready_.notify_one();
 }
 
 void LiveBuffer::close() {
