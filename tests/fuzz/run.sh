@@ -4,7 +4,8 @@
 # cut from ../shared/data/real at run time when it is there (never committed); the dictionaries
 # hold each format's magic words. Limits: 5 s an input, 1 GiB an allocation. Prints the runs
 # and coverage per target; what a target finds is kept in build-fuzz/finds/TARGET and makes the
-# script fail. For hours by hand: tests/fuzz/run.sh 3600.
+# script fail. The targets run as many at a time as there are cores (each fuzzer is one
+# process on one core). For hours by hand: tests/fuzz/run.sh 3600.
 set -eu
 cd "$(dirname "$0")/../.."
 seconds=${1:-20}
@@ -22,9 +23,10 @@ cut_from() {  # file skip count out
 }
 # The offset just past a Prophesee header's "% end" line.
 after_end() { grep -abo '% end' "$real/$1" 2>/dev/null | head -1 | cut -d: -f1 | awk '{print $1 + 6}'; }
-failed=0
-for t in $targets; do
-  corpus=build-fuzz/corpus/$t finds=build-fuzz/finds/$t
+# Corpus and dictionary of target $1, then its run for $seconds; its verdict line goes to
+# build-fuzz/fuzz_$1.verdict and a find makes it fail.
+fuzz_one() {
+  t=$1 corpus=build-fuzz/corpus/$1 finds=build-fuzz/finds/$1
   mkdir -p "$corpus" "$finds"
   case $t in
     aedat4) cut_from dvxplorer_indoor.aedat4 14 65536 "$corpus/shared" ;;
@@ -39,14 +41,27 @@ for t in $targets; do
   esac
   dict=""
   [ -f "tests/fuzz/dict/$t.dict" ] && dict="-dict=tests/fuzz/dict/$t.dict"
-  log=build-fuzz/fuzz_$t.log
+  log=build-fuzz/fuzz_$t.log verdict=build-fuzz/fuzz_$t.verdict
   if build-fuzz/bin/fuzz_$t "$corpus" $dict -max_total_time="$seconds" -timeout=5 -malloc_limit_mb=1024 -rss_limit_mb=2048 \
       -artifact_prefix="$finds/" -print_final_stats=1 >"$log" 2>&1; then
-    echo "fuzz_$t: $(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$') runs in ${seconds} s, $(grep -o 'cov: [0-9]*' "$log" | tail -1), no finds"
+    echo "fuzz_$t: $(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$') runs in ${seconds} s, $(grep -o 'cov: [0-9]*' "$log" | tail -1), no finds" >"$verdict"
   else
-    echo "fuzz_$t: FOUND A BUG (input kept in $finds; log $log):"
-    grep -E 'ERROR|SUMMARY|Test unit written' "$log" | head -5
-    failed=1
+    { echo "fuzz_$t: FOUND A BUG (input kept in $finds; log $log):"; grep -E 'ERROR|SUMMARY|Test unit written' "$log" | head -5; } >"$verdict"
+    return 1
   fi
+}
+# Batches of one target per core; each batch waits for its slowest (they all run $seconds).
+cores=$(nproc 2>/dev/null || echo 1)
+failed=0
+set -- $targets
+while [ $# -gt 0 ]; do
+  batch="" pids=""
+  while [ $# -gt 0 ] && [ "$(echo $batch | wc -w)" -lt "$cores" ]; do
+    fuzz_one "$1" &
+    batch="$batch $1" pids="$pids $!"
+    shift
+  done
+  for p in $pids; do wait "$p" || failed=1; done
+  for t in $batch; do cat "build-fuzz/fuzz_$t.verdict"; done
 done
 exit $failed
