@@ -55,10 +55,10 @@ cores=$(nproc 2>/dev/null || echo 1)
 failed=0
 set -- $targets
 while [ $# -gt 0 ]; do
-  batch="" pids=""
-  while [ $# -gt 0 ] && [ "$(echo $batch | wc -w)" -lt "$cores" ]; do
+  batch="" pids="" running=0
+  while [ $# -gt 0 ] && [ "$running" -lt "$cores" ]; do
     fuzz_one "$1" &
-    batch="$batch $1" pids="$pids $!"
+    batch="$batch $1" pids="$pids $!" running=$((running + 1))
     shift
   done
   for p in $pids; do wait "$p" || failed=1; done
