@@ -37,6 +37,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "Vboard_arty.h"
 #include "Vboard_ice40.h"
 #include "host/backend/backend.h"

@@ -1,6 +1,10 @@
 #pragma once
 
-#include <CLI/CLI.hpp>
+// The subcommands' units include CLI11 (host/cli/common.h); the program's main() and the test
+// harnesses that call run_evms need only its name.
+namespace CLI {
+class App;
+}
 
 namespace evms::cli {
 // A subcommand that finished its work but must end with this exit status (its outputs are
