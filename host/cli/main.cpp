@@ -5,7 +5,6 @@
 #include <string>
 #include <vector>
 
-#include "evms_version.h"
 #include "hls/core/configs.h"
 #include "host/cli/commands.h"
 #include "host/cli/common.h"
@@ -37,7 +36,7 @@ std::string shape_text() {
 }
 
 void print_version() {
-  std::printf("evms %s\ncore builds (fixed backend):\n", EVMS_VERSION);
+  std::printf("evms %s\ncore builds (fixed backend):\n", evms::cli::build_version());
 #define EVMS_PRINT_BUILD(name, fixed, rtl, width, height, description) \
   std::printf("  %-5s %s\n", #name, shape_text<evms::hls::fixed>().c_str());
   EVMS_CORE_BUILDS(EVMS_PRINT_BUILD)
