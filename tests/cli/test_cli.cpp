@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -184,6 +186,54 @@ TEST(Cli, VersionNamesTheCommitAndTheCoreBuilds) {
   EXPECT_EQ(r.out.rfind("evms ", 0), 0u) << r.out;
   EXPECT_NE(r.out.substr(5, r.out.find('\n') - 5), "") << r.out;
   for (const char* build : {"host ", "arty ", "ice40"}) EXPECT_NE(r.out.find(build), std::string::npos) << r.out;
+}
+
+// The width study runs the host core and its variants by the method given: the rows of the
+// seeded path's words by default, the Gaussian path's kernel weights and exp table only under
+// its preset, and a method the core lacks is refused in one line.
+TEST(Cli, WidthsStudiesTheWordsOfTheMethodsPath) {
+  const auto table_rows = [](const std::string& out) {
+    std::map<std::string, std::vector<double>> rows;  // core -> its figures
+    std::istringstream lines(out);
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("| ", 0) != 0 || line.rfind("| core ", 0) == 0) continue;
+      std::vector<std::string> cells;
+      std::istringstream cols(line.substr(2));
+      for (std::string cell; std::getline(cols, cell, '|');) cells.push_back(cell.substr(0, cell.find_last_not_of(' ') + 1));
+      std::vector<double> figures;
+      for (size_t i = 1; i + 1 < cells.size(); ++i) figures.push_back(std::stod(cells[i]));
+      rows[cells[0]] = figures;
+    }
+    return rows;
+  };
+  const auto named = [](const std::map<std::string, std::vector<double>>& rows, const std::string& prefix) {
+    for (const auto& [name, figures] : rows)
+      if (name.rfind(prefix, 0) == 0) return &figures;
+    return static_cast<const std::vector<double>*>(nullptr);
+  };
+  const auto seeded = run_command(evms_binary() + " widths --duration-s 0.1 --jobs 2");
+  ASSERT_EQ(seeded.exit_code, 0) << seeded.err;
+  const auto rows = table_rows(seeded.out);
+  for (const char* core : {"golden (double)", "host core", "features 5.7", "positions .4", "16-bit 128 us timestamps",
+                           "the arty build's words", "the ice40 build's words"})
+    EXPECT_NE(named(rows, core), nullptr) << core << " is not a row of\n" << seeded.out;
+  for (const char* core : {"weights 1.8", "exp table 2^6 entries"}) EXPECT_EQ(named(rows, core), nullptr) << seeded.out;
+  const std::vector<double>* host = named(rows, "host core");
+  const std::vector<double>* golden = named(rows, "golden (double)");
+  ASSERT_TRUE(host && golden && host->size() == 4 && golden->size() == 4) << seeded.out;
+  EXPECT_GE((*host)[2], 0.99) << "the host core's labels against golden's, the lowest over the scenes";
+  EXPECT_NEAR((*host)[0], (*golden)[0], 0.01) << "F against the truth";
+
+  const auto gaussian = run_command(evms_binary() + " widths --duration-s 0.1 --jobs 2 --preset gaussian");
+  ASSERT_EQ(gaussian.exit_code, 0) << gaussian.err;
+  const auto gaussian_rows = table_rows(gaussian.out);
+  for (const char* core : {"weights 1.8", "exp table 2^6 entries", "features 5.7"})
+    EXPECT_NE(named(gaussian_rows, core), nullptr) << core << " is not a row of\n" << gaussian.out;
+  EXPECT_EQ(named(gaussian_rows, "the arty build's words"), nullptr) << "the board builds do not hold the Gaussian path";
+
+  const auto refused = run_command(evms_binary() + " widths --duration-s 0.1 --kernel gaussian");
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_EQ(refused.err, "evms: the fixed-point core climbs from seeds with the flat kernel only, not --kernel gaussian\n");
 }
 
 TEST(Cli, AMistypedCommandIsNamedWithTheNearestOne) {
