@@ -211,7 +211,7 @@ TEST(Cli, WidthsStudiesTheWordsOfTheMethodsPath) {
       if (name.rfind(prefix, 0) == 0) return &figures;
     return static_cast<const std::vector<double>*>(nullptr);
   };
-  const auto seeded = run_command(evms_binary() + " widths --duration-s 0.1 --jobs 2");
+  const auto seeded = run_command(evms_binary() + " widths --duration-s 0.03 --jobs 2");
   ASSERT_EQ(seeded.exit_code, 0) << seeded.err;
   const auto rows = table_rows(seeded.out);
   for (const char* core : {"golden (double)", "host core", "features 5.7", "positions .4", "16-bit 128 us timestamps",
@@ -224,14 +224,14 @@ TEST(Cli, WidthsStudiesTheWordsOfTheMethodsPath) {
   EXPECT_GE((*host)[2], 0.99) << "the host core's labels against golden's, the lowest over the scenes";
   EXPECT_NEAR((*host)[0], (*golden)[0], 0.01) << "F against the truth";
 
-  const auto gaussian = run_command(evms_binary() + " widths --duration-s 0.1 --jobs 2 --preset gaussian");
+  const auto gaussian = run_command(evms_binary() + " widths --duration-s 0.03 --jobs 2 --preset gaussian");
   ASSERT_EQ(gaussian.exit_code, 0) << gaussian.err;
   const auto gaussian_rows = table_rows(gaussian.out);
   for (const char* core : {"weights 1.8", "exp table 2^6 entries", "features 5.7"})
     EXPECT_NE(named(gaussian_rows, core), nullptr) << core << " is not a row of\n" << gaussian.out;
   EXPECT_EQ(named(gaussian_rows, "the arty build's words"), nullptr) << "the board builds do not hold the Gaussian path";
 
-  const auto refused = run_command(evms_binary() + " widths --duration-s 0.1 --kernel gaussian");
+  const auto refused = run_command(evms_binary() + " widths --duration-s 0.03 --kernel gaussian");
   EXPECT_NE(refused.exit_code, 0);
   EXPECT_EQ(refused.err, "evms: the fixed-point core climbs from seeds with the flat kernel only, not --kernel gaussian\n");
 }
