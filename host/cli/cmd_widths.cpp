@@ -69,9 +69,7 @@ void widths(const WidthsOptions& o) {
   const std::vector<Row> all_rows = {
       row<hls::HostShape>("host core (" + words_text<hls::HostShape>() + "; weights 1.16, exp table 2^10)"),
       row<HostVariant<32, 0, 7>>("features 5.7"),
-      row<HostVariant<32, 0, 9>>("features 5.9"),
       row<HostVariant<32, 0, 11>>("features 5.11"),
-      row<HostVariant<32, 0, 15>>("features 5.15"),
       row<HostVariant<32, 0, 13, 8>>("weights 1.8", Path::kGaussian),
       row<HostVariant<32, 0, 13, 12>>("weights 1.12", Path::kGaussian),
       row<HostVariant<32, 0, 13, 16, 6>>("exp table 2^6 entries", Path::kGaussian),
@@ -79,7 +77,6 @@ void widths(const WidthsOptions& o) {
       row<HostVariant<32, 0, 13, 16, 10, 4>>("positions .4"),
       row<HostVariant<32, 0, 13, 16, 10, 8>>("positions .8"),
       row<HostVariant<16, 7>>("16-bit 128 us timestamps"),
-      row<HostVariant<16, 9>>("16-bit 512 us timestamps"),
       board_row<hls::ArtyShape>("arty"),
       board_row<hls::Ice40Shape>("ice40"),
   };
