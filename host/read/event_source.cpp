@@ -147,8 +147,10 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
   }
   if (head[0] == '%') return open_prophesee(std::move(in), options);
   // Text formats: the first line that is not a comment ('#', such as the "# sensor WxH" evms
-  // writes) decides. CSV has commas, the RPG format has spaces.
+  // writes) decides. CSV has commas, the RPG format has spaces. A UTF-8 byte-order mark, which
+  // spreadsheets write, is not part of the text.
   std::string_view lines = in.peek(512);
+  if (lines.rfind(kUtf8ByteOrderMark, 0) == 0) lines.remove_prefix(kUtf8ByteOrderMark.size());
   while (!lines.empty() && lines[0] == '#' && lines.find('\n') != std::string_view::npos) lines.remove_prefix(lines.find('\n') + 1);
   const std::string_view first = lines.substr(0, lines.find('\n'));
   bool text = std::all_of(first.begin(), first.end(), [](char c) {

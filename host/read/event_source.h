@@ -14,6 +14,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -26,6 +27,9 @@ namespace evms::read {
 // The largest sensor side evms accepts, from a header or --width/--height (the largest event
 // sensors are 1280x720 and 1280x960).
 inline constexpr int kMaxSensorSide = 4096;
+
+// The UTF-8 byte-order mark that spreadsheet programs put before a CSV's first line.
+inline constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
 
 struct Roi {
   int x = 0, y = 0, width = 0, height = 0;

@@ -82,6 +82,8 @@ TEST(BadInput, BadHeaders) {
     expect_error(d.write("d.dat", b), "byte ", "bad header: event type 7");
   }
   expect_error(d.write("c.csv", "time,x,y,p\n1,2,3,1\n"), "line 1", "bad header: expected 't_us,x,y,p'");
+  // After the header, a word is a bad record, not a second header.
+  expect_error(d.write("nan.csv", "t_us,x,y,p\nnan,2,3,1\n"), "line 2", "field 't_us' = 'nan' is not an integer");
   expect_error(d.write("bin.bin", Bytes{0x00, 0xFF, 0x13, 0x00, 0x42}), "byte 0", "bad header: not a known event format");
   expect_error(d.write("empty.txt", ""), "byte 0", "empty file");
 }

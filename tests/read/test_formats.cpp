@@ -57,6 +57,9 @@ TEST(Formats, TextLinesOfEveryFormReadTheSame) {
   EXPECT_EQ(read_all(dir.write("spaced.txt", spaced)), want);
   EXPECT_EQ(read_all(dir.write("compact.csv", "t_us,x,y,p,label\n" + csv_compact)), want);
   EXPECT_EQ(read_all(dir.write("spaced.csv", csv_spaced)), want);
+  // A UTF-8 byte-order mark before the first line, as spreadsheets save a CSV, is not text.
+  EXPECT_EQ(read_all(dir.write("bom.csv", "\xEF\xBB\xBFt_us,x,y,p,label\n" + csv_compact)), want);
+  EXPECT_EQ(read_all(dir.write("bom.txt", "\xEF\xBB\xBF" + compact)), want);
 }
 
 TEST(Formats, CsvRoundTripsAndAcceptsALabelColumn) {

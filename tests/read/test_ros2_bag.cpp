@@ -139,6 +139,11 @@ TEST(Ros2Bag, BadBagsGetOneLineThatSaysWhereAndWhat) {
     expect_bag_error(d.path("nometa"), d.path("nometa") + ": ", "without metadata.yaml");
   }
   {
+    // The folder above a bag, as `ros2 bag record` leaves it: the error names the bag inside.
+    const std::string bag = write_ros2_bag(d.path("runs/first"), {{"/e", kPacket, {event_packet_cdr("evt3", 0, kSensor, evt3_words(events))}}});
+    expect_bag_error(d.path("runs"), d.path("runs") + ": ", "not a ROS 2 bag; the bag in it: " + bag);
+  }
+  {
     // A storage file cut short: sqlite finds its pages missing.
     std::vector<Bytes> many = packets(events, 30, [](const std::vector<Event>& p) { return event_packet_cdr("libcaer", 0, kSensor, libcaer_events(p)); });
     const std::string bag = write_ros2_bag(d.path("trunc"), {{"/e", kPacket, many}});

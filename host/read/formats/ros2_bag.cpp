@@ -24,6 +24,7 @@
 #include <yaml-cpp/yaml.h>
 #include <zstd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -54,7 +55,21 @@ struct BagLayout {
 // The files of a bag folder, from its metadata.yaml.
 BagLayout layout_of_folder(const std::string& folder) {
   const fs::path meta = fs::path(folder) / "metadata.yaml";
-  if (!fs::exists(meta)) fail(folder, {}, "a folder without metadata.yaml is not a ROS 2 bag");
+  if (!fs::exists(meta)) {
+    // A user who names the folder above a bag (ros2 bag record writes one folder a run) is told
+    // which bags it holds.
+    std::vector<std::string> bags;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+      if (entry.is_directory(ec) && fs::exists(entry.path() / "metadata.yaml", ec)) bags.push_back(entry.path().string());
+    }
+    std::sort(bags.begin(), bags.end());
+    std::string what = "a folder without metadata.yaml is not a ROS 2 bag";
+    if (!bags.empty()) what += "; the bag" + std::string(bags.size() > 1 ? "s" : "") + " in it: " + printable(bags[0]);
+    for (size_t i = 1; i < bags.size() && i < 4; ++i) what += ", " + printable(bags[i]);
+    if (bags.size() > 4) what += ", ...";
+    fail(folder, {}, what);
+  }
   YAML::Node root;
   try {
     root = YAML::LoadFile(meta.string())["rosbag2_bagfile_information"];

@@ -22,6 +22,7 @@ class TextSource final : public FileEventSource {
  public:
   TextSource(ByteReader in, const SourceOptions& o, bool csv)
       : FileEventSource(std::move(in), csv ? "CSV t_us,x,y,p" : "RPG events.txt", o), csv_(csv) {
+    if (in_.peek(kUtf8ByteOrderMark.size()) == kUtf8ByteOrderMark) in_.skip(kUtf8ByteOrderMark.size());
     set_sensor(sensor_comment(), kDavis240, "assumed: the file does not say (DAVIS240C); pass --width and --height");
   }
 
@@ -166,10 +167,11 @@ class TextSource final : public FileEventSource {
     if (parse_usual(line)) return;
     size_t first = line.find_first_not_of(" \t");
     if (first == std::string_view::npos || line[first] == '#') return;
-    if (csv_ && !records_ && std::isalpha(static_cast<unsigned char>(line[first]))) {
+    if (csv_ && !records_ && !header_ && std::isalpha(static_cast<unsigned char>(line[first]))) {
       if (line.substr(first).rfind("t_us,x,y,p", 0) != 0) {
         bad("bad header: expected 't_us,x,y,p' (optionally ',label')");
       }
+      header_ = true;
       return;
     }
     std::string_view rest = line.substr(first);
@@ -192,6 +194,7 @@ class TextSource final : public FileEventSource {
 
   bool csv_;
   bool records_ = false;  // a record was read (a header may only come before)
+  bool header_ = false;   // the header was read (a second one is a bad record)
 };
 
 }  // namespace
