@@ -258,7 +258,7 @@ TEST(Cli, FilesystemErrorsAreOneLineNamingThePath) {
 
 // The rows of an events.csv without its two header lines, each split at the last comma:
 // "t,x,y,p" and the label.
-std::vector<std::pair<std::string, std::string>> csv_rows(const std::string& path) {
+std::vector<std::pair<std::string, std::string>> event_rows_and_labels(const std::string& path) {
   std::ifstream in(path);
   std::string line;
   std::getline(in, line);
@@ -277,7 +277,7 @@ TEST(Cli, NpyOutputHoldsTheSameRowsAsCsv) {
   ASSERT_EQ(run_command(evms_binary() + scene + " --out " + dir.path("csv")).exit_code, 0);
   const auto r = run_command(evms_binary() + scene + " --format npy --out " + dir.path("npy"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto rows = csv_rows(dir.path("csv/events.csv"));
+  const auto rows = event_rows_and_labels(dir.path("csv/events.csv"));
   const std::string npy = read_file(dir.path("npy/events.npy"));
   // NPY 1.0: magic, version, a little-endian header length, the header dict, then the data.
   ASSERT_GT(npy.size(), 10u);
@@ -321,7 +321,7 @@ TEST(Cli, CameraFileOutputsReadBackToTheSameEventsWithTheirLabelsBeside) {
   for (size_t i = 0; i < events.size(); ++i) events[i].t += 1605537493718345 + (i >= 5000 ? 40000000 : 0);
   const std::string in = dir.write("in.csv", csv(events));
   ASSERT_EQ(run_command(evms_binary() + " run " + in + " --quiet --out " + dir.path("csv")).exit_code, 0);
-  const auto original = csv_rows(dir.path("csv/events.csv"));
+  const auto original = event_rows_and_labels(dir.path("csv/events.csv"));
   ASSERT_EQ(original.size(), events.size());
   for (const auto& [format, file, description] : {std::tuple{"evt3", "events.raw", "EVT 3.0"}, {"aedat4", "events.aedat4", "AEDAT 4.0"}}) {
     SCOPED_TRACE(format);
@@ -333,7 +333,7 @@ TEST(Cli, CameraFileOutputsReadBackToTheSameEventsWithTheirLabelsBeside) {
     EXPECT_NE(info.out.find("sensor      240x180 (from header)"), std::string::npos) << info.out;
     const auto again = run_command(evms_binary() + " run " + out + "/" + file + " --quiet --out " + out + "/again");
     ASSERT_EQ(again.exit_code, 0) << again.err;
-    const auto decoded = csv_rows(out + "/again/events.csv");
+    const auto decoded = event_rows_and_labels(out + "/again/events.csv");
     ASSERT_EQ(decoded.size(), original.size());
     std::ifstream labels(out + "/labels.csv");
     std::string line;

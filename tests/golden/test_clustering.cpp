@@ -7,11 +7,13 @@
 
 #include "golden/cluster/clustering.h"
 #include "golden/cluster/kernel.h"
+#include "tests/support/scenes.h"
 
 namespace evms::golden {
 namespace {
 
-constexpr SensorSize kSensor{240, 180};
+using test::kSensor;
+using test::concat;
 
 // A packet of events and its features (x/W, y/H, no polarity or time).
 struct Packet {
@@ -31,11 +33,6 @@ std::vector<Event> ring(double cx, double cy, double radius, double step = 6) {
                  static_cast<std::uint16_t>(std::lround(cy + radius * std::sin(a * M_PI / 180))), 1});
   }
   return e;
-}
-
-std::vector<Event> concat(std::vector<Event> a, const std::vector<Event>& b) {
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
 }
 
 Params seeded() {

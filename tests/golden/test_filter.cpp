@@ -2,11 +2,12 @@
 
 #include "golden/filter/background_activity_filter.h"
 #include "types/params.h"
+#include "tests/support/scenes.h"
 
 namespace evms::golden {
 namespace {
 
-constexpr SensorSize kSensor{240, 180};
+using test::kSensor;
 
 TEST(BackgroundActivityFilter, FirstEventOfASceneIsNoise) {
   BackgroundActivityFilter f(kSensor, 10000);

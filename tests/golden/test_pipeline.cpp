@@ -13,7 +13,7 @@ namespace {
 using test::Blob;
 using test::CollectingSink;
 
-constexpr SensorSize kSensor{240, 180};
+using test::kSensor;
 
 CollectingSink run(const std::vector<Event>& events, const Params& p) {
   Pipeline pipeline(p, kSensor);

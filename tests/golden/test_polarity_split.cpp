@@ -6,11 +6,13 @@
 
 #include "golden/cluster/clustering.h"
 #include "golden/cluster/polarity_split.h"
+#include "tests/support/scenes.h"
 
 namespace evms::golden {
 namespace {
 
-constexpr SensorSize kSensor{240, 180};
+using test::kSensor;
+using test::concat;
 
 Params splitting() {
   Params p;
@@ -30,11 +32,6 @@ std::vector<Event> square(int x0, int y0, int side, Polarity polarity) {
 const auto kChecker = [](int x, int y) { return static_cast<std::uint8_t>((x + y) % 2); };  // both polarities, evenly
 const auto kOn = [](int, int) { return std::uint8_t{1}; };
 const auto kOff = [](int, int) { return std::uint8_t{0}; };
-
-std::vector<Event> concat(std::vector<Event> a, const std::vector<Event>& b) {
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
 
 struct Split {
   std::vector<int> cluster_of;

@@ -14,7 +14,7 @@
 namespace evms::test {
 namespace {
 
-constexpr SensorSize kSensor{346, 260};
+constexpr SensorSize kDavis346{346, 260};
 constexpr const char* kPacket = "event_camera_msgs/msg/EventPacket";
 
 // `events` cut into `parts` messages by `encode`.
@@ -36,7 +36,7 @@ std::vector<Event> shifted(std::vector<Event> events, TimeUs by) {
 
 TEST(Ros2Bag, EveryEncodingDecodesToTheEventsEncoded) {
   TempDir d;
-  const std::vector<Event> events = sample_events(900, kSensor);
+  const std::vector<Event> events = sample_events(900, kDavis346);
   const std::uint64_t base_ns = 1702309120000000000;  // ROS time of the driver's start
   const TimeUs base_us = static_cast<TimeUs>(base_ns / 1000);
   struct Case {
@@ -46,19 +46,19 @@ TEST(Ros2Bag, EveryEncodingDecodesToTheEventsEncoded) {
     std::string type = kPacket;
   };
   const std::vector<Case> cases = {
-      {"evt3", packets(events, 3, [](const std::vector<Event>& p) { return event_packet_cdr("evt3", 0, kSensor, evt3_words(p)); }), events},
-      {"libcaer", packets(events, 3, [&](const std::vector<Event>& p) { return event_packet_cdr("libcaer", base_ns, kSensor, libcaer_events(p)); }),
+      {"evt3", packets(events, 3, [](const std::vector<Event>& p) { return event_packet_cdr("evt3", 0, kDavis346, evt3_words(p)); }), events},
+      {"libcaer", packets(events, 3, [&](const std::vector<Event>& p) { return event_packet_cdr("libcaer", base_ns, kDavis346, libcaer_events(p)); }),
        shifted(events, base_us)},
-      {"mono", packets(events, 3, [&](const std::vector<Event>& p) { return event_packet_cdr("mono", base_ns, kSensor, mono_events(shifted(p, base_us), base_ns)); }),
+      {"mono", packets(events, 3, [&](const std::vector<Event>& p) { return event_packet_cdr("mono", base_ns, kDavis346, mono_events(shifted(p, base_us), base_ns)); }),
        shifted(events, base_us)},
-      {"dvs", packets(events, 3, [&](const std::vector<Event>& p) { return dvs_event_array_cdr(shifted(p, base_us), kSensor); }),
+      {"dvs", packets(events, 3, [&](const std::vector<Event>& p) { return dvs_event_array_cdr(shifted(p, base_us), kDavis346); }),
        shifted(events, base_us), "dvs_msgs/msg/EventArray"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     const std::string bag = write_ros2_bag(d.path(c.name), {{"/events", c.type, c.messages}});
     auto source = read::open_source(bag, {});
-    EXPECT_EQ(source->info().sensor, kSensor);
+    EXPECT_EQ(source->info().sensor, kDavis346);
     EXPECT_NE(source->info().format.find(c.type), std::string::npos) << source->info().format;
     EXPECT_EQ(read_all(bag), c.expected);
     // The storage file alone reads the same.
@@ -72,17 +72,17 @@ TEST(Ros2Bag, LibcaerTimestampsRollOverInsideAPacket) {
   Bytes words = libcaer_events(events);
   const Bytes after = libcaer_events({{2, 9, 10, 1}});  // the 31-bit counter wrapped
   words.insert(words.end(), after.begin(), after.end());
-  const std::string bag = write_ros2_bag(d.path("rollover"), {{"/events", kPacket, {event_packet_cdr("libcaer", 0, kSensor, words)}}});
+  const std::string bag = write_ros2_bag(d.path("rollover"), {{"/events", kPacket, {event_packet_cdr("libcaer", 0, kDavis346, words)}}});
   events.push_back({(TimeUs{1} << 31) + 2, 9, 10, 1});
   EXPECT_EQ(read_all(bag), events);
 }
 
 TEST(Ros2Bag, TriggerPacketsAreCountedAndSkipped) {
   TempDir d;
-  const std::vector<Event> events = sample_events(50, kSensor);
+  const std::vector<Event> events = sample_events(50, kDavis346);
   const std::string bag = write_ros2_bag(
-      d.path("trig"), {{"/triggers", kPacket, {event_packet_cdr("trigger", 0, kSensor, Bytes(8 * 4, 0))}},
-                       {"/events", kPacket, {event_packet_cdr("evt3", 0, kSensor, evt3_words(events))}}});
+      d.path("trig"), {{"/triggers", kPacket, {event_packet_cdr("trigger", 0, kDavis346, Bytes(8 * 4, 0))}},
+                       {"/events", kPacket, {event_packet_cdr("evt3", 0, kDavis346, evt3_words(events))}}});
   // The first event topic is the trigger topic: it has no events, and says so.
   auto source = read::open_source(bag, {});
   std::vector<Event> out(100);
@@ -94,10 +94,10 @@ TEST(Ros2Bag, TriggerPacketsAreCountedAndSkipped) {
 
 TEST(Ros2Bag, TheFirstEventTopicIsTheDefaultAndQueryChoosesAnother) {
   TempDir d;
-  const std::vector<Event> a = sample_events(40, kSensor, 1), b = sample_events(60, kSensor, 2);
+  const std::vector<Event> a = sample_events(40, kDavis346, 1), b = sample_events(60, kDavis346, 2);
   const std::string bag = write_ros2_bag(d.path("two"), {{"/imu", "sensor_msgs/msg/Imu", {Bytes{0, 1, 0, 0}}},
-                                                         {"/left/events", kPacket, {event_packet_cdr("evt3", 0, kSensor, evt3_words(a))}},
-                                                         {"/right/events", kPacket, {event_packet_cdr("evt3", 0, kSensor, evt3_words(b))}}});
+                                                         {"/left/events", kPacket, {event_packet_cdr("evt3", 0, kDavis346, evt3_words(a))}},
+                                                         {"/right/events", kPacket, {event_packet_cdr("evt3", 0, kDavis346, evt3_words(b))}}});
   EXPECT_EQ(read_all(bag), a);
   EXPECT_EQ(read_all(bag + "?topic=/right/events"), b);
   const std::string missing = read_error(bag + "?topic=/nope");
@@ -118,34 +118,34 @@ void expect_bag_error(const std::string& name, const std::string& prefix, const 
 
 TEST(Ros2Bag, BadBagsGetOneLineThatSaysWhereAndWhat) {
   TempDir d;
-  const std::vector<Event> events = sample_events(3000, kSensor);
+  const std::vector<Event> events = sample_events(3000, kDavis346);
   {
-    const std::string bag = write_ros2_bag(d.path("enc"), {{"/e", kPacket, {event_packet_cdr("evt5", 0, kSensor, Bytes(16, 0))}}});
+    const std::string bag = write_ros2_bag(d.path("enc"), {{"/e", kPacket, {event_packet_cdr("evt5", 0, kDavis346, Bytes(16, 0))}}});
     expect_bag_error(bag, bag + "/enc_0.db3: message 1, byte ", "encoding 'evt5' is not supported");
   }
   {
-    Bytes cut = event_packet_cdr("libcaer", 0, kSensor, libcaer_events(events));
+    Bytes cut = event_packet_cdr("libcaer", 0, kDavis346, libcaer_events(events));
     cut.resize(cut.size() - 5);
     const std::string bag = write_ros2_bag(d.path("cut"), {{"/e", kPacket, {cut}}});
     expect_bag_error(bag, bag + "/cut_0.db3: message 1, byte 6", "runs past the end of the message");
   }
   {
-    const std::string bag = write_ros2_bag(d.path("odd"), {{"/e", kPacket, {event_packet_cdr("libcaer", 0, kSensor, Bytes(12, 0))}}});
+    const std::string bag = write_ros2_bag(d.path("odd"), {{"/e", kPacket, {event_packet_cdr("libcaer", 0, kDavis346, Bytes(12, 0))}}});
     expect_bag_error(bag, bag + "/odd_0.db3: message 1, byte ", "not whole 8-byte events");
   }
   {
     std::filesystem::create_directories(d.path("nometa"));
-    write_db3(d.path("nometa/x_0.db3"), {{"/e", kPacket, {event_packet_cdr("evt3", 0, kSensor, evt3_words(events))}}});
+    write_db3(d.path("nometa/x_0.db3"), {{"/e", kPacket, {event_packet_cdr("evt3", 0, kDavis346, evt3_words(events))}}});
     expect_bag_error(d.path("nometa"), d.path("nometa") + ": ", "without metadata.yaml");
   }
   {
     // The folder above a bag, as `ros2 bag record` leaves it: the error names the bag inside.
-    const std::string bag = write_ros2_bag(d.path("runs/first"), {{"/e", kPacket, {event_packet_cdr("evt3", 0, kSensor, evt3_words(events))}}});
+    const std::string bag = write_ros2_bag(d.path("runs/first"), {{"/e", kPacket, {event_packet_cdr("evt3", 0, kDavis346, evt3_words(events))}}});
     expect_bag_error(d.path("runs"), d.path("runs") + ": ", "not a ROS 2 bag; the bag in it: " + bag);
   }
   {
     // A storage file cut short: sqlite finds its pages missing.
-    std::vector<Bytes> many = packets(events, 30, [](const std::vector<Event>& p) { return event_packet_cdr("libcaer", 0, kSensor, libcaer_events(p)); });
+    std::vector<Bytes> many = packets(events, 30, [](const std::vector<Event>& p) { return event_packet_cdr("libcaer", 0, kDavis346, libcaer_events(p)); });
     const std::string bag = write_ros2_bag(d.path("trunc"), {{"/e", kPacket, many}});
     const std::string db3 = bag + "/trunc_0.db3";
     std::filesystem::resize_file(db3, std::filesystem::file_size(db3) / 2);

@@ -9,6 +9,15 @@
 
 namespace evms::test {
 
+// The DAVIS240C's sensor, which most of the method's tests use.
+inline constexpr SensorSize kSensor{240, 180};
+
+// The events of `a`, then those of `b`.
+inline std::vector<Event> concat(std::vector<Event> a, const std::vector<Event>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
 // A Gaussian blob of events around a centre moving at constant velocity.
 struct Blob {
   double x0, y0;          // px at t = 0
