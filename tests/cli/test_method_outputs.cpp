@@ -108,6 +108,9 @@ TEST(MethodOutputs, ATextFileWithoutASizeSaysWhatWasAssumed) {
   const auto r = run_command(evms_binary() + " run " + in + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("240x180 assumed: the file does not say"), std::string::npos) << r.out;
+  const auto info = run_command(evms_binary() + " info " + in);
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("sensor      240x180 (assumed: the file does not say"), std::string::npos) << info.out;
   const auto bad = run_command(evms_binary() + " run " + dir.write("bad.txt", "# sensor 240by180\n0.1 1 1 1\n") + " --quiet");
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("line 1: bad sensor comment"), std::string::npos) << bad.err;
