@@ -1,5 +1,6 @@
 // The evms command line (run_evms, commands.h): event-based mean-shift clustering and tracking, from files, cameras or generated
 // scenes, on the golden model, the fixed-point core, the simulated RTL or an FPGA board.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -33,6 +34,40 @@ std::string shape_text() {
   return std::to_string(S::kMaxWidth) + "x" + std::to_string(S::kMaxHeight) + ", packets of " +
          std::to_string(S::kPacketMax) + ", " + std::to_string(S::kClustersMax) + " clusters, " + std::to_string(S::kTracksMax) +
          " tracks, " + std::to_string(S::kLanes) + " lane" + (S::kLanes > 1 ? "s" : "");
+}
+
+// The nearest of `names` to `given`, a typo or two away, or "".
+std::string nearest_name(const std::string& given, const std::vector<std::string>& names) {
+  std::string nearest;
+  size_t best = 3;
+  for (const std::string& name : names) {
+    const size_t d = edit_distance(given, name);
+    if (d < best) best = d, nearest = name;
+  }
+  return nearest;
+}
+
+// A command line CLI11 refused, as one line: its reason, and for an option the subcommand does
+// not know, the nearest one it does.
+void print_parse_error(const CLI::App& app, const CLI::ParseError& e) {
+  const CLI::App* command = nullptr;
+  for (const CLI::App* sub : app.get_subcommands()) command = sub;  // the one parsed
+  std::string line = e.what();
+  if (command && dynamic_cast<const CLI::ExtrasError*>(&e)) {
+    for (const std::string& extra : command->remaining()) {
+      if (extra.rfind("--", 0) != 0) continue;
+      const std::string given = extra.substr(0, extra.find('='));
+      std::vector<std::string> options;
+      for (const CLI::Option* o : command->get_options()) {
+        for (const std::string& name : o->get_lnames()) options.push_back("--" + name);
+      }
+      const std::string nearest = nearest_name(given, options);
+      line = "unknown option '" + given + "' for evms " + command->get_name() + (nearest.empty() ? "" : "; did you mean '" + nearest + "'?");
+      break;
+    }
+  }
+  const std::string help = command ? "evms " + command->get_name() + " --help" : "evms --help";
+  std::fprintf(stderr, "evms: %s (%s lists the options)\n", evms::read::printable(line).c_str(), help.c_str());
 }
 
 void print_version() {
@@ -80,15 +115,10 @@ int evms::cli::run_evms(int argc, char** argv) {
   // A first word that is no subcommand is named, with the nearest one.
   if (argc > 1 && argv[1][0] != '-') {
     const std::string given = argv[1];
-    std::string nearest;
-    size_t best = 3;  // suggest only what a typo or two away
-    bool known = false;
-    for (const CLI::App* sub : app.get_subcommands({})) {
-      known = known || sub->get_name() == given;
-      const size_t d = edit_distance(given, sub->get_name());
-      if (d < best) best = d, nearest = sub->get_name();
-    }
-    if (!known) {
+    std::vector<std::string> commands;
+    for (const CLI::App* sub : app.get_subcommands({})) commands.push_back(sub->get_name());
+    if (std::find(commands.begin(), commands.end(), given) == commands.end()) {
+      const std::string nearest = nearest_name(given, commands);
       std::fprintf(stderr, "evms: unknown command '%s'%s (evms --help lists them)\n", evms::read::printable(given).c_str(),
                    nearest.empty() ? "" : ("; did you mean '" + nearest + "'?").c_str());
       return 2;
@@ -97,7 +127,9 @@ int evms::cli::run_evms(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    print_parse_error(app, e);
+    return 2;
   } catch (const evms::cli::ExitStatus& e) {
     return e.code;
   } catch (const std::filesystem::filesystem_error& e) {

@@ -245,6 +245,22 @@ TEST(Cli, AMistypedCommandIsNamedWithTheNearestOne) {
   EXPECT_EQ(far.err, "evms: unknown command 'frobnicate' (evms --help lists them)\n");
 }
 
+TEST(Cli, AMistypedOptionIsNamedWithTheNearestOneInOneLine) {
+  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.01 --bandwith 0.1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "evms: unknown option '--bandwith' for evms run; did you mean '--bandwidth'? (evms run --help lists the options)\n");
+  const auto assigned = run_command(evms_binary() + " sweep --seedz=3");
+  EXPECT_EQ(assigned.exit_code, 2);
+  EXPECT_EQ(assigned.err, "evms: unknown option '--seedz' for evms sweep; did you mean '--seeds'? (evms sweep --help lists the options)\n");
+  // Every other refusal of the command line is one line too.
+  const auto range = run_command(evms_binary() + " run --threads 0");
+  EXPECT_EQ(range.exit_code, 2);
+  EXPECT_EQ(range.err, "evms: --threads: Value 0 not in range 1 to 256 (evms run --help lists the options)\n");
+  const auto missing = run_command(evms_binary() + " metrics");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_EQ(missing.err, "evms: --truth is required (evms metrics --help lists the options)\n");
+}
+
 TEST(Cli, FilesystemErrorsAreOneLineNamingThePath) {
   TempDir dir;
   const std::string file = dir.write("plain", std::string("x"));
