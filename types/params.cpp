@@ -170,6 +170,12 @@ std::int64_t events_per_filter_interval(double hz, SensorSize sensor) {
   const double per_interval = hz * sensor.width * sensor.height * static_cast<double>(TimeUs{1} << kFilterNoiseIntervalLog2) * 1e-6;
   return std::max<std::int64_t>(1, static_cast<std::int64_t>(per_interval));
 }
+
+// " us" after a range of microseconds; nothing for a ratio, whose unit is "1".
+std::string unit_suffix(const ParamInfo& info) {
+  const std::string unit = info.unit ? info.unit : "";
+  return unit.empty() || unit == "1" ? "" : " " + unit;
+}
 }  // namespace
 
 std::int64_t filter_noise_count(const Params& p, SensorSize sensor) { return events_per_filter_interval(p.filter_noise_hz, sensor); }
@@ -262,7 +268,7 @@ std::string set_param(Params& p, const ParamInfo& info, const std::string& text)
           }
           if (value < info.min || value > info.max) {
             std::ostringstream os;
-            os << option << ": " << text << " is outside [" << info.min << ", " << info.max << "] " << info.unit;
+            os << option << ": " << text << " is outside [" << info.min << ", " << info.max << "]" << unit_suffix(info);
             return os.str();
           }
           p.*member = value;
@@ -281,8 +287,7 @@ std::string validate(const Params& p) {
     double v = param_value(p, info);
     if (!(v >= info.min && v <= info.max)) {
       std::ostringstream os;
-      os << info.name << " = " << v << " is outside [" << info.min << ", " << info.max << "] "
-         << info.unit;
+      os << info.name << " = " << v << " is outside [" << info.min << ", " << info.max << "]" << unit_suffix(info);
       return os.str();
     }
   }

@@ -256,6 +256,10 @@ TEST(Cli, AMistypedOptionIsNamedWithTheNearestOneInOneLine) {
   const auto range = run_command(evms_binary() + " run --threads 0");
   EXPECT_EQ(range.exit_code, 2);
   EXPECT_EQ(range.err, "evms: --threads: Value 0 not in range 1 to 256 (evms run --help lists the options)\n");
+  const auto ratio = run_command(evms_binary() + " run --bandwidth -1");
+  EXPECT_EQ(ratio.err, "evms: --bandwidth: -1 is outside [0.0001, 10] (evms run --help lists the options)\n");
+  const auto micros = run_command(evms_binary() + " run --coast-us -5");
+  EXPECT_EQ(micros.err, "evms: --coast-us: -5 is outside [0, 1e+12] us (evms run --help lists the options)\n");
   const auto missing = run_command(evms_binary() + " metrics");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_EQ(missing.err, "evms: --truth is required (evms metrics --help lists the options)\n");
