@@ -245,24 +245,23 @@ TEST(Cli, AMistypedCommandIsNamedWithTheNearestOne) {
   EXPECT_EQ(far.err, "evms: unknown command 'frobnicate' (evms --help lists them)\n");
 }
 
-TEST(Cli, AMistypedOptionIsNamedWithTheNearestOneInOneLine) {
-  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.01 --bandwith 0.1");
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, "evms: unknown option '--bandwith' for evms run; did you mean '--bandwidth'? (evms run --help lists the options)\n");
-  const auto assigned = run_command(evms_binary() + " sweep --seedz=3");
-  EXPECT_EQ(assigned.exit_code, 2);
-  EXPECT_EQ(assigned.err, "evms: unknown option '--seedz' for evms sweep; did you mean '--seeds'? (evms sweep --help lists the options)\n");
-  // Every other refusal of the command line is one line too.
-  const auto range = run_command(evms_binary() + " run --threads 0");
-  EXPECT_EQ(range.exit_code, 2);
-  EXPECT_EQ(range.err, "evms: --threads: Value 0 not in range 1 to 256 (evms run --help lists the options)\n");
-  const auto ratio = run_command(evms_binary() + " run --bandwidth -1");
-  EXPECT_EQ(ratio.err, "evms: --bandwidth: -1 is outside [0.0001, 10] (evms run --help lists the options)\n");
-  const auto micros = run_command(evms_binary() + " run --coast-us -5");
-  EXPECT_EQ(micros.err, "evms: --coast-us: -5 is outside [0, 1e+12] us (evms run --help lists the options)\n");
-  const auto missing = run_command(evms_binary() + " metrics");
-  EXPECT_EQ(missing.exit_code, 2);
-  EXPECT_EQ(missing.err, "evms: --truth is required (evms metrics --help lists the options)\n");
+// A mistyped option is named with the nearest one, and every other refusal of the command line
+// is one line too, with exit 2.
+TEST(Cli, ARefusedCommandLineIsOneLineAndAMistypedOptionNamesTheNearest) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"run gen://rotation?duration-s=0.01 --bandwith 0.1",
+       "unknown option '--bandwith' for evms run; did you mean '--bandwidth'? (evms run --help lists the options)"},
+      {"sweep --seedz=3", "unknown option '--seedz' for evms sweep; did you mean '--seeds'? (evms sweep --help lists the options)"},
+      {"run --threads 0", "--threads: Value 0 not in range 1 to 256 (evms run --help lists the options)"},
+      {"run --bandwidth -1", "--bandwidth: -1 is outside [0.0001, 10] (evms run --help lists the options)"},
+      {"run --coast-us -5", "--coast-us: -5 is outside [0, 1e+12] us (evms run --help lists the options)"},
+      {"metrics", "--truth is required (evms metrics --help lists the options)"},
+  };
+  for (const auto& [args, line] : cases) {
+    const auto r = run_command(evms_binary() + " " + args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_EQ(r.err, "evms: " + line + "\n") << args;
+  }
 }
 
 TEST(Cli, FilesystemErrorsAreOneLineNamingThePath) {
