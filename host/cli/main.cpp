@@ -124,6 +124,12 @@ int evms::cli::run_evms(int argc, char** argv) {
       return 2;
     }
   }
+  // An option before the subcommand is evms's own (--help, --version) or none.
+  if (argc > 1 && argv[1][0] == '-' && std::string(argv[1]) != "--help" && std::string(argv[1]) != "-h") {
+    std::fprintf(stderr, "evms: unknown option '%s': options follow the command, as in 'evms run --help' (evms --help lists the commands)\n",
+                 evms::read::printable(argv[1]).c_str());
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -256,6 +256,7 @@ TEST(Cli, ARefusedCommandLineIsOneLineAndAMistypedOptionNamesTheNearest) {
       {"run --bandwidth -1", "--bandwidth: -1 is outside [0.0001, 10] (evms run --help lists the options)"},
       {"run --coast-us -5", "--coast-us: -5 is outside [0, 1e+12] us (evms run --help lists the options)"},
       {"metrics", "--truth is required (evms metrics --help lists the options)"},
+      {"--bandwidth 0.1 run", "unknown option '--bandwidth': options follow the command, as in 'evms run --help' (evms --help lists the commands)"},
   };
   for (const auto& [args, line] : cases) {
     const auto r = run_command(evms_binary() + " " + args);
