@@ -43,8 +43,7 @@ void info(const InfoOptions& o) {
   const double duration = static_cast<double>(t1 - t0) * 1e-6;
   std::printf("file        %s\n", si_.name.c_str());
   std::printf("format      %s\n", si_.format.c_str());
-  const bool assumed = si_.sensor_origin.rfind("assumed", 0) == 0;  // "assumed: the file does not say ..."
-  std::printf("sensor      %dx%d (%s%s)\n", si_.sensor.width, si_.sensor.height, assumed ? "" : "from ", si_.sensor_origin.c_str());
+  std::printf("sensor      %dx%d (%s%s)\n", si_.sensor.width, si_.sensor.height, si_.sensor_assumed() ? "" : "from ", si_.sensor_origin.c_str());
   std::printf("events      %s (ON %s / OFF %s)\n", grouped(count).c_str(), grouped(on).c_str(), grouped(count - on).c_str());
   if (count > 0) {
     std::printf("time        %lld .. %lld us (%.6f s)\n", static_cast<long long>(t0), static_cast<long long>(t1), duration);

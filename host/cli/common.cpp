@@ -175,7 +175,7 @@ void add_method_options(CLI::App& cmd, Method& method) {
 
 std::string sensor_text(const read::SourceInfo& info) {
   std::string s = std::to_string(info.sensor.width) + "x" + std::to_string(info.sensor.height);
-  if (info.sensor_origin.rfind("assumed", 0) == 0) s += " " + info.sensor_origin;
+  if (info.sensor_assumed()) s += " " + info.sensor_origin;
   return s;
 }
 

@@ -61,6 +61,8 @@ struct SourceInfo {
   std::string format;         // e.g. "EVT 3.0", "AEDAT 4.0"
   SensorSize sensor;
   std::string sensor_origin;  // where the size came from: "header", "--width/--height", ...
+  // The size is a guess ("assumed: the file does not say ..."), which the user should be told.
+  bool sensor_assumed() const { return sensor_origin.rfind("assumed", 0) == 0; }
 };
 
 class EventSource {
