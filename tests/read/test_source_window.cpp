@@ -8,11 +8,11 @@
 #include "host/read/source_window.h"
 #include "tests/support/encoders.h"
 #include "tests/support/read_all.h"
+#include "tests/support/scenes.h"
 
 namespace evms::test {
 namespace {
 
-constexpr SensorSize kSensor{240, 180};
 
 std::string with_sensor(const std::vector<Event>& events) { return "# sensor 240x180\n" + csv(events); }
 
