@@ -65,8 +65,8 @@ BagLayout layout_of_folder(const std::string& folder) {
     }
     std::sort(bags.begin(), bags.end());
     std::string what = "a folder without metadata.yaml is not a ROS 2 bag";
-    if (!bags.empty()) what += "; the bag" + std::string(bags.size() > 1 ? "s" : "") + " in it: " + printable(bags[0]);
-    for (size_t i = 1; i < bags.size() && i < 4; ++i) what += ", " + printable(bags[i]);
+    if (!bags.empty()) what += bags.size() > 1 ? "; the bags in it: " : "; the bag in it: ";
+    for (size_t i = 0; i < bags.size() && i < 4; ++i) what += (i ? ", " : "") + printable(bags[i]);
     if (bags.size() > 4) what += ", ...";
     fail(folder, {}, what);
   }
