@@ -145,13 +145,21 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
     fail(name, InputPosition::byte(0), "bad header: unsupported AEDAT version '" +
                                            std::string(head.substr(0, head.find('\r'))) + "'");
   }
+  // Metavision's CSV begins with "%geometry:W,H"; its RAW and DAT files with other '%' lines.
+  if (head.rfind("%geometry:", 0) == 0) return open_csv(std::move(in), options);
   if (head[0] == '%') return open_prophesee(std::move(in), options);
-  // Text formats: the first line that is not a comment ('#', such as the "# sensor WxH" evms
-  // writes) decides. CSV has commas, the RPG format has spaces. A UTF-8 byte-order mark, which
-  // spreadsheets write, is not part of the text.
+  // Text formats: the first line that is neither blank nor a comment ('#', such as the
+  // "# sensor WxH" evms writes) decides. CSV has commas, the RPG format has spaces. A UTF-8
+  // byte-order mark, which spreadsheets write, is not part of the text.
   std::string_view lines = in.peek(512);
   if (lines.rfind(kUtf8ByteOrderMark, 0) == 0) lines.remove_prefix(kUtf8ByteOrderMark.size());
-  while (!lines.empty() && lines[0] == '#' && lines.find('\n') != std::string_view::npos) lines.remove_prefix(lines.find('\n') + 1);
+  const auto passed_over = [](std::string_view line) {
+    const size_t first = line.find_first_not_of(" \t\r");
+    return first == std::string_view::npos || line[first] == '#';
+  };
+  while (lines.find('\n') != std::string_view::npos && passed_over(lines.substr(0, lines.find('\n')))) {
+    lines.remove_prefix(lines.find('\n') + 1);
+  }
   const std::string_view first = lines.substr(0, lines.find('\n'));
   bool text = std::all_of(first.begin(), first.end(), [](char c) {
     return c == '\t' || c == '\r' || (c >= 32 && c < 127);

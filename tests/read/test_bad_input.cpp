@@ -81,7 +81,19 @@ TEST(BadInput, BadHeaders) {
     b[b.size() - kEvents.size() * 8 - 2] = 7;  // event type byte
     expect_error(d.write("d.dat", b), "byte ", "bad header: event type 7");
   }
-  expect_error(d.write("c.csv", "time,x,y,p\n1,2,3,1\n"), "line 1", "bad header: expected 't_us,x,y,p'");
+  // A CSV header names its columns (Formats.CsvColumnsGoByTheirHeader): each of t, x, y and p
+  // once, by a name evms knows.
+  expect_error(d.write("c.csv", "time,x,y,pixel\n1,2,3,1\n"), "line 1", "bad header: unknown column 'pixel'");
+  expect_error(d.write("c.csv", "t,x,y\n1,2,3\n"), "line 1", "bad header: no polarity column (the columns are t,x,y)");
+  expect_error(d.write("c.csv", "t,x,y,p,ts\n"), "line 1", "bad header: column 'ts' repeats the time");
+  expect_error(d.write("c.csv", ",t,x,y,p\n0,1,2,3,1\n"), "line 1", "bad header: column 1 has no name (pandas writes its index so");
+  expect_error(d.write("c.csv", "# sensor 64x64\n\nt,x,y,p\n0.5,1,2,1\n"), "line 4",
+               "field 't' = '0.5' is not an integer number of microseconds (a column named t_s holds seconds)");
+  expect_error(d.write("c.csv", "%geometry:320x240\n1,2,1,3\n"), "line 1", "bad header: expected '%geometry:W,H'");
+  // Metavision's rows without their geometry line or a header read as t,x,y,p, whose polarity
+  // is then the time.
+  expect_error(d.write("c.csv", "10,20,1,100\n"), "line 1",
+               "polarity 100 is not 0, 1 or -1; rows of x,y,p,t, as Metavision's tools write them, need the header line 'x,y,p,t'");
   // After the header, a word is a bad record, not a second header.
   expect_error(d.write("nan.csv", "t_us,x,y,p\nnan,2,3,1\n"), "line 2", "field 't_us' = 'nan' is not an integer");
   expect_error(d.write("bin.bin", Bytes{0x00, 0xFF, 0x13, 0x00, 0x42}), "byte 0", "bad header: not a known event format");

@@ -1,6 +1,8 @@
 // Each reader decodes what a spec-based encoder wrote, event for event.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <functional>
 #include <random>
 
 #include "tests/support/encoders.h"
@@ -69,6 +71,55 @@ TEST(Formats, CsvRoundTripsAndAcceptsALabelColumn) {
   const auto labelled = read_all(dir.write("l.csv", "t_us,x,y,p,label\n10,1,2,1,-1\n20,3,4,0,7\n"));
   ASSERT_EQ(labelled.size(), 2u);
   EXPECT_EQ(labelled[1], (Event{20, 3, 4, 0}));
+}
+
+// A header names a CSV's columns in any order, as pandas, spreadsheets and other tools write
+// them; Metavision's CSV is "%geometry:W,H" and then x,y,p,t rows. Each reads the same events.
+TEST(Formats, CsvColumnsGoByTheirHeader) {
+  TempDir dir;
+  const auto events = sample_events(3000, {320, 240});
+  const auto rows = [&](const std::string& header, const std::function<std::string(const Event&)>& row) {
+    std::string s = header.empty() ? "" : header + "\n";
+    for (const Event& e : events) s += row(e) + "\n";
+    return s;
+  };
+  const auto n = [](auto v) { return std::to_string(v); };
+  const auto seconds = [](TimeUs t) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%lld.%06lld", static_cast<long long>(t / 1000000), static_cast<long long>(t % 1000000));
+    return std::string(buf);
+  };
+  const read::SourceOptions vga = sized(320, 240, 1000);
+  struct Case {
+    const char* file;
+    std::string text;
+    const char* format;
+  };
+  const Case cases[] = {
+      {"usual.csv", rows("t_us,x,y,p", [&](const Event& e) { return n(e.t) + "," + n(e.x) + "," + n(e.y) + "," + n(e.p); }),
+       "CSV t_us,x,y,p"},
+      {"xypt.csv", rows("x,y,p,t", [&](const Event& e) { return n(e.x) + "," + n(e.y) + "," + n(e.p) + "," + n(e.t); }),
+       "CSV x,y,p,t"},
+      {"named.csv",
+       rows("\"Polarity\", Timestamp ,label,Y,X",
+            [&](const Event& e) { return n(e.p) + "," + n(e.t) + ",-1," + n(e.y) + "," + n(e.x); }),
+       "CSV polarity,timestamp,label,y,x"},
+      {"seconds.csv", rows("t_s,x,y,pol", [&](const Event& e) { return seconds(e.t) + "," + n(e.x) + "," + n(e.y) + "," + n(e.p); }),
+       "CSV t_s,x,y,pol"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.file);
+    const std::string path = dir.write(c.file, c.text);
+    EXPECT_EQ(read_all(path, vga), events);
+    EXPECT_EQ(read::open_source(path, vga)->info().format, c.format);
+  }
+  const std::string metavision =
+      dir.write("mv.csv", rows("%geometry:320,240", [&](const Event& e) { return n(e.x) + "," + n(e.y) + "," + n(e.p) + "," + n(e.t); }));
+  EXPECT_EQ(read_all(metavision), events);
+  const auto source = read::open_source(metavision, {});
+  EXPECT_EQ(source->info().format, "CSV x,y,p,t (Metavision)");
+  EXPECT_EQ(source->info().sensor, (SensorSize{320, 240}));
+  EXPECT_EQ(source->info().sensor_origin, "header");
 }
 
 TEST(Formats, Aedat2Dvs128AndDavisRoundTrip) {

@@ -2,11 +2,16 @@
 //  - RPG Event Camera Dataset events.txt: "t x y p" per line, t in seconds with up to 9
 //    decimals (rounded to the nearest microsecond), p 0 = OFF, 1 = ON. Fields are separated
 //    by spaces or tabs. The dataset's DAVIS240C is 240x180, the default size.
-//  - CSV "t_us,x,y,p" with an optional header line and an optional fifth column (a label,
-//    ignored here), as evms itself writes.
+//  - CSV "t_us,x,y,p" with an optional fifth column (a label, ignored here), as evms itself
+//    writes. A header line names the columns in any order (csv_column_of() lists the names), as
+//    pandas and spreadsheets write them; without one the rows are t_us,x,y,p[,label].
+//  - Metavision's CSV (metavision_file_to_csv): a first line "%geometry:W,H", then "x,y,p,t"
+//    rows, t in microseconds.
 // Blank lines and lines starting with '#' are skipped. p may also be -1 for OFF. A first line
-// "# sensor WxH" (evms writes one) gives the sensor size; without it the size comes from
-// --width/--height, else the DAVIS240C's 240x180 is assumed, and said.
+// "# sensor WxH" (evms writes one) or "%geometry:W,H" gives the sensor size; without it the size
+// comes from --width/--height, else the DAVIS240C's 240x180 is assumed, and said.
+#include <array>
+#include <cctype>
 #include <charconv>
 #include <optional>
 #include <string_view>
@@ -18,12 +23,60 @@ namespace {
 
 constexpr SensorSize kDavis240{240, 180};
 
+// What a CSV column holds.
+enum class CsvField : std::uint8_t { kMicroseconds, kSeconds, kX, kY, kPolarity, kLabel };
+
+// The header names evms takes, lower case, and what each column holds. Times are integer
+// microseconds unless the column says seconds; a label column is read and not used.
+std::optional<CsvField> csv_column_of(std::string_view name) {
+  constexpr std::pair<std::string_view, CsvField> kNames[] = {
+      {"t_us", CsvField::kMicroseconds},   {"t", CsvField::kMicroseconds},         {"ts", CsvField::kMicroseconds},
+      {"timestamp", CsvField::kMicroseconds}, {"timestamp_us", CsvField::kMicroseconds},
+      {"time", CsvField::kMicroseconds},   {"time_us", CsvField::kMicroseconds},
+      {"t_s", CsvField::kSeconds},         {"time_s", CsvField::kSeconds},          {"timestamp_s", CsvField::kSeconds},
+      {"x", CsvField::kX},                 {"y", CsvField::kY},
+      {"p", CsvField::kPolarity},          {"pol", CsvField::kPolarity},            {"polarity", CsvField::kPolarity},
+      {"label", CsvField::kLabel}};
+  for (const auto& [n, f] : kNames) {
+    if (n == name) return f;
+  }
+  return std::nullopt;
+}
+
+// A CSV's columns in the order of its rows, with the names they go by in messages.
+struct CsvColumns {
+  static constexpr int kMost = 5;
+  std::array<CsvField, kMost> field{CsvField::kMicroseconds, CsvField::kX, CsvField::kY, CsvField::kPolarity,
+                                    CsvField::kLabel};
+  std::array<std::string, kMost> name{"t_us", "x", "y", "p", "label"};
+  int count = 4;                 // fields in a row
+  bool label_may_follow = true;  // a fifth field, a label, may follow (no header said otherwise)
+
+  std::string joined() const {
+    std::string s;
+    for (int i = 0; i < count; ++i) s += (i ? "," : "") + name[static_cast<size_t>(i)];
+    return s;
+  }
+  bool has(CsvField f) const {
+    for (int i = 0; i < count; ++i) {
+      if (field[static_cast<size_t>(i)] == f) return true;
+    }
+    return false;
+  }
+};
+
 class TextSource final : public FileEventSource {
  public:
   TextSource(ByteReader in, const SourceOptions& o, bool csv)
-      : FileEventSource(std::move(in), csv ? "CSV t_us,x,y,p" : "RPG events.txt", o), csv_(csv) {
+      : FileEventSource(std::move(in), csv ? "CSV" : "RPG events.txt", o), csv_(csv) {
     if (in_.peek(kUtf8ByteOrderMark.size()) == kUtf8ByteOrderMark) in_.skip(kUtf8ByteOrderMark.size());
-    set_sensor(sensor_comment(), kDavis240, "assumed: the file does not say (DAVIS240C); pass --width and --height");
+    std::optional<SensorSize> sensor = sensor_comment();
+    if (csv_ && !sensor) sensor = metavision_geometry();
+    if (csv_) {
+      header_ahead();
+      info_.format = "CSV " + columns_.joined() + (metavision_ ? " (Metavision)" : "");
+    }
+    set_sensor(sensor, kDavis240, "assumed: the file does not say (DAVIS240C); pass --width and --height");
   }
 
  protected:
@@ -51,6 +104,97 @@ class TextSource final : public FileEventSource {
       if (ec2 == std::errc() && tail_ok && w > 0 && h > 0 && w <= 65535 && h <= 65535) return SensorSize{w, h};
     }
     fail(in_.path(), InputPosition::line(1), "bad sensor comment: expected '# sensor WxH'");
+  }
+
+  // Metavision's "%geometry:W,H" on the first line; its rows are then x,y,p,t.
+  std::optional<SensorSize> metavision_geometry() {
+    std::string_view line;
+    const std::string_view tag = "%geometry:";
+    if (in_.peek(tag.size()) != tag || !in_.next_line(line)) return std::nullopt;
+    const std::string_view rest = line.substr(tag.size());
+    int w = 0, h = 0;
+    auto [p, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), w);
+    if (ec == std::errc() && p < rest.data() + rest.size() && *p == ',') {
+      auto [q, ec2] = std::from_chars(p + 1, rest.data() + rest.size(), h);
+      if (ec2 == std::errc() && q == rest.data() + rest.size() && w > 0 && h > 0 && w <= 65535 && h <= 65535) {
+        metavision_ = true;
+        columns_.field = {CsvField::kX, CsvField::kY, CsvField::kPolarity, CsvField::kMicroseconds, CsvField::kLabel};
+        columns_.name = {"x", "y", "p", "t", "label"};
+        columns_.label_may_follow = false;
+        return SensorSize{w, h};
+      }
+    }
+    bad("bad header: expected '%geometry:W,H'");
+  }
+
+  // Reads the header line, if there is one, before any row, so that the format names the
+  // columns; parse() then passes over it.
+  void header_ahead() {
+    const std::string_view ahead = in_.peek(1 << 16);
+    size_t at = 0;
+    std::uint64_t line_no = in_.line();
+    while (at < ahead.size()) {
+      const size_t nl = ahead.find('\n', at);
+      if (nl == std::string_view::npos) return;  // a longer stretch of comments: parse() reads the header
+      std::string_view line = ahead.substr(at, nl - at);
+      ++line_no;
+      at = nl + 1;
+      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+      const size_t first = line.find_first_not_of(" \t");
+      if (first == std::string_view::npos || line[first] == '#') continue;
+      if (is_header(line.substr(first))) read_header(line.substr(first), line_no);
+      return;
+    }
+  }
+
+  // A line of names, not numbers: it starts with a letter, a quote, or a column without a name.
+  static bool is_header(std::string_view line) {
+    return std::isalpha(static_cast<unsigned char>(line[0])) || line[0] == '"' || line[0] == ',';
+  }
+
+  // A header: each column's name, in any order; t, x, y and p once each.
+  void read_header(std::string_view line, std::uint64_t line_no) {
+    const auto refuse = [&](const std::string& what) { fail(in_.path(), InputPosition::line(line_no), "bad header: " + what); };
+    CsvColumns c;
+    c.count = 0;
+    c.label_may_follow = false;
+    while (true) {
+      const size_t comma = line.find(',');
+      std::string_view raw = line.substr(0, comma);
+      while (!raw.empty() && (raw.front() == ' ' || raw.front() == '"')) raw.remove_prefix(1);
+      while (!raw.empty() && (raw.back() == ' ' || raw.back() == '"')) raw.remove_suffix(1);
+      std::string name(raw);
+      for (char& ch : name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      const std::optional<CsvField> f = csv_column_of(name);
+      if (raw.empty()) {
+        refuse("column " + std::to_string(c.count + 1) + " has no name (pandas writes its index so; "
+               "save with index=False)");
+      }
+      if (!f) {
+        refuse("unknown column '" + std::string(raw) + "' (the columns: t_us, t, ts, timestamp or time in "
+               "microseconds, or t_s in seconds; x; y; p, pol or polarity; and optionally label)");
+      }
+      const bool time = *f == CsvField::kMicroseconds || *f == CsvField::kSeconds;
+      if (c.has(*f) || (time && (c.has(CsvField::kMicroseconds) || c.has(CsvField::kSeconds)))) {
+        refuse("column '" + std::string(raw) + "' repeats " + (time ? "the time" : "a column"));
+      }
+      if (c.count == CsvColumns::kMost) refuse("more than 5 columns");
+      c.field[static_cast<size_t>(c.count)] = *f;
+      c.name[static_cast<size_t>(c.count)] = name;
+      ++c.count;
+      if (comma == std::string_view::npos) break;
+      line.remove_prefix(comma + 1);
+    }
+    const auto missing = [&](CsvField f, const char* what) {
+      if (!c.has(f)) refuse(std::string("no ") + what + " column (the columns are " + c.joined() + ")");
+    };
+    if (!c.has(CsvField::kMicroseconds) && !c.has(CsvField::kSeconds)) missing(CsvField::kMicroseconds, "time");
+    missing(CsvField::kX, "x");
+    missing(CsvField::kY, "y");
+    missing(CsvField::kPolarity, "polarity");
+    columns_ = c;
+    info_.format = "CSV " + columns_.joined() + (metavision_ ? " (Metavision)" : "");
+    header_read_ = true;
   }
 
   [[noreturn]] void bad(const std::string& what) const {
@@ -127,14 +271,33 @@ class TextSource final : public FileEventSource {
     TimeUs t = 0;
     long x = 0, y = 0, pol = 0;
     if (csv_) {
-      long us = 0;
-      if (!number(us, 18) || p == end || *p++ != ',') return false;
-      t = us;
-      if (!number(x, 9) || p == end || *p++ != ',' || !number(y, 9) || p == end || *p++ != ',' || !number(pol, 1)) return false;
-      if (p < end && *p == ',') {
+      if (columns_.has(CsvField::kSeconds)) return false;
+      long label = 0;
+      for (int i = 0; i < columns_.count; ++i) {
+        if (i > 0 && (p == end || *p++ != ',')) return false;
+        switch (columns_.field[static_cast<size_t>(i)]) {
+          case CsvField::kMicroseconds:
+            if (!number(t, 18)) return false;
+            break;
+          case CsvField::kX:
+            if (!number(x, 9)) return false;
+            break;
+          case CsvField::kY:
+            if (!number(y, 9)) return false;
+            break;
+          case CsvField::kPolarity:
+            if (!number(pol, 1)) return false;
+            break;
+          case CsvField::kLabel:
+          case CsvField::kSeconds:
+            if (p < end && *p == '-') ++p;
+            if (!number(label, 9)) return false;
+            break;
+        }
+      }
+      if (columns_.label_may_follow && p < end && *p == ',') {
         ++p;
         if (p < end && *p == '-') ++p;
-        long label = 0;
         if (!number(label, 9)) return false;
       }
       if (p != end) return false;
@@ -167,34 +330,63 @@ class TextSource final : public FileEventSource {
     if (parse_usual(line)) return;
     size_t first = line.find_first_not_of(" \t");
     if (first == std::string_view::npos || line[first] == '#') return;
-    if (csv_ && !records_ && !header_ && std::isalpha(static_cast<unsigned char>(line[first]))) {
-      if (line.substr(first).rfind("t_us,x,y,p", 0) != 0) {
-        bad("bad header: expected 't_us,x,y,p' (optionally ',label')");
-      }
+    if (csv_ && !records_ && !header_ && is_header(line.substr(first))) {
+      if (!header_read_) read_header(line.substr(first), in_.line());
       header_ = true;
       return;
     }
     std::string_view rest = line.substr(first);
-    std::string_view ft = field(rest, "t");
-    const TimeUs t = csv_ ? integer(ft, "t_us") : seconds(ft);
-    const long x = integer(field(rest, "x"), "x");
-    const long y = integer(field(rest, "y"), "y");
-    const long p = integer(field(rest, "p"), "p");
-    if (p != 0 && p != 1 && p != -1) bad("polarity " + std::to_string(p) + " is not 0, 1 or -1");
-    if (csv_ && !rest.empty()) integer(field(rest, "label"), "label");
-    if (!csv_) {
+    TimeUs t = 0;
+    long x = 0, y = 0, p = 0;
+    if (csv_) {
+      for (int i = 0; i < columns_.count; ++i) {
+        const char* name = columns_.name[static_cast<size_t>(i)].c_str();
+        const std::string_view f = field(rest, name);
+        switch (columns_.field[static_cast<size_t>(i)]) {
+          case CsvField::kMicroseconds:
+            if (f.find('.') != std::string_view::npos) {
+              bad(std::string("field '") + name + "' = '" + std::string(f) +
+                  "' is not an integer number of microseconds (a column named t_s holds seconds)");
+            }
+            t = integer(f, name);
+            break;
+          case CsvField::kSeconds: t = seconds(f); break;
+          case CsvField::kX: x = integer(f, name); break;
+          case CsvField::kY: y = integer(f, name); break;
+          case CsvField::kPolarity: p = polarity(f, name); break;
+          case CsvField::kLabel: integer(f, name); break;
+        }
+      }
+      if (columns_.label_may_follow && !rest.empty()) integer(field(rest, "label"), "label");
+      if (!rest.empty()) bad("more than " + std::to_string(columns_.count + (columns_.label_may_follow ? 1 : 0)) + " fields");
+    } else {
+      t = seconds(field(rest, "t"));
+      x = integer(field(rest, "x"), "x");
+      y = integer(field(rest, "y"), "y");
+      p = polarity(field(rest, "p"), "p");
       size_t more = rest.find_first_not_of(" \t");
       if (more != std::string_view::npos) bad("more than 4 fields");
-    } else if (!rest.empty()) {
-      bad("more than 5 fields");
     }
     records_ = true;
     emit(t, x, y, p == 1, InputPosition::line(in_.line()));
   }
 
+  long polarity(std::string_view f, const char* name) const {
+    const long p = integer(f, name);
+    if (p == 0 || p == 1 || p == -1) return p;
+    std::string hint;
+    if (csv_ && !header_ && columns_.field[0] == CsvField::kMicroseconds) {
+      hint = "; rows of x,y,p,t, as Metavision's tools write them, need the header line 'x,y,p,t'";
+    }
+    bad("polarity " + std::to_string(p) + " is not 0, 1 or -1" + hint);
+  }
+
   bool csv_;
   bool records_ = false;  // a record was read (a header may only come before)
-  bool header_ = false;   // the header was read (a second one is a bad record)
+  bool header_ = false;   // the header was passed (a second one is a bad record)
+  bool header_read_ = false;  // the header's columns were read (ahead of the rows, or when met)
+  bool metavision_ = false;   // a "%geometry:W,H" line came first
+  CsvColumns columns_;
 };
 
 }  // namespace
