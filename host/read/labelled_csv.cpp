@@ -1,5 +1,6 @@
 #include "host/read/labelled_csv.h"
 
+#include <algorithm>
 #include <charconv>
 #include <string>
 
@@ -11,8 +12,12 @@ LabelledCsvReader::LabelledCsvReader(const std::string& path) : in_(path) {
   bool more = false;
   while ((more = in_.next_line(header)) && header.rfind('#', 0) == 0) {
   }
-  if (!more || header.rfind("t_us,x,y,p,label", 0) != 0) {
-    fail(path, InputPosition::line(in_.line()), "bad header: expected 't_us,x,y,p,label'");
+  if (!more || !is_csv_header(header)) {
+    fail(path, InputPosition::line(in_.line()), "bad header: expected the columns' names, such as 't_us,x,y,p,label'");
+  }
+  columns_ = csv_columns_of_header(header, path, in_.line());
+  if (!columns_.has(CsvField::kLabel)) {
+    fail(path, InputPosition::line(in_.line()), "bad header: no label column (the columns are " + columns_.joined() + ")");
   }
 }
 
@@ -21,32 +26,37 @@ bool LabelledCsvReader::next(LabelledEvent& out) {
   do {
     if (!in_.next_line(line)) return false;
   } while (line.empty());
-  long long v[5];
-  const char* p = line.data();
-  const char* end = line.data() + line.size();
-  static const char* kNames[5] = {"t_us", "x", "y", "p", "label"};
-  for (int i = 0; i < 5; ++i) {
-    auto [q, ec] = std::from_chars(p, end, v[i]);
-    if (ec != std::errc()) {
-      fail(in_.path(), InputPosition::line(in_.line()),
-           std::string("field '") + kNames[i] + "' is missing or not an integer (expected t_us,x,y,p,label)");
+  const auto refuse = [&](const std::string& what) { fail(in_.path(), InputPosition::line(in_.line()), what); };
+  long long t = 0, x = 0, y = 0, p = 0, label = 0;
+  const char* at = line.data();
+  const char* const end = line.data() + line.size();
+  for (int i = 0; i < columns_.count; ++i) {
+    const std::string& name = columns_.name[static_cast<size_t>(i)];
+    if (i > 0) {
+      if (at == end || *at != ',') refuse("truncated row: expected " + std::to_string(columns_.count) + " fields");
+      ++at;
     }
-    p = q;
-    if (i < 4) {
-      if (p == end || *p != ',') fail(in_.path(), InputPosition::line(in_.line()), "truncated row: expected 5 fields");
-      ++p;
+    const CsvField f = columns_.field[static_cast<size_t>(i)];
+    if (f == CsvField::kSeconds) {
+      const char* comma = std::find(at, end, ',');
+      const auto us = seconds_to_us({at, static_cast<size_t>(comma - at)});
+      if (!us) refuse("field '" + name + "' is missing or not a decimal number of seconds");
+      t = *us;
+      at = comma;
+      continue;
     }
+    long long& v = f == CsvField::kMicroseconds ? t : f == CsvField::kX ? x : f == CsvField::kY ? y : f == CsvField::kPolarity ? p : label;
+    const auto [q, ec] = std::from_chars(at, end, v);
+    if (ec != std::errc()) refuse("field '" + name + "' is missing or not an integer (expected " + columns_.joined() + ")");
+    at = q;
   }
-  if (p != end) fail(in_.path(), InputPosition::line(in_.line()), "more than 5 fields");
-  if (v[1] < 0 || v[1] > 65535 || v[2] < 0 || v[2] > 65535 || (v[3] != 0 && v[3] != 1)) {
-    fail(in_.path(), InputPosition::line(in_.line()), "value out of range");
+  if (at != end) refuse("more than " + std::to_string(columns_.count) + " fields");
+  if (x < 0 || x > 65535 || y < 0 || y > 65535 || (p != 0 && p != 1)) refuse("value out of range");
+  if (label < kLabelLostOnLink || label > INT32_MAX) {
+    refuse("label " + std::to_string(label) + " is not a track ID, -1 (noise) or -2 (lost on the board's link)");
   }
-  if (v[4] < kLabelLostOnLink || v[4] > INT32_MAX) {
-    fail(in_.path(), InputPosition::line(in_.line()),
-         "label " + std::to_string(v[4]) + " is not a track ID, -1 (noise) or -2 (lost on the board's link)");
-  }
-  out.event = {v[0], static_cast<std::uint16_t>(v[1]), static_cast<std::uint16_t>(v[2]), static_cast<std::uint8_t>(v[3])};
-  out.label = static_cast<std::int32_t>(v[4]);
+  out.event = {t, static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), static_cast<std::uint8_t>(p)};
+  out.label = static_cast<std::int32_t>(label);
   return true;
 }
 

@@ -1,12 +1,14 @@
 // Reader of labelled-event CSV files (`t_us,x,y,p,label`), as `evms run` and `evms gen`
-// write them, for scoring. Comment lines before the header (evms writes "# sensor WxH" there)
-// are skipped. Bad rows stop with the file and line.
+// write them, for scoring: the header names the columns, in any order (csv_columns.h), and
+// must have a label. Comment lines before the header (evms writes "# sensor WxH" there) are
+// skipped. Bad rows stop with the file and line.
 #pragma once
 
 #include <string>
 
 #include "types/event.h"
 #include "host/read/byte_reader.h"
+#include "host/read/csv_columns.h"
 
 namespace evms::read {
 
@@ -20,6 +22,7 @@ class LabelledCsvReader {
 
  private:
   ByteReader in_;
+  CsvColumns columns_;
 };
 
 }  // namespace evms::read

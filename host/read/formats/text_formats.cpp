@@ -10,60 +10,17 @@
 // Blank lines and lines starting with '#' are skipped. p may also be -1 for OFF. A first line
 // "# sensor WxH" (evms writes one) or "%geometry:W,H" gives the sensor size; without it the size
 // comes from --width/--height, else the DAVIS240C's 240x180 is assumed, and said.
-#include <array>
-#include <cctype>
 #include <charconv>
 #include <optional>
 #include <string_view>
 
+#include "host/read/csv_columns.h"
 #include "host/read/event_source.h"
 
 namespace evms::read {
 namespace {
 
 constexpr SensorSize kDavis240{240, 180};
-
-// What a CSV column holds.
-enum class CsvField : std::uint8_t { kMicroseconds, kSeconds, kX, kY, kPolarity, kLabel };
-
-// The header names evms takes, lower case, and what each column holds. Times are integer
-// microseconds unless the column says seconds; a label column is read and not used.
-std::optional<CsvField> csv_column_of(std::string_view name) {
-  constexpr std::pair<std::string_view, CsvField> kNames[] = {
-      {"t_us", CsvField::kMicroseconds},   {"t", CsvField::kMicroseconds},         {"ts", CsvField::kMicroseconds},
-      {"timestamp", CsvField::kMicroseconds}, {"timestamp_us", CsvField::kMicroseconds},
-      {"time", CsvField::kMicroseconds},   {"time_us", CsvField::kMicroseconds},
-      {"t_s", CsvField::kSeconds},         {"time_s", CsvField::kSeconds},          {"timestamp_s", CsvField::kSeconds},
-      {"x", CsvField::kX},                 {"y", CsvField::kY},
-      {"p", CsvField::kPolarity},          {"pol", CsvField::kPolarity},            {"polarity", CsvField::kPolarity},
-      {"label", CsvField::kLabel}};
-  for (const auto& [n, f] : kNames) {
-    if (n == name) return f;
-  }
-  return std::nullopt;
-}
-
-// A CSV's columns in the order of its rows, with the names they go by in messages.
-struct CsvColumns {
-  static constexpr int kMost = 5;
-  std::array<CsvField, kMost> field{CsvField::kMicroseconds, CsvField::kX, CsvField::kY, CsvField::kPolarity,
-                                    CsvField::kLabel};
-  std::array<std::string, kMost> name{"t_us", "x", "y", "p", "label"};
-  int count = 4;                 // fields in a row
-  bool label_may_follow = true;  // a fifth field, a label, may follow (no header said otherwise)
-
-  std::string joined() const {
-    std::string s;
-    for (int i = 0; i < count; ++i) s += (i ? "," : "") + name[static_cast<size_t>(i)];
-    return s;
-  }
-  bool has(CsvField f) const {
-    for (int i = 0; i < count; ++i) {
-      if (field[static_cast<size_t>(i)] == f) return true;
-    }
-    return false;
-  }
-};
 
 class TextSource final : public FileEventSource {
  public:
@@ -92,17 +49,12 @@ class TextSource final : public FileEventSource {
  private:
   // "# sensor WxH" on the first line.
   std::optional<SensorSize> sensor_comment() {
-    const std::string_view head = in_.peek(64);
     const std::string_view tag = "# sensor ";
-    if (head.substr(0, tag.size()) != tag) return std::nullopt;
-    const std::string_view rest = head.substr(tag.size(), head.find('\n') == std::string_view::npos ? std::string_view::npos : head.find('\n') - tag.size());
-    int w = 0, h = 0;
-    auto [p, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), w);
-    if (ec == std::errc() && p < rest.data() + rest.size() && *p == 'x') {
-      auto [q, ec2] = std::from_chars(p + 1, rest.data() + rest.size(), h);
-      const bool tail_ok = q == rest.data() + rest.size() || *q == '\r';
-      if (ec2 == std::errc() && tail_ok && w > 0 && h > 0 && w <= 65535 && h <= 65535) return SensorSize{w, h};
-    }
+    if (in_.peek(tag.size()) != tag) return std::nullopt;
+    std::string_view head = in_.peek(64);
+    head = head.substr(tag.size(), head.find('\n') == std::string_view::npos ? std::string_view::npos : head.find('\n') - tag.size());
+    if (!head.empty() && head.back() == '\r') head.remove_suffix(1);
+    if (const auto size = sensor_size_of(head, 'x')) return size;
     fail(in_.path(), InputPosition::line(1), "bad sensor comment: expected '# sensor WxH'");
   }
 
@@ -111,20 +63,11 @@ class TextSource final : public FileEventSource {
     std::string_view line;
     const std::string_view tag = "%geometry:";
     if (in_.peek(tag.size()) != tag || !in_.next_line(line)) return std::nullopt;
-    const std::string_view rest = line.substr(tag.size());
-    int w = 0, h = 0;
-    auto [p, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), w);
-    if (ec == std::errc() && p < rest.data() + rest.size() && *p == ',') {
-      auto [q, ec2] = std::from_chars(p + 1, rest.data() + rest.size(), h);
-      if (ec2 == std::errc() && q == rest.data() + rest.size() && w > 0 && h > 0 && w <= 65535 && h <= 65535) {
-        metavision_ = true;
-        columns_.field = {CsvField::kX, CsvField::kY, CsvField::kPolarity, CsvField::kMicroseconds, CsvField::kLabel};
-        columns_.name = {"x", "y", "p", "t", "label"};
-        columns_.label_may_follow = false;
-        return SensorSize{w, h};
-      }
-    }
-    bad("bad header: expected '%geometry:W,H'");
+    const auto size = sensor_size_of(line.substr(tag.size()), ',');
+    if (!size) bad("bad header: expected '%geometry:W,H'");
+    metavision_ = true;
+    columns_ = CsvColumns::metavision();
+    return size;
   }
 
   // Reads the header line, if there is one, before any row, so that the format names the
@@ -142,57 +85,13 @@ class TextSource final : public FileEventSource {
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
       const size_t first = line.find_first_not_of(" \t");
       if (first == std::string_view::npos || line[first] == '#') continue;
-      if (is_header(line.substr(first))) read_header(line.substr(first), line_no);
+      if (is_csv_header(line.substr(first))) read_header(line.substr(first), line_no);
       return;
     }
   }
 
-  // A line of names, not numbers: it starts with a letter, a quote, or a column without a name.
-  static bool is_header(std::string_view line) {
-    return std::isalpha(static_cast<unsigned char>(line[0])) || line[0] == '"' || line[0] == ',';
-  }
-
-  // A header: each column's name, in any order; t, x, y and p once each.
   void read_header(std::string_view line, std::uint64_t line_no) {
-    const auto refuse = [&](const std::string& what) { fail(in_.path(), InputPosition::line(line_no), "bad header: " + what); };
-    CsvColumns c;
-    c.count = 0;
-    c.label_may_follow = false;
-    while (true) {
-      const size_t comma = line.find(',');
-      std::string_view raw = line.substr(0, comma);
-      while (!raw.empty() && (raw.front() == ' ' || raw.front() == '"')) raw.remove_prefix(1);
-      while (!raw.empty() && (raw.back() == ' ' || raw.back() == '"')) raw.remove_suffix(1);
-      std::string name(raw);
-      for (char& ch : name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-      const std::optional<CsvField> f = csv_column_of(name);
-      if (raw.empty()) {
-        refuse("column " + std::to_string(c.count + 1) + " has no name (pandas writes its index so; "
-               "save with index=False)");
-      }
-      if (!f) {
-        refuse("unknown column '" + std::string(raw) + "' (the columns: t_us, t, ts, timestamp or time in "
-               "microseconds, or t_s in seconds; x; y; p, pol or polarity; and optionally label)");
-      }
-      const bool time = *f == CsvField::kMicroseconds || *f == CsvField::kSeconds;
-      if (c.has(*f) || (time && (c.has(CsvField::kMicroseconds) || c.has(CsvField::kSeconds)))) {
-        refuse("column '" + std::string(raw) + "' repeats " + (time ? "the time" : "a column"));
-      }
-      if (c.count == CsvColumns::kMost) refuse("more than 5 columns");
-      c.field[static_cast<size_t>(c.count)] = *f;
-      c.name[static_cast<size_t>(c.count)] = name;
-      ++c.count;
-      if (comma == std::string_view::npos) break;
-      line.remove_prefix(comma + 1);
-    }
-    const auto missing = [&](CsvField f, const char* what) {
-      if (!c.has(f)) refuse(std::string("no ") + what + " column (the columns are " + c.joined() + ")");
-    };
-    if (!c.has(CsvField::kMicroseconds) && !c.has(CsvField::kSeconds)) missing(CsvField::kMicroseconds, "time");
-    missing(CsvField::kX, "x");
-    missing(CsvField::kY, "y");
-    missing(CsvField::kPolarity, "polarity");
-    columns_ = c;
+    columns_ = csv_columns_of_header(line, in_.path(), line_no);
     info_.format = "CSV " + columns_.joined() + (metavision_ ? " (Metavision)" : "");
     header_read_ = true;
   }
@@ -229,21 +128,8 @@ class TextSource final : public FileEventSource {
 
   // Seconds with a decimal fraction, exactly to the microsecond (no binary floating point).
   TimeUs seconds(std::string_view f) const {
-    size_t dot = f.find('.');
-    std::string_view whole = f.substr(0, dot);
-    std::string_view frac = dot == std::string_view::npos ? std::string_view{} : f.substr(dot + 1);
-    auto digits = [](std::string_view s) {
-      return s.find_first_not_of("0123456789") == std::string_view::npos;
-    };
-    if (whole.empty() || !digits(whole) || !digits(frac) || whole.size() > 12) {
-      bad("timestamp '" + std::string(f) + "' is not a non-negative decimal number of seconds");
-    }
-    TimeUs us = 0;
-    for (char c : whole) us = us * 10 + (c - '0');
-    TimeUs micro = 0;
-    for (size_t i = 0; i < 6; ++i) micro = micro * 10 + (i < frac.size() ? frac[i] - '0' : 0);
-    if (frac.size() > 6 && frac[6] >= '5') ++micro;  // round half up
-    return us * 1000000 + micro;
+    if (const auto us = seconds_to_us(f)) return *us;
+    bad("timestamp '" + std::string(f) + "' is not a non-negative decimal number of seconds");
   }
 
   // The usual line, read in one pass: "t x y p" (t seconds with a fraction) or "t_us,x,y,p[,label]"
@@ -330,7 +216,7 @@ class TextSource final : public FileEventSource {
     if (parse_usual(line)) return;
     size_t first = line.find_first_not_of(" \t");
     if (first == std::string_view::npos || line[first] == '#') return;
-    if (csv_ && !records_ && !header_ && is_header(line.substr(first))) {
+    if (csv_ && !records_ && !header_ && is_csv_header(line.substr(first))) {
       if (!header_read_) read_header(line.substr(first), in_.line());
       header_ = true;
       return;

@@ -1,0 +1,116 @@
+#include "host/read/csv_columns.h"
+
+#include <cctype>
+#include <charconv>
+#include <utility>
+
+#include "host/read/input_error.h"
+
+namespace evms::read {
+namespace {
+
+constexpr std::pair<std::string_view, CsvField> kColumnNames[] = {
+    {"t_us", CsvField::kMicroseconds},      {"t", CsvField::kMicroseconds},        {"ts", CsvField::kMicroseconds},
+    {"timestamp", CsvField::kMicroseconds}, {"timestamp_us", CsvField::kMicroseconds},
+    {"time", CsvField::kMicroseconds},      {"time_us", CsvField::kMicroseconds},
+    {"t_s", CsvField::kSeconds},            {"time_s", CsvField::kSeconds},         {"timestamp_s", CsvField::kSeconds},
+    {"x", CsvField::kX},                    {"y", CsvField::kY},
+    {"p", CsvField::kPolarity},             {"pol", CsvField::kPolarity},           {"polarity", CsvField::kPolarity},
+    {"label", CsvField::kLabel}};
+
+std::optional<CsvField> field_named(std::string_view name) {
+  for (const auto& [n, f] : kColumnNames) {
+    if (n == name) return f;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+CsvColumns CsvColumns::metavision() {
+  CsvColumns c;
+  c.field = {CsvField::kX, CsvField::kY, CsvField::kPolarity, CsvField::kMicroseconds, CsvField::kLabel};
+  c.name = {"x", "y", "p", "t", "label"};
+  c.label_may_follow = false;
+  return c;
+}
+
+std::string CsvColumns::joined() const {
+  std::string s;
+  for (int i = 0; i < count; ++i) s += (i ? "," : "") + name[static_cast<size_t>(i)];
+  return s;
+}
+
+bool CsvColumns::has(CsvField f) const {
+  for (int i = 0; i < count; ++i) {
+    if (field[static_cast<size_t>(i)] == f) return true;
+  }
+  return false;
+}
+
+bool is_csv_header(std::string_view line) {
+  return !line.empty() && (std::isalpha(static_cast<unsigned char>(line[0])) || line[0] == '"' || line[0] == ',');
+}
+
+CsvColumns csv_columns_of_header(std::string_view line, const std::string& path, std::uint64_t line_no) {
+  const auto refuse = [&](const std::string& what) { fail(path, InputPosition::line(line_no), "bad header: " + what); };
+  CsvColumns c;
+  c.count = 0;
+  c.label_may_follow = false;
+  for (bool more = true; more;) {
+    const size_t comma = line.find(',');
+    more = comma != std::string_view::npos;
+    std::string_view raw = line.substr(0, comma);
+    line.remove_prefix(more ? comma + 1 : line.size());
+    while (!raw.empty() && (raw.front() == ' ' || raw.front() == '"')) raw.remove_prefix(1);
+    while (!raw.empty() && (raw.back() == ' ' || raw.back() == '"' || raw.back() == '\r')) raw.remove_suffix(1);
+    std::string name(raw);
+    for (char& ch : name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (raw.empty()) refuse("column " + std::to_string(c.count + 1) + " has no name (pandas writes its index so; save with index=False)");
+    const std::optional<CsvField> f = field_named(name);
+    if (!f) {
+      refuse("unknown column '" + std::string(raw) + "' (the columns: t_us, t, ts, timestamp or time in "
+             "microseconds, or t_s in seconds; x; y; p, pol or polarity; and optionally label)");
+    }
+    const bool time = *f == CsvField::kMicroseconds || *f == CsvField::kSeconds;
+    if (time ? c.has_time() : c.has(*f)) refuse("column '" + std::string(raw) + "' repeats " + (time ? "the time" : "a column"));
+    if (c.count == CsvColumns::kMost) refuse("more than 5 columns");
+    c.field[static_cast<size_t>(c.count)] = *f;
+    c.name[static_cast<size_t>(c.count)] = name;
+    ++c.count;
+  }
+  const auto require = [&](bool there, const char* what) {
+    if (!there) refuse(std::string("no ") + what + " column (the columns are " + c.joined() + ")");
+  };
+  require(c.has_time(), "time");
+  require(c.has(CsvField::kX), "x");
+  require(c.has(CsvField::kY), "y");
+  require(c.has(CsvField::kPolarity), "polarity");
+  return c;
+}
+
+std::optional<TimeUs> seconds_to_us(std::string_view f) {
+  const size_t dot = f.find('.');
+  const std::string_view whole = f.substr(0, dot);
+  const std::string_view frac = dot == std::string_view::npos ? std::string_view{} : f.substr(dot + 1);
+  const auto digits = [](std::string_view s) { return s.find_first_not_of("0123456789") == std::string_view::npos; };
+  if (whole.empty() || !digits(whole) || !digits(frac) || whole.size() > 12) return std::nullopt;
+  TimeUs us = 0;
+  for (char c : whole) us = us * 10 + (c - '0');
+  TimeUs micro = 0;
+  for (size_t i = 0; i < 6; ++i) micro = micro * 10 + (i < frac.size() ? frac[i] - '0' : 0);
+  if (frac.size() > 6 && frac[6] >= '5') ++micro;  // round half up
+  return us * 1000000 + micro;
+}
+
+std::optional<SensorSize> sensor_size_of(std::string_view text, char separator) {
+  const char* const end = text.data() + text.size();
+  int w = 0, h = 0;
+  const auto [p, ec] = std::from_chars(text.data(), end, w);
+  if (ec != std::errc() || p == end || *p != separator) return std::nullopt;
+  const auto [q, ec2] = std::from_chars(p + 1, end, h);
+  if (ec2 != std::errc() || q != end || w <= 0 || h <= 0 || w > 65535 || h > 65535) return std::nullopt;
+  return SensorSize{w, h};
+}
+
+}  // namespace evms::read

@@ -1,0 +1,52 @@
+// The columns of an event CSV: which field of a row holds the time, x, y, the polarity and a
+// label. A header line names them in any order, as pandas, spreadsheets and other tools write
+// them; the event reader (formats/text_formats.cpp) and the scoring reader (labelled_csv.h)
+// take the same names.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "types/event.h"
+
+namespace evms::read {
+
+// What a column holds: times are integer microseconds unless the column says seconds.
+enum class CsvField : std::uint8_t { kMicroseconds, kSeconds, kX, kY, kPolarity, kLabel };
+
+struct CsvColumns {
+  static constexpr int kMost = 5;
+  std::array<CsvField, kMost> field{CsvField::kMicroseconds, CsvField::kX, CsvField::kY, CsvField::kPolarity,
+                                    CsvField::kLabel};
+  std::array<std::string, kMost> name{"t_us", "x", "y", "p", "label"};  // as messages name them
+  int count = 4;                 // fields in a row
+  bool label_may_follow = true;  // a fifth field, a label, may follow (no header said otherwise)
+
+  // Rows without a header: t_us,x,y,p with an optional label.
+  static CsvColumns headerless() { return {}; }
+  // Metavision's rows (metavision_file_to_csv): x,y,p,t.
+  static CsvColumns metavision();
+
+  std::string joined() const;
+  bool has(CsvField f) const;
+  bool has_time() const { return has(CsvField::kMicroseconds) || has(CsvField::kSeconds); }
+};
+
+// A line of names, not numbers: it starts with a letter, a quote, or a column without a name.
+bool is_csv_header(std::string_view line);
+
+// The columns a header line names (case and quotes aside); t, x, y and p must each be there
+// once. Anything else fails with the file and line.
+CsvColumns csv_columns_of_header(std::string_view line, const std::string& path, std::uint64_t line_no);
+
+// Seconds with a decimal fraction of up to 9 digits, rounded half up to the microsecond without
+// binary floating point; nothing when `f` is not such a number.
+std::optional<TimeUs> seconds_to_us(std::string_view f);
+
+// "WxH" or "W,H" (by `separator`), each side 1..65535, and nothing more.
+std::optional<SensorSize> sensor_size_of(std::string_view text, char separator);
+
+}  // namespace evms::read
