@@ -34,7 +34,10 @@ fuzz_one() {
     evt3) [ -f "$real/gen41_dense_scene.evt3.raw" ] && cut_from gen41_dense_scene.evt3.raw "$(after_end gen41_dense_scene.evt3.raw)" 8192 "$corpus/shared" ;;
     dat) printf '\000\010' >"$corpus/seed" ;;
     ros2) cut_from ros2/libcaer_rollover/libcaer_rollover_0.db3 16 65536 "$corpus/shared" ;;
-    csv) printf '10,1,2,1\n20,3,4,0\n' >"$corpus/seed" ;;
+    csv) printf 't_us,x,y,p\n10,1,2,1\n20,3,4,0\n' >"$corpus/seed"
+      printf '%%geometry:64,48\n1,2,1,10\n3,4,0,20\n' >"$corpus/metavision"
+      printf '"Polarity", Timestamp ,label,Y,X\n1,10,-1,2,1\n0,20,7,4,3\n' >"$corpus/named"
+      printf 't_s,x,y,pol\n0.000010,1,2,1\n' >"$corpus/seconds" ;;
     text) printf '0.000010 1 2 1\n0.000020 3 4 0\n' >"$corpus/seed" ;;
     scoring) printf '10,1,2,1,3\n20,3,4,0,-1\n10050,3,confirmed,21.5,50,-3e2,0,100\n' >"$corpus/seed" ;;
     config) [ -x build/bin/evms ] && build/bin/evms params --config >"$corpus/defaults" || printf 'preset: paper\nbandwidth: 0.2\n' >"$corpus/seed" ;;
