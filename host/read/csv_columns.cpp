@@ -18,14 +18,16 @@ constexpr std::pair<std::string_view, CsvField> kColumnNames[] = {
     {"p", CsvField::kPolarity},             {"pol", CsvField::kPolarity},           {"polarity", CsvField::kPolarity},
     {"label", CsvField::kLabel}};
 
-std::optional<CsvField> field_named(std::string_view name) {
+}  // namespace
+
+std::optional<CsvField> column_named(std::string_view name) {
+  std::string lower(name);
+  for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   for (const auto& [n, f] : kColumnNames) {
-    if (n == name) return f;
+    if (n == lower) return f;
   }
   return std::nullopt;
 }
-
-}  // namespace
 
 CsvColumns CsvColumns::metavision() {
   CsvColumns c;
@@ -67,11 +69,8 @@ CsvColumns csv_columns_of_header(std::string_view line, const std::string& path,
     std::string name(raw);
     for (char& ch : name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (raw.empty()) refuse("column " + std::to_string(c.count + 1) + " has no name (pandas writes its index so; save with index=False)");
-    const std::optional<CsvField> f = field_named(name);
-    if (!f) {
-      refuse("unknown column '" + std::string(raw) + "' (the columns: t_us, t, ts, timestamp or time in "
-             "microseconds, or t_s in seconds; x; y; p, pol or polarity; and optionally label)");
-    }
+    const std::optional<CsvField> f = column_named(name);
+    if (!f) refuse("unknown column '" + std::string(raw) + "' (the columns: " + kColumnNamesKnown + ")");
     const bool time = *f == CsvField::kMicroseconds || *f == CsvField::kSeconds;
     if (time ? c.has_time() : c.has(*f)) refuse("column '" + std::string(raw) + "' repeats " + (time ? "the time" : "a column"));
     if (c.count == CsvColumns::kMost) refuse("more than 5 columns");

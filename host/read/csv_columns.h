@@ -35,6 +35,13 @@ struct CsvColumns {
   bool has_time() const { return has(CsvField::kMicroseconds) || has(CsvField::kSeconds); }
 };
 
+// What a column of this name holds, case aside; nothing for a name evms does not know. NumPy
+// files' field names (formats/npy.cpp) go by the same names.
+std::optional<CsvField> column_named(std::string_view name);
+// The names column_named() knows, for messages.
+inline constexpr const char* kColumnNamesKnown =
+    "t_us, t, ts, timestamp or time in microseconds, or t_s in seconds; x; y; p, pol or polarity; and optionally label";
+
 // A line of names, not numbers: it starts with a letter, a quote, or a column without a name.
 bool is_csv_header(std::string_view line);
 

@@ -145,6 +145,7 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
     fail(name, InputPosition::byte(0), "bad header: unsupported AEDAT version '" +
                                            std::string(head.substr(0, head.find('\r'))) + "'");
   }
+  if (head.rfind("\x93NUMPY", 0) == 0) return open_npy(std::move(in), options);
   // Metavision's CSV begins with "%geometry:W,H"; its RAW and DAT files with other '%' lines.
   if (head.rfind("%geometry:", 0) == 0) return open_csv(std::move(in), options);
   if (head[0] == '%') return open_prophesee(std::move(in), options);
@@ -167,7 +168,7 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
   if (text && first.find(',') != std::string_view::npos) return open_csv(std::move(in), options);
   if (text) return open_rpg_text(std::move(in), options);
   fail(name, InputPosition::byte(0),
-       "bad header: not a known event format (events.txt, CSV, AEDAT 2/3/4, EVT 2/3 RAW, DAT, ROS 2 bag)");
+       "bad header: not a known event format (events.txt, CSV, AEDAT 2/3/4, EVT 2/3 RAW, DAT, NPY, ROS 2 bag)");
 }
 
 }  // namespace

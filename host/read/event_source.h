@@ -1,6 +1,6 @@
 // A source of events: a recorded file, a generated scene, a live camera or a network
 // stream. Every evms subcommand that reads events takes any source by its name:
-//   path/to/file.{txt,csv,aedat,aedat4,raw,dat}   format detected from the header
+//   path/to/file.{txt,csv,aedat,aedat4,raw,dat,npy}   format detected from the header
 //   path/to/bag[/file.db3][?topic=/events]       a ROS 2 bag (formats/ros2_bag.cpp)
 //   gen://rotation?seed=1&duration-s=2           a generated labelled scene
 //   usb://dvs128, usb://davis                    a live camera over libusb (usb_camera.cpp)
@@ -135,6 +135,7 @@ std::unique_ptr<EventSource> open_aedat2(ByteReader in, const SourceOptions& o);
 std::unique_ptr<EventSource> open_aedat3(ByteReader in, const SourceOptions& o);
 std::unique_ptr<EventSource> open_aedat4(ByteReader in, const SourceOptions& o);
 std::unique_ptr<EventSource> open_prophesee(ByteReader in, const SourceOptions& o);
+std::unique_ptr<EventSource> open_npy(ByteReader in, const SourceOptions& o);
 // A ROS 2 bag folder or one of its .db3 files; `topic` empty picks the first event topic.
 std::unique_ptr<EventSource> open_ros2_bag(const std::string& name, const std::string& path, const std::string& topic,
                                           const SourceOptions& o);

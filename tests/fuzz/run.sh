@@ -10,7 +10,7 @@ set -eu
 cd "$(dirname "$0")/../.."
 seconds=${1:-20}
 [ $# -gt 0 ] && shift
-targets=${*:-"aedat2 aedat3 aedat4 evt2 evt3 dat csv text ros2 streams config scoring"}
+targets=${*:-"aedat2 aedat3 aedat4 evt2 evt3 dat csv text ros2 npy streams config scoring"}
 command -v clang++ >/dev/null || { echo "fuzz: clang++ is not installed (apt install clang)"; exit 1; }
 if [ ! -f build-fuzz/CMakeCache.txt ]; then
   cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DEVMS_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
@@ -38,6 +38,8 @@ fuzz_one() {
       printf '%%geometry:64,48\n1,2,1,10\n3,4,0,20\n' >"$corpus/metavision"
       printf '"Polarity", Timestamp ,label,Y,X\n1,10,-1,2,1\n0,20,7,4,3\n' >"$corpus/named"
       printf 't_s,x,y,pol\n0.000010,1,2,1\n' >"$corpus/seconds" ;;
+    npy) printf "\166\000{'descr': [('t', '<i8'), ('x', '<u2'), ('y', '<u2'), ('p', '|b1')], 'fortran_order': False, 'shape': (2,), }%9s\n" "" >"$corpus/seed"
+      printf '\012\000\000\000\000\000\000\000\001\000\002\000\001\024\000\000\000\000\000\000\000\003\000\004\000\000' >>"$corpus/seed" ;;
     text) printf '0.000010 1 2 1\n0.000020 3 4 0\n' >"$corpus/seed" ;;
     scoring) printf '10,1,2,1,3\n20,3,4,0,-1\n10050,3,confirmed,21.5,50,-3e2,0,100\n' >"$corpus/seed" ;;
     config) [ -x build/bin/evms ] && build/bin/evms params --config >"$corpus/defaults" || printf 'preset: paper\nbandwidth: 0.2\n' >"$corpus/seed" ;;

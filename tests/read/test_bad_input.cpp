@@ -97,6 +97,41 @@ TEST(BadInput, BadHeaders) {
   // After the header, a word is a bad record, not a second header.
   expect_error(d.write("nan.csv", "t_us,x,y,p\nnan,2,3,1\n"), "line 2", "field 't_us' = 'nan' is not an integer");
   expect_error(d.write("bin.bin", Bytes{0x00, 0xFF, 0x13, 0x00, 0x42}), "byte 0", "bad header: not a known event format");
+  // NumPy files: the header's dict says what each record holds (Formats.NpyStructuredAndPlainArraysReadTheSame).
+  {
+    const std::string fields = "[('t', '<i8'), ('x', '<u2'), ('y', '<u2'), ('p', '|u1')]";
+    const auto header = [](const std::string& descr, const std::string& shape, const char* order = "False") {
+      return "{'descr': " + descr + ", 'fortran_order': " + order + ", 'shape': " + shape + ", }";
+    };
+    Bytes record;
+    put_int(record, 10, 8), put_int(record, 1, 2), put_int(record, 2, 2), put_int(record, 1, 1);  // 13 bytes
+    expect_error(d.write("n.npy", npy(header("[('t', '<i8'), ('x', '<u2'), ('y', '<u2'), ('q', '|u1')]", "(1,)"), record)), "byte ",
+                 "bad NPY header: unknown field 'q'");
+    expect_error(d.write("n.npy", npy(header("[('t', '<f8'), ('x', '<u2'), ('y', '<u2'), ('p', '|u1')]", "(1,)"), record)), "byte ",
+                 "field 't' is an integer number of microseconds (a float field named t_s holds seconds)");
+    expect_error(d.write("n.npy", npy(header("[('t', '<i8'), ('x', '<u2'), ('p', '|u1')]", "(1,)"), record)), "byte ",
+                 "bad NPY header: no y field (the fields are t,x,p)");
+    expect_error(d.write("n.npy", npy(header("'<f8'", "(1, 4)"), record)), "byte ", "bad NPY header: a plain array's columns t_us,x,y,p are integers, not '<f8'");
+    expect_error(d.write("n.npy", npy(header("'<i8'", "(1, 3)"), record)), "byte ", "bad NPY header: a plain array of events has shape (N, 4) or (N, 5)");
+    expect_error(d.write("n.npy", npy(header("'<i8'", "(1, 4)", "True"), record)), "byte ", "bad NPY header: a plain array in Fortran order");
+    expect_error(d.write("n.npy", npy(header(fields, "(2,)"), record)), "byte 141", "truncated: the header says 2 records, the file holds 1");
+    Bytes more = record;
+    more.push_back(0);
+    expect_error(d.write("n.npy", npy(header(fields, "(1,)"), more)), "byte 141", "1 byte after the header's 1 records");
+    Bytes bad_polarity;
+    put_int(bad_polarity, 10, 8), put_int(bad_polarity, 1, 2), put_int(bad_polarity, 2, 2), put_int(bad_polarity, 3, 1);
+    expect_error(d.write("n.npy", npy(header(fields, "(1,)"), bad_polarity)), "byte 140", "polarity 3 is not 0, 1 or -1");
+    // DVS Gesture's arrays are x,y,p,t: as a plain array's t_us,x,y,p, the time is the polarity.
+    Bytes gesture;
+    for (int v : {1, 2, 1, 5000}) put_int(gesture, static_cast<std::uint64_t>(v), 8);
+    expect_error(d.write("n.npy", npy(header("'<i8'", "(1, 4)"), gesture)), "byte 152",
+                 "polarity 5000 is not 0, 1 or -1; a plain array's columns are t_us,x,y,p: save a structured array");
+    Bytes v9 = npy(header(fields, "(1,)"), record);
+    v9[6] = 9;
+    expect_error(d.write("n.npy", v9), "byte 6", "bad NPY header: version 9");
+    expect_error(d.write("n.npy", npy("{'descr': " + fields + ", 'shape': (1,), }", record)), "byte ",
+                 "bad NPY header: the header lacks 'descr', 'fortran_order' or 'shape'");
+  }
   expect_error(d.write("empty.txt", ""), "byte 0", "empty file");
 }
 

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <random>
 
@@ -120,6 +121,49 @@ TEST(Formats, CsvColumnsGoByTheirHeader) {
   EXPECT_EQ(source->info().format, "CSV x,y,p,t (Metavision)");
   EXPECT_EQ(source->info().sensor, (SensorSize{320, 240}));
   EXPECT_EQ(source->info().sensor_origin, "header");
+}
+
+// NumPy arrays: structured records named as CSV columns are (evms's own events.npy, tonic's
+// x,y,p,t with a bool polarity, seconds as floats), and plain (N, 4) integer arrays as t_us,x,y,p.
+// The sensor is the smallest usual one that holds every event, said to be assumed.
+TEST(Formats, NpyStructuredAndPlainArraysReadTheSame) {
+  TempDir dir;
+  const auto events = sample_events(2000, {346, 260});
+  const std::string n = std::to_string(events.size());
+  Bytes ours, tonic, seconds, plain;
+  for (const Event& e : events) {
+    put_int(ours, static_cast<std::uint64_t>(e.t), 8), put_int(ours, e.x, 2), put_int(ours, e.y, 2), put_int(ours, e.p, 1), put_int(ours, 7, 4);
+    put_int(tonic, e.x, 2), put_int(tonic, e.y, 2), put_int(tonic, e.p, 1), put_int(tonic, static_cast<std::uint64_t>(e.t), 8);
+    const double s = static_cast<double>(e.t) / 1e6;
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &s, 8);
+    put_int(seconds, bits, 8, true), put_int(seconds, e.x, 4), put_int(seconds, e.y, 4), put_int(seconds, e.p, 1);
+    for (std::int64_t v : {e.t, std::int64_t{e.x}, std::int64_t{e.y}, std::int64_t{e.p}}) put_int(plain, static_cast<std::uint64_t>(v), 4, true);
+  }
+  struct Case {
+    const char* file;
+    Bytes bytes;
+    const char* format;
+  };
+  const Case cases[] = {
+      {"ours.npy", npy("{'descr': [('t', '<i8'), ('x', '<u2'), ('y', '<u2'), ('p', 'u1'), ('label', '<i4')], 'fortran_order': False, 'shape': (" + n + ",), }", ours),
+       "NPY t,x,y,p,label"},
+      {"tonic.npy", npy("{'descr': [('x', '<i2'), ('y', '<i2'), ('p', '|b1'), ('t', '<i8')], 'fortran_order': False, 'shape': (" + n + ",), }", tonic, 2),
+       "NPY x,y,p,t"},
+      {"seconds.npy", npy("{'descr': [('t_s', '>f8'), ('x', '<i4'), ('y', '<i4'), ('polarity', '|i1')], 'fortran_order': False, 'shape': (" + n + ",), }", seconds, 3),
+       "NPY t_s,x,y,polarity"},
+      {"plain.npy", npy("{'descr': '>i4', 'fortran_order': False, 'shape': (" + n + ", 4), }", plain), "NPY (N, 4) >i4 as t_us,x,y,p"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.file);
+    const std::string path = dir.write(c.file, c.bytes);
+    EXPECT_EQ(read_all(path), events);
+    const auto source = read::open_source(path, {});
+    EXPECT_EQ(source->info().format, c.format);
+    EXPECT_EQ(source->info().sensor, (SensorSize{346, 260}));
+    EXPECT_TRUE(source->info().sensor_assumed());
+    EXPECT_EQ(read::open_source(path, sized(640, 480, 1000))->info().sensor, (SensorSize{640, 480}));
+  }
 }
 
 TEST(Formats, Aedat2Dvs128AndDavisRoundTrip) {

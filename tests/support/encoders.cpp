@@ -52,6 +52,22 @@ std::string csv(const std::vector<Event>& events) {
   return s;
 }
 
+Bytes npy(const std::string& dict, const Bytes& data, int major) {
+  const size_t prefix = major == 1 ? 10 : 12;
+  std::string header = dict;
+  while ((prefix + header.size() + 1) % 64 != 0) header += ' ';
+  header += '\n';
+  Bytes b = {0x93, 'N', 'U', 'M', 'P', 'Y', static_cast<std::uint8_t>(major), 0};
+  put_int(b, header.size(), major == 1 ? 2 : 4);
+  b.insert(b.end(), header.begin(), header.end());
+  b.insert(b.end(), data.begin(), data.end());
+  return b;
+}
+
+void put_int(Bytes& b, std::uint64_t v, int bytes, bool big_endian) {
+  for (int i = 0; i < bytes; ++i) b.push_back(static_cast<std::uint8_t>(v >> (8 * (big_endian ? bytes - 1 - i : i))));
+}
+
 Bytes aedat2_dvs128(const std::vector<Event>& events) {
   Bytes b;
   put_text(b, "#!AER-DAT2.0\r\n# This is a raw AE data file\r\n# AEChip: ch.unizh.ini.jaer.chip.retina.DVS128\r\n");

@@ -23,6 +23,11 @@ Bytes aedat4(const std::vector<Event>& events, SensorSize sensor, Aedat4Compress
 Bytes evt2(const std::vector<Event>& events, SensorSize sensor);
 Bytes evt3(const std::vector<Event>& events, SensorSize sensor);
 Bytes dat(const std::vector<Event>& events);
+// A NumPy .npy file of format version `major` (1, 2 or 3): the magic, the version, the length
+// of `dict` padded with blanks and a newline to a multiple of 64, then `data` as it is.
+Bytes npy(const std::string& dict, const Bytes& data, int major = 1);
+// Little- or big-endian bytes of the low `bytes` bytes of v.
+void put_int(Bytes& b, std::uint64_t v, int bytes, bool big_endian = false);
 
 // ROS 2 messages in CDR (little endian), and bags that hold them.
 Bytes evt3_words(const std::vector<Event>& events);  // the words of evt3() without its header
