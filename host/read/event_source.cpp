@@ -137,7 +137,11 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
   if (head.substr(0, 16) == std::string_view("SQLite format 3\0", 16)) {
     return open_ros2_bag(name, path, topic, options);
   }
-  if (query != std::string::npos) fail(name, {}, "?topic= applies to ROS 2 bags only");
+  if (head.rfind("#ROSBAG V2.0\n", 0) == 0) return open_ros1_bag(std::move(in), name, topic, options);
+  if (head.rfind("#ROSBAG", 0) == 0) {
+    fail(name, InputPosition::byte(0), "bad header: ROS bag version '" + printable(head.substr(0, head.find('\n'))) + "' (2.0 is read)");
+  }
+  if (query != std::string::npos) fail(name, {}, "?topic= applies to ROS bags only");
   if (head.rfind("#!AER-DAT2", 0) == 0) return open_aedat2(std::move(in), options);
   if (head.rfind("#!AER-DAT3", 0) == 0) return open_aedat3(std::move(in), options);
   if (head.rfind("#!AER-DAT4", 0) == 0) return open_aedat4(std::move(in), options);
@@ -168,7 +172,7 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
   if (text && first.find(',') != std::string_view::npos) return open_csv(std::move(in), options);
   if (text) return open_rpg_text(std::move(in), options);
   fail(name, InputPosition::byte(0),
-       "bad header: not a known event format (events.txt, CSV, AEDAT 2/3/4, EVT 2/3 RAW, DAT, NPY, ROS 2 bag)");
+       "bad header: not a known event format (events.txt, CSV, AEDAT 2/3/4, EVT 2/3 RAW, DAT, NPY, ROS 1 or 2 bag)");
 }
 
 }  // namespace

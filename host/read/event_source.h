@@ -2,6 +2,7 @@
 // stream. Every evms subcommand that reads events takes any source by its name:
 //   path/to/file.{txt,csv,aedat,aedat4,raw,dat,npy}   format detected from the header
 //   path/to/bag[/file.db3][?topic=/events]       a ROS 2 bag (formats/ros2_bag.cpp)
+//   path/to/file.bag[?topic=/dvs/events]         a ROS 1 bag (formats/ros1_bag.cpp)
 //   gen://rotation?seed=1&duration-s=2           a generated labelled scene
 //   usb://dvs128, usb://davis                    a live camera over libusb (usb_camera.cpp)
 //   udp://HOST:PORT?camera=dvs128|davis          a jAER AEUnicast stream (udp_source.cpp)
@@ -136,6 +137,8 @@ std::unique_ptr<EventSource> open_aedat3(ByteReader in, const SourceOptions& o);
 std::unique_ptr<EventSource> open_aedat4(ByteReader in, const SourceOptions& o);
 std::unique_ptr<EventSource> open_prophesee(ByteReader in, const SourceOptions& o);
 std::unique_ptr<EventSource> open_npy(ByteReader in, const SourceOptions& o);
+// A ROS 1 bag (format 2.0); `topic` empty picks the first event topic.
+std::unique_ptr<EventSource> open_ros1_bag(ByteReader in, const std::string& name, const std::string& topic, const SourceOptions& o);
 // A ROS 2 bag folder or one of its .db3 files; `topic` empty picks the first event topic.
 std::unique_ptr<EventSource> open_ros2_bag(const std::string& name, const std::string& path, const std::string& topic,
                                           const SourceOptions& o);

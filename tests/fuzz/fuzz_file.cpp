@@ -33,6 +33,7 @@ std::string prefix() {
   if (kFormat == "csv") return "";  // a CSV's header is its own (host/read/csv_columns.h): the fuzzer writes it
   if (kFormat == "text") return "# sensor 346x260\n";
   if (kFormat == "ros2") return std::string("SQLite format 3\0"sv);
+  if (kFormat == "ros1") return "#ROSBAG V2.0\n";
   if (kFormat == "npy") return std::string("\x93NUMPY\x01\x00"sv);
   std::abort();
 }

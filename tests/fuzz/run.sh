@@ -10,7 +10,7 @@ set -eu
 cd "$(dirname "$0")/../.."
 seconds=${1:-20}
 [ $# -gt 0 ] && shift
-targets=${*:-"aedat2 aedat3 aedat4 evt2 evt3 dat csv text ros2 npy streams config scoring"}
+targets=${*:-"aedat2 aedat3 aedat4 evt2 evt3 dat csv text ros1 ros2 npy streams config scoring"}
 command -v clang++ >/dev/null || { echo "fuzz: clang++ is not installed (apt install clang)"; exit 1; }
 if [ ! -f build-fuzz/CMakeCache.txt ]; then
   cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DEVMS_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
@@ -38,6 +38,7 @@ fuzz_one() {
       printf '%%geometry:64,48\n1,2,1,10\n3,4,0,20\n' >"$corpus/metavision"
       printf '"Polarity", Timestamp ,label,Y,X\n1,10,-1,2,1\n0,20,7,4,3\n' >"$corpus/named"
       printf 't_s,x,y,pol\n0.000010,1,2,1\n' >"$corpus/seconds" ;;
+    ros1) printf '\051\000\000\000\004\000\000\000\157\160\075\005\020\000\000\000\143\157\155\160\162\145\163\163\151\157\156\075\156\157\156\145\011\000\000\000\163\151\172\145\075\265\000\000\000\265\000\000\000\041\000\000\000\004\000\000\000\157\160\075\007\011\000\000\000\143\157\156\156\075\000\000\000\000\010\000\000\000\164\157\160\151\143\075\057\145\050\000\000\000\010\000\000\000\164\157\160\151\143\075\057\145\030\000\000\000\164\171\160\145\075\144\166\163\137\155\163\147\163\057\105\166\145\156\164\101\162\162\141\171\046\000\000\000\004\000\000\000\157\160\075\002\011\000\000\000\143\157\156\156\075\000\000\000\000\015\000\000\000\164\151\155\145\075\000\000\000\000\000\000\000\000\066\000\000\000\001\000\000\000\144\000\000\000\000\000\000\000\000\000\000\000\264\000\000\000\360\000\000\000\002\000\000\000\001\000\002\000\144\000\000\000\350\003\000\000\001\003\000\004\000\144\000\000\000\320\007\000\000\000' >"$corpus/seed" ;;  # a chunk: a dvs_msgs/EventArray connection and a message of 2 events
     npy) printf "\166\000{'descr': [('t', '<i8'), ('x', '<u2'), ('y', '<u2'), ('p', '|b1')], 'fortran_order': False, 'shape': (2,), }%9s\n" "" >"$corpus/seed"
       printf '\012\000\000\000\000\000\000\000\001\000\002\000\001\024\000\000\000\000\000\000\000\003\000\004\000\000' >>"$corpus/seed" ;;
     text) printf '0.000010 1 2 1\n0.000020 3 4 0\n' >"$corpus/seed" ;;

@@ -1,13 +1,18 @@
 // Each reader decodes what a spec-based encoder wrote, event for event.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <functional>
 #include <random>
+#include <thread>
+
+#include <sys/stat.h>
 
 #include "tests/support/encoders.h"
 #include "tests/support/read_all.h"
+#include "host/read/input_error.h"
 
 namespace evms::test {
 namespace {
@@ -164,6 +169,39 @@ TEST(Formats, NpyStructuredAndPlainArraysReadTheSame) {
     EXPECT_TRUE(source->info().sensor_assumed());
     EXPECT_EQ(read::open_source(path, sized(640, 480, 1000))->info().sensor, (SensorSize{640, 480}));
   }
+}
+
+// A pipe has no size and cannot be read twice: its records are read as they come, and its
+// sensor size must be given.
+TEST(Formats, NpyFromAPipeNeedsItsSensorSize) {
+  TempDir dir;
+  const auto events = sample_events(500, {128, 128});
+  Bytes records;
+  for (const Event& e : events) {
+    for (std::int64_t v : {e.t, std::int64_t{e.x}, std::int64_t{e.y}, std::int64_t{e.p}}) put_int(records, static_cast<std::uint64_t>(v), 8);
+  }
+  const Bytes file = npy("{'descr': '<i8', 'fortran_order': False, 'shape': (500, 4), }", records);
+  const std::string fifo = dir.path("pipe.npy");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  // A reader that stops early closes the pipe under the writer: its write then fails, not the test.
+  std::signal(SIGPIPE, SIG_IGN);
+  const auto through_pipe = [&](const read::SourceOptions& o) {
+    std::thread writer([&] {
+      std::FILE* f = std::fopen(fifo.c_str(), "wb");
+      if (f) std::fwrite(file.data(), 1, file.size(), f), std::fclose(f);
+    });
+    std::string error;
+    std::vector<Event> got;
+    try {
+      got = read_all(fifo, o);
+    } catch (const read::InputError& e) {
+      error = e.what();
+    }
+    writer.join();
+    return std::pair{got, error};
+  };
+  EXPECT_EQ(through_pipe({}).second, fifo + ": the file does not say the sensor size: pass --width and --height");
+  EXPECT_EQ(through_pipe(sized(128, 128, 1000)).first, events);
 }
 
 TEST(Formats, Aedat2Dvs128AndDavisRoundTrip) {

@@ -226,32 +226,39 @@ Bytes evt3_words(const std::vector<Event>& events) {
 namespace {
 
 // CDR, little endian: primitives aligned to their size from the end of the 4-byte header.
-class CdrWriter {
+// ROS messages in either serialization (host/read/formats/ros_message_reader.h says how they differ).
+class MessageWriter {
  public:
-  CdrWriter() : b_{0x00, 0x01, 0x00, 0x00} {}
+  explicit MessageWriter(bool ros1 = false) : ros1_(ros1) {
+    if (!ros1_) b_ = {0x00, 0x01, 0x00, 0x00};
+  }
   template <class T>
   void put(T v) {
-    while ((b_.size() - 4) % sizeof(T)) b_.push_back(0);
+    while (!ros1_ && (b_.size() - 4) % sizeof(T)) b_.push_back(0);
     for (size_t i = 0; i < sizeof(T); ++i) b_.push_back(static_cast<std::uint8_t>(static_cast<std::uint64_t>(v) >> (8 * i)));
   }
   void string(const std::string& s) {
-    put<std::uint32_t>(static_cast<std::uint32_t>(s.size() + 1));
+    put<std::uint32_t>(static_cast<std::uint32_t>(s.size() + (ros1_ ? 0 : 1)));
     b_.insert(b_.end(), s.begin(), s.end());
-    b_.push_back(0);
+    if (!ros1_) b_.push_back(0);
   }
   void header() {
+    if (ros1_) put<std::uint32_t>(41);  // seq
     put<std::int32_t>(1702309120);
     put<std::uint32_t>(5000);
     string("camera");
   }
   Bytes bytes() const { return b_; }
   Bytes b_;
+
+ private:
+  bool ros1_;
 };
 
 }  // namespace
 
-Bytes event_packet_cdr(const std::string& encoding, std::uint64_t time_base_ns, SensorSize sensor, const Bytes& events) {
-  CdrWriter w;
+Bytes event_packet_cdr(const std::string& encoding, std::uint64_t time_base_ns, SensorSize sensor, const Bytes& events, bool ros1) {
+  MessageWriter w(ros1);
   w.header();
   w.put<std::uint32_t>(static_cast<std::uint32_t>(sensor.height));
   w.put<std::uint32_t>(static_cast<std::uint32_t>(sensor.width));
@@ -284,8 +291,8 @@ Bytes mono_events(const std::vector<Event>& events, std::uint64_t time_base_ns) 
   return b;
 }
 
-Bytes dvs_event_array_cdr(const std::vector<Event>& events, SensorSize sensor) {
-  CdrWriter w;
+Bytes dvs_event_array_cdr(const std::vector<Event>& events, SensorSize sensor, bool ros1) {
+  MessageWriter w(ros1);
   w.header();
   w.put<std::uint32_t>(static_cast<std::uint32_t>(sensor.height));
   w.put<std::uint32_t>(static_cast<std::uint32_t>(sensor.width));
@@ -337,6 +344,85 @@ std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& 
                                            "  compression_format: \"\"\n  compression_mode: \"\"\n  relative_file_paths:\n    - "
                                         << name << "_0.db3\n";
   return dir;
+}
+
+namespace {
+
+// A ROS 1 record: its header's fields ("name=value", each after its uint32 length) and its data.
+void put_record(Bytes& b, const std::vector<std::pair<std::string, Bytes>>& fields, const Bytes& data) {
+  Bytes header;
+  for (const auto& [name, value] : fields) {
+    put_le32(header, static_cast<std::uint32_t>(name.size() + 1 + value.size()));
+    header.insert(header.end(), name.begin(), name.end());
+    header.push_back('=');
+    header.insert(header.end(), value.begin(), value.end());
+  }
+  put_le32(b, static_cast<std::uint32_t>(header.size()));
+  b.insert(b.end(), header.begin(), header.end());
+  put_le32(b, static_cast<std::uint32_t>(data.size()));
+  b.insert(b.end(), data.begin(), data.end());
+}
+
+Bytes text_bytes(const std::string& s) { return Bytes(s.begin(), s.end()); }
+Bytes int_bytes(std::uint64_t v, int n) {
+  Bytes b;
+  put_int(b, v, n);
+  return b;
+}
+
+}  // namespace
+
+Bytes ros1_bag(const std::vector<BagTopic>& topics, const std::string& compression, size_t messages_per_chunk) {
+  Bytes b = text_bytes("#ROSBAG V2.0\n");
+  Bytes padding(4000, ' ');
+  put_record(b, {{"op", {0x03}}, {"index_pos", int_bytes(0, 8)}, {"conn_count", int_bytes(topics.size(), 4)}, {"chunk_count", int_bytes(1, 4)}},
+             padding);
+  const auto connection = [&](Bytes& out, size_t conn) {
+    Bytes details;
+    for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{
+             {"topic", topics[conn].name}, {"type", topics[conn].type}, {"md5sum", "*"}, {"message_definition", "# test"}}) {
+      put_le32(details, static_cast<std::uint32_t>(name.size() + 1 + value.size()));
+      details.insert(details.end(), name.begin(), name.end());
+      details.push_back('=');
+      details.insert(details.end(), value.begin(), value.end());
+    }
+    put_record(out, {{"op", {0x07}}, {"conn", int_bytes(conn, 4)}, {"topic", text_bytes(topics[conn].name)}}, details);
+  };
+  // Messages of every topic in turn, in chunks; each connection before its first message.
+  std::vector<bool> announced(topics.size(), false);
+  size_t most = 0;
+  for (const BagTopic& t : topics) most = std::max(most, t.messages.size());
+  std::uint64_t stamp = 1702309120ull;
+  Bytes records;
+  size_t in_chunk = 0;
+  const auto close_chunk = [&] {
+    if (records.empty()) return;
+    Bytes data = records;
+    if (compression == "lz4") {
+      data.resize(LZ4F_compressFrameBound(records.size(), nullptr));
+      data.resize(LZ4F_compressFrame(data.data(), data.size(), records.data(), records.size(), nullptr));
+    }
+    put_record(b, {{"op", {0x05}}, {"compression", text_bytes(compression)}, {"size", int_bytes(records.size(), 4)}}, data);
+    put_record(b, {{"op", {0x04}}, {"ver", int_bytes(1, 4)}, {"conn", int_bytes(0, 4)}, {"count", int_bytes(0, 4)}}, {});
+    records.clear();
+    in_chunk = 0;
+  };
+  for (size_t m = 0; m < most; ++m) {
+    for (size_t t = 0; t < topics.size(); ++t) {
+      if (m >= topics[t].messages.size()) continue;
+      if (!announced[t]) connection(records, t), announced[t] = true;
+      put_record(records, {{"op", {0x02}}, {"conn", int_bytes(t, 4)}, {"time", int_bytes(stamp++ | (std::uint64_t{5000} << 32), 8)}},
+                 topics[t].messages[m]);
+      if (++in_chunk == messages_per_chunk) close_chunk();
+    }
+  }
+  close_chunk();
+  // The index at the end: every connection again, and a chunk info.
+  for (size_t t = 0; t < topics.size(); ++t) connection(b, t);
+  put_record(b, {{"op", {0x06}}, {"ver", int_bytes(1, 4)}, {"chunk_pos", int_bytes(4117, 8)}, {"start_time", int_bytes(0, 8)},
+                 {"end_time", int_bytes(0, 8)}, {"count", int_bytes(0, 4)}},
+             {});
+  return b;
 }
 
 Bytes dat(const std::vector<Event>& events) {

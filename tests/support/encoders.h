@@ -29,12 +29,13 @@ Bytes npy(const std::string& dict, const Bytes& data, int major = 1);
 // Little- or big-endian bytes of the low `bytes` bytes of v.
 void put_int(Bytes& b, std::uint64_t v, int bytes, bool big_endian = false);
 
-// ROS 2 messages in CDR (little endian), and bags that hold them.
+// ROS 2 messages in CDR (little endian), or with `ros1` in ROS 1's serialization, and bags that
+// hold them.
 Bytes evt3_words(const std::vector<Event>& events);  // the words of evt3() without its header
-Bytes event_packet_cdr(const std::string& encoding, std::uint64_t time_base_ns, SensorSize sensor, const Bytes& events);
+Bytes event_packet_cdr(const std::string& encoding, std::uint64_t time_base_ns, SensorSize sensor, const Bytes& events, bool ros1 = false);
 Bytes libcaer_events(const std::vector<Event>& events);  // t relative to the packet's time base
 Bytes mono_events(const std::vector<Event>& events, std::uint64_t time_base_ns);
-Bytes dvs_event_array_cdr(const std::vector<Event>& events, SensorSize sensor);
+Bytes dvs_event_array_cdr(const std::vector<Event>& events, SensorSize sensor, bool ros1 = false);
 struct BagTopic {
   std::string name, type;
   std::vector<Bytes> messages;
@@ -43,6 +44,9 @@ struct BagTopic {
 void write_db3(const std::string& db3, const std::vector<BagTopic>& topics);
 // A bag folder `dir` with metadata.yaml and dir/NAME_0.db3; returns the folder.
 std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& topics);
+// A ROS 1 bag (format 2.0) of these topics, their messages in ROS 1's serialization, in chunks
+// of `messages_per_chunk` compressed with `compression` ("none" or "lz4"), and its index.
+Bytes ros1_bag(const std::vector<BagTopic>& topics, const std::string& compression, size_t messages_per_chunk = 4);
 
 // A temporary directory removed at the end of the test.
 class TempDir {

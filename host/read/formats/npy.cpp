@@ -292,7 +292,9 @@ class NpySource final : public FileEventSource {
  public:
   NpySource(ByteReader in, const SourceOptions& o) : FileEventSource(std::move(in), "NPY", o), layout_(read_npy_header(in_)) {
     info_.format = layout_.describe;
-    const std::uint64_t have = in_.size() - layout_.data_offset;
+    // A pipe has no size to check against, nor a second pass: its sensor size must be given.
+    const bool regular = in_.size() >= layout_.data_offset;
+    const std::uint64_t have = regular ? in_.size() - layout_.data_offset : layout_.records * layout_.record_bytes;
     const std::uint64_t want = layout_.records * layout_.record_bytes;
     if (layout_.record_bytes > 0 && have / layout_.record_bytes < layout_.records) {
       fail(in_.path(), InputPosition::byte(layout_.data_offset + have / layout_.record_bytes * layout_.record_bytes),
@@ -305,7 +307,7 @@ class NpySource final : public FileEventSource {
                std::to_string(layout_.records) + " records");
     }
     std::optional<SensorSize> extent;
-    if (o.width <= 0 || o.height <= 0) extent = sensor_holding_every_event();
+    if (regular && (o.width <= 0 || o.height <= 0)) extent = sensor_holding_every_event();
     set_sensor(std::nullopt, extent, origin_.c_str());
   }
 

@@ -1,23 +1,9 @@
 // ROS 2 bags (rosbag2, sqlite3 storage): a folder with metadata.yaml and its .db3 files, or one
 // .db3 file. Each .db3 holds the tables topics(id, name, type, serialization_format, ...) and
-// messages(id, topic_id, timestamp, data); data is the CDR-serialized message (cdr.h). One topic
+// messages(id, topic_id, timestamp, data); data is the CDR-serialized message. One topic
 // is read, in the order of the messages' receive timestamps.
 //
-// Message types (the layouts are the .msg definitions):
-//   event_camera_msgs/msg/EventPacket
-//       std_msgs/Header header, uint32 height, uint32 width, uint64 seq, uint64 time_base,
-//       string encoding, bool is_bigendian, uint8[] events
-//     encodings: "evt3"    Prophesee EVT 3.0 words (evt3_decoder.h), state kept across
-//                          packets; sensor time, time_base unused
-//                "libcaer" 8 bytes an event: uint32 address (bit 1 polarity, y in 2..16, x in
-//                          17..31) and int32 t_us; t = time_base (ns) + t_us * 1000, and t_us
-//                          going down inside a packet is a roll-over of 2^31 us
-//                "mono"    uint64: dt in 0..31 (ns), x in 32..47, y in 48..62, polarity in 63;
-//                          t = time_base + dt
-//                "trigger" uint64 trigger records: counted and skipped
-//   dvs_msgs/msg/EventArray, prophesee_event_msgs/msg/EventArray
-//       std_msgs/Header header, uint32 height, uint32 width, Event[] events with
-//       Event = {uint16 x, uint16 y, builtin_interfaces/Time ts, bool polarity}
+// The event messages are decoded by event_messages.h.
 // Times become microseconds (floor). The sensor size is the first message's height and width.
 // Bags compressed per message with zstd are read; file-compressed bags are refused.
 #include <sqlite3.h>
@@ -31,21 +17,16 @@
 
 #include "host/read/bytes.h"
 #include "host/read/event_source.h"
-#include "host/read/formats/cdr.h"
-#include "host/read/formats/evt3_decoder.h"
+#include "host/read/formats/event_messages.h"
 
 namespace evms::read {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kEventPacket = "event_camera_msgs/msg/EventPacket";
-constexpr const char* kDvsArray = "dvs_msgs/msg/EventArray";
-constexpr const char* kPropheseeArray = "prophesee_event_msgs/msg/EventArray";
 // A decompressed message larger than this is corrupt (a packet of 16 M events in 8 bytes each).
 constexpr size_t kMaxMessageBytes = size_t{128} << 20;
 
-bool is_event_type(const std::string& type) { return type == kEventPacket || type == kDvsArray || type == kPropheseeArray; }
 
 struct BagLayout {
   std::vector<std::string> files;  // .db3 paths in recording order
@@ -173,7 +154,7 @@ class Db3 {
   Statement messages_;
 };
 
-class Ros2BagSource final : public DecodedEventSource {
+class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
  public:
   Ros2BagSource(const std::string& name, BagLayout layout, const std::string& topic, const SourceOptions& options)
       : layout_(std::move(layout)), options_(options) {
@@ -215,22 +196,22 @@ class Ros2BagSource final : public DecodedEventSource {
     std::string listed;
     for (const Db3::Topic& t : topics) {
       listed += (listed.empty() ? "" : ", ") + t.name + " (" + t.type + ")";
-      if (wanted.empty() ? (!chosen && is_event_type(t.type)) : t.name == wanted) chosen = &t;
+      if (wanted.empty() ? (!chosen && EventMessages::is_event_type(t.type)) : t.name == wanted) chosen = &t;
     }
     if (!chosen) {
       fail(info_.name, {}, printable(wanted.empty() ? "no event topic" : "no topic '" + wanted + "'") +
                                " in the bag (its topics: " + printable(listed.empty() ? "none" : listed) +
-                               "; event types: " + kEventPacket + ", " + kDvsArray + ", " + kPropheseeArray + ")");
+                               "; event types: " + EventMessages::types_known() + ")");
     }
-    if (!is_event_type(chosen->type)) {
+    if (!EventMessages::is_event_type(chosen->type)) {
       fail(info_.name, {}, "topic " + printable(chosen->name) + " has type " + printable(chosen->type) + ", not an event type (" +
-                               kEventPacket + ", " + kDvsArray + ", " + kPropheseeArray + ")");
+                               EventMessages::types_known() + ")");
     }
     if (chosen->serialization != "cdr") {
       fail(info_.name, {}, "topic " + printable(chosen->name) + " is serialized as '" + printable(chosen->serialization) + "', not cdr");
     }
     topic_ = chosen->name;
-    type_ = chosen->type;
+    messages_.emplace(chosen->type, EventMessages::Serialization::kCdr);
     for (const Db3::Topic& t : topics) {
       if (t.name == topic_) total_ += db_->count(t.id);
     }
@@ -284,125 +265,23 @@ class Ros2BagSource final : public DecodedEventSource {
     fail(db_->path(), InputPosition::message(static_cast<std::uint64_t>(message_id_), byte), what);
   }
 
-  std::optional<SensorSize> sensor_of_first_message() {
-    try {
-      CdrReader r(message_);
-      skip_header(r);
-      const std::uint32_t height = r.u32(), width = r.u32();
-      if (width == 0 || height == 0) return std::nullopt;
-      if (width > static_cast<std::uint32_t>(kMaxSensorSide) || height > static_cast<std::uint32_t>(kMaxSensorSide)) {
-        fail_message(r.offset(), "a sensor of " + std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
-                                     std::to_string(kMaxSensorSide) + "x" + std::to_string(kMaxSensorSide));
-      }
-      return SensorSize{static_cast<int>(width), static_cast<int>(height)};
-    } catch (const CdrReader::Error& e) {
-      fail_message(e.offset, e.what);
-    }
-  }
-
-  static void skip_header(CdrReader& r) {
-    r.i32();     // stamp.sec
-    r.u32();     // stamp.nanosec
-    r.string();  // frame_id
-  }
+  std::optional<SensorSize> sensor_of_first_message() { return messages_->sensor(message_, *this); }
 
   void decode_current() {
-    try {
-      CdrReader r(message_);
-      skip_header(r);
-      r.u32();  // height
-      r.u32();  // width
-      if (type_ == kEventPacket) {
-        decode_packet(r);
-      } else {
-        decode_array(r);
-      }
-    } catch (const CdrReader::Error& e) {
-      fail_message(e.offset, e.what);
-    }
+    messages_->decode(message_, *this);
+    if (info_.format.empty()) info_.format = "ROS 2 bag, " + messages_->format();
   }
 
-  void emit_at(TimeUs t, std::uint64_t x, std::uint64_t y, int p, std::uint64_t at) {
+  void event(TimeUs t, std::uint64_t x, std::uint64_t y, int p, std::uint64_t at) override {
     emit(t, static_cast<long>(x), static_cast<long>(y), p, InputPosition::message(static_cast<std::uint64_t>(message_id_), at));
   }
-
-  // Times in ns become us; a time that does not fit is corrupt input.
-  TimeUs us_of_ns(unsigned __int128 ns, std::uint64_t at) const {
-    const unsigned __int128 us = ns / 1000;
-    if (us > static_cast<unsigned __int128>(kMaxTimestampUs)) fail_message(at, "a timestamp beyond 2^62 us");
-    return static_cast<TimeUs>(us);
-  }
-
-  void decode_packet(CdrReader& r) {
-    r.u64();  // seq
-    const std::uint64_t time_base = r.u64();
-    const std::uint64_t encoding_at = r.offset();
-    const std::string encoding(r.string());
-    r.boolean();  // is_bigendian: every encoding fixes its own byte order
-    const std::uint32_t n = r.sequence_length(1);
-    const std::uint64_t start = r.offset();
-    const std::span<const unsigned char> events = r.bytes(n);
-    if (info_.format.empty()) info_.format = "ROS 2 bag, " + std::string(kEventPacket) + " (" + printable(encoding) + ")";
-    if (encoding == "evt3") {
-      if (n % 2) fail_message(start, "an evt3 packet of " + std::to_string(n) + " bytes (not whole 16-bit words)");
-      struct Sink {
-        Ros2BagSource& source;
-        std::uint64_t at;
-        void event(TimeUs t, unsigned x, unsigned y, int p) { source.emit_at(t, x, y, p, at); }
-        void skipped(const char* kind) { source.count_skipped(kind); }
-      } sink{*this, start};
-      for (size_t i = 0; i < n; i += 2, sink.at += 2) {
-        if (!evt3_.word(le16(&events[i]), sink)) {
-          fail_message(sink.at, "reserved EVT 3.0 word type " + std::to_string(le16(&events[i]) >> 12));
-        }
-      }
-    } else if (encoding == "libcaer" || encoding == "mono" || encoding == "trigger") {
-      if (n % 8) fail_message(start, "a " + encoding + " packet of " + std::to_string(n) + " bytes (not whole 8-byte events)");
-      if (encoding == "trigger") {
-        count_skipped("trigger events", n / 8);
-        return;
-      }
-      const bool libcaer = encoding == "libcaer";
-      std::uint64_t high = time_base;  // libcaer: ns, raised by 2^31 us at each roll-over
-      std::uint32_t last_low = 0;
-      for (size_t i = 0; i < n; i += 8) {
-        const std::uint64_t at = start + i;
-        if (libcaer) {
-          const std::uint32_t address = le32(&events[i]);
-          const std::int32_t low = static_cast<std::int32_t>(le32(&events[i + 4]));
-          if (low < 0) fail_message(at + 4, "a negative libcaer timestamp (" + std::to_string(low) + ")");
-          if (static_cast<std::uint32_t>(low) < last_low) high += (std::uint64_t{1} << 31) * 1000;
-          last_low = static_cast<std::uint32_t>(low);
-          emit_at(us_of_ns(static_cast<unsigned __int128>(high) + static_cast<unsigned __int128>(low) * 1000, at), (address >> 17) & 0x7FFF,
-               (address >> 2) & 0x7FFF, static_cast<int>((address >> 1) & 1), at);
-        } else {
-          const std::uint64_t word = std::uint64_t{le32(&events[i])} | (std::uint64_t{le32(&events[i + 4])} << 32);
-          emit_at(us_of_ns(static_cast<unsigned __int128>(time_base) + (word & 0xFFFFFFFFu), at), (word >> 32) & 0xFFFF,
-               (word >> 48) & 0x7FFF, static_cast<int>(word >> 63), at);
-        }
-      }
-    } else {
-      fail_message(encoding_at, "encoding '" + printable(encoding) + "' is not supported (evt3, libcaer, mono, trigger)");
-    }
-  }
-
-  void decode_array(CdrReader& r) {
-    if (info_.format.empty()) info_.format = "ROS 2 bag, " + type_;
-    const std::uint32_t n = r.sequence_length(13);
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const std::uint64_t at = r.offset();
-      const std::uint16_t x = r.u16(), y = r.u16();
-      const std::int32_t sec = r.i32();
-      const std::uint32_t nanosec = r.u32();
-      const bool polarity = r.boolean();
-      if (sec < 0 || nanosec >= 1000000000u) fail_message(at, "a bad event time (" + std::to_string(sec) + " s, " + std::to_string(nanosec) + " ns)");
-      emit_at(static_cast<TimeUs>(sec) * 1000000 + nanosec / 1000, x, y, polarity ? 1 : 0, at);
-    }
-  }
+  void skipped_records(const char* kind, std::int64_t n) override { count_skipped(kind, n); }
+  [[noreturn]] void refuse(std::uint64_t at, const std::string& what) override { fail_message(at, what); }
 
   BagLayout layout_;
   SourceOptions options_;
-  std::string topic_, type_;
+  std::string topic_;
+  std::optional<EventMessages> messages_;
   std::unique_ptr<Db3> db_;
   size_t file_ = 0;
   bool has_topic_ = false;
@@ -410,7 +289,6 @@ class Ros2BagSource final : public DecodedEventSource {
   std::span<const unsigned char> message_;
   std::vector<unsigned char> unpacked_;
   std::int64_t total_ = 0, decoded_ = 0;
-  Evt3Decoder evt3_;
 };
 
 }  // namespace

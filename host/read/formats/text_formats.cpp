@@ -3,8 +3,8 @@
 //    decimals (rounded to the nearest microsecond), p 0 = OFF, 1 = ON. Fields are separated
 //    by spaces or tabs. The dataset's DAVIS240C is 240x180, the default size.
 //  - CSV "t_us,x,y,p" with an optional fifth column (a label, ignored here), as evms itself
-//    writes. A header line names the columns in any order (csv_column_of() lists the names), as
-//    pandas and spreadsheets write them; without one the rows are t_us,x,y,p[,label].
+//    writes. A header line names the columns in any order (host/read/csv_columns.h lists the
+//    names), as pandas and spreadsheets write them; without one the rows are t_us,x,y,p[,label].
 //  - Metavision's CSV (metavision_file_to_csv): a first line "%geometry:W,H", then "x,y,p,t"
 //    rows, t in microseconds.
 // Blank lines and lines starting with '#' are skipped. p may also be -1 for OFF. A first line
@@ -31,7 +31,7 @@ class TextSource final : public FileEventSource {
     if (csv_ && !sensor) sensor = metavision_geometry();
     if (csv_) {
       header_ahead();
-      info_.format = "CSV " + columns_.joined() + (metavision_ ? " (Metavision)" : "");
+      describe_columns();
     }
     set_sensor(sensor, kDavis240, "assumed: the file does not say (DAVIS240C); pass --width and --height");
   }
@@ -92,9 +92,11 @@ class TextSource final : public FileEventSource {
 
   void read_header(std::string_view line, std::uint64_t line_no) {
     columns_ = csv_columns_of_header(line, in_.path(), line_no);
-    info_.format = "CSV " + columns_.joined() + (metavision_ ? " (Metavision)" : "");
+    describe_columns();
     header_read_ = true;
   }
+
+  void describe_columns() { info_.format = "CSV " + columns_.joined() + (metavision_ ? " (Metavision)" : ""); }
 
   [[noreturn]] void bad(const std::string& what) const {
     fail(in_.path(), InputPosition::line(in_.line()), what);

@@ -1,8 +1,11 @@
-// Reading ROS 2 messages serialized as CDR (OMG XCDR1, as rmw_fastrtps writes them): a 4-byte
-// encapsulation header {0x00, 0x00|0x01, options} whose second byte says big (0) or little (1)
-// endian, then the fields in order. A primitive of n bytes starts at a multiple of n counted from
-// the end of the header. A string is a uint32 length that counts its terminating NUL, then the
-// bytes; a sequence is a uint32 element count, then the elements.
+// Reading serialized ROS messages, in either of the two serializations:
+//  - ROS 2's CDR (OMG XCDR1, as rmw_fastrtps writes them): a 4-byte encapsulation header
+//    {0x00, 0x00|0x01, options} whose second byte says big (0) or little (1) endian, then the
+//    fields in order. A primitive of n bytes starts at a multiple of n counted from the end of
+//    the header. A string is a uint32 length that counts its terminating NUL, then the bytes.
+//  - ROS 1's: the fields in order, little-endian, with no header and no alignment; a string is
+//    a uint32 length (no NUL), then the bytes.
+// In both, a sequence is a uint32 element count, then the elements.
 #pragma once
 
 #include <cstdint>
@@ -13,7 +16,7 @@
 
 namespace evms::read {
 
-class CdrReader {
+class RosMessageReader {
  public:
   // Errors carry the byte offset into `data` (header included).
   struct Error {
@@ -21,7 +24,10 @@ class CdrReader {
     std::string what;
   };
 
-  explicit CdrReader(std::span<const unsigned char> data) : data_(data) {
+  enum class Serialization { kCdr, kRos1 };
+
+  RosMessageReader(std::span<const unsigned char> data, Serialization s) : data_(data), cdr_(s == Serialization::kCdr) {
+    if (!cdr_) return;
     if (data_.size() < 4) throw Error{0, "shorter than the 4-byte CDR header"};
     if (data_[0] != 0 || data_[1] > 1) throw Error{0, "not plain CDR (encapsulation " + std::to_string(data_[0]) + "," + std::to_string(data_[1]) + ")"};
     little_ = data_[1] == 1;
@@ -38,7 +44,7 @@ class CdrReader {
     const std::uint32_t n = u32();
     if (n == 0) return {};
     const std::span<const unsigned char> b = bytes(n);
-    return {reinterpret_cast<const char*>(b.data()), n - 1};
+    return {reinterpret_cast<const char*>(b.data()), cdr_ ? n - 1 : n};
   }
   // A sequence's element count, checked against the bytes left at `min_element_bytes` each.
   std::uint32_t sequence_length(size_t min_element_bytes) {
@@ -60,8 +66,7 @@ class CdrReader {
 
  private:
   std::uint64_t unsigned_of(size_t n) {
-    const size_t body = pos_ - 4;
-    pos_ += (n - body % n) % n;
+    if (cdr_) pos_ += (n - (pos_ - 4) % n) % n;
     if (pos_ > data_.size() || n > data_.size() - pos_) throw Error{pos_, "message ends inside a field"};
     std::uint64_t v = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -73,6 +78,7 @@ class CdrReader {
   }
 
   std::span<const unsigned char> data_;
+  bool cdr_;
   size_t pos_ = 0;
   bool little_ = true;
 };
