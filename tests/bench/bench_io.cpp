@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "host/write/binary_writers.h"
@@ -37,6 +38,51 @@ BENCHMARK_CAPTURE(read_file, evt2_gen3_moving_blob, "gen3_moving_blob.evt2.raw")
 BENCHMARK_CAPTURE(read_file, evt3_gen41_dense_scene, "gen41_dense_scene.evt3.raw")->Unit(benchmark::kMillisecond)->MinTime(1);
 BENCHMARK_CAPTURE(read_file, aedat4_dvxplorer_indoor, "dvxplorer_indoor.aedat4")->Unit(benchmark::kMillisecond)->MinTime(1);
 BENCHMARK_CAPTURE(read_file, ros2_libcaer_rollover, "ros2/libcaer_rollover")->Unit(benchmark::kMillisecond)->MinTime(1);
+
+// The same 1 M events (640x480) in a file of each format that needs no recording: evms's own
+// events.csv and events.npy, a CSV in Metavision's column order, a ROS 1 bag in lz4 chunks.
+void read_written(benchmark::State& state, const std::string& format) {
+  const std::vector<Event> events = test::sample_events(1 << 20, {640, 480});
+  static const test::TempDir dir;
+  const std::string path = dir.path("events." + format);
+  if (format == "csv") {
+    write::LabelledEventsCsv w(path, {640, 480});
+    for (const Event& e : events) w.write(LabelledEvent{e, -1});
+    w.close();
+  } else if (format == "npy") {
+    write::LabelledEventsNpy w(path);
+    for (const Event& e : events) w.write(LabelledEvent{e, -1});
+    w.close();
+  } else if (format == "xypt.csv") {
+    std::string text = "x,y,p,t\n";
+    for (const Event& e : events) text += std::to_string(e.x) + "," + std::to_string(e.y) + "," + std::to_string(e.p) + "," + std::to_string(e.t) + "\n";
+    dir.write("events." + format, text);
+  } else {
+    std::vector<test::Bytes> messages;
+    for (size_t at = 0; at < events.size(); at += 4096) {
+      messages.push_back(test::dvs_event_array_cdr({events.begin() + static_cast<long>(at), events.begin() + static_cast<long>(std::min(events.size(), at + 4096))},
+                                                   {640, 480}, true));
+    }
+    dir.write("events." + format, test::ros1_bag({{"/dvs/events", "dvs_msgs/EventArray", messages}}, "lz4", 16));
+  }
+  read::SourceOptions options;
+  options.width = 640, options.height = 480;
+  std::vector<Event> batch(1 << 14);
+  std::int64_t n = 0;
+  for (auto _ : state) {
+    auto source = read::open_source(path, options);
+    n = 0;
+    while (const size_t got = source->read(batch)) n += static_cast<std::int64_t>(got);
+    benchmark::DoNotOptimize(batch.data());
+  }
+  if (n != static_cast<std::int64_t>(events.size())) state.SkipWithError("read back a different number of events");
+  state.SetItemsProcessed(state.iterations() * n);
+  state.counters["events"] = static_cast<double>(n);
+}
+BENCHMARK_CAPTURE(read_written, csv, "csv")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_CAPTURE(read_written, csv_metavision_order, "xypt.csv")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_CAPTURE(read_written, npy, "npy")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_CAPTURE(read_written, ros1_bag_lz4, "bag")->Unit(benchmark::kMillisecond)->MinTime(1);
 
 template <class Writer>
 Writer make(const std::string& base);
