@@ -16,23 +16,27 @@
 namespace evms {
 namespace {
 
-void read_file(benchmark::State& state, const std::string& name) {
-  const std::string dir = test::shared_data_dir();
-  if (dir.empty()) {
-    state.SkipWithError("../shared/data/real is absent");
-    return;
-  }
-  const std::string path = dir + "/" + name;
+// Reads `path` to its end in every iteration, opening it anew, and counts the events.
+void read_through(benchmark::State& state, const std::string& path, const read::SourceOptions& options) {
   std::int64_t events = 0;
   std::vector<Event> batch(1 << 14);
   for (auto _ : state) {
-    auto source = read::open_source(path, {});
+    auto source = read::open_source(path, options);
     events = 0;
     while (const size_t n = source->read(batch)) events += static_cast<std::int64_t>(n);
     benchmark::DoNotOptimize(batch.data());
   }
   state.SetItemsProcessed(state.iterations() * events);
   state.counters["events"] = static_cast<double>(events);
+}
+
+void read_file(benchmark::State& state, const std::string& name) {
+  const std::string dir = test::shared_data_dir();
+  if (dir.empty()) {
+    state.SkipWithError("../shared/data/real is absent");
+    return;
+  }
+  read_through(state, dir + "/" + name, {});
 }
 BENCHMARK_CAPTURE(read_file, evt2_gen3_moving_blob, "gen3_moving_blob.evt2.raw")->Unit(benchmark::kMillisecond)->MinTime(1);
 BENCHMARK_CAPTURE(read_file, evt3_gen41_dense_scene, "gen41_dense_scene.evt3.raw")->Unit(benchmark::kMillisecond)->MinTime(1);
@@ -67,17 +71,8 @@ void read_written(benchmark::State& state, const std::string& format) {
   }
   read::SourceOptions options;
   options.width = 640, options.height = 480;
-  std::vector<Event> batch(1 << 14);
-  std::int64_t n = 0;
-  for (auto _ : state) {
-    auto source = read::open_source(path, options);
-    n = 0;
-    while (const size_t got = source->read(batch)) n += static_cast<std::int64_t>(got);
-    benchmark::DoNotOptimize(batch.data());
-  }
-  if (n != static_cast<std::int64_t>(events.size())) state.SkipWithError("read back a different number of events");
-  state.SetItemsProcessed(state.iterations() * n);
-  state.counters["events"] = static_cast<double>(n);
+  read_through(state, path, options);
+  if (state.counters["events"] != static_cast<double>(events.size())) state.SkipWithError("read back a different number of events");
 }
 BENCHMARK_CAPTURE(read_written, csv, "csv")->Unit(benchmark::kMillisecond)->MinTime(1);
 BENCHMARK_CAPTURE(read_written, csv_metavision_order, "xypt.csv")->Unit(benchmark::kMillisecond)->MinTime(1);

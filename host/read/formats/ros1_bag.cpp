@@ -116,6 +116,7 @@ class Ros1BagSource final : public FileEventSource, EventMessageSink {
     // --width/--height win over the messages, as for ROS 2 bags.
     const bool given = o.width > 0 && o.height > 0;
     set_sensor(given ? std::nullopt : messages_->sensor(message_, *this), std::nullopt, "");
+    if (!given) info_.sensor_origin = "message header";  // as ROS 2 bags say it
     decode_current();
   }
 
