@@ -126,6 +126,11 @@ TEST(BadInput, BadHeaders) {
     for (int v : {1, 2, 1, 5000}) put_int(gesture, static_cast<std::uint64_t>(v), 8);
     expect_error(d.write("n.npy", npy(header("'<i8'", "(1, 4)"), gesture)), "byte 152",
                  "polarity 5000 is not 0, 1 or -1; a plain array's columns are t_us,x,y,p: save a structured array");
+    // A coordinate beyond any sensor: no size is assumed, and none is given.
+    Bytes far;
+    put_int(far, 10, 8), put_int(far, ~std::uint64_t{0} >> 1, 8), put_int(far, 2, 8), put_int(far, 1, 8);
+    const std::string far_file = d.write("far.npy", npy(header("[('t', '<i8'), ('x', '<i8'), ('y', '<i8'), ('p', '<i8')]", "(1,)"), far));
+    EXPECT_EQ(read_error(far_file), far_file + ": the file does not say the sensor size: pass --width and --height");
     Bytes v9 = npy(header(fields, "(1,)"), record);
     v9[6] = 9;
     expect_error(d.write("n.npy", v9), "byte 6", "bad NPY header: version 9");

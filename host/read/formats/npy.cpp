@@ -294,17 +294,18 @@ class NpySource final : public FileEventSource {
     info_.format = layout_.describe;
     // A pipe has no size to check against, nor a second pass: its sensor size must be given.
     const bool regular = in_.size() >= layout_.data_offset;
-    const std::uint64_t have = regular ? in_.size() - layout_.data_offset : layout_.records * layout_.record_bytes;
-    const std::uint64_t want = layout_.records * layout_.record_bytes;
-    if (layout_.record_bytes > 0 && have / layout_.record_bytes < layout_.records) {
-      fail(in_.path(), InputPosition::byte(layout_.data_offset + have / layout_.record_bytes * layout_.record_bytes),
-           "truncated: the header says " + std::to_string(layout_.records) + " records, the file holds " +
-               std::to_string(have / layout_.record_bytes));
-    }
-    if (have > want) {
-      fail(in_.path(), InputPosition::byte(layout_.data_offset + want),
-           std::to_string(have - want) + (have - want == 1 ? " byte" : " bytes") + " after the header's " +
-               std::to_string(layout_.records) + " records");
+    if (regular) {
+      const std::uint64_t have = in_.size() - layout_.data_offset, held = have / layout_.record_bytes;
+      if (held < layout_.records) {
+        fail(in_.path(), InputPosition::byte(layout_.data_offset + held * layout_.record_bytes),
+             "truncated: the header says " + std::to_string(layout_.records) + " records, the file holds " + std::to_string(held));
+      }
+      const std::uint64_t want = layout_.records * layout_.record_bytes;  // no more than `have`: no overflow
+      if (have > want) {
+        fail(in_.path(), InputPosition::byte(layout_.data_offset + want),
+             std::to_string(have - want) + (have - want == 1 ? " byte" : " bytes") + " after the header's " +
+                 std::to_string(layout_.records) + " records");
+      }
     }
     std::optional<SensorSize> extent;
     if (regular && (o.width <= 0 || o.height <= 0)) extent = sensor_holding_every_event();
@@ -375,11 +376,10 @@ class NpySource final : public FileEventSource {
       const std::uint64_t at = scan.offset();
       if (scan.read(r.data(), r.size()) < r.size()) break;
       const Decoded d = decode(r.data(), at);
-      if (d.x < 0 || d.y < 0) return std::nullopt;  // the ordering stage names the event
+      // Beyond any sensor: nothing is assumed, and the size must be given.
+      if (d.x < 0 || d.y < 0 || d.x >= kMaxSensorSide || d.y >= kMaxSensorSide) return std::nullopt;
       width = std::max(width, d.x + 1), height = std::max(height, d.y + 1);
     }
-    const long side = kMaxSensorSide;
-    if (width > side || height > side) return std::nullopt;
     SensorSize size{static_cast<int>(width), static_cast<int>(height)};
     for (const SensorSize& usual : kUsualSensors) {
       if (usual.width >= width && usual.height >= height) {
