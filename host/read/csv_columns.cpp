@@ -54,38 +54,55 @@ bool is_csv_header(std::string_view line) {
   return !line.empty() && (std::isalpha(static_cast<unsigned char>(line[0])) || line[0] == '"' || line[0] == ',');
 }
 
+ColumnsByName::ColumnsByName(const std::string& path, InputPosition where, std::string prefix, std::string noun)
+    : path_(path), where_(where), prefix_(std::move(prefix)), noun_(std::move(noun)) {
+  columns_.count = 0;
+  columns_.label_may_follow = false;
+}
+
+void ColumnsByName::refuse(const std::string& what) const { fail(path_, where_, prefix_ + what); }
+
+CsvField ColumnsByName::add(std::string_view raw) {
+  const std::optional<CsvField> f = column_named(raw);
+  if (!f) refuse("unknown " + noun_ + " '" + std::string(raw) + "' (the " + noun_ + "s: " + kColumnNamesKnown + ")");
+  const bool time = *f == CsvField::kMicroseconds || *f == CsvField::kSeconds;
+  // Five kinds, each once: a sixth name is unknown or a repeat, so the arrays cannot overflow.
+  if (time ? columns_.has_time() : columns_.has(*f)) refuse(noun_ + " '" + std::string(raw) + "' repeats " + (time ? "the time" : "a " + noun_));
+  std::string name(raw);
+  for (char& ch : name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  columns_.field[static_cast<size_t>(columns_.count)] = *f;
+  columns_.name[static_cast<size_t>(columns_.count)] = name;
+  ++columns_.count;
+  return *f;
+}
+
+CsvColumns ColumnsByName::done() const {
+  const auto require = [&](bool there, const char* what) {
+    if (!there) refuse(std::string("no ") + what + " " + noun_ + " (the " + noun_ + "s are " + columns_.joined() + ")");
+  };
+  require(columns_.has_time(), "time");
+  require(columns_.has(CsvField::kX), "x");
+  require(columns_.has(CsvField::kY), "y");
+  require(columns_.has(CsvField::kPolarity), "polarity");
+  return columns_;
+}
+
 CsvColumns csv_columns_of_header(std::string_view line, const std::string& path, std::uint64_t line_no) {
-  const auto refuse = [&](const std::string& what) { fail(path, InputPosition::line(line_no), "bad header: " + what); };
-  CsvColumns c;
-  c.count = 0;
-  c.label_may_follow = false;
-  for (bool more = true; more;) {
+  ColumnsByName columns(path, InputPosition::line(line_no), "bad header: ", "column");
+  for (int n = 1, more = 1; more; ++n) {
     const size_t comma = line.find(',');
     more = comma != std::string_view::npos;
     std::string_view raw = line.substr(0, comma);
     line.remove_prefix(more ? comma + 1 : line.size());
     while (!raw.empty() && (raw.front() == ' ' || raw.front() == '"')) raw.remove_prefix(1);
     while (!raw.empty() && (raw.back() == ' ' || raw.back() == '"' || raw.back() == '\r')) raw.remove_suffix(1);
-    std::string name(raw);
-    for (char& ch : name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    if (raw.empty()) refuse("column " + std::to_string(c.count + 1) + " has no name (pandas writes its index so; save with index=False)");
-    const std::optional<CsvField> f = column_named(name);
-    if (!f) refuse("unknown column '" + std::string(raw) + "' (the columns: " + kColumnNamesKnown + ")");
-    const bool time = *f == CsvField::kMicroseconds || *f == CsvField::kSeconds;
-    if (time ? c.has_time() : c.has(*f)) refuse("column '" + std::string(raw) + "' repeats " + (time ? "the time" : "a column"));
-    if (c.count == CsvColumns::kMost) refuse("more than 5 columns");
-    c.field[static_cast<size_t>(c.count)] = *f;
-    c.name[static_cast<size_t>(c.count)] = name;
-    ++c.count;
+    if (raw.empty()) {
+      fail(path, InputPosition::line(line_no),
+           "bad header: column " + std::to_string(n) + " has no name (pandas writes its index so; save with index=False)");
+    }
+    columns.add(raw);
   }
-  const auto require = [&](bool there, const char* what) {
-    if (!there) refuse(std::string("no ") + what + " column (the columns are " + c.joined() + ")");
-  };
-  require(c.has_time(), "time");
-  require(c.has(CsvField::kX), "x");
-  require(c.has(CsvField::kY), "y");
-  require(c.has(CsvField::kPolarity), "polarity");
-  return c;
+  return columns.done();
 }
 
 std::optional<TimeUs> seconds_to_us(std::string_view f) {

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "types/event.h"
+#include "host/read/input_error.h"
 
 namespace evms::read {
 
@@ -41,6 +42,24 @@ std::optional<CsvField> column_named(std::string_view name);
 // The names column_named() knows, for messages.
 inline constexpr const char* kColumnNamesKnown =
     "t_us, t, ts, timestamp or time in microseconds, or t_s in seconds; x; y; p, pol or polarity; and optionally label";
+
+// Builds the columns from their names, one at a time: a CSV header's columns or a NumPy
+// array's fields (`noun` says which in messages). An unknown or repeated name, and at the end
+// a missing time, x, y or polarity, fails with `path` at `where`, after `prefix`.
+class ColumnsByName {
+ public:
+  ColumnsByName(const std::string& path, InputPosition where, std::string prefix, std::string noun);
+  CsvField add(std::string_view name);
+  CsvColumns done() const;
+
+ private:
+  [[noreturn]] void refuse(const std::string& what) const;
+
+  CsvColumns columns_;
+  const std::string& path_;
+  InputPosition where_;
+  std::string prefix_, noun_;
+};
 
 // A line of names, not numbers: it starts with a letter, a quote, or a column without a name.
 bool is_csv_header(std::string_view line);

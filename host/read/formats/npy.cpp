@@ -92,24 +92,16 @@ class NpyHeaderParser {
       if (shape.size() != 1) refuse("a structured array of events has one dimension, not " + std::to_string(shape.size()));
       layout.records = n;
       std::string names;
+      ColumnsByName columns(path_, InputPosition::byte(at_ + pos_), "bad NPY header: ", "field");
       for (const auto& [name, type] : structured) {
         const NpyScalar scalar = scalar_of(type);
-        const std::optional<CsvField> holds = column_named(name);
-        if (!holds) refuse("unknown field '" + name + "' (the fields: " + kColumnNamesKnown + ")");
-        for (const NpyField& f : layout.fields) {
-          if (f.holds == *holds || (is_time(f.holds) && is_time(*holds))) refuse("field '" + name + "' repeats " + (is_time(*holds) ? "the time" : "a field"));
-        }
-        check_type(name, *holds, scalar);
-        layout.fields.push_back({*holds, scalar, layout.record_bytes, name});
+        const CsvField holds = columns.add(name);
+        check_type(name, holds, scalar);
+        layout.fields.push_back({holds, scalar, layout.record_bytes, name});
         layout.record_bytes += static_cast<size_t>(scalar.bytes);
         names += (names.empty() ? "" : ",") + name;
       }
-      const auto has = [&](auto pred) { return std::any_of(layout.fields.begin(), layout.fields.end(), pred); };
-      const std::string fields = " (the fields are " + names + ")";
-      if (!has([](const NpyField& f) { return is_time(f.holds); })) refuse("no time field" + fields);
-      if (!has([](const NpyField& f) { return f.holds == CsvField::kX; })) refuse("no x field" + fields);
-      if (!has([](const NpyField& f) { return f.holds == CsvField::kY; })) refuse("no y field" + fields);
-      if (!has([](const NpyField& f) { return f.holds == CsvField::kPolarity; })) refuse("no polarity field" + fields);
+      columns.done();
       layout.describe = "NPY " + names;
       return layout;
     }
@@ -134,8 +126,6 @@ class NpyHeaderParser {
   }
 
  private:
-  static bool is_time(CsvField f) { return f == CsvField::kMicroseconds || f == CsvField::kSeconds; }
-
   [[noreturn]] void refuse(const std::string& what) const {
     fail(path_, InputPosition::byte(at_ + pos_), "bad NPY header: " + what);
   }

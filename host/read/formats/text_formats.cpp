@@ -96,7 +96,12 @@ class TextSource final : public FileEventSource {
     header_read_ = true;
   }
 
-  void describe_columns() { info_.format = "CSV " + columns_.joined() + (metavision_ ? " (Metavision)" : ""); }
+  // Whenever the columns are known: the format names them, and the one-pass reader knows
+  // whether it can take the rows (it reads integers only).
+  void describe_columns() {
+    info_.format = "CSV " + columns_.joined() + (metavision_ ? " (Metavision)" : "");
+    has_seconds_ = columns_.has(CsvField::kSeconds);
+  }
 
   [[noreturn]] void bad(const std::string& what) const {
     fail(in_.path(), InputPosition::line(in_.line()), what);
@@ -159,29 +164,14 @@ class TextSource final : public FileEventSource {
     TimeUs t = 0;
     long x = 0, y = 0, pol = 0;
     if (csv_) {
-      if (columns_.has(CsvField::kSeconds)) return false;
+      if (has_seconds_) return false;
       long label = 0;
       for (int i = 0; i < columns_.count; ++i) {
         if (i > 0 && (p == end || *p++ != ',')) return false;
-        switch (columns_.field[static_cast<size_t>(i)]) {
-          case CsvField::kMicroseconds:
-            if (!number(t, 18)) return false;
-            break;
-          case CsvField::kX:
-            if (!number(x, 9)) return false;
-            break;
-          case CsvField::kY:
-            if (!number(y, 9)) return false;
-            break;
-          case CsvField::kPolarity:
-            if (!number(pol, 1)) return false;
-            break;
-          case CsvField::kLabel:
-          case CsvField::kSeconds:
-            if (p < end && *p == '-') ++p;
-            if (!number(label, 9)) return false;
-            break;
-        }
+        const CsvField f = columns_.field[static_cast<size_t>(i)];
+        if (f == CsvField::kLabel && p < end && *p == '-') ++p;
+        long& v = f == CsvField::kMicroseconds ? t : f == CsvField::kX ? x : f == CsvField::kY ? y : f == CsvField::kPolarity ? pol : label;
+        if (!number(v, f == CsvField::kMicroseconds ? 18 : f == CsvField::kPolarity ? 1 : 9)) return false;
       }
       if (columns_.label_may_follow && p < end && *p == ',') {
         ++p;
@@ -275,6 +265,7 @@ class TextSource final : public FileEventSource {
   bool header_read_ = false;  // the header's columns were read (ahead of the rows, or when met)
   bool metavision_ = false;   // a "%geometry:W,H" line came first
   CsvColumns columns_;
+  bool has_seconds_ = false;  // a time column in seconds (columns_.has(CsvField::kSeconds))
 };
 
 }  // namespace
