@@ -1,6 +1,6 @@
 // ROS 1 bags (format 2.0, as `rosbag record` writes them; the authors' code read dvs_msgs from
-// ROS 1): each event message type decodes to the events encoded, in uncompressed and lz4 chunks,
-// and a bad bag gets one line that names the file and where.
+// ROS 1): each event message type decodes to the events encoded, in uncompressed, lz4 and bz2
+// chunks, and a bad bag gets one line that names the file and where.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -38,7 +38,7 @@ TEST(Ros1Bag, EventArraysAndPacketsDecodeToTheEventsEncodedInEveryChunkCompressi
                         {"prophesee_event_msgs/EventArray", arrays, "ROS 1 bag, prophesee_event_msgs/EventArray"},
                         {"event_camera_msgs/EventPacket", packets, "ROS 1 bag, event_camera_msgs/EventPacket (evt3)"}};
   for (const Case& c : cases) {
-    for (const char* compression : {"none", "lz4"}) {
+    for (const char* compression : {"none", "lz4", "bz2"}) {
       SCOPED_TRACE(std::string(c.type) + ", " + compression);
       const std::string bag = d.write("events.bag", ros1_bag({{"/dvs/events", c.type, c.messages}}, compression));
       EXPECT_EQ(read_all(bag), events);
@@ -48,6 +48,12 @@ TEST(Ros1Bag, EventArraysAndPacketsDecodeToTheEventsEncodedInEveryChunkCompressi
       EXPECT_EQ(read::open_source(bag, sized(346, 260, 1000))->info().sensor, (SensorSize{346, 260}));  // as for ROS 2 bags
     }
   }
+  // A chunk that bzip2 shrinks more than 64 times (one event repeated): it grows as it is read.
+  const std::vector<Event> repeated(100000, events.front());
+  const Bytes message = dvs_event_array_cdr(repeated, kDavis240, true);
+  const Bytes bag = ros1_bag({{"/dvs/events", "dvs_msgs/EventArray", {message}}}, "bz2");
+  ASSERT_LT(bag.size() * 64, message.size());
+  EXPECT_EQ(read_all(d.write("repeated.bag", bag)), repeated);
 }
 
 TEST(Ros1Bag, TheFirstEventTopicIsTheDefaultAndQueryChoosesAnother) {
@@ -88,7 +94,22 @@ TEST(Ros1Bag, BadBagsGetOneLineThatSaysWhereAndWhat) {
     EXPECT_EQ(text.rfind(where, 0), 0u) << text;
     EXPECT_NE(text.find(what), std::string::npos) << text << " (expected: " << what << ")";
   };
-  expect_error(bag_of(message, "bz2"), "byte ", "a chunk compressed with 'bz2': evms reads 'none' and 'lz4' (rosbag decompress converts the bag)");
+  expect_error(bag_of(message, "zstd"), "byte ", "a chunk compressed with 'zstd': evms reads 'none', 'lz4' and 'bz2'");
+  Bytes bz2 = bag_of(message, "bz2");
+  const Bytes stream_magic = {'B', 'Z', 'h', '9'};
+  const auto stream = std::search(bz2.begin(), bz2.end(), stream_magic.begin(), stream_magic.end());
+  ASSERT_NE(stream, bz2.end());
+  stream[20] ^= 0xFF;  // inside the first block
+  expect_error(bz2, "byte ", "a corrupt bz2 chunk");
+  // A chunk whose stream holds more or fewer bytes than its size field says.
+  for (const std::int64_t wrong : {-1, 1}) {
+    Bytes resized = bag_of(message, "bz2");
+    const Bytes size_field = {'s', 'i', 'z', 'e', '='};
+    const auto field = std::search(resized.begin(), resized.end(), size_field.begin(), size_field.end());
+    ASSERT_NE(field, resized.end());
+    field[5] = static_cast<unsigned char>(field[5] + wrong);
+    expect_error(resized, "byte ", "a corrupt bz2 chunk, or one that does not hold the");
+  }
   Bytes lz4 = bag_of(message, "lz4");
   const Bytes frame_magic = {0x04, 0x22, 0x4D, 0x18};
   const auto magic = std::search(lz4.begin(), lz4.end(), frame_magic.begin(), frame_magic.end());

@@ -1,6 +1,7 @@
 #include "tests/support/encoders.h"
 
 #include <flatbuffers/flatbuffers.h>
+#include <bzlib.h>
 #include <lz4frame.h>
 #include <sqlite3.h>
 #include <unistd.h>
@@ -401,6 +402,14 @@ Bytes ros1_bag(const std::vector<BagTopic>& topics, const std::string& compressi
     if (compression == "lz4") {
       data.resize(LZ4F_compressFrameBound(records.size(), nullptr));
       data.resize(LZ4F_compressFrame(data.data(), data.size(), records.data(), records.size(), nullptr));
+    } else if (compression == "bz2") {
+      unsigned size = static_cast<unsigned>(records.size() + records.size() / 100 + 600);  // bzip2's bound
+      data.resize(size);
+      if (BZ2_bzBuffToBuffCompress(reinterpret_cast<char*>(data.data()), &size, reinterpret_cast<char*>(records.data()),
+                                   static_cast<unsigned>(records.size()), 9, 0, 0) != BZ_OK) {
+        throw std::runtime_error("bzip2 failed");
+      }
+      data.resize(size);
     }
     put_record(b, {{"op", {0x05}}, {"compression", text_bytes(compression)}, {"size", int_bytes(records.size(), 4)}}, data);
     put_record(b, {{"op", {0x04}}, {"ver", int_bytes(1, 4)}, {"conn", int_bytes(0, 4)}, {"count", int_bytes(0, 4)}}, {});

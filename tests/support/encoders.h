@@ -45,7 +45,7 @@ void write_db3(const std::string& db3, const std::vector<BagTopic>& topics);
 // A bag folder `dir` with metadata.yaml and dir/NAME_0.db3; returns the folder.
 std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& topics);
 // A ROS 1 bag (format 2.0) of these topics, their messages in ROS 1's serialization, in chunks
-// of `messages_per_chunk` compressed with `compression` ("none" or "lz4"), and its index.
+// of `messages_per_chunk` compressed with `compression` ("none", "lz4" or "bz2"), and its index.
 Bytes ros1_bag(const std::vector<BagTopic>& topics, const std::string& compression, size_t messages_per_chunk = 4);
 
 // A temporary directory removed at the end of the test.

@@ -10,7 +10,8 @@
 //   0x04 index data, 0x06 chunk info: indexes, which a reader going front to back passes over
 // One topic is read: the first whose type is an event type (event_messages.h), or the one named
 // by `?topic=`. Its messages are taken in the order the file holds them. lz4 chunks are LZ4
-// frames; bz2 chunks are refused (`rosbag decompress` converts such a bag).
+// frames (rosbag's roslz4 writes the standard frame format), bz2 chunks bzip2 streams.
+#include <bzlib.h>
 #include <lz4frame.h>
 
 #include <algorithm>
@@ -219,10 +220,43 @@ class Ros1BagSource final : public FileEventSource, EventMessageSink {
       if (LZ4F_isError(left) || left != 0 || out != size) {
         fail(in_.path(), InputPosition::byte(r.at), "a corrupt lz4 chunk, or one that does not hold the " + std::to_string(size) + " bytes it says");
       }
+    } else if (compression == "bz2") {
+      decompress_bz2(r, size);
     } else {
-      fail(in_.path(), InputPosition::byte(r.at), "a chunk compressed with '" + printable(compression) +
-                                                     "': evms reads 'none' and 'lz4' (rosbag decompress converts the bag)");
+      fail(in_.path(), InputPosition::byte(r.at), "a chunk compressed with '" + printable(compression) + "': evms reads 'none', 'lz4' and 'bz2'");
     }
+  }
+
+  // bzip2 has no useful bound on its ratio (a run of one byte compresses about 45,000 to 1), so
+  // the chunk grows as its stream gives bytes, up to the size it says, instead of being
+  // allocated at that size before a byte is known to be good.
+  void decompress_bz2(const Record& r, std::uint64_t size) {
+    bz_stream stream{};
+    if (BZ2_bzDecompressInit(&stream, 0, 0) != BZ_OK) fail(in_.path(), {}, "cannot create a bzip2 decompressor");
+    const std::unique_ptr<bz_stream, int (*)(bz_stream*)> owned(&stream, BZ2_bzDecompressEnd);
+    const auto corrupt = [&] {
+      fail(in_.path(), InputPosition::byte(r.at), "a corrupt bz2 chunk, or one that does not hold the " + std::to_string(size) + " bytes it says");
+    };
+    stream.next_in = const_cast<char*>(reinterpret_cast<const char*>(r.data.data()));
+    stream.avail_in = static_cast<unsigned>(r.data.size());
+    chunk_.resize(std::min<std::uint64_t>(size, std::max<std::uint64_t>(std::uint64_t{64} * r.data.size(), 1 << 16)));
+    size_t out = 0;
+    for (;;) {
+      stream.next_out = reinterpret_cast<char*>(chunk_.data() + out);
+      stream.avail_out = static_cast<unsigned>(chunk_.size() - out);
+      const int status = BZ2_bzDecompress(&stream);
+      out = chunk_.size() - stream.avail_out;
+      if (status == BZ_STREAM_END) break;
+      if (status != BZ_OK) corrupt();
+      if (stream.avail_out == 0) {
+        if (out == size) corrupt();  // more bytes than it says
+        chunk_.resize(std::min<std::uint64_t>(size, 2 * std::uint64_t{chunk_.size()}));
+      } else if (stream.avail_in == 0) {
+        corrupt();  // the stream ends before its end mark
+      }
+    }
+    if (out != size) corrupt();
+    chunk_.resize(size);
   }
 
   // Moves to the next message of the chosen topic (choosing it at its first connection);
