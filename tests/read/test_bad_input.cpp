@@ -96,6 +96,8 @@ TEST(BadInput, BadHeaders) {
                "polarity 100 is not 0, 1 or -1; rows of x,y,p,t, as Metavision's tools write them, need the header line 'x,y,p,t'");
   // After the header, a word is a bad record, not a second header.
   expect_error(d.write("nan.csv", "t_us,x,y,p\nnan,2,3,1\n"), "line 2", "field 't_us' = 'nan' is not an integer");
+  expect_error(d.write("huge.csv", "t_us,x,y,p\n18446744073709551615,2,3,1\n"), "line 2",
+               "field 't_us' = '18446744073709551615' is out of range (at most 9223372036854775807)");
   expect_error(d.write("bin.bin", Bytes{0x00, 0xFF, 0x13, 0x00, 0x42}), "byte 0", "bad header: not a known event format");
   // NumPy files: the header's dict says what each record holds (Formats.NpyStructuredAndPlainArraysReadTheSame).
   {

@@ -11,6 +11,7 @@
 // "# sensor WxH" (evms writes one) or "%geometry:W,H" gives the sensor size; without it the size
 // comes from --width/--height, else the DAVIS240C's 240x180 is assumed, and said.
 #include <charconv>
+#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -127,6 +128,9 @@ class TextSource final : public FileEventSource {
   long integer(std::string_view f, const char* name) const {
     long v = 0;
     auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+    if (ec == std::errc::result_out_of_range) {
+      bad(std::string("field '") + name + "' = '" + std::string(f) + "' is out of range (at most " + std::to_string(std::numeric_limits<long>::max()) + ")");
+    }
     if (ec != std::errc() || ptr != f.data() + f.size()) {
       bad(std::string("field '") + name + "' = '" + std::string(f) + "' is not an integer");
     }
