@@ -28,6 +28,7 @@ std::string prefix() {
   if (kFormat == "aedat3") return "#!AER-DAT3.1\r\n#Format: RAW\r\n#Source 1: DAVIS240C\r\n#!END-HEADER\r\n";
   if (kFormat == "aedat4") return "#!AER-DAT4.0\r\n";
   if (kFormat == "evt2") return "% evt 2.0\n% geometry 346x260\n% end\n";
+  if (kFormat == "evt21") return "% evt 2.1\n% geometry 346x260\n% end\n";
   if (kFormat == "evt3") return "% evt 3.0\n% geometry 346x260\n% end\n";
   if (kFormat == "dat") return "% Data file containing Event2D events.\n% Version 2\n";
   if (kFormat == "csv") return "";  // a CSV's header is its own (host/read/csv_columns.h): the fuzzer writes it

@@ -10,7 +10,7 @@ set -eu
 cd "$(dirname "$0")/../.."
 seconds=${1:-20}
 [ $# -gt 0 ] && shift
-targets=${*:-"aedat2 aedat3 aedat4 evt2 evt3 dat csv text ros1 ros2 npy streams config scoring"}
+targets=${*:-"aedat2 aedat3 aedat4 evt2 evt21 evt3 dat csv text ros1 ros2 npy streams config scoring"}
 command -v clang++ >/dev/null || { echo "fuzz: clang++ is not installed (apt install clang)"; exit 1; }
 if [ ! -f build-fuzz/CMakeCache.txt ]; then
   cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DEVMS_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null

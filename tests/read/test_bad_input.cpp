@@ -52,6 +52,14 @@ TEST(BadInput, TruncatedRecords) {
     expect_error(d.write("e2.raw", truncated(b, 1)), "byte " + std::to_string(b.size() - 4), "truncated word (3 of 4 bytes)");
   }
   {
+    const Bytes b = evt21(kEvents, {128, 128}, true);
+    expect_error(d.write("e21.raw", truncated(b, 3)), "byte " + std::to_string(b.size() - 8), "truncated word (5 of 8 bytes)");
+    Bytes reserved = b;
+    reserved[reserved.size() - 5] = 0x30;  // the last word's EVT 2.0 half: type 0x3
+    expect_error(d.write("e21r.raw", reserved), "byte " + std::to_string(b.size() - 8),
+                 "reserved EVT 2.1 word type 0x3 (is the header's endianness, legacy, the file's?)");
+  }
+  {
     Bytes b = evt3(kEvents, {128, 128});
     b.push_back(0x12);
     expect_error(d.write("e3.raw", b), "byte " + std::to_string(b.size() - 1), "truncated word");

@@ -245,6 +245,37 @@ TEST(Formats, Evt2RoundTripsAndSkipsTriggers) {
   EXPECT_EQ(read_all(dir.write("e.raw", evt2(events, {640, 480}))), events);
 }
 
+// EVT 2.1 in both orders of a word's halves; a row burst fills one word's mask.
+TEST(Formats, Evt21RoundTripsInBothWordOrders) {
+  TempDir dir;
+  auto events = sample_events(4000, {1280, 720});
+  const TimeUs t = events.back().t + 5;
+  for (std::uint16_t x : {64, 65, 70, 95, 96}) events.push_back({t, x, 50, 0});
+  for (const bool legacy : {true, false}) {
+    SCOPED_TRACE(legacy ? "legacy" : "little");
+    const Bytes raw = evt21(events, {1280, 720}, legacy);
+    ASSERT_LT(raw.size(), 8 * (events.size() + events.size() / 2)) << "the burst shares words";
+    const std::string path = dir.write("e.raw", raw);
+    EXPECT_EQ(read_all(path), events);
+    const auto source = read::open_source(path, {});
+    EXPECT_EQ(source->info().format, "EVT 2.1 RAW");
+    EXPECT_EQ(source->info().sensor, (SensorSize{1280, 720}));
+  }
+  // The IMX636's "% evt 2.1" header alone means its order, legacy.
+  Bytes raw = evt21(events, {1280, 720}, true);
+  const std::string header = "% evt 2.1\n% format EVT21;height=720;width=1280;endianness=legacy\n% end\n";
+  ASSERT_EQ(std::string(raw.begin(), raw.begin() + static_cast<long>(header.size())), header);
+  raw.erase(raw.begin() + 10, raw.begin() + static_cast<long>(header.size()) - 6);
+  EXPECT_EQ(read_all(dir.write("old.raw", raw), sized(1280, 720, 1000)), events);
+  // A header whose order is not the words' (its first word, a TIME_HIGH, says which they are).
+  Bytes swapped = evt21(events, {1280, 720}, true);
+  const std::string legacy_field = ";endianness=legacy";
+  const auto field = std::search(swapped.begin(), swapped.end(), legacy_field.begin(), legacy_field.end());
+  ASSERT_NE(field, swapped.end());
+  std::copy_n(";endianness=little", legacy_field.size(), field);
+  EXPECT_EQ(read_all(dir.write("swapped.raw", swapped)), events);
+}
+
 TEST(Formats, Evt3RoundTripsWithVectorWords) {
   TempDir dir;
   auto events = sample_events(3000, {1280, 720});

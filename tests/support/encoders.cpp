@@ -179,6 +179,37 @@ Bytes evt2(const std::vector<Event>& events, SensorSize sensor) {
   return b;
 }
 
+Bytes evt21(const std::vector<Event>& events, SensorSize sensor, bool legacy) {
+  Bytes b;
+  put_text(b, "% evt 2.1\n% format EVT21;height=" + std::to_string(sensor.height) + ";width=" + std::to_string(sensor.width) +
+                  (legacy ? ";endianness=legacy" : "") + "\n% end\n");
+  const auto put_word = [&](std::uint32_t head, std::uint32_t mask) {
+    put_le32(b, legacy ? head : mask);
+    put_le32(b, legacy ? mask : head);
+  };
+  std::int64_t high = -1;
+  for (size_t i = 0; i < events.size();) {
+    const Event& e = events[i];
+    if ((e.t >> 6) != high) {
+      high = e.t >> 6;
+      put_word((0x8u << 28) | static_cast<std::uint32_t>(high & 0x0FFFFFFF), 0);
+    }
+    // Following events of the same time, row and polarity at ascending x within 32 of this
+    // one's share its word.
+    std::uint32_t mask = 1;
+    size_t next = i + 1;
+    while (next < events.size() && events[next].t == e.t && events[next].y == e.y && events[next].p == e.p && events[next].x > events[next - 1].x &&
+           events[next].x < e.x + 32) {
+      mask |= std::uint32_t{1} << (events[next].x - e.x);
+      ++next;
+    }
+    put_word((std::uint32_t{e.p} << 28) | (static_cast<std::uint32_t>(e.t & 0x3F) << 22) | (std::uint32_t{e.x} << 11) | e.y, mask);
+    i = next;
+  }
+  put_word(0xAu << 28, 0);  // an external trigger, to be skipped
+  return b;
+}
+
 Bytes evt3(const std::vector<Event>& events, SensorSize sensor) {
   Bytes b;
   put_text(b, "% evt 3.0\n% format EVT3;height=" + std::to_string(sensor.height) + ";width=" + std::to_string(sensor.width) + "\n% end\n");

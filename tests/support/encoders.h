@@ -21,6 +21,10 @@ Bytes aedat3_davis240(const std::vector<Event>& events);
 enum class Aedat4Compression { kNone = 0, kLz4 = 1, kZstd = 3 };
 Bytes aedat4(const std::vector<Event>& events, SensorSize sensor, Aedat4Compression c, size_t events_per_packet = 100);
 Bytes evt2(const std::vector<Event>& events, SensorSize sensor);
+// EVT 2.1 RAW: events of one time, row and polarity at ascending x within 32 share a word;
+// `legacy` stores each word's halves as the IMX636 does ("endianness=legacy"), else the whole
+// word little-endian.
+Bytes evt21(const std::vector<Event>& events, SensorSize sensor, bool legacy);
 Bytes evt3(const std::vector<Event>& events, SensorSize sensor);
 Bytes dat(const std::vector<Event>& events);
 // A NumPy .npy file of format version `major` (1, 2 or 3): the magic, the version, the length

@@ -1,5 +1,5 @@
 // Prophesee recordings. Both kinds start with ASCII header lines "% key value".
-//  - RAW (.raw): "% evt 2.0" / "% evt 3.0" or "% format EVT2|EVT3;width=..;height=..",
+//  - RAW (.raw): "% evt 2.0" / "% evt 2.1" / "% evt 3.0" or "% format EVT2|EVT21|EVT3;width=..;height=..",
 //    optionally "% geometry WxH", optionally closed by "% end"; then little-endian words.
 //  - DAT (.dat): "% Version 2" and friends, then two bytes {event type, event size} and
 //    8-byte records {uint32 t_us, uint32 x:14 | y:14 << 14 | p:1 << 28}.
@@ -8,9 +8,18 @@
 //   0x0 CD_OFF / 0x1 CD_ON: ts[5:0] in 27..22, x in 21..11, y in 10..0
 //   0x8 EVT_TIME_HIGH: ts[33:6] in 27..0 (wraps at 2^34 us)
 //   0xA external trigger, 0xE others, 0xF continued: not polarity events (counted)
+// EVT 2.1: 64-bit words, each an EVT 2.0 word (its x the base of a vector) and a 32-bit mask:
+//   bit i of a CD word's mask is an event at (x + i, y), in ascending i. The two 32-bit halves
+//   are stored as little-endian words in one of two orders, which the header names:
+//   "endianness=legacy" (the IMX636's: the EVT 2.0 half first, then the mask) or "little" (the
+//   whole 64-bit word little-endian: the mask first; Metavision's default for EVT21). A
+//   "% evt 2.1" header without a format line is the IMX636's, legacy. A stream starts with a
+//   TIME_HIGH word, whose other half is 0: when the first word reads as a zero half beside a
+//   TIME_HIGH, the words are in the other order, and are read so.
 // EVT 3.0: 16-bit words, decoded with state (evt3_decoder.h).
 // In EVT 2.0, CD events before the first TIME_HIGH have no time base and are counted as skipped.
 // Any other word type is reserved and means the file is not what its header says: an error.
+#include <bit>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
@@ -26,7 +35,8 @@ namespace {
 constexpr size_t kBlockBytes = 1 << 14;
 
 struct PropheseeHeader {
-  enum class Kind { kEvt2, kEvt3, kDat, kUnknown } kind = Kind::kUnknown;
+  enum class Kind { kEvt2, kEvt21, kEvt3, kDat, kUnknown } kind = Kind::kUnknown;
+  bool mask_first = false;  // EVT 2.1 halves in "little" order
   std::optional<SensorSize> size;
   std::string plugin;
   bool dat_markers = false;
@@ -52,10 +62,17 @@ PropheseeHeader read_header(ByteReader& in) {
     std::string_view body = line.substr(1);
     while (!body.empty() && body.front() == ' ') body.remove_prefix(1);
     if (body == "end") break;
-    if (body.rfind("evt 2", 0) == 0 || body.find("format EVT2") != std::string_view::npos) h.kind = PropheseeHeader::Kind::kEvt2;
+    const bool evt21 = body.rfind("evt 2.1", 0) == 0;
+    if ((body.rfind("evt 2", 0) == 0 && !evt21) || body.find("format EVT2;") != std::string_view::npos || body == "format EVT2") {
+      h.kind = PropheseeHeader::Kind::kEvt2;
+    }
+    if (evt21) h.kind = PropheseeHeader::Kind::kEvt21;
+    if (body.find("format EVT21") != std::string_view::npos) h.kind = PropheseeHeader::Kind::kEvt21, h.mask_first = true;
+    if (body.find("endianness=legacy") != std::string_view::npos || body == "endianness legacy") h.mask_first = false;
+    if (body.find("endianness=little") != std::string_view::npos || body == "endianness little") h.mask_first = true;
     if (body.rfind("evt 3", 0) == 0 || body.find("format EVT3") != std::string_view::npos) h.kind = PropheseeHeader::Kind::kEvt3;
     if (body.rfind("evt ", 0) == 0 && h.kind == PropheseeHeader::Kind::kUnknown) {
-      fail(in.path(), InputPosition::line(in.line()), "bad header: unsupported encoding '" + std::string(body) + "' (EVT 2.0 and 3.0 are supported)");
+      fail(in.path(), InputPosition::line(in.line()), "bad header: unsupported encoding '" + std::string(body) + "' (EVT 2.0, 2.1 and 3.0 are supported)");
     }
     if (body.rfind("Version", 0) == 0 || body.rfind("Data file", 0) == 0) h.dat_markers = true;
     if (auto w = key_int(body, "width=")) width = w;
@@ -88,9 +105,16 @@ std::optional<SensorSize> size_of_plugin(const std::string& plugin) {
   return std::nullopt;
 }
 
+// EVT 2.0 and EVT 2.1: a 2.1 word is a 2.0 word and a mask of the events at x, x + 1, ...
 class Evt2Source final : public FileEventSource {
  public:
-  Evt2Source(ByteReader in, const SourceOptions& o, const PropheseeHeader& h) : FileEventSource(std::move(in), "EVT 2.0 RAW", o) {
+  Evt2Source(ByteReader in, const SourceOptions& o, const PropheseeHeader& h)
+      : FileEventSource(std::move(in), h.kind == PropheseeHeader::Kind::kEvt21 ? "EVT 2.1 RAW" : "EVT 2.0 RAW", o),
+        vectors_(h.kind == PropheseeHeader::Kind::kEvt21),
+        first_word_at_(in_.offset()),
+        word_bytes_(vectors_ ? 8 : 4),
+        head_at_(h.mask_first ? 4 : 0),
+        name_(vectors_ ? "EVT 2.1" : "EVT 2.0") {
     set_sensor(h.size ? h.size : size_of_plugin(h.plugin), std::nullopt, "");
     if (!h.size && size_of_plugin(h.plugin) && options_.width == 0) info_.sensor_origin = "plugin name in header";
   }
@@ -101,19 +125,27 @@ class Evt2Source final : public FileEventSource {
     const std::uint64_t base = in_.offset();
     const std::string_view block = in_.peek(kBlockBytes);
     if (block.empty()) return false;
-    if (block.size() < 4) fail(in_.path(), InputPosition::byte(base), "truncated word (" + std::to_string(block.size()) + " of 4 bytes)");
-    const size_t words = block.size() / 4;
+    if (block.size() < word_bytes_) {
+      fail(in_.path(), InputPosition::byte(base), "truncated word (" + std::to_string(block.size()) + " of " + std::to_string(word_bytes_) + " bytes)");
+    }
+    const size_t words = block.size() / word_bytes_;
     const auto* bytes = reinterpret_cast<const unsigned char*>(block.data());
+    if (vectors_ && base == first_word_at_ && le32(bytes + head_at_) == 0 && (le32(bytes + (4 - head_at_)) >> 28) == 0x8) head_at_ = 4 - head_at_;
     for (size_t i = 0; i < words; ++i) {
-      const std::uint64_t at = base + 4 * i;
-      const std::uint32_t word = le32(bytes + 4 * i);
+      const std::uint64_t at = base + word_bytes_ * i;
+      const unsigned char* w = bytes + word_bytes_ * i;
+      const std::uint32_t word = le32(w + head_at_);
       switch (word >> 28) {
         case 0x0:
         case 0x1:
           if (!have_time_) {
             count_skipped("CD events before the first TIME_HIGH");
           } else {
-            emit(time_high_ | ((word >> 22) & 0x3F), (word >> 11) & 0x7FF, word & 0x7FF, word >> 28, InputPosition::byte(at));
+            const TimeUs t = time_high_ | ((word >> 22) & 0x3F);
+            const int x = static_cast<int>((word >> 11) & 0x7FF), y = static_cast<int>(word & 0x7FF);
+            for (std::uint32_t mask = vectors_ ? le32(w + (4 - head_at_)) : 1; mask != 0; mask &= mask - 1) {
+              emit(t, x + std::countr_zero(mask), y, word >> 28, InputPosition::byte(at));
+            }
           }
           break;
         case 0x8: {
@@ -128,16 +160,23 @@ class Evt2Source final : public FileEventSource {
         case 0xA: count_skipped("external triggers"); break;
         case 0xE: count_skipped("OTHERS words"); break;
         case 0xF: count_skipped("CONTINUED words"); break;
-        default: fail(in_.path(), InputPosition::byte(at), "reserved EVT 2.0 word type 0x" + hex(word >> 28));
+        default:
+          fail(in_.path(), InputPosition::byte(at), "reserved " + name_ + " word type 0x" + hex(word >> 28) +
+                                                        (vectors_ ? std::string(" (is the header's endianness, ") + (head_at_ ? "little" : "legacy") + ", the file's?)" : ""));
       }
     }
-    in_.skip(words * 4);
+    in_.skip(words * word_bytes_);
     return true;
   }
 
  private:
   static constexpr TimeUs kMask = (TimeUs{1} << 34) - 1;
   static std::string hex(unsigned v) { char b[8]; std::snprintf(b, sizeof b, "%X", v); return b; }
+  const bool vectors_;
+  const std::uint64_t first_word_at_;
+  const size_t word_bytes_;
+  size_t head_at_;  // the byte of the EVT 2.0 half in a word
+  const std::string name_;
   bool have_time_ = false;
   TimeUs time_high_ = 0;
   TimeUs epoch_ = 0;
@@ -223,13 +262,14 @@ class DatSource final : public FileEventSource {
 std::unique_ptr<EventSource> open_prophesee(ByteReader in, const SourceOptions& o) {
   const PropheseeHeader h = read_header(in);
   switch (h.kind) {
-    case PropheseeHeader::Kind::kEvt2: return std::make_unique<Evt2Source>(std::move(in), o, h);
+    case PropheseeHeader::Kind::kEvt2:
+    case PropheseeHeader::Kind::kEvt21: return std::make_unique<Evt2Source>(std::move(in), o, h);
     case PropheseeHeader::Kind::kEvt3: return std::make_unique<Evt3Source>(std::move(in), o, h);
     case PropheseeHeader::Kind::kDat: return std::make_unique<DatSource>(std::move(in), o, h);
     case PropheseeHeader::Kind::kUnknown: break;
   }
   fail(in.path(), InputPosition::line(in.line()),
-       "bad header: a '%' header without '% evt 2.0', '% evt 3.0' or a DAT '% Version' line");
+       "bad header: a '%' header without '% evt 2.0', '% evt 2.1', '% evt 3.0' or a DAT '% Version' line");
 }
 
 }  // namespace evms::read
