@@ -44,7 +44,8 @@ BENCHMARK_CAPTURE(read_file, aedat4_dvxplorer_indoor, "dvxplorer_indoor.aedat4")
 BENCHMARK_CAPTURE(read_file, ros2_libcaer_rollover, "ros2/libcaer_rollover")->Unit(benchmark::kMillisecond)->MinTime(1);
 
 // The same 1 M events (640x480) in a file of each format that needs no recording: evms's own
-// events.csv and events.npy, a CSV in Metavision's column order, a ROS 1 bag in lz4 chunks.
+// events.csv and events.npy, a CSV in Metavision's column order, EVT 2.1 RAW (a word an event:
+// random events share none), a ROS 1 bag in lz4 or bz2 chunks.
 void read_written(benchmark::State& state, const std::string& format) {
   const std::vector<Event> events = test::sample_events(1 << 20, {640, 480});
   static const test::TempDir dir;
@@ -61,13 +62,15 @@ void read_written(benchmark::State& state, const std::string& format) {
     std::string text = "x,y,p,t\n";
     for (const Event& e : events) text += std::to_string(e.x) + "," + std::to_string(e.y) + "," + std::to_string(e.p) + "," + std::to_string(e.t) + "\n";
     dir.write("events." + format, text);
+  } else if (format == "evt21.raw") {
+    dir.write("events." + format, test::evt21(events, {640, 480}, true));
   } else {
     std::vector<test::Bytes> messages;
     for (size_t at = 0; at < events.size(); at += 4096) {
       messages.push_back(test::dvs_event_array_cdr({events.begin() + static_cast<long>(at), events.begin() + static_cast<long>(std::min(events.size(), at + 4096))},
                                                    {640, 480}, true));
     }
-    dir.write("events." + format, test::ros1_bag({{"/dvs/events", "dvs_msgs/EventArray", messages}}, "lz4", 16));
+    dir.write("events." + format, test::ros1_bag({{"/dvs/events", "dvs_msgs/EventArray", messages}}, format == "bz2.bag" ? "bz2" : "lz4", 16));
   }
   read::SourceOptions options;
   options.width = 640, options.height = 480;
@@ -77,7 +80,9 @@ void read_written(benchmark::State& state, const std::string& format) {
 BENCHMARK_CAPTURE(read_written, csv, "csv")->Unit(benchmark::kMillisecond)->MinTime(1);
 BENCHMARK_CAPTURE(read_written, csv_metavision_order, "xypt.csv")->Unit(benchmark::kMillisecond)->MinTime(1);
 BENCHMARK_CAPTURE(read_written, npy, "npy")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_CAPTURE(read_written, evt21, "evt21.raw")->Unit(benchmark::kMillisecond)->MinTime(1);
 BENCHMARK_CAPTURE(read_written, ros1_bag_lz4, "bag")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_CAPTURE(read_written, ros1_bag_bz2, "bz2.bag")->Unit(benchmark::kMillisecond)->MinTime(1);
 
 template <class Writer>
 Writer make(const std::string& base);

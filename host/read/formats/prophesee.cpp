@@ -143,8 +143,12 @@ class Evt2Source final : public FileEventSource {
           } else {
             const TimeUs t = time_high_ | ((word >> 22) & 0x3F);
             const int x = static_cast<int>((word >> 11) & 0x7FF), y = static_cast<int>(word & 0x7FF);
-            for (std::uint32_t mask = vectors_ ? le32(w + (4 - head_at_)) : 1; mask != 0; mask &= mask - 1) {
-              emit(t, x + std::countr_zero(mask), y, word >> 28, InputPosition::byte(at));
+            if (!vectors_) {
+              emit(t, x, y, word >> 28, InputPosition::byte(at));
+            } else {
+              for (std::uint32_t mask = le32(w + (4 - head_at_)); mask != 0; mask &= mask - 1) {
+                emit(t, x + std::countr_zero(mask), y, word >> 28, InputPosition::byte(at));
+              }
             }
           }
           break;
