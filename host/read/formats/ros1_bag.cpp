@@ -227,7 +227,7 @@ class Ros1BagSource final : public FileEventSource, EventMessageSink {
     }
   }
 
-  // bzip2 has no useful bound on its ratio (a run of one byte compresses about 45,000 to 1), so
+  // bzip2 has no useful bound on its ratio (a long run of one byte shrinks far more than lz4's 255 to 1), so
   // the chunk grows as its stream gives bytes, up to the size it says, instead of being
   // allocated at that size before a byte is known to be good.
   void decompress_bz2(const Record& r, std::uint64_t size) {
