@@ -56,7 +56,7 @@ class ColumnsByName {
   [[noreturn]] void refuse(const std::string& what) const;
 
   CsvColumns columns_;
-  const std::string& path_;
+  std::string path_;
   InputPosition where_;
   std::string prefix_, noun_;
 };

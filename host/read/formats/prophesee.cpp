@@ -113,8 +113,7 @@ class Evt2Source final : public FileEventSource {
         vectors_(h.kind == PropheseeHeader::Kind::kEvt21),
         first_word_at_(in_.offset()),
         word_bytes_(vectors_ ? 8 : 4),
-        head_at_(h.mask_first ? 4 : 0),
-        name_(vectors_ ? "EVT 2.1" : "EVT 2.0") {
+        head_at_(h.mask_first ? 4 : 0) {
     set_sensor(h.size ? h.size : size_of_plugin(h.plugin), std::nullopt, "");
     if (!h.size && size_of_plugin(h.plugin) && options_.width == 0) info_.sensor_origin = "plugin name in header";
   }
@@ -165,7 +164,7 @@ class Evt2Source final : public FileEventSource {
         case 0xE: count_skipped("OTHERS words"); break;
         case 0xF: count_skipped("CONTINUED words"); break;
         default:
-          fail(in_.path(), InputPosition::byte(at), "reserved " + name_ + " word type 0x" + hex(word >> 28) +
+          fail(in_.path(), InputPosition::byte(at), std::string("reserved ") + (vectors_ ? "EVT 2.1" : "EVT 2.0") + " word type 0x" + hex(word >> 28) +
                                                         (vectors_ ? std::string(" (is the header's endianness, ") + (head_at_ ? "little" : "legacy") + ", the file's?)" : ""));
       }
     }
@@ -180,7 +179,6 @@ class Evt2Source final : public FileEventSource {
   const std::uint64_t first_word_at_;
   const size_t word_bytes_;
   size_t head_at_;  // the byte of the EVT 2.0 half in a word
-  const std::string name_;
   bool have_time_ = false;
   TimeUs time_high_ = 0;
   TimeUs epoch_ = 0;
