@@ -223,7 +223,7 @@ TEST(Cosim, LabelledScenesBoardBuilds) {
 // off, single-hit confirmation, few clusters and tracks, a single sweep, no tolerance, the
 // size ratio at its smallest and at its largest shift.
 TEST(Cosim, ParameterCorners) {
-  const auto events = scene_events(gen::Motion::kTranslation, 0.12, 240, 180, 6);
+  const auto events = scene_events(gen::Motion::kTranslation, 0.06, 240, 180, 6);
   Params span = preset("gaussian");
   span.packet_max_span_us = 300;
   expect_equal<Vcore_host, hls::RtlHostShape>("corner_span", events, {240, 180}, 41, 0.5, span);
@@ -336,7 +336,7 @@ long long env_count(const char* name, long long fallback) {
 // The regression over every real recording, on the host build, by both clustering paths: the
 // default method's seeded path on whole recordings, the Gaussian path (the paper's text, which no
 // board build holds, and the slowest to simulate) on each recording's first
-// EVMS_COSIM_RECORDING_EVENTS events (100,000 unless set; 0: whole recordings, as the long
+// EVMS_COSIM_RECORDING_EVENTS events (50,000 unless set; 0: whole recordings, as the long
 // regression in docs/rtl.md runs it).
 void expect_equal_on_real_recordings(const Params& method, std::uint64_t seed, long long max_events) {
   const std::string dir = test::shared_data_dir();
@@ -349,7 +349,7 @@ void expect_equal_on_real_recordings(const Params& method, std::uint64_t seed, l
   }
 }
 
-TEST(CosimRegression, RealRecordings) { expect_equal_on_real_recordings(preset("gaussian"), 51, env_count("EVMS_COSIM_RECORDING_EVENTS", 100000)); }
+TEST(CosimRegression, RealRecordings) { expect_equal_on_real_recordings(preset("gaussian"), 51, env_count("EVMS_COSIM_RECORDING_EVENTS", 50000)); }
 
 TEST(CosimRegression, RealRecordingsSeededPath) { expect_equal_on_real_recordings(seeded_method(), 52, 0); }
 
