@@ -8,14 +8,14 @@ module evms_sync #(
   input  logic [Width-1:0] d,
   output logic [Width-1:0] q
 );
-  logic [Width-1:0] meta;
+  logic [Width-1:0] meta_q;   // may be metastable: read only by the second flop
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      meta <= ResetValue;
+      meta_q <= ResetValue;
       q <= ResetValue;
     end else begin
-      meta <= d;
-      q <= meta;
+      meta_q <= d;
+      q <= meta_q;
     end
   end
 endmodule

@@ -13,53 +13,77 @@ module evms_uart_rx #(
   localparam int CountBits = $clog2(ClksPerBit + 1);
   logic line;
   evms_sync #(.Width(1), .ResetValue(1'b1)) u_sync (.clk(clk), .rst_n(rst_n), .d(rx), .q(line));
-  typedef enum logic [1:0] {S_IDLE, S_START, S_DATA, S_STOP} state_e;
-  state_e state;
-  logic [CountBits-1:0] count;
-  logic [2:0] bit_i;
-  logic [7:0] shift;
+
+  typedef enum logic [1:0] {StIdle, StStart, StData, StStop} state_e;
+  state_e state_q, state_d;
+  logic [CountBits-1:0] count_q, count_d;   // clocks left in the current bit
+  logic [2:0] bit_q, bit_d;                 // data bit being received
+  logic [7:0] shift_q, shift_d;
+  logic valid_q, valid_d;
+  logic [7:0] data_q, data_d;
+  logic [31:0] framing_errors_q, framing_errors_d;
+  assign valid = valid_q;
+  assign data = data_q;
+  assign framing_errors = framing_errors_q;
+
+  always_comb begin
+    state_d = state_q;
+    count_d = count_q;
+    bit_d = bit_q;
+    shift_d = shift_q;
+    valid_d = 1'b0;
+    data_d = data_q;
+    framing_errors_d = framing_errors_q;
+    case (state_q)
+      StIdle: if (!line) begin
+        count_d = CountBits'(ClksPerBit / 2);
+        state_d = StStart;
+      end
+      StStart: if (count_q == 0) begin
+        if (!line) begin
+          count_d = CountBits'(ClksPerBit - 1);
+          bit_d = '0;
+          state_d = StData;
+        end else begin
+          state_d = StIdle;  // a glitch, not a start bit
+        end
+      end else count_d = count_q - 1'b1;
+      StData: if (count_q == 0) begin
+        shift_d = {line, shift_q[7:1]};
+        count_d = CountBits'(ClksPerBit - 1);
+        bit_d = bit_q + 1'b1;
+        if (bit_q == 3'd7) state_d = StStop;
+      end else count_d = count_q - 1'b1;
+      StStop: if (count_q == 0) begin
+        if (line) begin
+          valid_d = 1'b1;
+          data_d = shift_q;
+        end else begin
+          framing_errors_d = framing_errors_q + 1'b1;
+        end
+        state_d = StIdle;
+      end else count_d = count_q - 1'b1;
+      default: state_d = StIdle;
+    endcase
+  end
+
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state <= S_IDLE;
-      count <= '0;
-      bit_i <= '0;
-      shift <= '0;
-      valid <= 1'b0;
-      data <= '0;
-      framing_errors <= '0;
+      state_q <= StIdle;
+      count_q <= '0;
+      bit_q <= '0;
+      shift_q <= '0;
+      valid_q <= 1'b0;
+      data_q <= '0;
+      framing_errors_q <= '0;
     end else begin
-      valid <= 1'b0;
-      case (state)
-        S_IDLE: if (!line) begin
-          count <= CountBits'(ClksPerBit / 2);
-          state <= S_START;
-        end
-        S_START: if (count == 0) begin
-          if (!line) begin
-            count <= CountBits'(ClksPerBit - 1);
-            bit_i <= '0;
-            state <= S_DATA;
-          end else begin
-            state <= S_IDLE;  // a glitch, not a start bit
-          end
-        end else count <= count - 1'b1;
-        S_DATA: if (count == 0) begin
-          shift <= {line, shift[7:1]};
-          count <= CountBits'(ClksPerBit - 1);
-          bit_i <= bit_i + 1'b1;
-          if (bit_i == 3'd7) state <= S_STOP;
-        end else count <= count - 1'b1;
-        S_STOP: if (count == 0) begin
-          if (line) begin
-            valid <= 1'b1;
-            data <= shift;
-          end else begin
-            framing_errors <= framing_errors + 1'b1;
-          end
-          state <= S_IDLE;
-        end else count <= count - 1'b1;
-        default: state <= S_IDLE;
-      endcase
+      state_q <= state_d;
+      count_q <= count_d;
+      bit_q <= bit_d;
+      shift_q <= shift_d;
+      valid_q <= valid_d;
+      data_q <= data_d;
+      framing_errors_q <= framing_errors_d;
     end
   end
 endmodule

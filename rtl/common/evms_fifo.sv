@@ -24,65 +24,78 @@ module evms_fifo #(
   localparam int AddrBits = $clog2(Depth);
 
   logic [Width-1:0] mem [Depth];
-  logic [AddrBits:0] head, tail;          // RAM read and write positions
-  logic [AddrBits:0] released;            // with Tentative: the reader's end (tail without)
-  logic [AddrBits:0] released_q;
-  logic [Width-1:0] rdata;
-  logic rd_en, rd_inflight;
+  logic [AddrBits:0] head_q, head_d, tail_q, tail_d;   // RAM read and write positions
+  logic [AddrBits:0] released_q, released_d;            // with Tentative: the reader's end
+  logic [AddrBits:0] released;                          // the reader's end (tail without Tentative)
+  logic [Width-1:0] rdata_q;                            // the RAM's registered read
+  logic rd_en, rd_inflight_q;
 
-  // Output buffer: up to two words, the older at index ob_head.
-  logic [Width-1:0] ob [2];
-  logic [1:0] ob_n;
-  logic ob_head;
+  // Output buffer: up to two words in slots 0 and 1, the older in slot ob_head_q.
+  logic [Width-1:0] ob0_q, ob0_d, ob1_q, ob1_d;
+  logic ob_landing;   // the slot a word read from the RAM lands in
+  logic [1:0] ob_n_q, ob_n_d;
+  logic ob_head_q, ob_head_d;
 
-  assign released = Tentative ? released_q : tail;
-  wire ram_empty = head == released;
-  assign in_ready = (tail - head) != (AddrBits+1)'(Depth);
-  assign out_valid = ob_n != 0;
-  assign out_data = ob[ob_head];
+  assign released = Tentative ? released_q : tail_q;
+  wire ram_empty = head_q == released;
+  assign in_ready = (tail_q - head_q) != (AddrBits+1)'(Depth);
+  assign out_valid = ob_n_q != 0;
+  assign out_data = ob_head_q ? ob1_q : ob0_q;
+  assign ob_landing = ob_head_q ^ ob_n_q[0];
   wire take = out_valid && out_ready;
   // Read only when the word will find room in the output buffer when it lands.
-  assign rd_en = !ram_empty && (32'(ob_n) + 32'(rd_inflight) - 32'(take)) < 2;
+  assign rd_en = !ram_empty && (32'(ob_n_q) + 32'(rd_inflight_q) - 32'(take)) < 2;
 
   always_ff @(posedge clk) begin
-    if (in_valid && in_ready) mem[AddrBits'(tail)] <= in_data;
-    if (rd_en) rdata <= mem[AddrBits'(head)];
+    if (in_valid && in_ready) mem[AddrBits'(tail_q)] <= in_data;
+    if (rd_en) rdata_q <= mem[AddrBits'(head_q)];
+  end
+
+  always_comb begin
+    tail_d = tail_q;
+    if (Tentative && in_rollback) tail_d = released_q;
+    else if (in_valid && in_ready) tail_d = tail_q + 1'b1;
+    released_d = released_q;
+    if (Tentative && in_commit) released_d = tail_q + (AddrBits+1)'(in_valid && in_ready);
+    head_d = rd_en ? head_q + 1'b1 : head_q;
+    ob0_d = ob0_q;
+    ob1_d = ob1_q;
+    if (rd_inflight_q) begin
+      if (ob_landing) ob1_d = rdata_q;
+      else ob0_d = rdata_q;
+    end
+    ob_n_d = ob_n_q;
+    ob_head_d = ob_head_q;
+    case ({rd_inflight_q, take})
+      2'b10: ob_n_d = ob_n_q + 1'b1;
+      2'b01: begin
+        ob_head_d = ~ob_head_q;
+        ob_n_d = ob_n_q - 1'b1;
+      end
+      2'b11: ob_head_d = ~ob_head_q;
+      default: ;
+    endcase
   end
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      head <= '0;
-      tail <= '0;
+      head_q <= '0;
+      tail_q <= '0;
       released_q <= '0;
-      rd_inflight <= 1'b0;
-      ob_n <= '0;
-      ob_head <= 1'b0;
-      ob[0] <= '0;
-      ob[1] <= '0;
+      rd_inflight_q <= 1'b0;
+      ob_n_q <= '0;
+      ob_head_q <= 1'b0;
+      ob0_q <= '0;
+      ob1_q <= '0;
     end else begin
-      if (Tentative && in_rollback) begin
-        tail <= released_q;
-      end else if (in_valid && in_ready) begin
-        tail <= tail + 1'b1;
-      end
-      if (Tentative && in_commit) released_q <= tail + (AddrBits+1)'(in_valid && in_ready);
-      if (rd_en) head <= head + 1'b1;
-      rd_inflight <= rd_en;
-      case ({rd_inflight, take})
-        2'b10: begin
-          ob[ob_head ^ ob_n[0]] <= rdata;
-          ob_n <= ob_n + 1'b1;
-        end
-        2'b01: begin
-          ob_head <= ~ob_head;
-          ob_n <= ob_n - 1'b1;
-        end
-        2'b11: begin
-          ob[ob_head ^ ob_n[0]] <= rdata;
-          ob_head <= ~ob_head;
-        end
-        default: ;
-      endcase
+      head_q <= head_d;
+      tail_q <= tail_d;
+      released_q <= released_d;
+      rd_inflight_q <= rd_en;
+      ob_n_q <= ob_n_d;
+      ob_head_q <= ob_head_d;
+      ob0_q <= ob0_d;
+      ob1_q <= ob1_d;
     end
   end
 endmodule
