@@ -56,31 +56,33 @@ module evms_centroid #(
   output logic        done
 );
   localparam int ClusterIndexBits = ClustersMax > 1 ? $clog2(ClustersMax) : 1;
-  typedef enum logic [3:0] {S_IDLE, S_ACC_READ, S_ACC_WAIT, S_ACC_ADD, S_DIV, S_DIV_RECIP, S_DIV_X, S_DIV_Y, S_DIV_T,
-                            S_DONE, S_EXACT_X, S_EXACT_Y, S_EXACT_T} state_e;
-  state_e state;
+  typedef enum logic [3:0] {StIdle, StAccRead, StAccWait, StAccAdd, StDiv, StDivRecip, StDivX, StDivY, StDivT,
+                            StDone, StExactX, StExactY, StExactT} state_e;
+  state_e state_q, state_d;
   // Per cluster: {x_min, y_min, x_max, y_max, sx, sy, st, count}, valid when the packet has
   // added to it.
   logic [223:0] sums [ClustersMax];
-  logic [ClustersMax-1:0] sums_valid;
+  logic [ClustersMax-1:0] sums_valid_q, sums_valid_d;
   // Per cluster: {t, x, y}, written when its last division ends.
   logic [95:0]  results [ClustersMax];
-  logic signed [31:0] x_q, y_q;  // the cluster's x and y until its t is ready
-  logic [15:0] i;
-  logic [7:0]  c;
-  logic [6:0]  shift_xy_m1, shift_t_m1;  // each quotient's right shift, minus one
-  logic [RecipFrac:0] r;
-  logic [31:0] t_q;         // the cluster's mean age, added to t0 and stored the next clock
-  logic        store;
-  logic [ClusterIndexBits-1:0] store_c;
-  logic        div_start;
+  logic signed [31:0] x_q, x_d, y_q, y_d;  // the cluster's x and y until its t is ready
+  logic [15:0] i_q, i_d;                   // the event being added
+  logic [7:0]  c_q, c_d;                   // the cluster being divided
+  logic [6:0]  shift_xy_m1_q, shift_xy_m1_d, shift_t_m1_q, shift_t_m1_d;  // each quotient's right shift, minus one
+  logic [RecipFrac:0] r_q, r_d;
+  logic [31:0] mean_age_q, mean_age_d;     // added to t0 and stored the next clock
+  logic        store_q, store_d;
+  logic [ClusterIndexBits-1:0] store_c_q, store_c_d;
+  logic        div_start_q, div_start_d;
+  logic        done_d, recip_start_d, mul_start_d;
+  logic signed [63:0] mul_a_d, mul_b_d;
 
   assign {z_t, z_x, z_y} = results[ClusterIndexBits'(z_c)];
   // The count and the bounding box stay in the sums until the next packet starts, after the
   // tracker's step.
-  assign {z_x_min, z_y_min, z_x_max, z_y_max} = sums_valid[ClusterIndexBits'(z_c)] ? sums[ClusterIndexBits'(z_c)][223:160] : 64'd0;
-  assign z_events = sums_valid[ClusterIndexBits'(z_c)] ? sums[ClusterIndexBits'(z_c)][15:0] : 16'd0;
-  assign rd_i = i;
+  assign {z_x_min, z_y_min, z_x_max, z_y_max} = sums_valid_q[ClusterIndexBits'(z_c)] ? sums[ClusterIndexBits'(z_c)][223:160] : 64'd0;
+  assign z_events = sums_valid_q[ClusterIndexBits'(z_c)] ? sums[ClusterIndexBits'(z_c)][15:0] : 16'd0;
+  assign rd_i = i_q;
 
   // The sums of the cluster being added to (accumulating) or divided.
   logic [ClusterIndexBits-1:0] sum_c;
@@ -88,11 +90,11 @@ module evms_centroid #(
   logic [63:0]   st;
   logic [15:0]   x_min, y_min, x_max, y_max;
   logic          adding;  // this cycle adds the event to its cluster's sums
-  assign adding = state == S_ACC_ADD && ev_cluster >= 0;
-  assign sum_c = state == S_ACC_ADD ? ClusterIndexBits'(ev_cluster) : ClusterIndexBits'(c);
+  assign adding = state_q == StAccAdd && ev_cluster >= 0;
+  assign sum_c = state_q == StAccAdd ? ClusterIndexBits'(ev_cluster) : ClusterIndexBits'(c_q);
   // A cluster's first event opens its box; with no events yet the box is that event.
   assign {x_min, y_min, x_max, y_max, sx, sy, st, count} =
-      sums_valid[sum_c] ? sums[sum_c] : {ev_x, ev_y, ev_x, ev_y, 160'd0};
+      sums_valid_q[sum_c] ? sums[sum_c] : {ev_x, ev_y, ev_x, ev_y, 160'd0};
   // Time since the packet's first event, modulo 2^32 like the C++ core's uint32 difference.
   logic [31:0] age;
   assign age = ev_t - t0;
@@ -100,115 +102,107 @@ module evms_centroid #(
 
   `EVMS_ASSERT_INIT("the quotients shift right by at least one bit (RecipFrac > PosFrac)", RecipFrac > PosFrac)
 
+  always_comb begin
+    state_d = state_q;
+    {i_d, c_d, shift_xy_m1_d, shift_t_m1_d, r_d, mean_age_d, store_c_d} = {i_q, c_q, shift_xy_m1_q, shift_t_m1_q, r_q, mean_age_q, store_c_q};
+    {sums_valid_d, x_d, y_d, mul_a_d, mul_b_d} = {sums_valid_q, x_q, y_q, mul_a, mul_b};
+    {done_d, recip_start_d, mul_start_d, div_start_d, store_d} = '0;
+    case (state_q)
+      StIdle: if (start) begin
+        sums_valid_d = '0;
+        i_d = '0;
+        state_d = n == 0 ? StDiv : StAccRead;
+        c_d = '0;
+      end
+      StAccRead: state_d = StAccWait;
+      StAccWait: state_d = StAccAdd;
+      StAccAdd: begin
+        if (adding) sums_valid_d[sum_c] = 1'b1;
+        if (32'(i_q) + 1 < 32'(n)) begin
+          i_d = i_q + 1'b1;
+          state_d = StAccRead;
+        end else begin
+          c_d = '0;
+          state_d = StDiv;
+        end
+      end
+      StDiv: begin
+        if (c_q >= clusters) begin
+          state_d = StDone;
+        end else if (exact) begin
+          div_start_d = 1'b1;
+          state_d = StExactX;
+        end else begin
+          recip_start_d = 1'b1;
+          state_d = StDivRecip;
+        end
+      end
+      StExactX: if (div_done) begin
+        x_d = 32'(div_quotient);
+        div_start_d = 1'b1;
+        state_d = StExactY;
+      end
+      StExactY: if (div_done) begin
+        y_d = 32'(div_quotient);
+        div_start_d = 1'b1;
+        state_d = StExactT;
+      end
+      StExactT: if (div_done) begin
+        mean_age_d = 32'(div_quotient);
+        store_d = 1'b1;
+        store_c_d = ClusterIndexBits'(c_q);
+        c_d = c_q + 1'b1;
+        state_d = StDiv;
+      end
+      StDivRecip: if (recip_done) begin
+        r_d = recip_r;
+        shift_xy_m1_d = 7'(RecipFrac - PosFrac - 1) + recip_m;
+        shift_t_m1_d = 7'(RecipFrac - 1) + recip_m;
+        mul_start_d = 1'b1;
+        mul_a_d = $signed(64'(sx));
+        mul_b_d = $signed(64'(recip_r));
+        state_d = StDivX;
+      end
+      StDivX: if (mul_done) begin
+        x_d = q_rounded;
+        mul_start_d = 1'b1;
+        mul_a_d = $signed(64'(sy));
+        mul_b_d = $signed(64'(r_q));
+        state_d = StDivY;
+      end
+      StDivY: if (mul_done) begin
+        y_d = q_rounded;
+        mul_start_d = 1'b1;
+        mul_a_d = $signed(st);
+        mul_b_d = $signed(64'(r_q));
+        state_d = StDivT;
+      end
+      StDivT: if (mul_done) begin
+        mean_age_d = q_rounded;
+        store_d = 1'b1;
+        store_c_d = ClusterIndexBits'(c_q);
+        c_d = c_q + 1'b1;
+        state_d = StDiv;
+      end
+      StDone: begin
+        done_d = 1'b1;
+        state_d = StIdle;
+      end
+      default: state_d = StIdle;
+    endcase
+  end
+
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state <= S_IDLE;
-      done <= 1'b0;
-      i <= '0;
-      c <= '0;
-      shift_xy_m1 <= '0;
-      shift_t_m1 <= '0;
-      r <= '0;
-      t_q <= '0;
-      store <= 1'b0;
-      store_c <= '0;
-      recip_start <= 1'b0;
-      mul_start <= 1'b0;
-      div_start <= 1'b0;
-      mul_a <= '0;
-      mul_b <= '0;
-      sums_valid <= '0;
-      x_q <= '0;
-      y_q <= '0;
+      state_q <= StIdle;
+      {i_q, c_q, shift_xy_m1_q, shift_t_m1_q, r_q, mean_age_q, store_c_q} <= '0;
+      {sums_valid_q, x_q, y_q, mul_a, mul_b} <= '0;
+      {done, recip_start, mul_start, div_start_q, store_q} <= '0;
     end else begin
-      done <= 1'b0;
-      recip_start <= 1'b0;
-      mul_start <= 1'b0;
-      div_start <= 1'b0;
-      store <= 1'b0;
-      case (state)
-        S_IDLE: if (start) begin
-          sums_valid <= '0;
-          i <= '0;
-          state <= n == 0 ? S_DIV : S_ACC_READ;
-          c <= '0;
-        end
-        S_ACC_READ: state <= S_ACC_WAIT;
-        S_ACC_WAIT: state <= S_ACC_ADD;
-        S_ACC_ADD: begin
-          if (adding) sums_valid[sum_c] <= 1'b1;
-          if (32'(i) + 1 < 32'(n)) begin
-            i <= i + 1'b1;
-            state <= S_ACC_READ;
-          end else begin
-            c <= '0;
-            state <= S_DIV;
-          end
-        end
-        S_DIV: begin
-          if (c >= clusters) begin
-            state <= S_DONE;
-          end else if (exact) begin
-            div_start <= 1'b1;
-            state <= S_EXACT_X;
-          end else begin
-            recip_start <= 1'b1;
-            state <= S_DIV_RECIP;
-          end
-        end
-        S_EXACT_X: if (div_done) begin
-          x_q <= 32'(div_quotient);
-          div_start <= 1'b1;
-          state <= S_EXACT_Y;
-        end
-        S_EXACT_Y: if (div_done) begin
-          y_q <= 32'(div_quotient);
-          div_start <= 1'b1;
-          state <= S_EXACT_T;
-        end
-        S_EXACT_T: if (div_done) begin
-          t_q <= 32'(div_quotient);
-          store <= 1'b1;
-          store_c <= ClusterIndexBits'(c);
-          c <= c + 1'b1;
-          state <= S_DIV;
-        end
-        S_DIV_RECIP: if (recip_done) begin
-          r <= recip_r;
-          shift_xy_m1 <= 7'(RecipFrac - PosFrac - 1) + recip_m;
-          shift_t_m1 <= 7'(RecipFrac - 1) + recip_m;
-          mul_start <= 1'b1;
-          mul_a <= $signed(64'(sx));
-          mul_b <= $signed(64'(recip_r));
-          state <= S_DIV_X;
-        end
-        S_DIV_X: if (mul_done) begin
-          x_q <= q_rounded;
-          mul_start <= 1'b1;
-          mul_a <= $signed(64'(sy));
-          mul_b <= $signed(64'(r));
-          state <= S_DIV_Y;
-        end
-        S_DIV_Y: if (mul_done) begin
-          y_q <= q_rounded;
-          mul_start <= 1'b1;
-          mul_a <= $signed(st);
-          mul_b <= $signed(64'(r));
-          state <= S_DIV_T;
-        end
-        S_DIV_T: if (mul_done) begin
-          t_q <= q_rounded;
-          store <= 1'b1;
-          store_c <= ClusterIndexBits'(c);
-          c <= c + 1'b1;
-          state <= S_DIV;
-        end
-        S_DONE: begin
-          done <= 1'b1;
-          state <= S_IDLE;
-        end
-        default: state <= S_IDLE;
-      endcase
+      state_q <= state_d;
+      {i_q, c_q, shift_xy_m1_q, shift_t_m1_q, r_q, mean_age_q, store_c_q} <= {i_d, c_d, shift_xy_m1_d, shift_t_m1_d, r_d, mean_age_d, store_c_d};
+      {sums_valid_q, x_q, y_q, mul_a, mul_b} <= {sums_valid_d, x_d, y_d, mul_a_d, mul_b_d};
+      {done, recip_start, mul_start, div_start_q, store_q} <= {done_d, recip_start_d, mul_start_d, div_start_d, store_d};
     end
   end
 
@@ -218,15 +212,15 @@ module evms_centroid #(
   localparam int ExactBits = 32 + CountBits > 16 + CountBits + PosFrac ? 32 + CountBits : 16 + CountBits + PosFrac;
   logic div_done;
   logic [ExactBits-1:0] div_num, div_quotient;
-  assign div_num = state == S_EXACT_X ? ExactBits'(sx) << PosFrac : (state == S_EXACT_Y ? ExactBits'(sy) << PosFrac : ExactBits'(st));
+  assign div_num = state_q == StExactX ? ExactBits'(sx) << PosFrac : (state_q == StExactY ? ExactBits'(sy) << PosFrac : ExactBits'(st));
   if (HasExact) begin : g_exact
     evms_divide_rounded #(.NumBits(ExactBits), .DenBits(16)) u_divide (
-      .clk, .rst_n, .start(div_start), .num(div_num), .den(16'(count)), .done(div_done), .quotient(div_quotient));
+      .clk, .rst_n, .start(div_start_q), .num(div_num), .den(16'(count)), .done(div_done), .quotient(div_quotient));
   end else begin : g_no_exact
     assign div_done = 1'b0;
     assign div_quotient = '0;
     logic unused_exact;   // waived in cluster/evms_cluster.vlt
-    assign unused_exact = ^{div_start, div_num};
+    assign unused_exact = ^{div_start_q, div_num};
     `EVMS_ASSERT("a build without the divider cannot divide exactly", !(start && exact), clk, rst_n)
   end
 
@@ -234,11 +228,11 @@ module evms_centroid #(
   // Reciprocal::divide, with extra = PosFrac for x and y and 0 for t (the results are 32-bit
   // words, as the C++ core's).
   logic [31:0] q_rounded;
-  assign q_rounded = 32'(evms_round_pkg::round_shift(64'(mul_p), state == S_DIV_T ? shift_t_m1 : shift_xy_m1));
+  assign q_rounded = 32'(evms_round_pkg::round_shift(64'(mul_p), state_q == StDivT ? shift_t_m1_q : shift_xy_m1_q));
 
   always_ff @(posedge clk) begin
     if (adding) sums[sum_c] <= {ev_x < x_min ? ev_x : x_min, ev_y < y_min ? ev_y : y_min, ev_x > x_max ? ev_x : x_max,
                                 ev_y > y_max ? ev_y : y_max, sx + 32'(ev_x), sy + 32'(ev_y), st + 64'(age), count + 32'd1};
-    if (store) results[store_c] <= {t0 + t_q, x_q, y_q};
+    if (store_q) results[store_c_q] <= {t0 + mean_age_q, x_q, y_q};
   end
 endmodule

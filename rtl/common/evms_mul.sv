@@ -22,73 +22,78 @@ module evms_mul #(
     // reach the low half. Each is one DSP multiply with a register behind it (no cascade, so
     // no chain of DSP adders in one clock); the next clock sums each diagonal i + j, the last
     // the four diagonals.
-    logic [31:0] pp [4][4];
-    logic [31:0] diag0, diag2;
-    logic [32:0] diag1;
-    logic [15:0] diag3;
-    logic [1:0]  valid;
+    logic [31:0] pp_q [4][4];   // the digit products, each behind its DSP's register
+    logic [31:0] diag0_q, diag2_q;
+    logic [32:0] diag1_q;
+    logic [15:0] diag3_q;
+    logic [1:0]  valid_q;
     always_ff @(posedge clk or negedge rst_n) begin
       if (!rst_n) begin
-        valid <= '0;
+        valid_q <= '0;
         done  <= 1'b0;
         p     <= '0;
-        diag0 <= '0;
-        diag1 <= '0;
-        diag2 <= '0;
-        diag3 <= '0;
-        for (int i = 0; i < 4; i++) for (int j = 0; j < 4; j++) pp[i][j] <= '0;
+        diag0_q <= '0;
+        diag1_q <= '0;
+        diag2_q <= '0;
+        diag3_q <= '0;
+        for (int i = 0; i < 4; i++) for (int j = 0; j < 4; j++) pp_q[i][j] <= '0;
       end else begin
-        valid <= {valid[0], start};
-        done  <= valid[1];
+        valid_q <= {valid_q[0], start};
+        done  <= valid_q[1];
         if (start) begin
           for (int i = 0; i < 4; i++)
-            for (int j = 0; j < 4 - i; j++) pp[i][j] <= 32'(a[16*i +: 16]) * 32'(b[16*j +: 16]);
+            for (int j = 0; j < 4 - i; j++) pp_q[i][j] <= 32'(a[16*i +: 16]) * 32'(b[16*j +: 16]);
         end
-        if (valid[0]) begin
-          diag0 <= pp[0][0];
-          diag1 <= 33'(pp[0][1]) + 33'(pp[1][0]);
-          diag2 <= pp[0][2] + pp[1][1] + pp[2][0];
-          diag3 <= 16'(pp[0][3]) + 16'(pp[1][2]) + 16'(pp[2][1]) + 16'(pp[3][0]);
+        if (valid_q[0]) begin
+          diag0_q <= pp_q[0][0];
+          diag1_q <= 33'(pp_q[0][1]) + 33'(pp_q[1][0]);
+          diag2_q <= pp_q[0][2] + pp_q[1][1] + pp_q[2][0];
+          diag3_q <= 16'(pp_q[0][3]) + 16'(pp_q[1][2]) + 16'(pp_q[2][1]) + 16'(pp_q[3][0]);
         end
-        if (valid[1]) p <= $signed(64'(diag0) + {15'd0, diag1, 16'd0} + {diag2, 32'd0} + {diag3, 48'd0});
+        if (valid_q[1]) p <= $signed(64'(diag0_q) + {15'd0, diag1_q, 16'd0} + {diag2_q, 32'd0} + {diag3_q, 48'd0});
       end
     end
     assign busy = 1'b0;
   end else begin : g_serial
     localparam int Steps = (64 + DigitBits - 1) / DigitBits;
-    logic [63:0] mag_a, mag_b, acc;
-    logic        negate;
-    logic [$clog2(Steps+1)-1:0] step;
+    logic [63:0] mag_a_q, mag_a_d, mag_b_q, mag_b_d;   // the operands' magnitudes
+    logic [63:0] acc_q, acc_d;                         // the digits of |b| taken so far, times |a|
+    logic [63:0] acc_next;
+    logic        negate_q, negate_d;
+    logic [$clog2(Steps+1)-1:0] step_q, step_d;
+    logic        busy_q, busy_d, done_d;
+    logic signed [63:0] p_q, p_d;
+    assign busy = busy_q;
+    assign p = p_q;
+    // acc + |a| * digit(|b|, step), a digit further down, from the top digit down
+    assign acc_next = (acc_q << DigitBits) + mag_a_q * 64'(mag_b_q[63 - (32'(step_q) * DigitBits) -: DigitBits]);
+    always_comb begin
+      {mag_a_d, mag_b_d, negate_d, acc_d, step_d, busy_d, p_d} = {mag_a_q, mag_b_q, negate_q, acc_q, step_q, busy_q, p_q};
+      done_d = 1'b0;
+      if (start && !busy_q) begin
+        mag_a_d  = a[63] ? -a : a;
+        mag_b_d  = b[63] ? -b : b;
+        negate_d = a[63] ^ b[63];
+        acc_d    = '0;
+        step_d   = '0;
+        busy_d   = 1'b1;
+      end else if (busy_q) begin
+        acc_d  = acc_next;
+        step_d = step_q + 1'b1;
+        if (32'(step_q) == Steps - 1) begin
+          busy_d = 1'b0;
+          done_d = 1'b1;
+          p_d    = negate_q ? -acc_next : acc_next;
+        end
+      end
+    end
     always_ff @(posedge clk or negedge rst_n) begin
       if (!rst_n) begin
-        busy <= 1'b0;
+        {mag_a_q, mag_b_q, negate_q, acc_q, step_q, busy_q, p_q} <= '0;
         done <= 1'b0;
-        p    <= '0;
-        step <= '0;
-        mag_a <= '0;
-        mag_b <= '0;
-        acc <= '0;
-        negate <= 1'b0;
       end else begin
-        done <= 1'b0;
-        if (start && !busy) begin
-          mag_a  <= a[63] ? -a : a;
-          mag_b  <= b[63] ? -b : b;
-          negate <= a[63] ^ b[63];
-          acc    <= '0;
-          step   <= '0;
-          busy   <= 1'b1;
-        end else if (busy) begin
-          // acc += |a| * digit(|b|, step) << (step * DigitBits), from the top digit down
-          acc  <= (acc << DigitBits) + mag_a * 64'(mag_b[63 - (32'(step) * DigitBits) -: DigitBits]);
-          step <= step + 1'b1;
-          if (32'(step) == Steps - 1) begin
-            busy <= 1'b0;
-            done <= 1'b1;
-            p    <= negate ? -((acc << DigitBits) + mag_a * 64'(mag_b[DigitBits-1:0]))
-                           : ((acc << DigitBits) + mag_a * 64'(mag_b[DigitBits-1:0]));
-          end
-        end
+        {mag_a_q, mag_b_q, negate_q, acc_q, step_q, busy_q, p_q} <= {mag_a_d, mag_b_d, negate_d, acc_d, step_d, busy_d, p_d};
+        done <= done_d;
       end
     end
   end
