@@ -51,25 +51,30 @@ module evms_link_rx #(
   output logic [31:0] events_received
 );
   `include "evms_link_frames.svh"
-  typedef enum logic [2:0] {S_SYNC1, S_SYNC2, S_TYPE, S_LEN, S_PAYLOAD, S_CRC_LO, S_CRC_HI} state_e;
-  state_e state;
-  logic [7:0] ftype, flen, pos;
-  logic [7:0] header [BatchHeaderBytes];  // an events frame's first bytes; a flush's or reset's payload
-  logic [23:0] entry_low;                 // an entry's bytes before its last
-  logic [15:0] crc;
-  logic [7:0] crc_lo;
-  logic [15:0] expected_seq;
-  logic resend_asked;  // since the last event taken
-  logic [15:0] last_ahead_seq;  // since then: the first number of the last frame ahead, or the flush's
-  assign resend_seq = expected_seq;
+  typedef enum logic [2:0] {StSync1, StSync2, StType, StLen, StPayload, StCrcLo, StCrcHi} state_e;
+  state_e state_q, state_d;
+  logic [7:0] ftype_q, ftype_d, flen_q, flen_d, pos_q, pos_d;   // the frame's type, length, and payload byte
+  // An events frame's first bytes, or a flush's or reset's payload: byte k in bits 8k + 7..8k.
+  logic [8*BatchHeaderBytes-1:0] header_q, header_d;
+  logic [23:0] entry_low_q, entry_low_d;   // an entry's bytes before its last
+  logic [15:0] crc_q, crc_d;
+  logic [7:0] crc_lo_q, crc_lo_d;
+  logic [15:0] expected_seq_q, expected_seq_d;
+  logic resend_asked_q, resend_asked_d;  // since the last event taken
+  logic [15:0] last_ahead_seq_q, last_ahead_seq_d;  // since then: the first number of the last frame ahead, or the flush's
+  logic [31:0] crc_errors_q, crc_errors_d, overruns_q, overruns_d, events_received_q, events_received_d;
+  logic soft_reset_q, soft_reset_d, labels_on_board_q, labels_on_board_d, resend_valid_q, resend_valid_d;
+  assign resend_seq = expected_seq_q;
+  assign {crc_errors, overruns, events_received} = {crc_errors_q, overruns_q, events_received_q};
+  assign {soft_reset, labels_on_board, resend_valid} = {soft_reset_q, labels_on_board_q, resend_valid_q};
 
   // Within an events frame, until its check: the next entry's number and time base, the number
   // expected after the entries taken, how many were taken, and whether one came ahead of the
   // expected number (frames were lost) or found the FIFO full.
-  logic [15:0] entry_seq, frame_expected;
-  logic [31:0] entry_t;
-  logic [7:0] frame_taken;
-  logic frame_ahead, frame_overrun;
+  logic [15:0] entry_seq_q, entry_seq_d, frame_expected_q, frame_expected_d;
+  logic [31:0] entry_t_q, entry_t_d;
+  logic [7:0] frame_taken_q, frame_taken_d;
+  logic frame_ahead_q, frame_ahead_d, frame_overrun_q, frame_overrun_d;
 
   // The header's length and the events frame's lengths: one to BatchEntries whole entries.
   logic len_is_events;
@@ -79,165 +84,158 @@ module evms_link_rx #(
   // This payload byte ends an entry; the entry, and its event's time.
   logic entry_ends;
   logic [31:0] entry, entry_event_t;
-  assign entry_ends = ftype == FrameEventsType && pos >= 8'(BatchHeaderBytes) &&
-                      ((pos - 8'(BatchHeaderBytes)) & 8'(BatchEntryBytes - 1)) == 8'(BatchEntryBytes - 1);
-  assign entry = {byte_data, entry_low};  // bits 17 and 18 (passed, present) say nothing here
-  assign entry_event_t = entry_t + 32'(entry[31:32-BatchGapBits]);
+  assign entry_ends = ftype_q == FrameEventsType && pos_q >= 8'(BatchHeaderBytes) &&
+                      ((pos_q - 8'(BatchHeaderBytes)) & 8'(BatchEntryBytes - 1)) == 8'(BatchEntryBytes - 1);
+  assign entry = {byte_data, entry_low_q};  // bits 17 and 18 (passed, present) say nothing here
+  assign entry_event_t = entry_t_q + 32'(entry[31:32-BatchGapBits]);
   logic [15:0] entry_ahead;  // as a signed number: > 0 means frames were lost
-  assign entry_ahead = entry_seq - frame_expected;
+  assign entry_ahead = entry_seq_q - frame_expected_q;
 
-  // The frame that ends with this byte: its check, and a flush's number against expected_seq.
+  // The frame that ends with this byte: its check, and a flush's number against expected_seq_q.
   logic crc_ok, is_events, is_flush, is_reset;
   logic [15:0] flush_ahead, frame_first_seq, since_last_ahead;
   logic frame_started_over;
-  assign frame_first_seq = {header[5], header[4]};
-  assign since_last_ahead = frame_first_seq - last_ahead_seq;
+  assign frame_first_seq = header_q[47:32];
+  assign since_last_ahead = frame_first_seq - last_ahead_seq_q;
   assign frame_started_over = since_last_ahead == 16'd0 || since_last_ahead[15];
-  assign crc_ok = {byte_data, crc_lo} == crc;
-  assign is_events = crc_ok && ftype == FrameEventsType;
-  assign is_flush = crc_ok && ftype == FrameFlushType && flen == FrameFlushLen;
-  assign is_reset = crc_ok && ftype == FrameResetType && flen == FrameResetLen;
-  assign flush_ahead = {header[1], header[0]} - expected_seq;
+  assign crc_ok = {byte_data, crc_lo_q} == crc_q;
+  assign is_events = crc_ok && ftype_q == FrameEventsType;
+  assign is_flush = crc_ok && ftype_q == FrameFlushType && flen_q == FrameFlushLen;
+  assign is_reset = crc_ok && ftype_q == FrameResetType && flen_q == FrameResetLen;
+  assign flush_ahead = header_q[15:0] - expected_seq_q;
 
   // FIFO of {flush, p, y, x, t}, in block RAM; events frames' words held until their check.
   localparam int WordBits = 1 + 1 + 16 + 16 + 32;
-  logic push, commit, rollback, fifo_ready;
-  logic [WordBits-1:0] push_word;
+  logic push_q, push_d, commit_q, commit_d, rollback_q, rollback_d, fifo_ready;
+  logic [WordBits-1:0] push_word_q, push_word_d;
   evms_fifo #(.Width(WordBits), .Depth(FifoDepth), .Tentative(1'b1)) u_fifo (
-    .clk(clk), .rst_n(rst_n && !soft_reset), .in_valid(push), .in_ready(fifo_ready), .in_data(push_word), .in_commit(commit),
-    .in_rollback(rollback), .out_valid(ev_valid), .out_ready(ev_ready), .out_data({ev_flush, ev_p, ev_y, ev_x, ev_t}));
+    .clk(clk), .rst_n(rst_n && !soft_reset_q), .in_valid(push_q), .in_ready(fifo_ready), .in_data(push_word_q), .in_commit(commit_q),
+    .in_rollback(rollback_q), .out_valid(ev_valid), .out_ready(ev_ready), .out_data({ev_flush, ev_p, ev_y, ev_x, ev_t}));
+
+  always_comb begin
+    {state_d, ftype_d, flen_d, pos_d, header_d, entry_low_d, crc_d, crc_lo_d} = {state_q, ftype_q, flen_q, pos_q, header_q, entry_low_q, crc_q, crc_lo_q};
+    {expected_seq_d, resend_asked_d, last_ahead_seq_d} = {expected_seq_q, resend_asked_q, last_ahead_seq_q};
+    {crc_errors_d, overruns_d, events_received_d} = {crc_errors_q, overruns_q, events_received_q};
+    {labels_on_board_d, push_word_d} = {labels_on_board_q, push_word_q};
+    {entry_seq_d, frame_expected_d, entry_t_d, frame_taken_d, frame_ahead_d, frame_overrun_d} =
+        {entry_seq_q, frame_expected_q, entry_t_q, frame_taken_q, frame_ahead_q, frame_overrun_q};
+    {push_d, commit_d, rollback_d, soft_reset_d} = '0;
+    resend_valid_d = resend_valid_q && !resend_ready;
+    if (byte_valid) begin
+      case (state_q)
+        StSync1: if (byte_data == 8'hA5) state_d = StSync2;
+        StSync2: state_d = byte_data == 8'h5A ? StType : (byte_data == 8'hA5 ? StSync2 : StSync1);
+        StType: begin
+          ftype_d = byte_data;
+          crc_d = evms_crc16_pkg::crc16_byte(16'hFFFF, byte_data);
+          frame_expected_d = expected_seq_q;
+          frame_taken_d = '0;
+          frame_ahead_d = 1'b0;
+          frame_overrun_d = 1'b0;
+          state_d = StLen;
+        end
+        StLen: begin
+          flen_d = byte_data;
+          crc_d = evms_crc16_pkg::crc16_byte(crc_q, byte_data);
+          pos_d = '0;
+          // An events frame's length must be whole entries before any goes in; other lengths
+          // are checked with the frame. No frame of ours is longer than an events frame.
+          if (ftype_q == FrameEventsType ? !len_is_events : byte_data > FrameEventsLen) begin
+            crc_errors_d = crc_errors_q + 1'b1;
+            state_d = StSync1;
+          end else begin
+            state_d = byte_data == 0 ? StCrcLo : StPayload;
+          end
+        end
+        StPayload: begin
+          for (int k = 0; k < BatchHeaderBytes; k++) if (pos_q == 8'(k)) header_d[8*k +: 8] = byte_data;
+          // The header's last bytes: the first event's time, then its number.
+          if (pos_q == 8'd3) entry_t_d = {byte_data, header_q[23:0]};
+          if (pos_q == 8'd5) entry_seq_d = {byte_data, header_q[39:32]};
+          entry_low_d = {byte_data, entry_low_q[23:8]};
+          if (entry_ends) begin
+            entry_t_d = entry_event_t;
+            entry_seq_d = entry_seq_q + 1'b1;
+            if (entry_ahead == 16'd0 && fifo_ready && !frame_overrun_q) begin
+              push_d = 1'b1;
+              push_word_d = {1'b0, entry[16], 8'd0, entry[15:8], 8'd0, entry[7:0], entry_event_t};
+              frame_expected_d = frame_expected_q + 1'b1;
+              frame_taken_d = frame_taken_q + 1'b1;
+            end else if (entry_ahead == 16'd0) begin
+              frame_overrun_d = 1'b1;
+            end else if (!entry_ahead[15]) begin
+              frame_ahead_d = 1'b1;
+            end
+          end
+          crc_d = evms_crc16_pkg::crc16_byte(crc_q, byte_data);
+          pos_d = pos_q + 1'b1;
+          if (pos_q + 1'b1 == flen_q) state_d = StCrcLo;
+        end
+        StCrcLo: begin
+          crc_lo_d = byte_data;
+          state_d = StCrcHi;
+        end
+        StCrcHi: begin
+          if (is_events) begin
+            commit_d = 1'b1;
+            expected_seq_d = frame_expected_q;
+            events_received_d = events_received_q + 32'(frame_taken_q);
+            if (frame_taken_q != 0) resend_asked_d = 1'b0;
+            if (frame_overrun_q) begin
+              overruns_d = overruns_q + 1'b1;
+              resend_valid_d = 1'b1;
+              resend_asked_d = 1'b1;
+            end else if (frame_ahead_q && (!resend_asked_q || frame_started_over)) begin  // entries are consecutive: none was taken
+              resend_valid_d = 1'b1;
+              resend_asked_d = 1'b1;
+            end
+            if (frame_overrun_q || frame_ahead_q) last_ahead_seq_d = frame_first_seq;
+          end else if (is_flush && flush_ahead == 16'd0 && fifo_ready) begin
+            push_d = 1'b1;
+            commit_d = 1'b1;
+            push_word_d = {1'b1, 1'b0, 16'd0, 16'd0, 32'd0};
+          end else if (is_flush && flush_ahead == 16'd0) begin
+            overruns_d = overruns_q + 1'b1;
+            resend_valid_d = 1'b1;
+            resend_asked_d = 1'b1;
+          end else if (is_flush) begin
+            resend_valid_d = 1'b1;
+            resend_asked_d = 1'b1;
+            last_ahead_seq_d = header_q[15:0];
+          end else if (is_reset) begin
+            soft_reset_d = 1'b1;
+            labels_on_board_d = header_q[0];
+            expected_seq_d = '0;
+            resend_asked_d = 1'b0;
+            resend_valid_d = 1'b0;
+          end else begin
+            rollback_d = ftype_q == FrameEventsType;
+            crc_errors_d = crc_errors_q + 1'b1;
+          end
+          state_d = StSync1;
+        end
+        default: state_d = StSync1;
+      endcase
+    end
+  end
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state <= S_SYNC1;
-      ftype <= '0;
-      flen <= '0;
-      pos <= '0;
-      crc <= 16'hFFFF;
-      crc_lo <= '0;
-      crc_errors <= '0;
-      overruns <= '0;
-      events_received <= '0;
-      push <= 1'b0;
-      commit <= 1'b0;
-      rollback <= 1'b0;
-      push_word <= '0;
-      soft_reset <= 1'b0;
-      labels_on_board <= 1'b0;
-      expected_seq <= '0;
-      resend_asked <= 1'b0;
-      resend_valid <= 1'b0;
-      last_ahead_seq <= '0;
-      for (int k = 0; k < BatchHeaderBytes; k++) header[k] <= '0;
-      entry_low <= '0;
-      entry_seq <= '0;
-      entry_t <= '0;
-      frame_expected <= '0;
-      frame_taken <= '0;
-      frame_ahead <= 1'b0;
-      frame_overrun <= 1'b0;
+      {state_q, ftype_q, flen_q, pos_q, header_q, entry_low_q, crc_lo_q} <= '0;
+      crc_q <= 16'hFFFF;
+      {expected_seq_q, resend_asked_q, last_ahead_seq_q} <= '0;
+      {crc_errors_q, overruns_q, events_received_q} <= '0;
+      {labels_on_board_q, push_word_q} <= '0;
+      {entry_seq_q, frame_expected_q, entry_t_q, frame_taken_q, frame_ahead_q, frame_overrun_q} <= '0;
+      {push_q, commit_q, rollback_q, soft_reset_q, resend_valid_q} <= '0;
     end else begin
-      push <= 1'b0;
-      commit <= 1'b0;
-      rollback <= 1'b0;
-      soft_reset <= 1'b0;
-      if (resend_valid && resend_ready) resend_valid <= 1'b0;
-      if (byte_valid) begin
-        case (state)
-          S_SYNC1: if (byte_data == 8'hA5) state <= S_SYNC2;
-          S_SYNC2: state <= byte_data == 8'h5A ? S_TYPE : (byte_data == 8'hA5 ? S_SYNC2 : S_SYNC1);
-          S_TYPE: begin
-            ftype <= byte_data;
-            crc <= evms_crc16_pkg::crc16_byte(16'hFFFF, byte_data);
-            frame_expected <= expected_seq;
-            frame_taken <= '0;
-            frame_ahead <= 1'b0;
-            frame_overrun <= 1'b0;
-            state <= S_LEN;
-          end
-          S_LEN: begin
-            flen <= byte_data;
-            crc <= evms_crc16_pkg::crc16_byte(crc, byte_data);
-            pos <= '0;
-            // An events frame's length must be whole entries before any goes in; other lengths
-            // are checked with the frame. No frame of ours is longer than an events frame.
-            if (ftype == FrameEventsType ? !len_is_events : byte_data > FrameEventsLen) begin
-              crc_errors <= crc_errors + 1'b1;
-              state <= S_SYNC1;
-            end else begin
-              state <= byte_data == 0 ? S_CRC_LO : S_PAYLOAD;
-            end
-          end
-          S_PAYLOAD: begin
-            if (pos < 8'(BatchHeaderBytes)) header[pos[$clog2(BatchHeaderBytes)-1:0]] <= byte_data;
-            // The header's last bytes: the first event's time, then its number.
-            if (pos == 8'd3) entry_t <= {byte_data, header[2], header[1], header[0]};
-            if (pos == 8'd5) entry_seq <= {byte_data, header[4]};
-            entry_low <= {byte_data, entry_low[23:8]};
-            if (entry_ends) begin
-              entry_t <= entry_event_t;
-              entry_seq <= entry_seq + 1'b1;
-              if (entry_ahead == 16'd0 && fifo_ready && !frame_overrun) begin
-                push <= 1'b1;
-                push_word <= {1'b0, entry[16], 8'd0, entry[15:8], 8'd0, entry[7:0], entry_event_t};
-                frame_expected <= frame_expected + 1'b1;
-                frame_taken <= frame_taken + 1'b1;
-              end else if (entry_ahead == 16'd0) begin
-                frame_overrun <= 1'b1;
-              end else if (!entry_ahead[15]) begin
-                frame_ahead <= 1'b1;
-              end
-            end
-            crc <= evms_crc16_pkg::crc16_byte(crc, byte_data);
-            pos <= pos + 1'b1;
-            if (pos + 1'b1 == flen) state <= S_CRC_LO;
-          end
-          S_CRC_LO: begin
-            crc_lo <= byte_data;
-            state <= S_CRC_HI;
-          end
-          S_CRC_HI: begin
-            if (is_events) begin
-              commit <= 1'b1;
-              expected_seq <= frame_expected;
-              events_received <= events_received + 32'(frame_taken);
-              if (frame_taken != 0) resend_asked <= 1'b0;
-              if (frame_overrun) begin
-                overruns <= overruns + 1'b1;
-                resend_valid <= 1'b1;
-                resend_asked <= 1'b1;
-              end else if (frame_ahead && (!resend_asked || frame_started_over)) begin  // entries are consecutive: none was taken
-                resend_valid <= 1'b1;
-                resend_asked <= 1'b1;
-              end
-              if (frame_overrun || frame_ahead) last_ahead_seq <= frame_first_seq;
-            end else if (is_flush && flush_ahead == 16'd0 && fifo_ready) begin
-              push <= 1'b1;
-              commit <= 1'b1;
-              push_word <= {1'b1, 1'b0, 16'd0, 16'd0, 32'd0};
-            end else if (is_flush && flush_ahead == 16'd0) begin
-              overruns <= overruns + 1'b1;
-              resend_valid <= 1'b1;
-              resend_asked <= 1'b1;
-            end else if (is_flush) begin
-              resend_valid <= 1'b1;
-              resend_asked <= 1'b1;
-              last_ahead_seq <= {header[1], header[0]};
-            end else if (is_reset) begin
-              soft_reset <= 1'b1;
-              labels_on_board <= header[0][0];
-              expected_seq <= '0;
-              resend_asked <= 1'b0;
-              resend_valid <= 1'b0;
-            end else begin
-              rollback <= ftype == FrameEventsType;
-              crc_errors <= crc_errors + 1'b1;
-            end
-            state <= S_SYNC1;
-          end
-          default: state <= S_SYNC1;
-        endcase
-      end
+      {state_q, ftype_q, flen_q, pos_q, header_q, entry_low_q, crc_q, crc_lo_q} <= {state_d, ftype_d, flen_d, pos_d, header_d, entry_low_d, crc_d, crc_lo_d};
+      {expected_seq_q, resend_asked_q, last_ahead_seq_q} <= {expected_seq_d, resend_asked_d, last_ahead_seq_d};
+      {crc_errors_q, overruns_q, events_received_q} <= {crc_errors_d, overruns_d, events_received_d};
+      {labels_on_board_q, push_word_q} <= {labels_on_board_d, push_word_d};
+      {entry_seq_q, frame_expected_q, entry_t_q, frame_taken_q, frame_ahead_q, frame_overrun_q} <=
+          {entry_seq_d, frame_expected_d, entry_t_d, frame_taken_d, frame_ahead_d, frame_overrun_d};
+      {push_q, commit_q, rollback_q, soft_reset_q, resend_valid_q} <= {push_d, commit_d, rollback_d, soft_reset_d, resend_valid_d};
     end
   end
 endmodule

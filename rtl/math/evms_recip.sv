@@ -40,36 +40,36 @@ module evms_recip #(
   endfunction
 
   logic [63:0]     x_q;
-  logic [5:0]      lead;
-  logic [RecipFrac:0]     mant, r0;
-  logic [RecipFrac+1:0]   two_minus_mr0;
+  logic [5:0]      lead_q;
+  logic [RecipFrac:0]     mant_q, r0_q;
+  logic [RecipFrac+1:0]   two_minus_mr0_q;
   logic [2*RecipFrac+1:0] mr0_full;
   logic [2*RecipFrac+2:0] r1_full;
-  logic [5:0]      step;  // one-hot position in the pipeline
+  logic [5:0]      step_q;  // one-hot position in the pipeline: each stage's register below loads in its step
   logic            take;  // a start the pipeline accepts
-  assign take = start && step == 0;
-  assign mr0_full = (2*RecipFrac+2)'(mant) * (2*RecipFrac+2)'(r0);
-  assign r1_full = (2*RecipFrac+3)'(r0) * (2*RecipFrac+3)'(two_minus_mr0);
+  assign take = start && step_q == 0;
+  assign mr0_full = (2*RecipFrac+2)'(mant_q) * (2*RecipFrac+2)'(r0_q);
+  assign r1_full = (2*RecipFrac+3)'(r0_q) * (2*RecipFrac+3)'(two_minus_mr0_q);
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      step <= '0;
+      step_q <= '0;
       done <= 1'b0;
       r <= '0;
       x_q <= '0;
-      lead <= '0;
-      mant <= '0;
-      r0 <= '0;
-      two_minus_mr0 <= '0;
+      lead_q <= '0;
+      mant_q <= '0;
+      r0_q <= '0;
+      two_minus_mr0_q <= '0;
     end else begin
-      step <= {step[4:0], take};
-      done <= step[4];
+      step_q <= {step_q[4:0], take};
+      done <= step_q[4];
       if (take) x_q <= x;
-      if (step[0]) lead <= msb(x_q);
-      if (step[1]) mant <= (RecipFrac+1)'((x_q << (6'd63 - lead)) >> (63 - RecipFrac));  // the leading one to bit RecipFrac
-      if (step[2]) r0 <= table_rom[TableLog2'(mant >> (RecipFrac - TableLog2))];
-      if (step[3]) two_minus_mr0 <= (RecipFrac+2)'(1 << (RecipFrac + 1)) - (RecipFrac+2)'(mr0_full >> RecipFrac);
-      if (step[4]) r <= (RecipFrac+1)'(r1_full >> RecipFrac);
+      if (step_q[0]) lead_q <= msb(x_q);
+      if (step_q[1]) mant_q <= (RecipFrac+1)'((x_q << (6'd63 - lead_q)) >> (63 - RecipFrac));  // the leading one to bit RecipFrac
+      if (step_q[2]) r0_q <= table_rom[TableLog2'(mant_q >> (RecipFrac - TableLog2))];
+      if (step_q[3]) two_minus_mr0_q <= (RecipFrac+2)'(1 << (RecipFrac + 1)) - (RecipFrac+2)'(mr0_full >> RecipFrac);
+      if (step_q[4]) r <= (RecipFrac+1)'(r1_full >> RecipFrac);
     end
   end
-  assign m = {1'b0, lead};
+  assign m = {1'b0, lead_q};
 endmodule
