@@ -247,18 +247,23 @@ module evms_board #(
   end
 
   // ---- status after a flush ---------------------------------------------------------------------
-  logic flush_pending, st_valid, st_ready;
+  logic flush_pending_q, flush_pending_d, st_valid_q, st_valid_d, st_ready;
+  always_comb begin
+    flush_pending_d = flush_pending_q;
+    st_valid_d = st_valid_q && !st_ready;
+    if (in_valid && in_ready && in_flush) flush_pending_d = 1'b1;
+    if (flush_pending_q && core_idle && !in_valid && queued_q == '0 && !st_valid_q) begin
+      st_valid_d = 1'b1;
+      flush_pending_d = 1'b0;
+    end
+  end
   always_ff @(posedge clk or negedge run_rst_n) begin
     if (!run_rst_n) begin
-      flush_pending <= 1'b1;  // after a reset, a status frame tells the host the board is ready
-      st_valid <= 1'b0;
+      flush_pending_q <= 1'b1;  // after a reset, a status frame tells the host the board is ready
+      st_valid_q <= 1'b0;
     end else begin
-      if (in_valid && in_ready && in_flush) flush_pending <= 1'b1;
-      if (flush_pending && core_idle && !in_valid && queued_q == '0 && !st_valid) begin
-        st_valid <= 1'b1;
-        flush_pending <= 1'b0;
-      end
-      if (st_valid && st_ready) st_valid <= 1'b0;
+      flush_pending_q <= flush_pending_d;
+      st_valid_q <= st_valid_d;
     end
   end
 
@@ -269,7 +274,7 @@ module evms_board #(
     .clk(clk), .rst_n(run_rst_n), .lab_valid(tx_lab_valid), .lab_ready(tx_lab_ready), .lab_t(lab_t), .lab_x(lab_x),
     .lab_y(lab_y), .lab_p(lab_p), .lab_label(lab_label), .trk_valid(q_out_valid && !q_out_is_packet), .trk_ready(tx_trk_ready),
     .trk_payload(q_out_payload), .pkt_valid(q_out_valid && q_out_is_packet), .pkt_ready(tx_pkt_ready),
-    .pkt_payload(q_out_payload[95:0]), .st_valid(st_valid), .st_ready(st_ready), .rs_valid(rs_valid), .rs_ready(rs_ready),
+    .pkt_payload(q_out_payload[95:0]), .st_valid(st_valid_q), .st_ready(st_ready), .rs_valid(rs_valid), .rs_ready(rs_ready),
     .rs_seq(rs_seq),
     .st_payload({batches_skipped_q, noise_q, labelled_q, unassigned, tracks_started, external_events, overruns, framing_errors,
                  crc_errors, events_received, timestamp}),

@@ -55,35 +55,35 @@ module evms_link_tx #(
   output logic [7:0]  byte_data
 );
   `include "evms_link_frames.svh"
-  typedef enum logic [2:0] {S_IDLE, S_SYNC1, S_SYNC2, S_TYPE, S_LEN, S_PAYLOAD, S_CRC_LO, S_CRC_HI} state_e;
-  state_e state;
-  // As long as the longest frame's, the status's; each frame's payload is zero-extended to it
+  typedef enum logic [2:0] {StIdle, StSync1, StSync2, StType, StLen, StPayload, StCrcLo, StCrcHi} state_e;
+  state_e state_q, state_d;
+  // As long as the longest frame's, the status's; each frame's payload_q is zero-extended to it
   // by a sized literal (Yosys 0.23 sizes a width cast in a concatenation by its operand).
   localparam int PayloadBits = 352;
-  logic [PayloadBits-1:0] payload;
-  logic [7:0] ftype, flen, pos;
-  logic [15:0] crc;
-  logic [15:0] label_seq;
+  logic [PayloadBits-1:0] payload_q, payload_d;   // the frame's payload, its next byte lowest
+  logic [7:0] ftype_q, ftype_d, flen_q, flen_d, pos_q, pos_d;
+  logic [15:0] crc_q, crc_d;
+  logic [15:0] label_seq_q, label_seq_d;   // the next label's number
   // A verdict frame: still taking verdicts, and the previous one's time.
-  logic verdicts_open;
-  logic [31:0] verdict_t;
+  logic verdicts_open_q, verdicts_open_d;
+  logic [31:0] verdict_t_q, verdict_t_d;
   logic [31:0] verdict_gap;
   // Whether the verdict waiting is within reach of the previous one, judged a clock after it
   // came (its fields hold while it waits): the ready then reads registers, not a subtraction.
   logic gap_fits_q, gap_known_q;
   logic [7:0] next_pos;
   logic next_is_entry, take_verdict;
-  assign verdict_gap = lab_t - verdict_t;
+  assign verdict_gap = lab_t - verdict_t_q;
   // The UART takes the byte before an entry's first: the header's BatchHeaderBytes, then
-  // entries of BatchEntryBytes (a power of two). It is registered: pos moves only as the UART
+  // entries of BatchEntryBytes (a power of two). It is registered: pos_q moves only as the UART
   // takes a byte, once in a character's 10 bits.
   localparam int EntryMask = BatchEntryBytes - 1;
   localparam int EntryPhase = BatchHeaderBytes % BatchEntryBytes;
   logic next_is_entry_q;
-  assign next_pos = pos + 8'd1;
-  assign next_is_entry = {24'd0, next_pos} >= BatchHeaderBytes + BatchEntryBytes && next_pos < flen &&
+  assign next_pos = pos_q + 8'd1;
+  assign next_is_entry = {24'd0, next_pos} >= BatchHeaderBytes + BatchEntryBytes && next_pos < flen_q &&
                          ({24'd0, next_pos} & EntryMask) == EntryPhase;
-  assign take_verdict = LabelsAreVerdicts != 0 && state == S_PAYLOAD && verdicts_open && byte_ready && next_is_entry_q && lab_valid &&
+  assign take_verdict = LabelsAreVerdicts != 0 && state_q == StPayload && verdicts_open_q && byte_ready && next_is_entry_q && lab_valid &&
                         gap_known_q && gap_fits_q;
   `EVMS_ASSERT_INIT("a verdict entry's length is a power of two", (BatchEntryBytes & (BatchEntryBytes - 1)) == 0)
   // An entry's fields below its gap: present, passed, polarity, y, x.
@@ -97,7 +97,7 @@ module evms_link_tx #(
     st_ready = 1'b0;
     rs_ready = 1'b0;
     pg_ready = 1'b0;
-    if (state == S_IDLE) begin
+    if (state_q == StIdle) begin
       if (st_valid) st_ready = 1'b1;
       else if (rs_valid) rs_ready = 1'b1;
       else if (pkt_valid) pkt_ready = 1'b1;
@@ -110,101 +110,100 @@ module evms_link_tx #(
 
   always_comb begin
     byte_data = 8'h00;
-    case (state)
-      S_SYNC1: byte_data = 8'hA5;
-      S_SYNC2: byte_data = 8'h5A;
-      S_TYPE: byte_data = ftype;
-      S_LEN: byte_data = flen;
-      S_PAYLOAD: byte_data = payload[7:0];
-      S_CRC_LO: byte_data = crc[7:0];
-      S_CRC_HI: byte_data = crc[15:8];
+    case (state_q)
+      StSync1: byte_data = 8'hA5;
+      StSync2: byte_data = 8'h5A;
+      StType: byte_data = ftype_q;
+      StLen: byte_data = flen_q;
+      StPayload: byte_data = payload_q[7:0];
+      StCrcLo: byte_data = crc_q[7:0];
+      StCrcHi: byte_data = crc_q[15:8];
       default: byte_data = 8'h00;
     endcase
   end
-  assign byte_valid = state != S_IDLE;
+  assign byte_valid = state_q != StIdle;
+
+  always_comb begin
+    {state_d, payload_d, ftype_d, flen_d, pos_d, crc_d} = {state_q, payload_q, ftype_q, flen_q, pos_q, crc_q};
+    {label_seq_d, verdicts_open_d, verdict_t_d} = {label_seq_q, verdicts_open_q, verdict_t_q};
+    case (state_q)
+      StIdle: begin
+        verdicts_open_d = 1'b0;  // open only in a verdict frame, from its start
+        if (st_valid) begin
+          {ftype_d, flen_d, payload_d} = {FrameStatusType, FrameStatusLen, st_payload};
+          state_d = StSync1;
+        end else if (rs_valid) begin
+          {ftype_d, flen_d, payload_d} = {FrameResendType, FrameResendLen, 336'd0, rs_seq};
+          state_d = StSync1;
+        end else if (pkt_valid) begin
+          {ftype_d, flen_d, payload_d} = {FramePacketType, FramePacketLen, 256'd0, pkt_payload};
+          state_d = StSync1;
+        end else if (trk_valid) begin
+          {ftype_d, flen_d, payload_d} = {FrameTrackType, FrameTrackLen, 88'd0, trk_payload};
+          state_d = StSync1;
+        end else if (lab_valid) begin
+          if (LabelsAreVerdicts != 0) begin
+            {ftype_d, flen_d, payload_d} = {FrameVerdictType, FrameVerdictLen, 272'd0, {{BatchGapBits{1'b0}}, verdict_fields}, label_seq_q, lab_t};
+            verdicts_open_d = 1'b1;
+            verdict_t_d = lab_t;
+          end else begin
+            {ftype_d, flen_d, payload_d} = {FrameLabelType, FrameLabelLen, 232'd0, label_seq_q, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
+          end
+          label_seq_d = label_seq_q + 1'b1;
+          state_d = StSync1;
+        end else if (pg_valid) begin
+          {ftype_d, flen_d, payload_d} = {FrameProgressType, FrameProgressLen, 256'd0, pg_payload};
+          state_d = StSync1;
+        end
+        crc_d = 16'hFFFF;
+        pos_d = '0;
+      end
+      default: if (byte_ready) begin
+        case (state_q)
+          StSync1: state_d = StSync2;
+          StSync2: state_d = StType;
+          StType: begin
+            crc_d = evms_crc16_pkg::crc16_byte(crc_q, ftype_q);
+            state_d = StLen;
+          end
+          StLen: begin
+            crc_d = evms_crc16_pkg::crc16_byte(crc_q, flen_q);
+            state_d = StPayload;
+          end
+          StPayload: begin
+            crc_d = evms_crc16_pkg::crc16_byte(crc_q, payload_q[7:0]);
+            // Past the header and the first entry the register holds zeros: an entry taken
+            // goes into its lowest bytes, and once none is taken the frame stays closed.
+            payload_d = (payload_q >> 8) | {320'd0, take_verdict ? {verdict_gap[BatchGapBits-1:0], verdict_fields} : 32'd0};
+            if (take_verdict) begin
+              verdict_t_d = lab_t;
+              label_seq_d = label_seq_q + 1'b1;
+            end else if (next_is_entry_q) begin
+              verdicts_open_d = 1'b0;
+            end
+            pos_d = pos_q + 1'b1;
+            if (pos_q + 1'b1 == flen_q) state_d = StCrcLo;
+          end
+          StCrcLo: state_d = StCrcHi;
+          StCrcHi: state_d = StIdle;
+          default: state_d = StIdle;
+        endcase
+      end
+    endcase
+  end
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state <= S_IDLE;
-      payload <= '0;
-      ftype <= '0;
-      flen <= '0;
-      pos <= '0;
-      crc <= 16'hFFFF;
-      label_seq <= '0;
-      verdicts_open <= 1'b0;
-      verdict_t <= '0;
-      gap_fits_q <= 1'b0;
-      gap_known_q <= 1'b0;
-      next_is_entry_q <= 1'b0;
+      {state_q, payload_q, ftype_q, flen_q, pos_q} <= '0;
+      crc_q <= 16'hFFFF;
+      {label_seq_q, verdicts_open_q, verdict_t_q} <= '0;
+      {gap_fits_q, gap_known_q, next_is_entry_q} <= '0;
     end else begin
+      {state_q, payload_q, ftype_q, flen_q, pos_q, crc_q} <= {state_d, payload_d, ftype_d, flen_d, pos_d, crc_d};
+      {label_seq_q, verdicts_open_q, verdict_t_q} <= {label_seq_d, verdicts_open_d, verdict_t_d};
       next_is_entry_q <= next_is_entry;
       gap_fits_q <= verdict_gap[31:BatchGapBits] == '0;
       gap_known_q <= lab_valid && !lab_ready;
-      case (state)
-        S_IDLE: begin
-          verdicts_open <= 1'b0;  // open only in a verdict frame, from its start
-          if (st_valid) begin
-            {ftype, flen, payload} <= {FrameStatusType, FrameStatusLen, st_payload};
-            state <= S_SYNC1;
-          end else if (rs_valid) begin
-            {ftype, flen, payload} <= {FrameResendType, FrameResendLen, 336'd0, rs_seq};
-            state <= S_SYNC1;
-          end else if (pkt_valid) begin
-            {ftype, flen, payload} <= {FramePacketType, FramePacketLen, 256'd0, pkt_payload};
-            state <= S_SYNC1;
-          end else if (trk_valid) begin
-            {ftype, flen, payload} <= {FrameTrackType, FrameTrackLen, 88'd0, trk_payload};
-            state <= S_SYNC1;
-          end else if (lab_valid) begin
-            if (LabelsAreVerdicts != 0) begin
-              {ftype, flen, payload} <= {FrameVerdictType, FrameVerdictLen, 272'd0, {{BatchGapBits{1'b0}}, verdict_fields}, label_seq, lab_t};
-              verdicts_open <= 1'b1;
-              verdict_t <= lab_t;
-            end else begin
-              {ftype, flen, payload} <= {FrameLabelType, FrameLabelLen, 232'd0, label_seq, lab_label, 7'd0, lab_p, lab_y, lab_x, lab_t};
-            end
-            label_seq <= label_seq + 1'b1;
-            state <= S_SYNC1;
-          end else if (pg_valid) begin
-            {ftype, flen, payload} <= {FrameProgressType, FrameProgressLen, 256'd0, pg_payload};
-            state <= S_SYNC1;
-          end
-          crc <= 16'hFFFF;
-          pos <= '0;
-        end
-        default: if (byte_ready) begin
-          case (state)
-            S_SYNC1: state <= S_SYNC2;
-            S_SYNC2: state <= S_TYPE;
-            S_TYPE: begin
-              crc <= evms_crc16_pkg::crc16_byte(crc, ftype);
-              state <= S_LEN;
-            end
-            S_LEN: begin
-              crc <= evms_crc16_pkg::crc16_byte(crc, flen);
-              state <= S_PAYLOAD;
-            end
-            S_PAYLOAD: begin
-              crc <= evms_crc16_pkg::crc16_byte(crc, payload[7:0]);
-              // Past the header and the first entry the register holds zeros: an entry taken
-              // goes into its lowest bytes, and once none is taken the frame stays closed.
-              payload <= (payload >> 8) | {320'd0, take_verdict ? {verdict_gap[BatchGapBits-1:0], verdict_fields} : 32'd0};
-              if (take_verdict) begin
-                verdict_t <= lab_t;
-                label_seq <= label_seq + 1'b1;
-              end else if (next_is_entry_q) begin
-                verdicts_open <= 1'b0;
-              end
-              pos <= pos + 1'b1;
-              if (pos + 1'b1 == flen) state <= S_CRC_LO;
-            end
-            S_CRC_LO: state <= S_CRC_HI;
-            S_CRC_HI: state <= S_IDLE;
-            default: state <= S_IDLE;
-          endcase
-        end
-      endcase
     end
   end
 endmodule
