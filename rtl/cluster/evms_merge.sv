@@ -31,150 +31,163 @@ module evms_merge #(
   output logic [7:0]    clusters
 );
   localparam int ClusterIndexBits = ClustersMax > 1 ? $clog2(ClustersMax) : 1;
-  typedef enum logic [3:0] {S_IDLE, S_READ, S_WAIT, S_SEEDS, S_DECIDE, S_RENUMBER, S_RELABEL_READ, S_RELABEL_WAIT,
-                            S_RELABEL_WRITE, S_DONE} state_e;
-  state_e state;
-  logic [ModeBits-1:0] seed_x [ClustersMax], seed_y [ClustersMax], seed_p [ClustersMax], seed_t [ClustersMax];
-  logic [15:0]   size [ClustersMax];
-  logic signed [7:0] renumber [ClustersMax];
-  logic [ModeBits-1:0] mx, my, mp, mt;
-  logic [15:0]   i;
-  logic [7:0]    c, seeds, count;
-  logic signed [8:0] best;
-  logic [63:0]   best_d2;
+  typedef enum logic [3:0] {StIdle, StRead, StWait, StSeeds, StDecide, StRenumber, StRelabelRead, StRelabelWait,
+                            StRelabelWrite, StDone} state_e;
+  state_e state_q, state_d;
+  // Each cluster's seed (its first mode), size and new number: register files written below.
+  logic [ModeBits-1:0] seed_x_q [ClustersMax], seed_y_q [ClustersMax], seed_p_q [ClustersMax], seed_t_q [ClustersMax];
+  logic [15:0]   size_q [ClustersMax];
+  logic signed [7:0] renumber_q [ClustersMax];
+  logic [ModeBits-1:0] mx_q, mx_d, my_q, my_d, mp_q, mp_d, mt_q, mt_d;   // the mode being merged
+  logic [15:0]   i_q, i_d;
+  logic [7:0]    c_q, c_d, seeds_q, seeds_d, count_q, count_d;
+  logic signed [8:0] best_q, best_d;
+  logic [63:0]   best_d2_q, best_d2_d;
+  logic          done_d, co_we_d;
+  logic [15:0]   co_i_d;
+  logic signed [7:0] co_value_d;
+  logic [7:0]    clusters_d;
 
   // Distance from the mode to seed c: the differences (stage A), then their squared sum (B),
   // each with the seed's index and a valid bit; stage C compares.
-  logic signed [ModeBits:0] ex, ey, ep, et;
-  logic [63:0] d2;
-  logic        a_valid, b_valid;
-  logic [7:0]  a_c, b_c;
+  logic signed [ModeBits:0] ex_q, ey_q, ep_q, et_q;
+  logic [63:0] d2_q;
+  logic        a_valid_q, a_valid_d, b_valid_q, b_valid_d;
+  logic [7:0]  a_c_q, b_c_q;
   always_ff @(posedge clk) begin
-    if (state == S_SEEDS) begin
-      ex <= $signed({1'b0, mx}) - $signed({1'b0, seed_x[ClusterIndexBits'(c)]});
-      ey <= $signed({1'b0, my}) - $signed({1'b0, seed_y[ClusterIndexBits'(c)]});
-      ep <= $signed({1'b0, mp}) - $signed({1'b0, seed_p[ClusterIndexBits'(c)]});
-      et <= $signed({1'b0, mt}) - $signed({1'b0, seed_t[ClusterIndexBits'(c)]});
-      a_c <= c;
-      d2 <= 64'($signed(64'(ex)) * $signed(64'(ex))) + 64'($signed(64'(ey)) * $signed(64'(ey))) +
-            64'($signed(64'(ep)) * $signed(64'(ep))) + 64'($signed(64'(et)) * $signed(64'(et)));
-      b_c <= a_c;
+    if (state_q == StSeeds) begin
+      ex_q <= $signed({1'b0, mx_q}) - $signed({1'b0, seed_x_q[ClusterIndexBits'(c_q)]});
+      ey_q <= $signed({1'b0, my_q}) - $signed({1'b0, seed_y_q[ClusterIndexBits'(c_q)]});
+      ep_q <= $signed({1'b0, mp_q}) - $signed({1'b0, seed_p_q[ClusterIndexBits'(c_q)]});
+      et_q <= $signed({1'b0, mt_q}) - $signed({1'b0, seed_t_q[ClusterIndexBits'(c_q)]});
+      a_c_q <= c_q;
+      d2_q <= 64'($signed(64'(ex_q)) * $signed(64'(ex_q))) + 64'($signed(64'(ey_q)) * $signed(64'(ey_q))) +
+              64'($signed(64'(ep_q)) * $signed(64'(ep_q))) + 64'($signed(64'(et_q)) * $signed(64'(et_q)));
+      b_c_q <= a_c_q;
     end
   end
 
-  assign rd_i = i;
+  assign rd_i = i_q;
+
+  // The cluster the mode joins in StDecide (-1: noise), opening one when it may.
+  logic signed [8:0] joined;
+  logic opens;
+  assign opens = best_q < 0 && seeds_q < cfg_max_clusters && 32'(seeds_q) < ClustersMax;
+  assign joined = opens ? $signed({1'b0, seeds_q}) : best_q;
+
+  always_comb begin
+    state_d = state_q;
+    {mx_d, my_d, mp_d, mt_d} = {mx_q, my_q, mp_q, mt_q};
+    {i_d, c_d, seeds_d, count_d, best_d, best_d2_d} = {i_q, c_q, seeds_q, count_q, best_q, best_d2_q};
+    {a_valid_d, b_valid_d} = {a_valid_q, b_valid_q};
+    {co_i_d, co_value_d, clusters_d} = {co_i, co_value, clusters};
+    {done_d, co_we_d} = '0;
+    case (state_q)
+      StIdle: if (start) begin
+        i_d = '0;
+        seeds_d = '0;
+        state_d = n == 0 ? StRenumber : StRead;
+      end
+      StRead: state_d = StWait;  // rd_i = i is being read
+      StWait: begin
+        {mx_d, my_d, mp_d, mt_d} = {rd_x, rd_y, rd_p, rd_t};
+        best_d = -9'sd1;
+        best_d2_d = '1;
+        c_d = '0;
+        state_d = StSeeds;
+      end
+      StSeeds: begin
+        a_valid_d = c_q < seeds_q;
+        b_valid_d = a_valid_q;
+        if (b_valid_q && d2_q <= cfg_merge_radius2 && d2_q < best_d2_q) begin
+          best_d = $signed({1'b0, b_c_q});
+          best_d2_d = d2_q;
+        end
+        c_d = c_q + 1'b1;
+        if (9'(c_q) >= 9'(seeds_q) + 9'd1) state_d = StDecide;  // the last seed is compared in this clock
+      end
+      StDecide: begin
+        if (opens) seeds_d = seeds_q + 1'b1;
+        co_we_d = 1'b1;
+        co_i_d = i_q;
+        co_value_d = 8'(joined);
+        if (32'(i_q) + 1 < 32'(n)) begin
+          i_d = i_q + 1'b1;
+          state_d = StRead;
+        end else begin
+          c_d = '0;
+          count_d = '0;
+          state_d = StRenumber;
+        end
+      end
+      StRenumber: begin
+        if (c_q >= seeds_q) begin
+          i_d = '0;
+          state_d = n == 0 ? StDone : StRelabelRead;
+        end else begin
+          if (size_q[ClusterIndexBits'(c_q)] >= cfg_min_cluster_size) count_d = count_q + 1'b1;
+          c_d = c_q + 1'b1;
+        end
+      end
+      StRelabelRead: begin
+        co_i_d = i_q;
+        state_d = StRelabelWait;
+      end
+      StRelabelWait: state_d = StRelabelWrite;
+      StRelabelWrite: begin
+        co_we_d = 1'b1;
+        co_value_d = co_rdata >= 0 ? renumber_q[ClusterIndexBits'(co_rdata)] : -8'sd1;
+        if (32'(i_q) + 1 < 32'(n)) begin
+          i_d = i_q + 1'b1;
+          state_d = StRelabelRead;
+        end else begin
+          state_d = StDone;
+        end
+      end
+      StDone: begin
+        clusters_d = count_q;
+        done_d = 1'b1;
+        state_d = StIdle;
+      end
+      default: state_d = StIdle;
+    endcase
+  end
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state <= S_IDLE;
-      done <= 1'b0;
-      clusters <= '0;
-      co_we <= 1'b0;
-      co_i <= '0;
-      co_value <= '0;
-      i <= '0;
-      c <= '0;
-      seeds <= '0;
-      count <= '0;
-      best <= '0;
-      best_d2 <= '0;
-      a_valid <= 1'b0;
-      b_valid <= 1'b0;
-      {mx, my, mp, mt} <= '0;
-      for (int q = 0; q < ClustersMax; q++) begin
-        size[q] <= '0;
-        renumber[q] <= '0;
-        {seed_x[q], seed_y[q], seed_p[q], seed_t[q]} <= '0;
-      end
+      state_q <= StIdle;
+      {mx_q, my_q, mp_q, mt_q} <= '0;
+      {i_q, c_q, seeds_q, count_q, best_q, best_d2_q} <= '0;
+      {a_valid_q, b_valid_q} <= '0;
+      {co_i, co_value, clusters, done, co_we} <= '0;
     end else begin
-      done <= 1'b0;
-      co_we <= 1'b0;
-      case (state)
-        S_IDLE: if (start) begin
-          i <= '0;
-          seeds <= '0;
-          state <= n == 0 ? S_RENUMBER : S_READ;
-        end
-        S_READ: state <= S_WAIT;  // rd_i = i is being read
-        S_WAIT: begin
-          {mx, my, mp, mt} <= {rd_x, rd_y, rd_p, rd_t};
-          best <= -9'sd1;
-          best_d2 <= '1;
-          c <= '0;
-          state <= S_SEEDS;
-        end
-        S_SEEDS: begin
-          a_valid <= c < seeds;
-          b_valid <= a_valid;
-          if (b_valid && d2 <= cfg_merge_radius2 && d2 < best_d2) begin
-            best <= $signed({1'b0, b_c});
-            best_d2 <= d2;
-          end
-          c <= c + 1'b1;
-          if (9'(c) >= 9'(seeds) + 9'd1) state <= S_DECIDE;  // the last seed is compared in this clock
-        end
-        S_DECIDE: begin
-          logic signed [8:0] b;
-          b = best;
-          if (b < 0 && seeds < cfg_max_clusters && 32'(seeds) < ClustersMax) begin
-            b = $signed({1'b0, seeds});
-            seed_x[ClusterIndexBits'(seeds)] <= mx;
-            seed_y[ClusterIndexBits'(seeds)] <= my;
-            seed_p[ClusterIndexBits'(seeds)] <= mp;
-            seed_t[ClusterIndexBits'(seeds)] <= mt;
-            size[ClusterIndexBits'(seeds)] <= 16'd1;
-            seeds <= seeds + 1'b1;
-          end else if (b >= 0) begin
-            size[ClusterIndexBits'(b)] <= size[ClusterIndexBits'(b)] + 1'b1;
-          end
-          co_we <= 1'b1;
-          co_i <= i;
-          co_value <= 8'(b);
-          if (32'(i) + 1 < 32'(n)) begin
-            i <= i + 1'b1;
-            state <= S_READ;
-          end else begin
-            c <= '0;
-            count <= '0;
-            state <= S_RENUMBER;
-          end
-        end
-        S_RENUMBER: begin
-          if (c >= seeds) begin
-            i <= '0;
-            state <= n == 0 ? S_DONE : S_RELABEL_READ;
-          end else begin
-            if (size[ClusterIndexBits'(c)] >= cfg_min_cluster_size) begin
-              renumber[ClusterIndexBits'(c)] <= $signed(count);
-              count <= count + 1'b1;
-            end else begin
-              renumber[ClusterIndexBits'(c)] <= -8'sd1;
-            end
-            c <= c + 1'b1;
-          end
-        end
-        S_RELABEL_READ: begin
-          co_i <= i;
-          state <= S_RELABEL_WAIT;
-        end
-        S_RELABEL_WAIT: state <= S_RELABEL_WRITE;
-        S_RELABEL_WRITE: begin
-          co_we <= 1'b1;
-          co_value <= co_rdata >= 0 ? renumber[ClusterIndexBits'(co_rdata)] : -8'sd1;
-          if (32'(i) + 1 < 32'(n)) begin
-            i <= i + 1'b1;
-            state <= S_RELABEL_READ;
-          end else begin
-            state <= S_DONE;
-          end
-        end
-        S_DONE: begin
-          clusters <= count;
-          done <= 1'b1;
-          state <= S_IDLE;
-        end
-        default: state <= S_IDLE;
-      endcase
+      state_q <= state_d;
+      {mx_q, my_q, mp_q, mt_q} <= {mx_d, my_d, mp_d, mt_d};
+      {i_q, c_q, seeds_q, count_q, best_q, best_d2_q} <= {i_d, c_d, seeds_d, count_d, best_d, best_d2_d};
+      {a_valid_q, b_valid_q} <= {a_valid_d, b_valid_d};
+      {co_i, co_value, clusters, done, co_we} <= {co_i_d, co_value_d, clusters_d, done_d, co_we_d};
+    end
+  end
+
+  // The register files: a new cluster's seed and size, a joined cluster's size, and each
+  // cluster's new number as StRenumber passes it.
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      for (int q = 0; q < ClustersMax; q++) begin
+        size_q[q] <= '0;
+        renumber_q[q] <= '0;
+        {seed_x_q[q], seed_y_q[q], seed_p_q[q], seed_t_q[q]} <= '0;
+      end
+    end else if (state_q == StDecide && opens) begin
+      seed_x_q[ClusterIndexBits'(seeds_q)] <= mx_q;
+      seed_y_q[ClusterIndexBits'(seeds_q)] <= my_q;
+      seed_p_q[ClusterIndexBits'(seeds_q)] <= mp_q;
+      seed_t_q[ClusterIndexBits'(seeds_q)] <= mt_q;
+      size_q[ClusterIndexBits'(seeds_q)] <= 16'd1;
+    end else if (state_q == StDecide && best_q >= 0) begin
+      size_q[ClusterIndexBits'(best_q)] <= size_q[ClusterIndexBits'(best_q)] + 1'b1;
+    end else if (state_q == StRenumber && c_q < seeds_q) begin
+      renumber_q[ClusterIndexBits'(c_q)] <= size_q[ClusterIndexBits'(c_q)] >= cfg_min_cluster_size ? $signed(count_q) : -8'sd1;
     end
   end
 endmodule
