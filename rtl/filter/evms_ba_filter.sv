@@ -54,80 +54,210 @@ module evms_ba_filter #(
   localparam int OwedBits = AddrBits + 1;
 
   logic [TimestampBits-1:0] ram [0:Pixels-1];
-  logic [AddrBits-1:0]      addr;
-  logic               we;
-  logic [TimestampBits-1:0] wdata, rdata;
+  logic [AddrBits-1:0]      addr_q, addr_d;
+  logic               we_q, we_d;
+  logic [TimestampBits-1:0] wdata_q, wdata_d, rdata_q;
   // One port, and no read while writing: the shape of a single-ported RAM whose output holds
-  // during a write (an iCE40 SPRAM, a Xilinx block RAM in NO_CHANGE mode). No state reads
-  // rdata after a write cycle.
+  // during a write (an iCE40 SPRAM, a Xilinx block RAM in NO_CHANGE mode). No state_q reads
+  // rdata_q after a write cycle.
   always_ff @(posedge clk) begin
-    if (we) ram[addr] <= wdata;
-    else rdata <= ram[addr];
+    if (we_q) ram[addr_q] <= wdata_q;
+    else rdata_q <= ram[addr_q];
   end
 
-  typedef enum logic [3:0] {S_CLEAR, S_IDLE, S_READ, S_WRITE, S_SCRUB_READ, S_SCRUB_WAIT, S_SCRUB_DECIDE, S_DONE} state_e;
-  state_e state;
-  logic [AddrBits-1:0] clear_addr, scrub;
+  typedef enum logic [3:0] {StClear, StIdle, StRead, StWrite, StScrubRead, StScrubWait, StScrubDecide, StDone} state_e;
+  state_e state_q, state_d;
+  logic [AddrBits-1:0] clear_addr_q, clear_addr_d, scrub_q, scrub_d;
   // The scrubber: the last judged event's time in 2^SweepLog2 us units, the entries it still
   // owes this event (for time, before the reads; then two after the write), and whether they are
   // the ones before the reads. A whole clear after reset has no event; one after a long gap
   // (started_q) is an event's, whose reads follow it.
-  logic [CrossedBits-1:0] last_sweep_q;
-  logic [OwedBits-1:0]    owed_q;
-  logic                   owed_before_reads_q;
+  logic [CrossedBits-1:0] last_sweep_q, last_sweep_d;
+  logic [OwedBits-1:0]    owed_q, owed_d;
+  logic                   owed_before_reads_q, owed_before_reads_d;
   wire  [CrossedBits-1:0] crossed = CrossedBits'(t >> SweepLog2) - last_sweep_q;
   wire  [OwedBits-1:0]    owed = crossed >= CrossedBits'(Pixels) ? OwedBits'(Pixels) : OwedBits'(crossed);
-  logic [3:0]    k;            // neighbour being addressed (0..8)
-  logic [1:0]    pending_cmp;  // [0]: address registered last cycle; [1]: rdata holds that neighbour
-  logic [3:0]    supporters;   // neighbours that fired within the window, 0..8
-  logic [3:0]    quiet_supporters;  // neighbours that fired within the quiet window, 0..8
+  logic [3:0]    k_q, k_d;            // neighbour being addressed (0..8)
+  logic [1:0]    pending_cmp_q, pending_cmp_d;  // [0]: address registered last cycle; [1]: rdata_q holds that neighbour
+  logic [3:0]    supporters_q, supporters_d;   // neighbours that fired within the window, 0..8
+  logic [3:0]    quiet_supporters_q, quiet_supporters_d;  // neighbours that fired within the quiet window, 0..8
   // The noise check: the current interval, its unsupported events (saturating), and whether
   // the previous interval was noisy.
   localparam int IntervalBits = 17;
   localparam logic [23:0] CountMax = '1;
-  logic                    started_q, noisy_q, quiet_q;
+  logic                    started_q, started_d, noisy_q, noisy_d, quiet_q, quiet_d;
   // The warm-up: the first judged event's time, whether the warm-up still runs, and whether it
   // keeps the event being judged.
-  logic [31:0]             warm_start_q;
-  logic                    warming_q, warm_keep_q;
+  logic [31:0]             warm_start_q, warm_start_d;
+  logic                    warming_q, warming_d, warm_keep_q, warm_keep_d;
   wire                     warm_within = t - warm_start_q < cfg_warm_up;
-  logic [IntervalBits-1:0] interval_q;
-  logic [23:0]             unsupported_q;
+  logic [IntervalBits-1:0] interval_q, interval_d;
+  logic [23:0]             unsupported_q, unsupported_d;
   wire  [IntervalBits-1:0] interval = t[31:15];
-  logic [TimestampBits-1:0] now;
-  wire  [31:0]              age = 32'(TimestampBits'(now - rdata));  // of the neighbour rdata holds
-  logic [15:0]   ex, ey;
+  logic [TimestampBits-1:0] now_q, now_d;
+  wire  [31:0]              age = 32'(TimestampBits'(now_q - rdata_q));  // of the neighbour rdata_q holds
+  logic [15:0]   ex_q, ex_d, ey_q, ey_d;
 
-  // Neighbour k of the event, and whether it is inside the sensor (and not the pixel itself).
-  // k / 3 and k % 3 by comparison: a '/' or '%' here would synthesize a 32-bit divider.
+  // Neighbour k_q of the event, and whether it is inside the sensor (and not the pixel itself).
+  // k_q / 3 and k_q % 3 by comparison: a '/' or '%' here would synthesize a 32-bit divider.
   logic [1:0]         k_row, k_col;
   logic signed [17:0] nx, ny;
   logic               n_inside;
-  assign k_row = k >= 4'd6 ? 2'd2 : (k >= 4'd3 ? 2'd1 : 2'd0);
-  assign k_col = 2'(k - 4'(k_row) * 4'd3);
-  assign nx = $signed({2'b00, ex}) + $signed({16'd0, k_col}) - 18'sd1;
-  assign ny = $signed({2'b00, ey}) + $signed({16'd0, k_row}) - 18'sd1;
-  assign n_inside = k != 4 && nx >= 0 && ny >= 0 && nx < $signed({2'b00, cfg_width}) && ny < $signed({2'b00, cfg_height});
+  assign k_row = k_q >= 4'd6 ? 2'd2 : (k_q >= 4'd3 ? 2'd1 : 2'd0);
+  assign k_col = 2'(k_q - 4'(k_row) * 4'd3);
+  assign nx = $signed({2'b00, ex_q}) + $signed({16'd0, k_col}) - 18'sd1;
+  assign ny = $signed({2'b00, ey_q}) + $signed({16'd0, k_row}) - 18'sd1;
+  assign n_inside = k_q != 4 && nx >= 0 && ny >= 0 && nx < $signed({2'b00, cfg_width}) && ny < $signed({2'b00, cfg_height});
 
-  assign ready = state == S_IDLE;
+  assign ready = state_q == StIdle;
+
+  logic done_d, kept_d;
+  always_comb begin
+    state_d = state_q;
+    clear_addr_d = clear_addr_q;
+    scrub_d = scrub_q;
+    last_sweep_d = last_sweep_q;
+    owed_d = owed_q;
+    owed_before_reads_d = owed_before_reads_q;
+    done_d = 1'b0;
+    kept_d = kept;
+    we_d = 1'b0;
+    addr_d = addr_q;
+    wdata_d = wdata_q;
+    k_d = k_q;
+    pending_cmp_d = pending_cmp_q;
+    supporters_d = supporters_q;
+    quiet_supporters_d = quiet_supporters_q;
+    started_d = started_q;
+    noisy_d = noisy_q;
+    quiet_d = quiet_q;
+    warm_start_d = warm_start_q;
+    warming_d = warming_q;
+    warm_keep_d = warm_keep_q;
+    interval_d = interval_q;
+    unsupported_d = unsupported_q;
+    now_d = now_q;
+    ex_d = ex_q;
+    ey_d = ey_q;
+    case (state_q)
+      StClear: begin
+        we_d = 1'b1;
+        addr_d = clear_addr_q;
+        wdata_d = '0;
+        clear_addr_d = clear_addr_q + 1'b1;
+        if (32'(clear_addr_q) == Pixels - 1) state_d = started_q ? StRead : StIdle;
+      end
+      StIdle: if (start) begin
+        if (!cfg_enabled) begin
+          kept_d = 1'b1;
+          done_d = 1'b1;
+        end else if (x >= cfg_width || y >= cfg_height) begin
+          kept_d = 1'b0;
+          done_d = 1'b1;
+        end else begin
+          ex_d = x;
+          ey_d = y;
+          now_d = TimestampBits'(t >> TimestampShift);
+          k_d = '0;
+          pending_cmp_d = '0;
+          supporters_d = '0;
+          quiet_supporters_d = '0;
+          last_sweep_d = CrossedBits'(t >> SweepLog2);
+          // Scrubbing owed for the time since the last judged event comes before the reads.
+          if (started_q && crossed > ClearCrossings) begin
+            clear_addr_d = '0;
+            state_d = StClear;
+          end else if (started_q && owed != 0) begin
+            owed_d = owed;
+            owed_before_reads_d = 1'b1;
+            state_d = StScrubRead;
+          end else begin
+            state_d = StRead;
+          end
+          // A new interval latches whether the one before it was noisy.
+          if (!started_q) begin
+            started_d = 1'b1;
+            interval_d = interval;
+            warm_start_d = t;
+            warming_d = cfg_warm_up != 0;
+            warm_keep_d = cfg_warm_up != 0;
+          end else begin
+            if (interval != interval_q) begin
+              noisy_d = cfg_noise_count != 0 && interval == interval_q + 1'b1 && unsupported_q >= cfg_noise_count;
+              quiet_d = cfg_quiet_count != 0 && unsupported_q < cfg_quiet_count;
+              interval_d = interval;
+              unsupported_d = '0;
+            end
+            warm_keep_d = warming_q && warm_within;
+            if (!warm_within) warming_d = 1'b0;
+          end
+        end
+      end
+      StRead: begin
+        // Address neighbour k_q (when inside); the RAM answers two cycles later.
+        if (pending_cmp_q[1] && rdata_q != 0 && age <= cfg_window) supporters_d = supporters_q + 1'b1;
+        if (pending_cmp_q[1] && rdata_q != 0 && age <= cfg_quiet_window) quiet_supporters_d = quiet_supporters_q + 1'b1;
+        pending_cmp_d = {pending_cmp_q[0], 1'b0};
+        if (k_q <= 8) begin
+          if (n_inside) begin
+            addr_d = AddrBits'(32'(ny) * MaxWidth + 32'(nx));
+            pending_cmp_d[0] = 1'b1;
+          end
+          k_d = k_q + 1'b1;
+        end else if (pending_cmp_q == 2'b00) begin
+          state_d = StWrite;
+        end
+      end
+      StWrite: begin
+        we_d = 1'b1;
+        addr_d = AddrBits'(32'(ey_q) * MaxWidth + 32'(ex_q));
+        wdata_d = now_q == 0 ? TimestampBits'(1) : now_q;
+        owed_d = OwedBits'(2);
+        owed_before_reads_d = 1'b0;
+        state_d = StScrubRead;
+      end
+      StScrubRead: begin
+        addr_d = scrub_q;
+        state_d = StScrubWait;
+      end
+      StScrubWait: state_d = StScrubDecide;
+      StScrubDecide: begin
+        if (rdata_q != 0 && TimestampBits'(now_q - rdata_q) >= HalfWrap) begin
+          we_d = 1'b1;
+          wdata_d = '0;
+        end
+        scrub_d = 32'(scrub_q) == Pixels - 1 ? '0 : scrub_q + 1'b1;
+        owed_d = owed_q - 1'b1;
+        if (owed_q != 1) state_d = StScrubRead;
+        else state_d = owed_before_reads_q ? StRead : StDone;
+      end
+      StDone: begin
+        kept_d = (quiet_q ? quiet_supporters_q : supporters_q) >= (noisy_q ? 4'd2 : 4'd1) || warm_keep_q;
+        if (supporters_q == 0 && unsupported_q != CountMax) unsupported_d = unsupported_q + 1'b1;
+        done_d = 1'b1;
+        state_d = StIdle;
+      end
+      default: state_d = StIdle;
+    endcase
+  end
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state <= S_CLEAR;
-      clear_addr <= '0;
-      scrub <= '0;
+      state_q <= StClear;
+      clear_addr_q <= '0;
+      scrub_q <= '0;
       last_sweep_q <= '0;
       owed_q <= '0;
       owed_before_reads_q <= 1'b0;
       done <= 1'b0;
       kept <= 1'b0;
-      we <= 1'b0;
-      addr <= '0;
-      wdata <= '0;
-      k <= '0;
-      pending_cmp <= '0;
-      supporters <= '0;
-      quiet_supporters <= '0;
+      we_q <= 1'b0;
+      addr_q <= '0;
+      wdata_q <= '0;
+      k_q <= '0;
+      pending_cmp_q <= '0;
+      supporters_q <= '0;
+      quiet_supporters_q <= '0;
       started_q <= 1'b0;
       noisy_q <= 1'b0;
       quiet_q <= 1'b0;
@@ -136,112 +266,36 @@ module evms_ba_filter #(
       warm_keep_q <= 1'b0;
       interval_q <= '0;
       unsupported_q <= '0;
-      now <= '0;
-      ex <= '0;
-      ey <= '0;
+      now_q <= '0;
+      ex_q <= '0;
+      ey_q <= '0;
     end else begin
-      done <= 1'b0;
-      we <= 1'b0;
-      case (state)
-        S_CLEAR: begin
-          we <= 1'b1;
-          addr <= clear_addr;
-          wdata <= '0;
-          clear_addr <= clear_addr + 1'b1;
-          if (32'(clear_addr) == Pixels - 1) state <= started_q ? S_READ : S_IDLE;
-        end
-        S_IDLE: if (start) begin
-          if (!cfg_enabled) begin
-            kept <= 1'b1;
-            done <= 1'b1;
-          end else if (x >= cfg_width || y >= cfg_height) begin
-            kept <= 1'b0;
-            done <= 1'b1;
-          end else begin
-            ex <= x;
-            ey <= y;
-            now <= TimestampBits'(t >> TimestampShift);
-            k <= '0;
-            pending_cmp <= '0;
-            supporters <= '0;
-            quiet_supporters <= '0;
-            last_sweep_q <= CrossedBits'(t >> SweepLog2);
-            // Scrubbing owed for the time since the last judged event comes before the reads.
-            if (started_q && crossed > ClearCrossings) begin
-              clear_addr <= '0;
-              state <= S_CLEAR;
-            end else if (started_q && owed != 0) begin
-              owed_q <= owed;
-              owed_before_reads_q <= 1'b1;
-              state <= S_SCRUB_READ;
-            end else begin
-              state <= S_READ;
-            end
-            // A new interval latches whether the one before it was noisy.
-            if (!started_q) begin
-              started_q <= 1'b1;
-              interval_q <= interval;
-              warm_start_q <= t;
-              warming_q <= cfg_warm_up != 0;
-              warm_keep_q <= cfg_warm_up != 0;
-            end else begin
-              if (interval != interval_q) begin
-                noisy_q <= cfg_noise_count != 0 && interval == interval_q + 1'b1 && unsupported_q >= cfg_noise_count;
-                quiet_q <= cfg_quiet_count != 0 && unsupported_q < cfg_quiet_count;
-                interval_q <= interval;
-                unsupported_q <= '0;
-              end
-              warm_keep_q <= warming_q && warm_within;
-              if (!warm_within) warming_q <= 1'b0;
-            end
-          end
-        end
-        S_READ: begin
-          // Address neighbour k (when inside); the RAM answers two cycles later.
-          if (pending_cmp[1] && rdata != 0 && age <= cfg_window) supporters <= supporters + 1'b1;
-          if (pending_cmp[1] && rdata != 0 && age <= cfg_quiet_window) quiet_supporters <= quiet_supporters + 1'b1;
-          pending_cmp <= {pending_cmp[0], 1'b0};
-          if (k <= 8) begin
-            if (n_inside) begin
-              addr <= AddrBits'(32'(ny) * MaxWidth + 32'(nx));
-              pending_cmp[0] <= 1'b1;
-            end
-            k <= k + 1'b1;
-          end else if (pending_cmp == 2'b00) begin
-            state <= S_WRITE;
-          end
-        end
-        S_WRITE: begin
-          we <= 1'b1;
-          addr <= AddrBits'(32'(ey) * MaxWidth + 32'(ex));
-          wdata <= now == 0 ? TimestampBits'(1) : now;
-          owed_q <= OwedBits'(2);
-          owed_before_reads_q <= 1'b0;
-          state <= S_SCRUB_READ;
-        end
-        S_SCRUB_READ: begin
-          addr <= scrub;
-          state <= S_SCRUB_WAIT;
-        end
-        S_SCRUB_WAIT: state <= S_SCRUB_DECIDE;
-        S_SCRUB_DECIDE: begin
-          if (rdata != 0 && TimestampBits'(now - rdata) >= HalfWrap) begin
-            we <= 1'b1;
-            wdata <= '0;
-          end
-          scrub <= 32'(scrub) == Pixels - 1 ? '0 : scrub + 1'b1;
-          owed_q <= owed_q - 1'b1;
-          if (owed_q != 1) state <= S_SCRUB_READ;
-          else state <= owed_before_reads_q ? S_READ : S_DONE;
-        end
-        S_DONE: begin
-          kept <= (quiet_q ? quiet_supporters : supporters) >= (noisy_q ? 4'd2 : 4'd1) || warm_keep_q;
-          if (supporters == 0 && unsupported_q != CountMax) unsupported_q <= unsupported_q + 1'b1;
-          done <= 1'b1;
-          state <= S_IDLE;
-        end
-        default: state <= S_IDLE;
-      endcase
+      state_q <= state_d;
+      clear_addr_q <= clear_addr_d;
+      scrub_q <= scrub_d;
+      last_sweep_q <= last_sweep_d;
+      owed_q <= owed_d;
+      owed_before_reads_q <= owed_before_reads_d;
+      done <= done_d;
+      kept <= kept_d;
+      we_q <= we_d;
+      addr_q <= addr_d;
+      wdata_q <= wdata_d;
+      k_q <= k_d;
+      pending_cmp_q <= pending_cmp_d;
+      supporters_q <= supporters_d;
+      quiet_supporters_q <= quiet_supporters_d;
+      started_q <= started_d;
+      noisy_q <= noisy_d;
+      quiet_q <= quiet_d;
+      warm_start_q <= warm_start_d;
+      warming_q <= warming_d;
+      warm_keep_q <= warm_keep_d;
+      interval_q <= interval_d;
+      unsupported_q <= unsupported_d;
+      now_q <= now_d;
+      ex_q <= ex_d;
+      ey_q <= ey_d;
     end
   end
 endmodule
