@@ -57,7 +57,7 @@ module evms_link_tx #(
   `include "evms_link_frames.svh"
   typedef enum logic [2:0] {StIdle, StSync1, StSync2, StType, StLen, StPayload, StCrcLo, StCrcHi} state_e;
   state_e state_q, state_d;
-  // As long as the longest frame's, the status's; each frame's payload_q is zero-extended to it
+  // As long as the longest frame's, the status's; each frame's payload is zero-extended to it
   // by a sized literal (Yosys 0.23 sizes a width cast in a concatenation by its operand).
   localparam int PayloadBits = 352;
   logic [PayloadBits-1:0] payload_q, payload_d;   // the frame's payload, its next byte lowest

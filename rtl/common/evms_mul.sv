@@ -65,7 +65,7 @@ module evms_mul #(
     logic signed [63:0] p_q, p_d;
     assign busy = busy_q;
     assign p = p_q;
-    // acc + |a| * digit(|b|, step), a digit further down, from the top digit down
+    // acc shifted a digit up, plus |a| times |b|'s digit `step`, from the top digit down
     assign acc_next = (acc_q << DigitBits) + mag_a_q * 64'(mag_b_q[63 - (32'(step_q) * DigitBits) -: DigitBits]);
     always_comb begin
       {mag_a_d, mag_b_d, negate_d, acc_d, step_d, busy_d, p_d} = {mag_a_q, mag_b_q, negate_q, acc_q, step_q, busy_q, p_q};

@@ -58,7 +58,7 @@ module evms_ba_filter #(
   logic               we_q, we_d;
   logic [TimestampBits-1:0] wdata_q, wdata_d, rdata_q;
   // One port, and no read while writing: the shape of a single-ported RAM whose output holds
-  // during a write (an iCE40 SPRAM, a Xilinx block RAM in NO_CHANGE mode). No state_q reads
+  // during a write (an iCE40 SPRAM, a Xilinx block RAM in NO_CHANGE mode). No state reads
   // rdata_q after a write cycle.
   always_ff @(posedge clk) begin
     if (we_q) ram[addr_q] <= wdata_q;
