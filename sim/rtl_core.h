@@ -113,7 +113,7 @@ class RtlCore {
     top_->clk = 0;
     top_->eval();
     if (trace_) trace_->dump(ctx_->time());
-    const unsigned state = top_->rootp->evms_core__DOT__state;
+    const unsigned state = top_->rootp->evms_core__DOT__state_q;
     if (state >= hls::kControllerStates) throw std::runtime_error("evms_core entered state " + std::to_string(state) + ", which hls/core/schedule.h does not list");
     if (state != 0) {
       ++state_cycles_[state];

@@ -94,10 +94,10 @@ module evms_core #(
   localparam int PendW = 32 + 16 + 16 + 1 + 16;
   logic [PendW-1:0] pend_mem [PendingDepth];
   logic             pend_we;
-  logic [PendW-1:0] pend_wdata, pend_rdata;
+  logic [PendW-1:0] pend_wdata, pend_rdata_q;
   // The open packet, and each of its events' cluster.
   logic [64:0] pk_mem [PacketMax];
-  logic [64:0] pk_rdata;
+  logic [64:0] pk_rdata_q;
   logic signed [7:0] cluster_of [PacketMax];
 
   // Packet RAM read port (features, centroids) and cluster_of port (merge, centroids, release).
@@ -105,17 +105,17 @@ module evms_core #(
   logic [15:0] rd_pk_x, rd_pk_y;
   logic        rd_pk_p;
   logic [31:0] rd_pk_t;
-  logic signed [7:0] co_rdata;
+  logic signed [7:0] co_rdata_q;
 
   // ---- the event being handled --------------------------------------------------------------
-  logic [31:0] e_t;
-  logic [15:0] e_x, e_y;
-  logic        e_p;
-  logic [31:0] e_climb_x, e_climb_y;
-  logic [PacketCountBits-1:0] n;          // kept events in the packet
-  logic [PendingCountBits-1:0] pend_n;     // events waiting
-  logic [31:0] t_first, t_last;
-  logic        append_after;  // the closing event still has to join the next packet
+  logic [31:0] e_t_q;
+  logic [15:0] e_x_q, e_y_q;
+  logic        e_p_q;
+  logic [31:0] e_climb_x_q, e_climb_y_q;
+  logic [PacketCountBits-1:0] n_q;          // kept events in the packet
+  logic [PendingCountBits-1:0] pend_n_q;     // events waiting
+  logic [31:0] t_first_q, t_last_q;
+  logic        append_after_q;  // the closing event still has to join the next packet
 
   // ---- intake: the filter and the climb features, running ahead in a packet-deep queue ---------
   logic q_valid /*verilator public_flat_rd*/;  // read by the cycle profile (sim/rtl_core.h)
@@ -136,8 +136,8 @@ module evms_core #(
     .q_flush(q_flush), .q_kept(q_kept), .q_climb_x(q_climb_x), .q_climb_y(q_climb_y), .empty(intake_empty));
 
   // ---- shared multiplier and reciprocal -------------------------------------------------------
-  logic feat_mul_start;
-  logic signed [63:0] feat_mul_a, feat_mul_b;
+  logic feat_mul_start_q;
+  logic signed [63:0] feat_mul_a_q, feat_mul_b_q;
   logic mul_start, mul_busy, mul_done;  // consumers wait for done, so busy is only for lint
   logic signed [63:0] mul_a, mul_b, mul_p;
   evms_mul #(.DigitBits(MulDigitBits)) u_mul (
@@ -150,13 +150,13 @@ module evms_core #(
     .clk(clk), .rst_n(rst_n), .start(recip_start), .x(recip_x), .done(recip_done), .r(recip_r), .m(recip_m));
 
   // ---- the Gaussian path: mean shift of every event, then merging of the modes ------------------
-  logic ms_load_we, ms_start, ms_done;
-  logic [15:0] ms_load_i, ms_rd_i;
-  logic [FeatBits-1:0] ms_lx, ms_ly, ms_lp, ms_lt;
+  logic ms_load_we_q, ms_start_q, ms_done;
+  logic [15:0] ms_load_i_q, ms_rd_i;
+  logic [FeatBits-1:0] ms_lx_q, ms_ly_q, ms_lp_q, ms_lt_q;
   logic [7:0] ms_sweeps;
   logic ms_recip_start;
   logic [63:0] ms_recip_x;
-  logic mg_start, mg_done, mg_co_we;
+  logic mg_start_q, mg_done, mg_co_we;
   logic [15:0] mg_rd_i, mg_co_i;
   logic signed [7:0] mg_co_value;
   logic [7:0] mg_clusters;
@@ -167,21 +167,21 @@ module evms_core #(
       .WeightFrac(WeightFrac), .SumFrac(SumFrac), .ExpTableLog2(ExpTableLog2), .ExpInterpBits(ExpInterpBits),
       .RecipFrac(RecipFrac), .ExpTableFile(ExpTableFile)
     ) u_mean_shift (
-      .clk(clk), .rst_n(rst_n), .load_we(ms_load_we), .load_i(ms_load_i), .load_x(ms_lx), .load_y(ms_ly), .load_p(ms_lp),
-      .load_t(ms_lt), .start(ms_start), .n(16'(n)), .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance),
+      .clk(clk), .rst_n(rst_n), .load_we(ms_load_we_q), .load_i(ms_load_i_q), .load_x(ms_lx_q), .load_y(ms_ly_q), .load_p(ms_lp_q),
+      .load_t(ms_lt_q), .start(ms_start_q), .n(16'(n_q)), .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance),
       .done(ms_done), .sweeps(ms_sweeps), .rd_i(ms_rd_i), .rd_x(ms_rx), .rd_y(ms_ry), .rd_p(ms_rp), .rd_t(ms_rt),
       .recip_start(ms_recip_start), .recip_x(ms_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m));
     evms_merge #(.ClustersMax(ClustersMax), .ModeBits(ModeBits)) u_merge (
-      .clk(clk), .rst_n(rst_n), .start(mg_start), .n(16'(n)), .cfg_merge_radius2(cfg_merge_radius2),
+      .clk(clk), .rst_n(rst_n), .start(mg_start_q), .n(16'(n_q)), .cfg_merge_radius2(cfg_merge_radius2),
       .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_max_clusters(cfg_max_clusters), .rd_i(mg_rd_i), .rd_x(ms_rx),
       .rd_y(ms_ry), .rd_p(ms_rp), .rd_t(ms_rt), .co_we(mg_co_we), .co_i(mg_co_i), .co_value(mg_co_value),
-      .co_rdata(co_rdata), .done(mg_done), .clusters(mg_clusters));
+      .co_rdata(co_rdata_q), .done(mg_done), .clusters(mg_clusters));
   end else begin : g_no_gaussian
     assign {ms_done, ms_sweeps, ms_recip_start, ms_recip_x} = '0;
     assign {mg_done, mg_co_we, mg_rd_i, mg_co_i, mg_co_value, mg_clusters} = '0;
     // What only the Gaussian path reads (waived in core/evms_core.vlt).
     logic unused_gaussian_path;
-    assign unused_gaussian_path = ^{ms_load_we, ms_load_i, ms_lx, ms_ly, ms_lp, ms_lt, ms_start, ms_rd_i, mg_start, cfg_merge_radius2[0]};
+    assign unused_gaussian_path = ^{ms_load_we_q, ms_load_i_q, ms_lx_q, ms_ly_q, ms_lp_q, ms_lt_q, ms_start_q, ms_rd_i, mg_start_q, cfg_merge_radius2[0]};
   end
 
   // ---- the seeded path: climbs, links of clusters that touch, clusters kept and warm seeds -------
@@ -189,24 +189,24 @@ module evms_core #(
   // event's pixel (the packet memory) and first mode (the climbs) and leave each mode's
   // representative on rd_root. The warm seeds read an event's feature and linked mode and a
   // mode's position, write each event's cluster, and leave the next packet's seeds in the climbs.
-  logic cl_load_we, cl_start, cl_done;
-  logic [15:0] cl_load_i;
-  logic [31:0] cl_lx, cl_ly;
+  logic cl_load_we_q, cl_start_q, cl_done;
+  logic [15:0] cl_load_i_q;
+  logic [31:0] cl_lx_q, cl_ly_q;
   logic [15:0] cl_mode_count, cl_steps;
   logic [15:0] cl_rd_j;
   logic signed [15:0] cl_rd_mode;
   logic [31:0] cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y;
-  logic lk_ready, lk_start, lk_done;
+  logic lk_ready, lk_start_q, lk_done;
   logic [15:0] lk_ev_j;
   logic [ModeIndexBits-1:0] lk_rd_root;
-  logic ws_start, ws_done, ws_co_we, ws_warm_we;
+  logic ws_start_q, ws_done, ws_co_we, ws_warm_we;
   logic [15:0] ws_ev_j, ws_co_j;
   logic [7:0] ws_md_c, ws_clusters, ws_warm_k;
   logic signed [7:0] ws_co_value;
   logic signed [15:0] ws_ev_mode;
   logic [31:0] ws_warm_x, ws_warm_y;
   logic [63:0] ws_warm_ball2;
-  logic [7:0] warm_count;   // the seeds the last seeded packet left
+  logic [7:0] warm_count_q;   // the seeds the last seeded packet left
   // The links' representative of an event's first mode.
   wire [ModeIndexBits-1:0] first_mode = ModeIndexBits'(cl_rd_mode);
   logic signed [15:0] linked_mode;
@@ -215,7 +215,7 @@ module evms_core #(
   // cfg_split_balance set, runs between the links and the warm seeds: it reads an event's pixel,
   // linked mode and climb features, and the warm seeds then read each event's mode and the moved
   // modes' positions from it.
-  logic sp_ready, sp_start, sp_done, sp_rd_moved;
+  logic sp_ready, sp_start_q, sp_done, sp_rd_moved;
   logic [15:0] sp_ev_j, sp_mode_count;
   logic signed [15:0] sp_rd_mode;
   logic [31:0] sp_rd_mode_x, sp_rd_mode_y;
@@ -233,9 +233,9 @@ module evms_core #(
       .PacketMax(PacketMax), .ModesMax(ModesMax), .GridSide(GridSide), .ReachMax(ReachMax), .IterationsMax(IterationsMax),
       .UnitShift(UnitShift), .CoordBits(32)
     ) u_climbs (
-      .clk(clk), .rst_n(rst_n), .load_we(cl_load_we), .load_i(cl_load_i), .load_x(cl_lx), .load_y(cl_ly),
+      .clk(clk), .rst_n(rst_n), .load_we(cl_load_we_q), .load_i(cl_load_i_q), .load_x(cl_lx_q), .load_y(cl_ly_q),
       .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),
-      .start(cl_start), .n(16'(n)), .warm_count(warm_count), .cfg_warm_start(cfg_warm_start),
+      .start(cl_start_q), .n(16'(n_q)), .warm_count(warm_count_q), .cfg_warm_start(cfg_warm_start),
       .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance), .cfg_merge_radius2(cfg_merge_radius2),
       .done(cl_done), .mode_count(cl_mode_count), .climbs(climbs_unused), .steps(cl_steps), .modes_lost(modes_lost_unused),
       .rd_j(cl_rd_j), .rd_mode(cl_rd_mode), .rd_x(cl_rd_x), .rd_y(cl_rd_y), .rd_c(ws_md_c), .rd_mode_x(cl_rd_mode_x),
@@ -243,14 +243,14 @@ module evms_core #(
     evms_mode_links #(
       .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .PacketMax(PacketMax), .ModesMax(ModesMax), .LinkMax(LinkMax)
     ) u_links (
-      .clk(clk), .rst_n(rst_n), .ready(lk_ready), .start(lk_start), .n(16'(n)), .cfg_link2(cfg_link2),
+      .clk(clk), .rst_n(rst_n), .ready(lk_ready), .start(lk_start_q), .n(16'(n_q)), .cfg_link2(cfg_link2),
       .cfg_sensor_width(cfg_sensor_width), .cfg_sensor_height(cfg_sensor_height), .ev_j(lk_ev_j), .ev_x(rd_pk_x),
       .ev_y(rd_pk_y), .ev_mode(cl_rd_mode), .done(lk_done), .rd_c(first_mode), .rd_root(lk_rd_root));
     evms_warm_seeds #(
       .PacketMax(PacketMax), .ModesMax(ModesMax), .ClustersMax(ClustersMax), .UnitShift(UnitShift), .SpreadFrac(SpreadFrac),
       .CoordBits(32)
     ) u_warm_seeds (
-      .clk(clk), .rst_n(rst_n), .start(ws_start), .n(16'(n)), .mode_count(ws_mode_count),
+      .clk(clk), .rst_n(rst_n), .start(ws_start_q), .n(16'(n_q)), .mode_count(ws_mode_count),
       .cfg_min_cluster_size(cfg_min_cluster_size), .cfg_max_clusters(cfg_max_clusters), .cfg_warm_scale2(cfg_warm_scale2),
       .cfg_warm_ball2_max(cfg_warm_ball2_max), .ev_j(ws_ev_j), .ev_mode(ws_ev_mode), .ev_x(cl_rd_x), .ev_y(cl_rd_y),
       .md_c(ws_md_c), .md_x(ws_md_x), .md_y(ws_md_y), .co_we(ws_co_we), .co_j(ws_co_j), .co_value(ws_co_value),
@@ -264,9 +264,9 @@ module evms_core #(
     assign {ws_warm_x, ws_warm_y, ws_warm_ball2} = '0;
     // What only the seeded path reads (waived in core/evms_core.vlt).
     logic unused_seeded_path;
-    assign unused_seeded_path = ^{cfg_warm_start, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we, cl_load_i, cl_lx, cl_ly,
-                                  cl_start, cl_mode_count, cl_rd_j, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, first_mode, lk_start,
-                                  warm_count, ws_ev_mode, ws_md_c, ws_start, ws_warm_we, ws_warm_k, ws_warm_x, ws_warm_y,
+    assign unused_seeded_path = ^{cfg_warm_start, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we_q, cl_load_i_q, cl_lx_q, cl_ly_q,
+                                  cl_start_q, cl_mode_count, cl_rd_j, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, first_mode, lk_start_q,
+                                  warm_count_q, ws_ev_mode, ws_md_c, ws_start_q, ws_warm_we, ws_warm_k, ws_warm_x, ws_warm_y,
                                   ws_warm_ball2, linked_mode, ws_mode_count, ws_md_x, ws_md_y};
   end
   if (HasSeededPath != 0 && HasPolaritySplit != 0) begin : g_split
@@ -274,7 +274,7 @@ module evms_core #(
       .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .PacketMax(PacketMax), .ModesMax(ModesMax), .CoordBits(32),
       .SplitCellFrac(SplitCellFrac), .SplitFractionFrac(SplitFractionFrac)
     ) u_split (
-      .clk(clk), .rst_n(rst_n), .ready(sp_ready), .start(sp_start), .n(16'(n)), .mode_count(cl_mode_count),
+      .clk(clk), .rst_n(rst_n), .ready(sp_ready), .start(sp_start_q), .n(16'(n_q)), .mode_count(cl_mode_count),
       .cfg_split_min_events(cfg_split_min_events), .cfg_split_balance(cfg_split_balance), .cfg_split_share(cfg_split_share),
       .cfg_split_cell_scale_x(cfg_split_cell_scale_x), .cfg_split_cell_scale_y(cfg_split_cell_scale_y), .ev_j(sp_ev_j),
       .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_p(rd_pk_p), .ev_mode(linked_mode), .ev_fx(cl_rd_x), .ev_fy(cl_rd_y),
@@ -285,7 +285,7 @@ module evms_core #(
     assign sp_ready = 1'b1;
     // What only the polarity split reads (waived in core/evms_core.vlt).
     logic unused_split;
-    assign unused_split = ^{sp_start, cfg_split_share, cfg_split_min_events, cfg_split_cell_scale_x, cfg_split_cell_scale_y};
+    assign unused_split = ^{sp_start_q, cfg_split_share, cfg_split_min_events, cfg_split_cell_scale_x, cfg_split_cell_scale_y};
   end
 
   // The path a packet takes, and its clusters. A build with one path takes it whatever
@@ -296,7 +296,7 @@ module evms_core #(
   assign clusters = seeded ? ws_clusters : mg_clusters;
 
   // ---- centroids --------------------------------------------------------------------------------
-  logic ct_start, ct_done, ct_recip_start, ct_mul_start;
+  logic ct_start_q, ct_done, ct_recip_start, ct_mul_start;
   logic [15:0] ct_rd_i;
   logic [63:0] ct_recip_x;
   logic signed [63:0] ct_mul_a, ct_mul_b;
@@ -307,14 +307,14 @@ module evms_core #(
   evms_centroid #(
     .ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac), .PacketMax(PacketMax), .HasExact(HasSeededPath != 0)
   ) u_centroid (
-    .clk(clk), .rst_n(rst_n), .start(ct_start), .exact(seeded), .n(16'(n)), .clusters(clusters), .t0(t_first), .rd_i(ct_rd_i),
-    .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_cluster(co_rdata), .recip_start(ct_recip_start),
+    .clk(clk), .rst_n(rst_n), .start(ct_start_q), .exact(seeded), .n(16'(n_q)), .clusters(clusters), .t0(t_first_q), .rd_i(ct_rd_i),
+    .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_cluster(co_rdata_q), .recip_start(ct_recip_start),
     .recip_x(ct_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m), .mul_start(ct_mul_start),
     .mul_a(ct_mul_a), .mul_b(ct_mul_b), .mul_done(mul_done), .mul_p(mul_p), .z_c(z_c), .z_t(z_t), .z_x(z_x), .z_y(z_y),
     .z_events(z_events), .z_x_min(z_x_min), .z_y_min(z_y_min), .z_x_max(z_x_max), .z_y_max(z_y_max), .done(ct_done));
 
   // ---- tracker ----------------------------------------------------------------------------------
-  logic tk_start, tk_done, tk_recip_start, tk_mul_start;
+  logic tk_start_q, tk_done, tk_recip_start, tk_mul_start;
   logic [63:0] tk_recip_x;
   logic signed [63:0] tk_mul_a, tk_mul_b;
   logic [7:0] id_c;
@@ -326,7 +326,7 @@ module evms_core #(
     .clk(clk), .rst_n(rst_n), .cfg_gate2(cfg_gate2), .cfg_confirm_hits(cfg_confirm_hits), .cfg_coast_us(cfg_coast_us),
     .cfg_max_tracks(cfg_max_tracks), .cfg_associate_last(cfg_associate_last), .cfg_evict_stale(cfg_evict_stale),
     .cfg_report_tentative(cfg_report_tentative), .cfg_size_ratio_log2(cfg_size_ratio_log2), .cfg_q_third(cfg_q_third), .cfg_q_half(cfg_q_half), .cfg_q(cfg_q), .cfg_r(cfg_r),
-    .cfg_p0_pos(cfg_p0_pos), .cfg_p0_vel(cfg_p0_vel), .start(tk_start), .packet_time(t_last), .m(clusters), .z_c(z_c),
+    .cfg_p0_pos(cfg_p0_pos), .cfg_p0_vel(cfg_p0_vel), .start(tk_start_q), .packet_time(t_last_q), .m(clusters), .z_c(z_c),
     .z_t(z_t), .z_x(z_x), .z_y(z_y), .z_events(z_events), .z_x_min(z_x_min), .z_y_min(z_y_min), .z_x_max(z_x_max),
     .z_y_max(z_y_max), .id_c(id_c), .id_of(id_of), .upd_valid(trk_valid), .upd_ready(trk_ready),
     .upd_t(trk_t), .upd_id(trk_id), .upd_x(trk_x), .upd_y(trk_y), .upd_vx(trk_vx), .upd_vy(trk_vy), .upd_zx(trk_zx),
@@ -337,50 +337,50 @@ module evms_core #(
     .done(tk_done), .tracks_started(stat_tracks_started), .unassigned(stat_unassigned));
 
   // ---- decay for the time feature (the Gaussian path's) -------------------------------------------
-  logic [63:0] decay_u;
+  logic [63:0] decay_u_q;
   logic [WeightFrac:0] decay_w;
   if (HasGaussianPath != 0) begin : g_decay
     evms_exp_lut #(.TableLog2(ExpTableLog2), .WeightFrac(WeightFrac), .InterpBits(ExpInterpBits), .ArgFrac(DecayFrac), .ArgBits(64), .TableFile(ExpTableFile)) u_decay (
-      .clk(clk), .u(decay_u), .w(decay_w));
+      .clk(clk), .u(decay_u_q), .w(decay_w));
   end else begin : g_no_decay
     assign decay_w = '0;
     logic unused_decay;
-    assign unused_decay = ^decay_u;
+    assign unused_decay = ^decay_u_q;
   end
 
   // ---- control ------------------------------------------------------------------------------------
   `include "evms_core_states.svh"
   `include "evms_core_labels.svh"
-  state_e state /*verilator public_flat_rd*/;  // read by the cycle profile (sim/rtl_core.h)
-  logic [15:0] fi;            // feature index
-  logic [PendingCountBits-1:0] ri;          // release index
-  logic [FeatBits-1:0] phi_x, phi_y, phi_p;
-  logic [31:0] rel_t;
-  logic [15:0] rel_x, rel_y;
-  logic        rel_p;
-  logic signed [15:0] rel_idx;
-  logic [15:0] iterations;
+  state_e state_q /*verilator public_flat_rd*/;  // read by the cycle profile (sim/rtl_core.h)
+  logic [15:0] fi_q;            // feature index
+  logic [PendingCountBits-1:0] ri_q;          // release index
+  logic [FeatBits-1:0] phi_x_q, phi_y_q, phi_p_q;
+  logic [31:0] rel_t_q;
+  logic [15:0] rel_x_q, rel_y_q;
+  logic        rel_p_q;
+  logic signed [15:0] rel_idx_q;
+  logic [15:0] iterations_q;
 
   always_ff @(posedge clk) begin
-    if (pend_we) pend_mem[PendingIndexBits'(pend_n)] <= pend_wdata;
-    pend_rdata <= pend_mem[PendingIndexBits'(ri)];
-    if (state == StAppend) pk_mem[PacketIndexBits'(n)] <= {e_x, e_y, e_p, e_t};
-    pk_rdata <= pk_mem[PacketIndexBits'(rd_pk_i)];
+    if (pend_we) pend_mem[PendingIndexBits'(pend_n_q)] <= pend_wdata;
+    pend_rdata_q <= pend_mem[PendingIndexBits'(ri_q)];
+    if (state_q == StAppend) pk_mem[PacketIndexBits'(n_q)] <= {e_x_q, e_y_q, e_p_q, e_t_q};
+    pk_rdata_q <= pk_mem[PacketIndexBits'(rd_pk_i)];
     if (mg_co_we) cluster_of[PacketIndexBits'(mg_co_i)] <= mg_co_value;
     if (ws_co_we) cluster_of[PacketIndexBits'(ws_co_j)] <= ws_co_value;
-    co_rdata <= cluster_of[PacketIndexBits'(co_i)];
+    co_rdata_q <= cluster_of[PacketIndexBits'(co_i)];
   end
-  assign {rd_pk_x, rd_pk_y, rd_pk_p, rd_pk_t} = pk_rdata;
+  assign {rd_pk_x, rd_pk_y, rd_pk_p, rd_pk_t} = pk_rdata_q;
   // Events join the pending queue when the filter rejects them (taken from the intake's queue)
   // or when they join the packet.
   wire take_noise = q_pop && !q_flush && !q_kept;
-  assign pend_we = take_noise || state == StAppend;
-  wire [15:0] append_index = 16'(n);  // named: Yosys 0.23 sizes a cast inside a concatenation by its operand
-  assign pend_wdata = state == StAppend ? {e_t, e_x, e_y, e_p, append_index} : {q_t, q_x, q_y, q_p, 16'hFFFF};
-  assign rd_pk_i = state == StCentroid ? ct_rd_i : (state == StLink ? lk_ev_j : (state == StSplit ? sp_ev_j : fi));
-  assign cl_rd_j = state == StLink ? lk_ev_j : (state == StSplit ? sp_ev_j : ws_ev_j);
-  assign co_i = state == StMerge ? mg_co_i : (state == StCentroid ? ct_rd_i :
-                (state == StReleaseWait ? pend_rdata[15:0] : 16'(rel_idx)));
+  assign pend_we = take_noise || state_q == StAppend;
+  wire [15:0] append_index = 16'(n_q);  // named: Yosys 0.23 sizes a cast inside a concatenation by its operand
+  assign pend_wdata = state_q == StAppend ? {e_t_q, e_x_q, e_y_q, e_p_q, append_index} : {q_t, q_x, q_y, q_p, 16'hFFFF};
+  assign rd_pk_i = state_q == StCentroid ? ct_rd_i : (state_q == StLink ? lk_ev_j : (state_q == StSplit ? sp_ev_j : fi_q));
+  assign cl_rd_j = state_q == StLink ? lk_ev_j : (state_q == StSplit ? sp_ev_j : ws_ev_j);
+  assign co_i = state_q == StMerge ? mg_co_i : (state_q == StCentroid ? ct_rd_i :
+                (state_q == StReleaseWait ? pend_rdata_q[15:0] : 16'(rel_idx_q)));
   assign ms_rd_i = mg_rd_i;
 
   // The shared units belong to one stage at a time.
@@ -390,13 +390,13 @@ module evms_core #(
     mul_b = '0;
     recip_start = 1'b0;
     recip_x = '0;
-    if (state == StCentroid) begin
+    if (state_q == StCentroid) begin
       mul_start = ct_mul_start;
       mul_a = ct_mul_a;
       mul_b = ct_mul_b;
       recip_start = ct_recip_start;
       recip_x = ct_recip_x;
-    end else if (state == StTrack) begin
+    end else if (state_q == StTrack) begin
       mul_start = tk_mul_start;
       mul_a = tk_mul_a;
       mul_b = tk_mul_b;
@@ -404,9 +404,9 @@ module evms_core #(
       recip_x = tk_recip_x;
     end else begin
       // features (the multiplier) and mean shift (the reciprocal)
-      mul_start = feat_mul_start;
-      mul_a = feat_mul_a;
-      mul_b = feat_mul_b;
+      mul_start = feat_mul_start_q;
+      mul_a = feat_mul_a_q;
+      mul_b = feat_mul_b_q;
       recip_start = ms_recip_start;
       recip_x = ms_recip_x;
     end
@@ -419,214 +419,214 @@ module evms_core #(
 
   // The controller takes a decided word from the intake while idle; the links and the polarity
   // split clear their maps after reset (as the filter does, which holds in_ready low meanwhile).
-  assign q_pop = state == StIdle && q_valid && lk_ready && sp_ready;
-  assign idle = in_ready && intake_empty && state == StIdle && lk_ready && sp_ready && pend_n == 0 && !lab_valid && !trk_valid && !pkt_valid;
-  assign id_c = co_rdata >= 0 ? 8'(co_rdata) : 8'd0;
+  assign q_pop = state_q == StIdle && q_valid && lk_ready && sp_ready;
+  assign idle = in_ready && intake_empty && state_q == StIdle && lk_ready && sp_ready && pend_n_q == 0 && !lab_valid && !trk_valid && !pkt_valid;
+  assign id_c = co_rdata_q >= 0 ? 8'(co_rdata_q) : 8'd0;
 
   // Issues a * b on the controller's port of the shared multiplier; the product comes back with mul_done.
-`define EVMS_FEAT_REQUEST(A, B) begin feat_mul_start <= 1'b1; feat_mul_a <= (A); feat_mul_b <= (B); end
+`define EVMS_FEAT_REQUEST(A, B) begin feat_mul_start_q <= 1'b1; feat_mul_a_q <= (A); feat_mul_b_q <= (B); end
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state <= StIdle;
-      {e_t, e_x, e_y, e_p, e_climb_x, e_climb_y} <= '0;
-      n <= '0;
-      pend_n <= '0;
-      t_first <= '0;
-      t_last <= '0;
-      append_after <= 1'b0;
-      fi <= '0;
-      ri <= '0;
-      {phi_x, phi_y, phi_p} <= '0;
-      feat_mul_start <= 1'b0;
-      feat_mul_a <= '0;
-      feat_mul_b <= '0;
-      decay_u <= '0;
-      ms_load_we <= 1'b0;
-      ms_load_i <= '0;
-      {ms_lx, ms_ly, ms_lp, ms_lt} <= '0;
-      ms_start <= 1'b0;
-      mg_start <= 1'b0;
-      cl_load_we <= 1'b0;
-      cl_load_i <= '0;
-      {cl_lx, cl_ly} <= '0;
-      cl_start <= 1'b0;
-      lk_start <= 1'b0;
-      sp_start <= 1'b0;
-      ws_start <= 1'b0;
-      warm_count <= '0;
-      ct_start <= 1'b0;
-      tk_start <= 1'b0;
-      iterations <= '0;
+      state_q <= StIdle;
+      {e_t_q, e_x_q, e_y_q, e_p_q, e_climb_x_q, e_climb_y_q} <= '0;
+      n_q <= '0;
+      pend_n_q <= '0;
+      t_first_q <= '0;
+      t_last_q <= '0;
+      append_after_q <= 1'b0;
+      fi_q <= '0;
+      ri_q <= '0;
+      {phi_x_q, phi_y_q, phi_p_q} <= '0;
+      feat_mul_start_q <= 1'b0;
+      feat_mul_a_q <= '0;
+      feat_mul_b_q <= '0;
+      decay_u_q <= '0;
+      ms_load_we_q <= 1'b0;
+      ms_load_i_q <= '0;
+      {ms_lx_q, ms_ly_q, ms_lp_q, ms_lt_q} <= '0;
+      ms_start_q <= 1'b0;
+      mg_start_q <= 1'b0;
+      cl_load_we_q <= 1'b0;
+      cl_load_i_q <= '0;
+      {cl_lx_q, cl_ly_q} <= '0;
+      cl_start_q <= 1'b0;
+      lk_start_q <= 1'b0;
+      sp_start_q <= 1'b0;
+      ws_start_q <= 1'b0;
+      warm_count_q <= '0;
+      ct_start_q <= 1'b0;
+      tk_start_q <= 1'b0;
+      iterations_q <= '0;
       lab_valid <= 1'b0;
       {lab_t, lab_x, lab_y, lab_p, lab_label} <= '0;
       pkt_valid <= 1'b0;
       {pkt_t_first, pkt_t_last, pkt_events, pkt_clusters, pkt_iterations} <= '0;
-      {rel_t, rel_x, rel_y, rel_p} <= '0;
-      rel_idx <= '0;
+      {rel_t_q, rel_x_q, rel_y_q, rel_p_q} <= '0;
+      rel_idx_q <= '0;
     end else begin
-      feat_mul_start <= 1'b0;
-      ms_load_we <= 1'b0;
-      ms_start <= 1'b0;
-      mg_start <= 1'b0;
-      cl_load_we <= 1'b0;
-      cl_start <= 1'b0;
-      lk_start <= 1'b0;
-      sp_start <= 1'b0;
-      ws_start <= 1'b0;
-      ct_start <= 1'b0;
-      tk_start <= 1'b0;
+      feat_mul_start_q <= 1'b0;
+      ms_load_we_q <= 1'b0;
+      ms_start_q <= 1'b0;
+      mg_start_q <= 1'b0;
+      cl_load_we_q <= 1'b0;
+      cl_start_q <= 1'b0;
+      lk_start_q <= 1'b0;
+      sp_start_q <= 1'b0;
+      ws_start_q <= 1'b0;
+      ct_start_q <= 1'b0;
+      tk_start_q <= 1'b0;
       if (lab_valid && lab_ready) lab_valid <= 1'b0;
       if (pkt_valid && pkt_ready) pkt_valid <= 1'b0;
-      case (state)
+      case (state_q)
         StIdle: if (q_pop) begin
-          {e_t, e_x, e_y, e_p, e_climb_x, e_climb_y} <= {q_t, q_x, q_y, q_p, q_climb_x, q_climb_y};
-          append_after <= 1'b0;
+          {e_t_q, e_x_q, e_y_q, e_p_q, e_climb_x_q, e_climb_y_q} <= {q_t, q_x, q_y, q_p, q_climb_x, q_climb_y};
+          append_after_q <= 1'b0;
           if (q_flush) begin
-            state <= StClose;
+            state_q <= StClose;
           end else if (!q_kept) begin
-            pend_n <= pend_n + 1'b1;
-            if (n == 0 || 32'(pend_n) + 1 == PendingDepth) state <= StClose;
-          end else if (n > 0 && cfg_packet_max_span_us != 0 && q_t - t_first > cfg_packet_max_span_us) begin
-            append_after <= 1'b1;
-            state <= StClose;
+            pend_n_q <= pend_n_q + 1'b1;
+            if (n_q == 0 || 32'(pend_n_q) + 1 == PendingDepth) state_q <= StClose;
+          end else if (n_q > 0 && cfg_packet_max_span_us != 0 && q_t - t_first_q > cfg_packet_max_span_us) begin
+            append_after_q <= 1'b1;
+            state_q <= StClose;
           end else begin
-            state <= StAppend;
+            state_q <= StAppend;
           end
         end
         StAppend: begin
           // The seeded path's climb features, computed by the intake, go to the climbs as the
           // event joins the packet.
-          cl_load_we <= 1'b1;
-          cl_load_i <= 16'(n);
-          cl_lx <= e_climb_x;
-          cl_ly <= e_climb_y;
-          if (n == 0) t_first <= e_t;
-          t_last <= e_t;
-          n <= n + 1'b1;
-          pend_n <= pend_n + 1'b1;
-          append_after <= 1'b0;
-          state <= (32'(n) + 1 >= 32'(cfg_packet_size) || 32'(n) + 1 >= PacketMax || 32'(pend_n) + 1 == PendingDepth)
+          cl_load_we_q <= 1'b1;
+          cl_load_i_q <= 16'(n_q);
+          cl_lx_q <= e_climb_x_q;
+          cl_ly_q <= e_climb_y_q;
+          if (n_q == 0) t_first_q <= e_t_q;
+          t_last_q <= e_t_q;
+          n_q <= n_q + 1'b1;
+          pend_n_q <= pend_n_q + 1'b1;
+          append_after_q <= 1'b0;
+          state_q <= (32'(n_q) + 1 >= 32'(cfg_packet_size) || 32'(n_q) + 1 >= PacketMax || 32'(pend_n_q) + 1 == PendingDepth)
                    ? StClose : StIdle;
         end
         StClose: begin
-          if (n > 0) begin
-            fi <= '0;
-            cl_start <= seeded;
-            state <= seeded ? StClimb : StFeatRead;
+          if (n_q > 0) begin
+            fi_q <= '0;
+            cl_start_q <= seeded;
+            state_q <= seeded ? StClimb : StFeatRead;
           end else begin
-            ri <= '0;
-            state <= pend_n == 0 ? (append_after ? StAppend : StIdle) : StReleaseRead;
+            ri_q <= '0;
+            state_q <= pend_n_q == 0 ? (append_after_q ? StAppend : StIdle) : StReleaseRead;
           end
         end
-        // Features of event fi.
-        StFeatRead: state <= StFeatWait;
+        // Features of event fi_q.
+        StFeatRead: state_q <= StFeatWait;
         StFeatWait: begin
           `EVMS_FEAT_REQUEST($signed(64'(rd_pk_x)), $signed(64'(cfg_scale_x)))
-          state <= StFeatX;
+          state_q <= StFeatX;
         end
         StFeatX: if (mul_done) begin
-          phi_x <= FeatBits'(clamp_feat(evms_round_pkg::shr_rnd(mul_p, CoordScaleFrac - FeatFrac)));
+          phi_x_q <= FeatBits'(clamp_feat(evms_round_pkg::shr_rnd(mul_p, CoordScaleFrac - FeatFrac)));
           `EVMS_FEAT_REQUEST($signed(64'(rd_pk_y)), $signed(64'(cfg_scale_y)))
-          state <= StFeatY;
+          state_q <= StFeatY;
         end
         StFeatY: if (mul_done) begin
           logic [31:0] age, age_clamped;
-          phi_y <= FeatBits'(clamp_feat(evms_round_pkg::shr_rnd(mul_p, CoordScaleFrac - FeatFrac)));
-          phi_p <= rd_pk_p ? FeatBits'(clamp_feat($signed(64'(cfg_phi_on)))) : '0;
-          age = t_last - rd_pk_t;
+          phi_y_q <= FeatBits'(clamp_feat(evms_round_pkg::shr_rnd(mul_p, CoordScaleFrac - FeatFrac)));
+          phi_p_q <= rd_pk_p ? FeatBits'(clamp_feat($signed(64'(cfg_phi_on)))) : '0;
+          age = t_last_q - rd_pk_t;
           age_clamped = age > 32'h7FFFFFFF ? 32'h7FFFFFFF : age;
           `EVMS_FEAT_REQUEST($signed(64'(age_clamped)), $signed(cfg_inv_tau))
-          state <= StFeatAge;
+          state_q <= StFeatAge;
         end
         StFeatAge: if (mul_done) begin
-          decay_u <= mul_p;
-          state <= StFeatDecay1;
+          decay_u_q <= mul_p;
+          state_q <= StFeatDecay1;
         end
-        StFeatDecay1: state <= StFeatDecay2;
-        StFeatDecay2: state <= StFeatT;
+        StFeatDecay1: state_q <= StFeatDecay2;
+        StFeatDecay2: state_q <= StFeatT;
         StFeatT: begin
           `EVMS_FEAT_REQUEST($signed(64'(cfg_phi_t_max)), $signed(64'(decay_w)))
-          state <= StFeatStore;
+          state_q <= StFeatStore;
         end
         StFeatStore: if (mul_done) begin
-          ms_load_we <= 1'b1;
-          ms_load_i <= fi;
-          ms_lx <= phi_x;
-          ms_ly <= phi_y;
-          ms_lp <= phi_p;
-          ms_lt <= FeatBits'(clamp_feat(evms_round_pkg::shr_rnd(mul_p, WeightFrac)));
-          if (32'(fi) + 1 < 32'(n)) begin
-            fi <= fi + 1'b1;
-            state <= StFeatRead;
+          ms_load_we_q <= 1'b1;
+          ms_load_i_q <= fi_q;
+          ms_lx_q <= phi_x_q;
+          ms_ly_q <= phi_y_q;
+          ms_lp_q <= phi_p_q;
+          ms_lt_q <= FeatBits'(clamp_feat(evms_round_pkg::shr_rnd(mul_p, WeightFrac)));
+          if (32'(fi_q) + 1 < 32'(n_q)) begin
+            fi_q <= fi_q + 1'b1;
+            state_q <= StFeatRead;
           end else begin
-            ms_start <= 1'b1;
-            state <= StMeanShift;
+            ms_start_q <= 1'b1;
+            state_q <= StMeanShift;
           end
         end
         StClimb: if (cl_done) begin
-          iterations <= cl_steps;
-          lk_start <= 1'b1;
-          state <= StLink;
+          iterations_q <= cl_steps;
+          lk_start_q <= 1'b1;
+          state_q <= StLink;
         end
         StLink: if (lk_done) begin
-          sp_start <= split_on;
-          ws_start <= !split_on;
-          state <= split_on ? StSplit : StWarm;
+          sp_start_q <= split_on;
+          ws_start_q <= !split_on;
+          state_q <= split_on ? StSplit : StWarm;
         end
         StSplit: if (sp_done) begin
-          ws_start <= 1'b1;
-          state <= StWarm;
+          ws_start_q <= 1'b1;
+          state_q <= StWarm;
         end
         StWarm: if (ws_done) begin
-          warm_count <= ws_clusters;
-          ct_start <= 1'b1;
-          state <= StCentroid;
+          warm_count_q <= ws_clusters;
+          ct_start_q <= 1'b1;
+          state_q <= StCentroid;
         end
         StMeanShift: if (ms_done) begin
-          iterations <= 16'(ms_sweeps);
-          mg_start <= 1'b1;
-          state <= StMerge;
+          iterations_q <= 16'(ms_sweeps);
+          mg_start_q <= 1'b1;
+          state_q <= StMerge;
         end
         StMerge: if (mg_done) begin
-          ct_start <= 1'b1;
-          state <= StCentroid;
+          ct_start_q <= 1'b1;
+          state_q <= StCentroid;
         end
         StCentroid: if (ct_done) begin
-          tk_start <= 1'b1;
-          state <= StTrack;
+          tk_start_q <= 1'b1;
+          state_q <= StTrack;
         end
-        StTrack: if (tk_done) state <= StPacket;
+        StTrack: if (tk_done) state_q <= StPacket;
         StPacket: if (!pkt_valid || pkt_ready) begin
           pkt_valid <= 1'b1;
-          pkt_t_first <= t_first;
-          pkt_t_last <= t_last;
-          pkt_events <= 16'(n);
+          pkt_t_first <= t_first_q;
+          pkt_t_last <= t_last_q;
+          pkt_events <= 16'(n_q);
           pkt_clusters <= clusters;
-          pkt_iterations <= iterations;
-          ri <= '0;
-          state <= StReleaseRead;
+          pkt_iterations <= iterations_q;
+          ri_q <= '0;
+          state_q <= StReleaseRead;
         end
-        // Release pending event ri with its label.
-        StReleaseRead: state <= StReleaseWait;       // pending[ri] is being read
+        // Release pending event ri_q with its label.
+        StReleaseRead: state_q <= StReleaseWait;       // pending[ri_q] is being read
         StReleaseWait: begin                           // ... and cluster_of[its index]
-          {rel_t, rel_x, rel_y, rel_p, rel_idx} <= pend_rdata;
-          state <= StReleaseCluster;
+          {rel_t_q, rel_x_q, rel_y_q, rel_p_q, rel_idx_q} <= pend_rdata_q;
+          state_q <= StReleaseCluster;
         end
-        StReleaseCluster: state <= StReleaseSend;   // ids[cluster] settles
+        StReleaseCluster: state_q <= StReleaseSend;   // ids[cluster] settles
         StReleaseSend: if (!lab_valid || lab_ready) begin
           lab_valid <= 1'b1;
-          {lab_t, lab_x, lab_y, lab_p} <= {rel_t, rel_x, rel_y, rel_p};
-          lab_label <= rel_idx < 0 || co_rdata < 0 ? LabelNoise : id_of;
-          if (32'(ri) + 1 < 32'(pend_n)) begin
-            ri <= ri + 1'b1;
-            state <= StReleaseRead;
+          {lab_t, lab_x, lab_y, lab_p} <= {rel_t_q, rel_x_q, rel_y_q, rel_p_q};
+          lab_label <= rel_idx_q < 0 || co_rdata_q < 0 ? LabelNoise : id_of;
+          if (32'(ri_q) + 1 < 32'(pend_n_q)) begin
+            ri_q <= ri_q + 1'b1;
+            state_q <= StReleaseRead;
           end else begin
-            n <= '0;
-            pend_n <= '0;
-            state <= append_after ? StAppend : StIdle;
+            n_q <= '0;
+            pend_n_q <= '0;
+            state_q <= append_after_q ? StAppend : StIdle;
           end
         end
-        default: state <= StIdle;
+        default: state_q <= StIdle;
       endcase
     end
   end
