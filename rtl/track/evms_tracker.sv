@@ -128,27 +128,27 @@ module evms_tracker #(
   endfunction
 
   // ---- slots ------------------------------------------------------------------------------
-  logic                     s_valid [TracksMax], s_confirmed [TracksMax];
-  logic [7:0]               s_hits [TracksMax];
+  logic                     s_valid_q [TracksMax], s_confirmed_q [TracksMax];
+  logic [7:0]               s_hits_q [TracksMax];
   // Each slot's ID and last time: memories with one write port and combinational reads.
   logic signed [31:0]       s_id [TracksMax];
   logic [31:0]              s_t [TracksMax];
   // Filter state of each slot, one memory per axis: {pos, vel, p00, p01, p11}.
   localparam int KW = 64 + 3 * CovBits;
   logic [KW-1:0]            kal_x [TracksMax], kal_y [TracksMax];
-  logic [TracksMax-1:0]    slot_matched;
-  logic [ClustersMax-1:0]  meas_matched;
+  logic [TracksMax-1:0]    slot_matched_q;
+  logic [ClustersMax-1:0]  meas_matched_q;
   // Each measurement's track ID (memory), where ids_valid says it has one this packet.
   logic signed [31:0]       ids [ClustersMax];
-  logic [ClustersMax-1:0]   ids_valid;
+  logic [ClustersMax-1:0]   ids_valid_q;
   // Each slot's last measurement {x, y} and its event count: memories with one write port and a
   // combinational read.
   logic [63:0]              s_z [TracksMax];
   logic [15:0]              s_events [TracksMax];
-  logic signed [31:0]       next_id;
+  logic signed [31:0]       next_id_q;
 
-  assign id_of = ids_valid[ClusterIndexBits'(id_c)] ? ids[ClusterIndexBits'(id_c)] : -32'sd1;
-  assign tracks_started = 32'(next_id);
+  assign id_of = ids_valid_q[ClusterIndexBits'(id_c)] ? ids[ClusterIndexBits'(id_c)] : -32'sd1;
+  assign tracks_started = 32'(next_id_q);
 
   typedef enum logic [5:0] {
     S_IDLE, S_EXPIRE, S_ROUND, S_SCAN, S_PAIR, S_PAIR_PX, S_PAIR_PY, S_PAIR_DX2, S_PAIR_DY2, S_PAIR_END, S_MATCH,
@@ -156,27 +156,27 @@ module evms_tracker #(
     S_U_RECIP, S_U_K0, S_U_K1, S_U_POS, S_U_VEL, S_U_P00, S_U_P01, S_U_P11, S_AX_END, S_EMIT, S_DROP, S_BIRTH, S_BIRTH_EMIT,
     S_EVICT, S_DONE
   } state_e;
-  state_e state;
+  state_e state_q;
 
-  logic [7:0]  round_n;
-  logic [TrackIndexBits:0] s;         // slot being scanned or updated
-  logic [7:0]  k;         // measurement being scanned or born
-  logic signed [8:0]  best_s;
-  logic [7:0]  best_m;
-  logic [63:0] best_d2, d2;
-  logic signed [63:0] dt, dt2, dt3, dpred, dx;
+  logic [7:0]  round_n_q;
+  logic [TrackIndexBits:0] s_q;         // slot being scanned or updated
+  logic [7:0]  k_q;         // measurement being scanned or born
+  logic signed [8:0]  best_s_q;
+  logic [7:0]  best_m_q;
+  logic [63:0] best_d2_q, d2_q;
+  logic signed [63:0] dt_q, dt2_q, dt3_q, dpred_q, dx_q;
   // The pair's distance per axis: to the slot's last measurement (associate_last; the pair's
   // slot and measurement stay addressed while its distances are squared), or the gated
   // prediction's, chosen after the register and not after the gating distance's carry chain,
   // which is the block's longest path.
   logic signed [63:0] pair_dx, pair_dy;
-  assign pair_dx = cfg_associate_last ? 64'(z_x) - 64'($signed(s_z[si][63:32])) : dx;
-  assign pair_dy = cfg_associate_last ? 64'(z_y) - 64'($signed(s_z[si][31:0])) : dpred;
+  assign pair_dx = cfg_associate_last ? 64'(z_x) - 64'($signed(s_z[si][63:32])) : dx_q;
+  assign pair_dy = cfg_associate_last ? 64'(z_y) - 64'($signed(s_z[si][31:0])) : dpred_q;
   // Eviction: the scan for the stalest unmatched slot has run for this measurement
   // (evict_scanned), and what it found (evict_slot, -1: none; evict_t: its last time).
-  logic               evict_scanned;
-  logic signed [8:0]  evict_slot;
-  logic [31:0]        evict_t;
+  logic               evict_scanned_q;
+  logic signed [8:0]  evict_slot_q;
+  logic [31:0]        evict_t_q;
   // The pair table: {sizes far apart, within the gate, squared distance} of each (slot,
   // measurement), written by the distance pass and read by the rounds' scans (registered read:
   // a pair issued in one clock is compared in the next, scan_pending_q). A pair whose sizes are
@@ -185,25 +185,25 @@ module evms_tracker #(
   logic                    pair_we;
   logic [PairAddrBits-1:0] pair_wa, pair_ra;
   logic [65:0]             pair_wd, pair_rd;
-  logic                    best_far;
+  logic                    best_far_q;
   logic                    scan_pending_q;
   logic [TrackIndexBits-1:0] scan_slot_q;
   logic [7:0]              scan_meas_q;
-  logic        axis;
+  logic        axis_q;
   // Working copy of the axis being filtered.
-  logic signed [63:0] w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e;
-  logic signed [63:0] acc, k0, k1, p00n;
-  logic signed [CovBits-1:0] p01n;
-  logic [RecipFrac:0] rr;
+  logic signed [63:0] w_pos_q, w_vel_q, w_p00_q, w_p01_q, w_p11_q, w_z_q, w_e_q;
+  logic signed [63:0] acc_q, k0_q, k1_q, p00n_q;
+  logic signed [CovBits-1:0] p01n_q;
+  logic [RecipFrac:0] rr_q;
   // Reciprocal::divide for a non-negative numerator: q = p * 2^-shift rounded half up, with
   // shift = RecipFrac + m - GainFrac >= 0. As (p + 2^(s-1)) >> s == ((p >> (s-1)) + 1) >> 1,
   // q = (t + 1) >> 1 with t = {p, 0} >> shift: one shifter by a registered amount, then one add.
-  logic [7:0]  q_shift;
+  logic [7:0]  q_shift_q;
   logic [64:0] q_t;
-  assign q_t = {mul_p, 1'b0} >> q_shift;
+  assign q_t = {mul_p, 1'b0} >> q_shift_q;
 
   logic [TrackIndexBits-1:0] si;
-  assign si = TrackIndexBits'(s);
+  assign si = TrackIndexBits'(s_q);
 
   // The slot being scanned or updated, both axes.
   logic [KW-1:0]             kx, ky;
@@ -212,13 +212,13 @@ module evms_tracker #(
   logic signed [CovBits-1:0] p00_of, p01_of, p11_of;
   assign kx = kal_x[si];
   assign ky = kal_y[si];
-  assign ka = axis ? ky[3*CovBits-1:0] : kx[3*CovBits-1:0];
+  assign ka = axis_q ? ky[3*CovBits-1:0] : kx[3*CovBits-1:0];
   assign pos_of[0] = kx[KW-1 -: 32];
   assign pos_of[1] = ky[KW-1 -: 32];
   assign vel_of[0] = kx[KW-33 -: 32];
   assign vel_of[1] = ky[KW-33 -: 32];
   assign {p00_of, p01_of, p11_of} = ka;
-  assign z_c = state == S_MATCH ? best_m : k;
+  assign z_c = state_q == S_MATCH ? best_m_q : k_q;
 
   function automatic signed [63:0] cov_word(input signed [CovBits-1:0] v);
     begin
@@ -238,45 +238,45 @@ module evms_tracker #(
   // one clock for its product (the multiplier's latency), and its base was written when the
   // state was entered, so the registered choice is the state's own when the product arrives,
   // and the choice's multiplexers are off the path from the product to the step.
-  shift_e             sel_shift, step_shift;
-  bound_e             sel_bound, step_bound;
-  logic               sel_negate, step_negate, step_carry, step_axis;
-  logic signed [63:0] sel_base, step_base, step_half, step_hs, step_sum, step, gate_sum, gate_dist;
-  logic signed [63:0] zp [2];   // z - pos of the pair being gated, per axis
+  shift_e             sel_shift, step_shift_q;
+  bound_e             sel_bound, step_bound_q;
+  logic               sel_negate, step_negate_q, step_carry, step_axis_q;
+  logic signed [63:0] sel_base, step_base_q, step_half, step_hs, step_sum, step, gate_sum, gate_dist;
+  logic signed [63:0] zp_q [2];   // z - pos of the pair being gated, per axis
   always_comb begin
     sel_shift = SH_TICK;
     sel_bound = B_NONE;
     sel_negate = 1'b0;
     sel_base = '0;
-    case (state)
+    case (state_q)
       S_PAIR_PX: begin sel_base = 64'(pos_of[0]); sel_bound = B_POS; end
       S_PAIR_PY: begin sel_base = 64'(pos_of[1]); sel_bound = B_POS; end
       S_DT2:     sel_shift = SH_DT2;
-      S_P_POS:   begin sel_base = w_pos; sel_bound = B_POS; end
-      S_P_P00A:  sel_base = w_p00;
-      S_P_P00B:  begin sel_base = acc; sel_shift = SH_COV; end
+      S_P_POS:   begin sel_base = w_pos_q; sel_bound = B_POS; end
+      S_P_P00A:  sel_base = w_p00_q;
+      S_P_P00B:  begin sel_base = acc_q; sel_shift = SH_COV; end
       S_P_P00C,
-      S_P_P01B:  begin sel_base = acc; sel_shift = SH_NOISE; sel_bound = B_COV; end
-      S_P_P01A:  sel_base = w_p01;
-      S_P_P11:   begin sel_base = w_p11; sel_shift = SH_NOISE_P11; sel_bound = B_COV; end
-      S_U_POS:   begin sel_base = w_pos; sel_shift = SH_GAIN; sel_bound = B_POS; end
-      S_U_VEL:   begin sel_base = w_vel; sel_shift = SH_GAIN; sel_bound = B_POS; end
+      S_P_P01B:  begin sel_base = acc_q; sel_shift = SH_NOISE; sel_bound = B_COV; end
+      S_P_P01A:  sel_base = w_p01_q;
+      S_P_P11:   begin sel_base = w_p11_q; sel_shift = SH_NOISE_P11; sel_bound = B_COV; end
+      S_U_POS:   begin sel_base = w_pos_q; sel_shift = SH_GAIN; sel_bound = B_POS; end
+      S_U_VEL:   begin sel_base = w_vel_q; sel_shift = SH_GAIN; sel_bound = B_POS; end
       S_U_P00,
       S_U_P01:   begin sel_shift = SH_GAIN; sel_bound = B_COV; end
-      S_U_P11:   begin sel_base = w_p11; sel_shift = SH_GAIN; sel_bound = B_COV; sel_negate = 1'b1; end
+      S_U_P11:   begin sel_base = w_p11_q; sel_shift = SH_GAIN; sel_bound = B_COV; sel_negate = 1'b1; end
       default: ;
     endcase
   end
   always_ff @(posedge clk) begin
-    step_shift <= sel_shift;
-    step_bound <= sel_bound;
-    step_negate <= sel_negate;
-    step_base <= sel_base;
-    step_axis <= state != S_PAIR_PX;
+    step_shift_q <= sel_shift;
+    step_bound_q <= sel_bound;
+    step_negate_q <= sel_negate;
+    step_base_q <= sel_base;
+    step_axis_q <= state_q != S_PAIR_PX;
   end
   always_comb begin
     // (p + 2^(s-1)) >> s  ==  ((p >> (s-1)) + 1) >> 1, with one shifter for every s.
-    case (step_shift)
+    case (step_shift_q)
       SH_DT2:       step_half = mul_p >>> (2 * TickLog2 - CovFrac - 1);
       SH_COV:       step_half = mul_p >>> (CovFrac - 1);
       SH_NOISE:     step_half = mul_p >>> (NoiseFrac - 1);
@@ -288,14 +288,14 @@ module evms_tracker #(
     // base - q == base + ~q + 1, so the rounding add and the sum are one carry chain.
     // (a statement of its own: in an expression with the unsigned carry, >>> would be logical)
     step_hs = step_half >>> 1;
-    step_carry = step_negate ^ step_half[0];
-    step_sum = step_base + (step_negate ? ~step_hs : step_hs) + 64'(step_carry);
-    step = step_bound == B_POS ? clamp_ones(step_sum, PosLog2) : step_bound == B_COV ? clamp_ones(step_sum, CovLog2) : step_sum;
+    step_carry = step_negate_q ^ step_half[0];
+    step_sum = step_base_q + (step_negate_q ? ~step_hs : step_hs) + 64'(step_carry);
+    step = step_bound_q == B_POS ? clamp_ones(step_sum, PosLog2) : step_bound_q == B_COV ? clamp_ones(step_sum, CovLog2) : step_sum;
     // The gating distance of the predicted position to the measurement, clamp(z - step): from
     // z - pos (registered when the pair was issued) minus the rounded term, a second carry chain
     // beside the step's rather than after it. When the prediction saturates at +-(2^31 - 1) the
     // distance saturates at -+2^DistLog2, as |z| < 2^(16 + PosFrac) (pixel coordinates).
-    gate_sum = zp[step_axis] + ~step_hs + 64'(!step_carry);   // zp - (hs + carry)
+    gate_sum = zp_q[step_axis_q] + ~step_hs + 64'(!step_carry);   // zp - (hs + carry)
     if (outside_ones(step_sum, PosLog2)) gate_dist = step_sum[63] ? 64'sd1 <<< DistLog2 : -(64'sd1 <<< DistLog2);
     else gate_dist = clamp_pow2(gate_sum, DistLog2);
   end
@@ -305,20 +305,20 @@ module evms_tracker #(
   always_comb begin
     free = -9'sd1;
     for (int q = TracksMax - 1; q >= 0; q--) begin
-      if (!s_valid[q] && q < 32'(cfg_max_tracks)) free = 9'(q);
+      if (!s_valid_q[q] && q < 32'(cfg_max_tracks)) free = 9'(q);
     end
-    birth_slot = free >= 0 ? free : (evict_scanned ? evict_slot : -9'sd1);
+    birth_slot = free >= 0 ? free : (evict_scanned_q ? evict_slot_q : -9'sd1);
   end
   // A birth with no free slot scans for one to evict first.
   logic evict_scan_needed;
-  assign evict_scan_needed = free < 0 && cfg_evict_stale && !evict_scanned;
+  assign evict_scan_needed = free < 0 && cfg_evict_stale && !evict_scanned_q;
 
   // Issues a * b; the product comes back with mul_done.
 `define EVMS_REQUEST(A, B) begin mul_start <= 1'b1; mul_a <= (A); mul_b <= (B); end
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state <= S_IDLE;
+      state_q <= S_IDLE;
       done <= 1'b0;
       upd_valid <= 1'b0;
       {upd_t, upd_id, upd_x, upd_y, upd_vx, upd_vy, upd_zx, upd_zy} <= '0;
@@ -328,281 +328,281 @@ module evms_tracker #(
       mul_start <= 1'b0;
       mul_a <= '0;
       mul_b <= '0;
-      next_id <= '0;
+      next_id_q <= '0;
       unassigned <= '0;
-      slot_matched <= '0;
-      meas_matched <= '0;
-      round_n <= '0;
-      s <= '0;
-      k <= '0;
-      best_s <= '0;
-      best_m <= '0;
-      best_d2 <= '0;
-      best_far <= 1'b0;
-      {d2, dt, dt2, dt3, dpred, dx} <= '0;
-      zp[0] <= '0;
-      zp[1] <= '0;
-      evict_scanned <= 1'b0;
-      evict_slot <= '0;
-      evict_t <= '0;
+      slot_matched_q <= '0;
+      meas_matched_q <= '0;
+      round_n_q <= '0;
+      s_q <= '0;
+      k_q <= '0;
+      best_s_q <= '0;
+      best_m_q <= '0;
+      best_d2_q <= '0;
+      best_far_q <= 1'b0;
+      {d2_q, dt_q, dt2_q, dt3_q, dpred_q, dx_q} <= '0;
+      zp_q[0] <= '0;
+      zp_q[1] <= '0;
+      evict_scanned_q <= 1'b0;
+      evict_slot_q <= '0;
+      evict_t_q <= '0;
       upd_confirmed <= 1'b0;
-      axis <= 1'b0;
-      {w_pos, w_vel, w_p00, w_p01, w_p11, w_z, w_e, acc, k0, k1, p00n, p01n} <= '0;
-      rr <= '0;
-      q_shift <= '0;
+      axis_q <= 1'b0;
+      {w_pos_q, w_vel_q, w_p00_q, w_p01_q, w_p11_q, w_z_q, w_e_q, acc_q, k0_q, k1_q, p00n_q, p01n_q} <= '0;
+      rr_q <= '0;
+      q_shift_q <= '0;
       for (int q = 0; q < TracksMax; q++) begin
-        s_valid[q] <= 1'b0;
-        s_confirmed[q] <= 1'b0;
-        s_hits[q] <= '0;
+        s_valid_q[q] <= 1'b0;
+        s_confirmed_q[q] <= 1'b0;
+        s_hits_q[q] <= '0;
       end
-      ids_valid <= '0;
+      ids_valid_q <= '0;
     end else begin
       done <= 1'b0;
       mul_start <= 1'b0;
       recip_start <= 1'b0;
       if (upd_valid && upd_ready) upd_valid <= 1'b0;
       if (scan_pending_q && pair_rd[64] &&
-          (best_s < 0 || (!pair_rd[65] && best_far) || (pair_rd[65] == best_far && pair_rd[63:0] < best_d2))) begin
-        best_s <= $signed({1'b0, 8'(scan_slot_q)});
-        best_m <= scan_meas_q;
-        best_d2 <= pair_rd[63:0];
-        best_far <= pair_rd[65];
+          (best_s_q < 0 || (!pair_rd[65] && best_far_q) || (pair_rd[65] == best_far_q && pair_rd[63:0] < best_d2_q))) begin
+        best_s_q <= $signed({1'b0, 8'(scan_slot_q)});
+        best_m_q <= scan_meas_q;
+        best_d2_q <= pair_rd[63:0];
+        best_far_q <= pair_rd[65];
       end
-      case (state)
+      case (state_q)
         S_IDLE: if (start) begin
-          s <= '0;
-          state <= S_EXPIRE;
+          s_q <= '0;
+          state_q <= S_EXPIRE;
         end
         // 1. Confirmed (and any) tracks not measured for more than coast_us end.
         S_EXPIRE: begin
-          if (32'(s) >= TracksMax) begin
-            slot_matched <= '0;
-            meas_matched <= '0;
-            ids_valid <= '0;
-            s <= '0;
-            k <= '0;
-            state <= S_PAIR;
+          if (32'(s_q) >= TracksMax) begin
+            slot_matched_q <= '0;
+            meas_matched_q <= '0;
+            ids_valid_q <= '0;
+            s_q <= '0;
+            k_q <= '0;
+            state_q <= S_PAIR;
           end else begin
-            if (s_valid[si] && $signed(packet_time - s_t[si]) > $signed(cfg_coast_us)) s_valid[si] <= 1'b0;
-            s <= s + 1'b1;
+            if (s_valid_q[si] && $signed(packet_time - s_t[si]) > $signed(cfg_coast_us)) s_valid_q[si] <= 1'b0;
+            s_q <= s_q + 1'b1;
           end
         end
         // 2. The distance pass: every live slot's distance to every measurement, into the pair
         // table; to the last measurement (two squares) or to the prediction at the
         // measurement's time (two products first).
         S_PAIR: begin
-          if (32'(s) >= TracksMax) begin
-            round_n <= '0;
-            state <= S_ROUND;
-          end else if (!s_valid[si] || 32'(s) >= 32'(cfg_max_tracks) || k >= m) begin
-            s <= s + 1'b1;
-            k <= '0;
+          if (32'(s_q) >= TracksMax) begin
+            round_n_q <= '0;
+            state_q <= S_ROUND;
+          end else if (!s_valid_q[si] || 32'(s_q) >= 32'(cfg_max_tracks) || k_q >= m) begin
+            s_q <= s_q + 1'b1;
+            k_q <= '0;
           end else if (cfg_associate_last) begin
             `EVMS_REQUEST(pair_dx, pair_dx)
-            state <= S_PAIR_DX2;
+            state_q <= S_PAIR_DX2;
           end else begin
             logic signed [31:0] raw;
             logic signed [63:0] dt_now;
             raw = $signed(z_t - s_t[si]);
             dt_now = raw > 0 ? capped_dt(32'(raw)) : 64'sd0;
-            dt <= dt_now;
-            zp[0] <= 64'(z_x) - 64'(pos_of[0]);
-            zp[1] <= 64'(z_y) - 64'(pos_of[1]);
+            dt_q <= dt_now;
+            zp_q[0] <= 64'(z_x) - 64'(pos_of[0]);
+            zp_q[1] <= 64'(z_y) - 64'(pos_of[1]);
             `EVMS_REQUEST(64'(vel_of[0]), dt_now)
-            state <= S_PAIR_PX;
+            state_q <= S_PAIR_PX;
           end
         end
         S_PAIR_PX: if (mul_done) begin
-          dx <= gate_dist;
-          `EVMS_REQUEST(64'(vel_of[1]), dt)
-          state <= S_PAIR_PY;
+          dx_q <= gate_dist;
+          `EVMS_REQUEST(64'(vel_of[1]), dt_q)
+          state_q <= S_PAIR_PY;
         end
         S_PAIR_PY: if (mul_done) begin
-          dpred <= gate_dist;
+          dpred_q <= gate_dist;
           `EVMS_REQUEST(pair_dx, pair_dx)
-          state <= S_PAIR_DX2;
+          state_q <= S_PAIR_DX2;
         end
         S_PAIR_DX2: if (mul_done) begin
-          d2 <= 64'(mul_p);
+          d2_q <= 64'(mul_p);
           `EVMS_REQUEST(pair_dy, pair_dy)
-          state <= S_PAIR_DY2;
+          state_q <= S_PAIR_DY2;
         end
         S_PAIR_DY2: if (mul_done) begin
           // (the pair table's write port takes d2 + mul_p)
-          k <= k + 1'b1;
-          state <= S_PAIR;
+          k_q <= k_q + 1'b1;
+          state_q <= S_PAIR;
         end
         // 3. Rounds: the nearest remaining pair within the gate, by a scan of the pair table in
         // slot-then-measurement order, so that ties go to the lower slot, then measurement.
         S_ROUND: begin
-          if (32'(round_n) >= ClustersMax) begin
-            s <= '0;
-            state <= S_DROP;
+          if (32'(round_n_q) >= ClustersMax) begin
+            s_q <= '0;
+            state_q <= S_DROP;
           end else begin
-            best_s <= -9'sd1;
-            best_m <= '0;
-            best_d2 <= '0;
-            best_far <= 1'b0;
-            s <= '0;
-            k <= '0;
-            state <= S_SCAN;
+            best_s_q <= -9'sd1;
+            best_m_q <= '0;
+            best_d2_q <= '0;
+            best_far_q <= 1'b0;
+            s_q <= '0;
+            k_q <= '0;
+            state_q <= S_SCAN;
           end
         end
         // A pair is read the clock it is visited and compared the next (scan_pending_q, before
         // this case statement); a slot's last pair is compared in the clock that moves to the
         // next slot, so none is pending at the end.
         S_SCAN: begin
-          if (32'(s) >= TracksMax) begin
-            if (best_s < 0) begin
-              s <= '0;
-              state <= S_DROP;
+          if (32'(s_q) >= TracksMax) begin
+            if (best_s_q < 0) begin
+              s_q <= '0;
+              state_q <= S_DROP;
             end else begin
-              state <= S_MATCH;
+              state_q <= S_MATCH;
             end
-          end else if (!s_valid[si] || slot_matched[si] || 32'(s) >= 32'(cfg_max_tracks) || k >= m) begin
-            s <= s + 1'b1;
-            k <= '0;
+          end else if (!s_valid_q[si] || slot_matched_q[si] || 32'(s_q) >= 32'(cfg_max_tracks) || k_q >= m) begin
+            s_q <= s_q + 1'b1;
+            k_q <= '0;
           end else begin
-            k <= k + 1'b1;
+            k_q <= k_q + 1'b1;
           end
         end
         // 4. The match: predict both axes to the measurement's time, then update them.
         S_MATCH: begin
-          slot_matched[TrackIndexBits'(best_s)] <= 1'b1;
-          meas_matched[ClusterIndexBits'(best_m)] <= 1'b1;
-          s <= (TrackIndexBits+1)'(best_s);
-          k <= best_m;
+          slot_matched_q[TrackIndexBits'(best_s_q)] <= 1'b1;
+          meas_matched_q[ClusterIndexBits'(best_m_q)] <= 1'b1;
+          s_q <= (TrackIndexBits+1)'(best_s_q);
+          k_q <= best_m_q;
           begin
             logic [31:0] raw;
-            raw = z_t - s_t[TrackIndexBits'(best_s)];
-            dt <= capped_dt(raw);
+            raw = z_t - s_t[TrackIndexBits'(best_s_q)];
+            dt_q <= capped_dt(raw);
             `EVMS_REQUEST(capped_dt(raw), capped_dt(raw))
           end
-          state <= S_DT2;
+          state_q <= S_DT2;
         end
         S_DT2: if (mul_done) begin
-          dt2 <= step;
-          `EVMS_REQUEST(step, dt)
-          state <= S_DT3;
+          dt2_q <= step;
+          `EVMS_REQUEST(step, dt_q)
+          state_q <= S_DT3;
         end
         S_DT3: if (mul_done) begin
-          dt3 <= step;
-          axis <= 1'b0;
-          state <= S_AX_BEGIN;
+          dt3_q <= step;
+          axis_q <= 1'b0;
+          state_q <= S_AX_BEGIN;
         end
         S_AX_BEGIN: begin
-          w_pos <= 64'(pos_of[axis]);
-          w_vel <= 64'(vel_of[axis]);
-          w_p00 <= cov_word(p00_of);
-          w_p01 <= cov_word(p01_of);
-          w_p11 <= cov_word(p11_of);
-          w_z <= axis == 0 ? 64'(z_x) : 64'(z_y);
-          `EVMS_REQUEST(64'(vel_of[axis]), dt)
-          state <= S_P_POS;
+          w_pos_q <= 64'(pos_of[axis_q]);
+          w_vel_q <= 64'(vel_of[axis_q]);
+          w_p00_q <= cov_word(p00_of);
+          w_p01_q <= cov_word(p01_of);
+          w_p11_q <= cov_word(p11_of);
+          w_z_q <= axis_q == 0 ? 64'(z_x) : 64'(z_y);
+          `EVMS_REQUEST(64'(vel_of[axis_q]), dt_q)
+          state_q <= S_P_POS;
         end
         // predict: pos += vel dt
         S_P_POS: if (mul_done) begin
-          w_pos <= step;
-          `EVMS_REQUEST(2 * dt, w_p01)
-          state <= S_P_P00A;
+          w_pos_q <= step;
+          `EVMS_REQUEST(2 * dt_q, w_p01_q)
+          state_q <= S_P_P00A;
         end
         S_P_P00A: if (mul_done) begin
-          acc <= step;
-          `EVMS_REQUEST(dt2, w_p11)
-          state <= S_P_P00B;
+          acc_q <= step;
+          `EVMS_REQUEST(dt2_q, w_p11_q)
+          state_q <= S_P_P00B;
         end
         S_P_P00B: if (mul_done) begin
-          acc <= step;
-          `EVMS_REQUEST(cfg_q_third, dt3)
-          state <= S_P_P00C;
+          acc_q <= step;
+          `EVMS_REQUEST(cfg_q_third, dt3_q)
+          state_q <= S_P_P00C;
         end
         S_P_P00C: if (mul_done) begin
-          p00n <= step;
-          `EVMS_REQUEST(dt, w_p11)
-          state <= S_P_P01A;
+          p00n_q <= step;
+          `EVMS_REQUEST(dt_q, w_p11_q)
+          state_q <= S_P_P01A;
         end
         S_P_P01A: if (mul_done) begin
-          acc <= step;
-          `EVMS_REQUEST(cfg_q_half, dt2)
-          state <= S_P_P01B;
+          acc_q <= step;
+          `EVMS_REQUEST(cfg_q_half, dt2_q)
+          state_q <= S_P_P01B;
         end
         S_P_P01B: if (mul_done) begin
-          w_p01 <= step;
-          `EVMS_REQUEST(cfg_q, dt)
-          state <= S_P_P11;
+          w_p01_q <= step;
+          `EVMS_REQUEST(cfg_q, dt_q)
+          state_q <= S_P_P11;
         end
         S_P_P11: if (mul_done) begin
-          w_p11 <= step;
-          w_p00 <= p00n;
+          w_p11_q <= step;
+          w_p00_q <= p00n_q;
           // update: s = p00 + r, through the reciprocal
-          recip_x <= 64'(p00n + cfg_r);
+          recip_x <= 64'(p00n_q + cfg_r);
           recip_start <= 1'b1;
-          state <= S_U_RECIP;
+          state_q <= S_U_RECIP;
         end
         S_U_RECIP: if (recip_done) begin
-          rr <= recip_r;
-          q_shift <= 8'(RecipFrac - GainFrac) + 8'(recip_m);
-          `EVMS_REQUEST(w_p00, 64'(recip_r))
-          state <= S_U_K0;
+          rr_q <= recip_r;
+          q_shift_q <= 8'(RecipFrac - GainFrac) + 8'(recip_m);
+          `EVMS_REQUEST(w_p00_q, 64'(recip_r))
+          state_q <= S_U_K0;
         end
         S_U_K0: if (mul_done) begin
-          k0 <= 64'((q_t + 65'd1) >> 1);
-          `EVMS_REQUEST(w_p01 < 0 ? -w_p01 : w_p01, 64'(rr))
-          state <= S_U_K1;
+          k0_q <= 64'((q_t + 65'd1) >> 1);
+          `EVMS_REQUEST(w_p01_q < 0 ? -w_p01_q : w_p01_q, 64'(rr_q))
+          state_q <= S_U_K1;
         end
         S_U_K1: if (mul_done) begin
           logic [27:0] mag;
           // clamp_sym(+-q, G) == +-min(q, G) for q >= 0; q >= 2^27 exactly when t >= 2^28 - 1,
           // so the add is 28 bits and the negation 29.
           mag = q_t >> 28 != 0 || &q_t[27:0] ? 28'((1 << GainLog2) - 1) : 28'(({1'b0, q_t[27:0]} + 29'd1) >> 1);
-          k1 <= 64'($signed(w_p01 < 0 ? -{1'b0, mag} : {1'b0, mag}));
-          w_e <= w_z - w_pos;
-          `EVMS_REQUEST(k0, w_z - w_pos)
-          state <= S_U_POS;
+          k1_q <= 64'($signed(w_p01_q < 0 ? -{1'b0, mag} : {1'b0, mag}));
+          w_e_q <= w_z_q - w_pos_q;
+          `EVMS_REQUEST(k0_q, w_z_q - w_pos_q)
+          state_q <= S_U_POS;
         end
         S_U_POS: if (mul_done) begin
-          w_pos <= step;
-          `EVMS_REQUEST(k1, clamp_ones(w_e, GainLog2))
-          state <= S_U_VEL;
+          w_pos_q <= step;
+          `EVMS_REQUEST(k1_q, clamp_ones(w_e_q, GainLog2))
+          state_q <= S_U_VEL;
         end
         S_U_VEL: if (mul_done) begin
-          w_vel <= step;
-          `EVMS_REQUEST(cfg_r, k0)
-          state <= S_U_P00;
+          w_vel_q <= step;
+          `EVMS_REQUEST(cfg_r, k0_q)
+          state_q <= S_U_P00;
         end
         S_U_P00: if (mul_done) begin
-          p00n <= step;
-          `EVMS_REQUEST(cfg_r, k1)
-          state <= S_U_P01;
+          p00n_q <= step;
+          `EVMS_REQUEST(cfg_r, k1_q)
+          state_q <= S_U_P01;
         end
         S_U_P01: if (mul_done) begin
-          p01n <= CovBits'(step);
-          `EVMS_REQUEST(k1, w_p01)
-          state <= S_U_P11;
+          p01n_q <= CovBits'(step);
+          `EVMS_REQUEST(k1_q, w_p01_q)
+          state_q <= S_U_P11;
         end
         S_U_P11: if (mul_done) begin
           // (the filter state is written by the memory port below)
-          state <= S_AX_END;
+          state_q <= S_AX_END;
         end
         S_AX_END: begin
-          if (axis == 0) begin
-            axis <= 1'b1;
-            state <= S_AX_BEGIN;
+          if (axis_q == 0) begin
+            axis_q <= 1'b1;
+            state_q <= S_AX_BEGIN;
           end else begin
-            axis <= 1'b0;
-            ids_valid[ClusterIndexBits'(k)] <= 1'b1;
-            if (!s_confirmed[si]) begin
-              s_hits[si] <= s_hits[si] + 1'b1;
-              s_confirmed[si] <= s_hits[si] + 1'b1 >= cfg_confirm_hits;
+            axis_q <= 1'b0;
+            ids_valid_q[ClusterIndexBits'(k_q)] <= 1'b1;
+            if (!s_confirmed_q[si]) begin
+              s_hits_q[si] <= s_hits_q[si] + 1'b1;
+              s_confirmed_q[si] <= s_hits_q[si] + 1'b1 >= cfg_confirm_hits;
             end
-            state <= S_EMIT;
+            state_q <= S_EMIT;
           end
         end
         S_EMIT: begin
           if (!upd_valid || upd_ready) begin
-            if (s_confirmed[si] || cfg_report_tentative) begin
+            if (s_confirmed_q[si] || cfg_report_tentative) begin
               upd_valid <= 1'b1;
-              upd_confirmed <= s_confirmed[si];
+              upd_confirmed <= s_confirmed_q[si];
               upd_t <= z_t;
               upd_id <= s_id[si];
               upd_x <= pos_of[0];
@@ -613,59 +613,59 @@ module evms_tracker #(
               upd_zy <= z_y;
               {upd_events, upd_x_min, upd_y_min, upd_x_max, upd_y_max, upd_var_x, upd_var_y} <= upd_extra;
             end
-            round_n <= round_n + 1'b1;
-            state <= S_ROUND;
+            round_n_q <= round_n_q + 1'b1;
+            state_q <= S_ROUND;
           end
         end
         // 5. Tentative tracks without a match end.
         S_DROP: begin
-          if (32'(s) >= TracksMax) begin
-            k <= '0;
-            state <= S_BIRTH;
+          if (32'(s_q) >= TracksMax) begin
+            k_q <= '0;
+            state_q <= S_BIRTH;
           end else begin
-            if (s_valid[si] && !slot_matched[si] && !s_confirmed[si]) s_valid[si] <= 1'b0;
-            s <= s + 1'b1;
+            if (s_valid_q[si] && !slot_matched_q[si] && !s_confirmed_q[si]) s_valid_q[si] <= 1'b0;
+            s_q <= s_q + 1'b1;
           end
         end
         // 6. Births in the lowest free slots.
         S_BIRTH: begin
-          if (k >= m) begin
-            state <= S_DONE;
-          end else if (meas_matched[ClusterIndexBits'(k)]) begin
-            k <= k + 1'b1;
+          if (k_q >= m) begin
+            state_q <= S_DONE;
+          end else if (meas_matched_q[ClusterIndexBits'(k_q)]) begin
+            k_q <= k_q + 1'b1;
           end else if (evict_scan_needed) begin
-            s <= '0;
-            evict_slot <= -9'sd1;
-            state <= S_EVICT;
+            s_q <= '0;
+            evict_slot_q <= -9'sd1;
+            state_q <= S_EVICT;
           end else begin
-            evict_scanned <= 1'b0;
+            evict_scanned_q <= 1'b0;
             if (birth_slot < 0) begin
               unassigned <= unassigned + 1'b1;
-              k <= k + 1'b1;
+              k_q <= k_q + 1'b1;
             end else begin
               // A slot born (or taken) this packet is matched: a later eviction passes it by.
-              slot_matched[TrackIndexBits'(birth_slot)] <= 1'b1;
-              s_valid[TrackIndexBits'(birth_slot)] <= 1'b1;
-              next_id <= (next_id + 1) & 32'h7FFFFFFF;
-              s_hits[TrackIndexBits'(birth_slot)] <= 8'd1;
-              s_confirmed[TrackIndexBits'(birth_slot)] <= cfg_confirm_hits <= 8'd1;
-              ids_valid[ClusterIndexBits'(k)] <= 1'b1;
-              s <= (TrackIndexBits+1)'(birth_slot);
-              state <= S_BIRTH_EMIT;
+              slot_matched_q[TrackIndexBits'(birth_slot)] <= 1'b1;
+              s_valid_q[TrackIndexBits'(birth_slot)] <= 1'b1;
+              next_id_q <= (next_id_q + 1) & 32'h7FFFFFFF;
+              s_hits_q[TrackIndexBits'(birth_slot)] <= 8'd1;
+              s_confirmed_q[TrackIndexBits'(birth_slot)] <= cfg_confirm_hits <= 8'd1;
+              ids_valid_q[ClusterIndexBits'(k_q)] <= 1'b1;
+              s_q <= (TrackIndexBits+1)'(birth_slot);
+              state_q <= S_BIRTH_EMIT;
             end
           end
         end
         // The unmatched slot measured longest ago (ties to the lower slot), one slot a clock.
         S_EVICT: begin
-          if (32'(s) >= TracksMax) begin
-            evict_scanned <= 1'b1;
-            state <= S_BIRTH;
+          if (32'(s_q) >= TracksMax) begin
+            evict_scanned_q <= 1'b1;
+            state_q <= S_BIRTH;
           end else begin
-            if (32'(s) < 32'(cfg_max_tracks) && !slot_matched[si] && (evict_slot < 0 || $signed(s_t[si] - evict_t) < 0)) begin
-              evict_slot <= $signed({1'b0, 8'(s)});
-              evict_t <= s_t[si];
+            if (32'(s_q) < 32'(cfg_max_tracks) && !slot_matched_q[si] && (evict_slot_q < 0 || $signed(s_t[si] - evict_t_q) < 0)) begin
+              evict_slot_q <= $signed({1'b0, 8'(s_q)});
+              evict_t_q <= s_t[si];
             end
-            s <= s + 1'b1;
+            s_q <= s_q + 1'b1;
           end
         end
         S_BIRTH_EMIT: begin
@@ -683,15 +683,15 @@ module evms_tracker #(
               upd_zy <= z_y;
               {upd_events, upd_x_min, upd_y_min, upd_x_max, upd_y_max, upd_var_x, upd_var_y} <= upd_extra;
             end
-            k <= k + 1'b1;
-            state <= S_BIRTH;
+            k_q <= k_q + 1'b1;
+            state_q <= S_BIRTH;
           end
         end
         S_DONE: if (!upd_valid || upd_ready) begin
           done <= 1'b1;
-          state <= S_IDLE;
+          state_q <= S_IDLE;
         end
-        default: state <= S_IDLE;
+        default: state_q <= S_IDLE;
       endcase
     end
   end
@@ -699,9 +699,9 @@ module evms_tracker #(
 
   // ---- the pair table ------------------------------------------------------------------------
   logic [63:0] pair_d2_new;
-  assign pair_d2_new = d2 + 64'(mul_p);
-  assign pair_we = state == S_PAIR_DY2 && mul_done;
-  assign pair_wa = {si, ClusterIndexBits'(k)};
+  assign pair_d2_new = d2_q + 64'(mul_p);
+  assign pair_we = state_q == S_PAIR_DY2 && mul_done;
+  assign pair_wa = {si, ClusterIndexBits'(k_q)};
   // The pair's event counts differ by more than 2^cfg_size_ratio_log2 times (never when it is 0).
   logic [15:0] events_hi, events_lo;
   logic        pair_far;
@@ -709,7 +709,7 @@ module evms_tracker #(
   assign events_lo = s_events[si] > z_events ? z_events : s_events[si];
   assign pair_far = cfg_size_ratio_log2 != 4'd0 && 32'(events_hi) > (32'(events_lo) << cfg_size_ratio_log2);
   assign pair_wd = {pair_far, pair_d2_new <= cfg_gate2, pair_d2_new};
-  assign pair_ra = {si, ClusterIndexBits'(k)};
+  assign pair_ra = {si, ClusterIndexBits'(k_q)};
   evms_ram_1w1r #(.Width(66), .Depth(1 << PairAddrBits)) u_pair_table (
     .clk, .we(pair_we), .wa(pair_wa), .wd(pair_wd), .ra(pair_ra), .rd(pair_rd)
   );
@@ -719,22 +719,22 @@ module evms_tracker #(
       scan_slot_q <= '0;
       scan_meas_q <= '0;
     end else begin
-      scan_pending_q <= state == S_SCAN && 32'(s) < TracksMax && s_valid[si] && !slot_matched[si] && 32'(s) < 32'(cfg_max_tracks) &&
-                        k < m && !meas_matched[ClusterIndexBits'(k)];
+      scan_pending_q <= state_q == S_SCAN && 32'(s_q) < TracksMax && s_valid_q[si] && !slot_matched_q[si] && 32'(s_q) < 32'(cfg_max_tracks) &&
+                        k_q < m && !meas_matched_q[ClusterIndexBits'(k_q)];
       scan_slot_q <= si;
-      scan_meas_q <= k;
+      scan_meas_q <= k_q;
     end
   end
-  `EVMS_ASSERT("a pending pair is compared while the scan runs", !scan_pending_q || state == S_SCAN, clk, rst_n)
+  `EVMS_ASSERT("a pending pair is compared while the scan runs", !scan_pending_q || state_q == S_SCAN, clk, rst_n)
 
   // ---- the filter-state memories: a birth writes both axes, an update the axis it filtered --
   logic          birth_now, update_now;
   logic [TrackIndexBits-1:0] kal_addr;
   logic [KW-1:0] kal_update;
-  assign birth_now = state == S_BIRTH && k < m && !meas_matched[ClusterIndexBits'(k)] && !evict_scan_needed && birth_slot >= 0;
-  assign update_now = state == S_U_P11 && mul_done;
+  assign birth_now = state_q == S_BIRTH && k_q < m && !meas_matched_q[ClusterIndexBits'(k_q)] && !evict_scan_needed && birth_slot >= 0;
+  assign update_now = state_q == S_U_P11 && mul_done;
   assign kal_addr = birth_now ? TrackIndexBits'(birth_slot) : si;
-  assign kal_update = {32'(w_pos), 32'(w_vel), CovBits'(p00n), p01n, CovBits'(step)};
+  assign kal_update = {32'(w_pos_q), 32'(w_vel_q), CovBits'(p00n_q), p01n_q, CovBits'(step)};
   // A new track's axis: at the measurement, at rest, with the initial covariance.
   function automatic [KW-1:0] born_at(input signed [31:0] z);
     begin
@@ -742,16 +742,16 @@ module evms_tracker #(
     end
   endfunction
   always_ff @(posedge clk) begin
-    if (birth_now || (update_now && !axis)) kal_x[kal_addr] <= birth_now ? born_at(z_x) : kal_update;
-    if (birth_now || (update_now && axis)) kal_y[kal_addr] <= birth_now ? born_at(z_y) : kal_update;
+    if (birth_now || (update_now && !axis_q)) kal_x[kal_addr] <= birth_now ? born_at(z_x) : kal_update;
+    if (birth_now || (update_now && axis_q)) kal_y[kal_addr] <= birth_now ? born_at(z_y) : kal_update;
     // The last measurement and its time: a birth's, or the match's once both axes are filtered;
     // the measurement's track ID: the new track's, or the matched slot's.
-    if (birth_now || (state == S_AX_END && axis)) begin
+    if (birth_now || (state_q == S_AX_END && axis_q)) begin
       s_z[kal_addr] <= {z_x, z_y};
       s_events[kal_addr] <= z_events;
       s_t[kal_addr] <= z_t;
-      ids[ClusterIndexBits'(k)] <= birth_now ? next_id : s_id[si];
+      ids[ClusterIndexBits'(k_q)] <= birth_now ? next_id_q : s_id[si];
     end
-    if (birth_now) s_id[kal_addr] <= next_id;
+    if (birth_now) s_id[kal_addr] <= next_id_q;
   end
 endmodule
