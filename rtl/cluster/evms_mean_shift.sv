@@ -84,17 +84,17 @@ module evms_mean_shift #(
   // Per bank: the original positions (x0, y0), and both buffers of points as {x, y} and {p, t},
   // the buffer index as the top address bit. Each memory has one write port and one registered
   // read port, so that it maps to block RAM.
-  logic cur;  // buffer holding the current points
+  logic cur_q;  // buffer holding the current points
 
   // Writes: loading (into buffer 0 and x0, y0) or the divider's next values.
-  logic          wr_en;
-  logic [15:0]   wr_i;
-  logic [ModeBits-1:0] wr_x, wr_y, wr_p, wr_t;
+  logic          wr_en_q;
+  logic [15:0]   wr_i_q;
+  logic [ModeBits-1:0] wr_x_q, wr_y_q, wr_p_q, wr_t_q;
 
   // Read addresses: lanes read chunk a; a new point reads point i; merging reads rd_i.
   logic [AddrBits:0]   pt_addr, xy_addr;
   logic [ModeBits-1:0] bank_x [Lanes], bank_y [Lanes], bank_p [Lanes], bank_t [Lanes];
-  logic [FeatBits-1:0] m_x0 [Lanes], m_y0 [Lanes];
+  logic [FeatBits-1:0] m_x0_q [Lanes], m_y0_q [Lanes];
   logic [ModeBits-1:0] m_p [Lanes], m_t [Lanes];
 
   for (genvar b = 0; b < Lanes; b++) begin : g_bank
@@ -104,20 +104,20 @@ module evms_mean_shift #(
     logic [2*ModeBits-1:0] pt [2*Depth];
     logic [2*ModeBits-1:0] xy_q, pt_q;
     wire load_here = load_we && bank_of(load_i) == LaneIndexBits'(b);
-    wire next_here = wr_en && bank_of(wr_i) == LaneIndexBits'(b);
+    wire next_here = wr_en_q && bank_of(wr_i_q) == LaneIndexBits'(b);
     always_ff @(posedge clk) begin
       if (load_here) begin
         x0[addr_of(load_i)] <= load_x;
         y0[addr_of(load_i)] <= load_y;
       end
-      m_x0[b] <= x0[AddrBits'(a)];
-      m_y0[b] <= y0[AddrBits'(a)];
+      m_x0_q[b] <= x0[AddrBits'(a_q)];
+      m_y0_q[b] <= y0[AddrBits'(a_q)];
     end
     always_ff @(posedge clk) begin
       if (load_here) begin
         xy[{1'b0, addr_of(load_i)}] <= {ModeBits'(load_x), ModeBits'(load_y)};
       end else if (next_here) begin
-        xy[{~cur, addr_of(wr_i)}] <= {wr_x, wr_y};
+        xy[{~cur_q, addr_of(wr_i_q)}] <= {wr_x_q, wr_y_q};
       end
       xy_q <= xy[xy_addr];
     end
@@ -125,7 +125,7 @@ module evms_mean_shift #(
       if (load_here) begin
         pt[{1'b0, addr_of(load_i)}] <= {ModeBits'(load_p), ModeBits'(load_t)};
       end else if (next_here) begin
-        pt[{~cur, addr_of(wr_i)}] <= {wr_p, wr_t};
+        pt[{~cur_q, addr_of(wr_i_q)}] <= {wr_p_q, wr_t_q};
       end
       pt_q <= pt[pt_addr];
     end
@@ -143,99 +143,99 @@ module evms_mean_shift #(
 
   // ---- control ----------------------------------------------------------------------------
   typedef enum logic [2:0] {S_IDLE, S_POINT, S_ISSUE, S_SWEEP_END, S_DONE} state_e;
-  state_e state;
-  logic [7:0]  k;          // sweep
-  logic [15:0] i;          // point
-  logic [AddrBits:0] a;          // chunk address
-  logic [7:0]  limit;
-  logic [31:0] max_move;
-  logic        sweep_begin;  // pulses when a sweep starts: the divider restarts its largest move
+  state_e state_q;
+  logic [7:0]  k_q;          // sweep
+  logic [15:0] i_q;          // point
+  logic [AddrBits:0] a_q;          // chunk address
+  logic [7:0]  limit_q;
+  logic [31:0] max_move_q;
+  logic        sweep_begin_q;  // pulses when a sweep starts: the divider restarts its largest move
 
   // The point i's current coordinates, read at S_POINT and taken in its first issue clock.
-  logic signed [ModeBits+1:0] xi, yi, pi_, ti;
+  logic signed [ModeBits+1:0] xi_q, yi_q, pi_q, ti_q;
   // The point whose terms drain through the lanes, until its sums go to the divider.
-  logic [15:0]   drain_i;
-  logic [ModeBits-1:0] drain_cur [4];
+  logic [15:0]   drain_i_q;
+  logic [ModeBits-1:0] drain_cur_q [4];
   logic          draining;
   // Clocks until the next point may start: points start R + 10 clocks apart at least, so that
   // the divider has finished the previous point when the next one's sums are in.
   localparam int PointSpacing = 6 + 10;   // evms_recip's latency + the divider's own clocks
-  logic [4:0]    spacing;
+  logic [4:0]    spacing_q;
 
-  assign xy_addr = state == S_POINT ? {cur, addr_of(i)} : {cur, addr_of(rd_i)};
-  assign pt_addr = state == S_POINT ? {cur, addr_of(i)} : (state == S_IDLE ? {cur, addr_of(rd_i)} : {cur, AddrBits'(a)});
+  assign xy_addr = state_q == S_POINT ? {cur_q, addr_of(i_q)} : {cur_q, addr_of(rd_i)};
+  assign pt_addr = state_q == S_POINT ? {cur_q, addr_of(i_q)} : (state_q == S_IDLE ? {cur_q, addr_of(rd_i)} : {cur_q, AddrBits'(a_q)});
 
   // Lane issue: address a, chunk valid per lane.
   logic issue, last_chunk;
-  assign issue = state == S_ISSUE;
-  assign last_chunk = (32'(a) + 1) * Lanes >= 32'(n);
+  assign issue = state_q == S_ISSUE;
+  assign last_chunk = (32'(a_q) + 1) * Lanes >= 32'(n);
   logic [Lanes-1:0] lane_valid_issue;
   always_comb begin
-    for (int l = 0; l < Lanes; l++) lane_valid_issue[l] = issue && (32'(a) * Lanes + l < 32'(n));
+    for (int l = 0; l < Lanes; l++) lane_valid_issue[l] = issue && (32'(a_q) * Lanes + l < 32'(n));
   end
 
   // ---- lanes ------------------------------------------------------------------------------
   // s1: memory data; s2: differences; s3: u; s4..s5: exp; s6: products.
-  logic [Lanes-1:0] v1, v2, v3, v4, v5, v6;
-  logic [ModeBits-1:0] d_x0 [5][Lanes], d_y0 [5][Lanes], d_p [5][Lanes], d_t [5][Lanes];
+  logic [Lanes-1:0] v1_q, v2_q, v3_q, v4_q, v5_q, v6_q;
+  logic [ModeBits-1:0] d_x0_q [5][Lanes], d_y0_q [5][Lanes], d_p_q [5][Lanes], d_t_q [5][Lanes];
   // Differences of two values in [0, 2^ModeBits) fit ModeBits + 1 signed bits: 18 on the Arty build, the
   // widest operand one DSP48E1 squares (19 bits take two).
-  logic signed [ModeBits:0] dx [Lanes], dy [Lanes], dp [Lanes], dtt [Lanes];
-  logic [63:0] u [Lanes];
+  logic signed [ModeBits:0] dx_q [Lanes], dy_q [Lanes], dp_q [Lanes], dtt_q [Lanes];
+  logic [63:0] u_q [Lanes];
   logic [WeightFrac:0] w [Lanes];
-  logic [WeightFrac:0] w6 [Lanes];
-  logic [63:0] px6 [Lanes], py6 [Lanes], pp6 [Lanes], pt6 [Lanes];
-  logic last1, last2, last3, last4, last5, last6;
+  logic [WeightFrac:0] w6_q [Lanes];
+  logic [63:0] px6_q [Lanes], py6_q [Lanes], pp6_q [Lanes], pt6_q [Lanes];
+  logic last1_q, last2_q, last3_q, last4_q, last5_q, last6_q;
 
   for (genvar l = 0; l < Lanes; l++) begin : g_lane
     always_ff @(posedge clk) begin
-      dx[l]  <= (ModeBits+1)'(xi - $signed({2'b0, m_x0[l]}));
-      dy[l]  <= (ModeBits+1)'(yi - $signed({2'b0, m_y0[l]}));
-      dp[l]  <= (ModeBits+1)'(pi_ - $signed({1'b0, m_p[l]}));
-      dtt[l] <= (ModeBits+1)'(ti - $signed({1'b0, m_t[l]}));
+      dx_q[l]  <= (ModeBits+1)'(xi_q - $signed({2'b0, m_x0_q[l]}));
+      dy_q[l]  <= (ModeBits+1)'(yi_q - $signed({2'b0, m_y0_q[l]}));
+      dp_q[l]  <= (ModeBits+1)'(pi_q - $signed({1'b0, m_p[l]}));
+      dtt_q[l] <= (ModeBits+1)'(ti_q - $signed({1'b0, m_t[l]}));
       // Operands widen before they multiply: a cast of a product would keep its narrow width.
-      u[l] <= 64'($signed(64'(dx[l])) * $signed(64'(dx[l]))) + 64'($signed(64'(dy[l])) * $signed(64'(dy[l]))) +
-              64'($signed(64'(dp[l])) * $signed(64'(dp[l]))) + 64'($signed(64'(dtt[l])) * $signed(64'(dtt[l])));
-      w6[l] <= v5[l] ? w[l] : '0;
-      px6[l] <= (64'(w[l]) * 64'(d_x0[3][l])) >> ProductShift;
-      py6[l] <= (64'(w[l]) * 64'(d_y0[3][l])) >> ProductShift;
-      pp6[l] <= (64'(w[l]) * 64'(d_p[3][l])) >> ProductShift;
-      pt6[l] <= (64'(w[l]) * 64'(d_t[3][l])) >> ProductShift;
+      u_q[l] <= 64'($signed(64'(dx_q[l])) * $signed(64'(dx_q[l]))) + 64'($signed(64'(dy_q[l])) * $signed(64'(dy_q[l]))) +
+              64'($signed(64'(dp_q[l])) * $signed(64'(dp_q[l]))) + 64'($signed(64'(dtt_q[l])) * $signed(64'(dtt_q[l])));
+      w6_q[l] <= v5_q[l] ? w[l] : '0;
+      px6_q[l] <= (64'(w[l]) * 64'(d_x0_q[3][l])) >> ProductShift;
+      py6_q[l] <= (64'(w[l]) * 64'(d_y0_q[3][l])) >> ProductShift;
+      pp6_q[l] <= (64'(w[l]) * 64'(d_p_q[3][l])) >> ProductShift;
+      pt6_q[l] <= (64'(w[l]) * 64'(d_t_q[3][l])) >> ProductShift;
     end
     // The lane's point, carried along to the product stage.
     always_ff @(posedge clk) begin
-      d_x0[0][l] <= ModeBits'(m_x0[l]);
-      d_y0[0][l] <= ModeBits'(m_y0[l]);
-      d_p[0][l] <= m_p[l];
-      d_t[0][l] <= m_t[l];
+      d_x0_q[0][l] <= ModeBits'(m_x0_q[l]);
+      d_y0_q[0][l] <= ModeBits'(m_y0_q[l]);
+      d_p_q[0][l] <= m_p[l];
+      d_t_q[0][l] <= m_t[l];
       for (int s = 1; s < 5; s++) begin
-        d_x0[s][l] <= d_x0[s-1][l];
-        d_y0[s][l] <= d_y0[s-1][l];
-        d_p[s][l] <= d_p[s-1][l];
-        d_t[s][l] <= d_t[s-1][l];
+        d_x0_q[s][l] <= d_x0_q[s-1][l];
+        d_y0_q[s][l] <= d_y0_q[s-1][l];
+        d_p_q[s][l] <= d_p_q[s-1][l];
+        d_t_q[s][l] <= d_t_q[s-1][l];
       end
     end
     evms_exp_lut #(.TableLog2(ExpTableLog2), .WeightFrac(WeightFrac), .InterpBits(ExpInterpBits), .ArgFrac(DistFrac), .ArgBits(64), .TableFile(ExpTableFile))
-      u_exp (.clk(clk), .u(u[l]), .w(w[l]));
+      u_exp (.clk(clk), .u(u_q[l]), .w(w[l]));
   end
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      {v1, v2, v3, v4, v5, v6} <= '0;
-      {last1, last2, last3, last4, last5, last6} <= '0;
+      {v1_q, v2_q, v3_q, v4_q, v5_q, v6_q} <= '0;
+      {last1_q, last2_q, last3_q, last4_q, last5_q, last6_q} <= '0;
     end else begin
-      v1 <= lane_valid_issue;
-      v2 <= v1;
-      v3 <= v2;
-      v4 <= v3;
-      v5 <= v4;
-      v6 <= v5;
-      last1 <= issue && last_chunk;
-      last2 <= last1;
-      last3 <= last2;
-      last4 <= last3;
-      last5 <= last4;
-      last6 <= last5;
+      v1_q <= lane_valid_issue;
+      v2_q <= v1_q;
+      v3_q <= v2_q;
+      v4_q <= v3_q;
+      v5_q <= v4_q;
+      v6_q <= v5_q;
+      last1_q <= issue && last_chunk;
+      last2_q <= last1_q;
+      last3_q <= last2_q;
+      last4_q <= last3_q;
+      last5_q <= last4_q;
+      last6_q <= last5_q;
     end
   end
 
@@ -243,14 +243,14 @@ module evms_mean_shift #(
   // the lanes' valid terms, then the running sums. Node k of the tree sums nodes 2k and 2k + 1;
   // the lanes are the leaves P .. 2P - 1, and node 1 is the total, one per quantity (w, x, y,
   // p, t).
-  logic [63:0] sw, sx, sy, sp, st;
-  logic        sums_ready;
+  logic [63:0] sw_q, sx_q, sy_q, sp_q, st_q;
+  logic        sums_ready_q;
   // A point's terms are in the lanes from its last issue until its sums are handed off.
-  assign draining = last1 | last2 | last3 | last4 | last5 | last6 | sums_ready;
+  assign draining = last1_q | last2_q | last3_q | last4_q | last5_q | last6_q | sums_ready_q;
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      {sw, sx, sy, sp, st} <= '0;
-      sums_ready <= 1'b0;
+      {sw_q, sx_q, sy_q, sp_q, st_q} <= '0;
+      sums_ready_q <= 1'b0;
     end else begin
       // node k's five sums are bits [320 k +: 320] (a flat vector: Yosys takes no multi-dimensional
       // variable declared in a block)
@@ -258,7 +258,7 @@ module evms_mean_shift #(
       logic [63:0] aw, ax, ay, ap, at;
       lane_tree = '0;
       for (int l = 0; l < Lanes; l++)
-        if (v6[l]) lane_tree[320*(Lanes + l) +: 320] = {64'(w6[l]), px6[l], py6[l], pp6[l], pt6[l]};
+        if (v6_q[l]) lane_tree[320*(Lanes + l) +: 320] = {64'(w6_q[l]), px6_q[l], py6_q[l], pp6_q[l], pt6_q[l]};
       for (int node = Lanes - 1; node >= 1; node--)
         for (int q = 0; q < 5; q++)
           lane_tree[320*node + 64*q +: 64] = lane_tree[640*node + 64*q +: 64] + lane_tree[640*node + 320 + 64*q +: 64];
@@ -266,33 +266,33 @@ module evms_mean_shift #(
       // A point's sums are complete the clock after its last terms (last6); they go to the
       // divider in that clock and the next point's sums start from zero (its first terms
       // arrive a clock later at the earliest).
-      sw <= (sums_ready ? 64'd0 : sw) + aw;
-      sx <= (sums_ready ? 64'd0 : sx) + ax;
-      sy <= (sums_ready ? 64'd0 : sy) + ay;
-      sp <= (sums_ready ? 64'd0 : sp) + ap;
-      st <= (sums_ready ? 64'd0 : st) + at;
-      sums_ready <= last6;
+      sw_q <= (sums_ready_q ? 64'd0 : sw_q) + aw;
+      sx_q <= (sums_ready_q ? 64'd0 : sx_q) + ax;
+      sy_q <= (sums_ready_q ? 64'd0 : sy_q) + ay;
+      sp_q <= (sums_ready_q ? 64'd0 : sp_q) + ap;
+      st_q <= (sums_ready_q ? 64'd0 : st_q) + at;
+      sums_ready_q <= last6_q;
     end
   end
 
   // ---- divider: next = sums / sw, rounded; moves ------------------------------------------
-  logic        job_valid, job_busy;
-  logic [15:0] job_i;
-  logic [63:0] job_sw, job_s [4];
-  logic [ModeBits-1:0] job_cur [4];
-  logic [2:0]  job_dim;
-  logic [ModeBits-1:0] job_next [4];
+  logic        job_valid_q, job_busy_q;
+  logic [15:0] job_i_q;
+  logic [63:0] job_sw_q, job_s_q [4];
+  logic [ModeBits-1:0] job_cur_q [4];
+  logic [2:0]  job_dim_q;
+  logic [ModeBits-1:0] job_next_q [4];
   typedef enum logic [2:0] {D_IDLE, D_RECIP, D_QUOT, D_WRITE} dstate_e;
-  dstate_e dstate;
+  dstate_e dstate_q;
 
-  assign recip_x = job_sw;
+  assign recip_x = job_sw_q;
 
   // The quotients are a three-clock pipeline, one dimension a clock, so that no clock holds
   // more than one multiply or one wide add: the sum's four 16-bit digits times r (one DSP
   // each), their sum (the low 64 bits of sum * r) into quot_p, then the rounding shift (by at
   // least one bit: QuotientFrac <= RecipFrac).
-  logic [RecipFrac+16:0] quot_pp [4];
-  logic [63:0] quot_p;
+  logic [RecipFrac+16:0] quot_pp_q [4];
+  logic [63:0] quot_p_q;
   logic [6:0]  quot_shift;
   assign quot_shift = 7'(RecipFrac) + recip_m - 7'(QuotientFrac);
 
@@ -309,55 +309,55 @@ module evms_mean_shift #(
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      dstate <= D_IDLE;
-      job_busy <= 1'b0;
+      dstate_q <= D_IDLE;
+      job_busy_q <= 1'b0;
       recip_start <= 1'b0;
-      job_dim <= '0;
-      quot_p <= '0;
-      for (int g = 0; g < 4; g++) quot_pp[g] <= '0;
-      wr_en <= 1'b0;
-      wr_i <= '0;
-      {wr_x, wr_y, wr_p, wr_t} <= '0;
-      max_move <= '0;
-      for (int d = 0; d < 4; d++) job_next[d] <= '0;
+      job_dim_q <= '0;
+      quot_p_q <= '0;
+      for (int g = 0; g < 4; g++) quot_pp_q[g] <= '0;
+      wr_en_q <= 1'b0;
+      wr_i_q <= '0;
+      {wr_x_q, wr_y_q, wr_p_q, wr_t_q} <= '0;
+      max_move_q <= '0;
+      for (int d = 0; d < 4; d++) job_next_q[d] <= '0;
     end else begin
       recip_start <= 1'b0;
-      wr_en <= 1'b0;
-      if (sweep_begin) max_move <= '0;
-      case (dstate)
-        D_IDLE: if (job_valid) begin
-          job_busy <= 1'b1;
-          if (job_sw == 0) begin
-            for (int d = 0; d < 4; d++) job_next[d] <= job_cur[d];
-            dstate <= D_WRITE;
+      wr_en_q <= 1'b0;
+      if (sweep_begin_q) max_move_q <= '0;
+      case (dstate_q)
+        D_IDLE: if (job_valid_q) begin
+          job_busy_q <= 1'b1;
+          if (job_sw_q == 0) begin
+            for (int d = 0; d < 4; d++) job_next_q[d] <= job_cur_q[d];
+            dstate_q <= D_WRITE;
           end else begin
             recip_start <= 1'b1;
-            dstate <= D_RECIP;
+            dstate_q <= D_RECIP;
           end
         end
         D_RECIP: if (recip_done) begin
-          job_dim <= '0;
-          dstate <= D_QUOT;
+          job_dim_q <= '0;
+          dstate_q <= D_QUOT;
         end
         D_QUOT: begin
-          if (job_dim < 4)
-            for (int g = 0; g < 4; g++) quot_pp[g] <= (RecipFrac+17)'(job_s[job_dim[1:0]][16*g +: 16]) * (RecipFrac+17)'(recip_r);
-          if (job_dim >= 1 && job_dim <= 4)
-            quot_p <= 64'(quot_pp[0]) + (64'(quot_pp[1]) << 16) + (64'(quot_pp[2]) << 32) + (64'(quot_pp[3]) << 48);
-          if (job_dim >= 2) job_next[2'(job_dim - 3'd2)] <= ModeBits'(evms_round_pkg::round_shift(quot_p, quot_shift - 7'd1));
-          if (job_dim >= 3) max_move <= larger_move(max_move, job_next[2'(job_dim - 3'd3)], job_cur[2'(job_dim - 3'd3)]);
-          job_dim <= job_dim + 1'b1;
-          if (job_dim == 5) dstate <= D_WRITE;
+          if (job_dim_q < 4)
+            for (int g = 0; g < 4; g++) quot_pp_q[g] <= (RecipFrac+17)'(job_s_q[job_dim_q[1:0]][16*g +: 16]) * (RecipFrac+17)'(recip_r);
+          if (job_dim_q >= 1 && job_dim_q <= 4)
+            quot_p_q <= 64'(quot_pp_q[0]) + (64'(quot_pp_q[1]) << 16) + (64'(quot_pp_q[2]) << 32) + (64'(quot_pp_q[3]) << 48);
+          if (job_dim_q >= 2) job_next_q[2'(job_dim_q - 3'd2)] <= ModeBits'(evms_round_pkg::round_shift(quot_p_q, quot_shift - 7'd1));
+          if (job_dim_q >= 3) max_move_q <= larger_move(max_move_q, job_next_q[2'(job_dim_q - 3'd3)], job_cur_q[2'(job_dim_q - 3'd3)]);
+          job_dim_q <= job_dim_q + 1'b1;
+          if (job_dim_q == 5) dstate_q <= D_WRITE;
         end
         D_WRITE: begin
-          max_move <= larger_move(max_move, job_next[3], job_cur[3]);
-          wr_en <= 1'b1;
-          wr_i <= job_i;
-          {wr_x, wr_y, wr_p, wr_t} <= {job_next[0], job_next[1], job_next[2], job_next[3]};
-          job_busy <= 1'b0;
-          dstate <= D_IDLE;
+          max_move_q <= larger_move(max_move_q, job_next_q[3], job_cur_q[3]);
+          wr_en_q <= 1'b1;
+          wr_i_q <= job_i_q;
+          {wr_x_q, wr_y_q, wr_p_q, wr_t_q} <= {job_next_q[0], job_next_q[1], job_next_q[2], job_next_q[3]};
+          job_busy_q <= 1'b0;
+          dstate_q <= D_IDLE;
         end
-        default: dstate <= D_IDLE;
+        default: dstate_q <= D_IDLE;
       endcase
     end
   end
@@ -365,113 +365,113 @@ module evms_mean_shift #(
   // ---- sequencing -------------------------------------------------------------------------
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state <= S_IDLE;
+      state_q <= S_IDLE;
       done <= 1'b0;
       sweeps <= '0;
-      cur <= 1'b0;
-      k <= '0;
-      i <= '0;
-      a <= '0;
-      limit <= '0;
-      spacing <= '0;
-      job_valid <= 1'b0;
-      job_i <= '0;
-      job_sw <= '0;
-      drain_i <= '0;
+      cur_q <= 1'b0;
+      k_q <= '0;
+      i_q <= '0;
+      a_q <= '0;
+      limit_q <= '0;
+      spacing_q <= '0;
+      job_valid_q <= 1'b0;
+      job_i_q <= '0;
+      job_sw_q <= '0;
+      drain_i_q <= '0;
       for (int d = 0; d < 4; d++) begin
-        job_s[d] <= '0;
-        job_cur[d] <= '0;
-        drain_cur[d] <= '0;
+        job_s_q[d] <= '0;
+        job_cur_q[d] <= '0;
+        drain_cur_q[d] <= '0;
       end
-      {xi, yi, pi_, ti} <= '0;
-      sweep_begin <= 1'b0;
+      {xi_q, yi_q, pi_q, ti_q} <= '0;
+      sweep_begin_q <= 1'b0;
     end else begin
       done <= 1'b0;
-      sweep_begin <= 1'b0;
-      if (spacing != 0) spacing <= spacing - 1'b1;
-      if (job_valid && dstate == D_IDLE) job_valid <= 1'b0;
-      if (sums_ready) begin
+      sweep_begin_q <= 1'b0;
+      if (spacing_q != 0) spacing_q <= spacing_q - 1'b1;
+      if (job_valid_q && dstate_q == D_IDLE) job_valid_q <= 1'b0;
+      if (sums_ready_q) begin
         // (the point spacing keeps the divider free here: it took the previous point at least
         // R + 10 clocks ago)
-        job_valid <= 1'b1;
-        job_i <= drain_i;
-        job_sw <= sw;
-        job_s[0] <= sx;
-        job_s[1] <= sy;
-        job_s[2] <= sp;
-        job_s[3] <= st;
-        for (int d = 0; d < 4; d++) job_cur[d] <= drain_cur[d];
+        job_valid_q <= 1'b1;
+        job_i_q <= drain_i_q;
+        job_sw_q <= sw_q;
+        job_s_q[0] <= sx_q;
+        job_s_q[1] <= sy_q;
+        job_s_q[2] <= sp_q;
+        job_s_q[3] <= st_q;
+        for (int d = 0; d < 4; d++) job_cur_q[d] <= drain_cur_q[d];
       end
       // The draining point: named at its last issue, its coordinates the clock after (when a
       // one-chunk point has taken them too), handed to the divider when its sums are in.
-      if (issue && last_chunk) drain_i <= i;
-      if (last1) begin
-        drain_cur[0] <= ModeBits'(xi);
-        drain_cur[1] <= ModeBits'(yi);
-        drain_cur[2] <= ModeBits'(pi_);
-        drain_cur[3] <= ModeBits'(ti);
+      if (issue && last_chunk) drain_i_q <= i_q;
+      if (last1_q) begin
+        drain_cur_q[0] <= ModeBits'(xi_q);
+        drain_cur_q[1] <= ModeBits'(yi_q);
+        drain_cur_q[2] <= ModeBits'(pi_q);
+        drain_cur_q[3] <= ModeBits'(ti_q);
       end
-      case (state)
+      case (state_q)
         S_IDLE: if (start) begin
-          cur <= 1'b0;
-          k <= '0;
+          cur_q <= 1'b0;
+          k_q <= '0;
           sweeps <= '0;
-          limit <= cfg_max_iterations < 8'(IterationsMax) ? cfg_max_iterations : 8'(IterationsMax);
+          limit_q <= cfg_max_iterations < 8'(IterationsMax) ? cfg_max_iterations : 8'(IterationsMax);
           if (cfg_max_iterations == 0 || n == 0) begin
             done <= 1'b1;
           end else begin
-            i <= '0;
-            sweep_begin <= 1'b1;
-            state <= S_POINT;
+            i_q <= '0;
+            sweep_begin_q <= 1'b1;
+            state_q <= S_POINT;
           end
         end
         // Point i is being read; its kernel loop starts once the previous point started
         // PointSpacing clocks ago.
-        S_POINT: if (spacing == 0) begin
-          spacing <= 5'(PointSpacing - 1);
-          a <= '0;
-          state <= S_ISSUE;
+        S_POINT: if (spacing_q == 0) begin
+          spacing_q <= 5'(PointSpacing - 1);
+          a_q <= '0;
+          state_q <= S_ISSUE;
         end
         S_ISSUE: begin
-          if (a == 0) begin
-            xi  <= $signed({2'b0, bank_x[bank_of(i)]});
-            yi  <= $signed({2'b0, bank_y[bank_of(i)]});
-            pi_ <= $signed({2'b0, bank_p[bank_of(i)]});
-            ti  <= $signed({2'b0, bank_t[bank_of(i)]});
+          if (a_q == 0) begin
+            xi_q  <= $signed({2'b0, bank_x[bank_of(i_q)]});
+            yi_q  <= $signed({2'b0, bank_y[bank_of(i_q)]});
+            pi_q <= $signed({2'b0, bank_p[bank_of(i_q)]});
+            ti_q  <= $signed({2'b0, bank_t[bank_of(i_q)]});
           end
           if (last_chunk) begin
-            if (32'(i) + 1 < 32'(n)) begin
-              i <= i + 1'b1;
-              state <= S_POINT;
+            if (32'(i_q) + 1 < 32'(n)) begin
+              i_q <= i_q + 1'b1;
+              state_q <= S_POINT;
             end else begin
-              state <= S_SWEEP_END;
+              state_q <= S_SWEEP_END;
             end
           end else begin
-            a <= a + 1'b1;
+            a_q <= a_q + 1'b1;
           end
         end
-        S_SWEEP_END: if (!draining && !job_valid && !job_busy && dstate == D_IDLE && !wr_en) begin
+        S_SWEEP_END: if (!draining && !job_valid_q && !job_busy_q && dstate_q == D_IDLE && !wr_en_q) begin
           // The divider has written every next point: they become the current ones.
-          cur <= ~cur;
-          sweeps <= k + 1'b1;
-          if (max_move <= cfg_tolerance || k + 1'b1 >= limit) begin
-            state <= S_DONE;
+          cur_q <= ~cur_q;
+          sweeps <= k_q + 1'b1;
+          if (max_move_q <= cfg_tolerance || k_q + 1'b1 >= limit_q) begin
+            state_q <= S_DONE;
           end else begin
-            k <= k + 1'b1;
-            i <= '0;
-            sweep_begin <= 1'b1;
-            state <= S_POINT;
+            k_q <= k_q + 1'b1;
+            i_q <= '0;
+            sweep_begin_q <= 1'b1;
+            state_q <= S_POINT;
           end
         end
         S_DONE: begin
           done <= 1'b1;
-          state <= S_IDLE;
+          state_q <= S_IDLE;
         end
-        default: state <= S_IDLE;
+        default: state_q <= S_IDLE;
       endcase
     end
   end
 
   // The divider must be free when a point's sums are in (the point spacing guarantees it).
-  `EVMS_ASSERT("a point's sums are in while the divider is busy", !(sums_ready && (job_valid || job_busy || dstate != D_IDLE)), clk, rst_n)
+  `EVMS_ASSERT("a_q point's sums are in while the divider is busy", !(sums_ready_q && (job_valid_q || job_busy_q || dstate_q != D_IDLE)), clk, rst_n)
 endmodule
