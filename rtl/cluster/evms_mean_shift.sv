@@ -142,7 +142,7 @@ module evms_mean_shift #(
   assign rd_t = bank_t[bank_of(rd_i)];
 
   // ---- control ----------------------------------------------------------------------------
-  typedef enum logic [2:0] {S_IDLE, S_POINT, S_ISSUE, S_SWEEP_END, S_DONE} state_e;
+  typedef enum logic [2:0] {StIdle, StPoint, StIssue, StSweepEnd, StDone} state_e;
   state_e state_q;
   logic [7:0]  k_q;          // sweep
   logic [15:0] i_q;          // point
@@ -151,7 +151,7 @@ module evms_mean_shift #(
   logic [31:0] max_move_q;
   logic        sweep_begin_q;  // pulses when a sweep starts: the divider restarts its largest move
 
-  // The point i's current coordinates, read at S_POINT and taken in its first issue clock.
+  // The point i's current coordinates, read at StPoint and taken in its first issue clock.
   logic signed [ModeBits+1:0] xi_q, yi_q, pi_q, ti_q;
   // The point whose terms drain through the lanes, until its sums go to the divider.
   logic [15:0]   drain_i_q;
@@ -162,12 +162,12 @@ module evms_mean_shift #(
   localparam int PointSpacing = 6 + 10;   // evms_recip's latency + the divider's own clocks
   logic [4:0]    spacing_q;
 
-  assign xy_addr = state_q == S_POINT ? {cur_q, addr_of(i_q)} : {cur_q, addr_of(rd_i)};
-  assign pt_addr = state_q == S_POINT ? {cur_q, addr_of(i_q)} : (state_q == S_IDLE ? {cur_q, addr_of(rd_i)} : {cur_q, AddrBits'(a_q)});
+  assign xy_addr = state_q == StPoint ? {cur_q, addr_of(i_q)} : {cur_q, addr_of(rd_i)};
+  assign pt_addr = state_q == StPoint ? {cur_q, addr_of(i_q)} : (state_q == StIdle ? {cur_q, addr_of(rd_i)} : {cur_q, AddrBits'(a_q)});
 
   // Lane issue: address a, chunk valid per lane.
   logic issue, last_chunk;
-  assign issue = state_q == S_ISSUE;
+  assign issue = state_q == StIssue;
   assign last_chunk = (32'(a_q) + 1) * Lanes >= 32'(n);
   logic [Lanes-1:0] lane_valid_issue;
   always_comb begin
@@ -282,7 +282,7 @@ module evms_mean_shift #(
   logic [ModeBits-1:0] job_cur_q [4];
   logic [2:0]  job_dim_q;
   logic [ModeBits-1:0] job_next_q [4];
-  typedef enum logic [2:0] {D_IDLE, D_RECIP, D_QUOT, D_WRITE} dstate_e;
+  typedef enum logic [2:0] {DrainIdle, DrainRecip, DrainQuot, DrainWrite} dstate_e;
   dstate_e dstate_q;
 
   assign recip_x = job_sw_q;
@@ -309,7 +309,7 @@ module evms_mean_shift #(
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      dstate_q <= D_IDLE;
+      dstate_q <= DrainIdle;
       job_busy_q <= 1'b0;
       recip_start <= 1'b0;
       job_dim_q <= '0;
@@ -325,21 +325,21 @@ module evms_mean_shift #(
       wr_en_q <= 1'b0;
       if (sweep_begin_q) max_move_q <= '0;
       case (dstate_q)
-        D_IDLE: if (job_valid_q) begin
+        DrainIdle: if (job_valid_q) begin
           job_busy_q <= 1'b1;
           if (job_sw_q == 0) begin
             for (int d = 0; d < 4; d++) job_next_q[d] <= job_cur_q[d];
-            dstate_q <= D_WRITE;
+            dstate_q <= DrainWrite;
           end else begin
             recip_start <= 1'b1;
-            dstate_q <= D_RECIP;
+            dstate_q <= DrainRecip;
           end
         end
-        D_RECIP: if (recip_done) begin
+        DrainRecip: if (recip_done) begin
           job_dim_q <= '0;
-          dstate_q <= D_QUOT;
+          dstate_q <= DrainQuot;
         end
-        D_QUOT: begin
+        DrainQuot: begin
           if (job_dim_q < 4)
             for (int g = 0; g < 4; g++) quot_pp_q[g] <= (RecipFrac+17)'(job_s_q[job_dim_q[1:0]][16*g +: 16]) * (RecipFrac+17)'(recip_r);
           if (job_dim_q >= 1 && job_dim_q <= 4)
@@ -347,17 +347,17 @@ module evms_mean_shift #(
           if (job_dim_q >= 2) job_next_q[2'(job_dim_q - 3'd2)] <= ModeBits'(evms_round_pkg::round_shift(quot_p_q, quot_shift - 7'd1));
           if (job_dim_q >= 3) max_move_q <= larger_move(max_move_q, job_next_q[2'(job_dim_q - 3'd3)], job_cur_q[2'(job_dim_q - 3'd3)]);
           job_dim_q <= job_dim_q + 1'b1;
-          if (job_dim_q == 5) dstate_q <= D_WRITE;
+          if (job_dim_q == 5) dstate_q <= DrainWrite;
         end
-        D_WRITE: begin
+        DrainWrite: begin
           max_move_q <= larger_move(max_move_q, job_next_q[3], job_cur_q[3]);
           wr_en_q <= 1'b1;
           wr_i_q <= job_i_q;
           {wr_x_q, wr_y_q, wr_p_q, wr_t_q} <= {job_next_q[0], job_next_q[1], job_next_q[2], job_next_q[3]};
           job_busy_q <= 1'b0;
-          dstate_q <= D_IDLE;
+          dstate_q <= DrainIdle;
         end
-        default: dstate_q <= D_IDLE;
+        default: dstate_q <= DrainIdle;
       endcase
     end
   end
@@ -365,7 +365,7 @@ module evms_mean_shift #(
   // ---- sequencing -------------------------------------------------------------------------
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state_q <= S_IDLE;
+      state_q <= StIdle;
       done <= 1'b0;
       sweeps <= '0;
       cur_q <= 1'b0;
@@ -389,7 +389,7 @@ module evms_mean_shift #(
       done <= 1'b0;
       sweep_begin_q <= 1'b0;
       if (spacing_q != 0) spacing_q <= spacing_q - 1'b1;
-      if (job_valid_q && dstate_q == D_IDLE) job_valid_q <= 1'b0;
+      if (job_valid_q && dstate_q == DrainIdle) job_valid_q <= 1'b0;
       if (sums_ready_q) begin
         // (the point spacing keeps the divider free here: it took the previous point at least
         // R + 10 clocks ago)
@@ -412,7 +412,7 @@ module evms_mean_shift #(
         drain_cur_q[3] <= ModeBits'(ti_q);
       end
       case (state_q)
-        S_IDLE: if (start) begin
+        StIdle: if (start) begin
           cur_q <= 1'b0;
           k_q <= '0;
           sweeps <= '0;
@@ -422,17 +422,17 @@ module evms_mean_shift #(
           end else begin
             i_q <= '0;
             sweep_begin_q <= 1'b1;
-            state_q <= S_POINT;
+            state_q <= StPoint;
           end
         end
         // Point i is being read; its kernel loop starts once the previous point started
         // PointSpacing clocks ago.
-        S_POINT: if (spacing_q == 0) begin
+        StPoint: if (spacing_q == 0) begin
           spacing_q <= 5'(PointSpacing - 1);
           a_q <= '0;
-          state_q <= S_ISSUE;
+          state_q <= StIssue;
         end
-        S_ISSUE: begin
+        StIssue: begin
           if (a_q == 0) begin
             xi_q  <= $signed({2'b0, bank_x[bank_of(i_q)]});
             yi_q  <= $signed({2'b0, bank_y[bank_of(i_q)]});
@@ -442,36 +442,36 @@ module evms_mean_shift #(
           if (last_chunk) begin
             if (32'(i_q) + 1 < 32'(n)) begin
               i_q <= i_q + 1'b1;
-              state_q <= S_POINT;
+              state_q <= StPoint;
             end else begin
-              state_q <= S_SWEEP_END;
+              state_q <= StSweepEnd;
             end
           end else begin
             a_q <= a_q + 1'b1;
           end
         end
-        S_SWEEP_END: if (!draining && !job_valid_q && !job_busy_q && dstate_q == D_IDLE && !wr_en_q) begin
+        StSweepEnd: if (!draining && !job_valid_q && !job_busy_q && dstate_q == DrainIdle && !wr_en_q) begin
           // The divider has written every next point: they become the current ones.
           cur_q <= ~cur_q;
           sweeps <= k_q + 1'b1;
           if (max_move_q <= cfg_tolerance || k_q + 1'b1 >= limit_q) begin
-            state_q <= S_DONE;
+            state_q <= StDone;
           end else begin
             k_q <= k_q + 1'b1;
             i_q <= '0;
             sweep_begin_q <= 1'b1;
-            state_q <= S_POINT;
+            state_q <= StPoint;
           end
         end
-        S_DONE: begin
+        StDone: begin
           done <= 1'b1;
-          state_q <= S_IDLE;
+          state_q <= StIdle;
         end
-        default: state_q <= S_IDLE;
+        default: state_q <= StIdle;
       endcase
     end
   end
 
   // The divider must be free when a point's sums are in (the point spacing guarantees it).
-  `EVMS_ASSERT("a_q point's sums are in while the divider is busy", !(sums_ready_q && (job_valid_q || job_busy_q || dstate_q != D_IDLE)), clk, rst_n)
+  `EVMS_ASSERT("a_q point's sums are in while the divider is busy", !(sums_ready_q && (job_valid_q || job_busy_q || dstate_q != DrainIdle)), clk, rst_n)
 endmodule

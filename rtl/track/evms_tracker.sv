@@ -151,10 +151,10 @@ module evms_tracker #(
   assign tracks_started = 32'(next_id_q);
 
   typedef enum logic [5:0] {
-    S_IDLE, S_EXPIRE, S_ROUND, S_SCAN, S_PAIR, S_PAIR_PX, S_PAIR_PY, S_PAIR_DX2, S_PAIR_DY2, S_PAIR_END, S_MATCH,
-    S_DT2, S_DT3, S_AX_BEGIN, S_P_POS, S_P_P00A, S_P_P00B, S_P_P00C, S_P_P01A, S_P_P01B, S_P_P11,
-    S_U_RECIP, S_U_K0, S_U_K1, S_U_POS, S_U_VEL, S_U_P00, S_U_P01, S_U_P11, S_AX_END, S_EMIT, S_DROP, S_BIRTH, S_BIRTH_EMIT,
-    S_EVICT, S_DONE
+    StIdle, StExpire, StRound, StScan, StPair, StPairPx, StPairPy, StPairDx2, StPairDy2, StPairEnd, StMatch,
+    StDt2, StDt3, StAxBegin, StPredictPos, StPredictP00a, StPredictP00b, StPredictP00c, StPredictP01a, StPredictP01b, StPredictP11,
+    StUpdateRecip, StUpdateK0, StUpdateK1, StUpdatePos, StUpdateVel, StUpdateP00, StUpdateP01, StUpdateP11, StAxEnd, StEmit, StDrop, StBirth, StBirthEmit,
+    StEvict, StDone
   } state_e;
   state_e state_q;
 
@@ -218,7 +218,7 @@ module evms_tracker #(
   assign vel_of[0] = kx[KW-33 -: 32];
   assign vel_of[1] = ky[KW-33 -: 32];
   assign {p00_of, p01_of, p11_of} = ka;
-  assign z_c = state_q == S_MATCH ? best_m_q : k_q;
+  assign z_c = state_q == StMatch ? best_m_q : k_q;
 
   function automatic signed [63:0] cov_word(input signed [CovBits-1:0] v);
     begin
@@ -232,8 +232,8 @@ module evms_tracker #(
   assign upd_extra = {z_events, z_x_min, z_y_min, z_x_max, z_y_max, cov_word(kx[3*CovBits-1 -: CovBits]), cov_word(ky[3*CovBits-1 -: CovBits])};
 
   // ---- the step unit: clamp(base +- round(mul_p >> shift), bound) ---------------------------
-  typedef enum logic [2:0] {SH_TICK, SH_DT2, SH_COV, SH_NOISE, SH_NOISE_P11, SH_GAIN} shift_e;
-  typedef enum logic [1:0] {B_NONE, B_POS, B_COV} bound_e;
+  typedef enum logic [2:0] {ShiftTick, ShiftDt2, ShiftCov, ShiftNoise, ShiftNoiseP11, ShiftGain} shift_e;
+  typedef enum logic [1:0] {BoundNone, BoundPos, BoundCov} bound_e;
   // The state's operands are chosen a clock ahead and registered: a step's state waits at least
   // one clock for its product (the multiplier's latency), and its base was written when the
   // state was entered, so the registered choice is the state's own when the product arrives,
@@ -244,26 +244,26 @@ module evms_tracker #(
   logic signed [63:0] sel_base, step_base_q, step_half, step_hs, step_sum, step, gate_sum, gate_dist;
   logic signed [63:0] zp_q [2];   // z - pos of the pair being gated, per axis
   always_comb begin
-    sel_shift = SH_TICK;
-    sel_bound = B_NONE;
+    sel_shift = ShiftTick;
+    sel_bound = BoundNone;
     sel_negate = 1'b0;
     sel_base = '0;
     case (state_q)
-      S_PAIR_PX: begin sel_base = 64'(pos_of[0]); sel_bound = B_POS; end
-      S_PAIR_PY: begin sel_base = 64'(pos_of[1]); sel_bound = B_POS; end
-      S_DT2:     sel_shift = SH_DT2;
-      S_P_POS:   begin sel_base = w_pos_q; sel_bound = B_POS; end
-      S_P_P00A:  sel_base = w_p00_q;
-      S_P_P00B:  begin sel_base = acc_q; sel_shift = SH_COV; end
-      S_P_P00C,
-      S_P_P01B:  begin sel_base = acc_q; sel_shift = SH_NOISE; sel_bound = B_COV; end
-      S_P_P01A:  sel_base = w_p01_q;
-      S_P_P11:   begin sel_base = w_p11_q; sel_shift = SH_NOISE_P11; sel_bound = B_COV; end
-      S_U_POS:   begin sel_base = w_pos_q; sel_shift = SH_GAIN; sel_bound = B_POS; end
-      S_U_VEL:   begin sel_base = w_vel_q; sel_shift = SH_GAIN; sel_bound = B_POS; end
-      S_U_P00,
-      S_U_P01:   begin sel_shift = SH_GAIN; sel_bound = B_COV; end
-      S_U_P11:   begin sel_base = w_p11_q; sel_shift = SH_GAIN; sel_bound = B_COV; sel_negate = 1'b1; end
+      StPairPx: begin sel_base = 64'(pos_of[0]); sel_bound = BoundPos; end
+      StPairPy: begin sel_base = 64'(pos_of[1]); sel_bound = BoundPos; end
+      StDt2:     sel_shift = ShiftDt2;
+      StPredictPos:   begin sel_base = w_pos_q; sel_bound = BoundPos; end
+      StPredictP00a:  sel_base = w_p00_q;
+      StPredictP00b:  begin sel_base = acc_q; sel_shift = ShiftCov; end
+      StPredictP00c,
+      StPredictP01b:  begin sel_base = acc_q; sel_shift = ShiftNoise; sel_bound = BoundCov; end
+      StPredictP01a:  sel_base = w_p01_q;
+      StPredictP11:   begin sel_base = w_p11_q; sel_shift = ShiftNoiseP11; sel_bound = BoundCov; end
+      StUpdatePos:   begin sel_base = w_pos_q; sel_shift = ShiftGain; sel_bound = BoundPos; end
+      StUpdateVel:   begin sel_base = w_vel_q; sel_shift = ShiftGain; sel_bound = BoundPos; end
+      StUpdateP00,
+      StUpdateP01:   begin sel_shift = ShiftGain; sel_bound = BoundCov; end
+      StUpdateP11:   begin sel_base = w_p11_q; sel_shift = ShiftGain; sel_bound = BoundCov; sel_negate = 1'b1; end
       default: ;
     endcase
   end
@@ -272,16 +272,16 @@ module evms_tracker #(
     step_bound_q <= sel_bound;
     step_negate_q <= sel_negate;
     step_base_q <= sel_base;
-    step_axis_q <= state_q != S_PAIR_PX;
+    step_axis_q <= state_q != StPairPx;
   end
   always_comb begin
     // (p + 2^(s-1)) >> s  ==  ((p >> (s-1)) + 1) >> 1, with one shifter for every s.
     case (step_shift_q)
-      SH_DT2:       step_half = mul_p >>> (2 * TickLog2 - CovFrac - 1);
-      SH_COV:       step_half = mul_p >>> (CovFrac - 1);
-      SH_NOISE:     step_half = mul_p >>> (NoiseFrac - 1);
-      SH_NOISE_P11: step_half = mul_p >>> (NoiseFrac + TickLog2 - CovFrac - 1);
-      SH_GAIN:      step_half = mul_p >>> (GainFrac - 1);
+      ShiftDt2:       step_half = mul_p >>> (2 * TickLog2 - CovFrac - 1);
+      ShiftCov:       step_half = mul_p >>> (CovFrac - 1);
+      ShiftNoise:     step_half = mul_p >>> (NoiseFrac - 1);
+      ShiftNoiseP11: step_half = mul_p >>> (NoiseFrac + TickLog2 - CovFrac - 1);
+      ShiftGain:      step_half = mul_p >>> (GainFrac - 1);
       default:      step_half = mul_p >>> (TickLog2 - 1);
     endcase
     // base +- ((h + 1) >> 1) as one adder with a carry in: (h + 1) >> 1 == (h >> 1) + h[0], and
@@ -290,7 +290,7 @@ module evms_tracker #(
     step_hs = step_half >>> 1;
     step_carry = step_negate_q ^ step_half[0];
     step_sum = step_base_q + (step_negate_q ? ~step_hs : step_hs) + 64'(step_carry);
-    step = step_bound_q == B_POS ? clamp_ones(step_sum, PosLog2) : step_bound_q == B_COV ? clamp_ones(step_sum, CovLog2) : step_sum;
+    step = step_bound_q == BoundPos ? clamp_ones(step_sum, PosLog2) : step_bound_q == BoundCov ? clamp_ones(step_sum, CovLog2) : step_sum;
     // The gating distance of the predicted position to the measurement, clamp(z - step): from
     // z - pos (registered when the pair was issued) minus the rounded term, a second carry chain
     // beside the step's rather than after it. When the prediction saturates at +-(2^31 - 1) the
@@ -318,7 +318,7 @@ module evms_tracker #(
 
   always_ff @(posedge clk or negedge rst_n) begin
     if (!rst_n) begin
-      state_q <= S_IDLE;
+      state_q <= StIdle;
       done <= 1'b0;
       upd_valid <= 1'b0;
       {upd_t, upd_id, upd_x, upd_y, upd_vx, upd_vy, upd_zx, upd_zy} <= '0;
@@ -369,19 +369,19 @@ module evms_tracker #(
         best_far_q <= pair_rd[65];
       end
       case (state_q)
-        S_IDLE: if (start) begin
+        StIdle: if (start) begin
           s_q <= '0;
-          state_q <= S_EXPIRE;
+          state_q <= StExpire;
         end
         // 1. Confirmed (and any) tracks not measured for more than coast_us end.
-        S_EXPIRE: begin
+        StExpire: begin
           if (32'(s_q) >= TracksMax) begin
             slot_matched_q <= '0;
             meas_matched_q <= '0;
             ids_valid_q <= '0;
             s_q <= '0;
             k_q <= '0;
-            state_q <= S_PAIR;
+            state_q <= StPair;
           end else begin
             if (s_valid_q[si] && $signed(packet_time - s_t[si]) > $signed(cfg_coast_us)) s_valid_q[si] <= 1'b0;
             s_q <= s_q + 1'b1;
@@ -390,16 +390,16 @@ module evms_tracker #(
         // 2. The distance pass: every live slot's distance to every measurement, into the pair
         // table; to the last measurement (two squares) or to the prediction at the
         // measurement's time (two products first).
-        S_PAIR: begin
+        StPair: begin
           if (32'(s_q) >= TracksMax) begin
             round_n_q <= '0;
-            state_q <= S_ROUND;
+            state_q <= StRound;
           end else if (!s_valid_q[si] || 32'(s_q) >= 32'(cfg_max_tracks) || k_q >= m) begin
             s_q <= s_q + 1'b1;
             k_q <= '0;
           end else if (cfg_associate_last) begin
             `EVMS_REQUEST(pair_dx, pair_dx)
-            state_q <= S_PAIR_DX2;
+            state_q <= StPairDx2;
           end else begin
             logic signed [31:0] raw;
             logic signed [63:0] dt_now;
@@ -409,35 +409,35 @@ module evms_tracker #(
             zp_q[0] <= 64'(z_x) - 64'(pos_of[0]);
             zp_q[1] <= 64'(z_y) - 64'(pos_of[1]);
             `EVMS_REQUEST(64'(vel_of[0]), dt_now)
-            state_q <= S_PAIR_PX;
+            state_q <= StPairPx;
           end
         end
-        S_PAIR_PX: if (mul_done) begin
+        StPairPx: if (mul_done) begin
           dx_q <= gate_dist;
           `EVMS_REQUEST(64'(vel_of[1]), dt_q)
-          state_q <= S_PAIR_PY;
+          state_q <= StPairPy;
         end
-        S_PAIR_PY: if (mul_done) begin
+        StPairPy: if (mul_done) begin
           dpred_q <= gate_dist;
           `EVMS_REQUEST(pair_dx, pair_dx)
-          state_q <= S_PAIR_DX2;
+          state_q <= StPairDx2;
         end
-        S_PAIR_DX2: if (mul_done) begin
+        StPairDx2: if (mul_done) begin
           d2_q <= 64'(mul_p);
           `EVMS_REQUEST(pair_dy, pair_dy)
-          state_q <= S_PAIR_DY2;
+          state_q <= StPairDy2;
         end
-        S_PAIR_DY2: if (mul_done) begin
+        StPairDy2: if (mul_done) begin
           // (the pair table's write port takes d2 + mul_p)
           k_q <= k_q + 1'b1;
-          state_q <= S_PAIR;
+          state_q <= StPair;
         end
         // 3. Rounds: the nearest remaining pair within the gate, by a scan of the pair table in
         // slot-then-measurement order, so that ties go to the lower slot, then measurement.
-        S_ROUND: begin
+        StRound: begin
           if (32'(round_n_q) >= ClustersMax) begin
             s_q <= '0;
-            state_q <= S_DROP;
+            state_q <= StDrop;
           end else begin
             best_s_q <= -9'sd1;
             best_m_q <= '0;
@@ -445,19 +445,19 @@ module evms_tracker #(
             best_far_q <= 1'b0;
             s_q <= '0;
             k_q <= '0;
-            state_q <= S_SCAN;
+            state_q <= StScan;
           end
         end
         // A pair is read the clock it is visited and compared the next (scan_pending_q, before
         // this case statement); a slot's last pair is compared in the clock that moves to the
         // next slot, so none is pending at the end.
-        S_SCAN: begin
+        StScan: begin
           if (32'(s_q) >= TracksMax) begin
             if (best_s_q < 0) begin
               s_q <= '0;
-              state_q <= S_DROP;
+              state_q <= StDrop;
             end else begin
-              state_q <= S_MATCH;
+              state_q <= StMatch;
             end
           end else if (!s_valid_q[si] || slot_matched_q[si] || 32'(s_q) >= 32'(cfg_max_tracks) || k_q >= m) begin
             s_q <= s_q + 1'b1;
@@ -467,7 +467,7 @@ module evms_tracker #(
           end
         end
         // 4. The match: predict both axes to the measurement's time, then update them.
-        S_MATCH: begin
+        StMatch: begin
           slot_matched_q[TrackIndexBits'(best_s_q)] <= 1'b1;
           meas_matched_q[ClusterIndexBits'(best_m_q)] <= 1'b1;
           s_q <= (TrackIndexBits+1)'(best_s_q);
@@ -478,19 +478,19 @@ module evms_tracker #(
             dt_q <= capped_dt(raw);
             `EVMS_REQUEST(capped_dt(raw), capped_dt(raw))
           end
-          state_q <= S_DT2;
+          state_q <= StDt2;
         end
-        S_DT2: if (mul_done) begin
+        StDt2: if (mul_done) begin
           dt2_q <= step;
           `EVMS_REQUEST(step, dt_q)
-          state_q <= S_DT3;
+          state_q <= StDt3;
         end
-        S_DT3: if (mul_done) begin
+        StDt3: if (mul_done) begin
           dt3_q <= step;
           axis_q <= 1'b0;
-          state_q <= S_AX_BEGIN;
+          state_q <= StAxBegin;
         end
-        S_AX_BEGIN: begin
+        StAxBegin: begin
           w_pos_q <= 64'(pos_of[axis_q]);
           w_vel_q <= 64'(vel_of[axis_q]);
           w_p00_q <= cov_word(p00_of);
@@ -498,59 +498,59 @@ module evms_tracker #(
           w_p11_q <= cov_word(p11_of);
           w_z_q <= axis_q == 0 ? 64'(z_x) : 64'(z_y);
           `EVMS_REQUEST(64'(vel_of[axis_q]), dt_q)
-          state_q <= S_P_POS;
+          state_q <= StPredictPos;
         end
         // predict: pos += vel dt
-        S_P_POS: if (mul_done) begin
+        StPredictPos: if (mul_done) begin
           w_pos_q <= step;
           `EVMS_REQUEST(2 * dt_q, w_p01_q)
-          state_q <= S_P_P00A;
+          state_q <= StPredictP00a;
         end
-        S_P_P00A: if (mul_done) begin
+        StPredictP00a: if (mul_done) begin
           acc_q <= step;
           `EVMS_REQUEST(dt2_q, w_p11_q)
-          state_q <= S_P_P00B;
+          state_q <= StPredictP00b;
         end
-        S_P_P00B: if (mul_done) begin
+        StPredictP00b: if (mul_done) begin
           acc_q <= step;
           `EVMS_REQUEST(cfg_q_third, dt3_q)
-          state_q <= S_P_P00C;
+          state_q <= StPredictP00c;
         end
-        S_P_P00C: if (mul_done) begin
+        StPredictP00c: if (mul_done) begin
           p00n_q <= step;
           `EVMS_REQUEST(dt_q, w_p11_q)
-          state_q <= S_P_P01A;
+          state_q <= StPredictP01a;
         end
-        S_P_P01A: if (mul_done) begin
+        StPredictP01a: if (mul_done) begin
           acc_q <= step;
           `EVMS_REQUEST(cfg_q_half, dt2_q)
-          state_q <= S_P_P01B;
+          state_q <= StPredictP01b;
         end
-        S_P_P01B: if (mul_done) begin
+        StPredictP01b: if (mul_done) begin
           w_p01_q <= step;
           `EVMS_REQUEST(cfg_q, dt_q)
-          state_q <= S_P_P11;
+          state_q <= StPredictP11;
         end
-        S_P_P11: if (mul_done) begin
+        StPredictP11: if (mul_done) begin
           w_p11_q <= step;
           w_p00_q <= p00n_q;
           // update: s = p00 + r, through the reciprocal
           recip_x <= 64'(p00n_q + cfg_r);
           recip_start <= 1'b1;
-          state_q <= S_U_RECIP;
+          state_q <= StUpdateRecip;
         end
-        S_U_RECIP: if (recip_done) begin
+        StUpdateRecip: if (recip_done) begin
           rr_q <= recip_r;
           q_shift_q <= 8'(RecipFrac - GainFrac) + 8'(recip_m);
           `EVMS_REQUEST(w_p00_q, 64'(recip_r))
-          state_q <= S_U_K0;
+          state_q <= StUpdateK0;
         end
-        S_U_K0: if (mul_done) begin
+        StUpdateK0: if (mul_done) begin
           k0_q <= 64'((q_t + 65'd1) >> 1);
           `EVMS_REQUEST(w_p01_q < 0 ? -w_p01_q : w_p01_q, 64'(rr_q))
-          state_q <= S_U_K1;
+          state_q <= StUpdateK1;
         end
-        S_U_K1: if (mul_done) begin
+        StUpdateK1: if (mul_done) begin
           logic [27:0] mag;
           // clamp_sym(+-q, G) == +-min(q, G) for q >= 0; q >= 2^27 exactly when t >= 2^28 - 1,
           // so the add is 28 bits and the negation 29.
@@ -558,36 +558,36 @@ module evms_tracker #(
           k1_q <= 64'($signed(w_p01_q < 0 ? -{1'b0, mag} : {1'b0, mag}));
           w_e_q <= w_z_q - w_pos_q;
           `EVMS_REQUEST(k0_q, w_z_q - w_pos_q)
-          state_q <= S_U_POS;
+          state_q <= StUpdatePos;
         end
-        S_U_POS: if (mul_done) begin
+        StUpdatePos: if (mul_done) begin
           w_pos_q <= step;
           `EVMS_REQUEST(k1_q, clamp_ones(w_e_q, GainLog2))
-          state_q <= S_U_VEL;
+          state_q <= StUpdateVel;
         end
-        S_U_VEL: if (mul_done) begin
+        StUpdateVel: if (mul_done) begin
           w_vel_q <= step;
           `EVMS_REQUEST(cfg_r, k0_q)
-          state_q <= S_U_P00;
+          state_q <= StUpdateP00;
         end
-        S_U_P00: if (mul_done) begin
+        StUpdateP00: if (mul_done) begin
           p00n_q <= step;
           `EVMS_REQUEST(cfg_r, k1_q)
-          state_q <= S_U_P01;
+          state_q <= StUpdateP01;
         end
-        S_U_P01: if (mul_done) begin
+        StUpdateP01: if (mul_done) begin
           p01n_q <= CovBits'(step);
           `EVMS_REQUEST(k1_q, w_p01_q)
-          state_q <= S_U_P11;
+          state_q <= StUpdateP11;
         end
-        S_U_P11: if (mul_done) begin
+        StUpdateP11: if (mul_done) begin
           // (the filter state is written by the memory port below)
-          state_q <= S_AX_END;
+          state_q <= StAxEnd;
         end
-        S_AX_END: begin
+        StAxEnd: begin
           if (axis_q == 0) begin
             axis_q <= 1'b1;
-            state_q <= S_AX_BEGIN;
+            state_q <= StAxBegin;
           end else begin
             axis_q <= 1'b0;
             ids_valid_q[ClusterIndexBits'(k_q)] <= 1'b1;
@@ -595,10 +595,10 @@ module evms_tracker #(
               s_hits_q[si] <= s_hits_q[si] + 1'b1;
               s_confirmed_q[si] <= s_hits_q[si] + 1'b1 >= cfg_confirm_hits;
             end
-            state_q <= S_EMIT;
+            state_q <= StEmit;
           end
         end
-        S_EMIT: begin
+        StEmit: begin
           if (!upd_valid || upd_ready) begin
             if (s_confirmed_q[si] || cfg_report_tentative) begin
               upd_valid <= 1'b1;
@@ -614,29 +614,29 @@ module evms_tracker #(
               {upd_events, upd_x_min, upd_y_min, upd_x_max, upd_y_max, upd_var_x, upd_var_y} <= upd_extra;
             end
             round_n_q <= round_n_q + 1'b1;
-            state_q <= S_ROUND;
+            state_q <= StRound;
           end
         end
         // 5. Tentative tracks without a match end.
-        S_DROP: begin
+        StDrop: begin
           if (32'(s_q) >= TracksMax) begin
             k_q <= '0;
-            state_q <= S_BIRTH;
+            state_q <= StBirth;
           end else begin
             if (s_valid_q[si] && !slot_matched_q[si] && !s_confirmed_q[si]) s_valid_q[si] <= 1'b0;
             s_q <= s_q + 1'b1;
           end
         end
         // 6. Births in the lowest free slots.
-        S_BIRTH: begin
+        StBirth: begin
           if (k_q >= m) begin
-            state_q <= S_DONE;
+            state_q <= StDone;
           end else if (meas_matched_q[ClusterIndexBits'(k_q)]) begin
             k_q <= k_q + 1'b1;
           end else if (evict_scan_needed) begin
             s_q <= '0;
             evict_slot_q <= -9'sd1;
-            state_q <= S_EVICT;
+            state_q <= StEvict;
           end else begin
             evict_scanned_q <= 1'b0;
             if (birth_slot < 0) begin
@@ -651,15 +651,15 @@ module evms_tracker #(
               s_confirmed_q[TrackIndexBits'(birth_slot)] <= cfg_confirm_hits <= 8'd1;
               ids_valid_q[ClusterIndexBits'(k_q)] <= 1'b1;
               s_q <= (TrackIndexBits+1)'(birth_slot);
-              state_q <= S_BIRTH_EMIT;
+              state_q <= StBirthEmit;
             end
           end
         end
         // The unmatched slot measured longest ago (ties to the lower slot), one slot a clock.
-        S_EVICT: begin
+        StEvict: begin
           if (32'(s_q) >= TracksMax) begin
             evict_scanned_q <= 1'b1;
-            state_q <= S_BIRTH;
+            state_q <= StBirth;
           end else begin
             if (32'(s_q) < 32'(cfg_max_tracks) && !slot_matched_q[si] && (evict_slot_q < 0 || $signed(s_t[si] - evict_t_q) < 0)) begin
               evict_slot_q <= $signed({1'b0, 8'(s_q)});
@@ -668,7 +668,7 @@ module evms_tracker #(
             s_q <= s_q + 1'b1;
           end
         end
-        S_BIRTH_EMIT: begin
+        StBirthEmit: begin
           if (!upd_valid || upd_ready) begin
             if (cfg_confirm_hits <= 8'd1 || cfg_report_tentative) begin
               upd_valid <= 1'b1;
@@ -684,14 +684,14 @@ module evms_tracker #(
               {upd_events, upd_x_min, upd_y_min, upd_x_max, upd_y_max, upd_var_x, upd_var_y} <= upd_extra;
             end
             k_q <= k_q + 1'b1;
-            state_q <= S_BIRTH;
+            state_q <= StBirth;
           end
         end
-        S_DONE: if (!upd_valid || upd_ready) begin
+        StDone: if (!upd_valid || upd_ready) begin
           done <= 1'b1;
-          state_q <= S_IDLE;
+          state_q <= StIdle;
         end
-        default: state_q <= S_IDLE;
+        default: state_q <= StIdle;
       endcase
     end
   end
@@ -700,7 +700,7 @@ module evms_tracker #(
   // ---- the pair table ------------------------------------------------------------------------
   logic [63:0] pair_d2_new;
   assign pair_d2_new = d2_q + 64'(mul_p);
-  assign pair_we = state_q == S_PAIR_DY2 && mul_done;
+  assign pair_we = state_q == StPairDy2 && mul_done;
   assign pair_wa = {si, ClusterIndexBits'(k_q)};
   // The pair's event counts differ by more than 2^cfg_size_ratio_log2 times (never when it is 0).
   logic [15:0] events_hi, events_lo;
@@ -719,20 +719,20 @@ module evms_tracker #(
       scan_slot_q <= '0;
       scan_meas_q <= '0;
     end else begin
-      scan_pending_q <= state_q == S_SCAN && 32'(s_q) < TracksMax && s_valid_q[si] && !slot_matched_q[si] && 32'(s_q) < 32'(cfg_max_tracks) &&
+      scan_pending_q <= state_q == StScan && 32'(s_q) < TracksMax && s_valid_q[si] && !slot_matched_q[si] && 32'(s_q) < 32'(cfg_max_tracks) &&
                         k_q < m && !meas_matched_q[ClusterIndexBits'(k_q)];
       scan_slot_q <= si;
       scan_meas_q <= k_q;
     end
   end
-  `EVMS_ASSERT("a pending pair is compared while the scan runs", !scan_pending_q || state_q == S_SCAN, clk, rst_n)
+  `EVMS_ASSERT("a pending pair is compared while the scan runs", !scan_pending_q || state_q == StScan, clk, rst_n)
 
   // ---- the filter-state memories: a birth writes both axes, an update the axis it filtered --
   logic          birth_now, update_now;
   logic [TrackIndexBits-1:0] kal_addr;
   logic [KW-1:0] kal_update;
-  assign birth_now = state_q == S_BIRTH && k_q < m && !meas_matched_q[ClusterIndexBits'(k_q)] && !evict_scan_needed && birth_slot >= 0;
-  assign update_now = state_q == S_U_P11 && mul_done;
+  assign birth_now = state_q == StBirth && k_q < m && !meas_matched_q[ClusterIndexBits'(k_q)] && !evict_scan_needed && birth_slot >= 0;
+  assign update_now = state_q == StUpdateP11 && mul_done;
   assign kal_addr = birth_now ? TrackIndexBits'(birth_slot) : si;
   assign kal_update = {32'(w_pos_q), 32'(w_vel_q), CovBits'(p00n_q), p01n_q, CovBits'(step)};
   // A new track's axis: at the measurement, at rest, with the initial covariance.
@@ -746,7 +746,7 @@ module evms_tracker #(
     if (birth_now || (update_now && axis_q)) kal_y[kal_addr] <= birth_now ? born_at(z_y) : kal_update;
     // The last measurement and its time: a birth's, or the match's once both axes are filtered;
     // the measurement's track ID: the new track's, or the matched slot's.
-    if (birth_now || (state_q == S_AX_END && axis_q)) begin
+    if (birth_now || (state_q == StAxEnd && axis_q)) begin
       s_z[kal_addr] <= {z_x, z_y};
       s_events[kal_addr] <= z_events;
       s_t[kal_addr] <= z_t;
