@@ -263,7 +263,7 @@ module evms_mean_shift #(
         for (int q = 0; q < 5; q++)
           lane_tree[320*node + 64*q +: 64] = lane_tree[640*node + 64*q +: 64] + lane_tree[640*node + 320 + 64*q +: 64];
       {aw, ax, ay, ap, at} = lane_tree[320 +: 320];
-      // A point's sums are complete the clock after its last terms (last6); they go to the
+      // A point's sums are complete the clock after its last terms (last6_q); they go to the
       // divider in that clock and the next point's sums start from zero (its first terms
       // arrive a clock later at the earliest).
       sw_q <= (sums_ready_q ? 64'd0 : sw_q) + aw;
@@ -289,7 +289,7 @@ module evms_mean_shift #(
 
   // The quotients are a three-clock pipeline, one dimension a clock, so that no clock holds
   // more than one multiply or one wide add: the sum's four 16-bit digits times r (one DSP
-  // each), their sum (the low 64 bits of sum * r) into quot_p, then the rounding shift (by at
+  // each), their sum (the low 64 bits of sum * r) into quot_p_q, then the rounding shift (by at
   // least one bit: QuotientFrac <= RecipFrac).
   logic [RecipFrac+16:0] quot_pp_q [4];
   logic [63:0] quot_p_q;

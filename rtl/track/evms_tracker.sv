@@ -138,7 +138,7 @@ module evms_tracker #(
   logic [KW-1:0]            kal_x [TracksMax], kal_y [TracksMax];
   logic [TracksMax-1:0]    slot_matched_q;
   logic [ClustersMax-1:0]  meas_matched_q;
-  // Each measurement's track ID (memory), where ids_valid says it has one this packet.
+  // Each measurement's track ID (memory), where ids_valid_q says it has one this packet.
   logic signed [31:0]       ids [ClustersMax];
   logic [ClustersMax-1:0]   ids_valid_q;
   // Each slot's last measurement {x, y} and its event count: memories with one write port and a
@@ -173,14 +173,14 @@ module evms_tracker #(
   assign pair_dx = cfg_associate_last ? 64'(z_x) - 64'($signed(s_z[si][63:32])) : dx_q;
   assign pair_dy = cfg_associate_last ? 64'(z_y) - 64'($signed(s_z[si][31:0])) : dpred_q;
   // Eviction: the scan for the stalest unmatched slot has run for this measurement
-  // (evict_scanned), and what it found (evict_slot, -1: none; evict_t: its last time).
+  // (evict_scanned_q), and what it found (evict_slot_q, -1: none; evict_t_q: its last time).
   logic               evict_scanned_q;
   logic signed [8:0]  evict_slot_q;
   logic [31:0]        evict_t_q;
   // The pair table: {sizes far apart, within the gate, squared distance} of each (slot,
   // measurement), written by the distance pass and read by the rounds' scans (registered read:
   // a pair issued in one clock is compared in the next, scan_pending_q). A pair whose sizes are
-  // far apart ranks after every pair whose sizes are not (best_far).
+  // far apart ranks after every pair whose sizes are not (best_far_q).
   localparam int PairAddrBits = TrackIndexBits + ClusterIndexBits;
   logic                    pair_we;
   logic [PairAddrBits-1:0] pair_wa, pair_ra;
