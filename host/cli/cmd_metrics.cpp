@@ -108,7 +108,7 @@ void metrics(const MetricsOptions& o) {
 void register_metrics(CLI::App& app) {
   auto o = std::make_shared<MetricsOptions>();
   CLI::App* cmd = app.add_subcommand("metrics", "score a labelling against the truth; prints 'ARI NMI P R F'");
-  cmd->add_option("--truth", o->truth, "true labels: a CSV whose header names t_us (or t_s, ...), x, y, p and label in any order (label -1 = noise)")->required();
+  cmd->add_option("--truth", o->truth, "true labels: a CSV whose header names t_us (or t_s, ...), x, y, p and label in any order, or t_us,x,y,p,label rows without a header (label -1 = noise)")->required();
   cmd->add_option("--pred", o->pred, "predicted labels of the same events, same layout (-2, a label lost on the board's link, counts as noise)")->required();
   cmd->add_option("--chunk-events", o->chunk_events, "score chunks of N consecutive events (default 256)")->check(CLI::Range(2, 1000000000));
   cmd->add_option("--tracks", o->tracks, "the run's tracks.csv: also print IDF1 and ID switches, and the confirmed tracks' error against the "

@@ -12,10 +12,15 @@ LabelledCsvReader::LabelledCsvReader(const std::string& path) : in_(path) {
   bool more = false;
   while ((more = in_.next_line(header)) && header.rfind('#', 0) == 0) {
   }
-  if (!more || !is_csv_header(header)) {
-    fail(path, InputPosition::line(in_.line()), "bad header: expected the columns' names, such as 't_us,x,y,p,label'");
+  if (!more) fail(path, InputPosition::line(in_.line()), "no rows: expected 't_us,x,y,p,label' rows, with or without that header");
+  if (is_csv_header(header)) {
+    columns_ = csv_columns_of_header(header, path, in_.line());
+  } else {
+    // Without a header the columns are evms's own order, as the event readers take them
+    // (text_formats.cpp); this first line is then a row.
+    columns_ = csv_columns_of_header("t_us,x,y,p,label", path, in_.line());
+    first_row_ = header;
   }
-  columns_ = csv_columns_of_header(header, path, in_.line());
   if (!columns_.has(CsvField::kLabel)) {
     fail(path, InputPosition::line(in_.line()), "bad header: no label column (the columns are " + columns_.joined() + ")");
   }
@@ -23,9 +28,14 @@ LabelledCsvReader::LabelledCsvReader(const std::string& path) : in_(path) {
 
 bool LabelledCsvReader::next(LabelledEvent& out) {
   std::string_view line;
-  do {
+  std::string held;
+  if (!first_row_.empty()) {
+    held.swap(first_row_);
+    line = held;
+  }
+  while (line.empty()) {
     if (!in_.next_line(line)) return false;
-  } while (line.empty());
+  }
   const auto refuse = [&](const std::string& what) { fail(in_.path(), InputPosition::line(in_.line()), what); };
   long long t = 0, x = 0, y = 0, p = 0, label = 0;
   const char* at = line.data();

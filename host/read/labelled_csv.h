@@ -1,7 +1,8 @@
 // Reader of labelled-event CSV files (`t_us,x,y,p,label`), as `evms run` and `evms gen`
-// write them, for scoring: the header names the columns, in any order (csv_columns.h), and
-// must have a label. Comment lines before the header (evms writes "# sensor WxH" there) are
-// skipped. Bad rows stop with the file and line.
+// write them, for scoring: a header names the columns, in any order (csv_columns.h), and
+// must have a label; without one the rows are `t_us,x,y,p,label`. Comment lines before the
+// header or the first row (evms writes "# sensor WxH" there) are skipped. Bad rows stop with
+// the file and line.
 #pragma once
 
 #include <string>
@@ -23,6 +24,7 @@ class LabelledCsvReader {
  private:
   ByteReader in_;
   CsvColumns columns_;
+  std::string first_row_;  // a headerless file's first row, read while looking for a header
 };
 
 }  // namespace evms::read

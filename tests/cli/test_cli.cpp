@@ -529,6 +529,17 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
                                 dir.path("r/events.csv"));
   ASSERT_EQ(other.exit_code, 0) << other.err;
   EXPECT_EQ(other.out, ours.out);
+  // Without a header the rows are t_us,x,y,p,label, as evms run reads them, and score the same.
+  std::string headerless = read_file(dir.path("g/labels.csv"));
+  headerless.erase(headerless.find("t_us,"), headerless.find('\n', headerless.find("t_us,")) - headerless.find("t_us,") + 1);
+  const auto bare = run_command(evms_binary() + " metrics --chunk-us 10000 --truth " + dir.write("bare.csv", headerless) +
+                                " --pred " + dir.path("r/events.csv"));
+  ASSERT_EQ(bare.exit_code, 0) << bare.err;
+  EXPECT_EQ(bare.out, ours.out);
+  const auto four = run_command(evms_binary() + " metrics --truth " + dir.write("four.csv", "1,2,3,1\n") + " --pred " +
+                                dir.path("r/events.csv"));
+  EXPECT_EQ(four.exit_code, 1);
+  EXPECT_NE(four.err.find("four.csv: line 1: truncated row: expected 5 fields"), std::string::npos) << four.err;
   const auto unlabelled = run_command(evms_binary() + " metrics --truth " + dir.write("u.csv", "t,x,y,p\n1,2,3,1\n") + " --pred " +
                                       dir.path("r/events.csv"));
   EXPECT_EQ(unlabelled.exit_code, 1);
