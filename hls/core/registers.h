@@ -1,7 +1,9 @@
 // The core's registers, described once. Every copy is made from these two lists:
 //   - hls/core/config.h (the Config struct), through the lists below;
-//   - the RTL's cfg_* ports, the board's Cfg* parameters and their connections, the per-build
-//     reset values, and docs/registers.md, written by host/tools/rtl_gen into rtl/generated/;
+//   - the RTL's cfg_* ports (the core's, and the filter's sensor_* and filter_* alone for the
+//     intake and a core cut after its filter), the board's Cfg* parameters and their
+//     connections, the per-build reset values, and docs/registers.md, written by
+//     host/tools/rtl_gen into rtl/generated/;
 //   - the Verilated and SystemC testbenches' port assignments (sim/rtl_core.h,
 //     sim/systemc/sc_core_tb.cpp), through the lists below.
 //

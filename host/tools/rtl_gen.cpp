@@ -4,10 +4,13 @@
 //   evms_core_shape_params.svh   the Shape parameter list of evms_core and evms_board
 //   evms_core_shape_connect.svh  those parameters passed down, board -> core
 //   evms_core_cfg_ports.svh      the cfg_* input ports of evms_core
+//   evms_filter_cfg_ports.svh    the filter's cfg_* input ports (evms_intake, evms_filter_core)
+//   evms_filter_cfg_connect.svh  those ports passed down, core -> intake
 //   evms_core_states.svh         the controller's state_e
 //   evms_core_labels.svh         the labels that are not a track's ID (hls/core/words.h)
 //   evms_board_cfg_params.svh    the Cfg* reset-value parameters of evms_board
 //   evms_board_cfg_connect.svh   those parameters on the core's cfg_* ports
+//   evms_board_filter_cfg_connect.svh  the filter's of them on evms_filter_core's ports
 //   evms_board_build_params.svh  a board top's build passed to evms_board
 //   evms_builds.cmake            the build names, for sim/CMakeLists.txt
 //   evms_cfg_registers.h         every build's reset registers, for C++17 testbenches
@@ -68,6 +71,13 @@ const std::vector<Register> kHlsRegisters = {EVMS_CORE_HLS_REGISTERS(EVMS_REGIST
 
 // The board's parameter that holds a register's value: "merge_radius2" -> "CfgMergeRadius2".
 std::string board_parameter(const Register& r) { return "Cfg" + upper_camel(r.name); }
+
+// The registers the background-activity filter reads (hls/filter/ba_filter.h): the sensor_*
+// and filter_* ones, the only inputs of a core cut after its filter.
+bool read_by_filter(const Register& r) {
+  const std::string name = r.name;
+  return name.rfind("sensor_", 0) == 0 || name.rfind("filter_", 0) == 0;
+}
 
 // The RTL registers' values in `c`, as their bits.
 std::vector<std::uint64_t> rtl_register_values(const hls::Config& c) {
@@ -161,6 +171,20 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
   write(dir + "/evms_core_cfg_ports.svh", ports.str());
   write(dir + "/evms_board_cfg_params.svh", board_params.str());
   write(dir + "/evms_board_cfg_connect.svh", board_connect.str());
+
+  std::ostringstream filter_ports, filter_connect, board_filter_connect;
+  filter_ports << "// " << kGeneratedBy << "\n// The registers the background-activity filter reads (hls/core/registers.h) as inputs.\n";
+  filter_connect << "// " << kGeneratedBy << "\n// The filter's registers passed to an instance of evms_intake.\n";
+  board_filter_connect << "// " << kGeneratedBy << "\n// The board's filter register values on evms_filter_core's cfg_* ports.\n";
+  for (const Register& r : kRtlRegisters) {
+    if (!read_by_filter(r)) continue;
+    filter_ports << "input  " << sv_type(r.bits) << " cfg_" << r.name << ",  // " << r.description << "\n";
+    filter_connect << ".cfg_" << r.name << "(cfg_" << r.name << "),\n";
+    board_filter_connect << ".cfg_" << r.name << "(" << board_parameter(r) << "),\n";
+  }
+  write(dir + "/evms_filter_cfg_ports.svh", filter_ports.str());
+  write(dir + "/evms_filter_cfg_connect.svh", filter_connect.str());
+  write(dir + "/evms_board_filter_cfg_connect.svh", board_filter_connect.str());
 
   // A board top includes evms_cfg_<build>.svh, then passes all of it on; the synthesis flow's
   // lane sweep (constraints/flow/synth.sh) may replace the build's lane count.

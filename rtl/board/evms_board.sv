@@ -117,10 +117,8 @@ module evms_board #(
     evms_filter_core #(
       .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift)
     ) u_core (
-      .clk(clk), .rst_n(run_rst_n), .cfg_filter_enabled(CfgFilterEnabled), .cfg_sensor_width(CfgSensorWidth),
-      .cfg_sensor_height(CfgSensorHeight), .cfg_filter_window(CfgFilterWindow),
-      .cfg_filter_noise_count(CfgFilterNoiseCount), .cfg_filter_quiet_count(CfgFilterQuietCount),
-      .cfg_filter_quiet_window(CfgFilterQuietWindow), .cfg_filter_warm_up(CfgFilterWarmUp),
+      .clk(clk), .rst_n(run_rst_n),
+      `include "evms_board_filter_cfg_connect.svh"
       .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y), .in_p(in_p), .in_flush(in_flush),
       .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y), .lab_p(lab_p),
       .lab_label(lab_label), .idle(core_idle));

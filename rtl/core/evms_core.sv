@@ -127,11 +127,9 @@ module evms_core #(
     .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift),
     .QueueDepth(PacketMax), .HasClimbScale(HasSeededPath), .ClimbShift(ClimbShift)
   ) u_intake (
-    .clk(clk), .rst_n(rst_n), .cfg_filter_enabled(cfg_filter_enabled), .cfg_sensor_width(cfg_sensor_width),
-    .cfg_sensor_height(cfg_sensor_height), .cfg_filter_window(cfg_filter_window),
-    .cfg_filter_noise_count(cfg_filter_noise_count), .cfg_filter_quiet_count(cfg_filter_quiet_count),
-    .cfg_filter_quiet_window(cfg_filter_quiet_window), .cfg_filter_warm_up(cfg_filter_warm_up), .cfg_climb_scale_x(cfg_climb_scale_x),
-    .cfg_climb_scale_y(cfg_climb_scale_y), .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y),
+    .clk(clk), .rst_n(rst_n),
+    `include "evms_filter_cfg_connect.svh"
+    .cfg_climb_scale_x(cfg_climb_scale_x), .cfg_climb_scale_y(cfg_climb_scale_y), .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y),
     .in_p(in_p), .in_flush(in_flush), .q_valid(q_valid), .q_pop(q_pop), .q_t(q_t), .q_x(q_x), .q_y(q_y), .q_p(q_p),
     .q_flush(q_flush), .q_kept(q_kept), .q_climb_x(q_climb_x), .q_climb_y(q_climb_y), .empty(intake_empty));
 

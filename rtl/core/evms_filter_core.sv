@@ -13,14 +13,8 @@ module evms_filter_core #(
 ) (
   input  logic        clk,
   input  logic        rst_n,
-  input  logic        cfg_filter_enabled,
-  input  logic [15:0] cfg_sensor_width,
-  input  logic [15:0] cfg_sensor_height,
-  input  logic [31:0] cfg_filter_window,
-  input  logic [23:0] cfg_filter_noise_count,
-  input  logic [23:0] cfg_filter_quiet_count,
-  input  logic [31:0] cfg_filter_quiet_window,
-  input  logic [31:0] cfg_filter_warm_up,
+  // The filter's registers (hls/core/registers.h).
+  `include "evms_filter_cfg_ports.svh"
   // Words in.
   input  logic        in_valid,
   output logic        in_ready,
@@ -47,11 +41,9 @@ module evms_filter_core #(
     .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift),
     .QueueDepth(QueueDepth), .HasClimbScale(0)
   ) u_intake (
-    .clk(clk), .rst_n(rst_n), .cfg_filter_enabled(cfg_filter_enabled), .cfg_sensor_width(cfg_sensor_width),
-    .cfg_sensor_height(cfg_sensor_height), .cfg_filter_window(cfg_filter_window),
-    .cfg_filter_noise_count(cfg_filter_noise_count), .cfg_filter_quiet_count(cfg_filter_quiet_count),
-    .cfg_filter_quiet_window(cfg_filter_quiet_window), .cfg_filter_warm_up(cfg_filter_warm_up), .cfg_climb_scale_x(64'd0),
-    .cfg_climb_scale_y(64'd0), .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y),
+    .clk(clk), .rst_n(rst_n),
+    `include "evms_filter_cfg_connect.svh"
+    .cfg_climb_scale_x(64'd0), .cfg_climb_scale_y(64'd0), .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y),
     .in_p(in_p), .in_flush(in_flush), .q_valid(q_valid), .q_pop(q_pop), .q_t(lab_t), .q_x(lab_x), .q_y(lab_y), .q_p(lab_p),
     .q_flush(q_flush), .q_kept(q_kept), .q_climb_x(unused_climb_x), .q_climb_y(unused_climb_y), .empty(intake_empty));
 

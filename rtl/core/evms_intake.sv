@@ -22,14 +22,8 @@ module evms_intake #(
 ) (
   input  logic        clk,
   input  logic        rst_n,
-  input  logic        cfg_filter_enabled,
-  input  logic [15:0] cfg_sensor_width,
-  input  logic [15:0] cfg_sensor_height,
-  input  logic [31:0] cfg_filter_window,
-  input  logic [23:0] cfg_filter_noise_count,
-  input  logic [23:0] cfg_filter_quiet_count,
-  input  logic [31:0] cfg_filter_quiet_window,
-  input  logic [31:0] cfg_filter_warm_up,
+  // The filter's registers (hls/core/registers.h).
+  `include "evms_filter_cfg_ports.svh"
   input  logic [63:0] cfg_climb_scale_x,
   input  logic [63:0] cfg_climb_scale_y,
   // Words in.
