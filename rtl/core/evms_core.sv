@@ -129,8 +129,9 @@ module evms_core #(
   ) u_intake (
     .clk(clk), .rst_n(rst_n),
     `include "evms_filter_cfg_connect.svh"
-    .cfg_climb_scale_x(cfg_climb_scale_x), .cfg_climb_scale_y(cfg_climb_scale_y), .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y),
-    .in_p(in_p), .in_flush(in_flush), .q_valid(q_valid), .q_pop(q_pop), .q_t(q_t), .q_x(q_x), .q_y(q_y), .q_p(q_p),
+    .cfg_climb_scale_x(cfg_climb_scale_x), .cfg_climb_scale_y(cfg_climb_scale_y),
+    .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y), .in_p(in_p), .in_flush(in_flush),
+    .q_valid(q_valid), .q_pop(q_pop), .q_t(q_t), .q_x(q_x), .q_y(q_y), .q_p(q_p),
     .q_flush(q_flush), .q_kept(q_kept), .q_climb_x(q_climb_x), .q_climb_y(q_climb_y), .empty(intake_empty));
 
   // ---- shared multiplier and reciprocal -------------------------------------------------------

@@ -43,8 +43,9 @@ module evms_filter_core #(
   ) u_intake (
     .clk(clk), .rst_n(rst_n),
     `include "evms_filter_cfg_connect.svh"
-    .cfg_climb_scale_x(64'd0), .cfg_climb_scale_y(64'd0), .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y),
-    .in_p(in_p), .in_flush(in_flush), .q_valid(q_valid), .q_pop(q_pop), .q_t(lab_t), .q_x(lab_x), .q_y(lab_y), .q_p(lab_p),
+    .cfg_climb_scale_x(64'd0), .cfg_climb_scale_y(64'd0),
+    .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y), .in_p(in_p), .in_flush(in_flush),
+    .q_valid(q_valid), .q_pop(q_pop), .q_t(lab_t), .q_x(lab_x), .q_y(lab_y), .q_p(lab_p),
     .q_flush(q_flush), .q_kept(q_kept), .q_climb_x(unused_climb_x), .q_climb_y(unused_climb_y), .empty(intake_empty));
 
   // A flush word has nothing to release here: it leaves the queue unseen.
