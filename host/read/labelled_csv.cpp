@@ -16,9 +16,10 @@ LabelledCsvReader::LabelledCsvReader(const std::string& path) : in_(path) {
   if (is_csv_header(header)) {
     columns_ = csv_columns_of_header(header, path, in_.line());
   } else {
-    // Without a header the columns are evms's own order, as the event readers take them
-    // (text_formats.cpp); this first line is then a row.
-    columns_ = csv_columns_of_header("t_us,x,y,p,label", path, in_.line());
+    // Without a header the columns are the event readers' (CsvColumns::headerless), the label
+    // required; this first line is then a row.
+    columns_ = CsvColumns::headerless();
+    columns_.count = CsvColumns::kMost;
     first_row_ = header;
   }
   if (!columns_.has(CsvField::kLabel)) {
@@ -27,12 +28,9 @@ LabelledCsvReader::LabelledCsvReader(const std::string& path) : in_(path) {
 }
 
 bool LabelledCsvReader::next(LabelledEvent& out) {
-  std::string_view line;
-  std::string held;
-  if (!first_row_.empty()) {
-    held.swap(first_row_);
-    line = held;
-  }
+  std::string held;  // a headerless file's first row, parsed on the first call only
+  if (!first_row_.empty()) held.swap(first_row_);
+  std::string_view line = held;
   while (line.empty()) {
     if (!in_.next_line(line)) return false;
   }

@@ -531,7 +531,8 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
   EXPECT_EQ(other.out, ours.out);
   // Without a header the rows are t_us,x,y,p,label, as evms run reads them, and score the same.
   std::string headerless = read_file(dir.path("g/labels.csv"));
-  headerless.erase(headerless.find("t_us,"), headerless.find('\n', headerless.find("t_us,")) - headerless.find("t_us,") + 1);
+  const size_t header = headerless.find("t_us,");
+  headerless.erase(header, headerless.find('\n', header) - header + 1);
   const auto bare = run_command(evms_binary() + " metrics --chunk-us 10000 --truth " + dir.write("bare.csv", headerless) +
                                 " --pred " + dir.path("r/events.csv"));
   ASSERT_EQ(bare.exit_code, 0) << bare.err;
