@@ -51,11 +51,9 @@ class RtlCore {
   // Offers a word and ticks until the core takes it, collecting outputs meanwhile.
   void push(const hls::EventWord& w) {
     top_->in_valid = 1;
-    top_->in_t = w.t;
-    top_->in_x = w.x;
-    top_->in_y = w.y;
-    top_->in_p = w.p;
-    top_->in_flush = w.flush;
+#define EVMS_DRIVE_FIELD(name, type, bits, reset) top_->in_##name = w.name;
+    EVMS_EVENT_WORD_FIELDS(EVMS_DRIVE_FIELD)
+#undef EVMS_DRIVE_FIELD
     accepted_ = false;
     std::uint64_t guard = 0;
     while (!accepted_) {
@@ -125,8 +123,11 @@ class RtlCore {
     ctx_->timeInc(1);
     if (top_->in_valid && top_->in_ready) accepted_ = true;
     if (top_->lab_valid && top_->lab_ready) {
-      labels.push_back({top_->lab_t, static_cast<std::uint16_t>(top_->lab_x), static_cast<std::uint16_t>(top_->lab_y),
-                        static_cast<std::uint8_t>(top_->lab_p), static_cast<std::int32_t>(top_->lab_label)});
+      hls::LabelWord l;
+#define EVMS_TAKE_FIELD(name, type, bits, reset) l.name = static_cast<type>(top_->lab_##name);
+      EVMS_LABEL_WORD_FIELDS(EVMS_TAKE_FIELD)
+#undef EVMS_TAKE_FIELD
+      labels.push_back(l);
     }
     if (top_->trk_valid && top_->trk_ready) {
       tracks.push_back({top_->trk_t, static_cast<std::int32_t>(top_->trk_id), static_cast<std::int32_t>(top_->trk_x),

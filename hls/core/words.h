@@ -6,13 +6,6 @@
 
 namespace evms::hls {
 
-struct EventWord {
-  std::uint32_t t = 0;
-  std::uint16_t x = 0, y = 0;
-  std::uint8_t p = 0;
-  bool flush = false;   // not an event: close the open packet and flush everything held
-};
-
 // The labels that are not a track's ID: noise, and what a board whose core stops at the filter
 // (EVMS_BOARD_BUILDS, hls/core/configs.h) gives an event that passed it, whose cluster the host
 // finds (Core::process_decided). host/tools/rtl_gen writes both for the RTL
@@ -20,12 +13,27 @@ struct EventWord {
 inline constexpr std::int32_t kLabelNoise = -1;
 inline constexpr std::int32_t kLabelPassedFilter = -3;
 
-struct LabelWord {
-  std::uint32_t t = 0;
-  std::uint16_t x = 0, y = 0;
-  std::uint8_t p = 0;
-  std::int32_t label = kLabelNoise;
+// The fields of the event and label streams, described once, as X(name, type, bits, reset):
+// the C++ type and the width of the RTL port. The words below, the RTL's stream ports and their
+// connections (in_<name>, lab_<name>; host/tools/rtl_gen writes rtl/generated/evms_stream_*.svh)
+// and the testbenches' port assignments (sim/rtl_core.h, sim/systemc/sc_core_tb.cpp) are made
+// from them. An event word with flush set is not an event: it closes the open packet and
+// flushes everything held.
+#define EVMS_EVENT_WORD_FIELDS(X) \
+  X(t, std::uint32_t, 32, 0) X(x, std::uint16_t, 16, 0) X(y, std::uint16_t, 16, 0) X(p, std::uint8_t, 1, 0) X(flush, bool, 1, false)
+#define EVMS_LABEL_WORD_FIELDS(X)                                                                                      \
+  X(t, std::uint32_t, 32, 0) X(x, std::uint16_t, 16, 0) X(y, std::uint16_t, 16, 0) X(p, std::uint8_t, 1, 0)        \
+  X(label, std::int32_t, 32, kLabelNoise)
+
+#define EVMS_WORD_MEMBER(name, type, bits, reset) type name = reset;
+struct EventWord {
+  EVMS_EVENT_WORD_FIELDS(EVMS_WORD_MEMBER)
 };
+
+struct LabelWord {
+  EVMS_LABEL_WORD_FIELDS(EVMS_WORD_MEMBER)
+};
+#undef EVMS_WORD_MEMBER
 
 struct TrackWord {
   std::uint32_t t = 0;      // measurement time

@@ -15,6 +15,11 @@
 //   evms_builds.cmake            the build names, for sim/CMakeLists.txt
 //   evms_cfg_registers.h         every build's reset registers, for C++17 testbenches
 //   evms_link_frames.svh         the link's frame types and lengths (host/link/link_frames.h)
+//   evms_stream_in_{sink_ports,connect,wires}.svh  the event stream (in_*, hls/core/words.h):
+//                                the ports of a module that takes it, an instance's connection
+//                                to same-named signals, and those signals
+//   evms_stream_lab_{source_ports,sink_ports,connect,wires}.svh  the same of the labelled-event
+//                                stream (lab_*), and the ports of a module that drives it
 // and per build: evms_cfg_<build>.svh (its Shape and reset registers as localparams),
 // evms_cfg_<build>.cmake (the same as Verilator -G overrides; with a board build's board, from
 // EVMS_BOARD_BUILDS, in both), and its exp and reciprocal ROM
@@ -31,6 +36,7 @@
 #include "hls/cluster/tables.h"
 #include "hls/core/configs.h"
 #include "hls/core/schedule.h"
+#include "hls/core/words.h"
 #include "host/backend/core_config.h"
 #include "host/link/link_frames.h"
 #include "types/params.h"
@@ -223,6 +229,46 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
   write(dir + "/evms_core_labels.svh", labels.str());
 }
 
+struct StreamField {
+  const char* name;
+  int bits;
+};
+#define EVMS_STREAM_FIELD(name, type, bits, reset) {#name, bits},
+const std::vector<StreamField> kEventWordFields = {EVMS_EVENT_WORD_FIELDS(EVMS_STREAM_FIELD)};
+const std::vector<StreamField> kLabelWordFields = {EVMS_LABEL_WORD_FIELDS(EVMS_STREAM_FIELD)};
+#undef EVMS_STREAM_FIELD
+
+// A valid/ready stream of `fields` as signals named <prefix>_<field>: evms_stream_<prefix>_
+// source_ports.svh (the ports of a module that drives it; only where one does), _sink_ports.svh
+// (of a module that takes it), _connect.svh (an instance's ports on same-named signals) and
+// _wires.svh (those signals).
+void write_stream(const std::string& dir, const std::string& prefix, const std::string& what,
+                  const std::vector<StreamField>& fields, bool has_source_module) {
+  std::vector<StreamField> all = {{"valid", 1}, {"ready", 1}};
+  all.insert(all.end(), fields.begin(), fields.end());
+  std::ostringstream source, sink, connect, wires;
+  const std::string head = std::string("// ") + kGeneratedBy + "\n// " + what + " (hls/core/words.h)";
+  source << head << ", as the ports of the module that drives it.\n";
+  sink << head << ", as the ports of the module that takes it.\n";
+  connect << head << ": an instance's ports on signals of the same names.\n";
+  wires << head << ": its signals.\n";
+  for (const StreamField& f : all) {
+    const bool backward = std::string(f.name) == "ready";
+    const std::string signal = prefix + "_" + f.name;
+    char port[128];
+    std::snprintf(port, sizeof port, "%-20s %s,\n", sv_type(f.bits).c_str(), signal.c_str());
+    source << (backward ? "input  " : "output ") << port;
+    sink << (backward ? "output " : "input  ") << port;
+    connect << "." << signal << "(" << signal << "),\n";
+    wires << sv_type(f.bits) << " " << signal << ";\n";
+  }
+  const std::string base = dir + "/evms_stream_" + prefix;
+  if (has_source_module) write(base + "_source_ports.svh", source.str());
+  write(base + "_sink_ports.svh", sink.str());
+  write(base + "_connect.svh", connect.str());
+  write(base + "_wires.svh", wires.str());
+}
+
 template <class S>
 void write_tables(const std::string& dir) {
   std::ostringstream e;
@@ -367,6 +413,9 @@ int main(int argc, char** argv) {
   for (const BuildFiles& b : builds) {
     if (b.name == "arty") write_interface(dir, b);
   }
+  // The event stream enters at the board's own signals; the labelled events leave a core's ports.
+  write_stream(dir, "in", "The event stream", kEventWordFields, false);
+  write_stream(dir, "lab", "The labelled-event stream", kLabelWordFields, true);
   write_docs(std::string(argv[2]) + "/registers.md", builds);
   std::ostringstream frames;
   frames << "// " << kGeneratedBy << "\n// The link's frames (host/link/link_frames.h, docs/link.md): type codes and payload lengths.\n"

@@ -86,9 +86,7 @@ module evms_board #(
     .events_received(events_received));
 
   // Link words first (the host owns the stream while it sends), then the sensor.
-  logic in_valid, in_ready, in_p, in_flush;
-  logic [31:0] in_t;
-  logic [15:0] in_x, in_y;
+  `include "evms_stream_in_wires.svh"
   assign in_valid = lk_valid || aer_valid;
   assign {in_t, in_x, in_y, in_p, in_flush} = lk_valid ? {lk_t, lk_x, lk_y, lk_p, lk_flush} : {aer_t, aer_x, aer_y, aer_p, 1'b0};
   assign lk_ready = in_ready;
@@ -103,9 +101,10 @@ module evms_board #(
   end
 
   // ---- the core ---------------------------------------------------------------------------------
-  logic lab_valid, lab_ready, lab_p, trk_valid, trk_ready, trk_confirmed, pkt_valid, pkt_ready, core_idle;
-  logic [31:0] lab_t, lab_label, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy, pkt_t_first, pkt_t_last;
-  logic [15:0] lab_x, lab_y, pkt_events;
+  `include "evms_stream_lab_wires.svh"
+  logic trk_valid, trk_ready, trk_confirmed, pkt_valid, pkt_ready, core_idle;
+  logic [31:0] trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy, pkt_t_first, pkt_t_last;
+  logic [15:0] pkt_events;
   logic [7:0] pkt_clusters;
   logic [15:0] pkt_iterations;
   // The link's packet frame carries 8 bits of iterations: more saturate at 255.
@@ -119,9 +118,9 @@ module evms_board #(
     ) u_core (
       .clk(clk), .rst_n(run_rst_n),
       `include "evms_board_filter_cfg_connect.svh"
-      .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y), .in_p(in_p), .in_flush(in_flush),
-      .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y), .lab_p(lab_p),
-      .lab_label(lab_label), .idle(core_idle));
+      `include "evms_stream_in_connect.svh"
+      `include "evms_stream_lab_connect.svh"
+      .idle(core_idle));
     assign {trk_valid, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy, trk_confirmed} = '0;
     assign {pkt_valid, pkt_t_first, pkt_t_last, pkt_events, pkt_clusters, pkt_iterations} = '0;
     assign {tracks_started, unassigned} = '0;
@@ -133,9 +132,9 @@ module evms_board #(
     ) u_core (
       .clk(clk), .rst_n(run_rst_n),
       `include "evms_board_cfg_connect.svh"
-      .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y), .in_p(in_p), .in_flush(in_flush),
-      .lab_valid(lab_valid), .lab_ready(lab_ready), .lab_t(lab_t), .lab_x(lab_x), .lab_y(lab_y), .lab_p(lab_p),
-      .lab_label(lab_label), .trk_valid(trk_valid), .trk_ready(trk_ready), .trk_t(trk_t), .trk_id(trk_id), .trk_x(trk_x),
+      `include "evms_stream_in_connect.svh"
+      `include "evms_stream_lab_connect.svh"
+      .trk_valid(trk_valid), .trk_ready(trk_ready), .trk_t(trk_t), .trk_id(trk_id), .trk_x(trk_x),
       .trk_y(trk_y), .trk_vx(trk_vx), .trk_vy(trk_vy), .trk_zx(trk_zx), .trk_zy(trk_zy), .trk_confirmed(trk_confirmed),
       // The link's track frames end at the state: the measurement's count and box and the
       // variances stay on the board (docs/link.md).

@@ -22,13 +22,7 @@ module evms_link_tx #(
   input  logic        clk,
   input  logic        rst_n,
   // Labelled events.
-  input  logic        lab_valid,
-  output logic        lab_ready,
-  input  logic [31:0] lab_t,
-  input  logic [15:0] lab_x,
-  input  logic [15:0] lab_y,
-  input  logic        lab_p,
-  input  logic [31:0] lab_label,
+  `include "evms_stream_lab_sink_ports.svh"
   // Track updates.
   input  logic        trk_valid,
   output logic        trk_ready,

@@ -28,21 +28,9 @@ module evms_core #(
   // Registers (hls/core/registers.h).
   `include "evms_core_cfg_ports.svh"
   // Events in.
-  input  logic        in_valid,
-  output logic        in_ready,
-  input  logic [31:0] in_t,
-  input  logic [15:0] in_x,
-  input  logic [15:0] in_y,
-  input  logic        in_p,
-  input  logic        in_flush,
+  `include "evms_stream_in_sink_ports.svh"
   // Labelled events out, in input order.
-  output logic        lab_valid,
-  input  logic        lab_ready,
-  output logic [31:0] lab_t,
-  output logic [15:0] lab_x,
-  output logic [15:0] lab_y,
-  output logic        lab_p,
-  output logic [31:0] lab_label,
+  `include "evms_stream_lab_source_ports.svh"
   // Track updates out.
   output logic        trk_valid,
   input  logic        trk_ready,
@@ -130,7 +118,7 @@ module evms_core #(
     .clk(clk), .rst_n(rst_n),
     `include "evms_filter_cfg_connect.svh"
     .cfg_climb_scale_x(cfg_climb_scale_x), .cfg_climb_scale_y(cfg_climb_scale_y),
-    .in_valid(in_valid), .in_ready(in_ready), .in_t(in_t), .in_x(in_x), .in_y(in_y), .in_p(in_p), .in_flush(in_flush),
+    `include "evms_stream_in_connect.svh"
     .q_valid(q_valid), .q_pop(q_pop), .q_t(q_t), .q_x(q_x), .q_y(q_y), .q_p(q_p),
     .q_flush(q_flush), .q_kept(q_kept), .q_climb_x(q_climb_x), .q_climb_y(q_climb_y), .empty(intake_empty));
 

@@ -27,13 +27,7 @@ module evms_intake #(
   input  logic [63:0] cfg_climb_scale_x,
   input  logic [63:0] cfg_climb_scale_y,
   // Words in.
-  input  logic        in_valid,
-  output logic        in_ready,
-  input  logic [31:0] in_t,
-  input  logic [15:0] in_x,
-  input  logic [15:0] in_y,
-  input  logic        in_p,
-  input  logic        in_flush,
+  `include "evms_stream_in_sink_ports.svh"
   // Decided words out, in input order (first-word-fall-through).
   output logic        q_valid,
   input  logic        q_pop,

@@ -49,9 +49,15 @@ using ScPortType = std::conditional_t<Bits == 1, bool, std::conditional_t<Bits <
 
 SC_MODULE(Testbench) {
   sc_clock clk{"clk", 10, SC_NS};
-  sc_signal<bool> rst_n, in_valid, in_ready, in_p, in_flush, lab_valid, lab_ready, lab_p, trk_valid, trk_ready, trk_confirmed, pkt_valid,
-      pkt_ready, idle;
-  sc_signal<uint32_t> in_t, in_x, in_y, lab_t, lab_x, lab_y, lab_label, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy,
+  sc_signal<bool> rst_n, in_valid, in_ready, lab_valid, lab_ready, trk_valid, trk_ready, trk_confirmed, pkt_valid, pkt_ready, idle;
+  // One signal per field of the event and label streams (hls/core/words.h).
+#define EVMS_IN_SIGNAL(name, type, bits, reset) sc_signal<ScPortType<bits>> in_##name;
+  EVMS_EVENT_WORD_FIELDS(EVMS_IN_SIGNAL)
+#undef EVMS_IN_SIGNAL
+#define EVMS_LAB_SIGNAL(name, type, bits, reset) sc_signal<ScPortType<bits>> lab_##name;
+  EVMS_LABEL_WORD_FIELDS(EVMS_LAB_SIGNAL)
+#undef EVMS_LAB_SIGNAL
+  sc_signal<uint32_t> trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy,
       trk_events, trk_x_min, trk_y_min, trk_x_max, trk_y_max, pkt_t_first, pkt_t_last, pkt_events, pkt_clusters, pkt_iterations,
       stat_tracks_started, stat_unassigned;
   sc_signal<uint64_t> trk_var_x, trk_var_y;
@@ -68,10 +74,13 @@ SC_MODULE(Testbench) {
   SC_CTOR(Testbench) {
     dut.clk(clk);
     dut.rst_n(rst_n);
-    dut.in_valid(in_valid), dut.in_ready(in_ready), dut.in_t(in_t), dut.in_x(in_x), dut.in_y(in_y), dut.in_p(in_p);
-    dut.in_flush(in_flush);
-    dut.lab_valid(lab_valid), dut.lab_ready(lab_ready), dut.lab_t(lab_t), dut.lab_x(lab_x), dut.lab_y(lab_y), dut.lab_p(lab_p);
-    dut.lab_label(lab_label);
+    dut.in_valid(in_valid), dut.in_ready(in_ready), dut.lab_valid(lab_valid), dut.lab_ready(lab_ready);
+#define EVMS_BIND_IN(name, type, bits, reset) dut.in_##name(in_##name);
+    EVMS_EVENT_WORD_FIELDS(EVMS_BIND_IN)
+#undef EVMS_BIND_IN
+#define EVMS_BIND_LAB(name, type, bits, reset) dut.lab_##name(lab_##name);
+    EVMS_LABEL_WORD_FIELDS(EVMS_BIND_LAB)
+#undef EVMS_BIND_LAB
     dut.trk_valid(trk_valid), dut.trk_ready(trk_ready), dut.trk_t(trk_t), dut.trk_id(trk_id), dut.trk_x(trk_x), dut.trk_y(trk_y);
     dut.trk_vx(trk_vx), dut.trk_vy(trk_vy), dut.trk_zx(trk_zx), dut.trk_zy(trk_zy), dut.trk_confirmed(trk_confirmed);
     dut.trk_events(trk_events), dut.trk_x_min(trk_x_min), dut.trk_y_min(trk_y_min), dut.trk_x_max(trk_x_max), dut.trk_y_max(trk_y_max);
@@ -98,7 +107,9 @@ SC_MODULE(Testbench) {
     rst_n = true;
     for (const auto& w : words) {
       in_valid = true;
-      in_t = w.t, in_x = w.x, in_y = w.y, in_p = w.p, in_flush = w.flush;
+#define EVMS_DRIVE_IN(name, type, bits, reset) in_##name = static_cast<ScPortType<bits>>(w.name);
+      EVMS_EVENT_WORD_FIELDS(EVMS_DRIVE_IN)
+#undef EVMS_DRIVE_IN
       do wait(); while (!in_ready.read());
     }
     in_valid = false;
@@ -121,8 +132,11 @@ SC_MODULE(Testbench) {
       lab_ready = (state & 3) != 0;  // ready three cycles in four
       wait();
       if (lab_valid.read() && lab_ready.read()) {
-        labels.push_back({lab_t.read(), static_cast<std::uint16_t>(lab_x.read()), static_cast<std::uint16_t>(lab_y.read()),
-                          static_cast<std::uint8_t>(lab_p.read()), static_cast<std::int32_t>(lab_label.read())});
+        evms::hls::LabelWord l;
+#define EVMS_TAKE_LAB(name, type, bits, reset) l.name = static_cast<type>(lab_##name.read());
+        EVMS_LABEL_WORD_FIELDS(EVMS_TAKE_LAB)
+#undef EVMS_TAKE_LAB
+        labels.push_back(l);
       }
     }
   }
