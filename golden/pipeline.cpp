@@ -111,10 +111,13 @@ void Pipeline::close_packet(OutputSink& out) {
     spreads_ = clusters.spreads;
     stats_.cluster_ns += clock.lap();
 
-    // A cluster's measurement: the centre of mass of its events, timed at their mean
-    // timestamp, with their count, spread and bounding box.
+    // A cluster's measurement: the centre of mass of its events (or the midpoint of its two
+    // polarities' centres of mass), timed at their mean timestamp, with their count, spread
+    // (about the centre of mass) and bounding box.
     std::vector<Measurement> measurements(static_cast<size_t>(clusters.count));
     std::vector<double> sum_t(measurements.size(), 0.0), sum_r2(measurements.size(), 0.0);
+    std::vector<double> on_x(measurements.size(), 0.0), on_y(measurements.size(), 0.0);
+    std::vector<int> on_events(measurements.size(), 0);
     const TimeUs t0 = packet_.front().t;
     for (size_t i = 0; i < supported.size(); ++i) {
       const int c = clusters.cluster_of[i];
@@ -126,16 +129,23 @@ void Pipeline::close_packet(OutputSink& out) {
       m.y_min = std::min<int>(m.y_min, e.y), m.y_max = std::max<int>(m.y_max, e.y);
       m.x += e.x;
       m.y += e.y;
+      if (e.p) on_x[static_cast<size_t>(c)] += e.x, on_y[static_cast<size_t>(c)] += e.y, ++on_events[static_cast<size_t>(c)];
       sum_r2[static_cast<size_t>(c)] += static_cast<double>(e.x) * e.x + static_cast<double>(e.y) * e.y;
       sum_t[static_cast<size_t>(c)] += static_cast<double>(e.t - t0);
       ++m.events;
     }
     for (size_t c = 0; c < measurements.size(); ++c) {
       Measurement& m = measurements[c];
+      const int on = on_events[c], off = m.events - on;
+      const bool midpoint = params_.measure == Measure::kPolarityMidpoint && on >= params_.midpoint_min_events &&
+                            off >= params_.midpoint_min_events;
+      const double mid_x = midpoint ? 0.5 * (on_x[c] / on + (m.x - on_x[c]) / off) : 0.0;
+      const double mid_y = midpoint ? 0.5 * (on_y[c] / on + (m.y - on_y[c]) / off) : 0.0;
       m.x /= m.events;
       m.y /= m.events;
       m.spread = std::sqrt(std::max(0.0, sum_r2[c] / m.events - m.x * m.x - m.y * m.y));
       if (params_.measure == Measure::kBoxCentre) m.x = (m.x_min + m.x_max) / 2.0, m.y = (m.y_min + m.y_max) / 2.0;
+      if (midpoint) m.x = mid_x, m.y = mid_y;
       m.t = t0 + static_cast<TimeUs>(sum_t[c] / m.events + 0.5);
     }
 

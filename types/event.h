@@ -45,7 +45,7 @@ struct TrackUpdate {
   std::int32_t id = 0;     // persistent track ID, never reused
   double x = 0, y = 0;     // px
   double vx = 0, vy = 0;   // px/s
-  double zx = 0, zy = 0;   // the raw measurement (cluster centre of mass) of this update, px
+  double zx = 0, zy = 0;   // the raw measurement (--measure: centre of mass or polarity midpoint) of this update, px
   TrackState state = TrackState::kConfirmed;
   std::int32_t events = 0;                   // events of the cluster (labelled with this ID)
   std::int32_t x_min = 0, y_min = 0;         // the cluster's bounding box, px (inclusive)

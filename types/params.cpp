@@ -16,7 +16,7 @@ constexpr std::array<const char*, 3> kKernelNames = {"gaussian", "flat", "epanec
 constexpr std::array<const char*, 3> kSeedingNames = {"every", "events", "grid"};
 constexpr std::array<const char*, 3> kLabellingNames = {"votes", "nearest", "first"};
 constexpr std::array<const char*, 2> kXyScaleNames = {"axes", "isotropic"};
-constexpr std::array<const char*, 2> kMeasureNames = {"centroid", "box-centre"};
+constexpr std::array<const char*, 3> kMeasureNames = {"centroid", "box-centre", "polarity-midpoint"};
 constexpr std::array<const char*, 3> kAssociationNames = {"kalman", "nearest-centre", "last-measurement"};
 
 const std::array kTable = {
@@ -113,8 +113,13 @@ const std::array kTable = {
     ParamInfo{"max-clusters", "clusters",
               "clusters per packet; modes that would open a further one become noise",
               &Params::max_clusters, 1, 256},
-    ParamInfo{"measure", "", "a cluster's position: the centroid of its events, or the centre of their bounding box",
+    ParamInfo{"measure", "", "a cluster's position: the centroid of its events, the centre of their bounding box, or "
+              "the midpoint of its ON events' centroid and its OFF events' centroid (an edge that fires more events "
+              "than the opposite edge then pulls no harder)",
               &Params::measure, 0, 0, {kMeasureNames}},
+    ParamInfo{"midpoint-min-events", "events", "with --measure polarity-midpoint, the events each polarity needs; "
+              "with fewer, the cluster's position is the centroid of its events",
+              &Params::midpoint_min_events, 1, 65535},
     ParamInfo{"association", "", "cluster IDs across packets: kalman (one-to-one against each track's "
               "Kalman prediction), last-measurement (one-to-one against each track's last cluster centre) or "
               "nearest-centre (the previous packet's nearest cluster, as the authors' code)",

@@ -30,8 +30,10 @@ enum class Labelling : std::uint8_t {
 };
 // How x and y are normalized: x/W and y/H (the paper), or both by the larger side.
 enum class XyScale : std::uint8_t { kAxes, kIsotropic };
-// Where a cluster is: the centre of mass of its events, or the centre of their bounding box.
-enum class Measure : std::uint8_t { kCentroid, kBoxCentre };
+// Where a cluster is: the centre of mass of its events, the centre of their bounding box, or the
+// midpoint of its ON events' and its OFF events' centres of mass (the centre of mass where either
+// polarity has fewer than midpoint_min_events).
+enum class Measure : std::uint8_t { kCentroid, kBoxCentre, kPolarityMidpoint };
 // How clusters get their IDs across packets.
 enum class Association : std::uint8_t {
   kKalman,         // one-to-one, nearest first, against each track's Kalman prediction
@@ -89,7 +91,8 @@ struct Params {
   double split_cell = 0.5;           // ... parts of 8-connected cells this many bandwidths a side
 
   // --- tracker --------------------------------------------------------------------------
-  Measure measure = Measure::kCentroid;
+  Measure measure = Measure::kPolarityMidpoint;
+  int midpoint_min_events = 16;      // polarity midpoint: events each polarity needs
   Association association = Association::kLastMeasurement;
   double gate_px = 20.0;             // association gate around the predicted position
   double gate_spread = 0.0;          // ... widened to this many times the cluster's spread

@@ -1,7 +1,14 @@
 // Each cluster's measurement: the centre of mass of its events' pixel positions (kPosFrac
 // fraction bits, rounded) timed at the rounded mean of their timestamps; with its event count,
 // its bounding box, and its spread squared (the mean squared distance of its events from their
-// centre, px^2 with kSpreadFrac fraction bits, exact then rounded half up).
+// centre of mass, px^2 with kSpreadFrac fraction bits, exact then rounded half up).
+//
+// With `midpoint_min` > 0 (exact division only), a cluster with at least that many ON and that
+// many OFF events is measured at the midpoint of the two polarities' centres of mass instead:
+// x = (Sx_on / n_on + Sx_off / n_off) / 2 = (Sx_on n_off + Sx_off n_on) / (2 n_on n_off), one
+// exact division rounded half up, as the centre of mass is. An object's leading and trailing
+// edges fire opposite polarities; where one fires more (contrast, speed), the centre of mass
+// leans towards it and the midpoint does not.
 #pragma once
 
 #include <cstdint>
@@ -24,8 +31,9 @@ struct Measurement {
 // table; the seeded path does, the RTL's path (the Gaussian one) does not.
 template <class S>
 void centroids(const PacketEvents<S>& ev, int n, const std::int8_t cluster_of[S::kPacketMax], int clusters,
-               Measurement out[S::kClustersMax], bool exact = false) {
+               Measurement out[S::kClustersMax], bool exact = false, std::uint16_t midpoint_min = 0) {
   std::uint32_t sx[S::kClustersMax] = {}, sy[S::kClustersMax] = {}, count[S::kClustersMax] = {};
+  std::uint32_t sx_on[S::kClustersMax] = {}, sy_on[S::kClustersMax] = {}, count_on[S::kClustersMax] = {};
   std::uint64_t st[S::kClustersMax] = {}, s2[S::kClustersMax] = {};
   std::uint16_t x0[S::kClustersMax], y0[S::kClustersMax], x1[S::kClustersMax], y1[S::kClustersMax];
   const std::uint32_t t0 = ev.t[0];
@@ -40,6 +48,7 @@ accumulate:
     y0[c] = ev.y[i] < y0[c] ? ev.y[i] : y0[c], y1[c] = ev.y[i] > y1[c] ? ev.y[i] : y1[c];
     sx[c] += ev.x[i];
     sy[c] += ev.y[i];
+    if (ev.p[i]) sx_on[c] += ev.x[i], sy_on[c] += ev.y[i], ++count_on[c];
     s2[c] += std::uint64_t{ev.x[i]} * ev.x[i] + std::uint64_t{ev.y[i]} * ev.y[i];
     st[c] += ev.t[i] - t0;
     ++count[c];
@@ -48,9 +57,16 @@ divide:
   for (int c = 0; c < S::kClustersMax; ++c) {
     if (c >= clusters) break;
     if (exact) {
-      const std::uint64_t n = count[c];
-      out[c].x = static_cast<std::int32_t>(((std::uint64_t{sx[c]} << (S::kPosFrac + 1)) + n) / (2 * n));
-      out[c].y = static_cast<std::int32_t>(((std::uint64_t{sy[c]} << (S::kPosFrac + 1)) + n) / (2 * n));
+      const std::uint64_t n = count[c], n_on = count_on[c], n_off = n - n_on;
+      // The x and y quotients' numerators (before the kPosFrac shift) and denominator.
+      std::uint64_t num_x = sx[c], num_y = sy[c], den = n;
+      if (midpoint_min > 0 && n_on >= midpoint_min && n_off >= midpoint_min) {
+        num_x = std::uint64_t{sx_on[c]} * n_off + std::uint64_t{sx[c] - sx_on[c]} * n_on;
+        num_y = std::uint64_t{sy_on[c]} * n_off + std::uint64_t{sy[c] - sy_on[c]} * n_on;
+        den = 2 * n_on * n_off;
+      }
+      out[c].x = static_cast<std::int32_t>(((num_x << (S::kPosFrac + 1)) + den) / (2 * den));
+      out[c].y = static_cast<std::int32_t>(((num_y << (S::kPosFrac + 1)) + den) / (2 * den));
       out[c].t = t0 + static_cast<std::uint32_t>((2 * st[c] + n) / (2 * n));
     } else {
       out[c].x = static_cast<std::int32_t>(Tables<S>::recip.template divide<S::kPosFrac>(sx[c], count[c]));

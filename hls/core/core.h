@@ -127,7 +127,7 @@ class Core {
         clusters = merge_modes(phi, n_, cfg_, cluster_of, trace.merge);
       }
       Measurement z[S::kClustersMax];
-      centroids(packet_, n_, cluster_of, clusters, z, cfg_.seeded);
+      centroids(packet_, n_, cluster_of, clusters, z, cfg_.seeded, cfg_.midpoint_min);
       std::int32_t ids[S::kClustersMax];
       tracker_.step(packet_.t[n_ - 1], z, clusters, cfg_, ids, tracks);
       trace.sweeps = sweeps;

@@ -62,7 +62,8 @@
   X(split_share, std::uint16_t, 16, 0, "seeded: a part is large with at least this share of its cluster, kSplitFractionFrac bits") \
   X(split_min_events, std::uint16_t, 16, 0, "seeded: a part is large with at least this many events too; a cluster of fewer than twice this is not looked at") \
   X(split_cell_scale_x, std::uint32_t, 32, 0, "seeded: a split cell's column is (x * this) >> kSplitCellFrac (at most 2^15)") \
-  X(split_cell_scale_y, std::uint32_t, 32, 0, "seeded: a split cell's row is (y * this) >> kSplitCellFrac (at most 2^15)")
+  X(split_cell_scale_y, std::uint32_t, 32, 0, "seeded: a split cell's row is (y * this) >> kSplitCellFrac (at most 2^15)") \
+  X(midpoint_min, std::uint16_t, 16, 0, "seeded: a cluster whose ON and OFF events number at least this each is measured at the midpoint of their centres of mass; 0: at the centre of mass (the only setting of a build without HasPolarityMidpoint)")
 
 // Registers of the C++ core only: the filter's support count, the gate's widening by a
 // cluster's spread and coasting by packets. The RTL refuses a setting that needs them

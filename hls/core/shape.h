@@ -27,7 +27,8 @@ inline constexpr int kSplitFractionFrac = 8;
 template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsMax, int ClustersMax, int TracksMax,
           int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,
           int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4,
-          int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0, int HasPolaritySplit = 0>
+          int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0, int HasPolaritySplit = 0,
+          int HasPolarityMidpoint = 0>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -55,6 +56,11 @@ struct Shape {
   // (hls/cluster/polarity_split.h, rtl/cluster/evms_polarity_split.sv); a build without it runs
   // the method with --split-balance 0, and the host refuses any other setting for it.
   static constexpr int kHasPolaritySplit = HasPolaritySplit;
+  // Whether the build's centroids can measure a cluster at the midpoint of its ON and OFF
+  // events' centres of mass (Config::midpoint_min, hls/cluster/centroid.h,
+  // rtl/cluster/evms_centroid.sv); a build without it measures by the centre of mass, and the
+  // host refuses --measure polarity-midpoint for it.
+  static constexpr int kHasPolarityMidpoint = HasPolarityMidpoint;
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;
@@ -125,7 +131,8 @@ struct Shape {
   X(SplitFractionFrac)               \
   X(HasGaussianPath)                 \
   X(HasSeededPath)                   \
-  X(HasPolaritySplit)
+  X(HasPolaritySplit)                \
+  X(HasPolarityMidpoint)
 
 // The default board build: a DAVIS240-class sensor, the defaults of docs/sweep.md, a 16-bit
 // timestamp per pixel in 128 us units (one iCE40 SPRAM word), and eight kernel lanes: 88 of an
@@ -136,10 +143,10 @@ using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // method's default packets (3,000 events), clusters and tracks (128 each), and a pending queue
 // deep enough that noisy recordings (a third noise, say) never close a packet early, as golden
 // never does.
-using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1>;
+using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1>;
 // The RTL's host-simulation build: HostShape's sensor, words and tables with smaller packet,
 // cluster and track sizes, both clustering paths and the polarity split. For settings within
 // those sizes the two give the same words.
-using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 4, 32, 8, 1, 1, 1>;
+using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 4, 32, 8, 1, 1, 1, 1>;
 
 }  // namespace evms::hls

@@ -37,13 +37,15 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 
 // The method every build starts with: the default method (the "evms" preset, which every
 // build's seeded path holds), with the packet size, cluster and track counts cut to what build
-// S holds and without the polarity split where it does not hold it: the register values a
-// board of that build starts with. The host build's Gaussian path is --preset gaussian.
+// S holds, and without the polarity split and the polarity midpoint where it does not hold
+// them: the register values a board of that build starts with. The host build's Gaussian path
+// is --preset gaussian.
 inline constexpr const char* kBuildResetPreset = "evms";
 template <class S>
 Params build_default_params() {
   Params p = preset(kBuildResetPreset);
   if (!S::kHasPolaritySplit) p.split_balance = 0;  // the board builds; a board's C++ core stands for its board
+  if (!S::kHasPolarityMidpoint) p.measure = Measure::kCentroid;
   p.packet_size = std::min(p.packet_size, S::kPacketMax);
   p.max_clusters = std::min(p.max_clusters, S::kClustersMax);
   p.max_tracks = std::min(p.max_tracks, S::kTracksMax);
@@ -86,8 +88,12 @@ inline std::string core_unsupported(const Params& p) {
   if (p.seeding == Seeding::kGrid) return "the fixed-point core seeds from events, not " + detail::setting(p, "seeding");
   if (seeded && p.labelling != Labelling::kFirst) return "the fixed-point core labels an event by the first climb that reached it, not " + detail::setting(p, "labelling");
   const Params off = preset("gaussian");
-  if (const char* name = detail::first_difference(p, off, {"filter-look-ahead-us", "packet-support", "min-density", "join-boxes", "measure"})) {
+  if (const char* name = detail::first_difference(p, off, {"filter-look-ahead-us", "packet-support", "min-density", "join-boxes"})) {
     return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
+  }
+  if (p.measure == Measure::kBoxCentre || (!seeded && p.measure != Measure::kCentroid)) {
+    return "the fixed-point core measures a cluster by its centroid, or with seeded climbs by the polarity midpoint, not " +
+           detail::setting(p, "measure");
   }
   if (p.association == Association::kNearestCentre) return "the fixed-point core does not implement " + detail::setting(p, "association");
   if (detail::size_ratio_log2(p) < 0) {
@@ -102,15 +108,16 @@ inline std::string core_unsupported(const Params& p) {
 // The first setting of `p` that RTL build `build` (hls/core/configs.h, and a board built from
 // it) does not implement. Every build implements the numbers of its clustering paths (the
 // Gaussian mean shift of every event, the seeded climbs, or both: Shape::kHasGaussianPath,
-// kHasSeededPath), the polarity split where it holds it (kHasPolaritySplit) and the tracker's
-// policies but the gate's widening by the spread and coasting by packets.
+// kHasSeededPath), the polarity split and the polarity midpoint where it holds them
+// (kHasPolaritySplit, kHasPolarityMidpoint) and the tracker's policies but the gate's widening by
+// the spread and coasting by packets.
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
-  bool gaussian_path = false, seeded_path = false, polarity_split = false;
+  bool gaussian_path = false, seeded_path = false, polarity_split = false, polarity_midpoint = false;
 #define EVMS_PATHS_OF_BUILD(name, fixed, rtl, width, height, description)                                             \
   if (build == #name) {                                                                                               \
     gaussian_path = hls::rtl::kHasGaussianPath != 0, seeded_path = hls::rtl::kHasSeededPath != 0;                     \
-    polarity_split = hls::rtl::kHasPolaritySplit != 0;                                                                \
+    polarity_split = hls::rtl::kHasPolaritySplit != 0, polarity_midpoint = hls::rtl::kHasPolarityMidpoint != 0;       \
   }
   EVMS_CORE_BUILDS(EVMS_PATHS_OF_BUILD)
 #undef EVMS_PATHS_OF_BUILD
@@ -126,6 +133,9 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!polarity_split && seeded && p.split_balance != 0) {
     return "the RTL build '" + build + "' does not hold the polarity split, not " + detail::setting(p, "split-balance") + " (add --split-balance 0)";
+  }
+  if (!polarity_midpoint && p.measure == Measure::kPolarityMidpoint) {
+    return "the RTL build '" + build + "' does not hold the polarity midpoint, not " + detail::setting(p, "measure") + " (add --measure centroid)";
   }
   return {};
 }
@@ -234,6 +244,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.split_min_events = static_cast<std::uint16_t>(split.min_events);
   c.split_cell_scale_x = split.cell_scale_x;
   c.split_cell_scale_y = split.cell_scale_y;
+  c.midpoint_min = seeded && p.measure == Measure::kPolarityMidpoint ? static_cast<std::uint16_t>(p.midpoint_min_events) : 0;
   c.evict_stale = p.evict_stale;
   c.report_tentative = p.report_tentative;
   const double accel_psd = accel_psd_at(p, sensor);

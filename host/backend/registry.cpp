@@ -32,8 +32,9 @@ bool set_by_user(const Method& method, const char* name) {
   return std::any_of(method.settings.begin(), method.settings.end(), [&](const auto& setting) { return setting.first == name; });
 }
 
-// The method within build S: its sizes, and without the polarity split where S does not hold it
-// (Shape::kHasPolaritySplit), unless the command line set them.
+// The method within build S: its sizes, and without the polarity split and the polarity
+// midpoint where S does not hold them (Shape::kHasPolaritySplit, kHasPolarityMidpoint), unless the
+// command line set them.
 template <class S>
 Params fit_sizes(Params p, const Method& method) {
   auto fit = [&](int& value, const char* name, int build_max) {
@@ -43,6 +44,7 @@ Params fit_sizes(Params p, const Method& method) {
   fit(p.max_clusters, "max-clusters", S::kClustersMax);
   fit(p.max_tracks, "max-tracks", S::kTracksMax);
   if (!S::kHasPolaritySplit && !set_by_user(method, "split-balance")) p.split_balance = 0;
+  if (!S::kHasPolarityMidpoint && !set_by_user(method, "measure")) p.measure = Measure::kCentroid;
   return p;
 }
 

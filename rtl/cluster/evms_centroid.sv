@@ -9,6 +9,11 @@
 // cluster's time (t0 + its mean age) is added and written the clock after its last product,
 // so that the product's rounding shift is the only logic behind the multiplier's register.
 //
+// With HasPolarityMidpoint and cfg_midpoint_min > 0, the exact path measures a cluster with at
+// least cfg_midpoint_min ON and as many OFF events at the midpoint of the two polarities'
+// centres of mass, (Sx_on n_off + Sx_off n_on) / (2 n_on n_off), through the same divider; the
+// ON events' sums are a second memory beside the sums.
+//
 // Area: the sums and the results are memories with one write port and a combinational read
 // (distributed RAM on a Xilinx part) instead of registers with a write multiplexer each; a
 // valid bit per cluster clears the sums at once at the start of a packet, so the schedule is
@@ -20,7 +25,8 @@ module evms_centroid #(
   parameter int PosFrac     = 12,
   parameter int RecipFrac   = 20,
   parameter int PacketMax   = 256,
-  parameter bit HasExact    = 1'b1    // 0: no divider; `exact` must stay low
+  parameter bit HasExact    = 1'b1,   // 0: no divider; `exact` must stay low
+  parameter bit HasPolarityMidpoint = 1'b0  // 0: cfg_midpoint_min is not read (the centre of mass)
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -29,11 +35,13 @@ module evms_centroid #(
   input  logic [15:0] n,
   input  logic [7:0]  clusters,
   input  logic [31:0] t0,                  // the packet's first event
+  input  logic [15:0] cfg_midpoint_min,    // ON and OFF events a cluster needs for the midpoint; 0: off
   // Packet and cluster_of reads (1-cycle latency), by rd_i.
   output logic [15:0] rd_i,
   input  logic [15:0] ev_x,
   input  logic [15:0] ev_y,
   input  logic [31:0] ev_t,
+  input  logic        ev_p,
   input  logic signed [7:0] ev_cluster,
   // Shared reciprocal and multiplier.
   output logic        recip_start,
@@ -206,16 +214,47 @@ module evms_centroid #(
     end
   end
 
-  // The exact quotients: round(sx 2^PosFrac / count), round(sy 2^PosFrac / count) and
-  // round(st / count), each started in the first clock of its state.
+  // The exact quotients: round(sx 2^PosFrac / count), round(sy 2^PosFrac / count) (or the
+  // midpoint's numerators over 2 n_on n_off) and round(st / count), each started in the first
+  // clock of its state. A midpoint numerator is below 2 n_on n_off 2^16 <= PacketMax^2 2^15.
   localparam int CountBits = $clog2(PacketMax + 1);
-  localparam int ExactBits = 32 + CountBits > 16 + CountBits + PosFrac ? 32 + CountBits : 16 + CountBits + PosFrac;
+  localparam int CentreBits = 32 + CountBits > 16 + CountBits + PosFrac ? 32 + CountBits : 16 + CountBits + PosFrac;
+  localparam int MidpointBits = 16 + 2 * CountBits + PosFrac;
+  localparam int ExactBits = HasPolarityMidpoint && MidpointBits > CentreBits ? MidpointBits : CentreBits;
+  localparam int DenBits = HasPolarityMidpoint && 2 * CountBits > 16 ? 2 * CountBits : 16;
   logic div_done;
-  logic [ExactBits-1:0] div_num, div_quotient;
-  assign div_num = state_q == StExactX ? ExactBits'(sx) << PosFrac : (state_q == StExactY ? ExactBits'(sy) << PosFrac : ExactBits'(st));
+  logic [ExactBits-1:0] div_num, div_quotient, num_x, num_y;
+  logic [DenBits-1:0] den_xy;
+  if (HasPolarityMidpoint) begin : g_midpoint
+    // Per cluster: {sx_on, sy_on, count_on}, valid with the sums.
+    logic [79:0] on_sums [ClustersMax];
+    logic [31:0] sx_on, sy_on;
+    logic [15:0] count_on;
+    assign {sx_on, sy_on, count_on} = sums_valid_q[sum_c] ? on_sums[sum_c] : 80'd0;
+    always_ff @(posedge clk) begin
+      if (adding) on_sums[sum_c] <= ev_p ? {sx_on + 32'(ev_x), sy_on + 32'(ev_y), count_on + 16'd1} : {sx_on, sy_on, count_on};
+    end
+    logic [15:0] count_off;
+    logic use_midpoint;
+    assign count_off = 16'(count) - count_on;
+    assign use_midpoint = cfg_midpoint_min != 0 && count_on >= cfg_midpoint_min && count_off >= cfg_midpoint_min;
+    assign num_x = use_midpoint ? (ExactBits'(sx_on) * ExactBits'(count_off) + ExactBits'(sx - sx_on) * ExactBits'(count_on)) << PosFrac
+                                : ExactBits'(sx) << PosFrac;
+    assign num_y = use_midpoint ? (ExactBits'(sy_on) * ExactBits'(count_off) + ExactBits'(sy - sy_on) * ExactBits'(count_on)) << PosFrac
+                                : ExactBits'(sy) << PosFrac;
+    assign den_xy = use_midpoint ? (DenBits'(count_on) * DenBits'(count_off)) << 1 : DenBits'(count);
+  end else begin : g_centre
+    assign num_x = ExactBits'(sx) << PosFrac;
+    assign num_y = ExactBits'(sy) << PosFrac;
+    assign den_xy = DenBits'(count);
+    logic unused_midpoint;   // waived in cluster/evms_cluster.vlt
+    assign unused_midpoint = ^{cfg_midpoint_min, ev_p};
+  end
+  assign div_num = state_q == StExactX ? num_x : (state_q == StExactY ? num_y : ExactBits'(st));
   if (HasExact) begin : g_exact
-    evms_divide_rounded #(.NumBits(ExactBits), .DenBits(16)) u_divide (
-      .clk, .rst_n, .start(div_start_q), .num(div_num), .den(16'(count)), .done(div_done), .quotient(div_quotient));
+    evms_divide_rounded #(.NumBits(ExactBits), .DenBits(DenBits)) u_divide (
+      .clk, .rst_n, .start(div_start_q), .num(div_num), .den(state_q == StExactT ? DenBits'(count) : den_xy), .done(div_done),
+      .quotient(div_quotient));
   end else begin : g_no_exact
     assign div_done = 1'b0;
     assign div_quotient = '0;

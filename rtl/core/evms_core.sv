@@ -292,10 +292,12 @@ module evms_core #(
   logic signed [31:0] z_x, z_y;
   logic [15:0] z_events, z_x_min, z_y_min, z_x_max, z_y_max;
   evms_centroid #(
-    .ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac), .PacketMax(PacketMax), .HasExact(HasSeededPath != 0)
+    .ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac), .PacketMax(PacketMax), .HasExact(HasSeededPath != 0),
+    .HasPolarityMidpoint(HasSeededPath != 0 && HasPolarityMidpoint != 0)
   ) u_centroid (
-    .clk(clk), .rst_n(rst_n), .start(ct_start_q), .exact(seeded), .n(16'(n_q)), .clusters(clusters), .t0(t_first_q), .rd_i(ct_rd_i),
-    .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_cluster(co_rdata_q), .recip_start(ct_recip_start),
+    .clk(clk), .rst_n(rst_n), .start(ct_start_q), .exact(seeded), .n(16'(n_q)), .clusters(clusters), .t0(t_first_q),
+    .cfg_midpoint_min(cfg_midpoint_min), .rd_i(ct_rd_i), .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_p(rd_pk_p),
+    .ev_cluster(co_rdata_q), .recip_start(ct_recip_start),
     .recip_x(ct_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m), .mul_start(ct_mul_start),
     .mul_a(ct_mul_a), .mul_b(ct_mul_b), .mul_done(mul_done), .mul_p(mul_p), .z_c(z_c), .z_t(z_t), .z_x(z_x), .z_y(z_y),
     .z_events(z_events), .z_x_min(z_x_min), .z_y_min(z_y_min), .z_x_max(z_x_max), .z_y_max(z_y_max), .done(ct_done));

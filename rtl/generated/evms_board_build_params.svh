@@ -46,6 +46,7 @@
 .CfgSplitMinEvents(CfgSplitMinEvents),
 .CfgSplitCellScaleX(CfgSplitCellScaleX),
 .CfgSplitCellScaleY(CfgSplitCellScaleY),
+.CfgMidpointMin(CfgMidpointMin),
 .MaxWidth(MaxWidth),
 .MaxHeight(MaxHeight),
 .TimestampBits(TimestampBits),
@@ -84,4 +85,5 @@
 .HasGaussianPath(HasGaussianPath),
 .HasSeededPath(HasSeededPath),
 .HasPolaritySplit(HasPolaritySplit),
+.HasPolarityMidpoint(HasPolarityMidpoint),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

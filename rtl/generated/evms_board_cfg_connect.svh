@@ -46,3 +46,4 @@
 .cfg_split_min_events(CfgSplitMinEvents),
 .cfg_split_cell_scale_x(CfgSplitCellScaleX),
 .cfg_split_cell_scale_y(CfgSplitCellScaleY),
+.cfg_midpoint_min(CfgMidpointMin),

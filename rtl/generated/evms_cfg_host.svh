@@ -38,6 +38,7 @@ localparam int SplitFractionFrac = 8;
 localparam int HasGaussianPath = 1;
 localparam int HasSeededPath = 1;
 localparam int HasPolaritySplit = 1;
+localparam int HasPolarityMidpoint = 1;
 localparam ExpTableFile = "../generated/exp_10_16.mem";
 localparam RecipTableFile = "../generated/recip_8_20.mem";
 // Reset registers: the method of --preset evms, within this build's limits, for a 1280x720 sensor.
@@ -87,3 +88,4 @@ localparam logic [15:0] CfgSplitShare = 16'd26;
 localparam logic [15:0] CfgSplitMinEvents = 16'd64;
 localparam logic [31:0] CfgSplitCellScaleX = 32'd2560;
 localparam logic [31:0] CfgSplitCellScaleY = 32'd4551;
+localparam logic [15:0] CfgMidpointMin = 16'd16;

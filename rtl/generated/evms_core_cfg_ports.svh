@@ -46,3 +46,4 @@ input  logic [15:0] cfg_split_share,  // seeded: a part is large with at least t
 input  logic [15:0] cfg_split_min_events,  // seeded: a part is large with at least this many events too; a cluster of fewer than twice this is not looked at
 input  logic [31:0] cfg_split_cell_scale_x,  // seeded: a split cell's column is (x * this) >> kSplitCellFrac (at most 2^15)
 input  logic [31:0] cfg_split_cell_scale_y,  // seeded: a split cell's row is (y * this) >> kSplitCellFrac (at most 2^15)
+input  logic [15:0] cfg_midpoint_min,  // seeded: a cluster whose ON and OFF events number at least this each is measured at the midpoint of their centres of mass; 0: at the centre of mass (the only setting of a build without HasPolarityMidpoint)

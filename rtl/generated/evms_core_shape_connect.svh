@@ -38,4 +38,5 @@
 .HasGaussianPath(HasGaussianPath),
 .HasSeededPath(HasSeededPath),
 .HasPolaritySplit(HasPolaritySplit),
+.HasPolarityMidpoint(HasPolarityMidpoint),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

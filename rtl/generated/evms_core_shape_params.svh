@@ -38,5 +38,6 @@ parameter int SplitFractionFrac = 8,
 parameter int HasGaussianPath = 0,
 parameter int HasSeededPath = 1,
 parameter int HasPolaritySplit = 0,
+parameter int HasPolarityMidpoint = 0,
 parameter ExpTableFile = "../generated/exp_9_16.mem",
 parameter RecipTableFile = "../generated/recip_8_20.mem"

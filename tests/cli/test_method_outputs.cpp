@@ -126,6 +126,17 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   EXPECT_EQ(split.exit_code, 1);
   EXPECT_NE(split.err.find("the RTL build 'arty' does not hold the polarity split, not --split-balance 0.3 (add --split-balance 0)"), std::string::npos)
       << split.err;
+  // Nor the polarity midpoint; and no fixed core measures by the bounding box.
+  const auto midpoint = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --measure polarity-midpoint --quiet");
+  EXPECT_EQ(midpoint.exit_code, 1);
+  EXPECT_NE(midpoint.err.find("the RTL build 'arty' does not hold the polarity midpoint, not --measure polarity-midpoint (add --measure centroid)"),
+            std::string::npos)
+      << midpoint.err;
+  const auto box = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --measure box-centre --quiet");
+  EXPECT_EQ(box.exit_code, 1);
+  EXPECT_NE(box.err.find("measures a cluster by its centroid, or with seeded climbs by the polarity midpoint, not --measure box-centre"),
+            std::string::npos)
+      << box.err;
   for (const std::string build : {"arty", "ice40"}) {
     const auto board = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core " + build + " --preset gaussian --quiet");
     EXPECT_EQ(board.exit_code, 1);

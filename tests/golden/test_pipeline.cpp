@@ -1,6 +1,8 @@
 // The method end to end on inputs with known answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -65,6 +67,47 @@ TEST(Pipeline, ABlobAtConstantVelocityGivesItsVelocityWithin2Percent) {
   EXPECT_LT(std::hypot(sx / n - vx, sy / n - vy) / speed, 0.02);
   const TrackUpdate& last = out.tracks.back();
   EXPECT_LT(std::hypot(last.vx - vx, last.vy - vy) / speed, 0.02);
+}
+
+// A band of ON events at x 100..102 that fires three times as often as a band of OFF events
+// at x 104..106 beside it, both y 80..100: one cluster, whose centre of mass (102) leans to the
+// ON band and whose polarity midpoint (103) does not. Every `off_every` rounds hold
+// (3 + 1) x 63 events, so packets of a multiple of that size see whole rounds.
+std::vector<Event> two_bands(int off_every, int rounds) {
+  std::vector<Event> e;
+  TimeUs t = 0;
+  for (int round = 0; round < rounds; ++round) {
+    for (int y = 80; y <= 100; ++y) {
+      for (int x = 100; x <= 106; ++x) {
+        if (x == 103) continue;
+        const bool on = x <= 102;
+        if (!on && round % off_every != 0) continue;
+        e.push_back({t += 20, static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), static_cast<std::uint8_t>(on)});
+      }
+    }
+  }
+  return e;
+}
+
+TEST(Pipeline, ThePolarityMidpointDoesNotLeanToTheBusierEdge) {
+  const auto events = two_bands(3, 240);
+  Params p;
+  p.packet_size = 4 * 4 * 63;  // four blocks of three rounds
+  p.filter_window_us = 0;      // every event reaches the packets, so they stay aligned to rounds
+  auto measured_x = [&](Measure measure, int min_events) {
+    p.measure = measure;
+    p.midpoint_min_events = min_events;
+    const CollectingSink out = run(events, p);
+    EXPECT_GT(out.tracks.size(), 5u);
+    double worst = 0, sum = 0;
+    for (const TrackUpdate& u : out.tracks) sum += u.zx, worst = std::max(worst, std::abs(u.zy - 90.0));
+    EXPECT_LT(worst, 0.5) << "the bands are symmetric about y = 90";
+    return sum / static_cast<double>(out.tracks.size());
+  };
+  EXPECT_NEAR(measured_x(Measure::kPolarityMidpoint, 16), 103.0, 0.1);
+  EXPECT_NEAR(measured_x(Measure::kCentroid, 16), 102.0, 0.1);
+  // A polarity with fewer events than the minimum: the centre of mass.
+  EXPECT_NEAR(measured_x(Measure::kPolarityMidpoint, 100000 / 3), 102.0, 0.1);
 }
 
 TEST(Pipeline, IsolatedNoiseIsLabelledNoise) {
