@@ -35,21 +35,31 @@ constexpr BoardOfBuild board_of(std::string_view build) {
   return {};
 }
 
+// The method `p` within build S: the packet size, cluster and track counts cut to what S holds,
+// and without the polarity split and the polarity midpoint where S does not hold them
+// (Shape::kHasPolaritySplit, kHasPolarityMidpoint: the board builds), each unless `kept(name)`
+// says the command line set it, for the backend to refuse what S cannot run.
+template <class S, class Kept>
+Params within_build(Params p, Kept kept) {
+  auto cut = [&](int& value, const char* name, int build_max) {
+    if (!kept(name)) value = std::min(value, build_max);
+  };
+  cut(p.packet_size, "packet-size", S::kPacketMax);
+  cut(p.max_clusters, "max-clusters", S::kClustersMax);
+  cut(p.max_tracks, "max-tracks", S::kTracksMax);
+  if (!S::kHasPolaritySplit && !kept("split-balance")) p.split_balance = 0;
+  if (!S::kHasPolarityMidpoint && !kept("measure")) p.measure = Measure::kCentroid;
+  return p;
+}
+
 // The method every build starts with: the default method (the "evms" preset, which every
-// build's seeded path holds), with the packet size, cluster and track counts cut to what build
-// S holds, and without the polarity split and the polarity midpoint where it does not hold
-// them: the register values a board of that build starts with. The host build's Gaussian path
-// is --preset gaussian.
+// build's seeded path holds) within build S: the register values a board of that build starts
+// with (a board's C++ core stands for its board). The host build's Gaussian path is
+// --preset gaussian.
 inline constexpr const char* kBuildResetPreset = "evms";
 template <class S>
 Params build_default_params() {
-  Params p = preset(kBuildResetPreset);
-  if (!S::kHasPolaritySplit) p.split_balance = 0;  // the board builds; a board's C++ core stands for its board
-  if (!S::kHasPolarityMidpoint) p.measure = Measure::kCentroid;
-  p.packet_size = std::min(p.packet_size, S::kPacketMax);
-  p.max_clusters = std::min(p.max_clusters, S::kClustersMax);
-  p.max_tracks = std::min(p.max_tracks, S::kTracksMax);
-  return p;
+  return within_build<S>(preset(kBuildResetPreset), [](const char*) { return false; });
 }
 
 namespace detail {

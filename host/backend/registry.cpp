@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "hls/core/configs.h"
+#include "host/backend/core_config.h"
 
 namespace evms::backend {
 
@@ -32,20 +33,11 @@ bool set_by_user(const Method& method, const char* name) {
   return std::any_of(method.settings.begin(), method.settings.end(), [&](const auto& setting) { return setting.first == name; });
 }
 
-// The method within build S: its sizes, and without the polarity split and the polarity
-// midpoint where S does not hold them (Shape::kHasPolaritySplit, kHasPolarityMidpoint), unless the
-// command line set them.
+// The method within build S (within_build, host/backend/core_config.h), keeping what the
+// command line set.
 template <class S>
 Params fit_sizes(Params p, const Method& method) {
-  auto fit = [&](int& value, const char* name, int build_max) {
-    if (!set_by_user(method, name)) value = std::min(value, build_max);
-  };
-  fit(p.packet_size, "packet-size", S::kPacketMax);
-  fit(p.max_clusters, "max-clusters", S::kClustersMax);
-  fit(p.max_tracks, "max-tracks", S::kTracksMax);
-  if (!S::kHasPolaritySplit && !set_by_user(method, "split-balance")) p.split_balance = 0;
-  if (!S::kHasPolarityMidpoint && !set_by_user(method, "measure")) p.measure = Measure::kCentroid;
-  return p;
+  return within_build<S>(p, [&](const char* name) { return set_by_user(method, name); });
 }
 
 }  // namespace
