@@ -72,7 +72,7 @@ TEST(Pipeline, ABlobAtConstantVelocityGivesItsVelocityWithin2Percent) {
 // A band of ON events at x 100..102 that fires three times as often as a band of OFF events
 // at x 104..106 beside it, both y 80..100: one cluster, whose centre of mass (102) leans to the
 // ON band and whose polarity midpoint (103) does not. Every `off_every` rounds hold
-// (3 + 1) x 63 events, so packets of a multiple of that size see whole rounds.
+// (off_every + 1) x 63 events, so packets of a multiple of that size see whole rounds.
 std::vector<Event> two_bands(int off_every, int rounds) {
   std::vector<Event> e;
   TimeUs t = 0;
@@ -92,7 +92,7 @@ std::vector<Event> two_bands(int off_every, int rounds) {
 TEST(Pipeline, ThePolarityMidpointDoesNotLeanToTheBusierEdge) {
   const auto events = two_bands(3, 240);
   Params p;
-  p.packet_size = 4 * 4 * 63;  // four blocks of three rounds
+  p.packet_size = 4 * 4 * 63;  // four blocks of three rounds, (3 + 1) x 63 events each
   p.filter_window_us = 0;      // every event reaches the packets, so they stay aligned to rounds
   auto measured_x = [&](Measure measure, int min_events) {
     p.measure = measure;
