@@ -527,7 +527,9 @@ std::string write_report(const EvalOptions& o) {
        << fmt("%.1f", family_results[0].velocity.mean) << " px/s, paper preset " << fmt("%.1f", family_results[1].velocity.mean) << " px/s.\n\n";
     const auto mot_text = [](const ClearMot& m) {
       return "MOTA " + fmt("%.3f", m.mota()) + ", MOTP " + fmt("%.2f", m.to_centres.mean) + " px (" + fmt("%.2f", m.to_events.mean) +
-             " px to the labelled events' centre, " + fmt("%.0f %%", 100 * m.to_events.within) + " within 2.5 px)";
+             " px to the labelled events' centre, " + fmt("%.0f %%", 100 * m.to_events.within) + " within 2.5 px), " +
+             fmt("%.2f", m.false_positives_per_frame()) + " false tracks a frame and " + fmt("%.2f", m.ignored_per_frame()) +
+             " on objects without a true centre (ignored)";
     };
     md << "CLEAR MOT over the split (`host/eval/tracking_metrics.h`: one track per object at a time, 10 ms frames): E-MS "
        << mot_text(family_results[0].mot) << "; paper preset " << mot_text(family_results[1].mot) << ".\n\n";

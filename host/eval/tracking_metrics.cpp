@@ -96,9 +96,10 @@ struct Accumulator {
   }
 };
 
-// CLEAR MOT over the frames of the truth's time span (tracking_metrics.h).
-ClearMot clear_mot(std::span<const TrackUpdate> updates, const CentreLookup& centres, const EventCentreLookup& event_centres,
-                   int objects, double tau_px, double radius_px) {
+// CLEAR MOT over the frames of the truth's time span (tracking_metrics.h). `measured_from[i]` is
+// the object updates[i] was measured from (-1: noise or none), empty without the run's labels.
+ClearMot clear_mot(std::span<const TrackUpdate> updates, std::span<const int> measured_from, const CentreLookup& centres,
+                   const EventCentreLookup& event_centres, int objects, double tau_px, double radius_px) {
   ClearMot mot;
   TimeUs first = -1, last = -1;
   for (int o = 0; o < objects; ++o) {
@@ -123,8 +124,11 @@ ClearMot clear_mot(std::span<const TrackUpdate> updates, const CentreLookup& cen
       if (centres.at(o, t) && (!event_centres.any() || event_centres.at(o, t))) present_objects.push_back(o);
     }
     std::vector<const TrackUpdate*> tracks;
+    std::vector<int> track_object;  // the object each present track's latest estimate was measured from
     for (const auto& [id, i] : latest) {
-      if (t - updates[i].t <= kMotTrackWindowUs) tracks.push_back(&updates[i]);
+      if (t - updates[i].t > kMotTrackWindowUs) continue;
+      tracks.push_back(&updates[i]);
+      track_object.push_back(measured_from.empty() ? -1 : measured_from[i]);
     }
     ++mot.frames;
     mot.objects += static_cast<std::int64_t>(present_objects.size());
@@ -175,7 +179,12 @@ ClearMot clear_mot(std::span<const TrackUpdate> updates, const CentreLookup& cen
       to_centres.errors.push_back(distance[k][static_cast<size_t>(match[k])]);
       if (const auto m = event_centres.at(o, u.t)) to_events.errors.push_back(std::hypot(u.x - m->first, u.y - m->second));
     }
-    for (size_t j = 0; j < tracks.size(); ++j) mot.false_positives += !taken[j];
+    for (size_t j = 0; j < tracks.size(); ++j) {
+      if (taken[j]) continue;
+      const int o = track_object[j];
+      const bool unscored = o >= 0 && std::find(present_objects.begin(), present_objects.end(), o) == present_objects.end();
+      ++(unscored ? mot.ignored : mot.false_positives);
+    }
   }
   mot.to_centres = to_centres.stats(tau_px);
   mot.to_events = to_events.stats(tau_px);
@@ -255,8 +264,11 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   Accumulator all_kalman, all_raw, all_velocity, all_kalman_events, all_events_centre;
   std::vector<Accumulator> velocity(static_cast<size_t>(objects));
   std::vector<std::vector<TimeUs>> update_times(static_cast<size_t>(objects));
+  std::vector<int> measured_from;  // each update's object, for CLEAR MOT (with the run's labels only)
+  if (by_labels) measured_from.reserve(updates.size());
   for (const TrackUpdate& u : updates) {
     const int o = update_owner(u);
+    if (by_labels) measured_from.push_back(o);
     if (o < 0) {
       ++report.spurious_updates;
       continue;
@@ -309,7 +321,7 @@ TrackingReport tracking_report(std::span<const TrackUpdate> updates, std::span<c
   report.all_kalman_events = all_kalman_events.stats(tau_px);
   report.all_events_centre = all_events_centre.stats(tau_px);
   report.all_velocity = all_velocity.stats(0);
-  report.mot = clear_mot(updates, lookup, event_lookup, objects, tau_px, association_radius_px);
+  report.mot = clear_mot(updates, measured_from, lookup, event_lookup, objects, tau_px, association_radius_px);
   return report;
 }
 

@@ -72,6 +72,11 @@ struct ObjectTracking {
 //    then the least total distance; a pair beyond the radius never.
 //  - Unmatched objects are misses and unmatched tracks false positives. An object matched to
 //    another track than at its previous match is a mismatch.
+//  - With the run's labels, an unmatched track whose latest estimate was measured from an object
+//    that is not present in the frame (its outline reaches past the sensor's edge, so it has no
+//    true centre, or it fired too little there to have a labelled centre) is ignored, neither
+//    matched nor a false positive: the truth cannot score it, as MOTChallenge ignores a track on
+//    a distractor. A track on noise, or a second track on a present object, stays a false positive.
 // MOTA = 1 - (misses + false positives + mismatches) / objects present, summed over frames;
 // MOTP is the mean distance of the matched pairs.
 inline constexpr TimeUs kMotFrameUs = 10000;       // the scoring chunk (family_eval.h)
@@ -79,16 +84,18 @@ inline constexpr TimeUs kMotTrackWindowUs = 34000;  // a packet spans at most 33
 
 struct ClearMot {
   std::int64_t frames = 0, objects = 0, matches = 0, misses = 0, false_positives = 0, mismatches = 0;
+  std::int64_t ignored = 0;  // unmatched tracks on an object the frame cannot score (not in MOTA)
   ErrorStats to_centres;  // matched pairs: the estimate against the object's true centre (MOTP)
   ErrorStats to_events;   // ... against the centre of its labelled events, where it has one
   double mota() const {
     return objects ? 1.0 - static_cast<double>(misses + false_positives + mismatches) / static_cast<double>(objects) : 0.0;
   }
   double false_positives_per_frame() const { return frames ? static_cast<double>(false_positives) / static_cast<double>(frames) : 0.0; }
+  double ignored_per_frame() const { return frames ? static_cast<double>(ignored) / static_cast<double>(frames) : 0.0; }
   // Adds another run's counts (its error statistics pool elsewhere: host/eval/family_eval.cpp).
   void add_counts(const ClearMot& m) {
     frames += m.frames, objects += m.objects, matches += m.matches;
-    misses += m.misses, false_positives += m.false_positives, mismatches += m.mismatches;
+    misses += m.misses, false_positives += m.false_positives, mismatches += m.mismatches, ignored += m.ignored;
   }
 };
 

@@ -300,6 +300,39 @@ TEST(TrackingMetrics, ClearMotCountsAnObjectOnlyWhileItFires) {
   EXPECT_EQ(fired.false_positives, 0);
 }
 
+// With the run's labels, a track measured from an object the truth has no centre for (its
+// outline reaches past the sensor's edge) is ignored, as MOTChallenge ignores a track on a
+// distractor; a track on noise stays a false positive, and so does the first track without labels.
+TEST(TrackingMetrics, ClearMotIgnoresATrackOnAnObjectWithoutATrueCentre) {
+  const std::vector<gen::TruthSample> centres = still_object_centres(100000);  // object 0 only
+  std::vector<Event> events;
+  std::vector<std::int32_t> truth, predicted;
+  const auto fire = [&](TimeUs t, std::uint16_t x, std::int32_t object, std::int32_t track) {
+    for (std::uint16_t y = 48; y < 52; ++y) events.push_back({t, x, y, 1}), truth.push_back(object), predicted.push_back(track);
+  };
+  std::vector<TrackUpdate> updates;
+  for (TimeUs t = 0; t <= 100000; t += 1000) {
+    fire(t, 50, 0, 1);    // object 0, tracked by track 1
+    fire(t, 120, 1, 2);   // object 1, no true centre, tracked by track 2
+    fire(t, 200, -1, 3);  // noise, tracked by track 3
+    if (t % 5000 == 0) {
+      updates.push_back({t, 1, 51, 50, 0, 0, 51, 50});
+      updates.push_back({t, 2, 120, 50, 0, 0, 120, 50});
+      updates.push_back({t, 3, 200, 50, 0, 0, 200, 50});
+    }
+  }
+  const ClearMot labelled = tracking_report(updates, centres, 2, 2.5, 15.0, 20000, {events, truth, predicted}).mot;
+  EXPECT_EQ(labelled.frames, 11);
+  EXPECT_EQ(labelled.matches, 11);
+  EXPECT_EQ(labelled.misses, 0);
+  EXPECT_EQ(labelled.ignored, 11);          // track 2 in every frame
+  EXPECT_EQ(labelled.false_positives, 11);  // track 3 in every frame
+  EXPECT_NEAR(labelled.mota(), 0.0, 1e-12);
+  const ClearMot by_position = tracking_report(updates, centres, 2, 2.5).mot;
+  EXPECT_EQ(by_position.ignored, 0);
+  EXPECT_EQ(by_position.false_positives, 22);  // without labels nothing says what track 2 measured
+}
+
 TEST(Evaluation, OcclusionChunksAreRecognised) {
   Scene s;
   for (TimeUs t = 0; t < 4000; t += 10) s.events.push_back({t, 0, 0, 0}), s.truth.push_back(0);
