@@ -34,6 +34,23 @@ class BoundedQueue {
     not_full_.notify_one();
     return true;
   }
+  // Without waiting: try_push is false when the queue is full or closed (the item stays with the
+  // caller), try_pop when it is empty.
+  bool try_push(T& item) {
+    std::lock_guard lock(mutex_);
+    if (closed_ || items_.size() >= capacity_) return false;
+    items_.push_back(std::move(item));
+    not_empty_.notify_one();
+    return true;
+  }
+  bool try_pop(T& item) {
+    std::lock_guard lock(mutex_);
+    if (items_.empty()) return false;
+    item = std::move(items_.front());
+    items_.pop_front();
+    not_full_.notify_one();
+    return true;
+  }
   void close() {
     std::lock_guard lock(mutex_);
     closed_ = true;

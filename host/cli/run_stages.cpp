@@ -71,7 +71,9 @@ StageReport run_stages(read::EventSource& source, backend::Backend& backend, Col
       if (in.events.empty()) break;
       label_batch(in);
       method_ns += since(mark);
-      writers.write(sink.take());
+      OutputBatch out = sink.take();
+      writers.write(out);
+      sink.recycle(std::move(out));
       write_ns += since(mark);
     }
     finish_method();
@@ -81,15 +83,18 @@ StageReport run_stages(read::EventSource& source, backend::Backend& backend, Col
     write_ns += since(mark);
   } else {
     // Reading, the method and writing, each in a thread of its own, joined by queues: the
-    // method sees the same batches in the same order, so the outputs are the same bytes.
-    BoundedQueue<InputBatch> inputs(4);
-    BoundedQueue<OutputBatch> outputs(4);
+    // method sees the same batches in the same order, so the outputs are the same bytes. The
+    // batches a stage is done with go back to the stage that fills them (spent_*), so that their
+    // memory is reused rather than faulted in anew for every batch.
+    BoundedQueue<InputBatch> inputs(4), spent_inputs(4);
+    BoundedQueue<OutputBatch> outputs(4), spent_outputs(4);
     std::exception_ptr reader_failed, writer_failed;
     std::thread reader([&] {
       try {
         auto mark = std::chrono::steady_clock::now();
         for (;;) {
           InputBatch b;
+          spent_inputs.try_pop(b);
           read_batch(b);
           read_ns += since(mark);
           const bool end = b.events.empty();
@@ -109,6 +114,7 @@ StageReport run_stages(read::EventSource& source, backend::Backend& backend, Col
           auto mark = std::chrono::steady_clock::now();
           writers.write(b);
           write_ns += since(mark);
+          spent_outputs.try_push(b);
         }
         auto mark = std::chrono::steady_clock::now();
         writers.close();
@@ -120,10 +126,13 @@ StageReport run_stages(read::EventSource& source, backend::Backend& backend, Col
     });
     try {
       InputBatch b;
+      OutputBatch spent;
       while (inputs.pop(b)) {
         auto mark = std::chrono::steady_clock::now();
         label_batch(b);
         method_ns += since(mark);
+        spent_inputs.try_push(b);
+        if (spent_outputs.try_pop(spent)) sink.recycle(std::move(spent));
         outputs.push(sink.take());
       }
       auto mark = std::chrono::steady_clock::now();

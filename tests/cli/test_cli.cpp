@@ -11,6 +11,8 @@
 #include <tuple>
 #include <vector>
 
+#include "host/cli/bounded_queue.h"
+#include "host/cli/run_stages.h"
 #include "tests/support/command.h"
 #include "tests/support/encoders.h"
 
@@ -451,11 +453,53 @@ TEST(Cli, GenIsDeterministicOnDisk) {
   }
 }
 
+// A batch the writers handed back holds the batch after next, with none of its old rows.
+TEST(Stages, ARecycledBatchHoldsTheBatchAfterNextAndNothingOfItsOwn) {
+  const auto events_from = [](TimeUs t0) {
+    std::vector<LabelledEvent> v;
+    for (TimeUs t = t0; t < t0 + 1000; ++t) v.push_back({{t, 1, 2, 1}, 7});
+    return v;
+  };
+  cli::Collector sink(true);
+  sink.on_events(events_from(0));
+  sink.on_track({});
+  cli::OutputBatch first = sink.take();
+  const LabelledEvent* memory = first.events.data();
+  sink.recycle(std::move(first));
+  sink.on_events(events_from(1000));
+  EXPECT_NE(sink.take().events.data(), memory);  // the batch being filled when it came back
+  const std::vector<LabelledEvent> third = events_from(2000);
+  sink.on_events(third);
+  const cli::OutputBatch reused = sink.take();
+  EXPECT_EQ(reused.events.data(), memory);
+  EXPECT_EQ(reused.events, third);
+  EXPECT_TRUE(reused.tracks.empty());
+  EXPECT_EQ(sink.events, 3000);
+}
+
+// The stages hand spent batches back without waiting: a full or closed queue refuses one and
+// leaves it with the caller, an empty one gives none.
+TEST(Stages, TheQueuesTryWithoutWaiting) {
+  cli::BoundedQueue<std::vector<int>> q(1);
+  std::vector<int> item{1, 2, 3}, out;
+  EXPECT_FALSE(q.try_pop(out));
+  EXPECT_TRUE(q.try_push(item));
+  std::vector<int> second{4};
+  EXPECT_FALSE(q.try_push(second));  // full
+  EXPECT_EQ(second, std::vector<int>{4});
+  EXPECT_TRUE(q.try_pop(out));
+  EXPECT_EQ(out, (std::vector<int>{1, 2, 3}));
+  q.close();
+  EXPECT_FALSE(q.try_push(second));  // closed
+  EXPECT_EQ(second, std::vector<int>{4});
+}
+
 // Reading, the method and writing in threads of their own write the same bytes as one thread,
-// on every backend that runs on the host, in every output format.
+// on every backend that runs on the host, in every output format. The scene spans several
+// batches of the stages, so that batches whose memory was handed back are written too.
 TEST(Cli, ThreadsWriteTheSameBytesAsOne) {
   TempDir dir;
-  const std::string scene = dir.write("e.csv", "# sensor 128x128\n" + csv(sample_events(30000, {128, 128})));
+  const std::string scene = dir.write("e.csv", "# sensor 128x128\n" + csv(sample_events(100000, {128, 128})));
   for (const char* backend : {"golden", "fixed", "rtl"}) {
     const std::string method = std::string(backend) == "rtl" ? " --preset gaussian" : "";
     const std::string limit = std::string(backend) == "rtl" ? " --limit 3000" : "";
