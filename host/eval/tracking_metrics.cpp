@@ -124,11 +124,8 @@ ClearMot clear_mot(std::span<const TrackUpdate> updates, std::span<const int> me
       if (centres.at(o, t) && (!event_centres.any() || event_centres.at(o, t))) present_objects.push_back(o);
     }
     std::vector<const TrackUpdate*> tracks;
-    std::vector<int> track_object;  // the object each present track's latest estimate was measured from
     for (const auto& [id, i] : latest) {
-      if (t - updates[i].t > kMotTrackWindowUs) continue;
-      tracks.push_back(&updates[i]);
-      track_object.push_back(measured_from.empty() ? -1 : measured_from[i]);
+      if (t - updates[i].t <= kMotTrackWindowUs) tracks.push_back(&updates[i]);
     }
     ++mot.frames;
     mot.objects += static_cast<std::int64_t>(present_objects.size());
@@ -181,7 +178,7 @@ ClearMot clear_mot(std::span<const TrackUpdate> updates, std::span<const int> me
     }
     for (size_t j = 0; j < tracks.size(); ++j) {
       if (taken[j]) continue;
-      const int o = track_object[j];
+      const int o = measured_from.empty() ? -1 : measured_from[static_cast<size_t>(tracks[j] - updates.data())];
       const bool unscored = o >= 0 && std::find(present_objects.begin(), present_objects.end(), o) == present_objects.end();
       ++(unscored ? mot.ignored : mot.false_positives);
     }
