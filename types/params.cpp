@@ -33,6 +33,11 @@ const std::array kTable = {
               "last 32.8 ms, the filter asks one more supporting neighbour of each event for the next 32.8 ms (a noisy "
               "sensor's background activity supports itself within a long window); 0 = off",
               &Params::filter_noise_hz, 0, 1e6},
+    ParamInfo{"filter-noise-pixels", "px", "the largest sensor, in pixels, on which --filter-noise-hz holds as it is: on a "
+              "sensor of P more pixels it is filter-noise-hz sqrt(this / P), as the noise a kernel ball gathers grows with "
+              "the pixels the ball spans and with the square of the rate that passes the filter; 0 = the same rate on every "
+              "sensor",
+              &Params::filter_noise_pixels, 0, 1e9},
     ParamInfo{"filter-quiet-hz", "Hz", "when the events no neighbour supported within the window came at less than this "
               "rate a pixel over the last 32.8 ms, the next 32.8 ms judge events by --filter-quiet-window-us instead (a quiet "
               "sensor's slow edges fire their neighbours far apart); 0 = off",
@@ -183,7 +188,11 @@ std::string unit_suffix(const ParamInfo& info) {
 }
 }  // namespace
 
-std::int64_t filter_noise_count(const Params& p, SensorSize sensor) { return events_per_filter_interval(p.filter_noise_hz, sensor); }
+std::int64_t filter_noise_count(const Params& p, SensorSize sensor) {
+  const double pixels = static_cast<double>(sensor.width) * sensor.height;
+  const double k = p.filter_noise_pixels > 0 && pixels > p.filter_noise_pixels ? std::sqrt(p.filter_noise_pixels / pixels) : 1.0;
+  return events_per_filter_interval(p.filter_noise_hz * k, sensor);
+}
 std::int64_t filter_quiet_count(const Params& p, SensorSize sensor) { return events_per_filter_interval(p.filter_quiet_hz, sensor); }
 
 double accel_psd_at(const Params& p, SensorSize sensor) {

@@ -48,6 +48,8 @@ struct Params {
   TimeUs filter_warm_up_us = 10000;  // keep every event of the stream's first this long; 0 = off
   double filter_noise_hz = 0.7;      // unsupported events a pixel a second that make the filter ask
                                      // one more neighbour (filter_noise_count); 0 = off
+  double filter_noise_pixels = 43200;  // ... on a sensor of up to this many pixels; on a larger one the
+                                       // rate scales by sqrt(this / its pixels); 0 = on every sensor
   double filter_quiet_hz = 0.25;     // unsupported events a pixel a second below which the next
                                      // interval's window is filter_quiet_window_us; 0 = off
   TimeUs filter_quiet_window_us = 100000;  // the window after a quiet interval
@@ -137,7 +139,11 @@ struct ParamInfo {
 // The filter's noise check, in intervals of 2^kFilterNoiseIntervalLog2 us of event time (32.8 ms):
 // when an interval held at least filter_noise_count(...) events that no neighbour supported, the
 // next interval's events need one more supporting neighbour. The count is --filter-noise-hz a
-// pixel a second over the sensor and the interval, rounded down, at least 1; 0 = off.
+// pixel a second over the sensor and the interval, rounded down, at least 1; 0 = off. On a sensor
+// of more than filter_noise_pixels pixels the rate is filter_noise_hz sqrt(filter_noise_pixels /
+// pixels): noise that passes the filter does so at a rate about the square of its own, and a
+// kernel ball of the same h on (x/W, y/H) spans as many more pixels as the sensor has, so the
+// noise one ball gathers in a packet stays the same at the scaled rate.
 inline constexpr int kFilterNoiseIntervalLog2 = 15;
 std::int64_t filter_noise_count(const Params& p, SensorSize sensor);
 std::int64_t filter_quiet_count(const Params& p, SensorSize sensor);

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "golden/pipeline.h"
+#include "host/gen/random.h"
 #include "tests/support/scenes.h"
 
 namespace evms::golden {
@@ -137,6 +138,41 @@ TEST(Pipeline, NoiseAmongABlobIsLabelledNoise) {
     if (noise[i]) ++noise_total, noise_labelled += out.events[i].label == kNoiseLabel;
   }
   EXPECT_EQ(noise_labelled, noise_total);
+}
+
+// Background activity alone on a 640x480 sensor, at a rate below the noise check's 0.7 Hz a pixel:
+// with the rate unscaled, noise that passed the filter gathers in kernel balls of 1,500 pixels
+// and wider, holds clusters from packet to packet and confirms tracks; with the rate scaled to
+// the sensor's pixels (types/params.h, filter_noise_count) the check asks two neighbours and no
+// track is confirmed.
+TEST(Pipeline, BackgroundActivityOnALargeSensorConfirmsNoTrack) {
+  const SensorSize vga{640, 480};
+  const double hz = 0.45;
+  ASSERT_LT(hz, Params{}.filter_noise_hz);
+  gen::Random rng(12);
+  std::vector<Event> events;
+  for (double t = 0; t < 1e6;) {
+    t += rng.exponential(hz * vga.width * vga.height * 1e-6);
+    events.push_back({static_cast<TimeUs>(t), static_cast<std::uint16_t>(rng.below(static_cast<std::uint64_t>(vga.width))),
+                      static_cast<std::uint16_t>(rng.below(static_cast<std::uint64_t>(vga.height))),
+                      static_cast<std::uint8_t>(rng.below(2))});
+  }
+  const auto confirmed_tracks = [&](const Params& p) {
+    Pipeline pipeline(p, vga);
+    CollectingSink sink;
+    for (const Event& e : events) pipeline.push(e, sink);
+    pipeline.finish(sink);
+    EXPECT_EQ(sink.events.size(), events.size());
+    std::set<std::int32_t> ids;
+    for (const TrackUpdate& u : sink.tracks) {
+      if (u.state == TrackState::kConfirmed) ids.insert(u.id);
+    }
+    return ids.size();
+  };
+  Params unscaled;
+  unscaled.filter_noise_pixels = 0;
+  EXPECT_GE(confirmed_tracks(unscaled), 10u) << "the scene no longer shows what the scaling is for";
+  EXPECT_EQ(confirmed_tracks(Params{}), 0u);
 }
 
 // The first event of an edge has no neighbour's history to be judged by, so the filter drops it;
