@@ -225,6 +225,9 @@ module evms_centroid #(
   logic div_done;
   logic [ExactBits-1:0] div_num, div_quotient, num_x, num_y;
   logic [DenBits-1:0] den_xy;
+  logic [ExactBits-1:0] mass_num_x, mass_num_y;  // the centre of mass's numerators
+  assign mass_num_x = ExactBits'(sx) << PosFrac;
+  assign mass_num_y = ExactBits'(sy) << PosFrac;
   if (HasPolarityMidpoint) begin : g_midpoint
     // Per cluster: {sx_on, sy_on, count_on}, valid with the sums.
     logic [79:0] on_sums [ClustersMax];
@@ -239,13 +242,13 @@ module evms_centroid #(
     assign count_off = 16'(count) - count_on;
     assign use_midpoint = cfg_midpoint_min != 0 && count_on >= cfg_midpoint_min && count_off >= cfg_midpoint_min;
     assign num_x = use_midpoint ? (ExactBits'(sx_on) * ExactBits'(count_off) + ExactBits'(sx - sx_on) * ExactBits'(count_on)) << PosFrac
-                                : ExactBits'(sx) << PosFrac;
+                                : mass_num_x;
     assign num_y = use_midpoint ? (ExactBits'(sy_on) * ExactBits'(count_off) + ExactBits'(sy - sy_on) * ExactBits'(count_on)) << PosFrac
-                                : ExactBits'(sy) << PosFrac;
+                                : mass_num_y;
     assign den_xy = use_midpoint ? (DenBits'(count_on) * DenBits'(count_off)) << 1 : DenBits'(count);
   end else begin : g_centre
-    assign num_x = ExactBits'(sx) << PosFrac;
-    assign num_y = ExactBits'(sy) << PosFrac;
+    assign num_x = mass_num_x;
+    assign num_y = mass_num_y;
     assign den_xy = DenBits'(count);
     logic unused_midpoint;   // waived in cluster/evms_cluster.vlt
     assign unused_midpoint = ^{cfg_midpoint_min, ev_p};
