@@ -34,9 +34,9 @@ const std::array kTable = {
               "sensor's background activity supports itself within a long window); 0 = off",
               &Params::filter_noise_hz, 0, 1e6},
     ParamInfo{"filter-noise-pixels", "px", "the largest sensor, in pixels, on which --filter-noise-hz holds as it is: on a "
-              "sensor of P more pixels it is filter-noise-hz sqrt(this / P), as the noise a kernel ball gathers grows with "
-              "the pixels the ball spans and with the square of the rate that passes the filter; 0 = the same rate on every "
-              "sensor",
+              "larger sensor of P pixels the rate is filter-noise-hz sqrt(this / P), as the noise a kernel ball gathers grows "
+              "with the pixels the ball spans and with the square of the rate that passes the filter; 0 = the same rate on "
+              "every sensor",
               &Params::filter_noise_pixels, 0, 1e9},
     ParamInfo{"filter-quiet-hz", "Hz", "when the events no neighbour supported within the window came at less than this "
               "rate a pixel over the last 32.8 ms, the next 32.8 ms judge events by --filter-quiet-window-us instead (a quiet "

@@ -80,6 +80,23 @@ TEST(BackgroundActivityFilter, ANoisyIntervalMakesTheNextAskOneMoreNeighbour) {
   EXPECT_TRUE(plain.accept({kInterval + 1, 101, 100, 1}));
 }
 
+// The noise check's rate holds up to filter_noise_pixels and falls with the square root of a
+// larger sensor's pixels; a smaller sensor keeps it.
+TEST(BackgroundActivityFilter, TheNoiseChecksRateFallsWithTheSquareRootOfALargerSensorsPixels) {
+  const Params p;
+  ASSERT_EQ(p.filter_noise_pixels, 240 * 180);
+  const auto per_interval = [](double hz, double pixels) {
+    return static_cast<std::int64_t>(hz * pixels * static_cast<double>(TimeUs{1} << kFilterNoiseIntervalLog2) * 1e-6);
+  };
+  EXPECT_EQ(filter_noise_count(p, {240, 180}), per_interval(p.filter_noise_hz, 240 * 180));
+  EXPECT_EQ(filter_noise_count(p, {128, 128}), per_interval(p.filter_noise_hz, 128 * 128));
+  EXPECT_EQ(filter_noise_count(p, {480, 360}), per_interval(p.filter_noise_hz / 2, 480 * 360));
+  EXPECT_EQ(filter_noise_count(p, {960, 720}), per_interval(p.filter_noise_hz / 4, 960 * 720));
+  Params unscaled = p;
+  unscaled.filter_noise_pixels = 0;
+  EXPECT_EQ(filter_noise_count(unscaled, {960, 720}), per_interval(p.filter_noise_hz, 960 * 720));
+}
+
 TEST(BackgroundActivityFilter, AnIntervalAfterAnEmptyOneIsNotNoisy) {
   constexpr TimeUs kInterval = TimeUs{1} << kFilterNoiseIntervalLog2;
   BackgroundActivityFilter f(kSensor, 10 * kInterval, 1, 0, /*noise_count=*/2);
