@@ -4,7 +4,9 @@
 // With the run's tracks.csv, two lines follow: identity (IDF1, ID switches) and the confirmed
 // tracks' error against the centre of each object's labelled events in the 10 ms around each
 // estimate (the paper's ground truth), each estimate scored against the object its track's
-// events came from (host/eval/tracking_metrics.h), as `evms sweep` scores them.
+// events came from (host/eval/tracking_metrics.h), as `evms sweep` scores them. With
+// `--touching-px R`, a last line scores the truth itself with the objects that touch in each
+// chunk merged (host/eval/touching_objects.h): how far a clustering by position can get.
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -13,6 +15,7 @@
 #include "host/cli/common.h"
 #include "host/eval/clustering_metrics.h"
 #include "host/eval/identity_metrics.h"
+#include "host/eval/touching_objects.h"
 #include "host/eval/tracking_metrics.h"
 #include "host/read/input_error.h"
 #include "host/read/labelled_csv.h"
@@ -24,6 +27,7 @@ namespace {
 struct MetricsOptions {
   std::string truth, pred, tracks;
   std::int64_t chunk_events = 0, chunk_us = 0;
+  double touching_px = -1;  // < 0: no touching line
 };
 
 // The identity and tracking lines of `--tracks`. Object labels may be any non-negative
@@ -55,16 +59,21 @@ void metrics(const MetricsOptions& o) {
   if (o.chunk_events > 0 && o.chunk_us > 0) throw std::invalid_argument("give --chunk-us or --chunk-events, not both");
   const std::int64_t chunk_events = o.chunk_us > 0 ? 0 : (o.chunk_events > 0 ? o.chunk_events : 256);
   read::LabelledCsvReader truth(o.truth), pred(o.pred);
-  eval::ScoreAverage average;
+  eval::ScoreAverage average, touching;
   std::vector<std::int32_t> t_labels, p_labels;
+  std::vector<Event> chunk;  // with --touching-px: the chunk's events
   std::vector<Event> all_events;              // with --tracks: every event and both labels
   std::vector<std::int32_t> all_truth, all_pred;
   TimeUs window_end = 0;
   bool first = true;
   auto flush = [&] {
-    if (t_labels.size() >= 2) average.add(eval::score(t_labels, p_labels));
+    if (t_labels.size() >= 2) {
+      average.add(eval::score(t_labels, p_labels));
+      if (o.touching_px >= 0) touching.add(eval::score(t_labels, eval::merge_touching_objects(chunk, t_labels, o.touching_px)));
+    }
     t_labels.clear();
     p_labels.clear();
+    chunk.clear();
   };
   LabelledEvent a, b;
   for (;;) {
@@ -94,6 +103,7 @@ void metrics(const MetricsOptions& o) {
     first = false;
     t_labels.push_back(a.label);
     p_labels.push_back(b.label);
+    if (o.touching_px >= 0) chunk.push_back(a.event);
     if (chunk_events > 0 && static_cast<std::int64_t>(t_labels.size()) == chunk_events) flush();
   }
   flush();
@@ -101,6 +111,11 @@ void metrics(const MetricsOptions& o) {
   const auto s = average.mean();
   std::printf("%.6f %.6f %.6f %.6f %.6f\n", s.ari, s.nmi, s.precision, s.recall, s.f);
   if (!o.tracks.empty()) print_tracking(o.tracks, all_events, all_truth, all_pred);
+  if (o.touching_px >= 0) {
+    const auto c = touching.mean();
+    std::printf("touching-merged %.6f %.6f %.6f %.6f %.6f (the truth with objects within %g px of each other in a chunk merged)\n", c.ari,
+                c.nmi, c.precision, c.recall, c.f, o.touching_px);
+  }
 }
 
 }  // namespace
@@ -114,6 +129,9 @@ void register_metrics(CLI::App& app) {
   cmd->add_option("--tracks", o->tracks, "the run's tracks.csv: also print IDF1 and ID switches, and the confirmed tracks' error against the "
                  "centre of each object's labelled events (two more lines)");
   cmd->add_option("--chunk-us", o->chunk_us, "score fixed time windows of N us instead")->check(CLI::Range(std::int64_t{1}, std::int64_t{1000000000000}));
+  cmd->add_option("--touching-px", o->touching_px, "also score the truth with the objects whose events come within R px of each other in a "
+                 "chunk merged: what a clustering that holds touching objects together scores at best (a last line)")
+      ->check(CLI::Range(0.0, 1000.0));
   cmd->callback([o] { metrics(*o); });
 }
 
