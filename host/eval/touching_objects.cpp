@@ -57,4 +57,15 @@ std::vector<std::int32_t> merge_touching_objects(std::span<const Event> events, 
   return merged;
 }
 
+std::vector<std::int32_t> merge_touching_objects(std::span<const Event> events, std::span<const std::int32_t> truth,
+                                                 Chunking chunking, double reach_px) {
+  if (events.size() != truth.size()) throw std::invalid_argument("merge_touching_objects: events and labels differ in length");
+  std::vector<std::int32_t> merged(truth.begin(), truth.end());
+  for (const auto& [first, last] : chunk_ranges(events, chunking)) {
+    const auto chunk = merge_touching_objects(events.subspan(first, last - first), truth.subspan(first, last - first), reach_px);
+    std::copy(chunk.begin(), chunk.end(), merged.begin() + static_cast<std::ptrdiff_t>(first));
+  }
+  return merged;
+}
+
 }  // namespace evms::eval

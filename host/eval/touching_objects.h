@@ -14,11 +14,19 @@
 #include <span>
 #include <vector>
 
+#include "host/eval/chunks.h"
 #include "types/event.h"
 
 namespace evms::eval {
 
+// The reach `evms eval` reports: events at most one empty pixel apart touch.
+inline constexpr double kTouchingReachPx = 2.0;
+
 std::vector<std::int32_t> merge_touching_objects(std::span<const Event> events, std::span<const std::int32_t> truth,
                                                  double reach_px);
+
+// The same, chunk by chunk over a whole sequence, on the chunks its clustering is scored on.
+std::vector<std::int32_t> merge_touching_objects(std::span<const Event> events, std::span<const std::int32_t> truth,
+                                                 Chunking chunking, double reach_px);
 
 }  // namespace evms::eval

@@ -392,7 +392,7 @@ TEST(EvalCommand, WritesTheReportWithEveryFigure) {
   std::stringstream report;
   report << std::ifstream(dir.path("ev/report.md")).rdbuf();
   for (const char* section : {"Table I", "KM (true k)", "## Targets", "Clusters over time", "Cost against speed",
-                              "F against bandwidth", "## Tracking", "Share", "Real recordings", "## The scene family", "| still |",
+                              "F against bandwidth", "## Tracking", "Share", "Real recordings", "## The scene family", "| still |", "touching merged F",
                               "CLEAR MOT over the split", "one track per object at a time (CLEAR MOT's MOTP"}) {
     EXPECT_NE(report.str().find(section), std::string::npos) << section;
   }

@@ -48,6 +48,17 @@ TEST(TouchingObjects, MergingTouchingObjectsCostsPrecisionOnlyWhereTheyTouch) {
   EXPECT_DOUBLE_EQ(score(truth, merge_touching_objects(events, truth, 0.5)).f, 1.0);
 }
 
+TEST(TouchingObjects, ChunkByChunkObjectsTouchOnlyWhereTheyMeetInOneChunk) {
+  // 10 ms chunks: objects 0 and 1 side by side in the first, 40 px apart in the second. Object
+  // 1's second-chunk events lie where object 0 was in the first, which does not join them.
+  const std::vector<Event> events = {{100, 10, 10, 1}, {200, 11, 10, 0}, {10100, 10, 10, 1}, {10200, 50, 10, 0}, {10300, 11, 10, 0}};
+  const Labels truth = {0, 1, 0, 1, 2};
+  const Chunking ten_ms{Chunking::Kind::kTime, 10000};
+  EXPECT_EQ(merge_touching_objects(events, truth, ten_ms, 1.0), (Labels{0, 0, 0, 1, 0}));
+  // In chunks of 2 events the pairs are (0, 1), (0, 1) and (2): only the first touches.
+  EXPECT_EQ(merge_touching_objects(events, truth, Chunking{Chunking::Kind::kEvents, 2}, 1.0), (Labels{0, 0, 0, 1, 2}));
+}
+
 TEST(TouchingObjects, RefusesMismatchedLengthsAndANegativeReach) {
   const std::vector<Event> events = {at(0, 0)};
   EXPECT_THROW(merge_touching_objects(events, Labels{0, 1}, 1.0), std::invalid_argument);
