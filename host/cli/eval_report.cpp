@@ -14,8 +14,8 @@
 
 #include "host/eval/evaluation.h"
 #include "host/eval/kmeans.h"
-#include "host/eval/touching_objects.h"
 #include "host/eval/parallel.h"
+#include "host/eval/touching_objects.h"
 #include "host/show/plot.h"
 #include "host/read/event_source.h"
 #include "host/show/frame_renderer.h"
