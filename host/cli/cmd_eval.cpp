@@ -13,10 +13,10 @@ void register_eval(CLI::App& app) {
   auto o = std::make_shared<eval::EvalOptions>();
   CLI::App* cmd = app.add_subcommand("eval", "reproduce the paper's Table I and figures; write DIR/report.md");
   cmd->add_option("--scenes", o->scenes, "scenes: translation, rotation, 6dof")->delimiter(',')->default_str("translation,rotation,6dof");
-  cmd->add_option("--speeds", o->speeds, "speed factors")->delimiter(',')->default_str("1,2,3,4");
-  cmd->add_option("--bandwidths", o->bandwidths, "bandwidths h for the F-against-h figure")->delimiter(',');
+  cmd->add_option("--speeds", o->speeds, "speed factors")->delimiter(',')->default_str("1,2,3,4")->check(finite_in(0.01, 100.0));
+  cmd->add_option("--bandwidths", o->bandwidths, "bandwidths h for the F-against-h figure")->delimiter(',')->check(finite_in(0.0001, 10.0));
   cmd->add_option("--backends", o->backends, "implementations to evaluate side by side")->delimiter(',')->default_str("golden");
-  cmd->add_option("--duration-s", o->duration_s, "length of each generated scene")->default_val(o->duration_s)->check(CLI::Range(0.2, 600.0));
+  cmd->add_option("--duration-s", o->duration_s, "length of each generated scene")->default_val(o->duration_s)->check(finite_in(0.2, 600.0));
   cmd->add_option("--seed", o->seed, "scene seed")->default_val(o->seed);
   cmd->add_option_function<std::int64_t>(
          "--chunk-events", [o](std::int64_t n) { o->chunking = {eval::Chunking::Kind::kEvents, n}; },

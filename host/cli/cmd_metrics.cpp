@@ -131,7 +131,7 @@ void register_metrics(CLI::App& app) {
   cmd->add_option("--chunk-us", o->chunk_us, "score fixed time windows of N us instead")->check(CLI::Range(std::int64_t{1}, std::int64_t{1000000000000}));
   cmd->add_option("--touching-px", o->touching_px, "also score the truth with the objects whose events come within R px of each other in a "
                  "chunk merged: what a clustering that holds touching objects together scores at best (a last line)")
-      ->check(CLI::Range(0.0, 1000.0));
+      ->check(finite_in(0.0, 1000.0));
   cmd->callback([o] { metrics(*o); });
 }
 

@@ -265,7 +265,7 @@ void register_sweep(CLI::App& app) {
   cmd->add_option("--objects", o->pins.objects, "the family's members with this many shapes instead of the seed's draw")
       ->check(CLI::Range(1, 16));
   cmd->add_option("--noise-hz", o->pins.noise_hz, "the family's members with this background activity a pixel instead of the seed's draw")
-      ->check(CLI::Range(0.0, 1000.0));
+      ->check(finite_in(0.0, 1000.0));
   add_method_options(*cmd, o->method);
   cmd->callback([o] {
     const auto types = types_of(*o);

@@ -44,6 +44,7 @@
 #include "host/backend/backend.h"
 #include "host/backend/core_config.h"
 #include "host/cli/commands.h"
+#include "host/cli/common.h"
 #include "host/read/event_source.h"
 #include "host/write/event_writers.h"
 #include "sim/virtual_board.h"
@@ -226,7 +227,7 @@ void register_vboard(CLI::App& app) {
   cmd->add_option("--error-rate", o->error_rate, "the chance that a byte crossing the line, either way, is hit by a fault: a flipped bit, "
                                                  "dropped or repeated")
       ->default_val(o->error_rate)
-      ->check(CLI::Range(0.0, 0.1));
+      ->check(finite_in(0.0, 0.1));
   cmd->add_option("--seed", o->seed, "seed of the line's faults")->default_val(o->seed);
   cmd->add_option("--aer", o->aer, "play this recording (128x128 at most) into the board's AER pins as a DVS128 would, from the host's "
                                    "first bytes on (with evms run --listen, the live demo without a sensor)");

@@ -252,7 +252,7 @@ void add_view_command(CLI::App& app, const char* name, const char* help, bool li
   cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host, arty or ice40")->default_val(o->core);
   cmd->add_option("--device", o->device, "serial device of the board backend");
   add_board_link_option(*cmd, o->board_link, "the events drawn grey, with the board's tracks over them");
-  cmd->add_option("--fps", o->fps, "frames per second of sensor time")->default_val(o->fps)->check(CLI::Range(1.0, 1000.0));
+  cmd->add_option("--fps", o->fps, "frames per second of sensor time")->default_val(o->fps)->check(finite_in(1.0, 1000.0));
   cmd->add_option("--scale", o->scale, "screen pixels per sensor pixel")->default_val(o->scale)->check(CLI::Range(1, 8));
   cmd->add_flag("--headless", o->headless, "no window: write the frames as PNG files or video (needs --frames or --video)");
   cmd->add_option("--frames", o->frames, "directory for the frames as PNG files, from the window or --headless (without a display, "
@@ -260,7 +260,7 @@ void add_view_command(CLI::App& app, const char* name, const char* help, bool li
   cmd->add_option("--video", o->video, "write the frames as a video (ffmpeg; the extension picks the container: .mp4, .mkv, .webm, .gif), "
                                        "from the window or --headless, at --fps: one second of video per second of sensor time");
   cmd->add_option("--max-frames", o->max_frames, "stop after this many frames (0: at the end of the source)")->default_val(0);
-  cmd->add_option("--hold-s", o->hold_s, "keep the last frame on screen this long")->default_val(0);
+  cmd->add_option("--hold-s", o->hold_s, "keep the last frame on screen this long")->default_val(0)->check(finite_in(0.0, 86400.0));
   cmd->add_option("--window-at", o->window_at, "window position X Y on the screen")->expected(2);
   if (!live) {
     cmd->add_flag_callback("--realtime", [o] { o->paced = 1; }, "show a recording at the pace of its timestamps (the default in a window)")

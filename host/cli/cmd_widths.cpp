@@ -146,7 +146,7 @@ void widths(const WidthsOptions& o) {
 void register_widths(CLI::App& app) {
   auto o = std::make_shared<WidthsOptions>();
   CLI::App* cmd = app.add_subcommand("widths", "the word-width study of the fixed-point core (Markdown table)");
-  cmd->add_option("--duration-s", o->duration_s, "length of each scene")->default_val(o->duration_s)->check(CLI::Range(0.01, 600.0));
+  cmd->add_option("--duration-s", o->duration_s, "length of each scene")->default_val(o->duration_s)->check(finite_in(0.01, 600.0));
   cmd->add_option("--seed", o->seed, "scene seed")->default_val(o->seed);
   cmd->add_option("--jobs", o->jobs, "threads")->default_val(o->jobs)->check(CLI::Range(1, 64));
   add_method_options(*cmd, o->method);

@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <sstream>
 
 #include "host/backend/backend.h"
 #include "host/backend/core_config.h"
@@ -105,7 +107,7 @@ void add_source_options(CLI::App& cmd, read::SourceOptions& o) {
       ->group(group);
   cmd.add_option("--hot-factor", w.hot_factor, "with --hot-pixels auto: the multiple of the median pixel's event count that is hot")
       ->default_val(w.hot_factor)
-      ->check(CLI::Range(1.0, 1e9))
+      ->check(finite_in(1.0, 1e9))
       ->group(group);
 }
 
@@ -120,7 +122,7 @@ void add_replay_options(CLI::App& cmd, read::SourceOptions& o, Pacing pacing) {
                  pacing == Pacing::kAlwaysRealtime ? "replay a recording at this many times real time (the paper's speed factor)"
                                                    : "when paced: this many times real time (the paper's speed factor)")
       ->default_val(o.speed)
-      ->check(CLI::PositiveNumber)
+      ->check(finite_in(0.001, 1e6))
       ->group(group);
   cmd.add_option("--live-buffer", o.live_buffer_events, "events a live or paced source holds for a backend that falls behind")
       ->default_val(o.live_buffer_events)
@@ -188,6 +190,20 @@ const std::string& invocation() { return g_invocation; }
 void set_invocation(int argc, char** argv) {
   g_invocation = "evms";
   for (int i = 1; i < argc; ++i) g_invocation += std::string(" ") + argv[i];
+}
+
+CLI::Validator finite_in(double lo, double hi) {
+  std::ostringstream bounds;
+  bounds << "[" << lo << ", " << hi << "]";
+  return CLI::Validator(
+      [lo, hi, range = bounds.str()](std::string& text) -> std::string {
+        double value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) return "'" + text + "' is not a number";
+        if (value < lo || value > hi) return text + " is outside " + range;
+        return {};
+      },
+      "FLOAT in " + bounds.str());
 }
 
 std::string grouped(std::int64_t v) {

@@ -24,6 +24,11 @@ void add_replay_options(CLI::App& cmd, read::SourceOptions& options, Pacing paci
 // checked as they are parsed; Method::resolve applies them over the preset.
 void add_method_options(CLI::App& cmd, Method& method);
 
+// The check of a floating-point option: a finite number in [lo, hi], in the words the method's
+// options use ("'nan' is not a number", "2000 is outside [0, 1000]"). CLI::Range and
+// CLI::PositiveNumber let NaN through, as every comparison with it is false.
+CLI::Validator finite_in(double lo, double hi);
+
 // --board-link labels|tracks: what the board backend's board sends back (docs/link.md).
 // `in_tracks_mode` says what the subcommand shows when the labels stay on the board.
 void add_board_link_option(CLI::App& cmd, std::string& board_link, const std::string& in_tracks_mode);

@@ -259,6 +259,14 @@ TEST(Cli, ARefusedCommandLineIsOneLineAndAMistypedOptionNamesTheNearest) {
       {"run --bandwidth -1", "--bandwidth: -1 is outside [0.0001, 10] (evms run --help lists the options)"},
       {"run --coast-us -5", "--coast-us: -5 is outside [0, 1e+12] us (evms run --help lists the options)"},
       {"metrics", "--truth is required (evms metrics --help lists the options)"},
+      // Every floating-point option refuses NaN and infinity (finite_in, host/cli/common.h):
+      // a NaN passes CLI11's own range checks, and a NaN duration never ends.
+      {"gen --scene rotation --duration-s nan --out x", "--duration-s: 'nan' is not a number (evms gen --help lists the options)"},
+      {"metrics --truth a --pred b --touching-px inf", "--touching-px: 'inf' is not a number (evms metrics --help lists the options)"},
+      {"eval --speeds 1,nan", "--speeds: 'nan' is not a number (evms eval --help lists the options)"},
+      {"run gen://rotation --speed nan", "--speed: 'nan' is not a number (evms run --help lists the options)"},
+      {"run gen://rotation --hot-factor NaN", "--hot-factor: 'NaN' is not a number (evms run --help lists the options)"},
+      {"view --hold-s -1", "--hold-s: -1 is outside [0, 86400] (evms view --help lists the options)"},
       {"--bandwidth 0.1 run", "unknown option '--bandwidth': options follow the command, as in 'evms run --help' (evms --help lists the commands)"},
   };
   for (const auto& [args, line] : cases) {
