@@ -4,6 +4,8 @@
 // family (host/gen/family.h) drawn from the seed (width, height, objects and noise-hz pin
 // those draws).
 #include <charconv>
+#include <cmath>
+#include <type_traits>
 
 #include "host/gen/family.h"
 #include "host/gen/scene_generator.h"
@@ -20,9 +22,18 @@ SceneConfig parse_scene_uri(const std::string& uri) {
   const std::string& scene = parts.target;
   auto number = [&](const std::string& key, const std::string& value, auto& out) {
     auto [p, ec] = std::from_chars(value.data(), value.data() + value.size(), out);
-    if (ec != std::errc() || p != value.data() + value.size()) {
+    bool finite = true;
+    if constexpr (std::is_floating_point_v<std::remove_reference_t<decltype(out)>>) finite = std::isfinite(out);
+    if (ec != std::errc() || p != value.data() + value.size() || !finite) {
       throw InputError(uri + ": '" + key + "' needs a number, got '" + value + "'");
     }
+  };
+  // The ranges `evms gen` takes (host/cli/cmd_gen.cpp): a scene of more than an hour is a typo.
+  auto check_duration = [&](double duration_s) {
+    if (!(duration_s > 0 && duration_s <= 3600)) throw InputError(uri + ": duration-s must be more than 0 and at most 3600");
+  };
+  auto check_noise = [&](double noise_hz) {
+    if (!(noise_hz >= 0 && noise_hz <= 1000)) throw InputError(uri + ": noise-hz must be from 0 to 1000");
   };
   SceneConfig cfg;
   const std::string family_prefix = "family/";
@@ -42,7 +53,7 @@ SceneConfig parse_scene_uri(const std::string& uri) {
       else if (key == "objects") number(key, value, pins.objects);
       else if (key == "noise-hz") {
         number(key, value, pins.noise_hz);
-        if (!(pins.noise_hz >= 0)) throw InputError(uri + ": noise-hz must not be negative");
+        check_noise(pins.noise_hz);
       } else throw InputError(uri + ": unknown setting '" + key + "' of a family scene (seed, duration-s, width, height, objects, noise-hz)");
     }
     if ((pins.width != 0) != (pins.height != 0) || (pins.width != 0 && (pins.width < 64 || pins.height < 64 || pins.width > 4096 || pins.height > 4096)) ||
@@ -51,7 +62,7 @@ SceneConfig parse_scene_uri(const std::string& uri) {
     }
     cfg = gen::family_scene(type, seed, pins);
     if (duration_s != 0) cfg.duration_s = duration_s;
-    if (!(cfg.duration_s > 0)) throw InputError(uri + ": duration-s must be positive");
+    check_duration(cfg.duration_s);
     return cfg;
   }
   gen::Motion motion;
@@ -69,9 +80,11 @@ SceneConfig parse_scene_uri(const std::string& uri) {
     else if (key == "movers") number(key, value, cfg.movers);
     else throw InputError(uri + ": unknown setting '" + key + "' (seed, speed, duration-s, noise-hz, width, height, movers)");
   }
-  if (!(cfg.speed > 0) || !(cfg.duration_s > 0) || cfg.width < 64 || cfg.height < 64 || cfg.width > 4096 || cfg.height > 4096 ||
+  check_duration(cfg.duration_s);
+  check_noise(cfg.noise_hz);
+  if (!(cfg.speed >= 0.01 && cfg.speed <= 100) || cfg.width < 64 || cfg.height < 64 || cfg.width > 4096 || cfg.height > 4096 ||
       cfg.movers < 0 || cfg.movers > 9) {
-    throw InputError(uri + ": speed and duration-s must be positive, the sensor between 64 and 4096 px, and movers 0 to 9");
+    throw InputError(uri + ": speed must be from 0.01 to 100, the sensor between 64 and 4096 px, and movers 0 to 9");
   }
   return cfg;
 }

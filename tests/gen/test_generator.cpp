@@ -144,6 +144,29 @@ TEST(SceneFamily, AFamilyUriTakesThePins) {
   }
 }
 
+// A scene's numbers are finite and in the ranges `evms gen` takes, each refused with what is
+// wrong: a NaN passes every comparison, and an infinite duration never ends.
+TEST(SceneFamily, AUriRefusesNumbersThatAreNotFiniteOrOutOfRange) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"gen://rotation?duration-s=inf", "gen://rotation?duration-s=inf: 'duration-s' needs a number, got 'inf'"},
+      {"gen://rotation?speed=nan", "gen://rotation?speed=nan: 'speed' needs a number, got 'nan'"},
+      {"gen://rotation?noise-hz=nan", "gen://rotation?noise-hz=nan: 'noise-hz' needs a number, got 'nan'"},
+      {"gen://rotation?noise-hz=-1", "gen://rotation?noise-hz=-1: noise-hz must be from 0 to 1000"},
+      {"gen://rotation?speed=200", "gen://rotation?speed=200: speed must be from 0.01 to 100, the sensor between 64 and 4096 px, and movers 0 to 9"},
+      {"gen://family/still?duration-s=4000", "gen://family/still?duration-s=4000: duration-s must be more than 0 and at most 3600"},
+      {"gen://family/still?noise-hz=inf", "gen://family/still?noise-hz=inf: 'noise-hz' needs a number, got 'inf'"},
+  };
+  for (const auto& [uri, message] : cases) {
+    try {
+      read::parse_scene_uri(uri);
+      ADD_FAILURE() << uri << " was taken";
+    } catch (const read::InputError& e) {
+      EXPECT_STREQ(e.what(), message);
+    }
+  }
+  EXPECT_DOUBLE_EQ(read::parse_scene_uri("gen://rotation?duration-s=3600&speed=100&noise-hz=1000").duration_s, 3600.0);
+}
+
 TEST(SceneFamily, TheSplitsAreDisjointBySeed) {
   EXPECT_EQ(split_of(split_seed(Split::kTuning, 0)), Split::kTuning);
   EXPECT_EQ(split_of(split_seed(Split::kTuning, 998)), Split::kTuning);

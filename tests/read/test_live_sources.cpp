@@ -239,6 +239,16 @@ TEST(UdpSource, BadUrisAreOneLineErrors) {
   const std::string local = "udp://127.0.0.1:" + std::to_string(free_udp_port());
   EXPECT_THROW(open_source(local + "?camera=atis", {}), InputError);
   EXPECT_THROW(open_source(local + "?colour=red", {}), InputError);
+  // An idle time that is not a finite number of seconds, or whose milliseconds overflow an int.
+  for (const char* idle : {"inf", "nan", "0", "-1", "1e12", "soon"}) {
+    try {
+      open_source(local + "?idle-s=" + idle, {});
+      ADD_FAILURE() << idle << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), local + "?idle-s=" + idle + ": 'idle-s' needs a number of seconds above 0 and at most 1000000, got '" +
+                                           idle + "'");
+    }
+  }
   EXPECT_THROW(open_source("udp://no-such-host.invalid:8991", {}), InputError);
   // A port no sender can reach is refused, never a listener on a random port.
   for (const char* port : {":99999", ":70000", ":0", ":", ":http", ":-5"}) {

@@ -207,7 +207,12 @@ TEST(UsbCamera, OpeningFaultsAreOneLineErrorsThatSayWhatToDo) {
   EXPECT_EQ(open_error(script_of(UsbScript::Camera::kDavis), "usb://davis?silence=3"),
             "usb://davis?silence=3: unknown option 'silence' (known: silence-s)");
   EXPECT_EQ(open_error(script_of(UsbScript::Camera::kDavis), "usb://davis?silence-s=soon"),
-            "usb://davis?silence-s=soon: 'silence-s' needs a number of seconds (0: wait for ever), got 'soon'");
+            "usb://davis?silence-s=soon: 'silence-s' needs a number of seconds from 0 to 1000000 (0: wait for ever), got 'soon'");
+  // An infinite or huge wait would overflow its count of nanoseconds.
+  EXPECT_EQ(open_error(script_of(UsbScript::Camera::kDavis), "usb://davis?silence-s=inf"),
+            "usb://davis?silence-s=inf: 'silence-s' needs a number of seconds from 0 to 1000000 (0: wait for ever), got 'inf'");
+  EXPECT_EQ(open_error(script_of(UsbScript::Camera::kDavis), "usb://davis?silence-s=1e20"),
+            "usb://davis?silence-s=1e20: 'silence-s' needs a number of seconds from 0 to 1000000 (0: wait for ever), got '1e20'");
 }
 
 // End to end: `evms run usb://davis` with the camera failing under it writes complete outputs

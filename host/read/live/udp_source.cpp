@@ -42,7 +42,10 @@ class UdpSource final : public LiveSource {
       } else if (key == "idle-s") {
         char* end = nullptr;
         const double s = std::strtod(value.c_str(), &end);
-        if (value.empty() || *end != '\0' || !(s > 0)) throw InputError(uri + ": 'idle-s' needs a positive number, got '" + value + "'");
+        // At most a million seconds: the milliseconds it becomes must fit an int.
+        if (value.empty() || *end != '\0' || !(s > 0 && s <= 1e6)) {
+          throw InputError(uri + ": 'idle-s' needs a number of seconds above 0 and at most 1000000, got '" + value + "'");
+        }
         idle_ms_ = static_cast<int>(s * 1000);
       } else {
         throw InputError(uri + ": unknown option '" + key + "' (known: camera, idle-s)");

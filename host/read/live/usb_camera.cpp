@@ -304,8 +304,9 @@ std::unique_ptr<EventSource> open_usb_camera(const std::string& uri, const Sourc
   for (const auto& [key, value] : parts.query) {
     if (key != "silence-s") throw InputError(uri + ": unknown option '" + printable(key) + "' (known: silence-s)");
     const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), silence_s);
-    if (value.empty() || ec != std::errc() || end != value.data() + value.size() || !(silence_s >= 0)) {
-      throw InputError(uri + ": 'silence-s' needs a number of seconds (0: wait for ever), got '" + printable(value) + "'");
+    // At most a million seconds: the count of nanoseconds it becomes must fit its 64 bits.
+    if (value.empty() || ec != std::errc() || end != value.data() + value.size() || !(silence_s >= 0 && silence_s <= 1e6)) {
+      throw InputError(uri + ": 'silence-s' needs a number of seconds from 0 to 1000000 (0: wait for ever), got '" + printable(value) + "'");
     }
   }
   if (parts.target == "dvs128") return std::make_unique<UsbCamera>(uri, kDvs128, silence_s, o);
