@@ -76,14 +76,14 @@ void register_gen(CLI::App& app) {
   cmd->add_option("--family", o->family, "instead, a member of the scene family drawn from --seed: still, translation, rotation, "
                   "zoom, 6dof, shake or crossing (seeds from 1000 are the validation split)");
   cmd->add_option("--speed", o->config.speed, "time scale of the motion (the paper's speed factor)")
-      ->default_val(o->config.speed)->check(finite_in(0.01, 100.0));
+      ->default_val(o->config.speed)->check(finite_in(gen::kSceneSpeedMin, gen::kSceneSpeedMax));
   cmd->add_option("--seed", o->config.seed, "random seed: the same seed gives the same bytes")->default_val(o->config.seed);
   cmd->add_option("--duration-s", o->config.duration_s, "length of the scene in seconds")
-      ->default_str("5, or the family member's")->check(finite_in(0.001, 3600.0));
+      ->default_str("5, or the family member's")->check(finite_in(gen::kSceneDurationMinS, gen::kSceneDurationMaxS));
   cmd->add_option("--noise-hz", o->config.noise_hz, "background activity per pixel, events/s (with --family: instead of the seed's draw)")
-      ->default_val(o->config.noise_hz)->check(finite_in(0.0, 1000.0));
-  cmd->add_option("--width", o->config.width, "sensor width, px (with --family: instead of the seed's draw)")->default_val(o->config.width)->check(CLI::Range(64, 4096));
-  cmd->add_option("--height", o->config.height, "sensor height, px (with --family: instead of the seed's draw)")->default_val(o->config.height)->check(CLI::Range(64, 4096));
+      ->default_val(o->config.noise_hz)->check(finite_in(0.0, gen::kSceneNoiseHzMax));
+  cmd->add_option("--width", o->config.width, "sensor width, px (with --family: instead of the seed's draw)")->default_val(o->config.width)->check(CLI::Range(gen::kSceneSideMin, gen::kSceneSideMax));
+  cmd->add_option("--height", o->config.height, "sensor height, px (with --family: instead of the seed's draw)")->default_val(o->config.height)->check(CLI::Range(gen::kSceneSideMin, gen::kSceneSideMax));
   cmd->add_option("--movers", o->config.movers, "shapes of the poster that move on their own")->default_val(0)->check(CLI::Range(0, 9));
   cmd->add_option("--objects", o->pins.objects, "with --family: this many shapes instead of the seed's draw")->check(CLI::Range(1, 16));
   cmd->add_option("--out", o->out, "output directory")->required();

@@ -40,6 +40,13 @@ namespace evms::gen {
 enum class Motion { kStill, kTranslation, kRotation, kZoom, kSixDof, kShake };
 enum class Layout { kPoster, kScattered };
 
+// The ranges a scene's settings take, from `evms gen` and from gen:// URIs alike: a scene of
+// more than an hour or a rate beyond 1 kHz a pixel is a typo, and a sensor is 64 to 4096 px a side.
+inline constexpr double kSceneSpeedMin = 0.01, kSceneSpeedMax = 100;
+inline constexpr double kSceneDurationMinS = 0.001, kSceneDurationMaxS = 3600;
+inline constexpr double kSceneNoiseHzMax = 1000;
+inline constexpr int kSceneSideMin = 64, kSceneSideMax = 4096;
+
 struct SceneConfig {
   Motion motion = Motion::kRotation;
   double speed = 1.0;              // time scale of the motion

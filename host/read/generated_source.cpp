@@ -5,6 +5,7 @@
 // those draws).
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <type_traits>
 
 #include "host/gen/family.h"
@@ -17,6 +18,17 @@ namespace evms::read {
 
 using gen::SceneConfig;
 
+namespace {
+
+// 0.01, 3600: the shortest text that reads back as the number.
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace
+
 SceneConfig parse_scene_uri(const std::string& uri) {
   const SourceUri parts = split_source_uri(uri);
   const std::string& scene = parts.target;
@@ -28,12 +40,13 @@ SceneConfig parse_scene_uri(const std::string& uri) {
       throw InputError(uri + ": '" + key + "' needs a number, got '" + value + "'");
     }
   };
-  // The ranges `evms gen` takes (host/cli/cmd_gen.cpp): a scene of more than an hour is a typo.
   auto check_duration = [&](double duration_s) {
-    if (!(duration_s > 0 && duration_s <= 3600)) throw InputError(uri + ": duration-s must be more than 0 and at most 3600");
+    if (!(duration_s >= gen::kSceneDurationMinS && duration_s <= gen::kSceneDurationMaxS)) {
+      throw InputError(uri + ": duration-s must be from " + number_text(gen::kSceneDurationMinS) + " to " + number_text(gen::kSceneDurationMaxS));
+    }
   };
   auto check_noise = [&](double noise_hz) {
-    if (!(noise_hz >= 0 && noise_hz <= 1000)) throw InputError(uri + ": noise-hz must be from 0 to 1000");
+    if (!(noise_hz >= 0 && noise_hz <= gen::kSceneNoiseHzMax)) throw InputError(uri + ": noise-hz must be from 0 to " + number_text(gen::kSceneNoiseHzMax));
   };
   SceneConfig cfg;
   const std::string family_prefix = "family/";
@@ -56,9 +69,12 @@ SceneConfig parse_scene_uri(const std::string& uri) {
         check_noise(pins.noise_hz);
       } else throw InputError(uri + ": unknown setting '" + key + "' of a family scene (seed, duration-s, width, height, objects, noise-hz)");
     }
-    if ((pins.width != 0) != (pins.height != 0) || (pins.width != 0 && (pins.width < 64 || pins.height < 64 || pins.width > 4096 || pins.height > 4096)) ||
+    if ((pins.width != 0) != (pins.height != 0) ||
+        (pins.width != 0 && (pins.width < gen::kSceneSideMin || pins.height < gen::kSceneSideMin || pins.width > gen::kSceneSideMax ||
+                             pins.height > gen::kSceneSideMax)) ||
         pins.objects < 0 || pins.objects > 16) {
-      throw InputError(uri + ": width and height go together, between 64 and 4096 px, and objects are 1 to 16");
+      throw InputError(uri + ": width and height go together, between " + std::to_string(gen::kSceneSideMin) + " and " +
+                       std::to_string(gen::kSceneSideMax) + " px, and objects are 1 to 16");
     }
     cfg = gen::family_scene(type, seed, pins);
     if (duration_s != 0) cfg.duration_s = duration_s;
@@ -82,9 +98,11 @@ SceneConfig parse_scene_uri(const std::string& uri) {
   }
   check_duration(cfg.duration_s);
   check_noise(cfg.noise_hz);
-  if (!(cfg.speed >= 0.01 && cfg.speed <= 100) || cfg.width < 64 || cfg.height < 64 || cfg.width > 4096 || cfg.height > 4096 ||
-      cfg.movers < 0 || cfg.movers > 9) {
-    throw InputError(uri + ": speed must be from 0.01 to 100, the sensor between 64 and 4096 px, and movers 0 to 9");
+  if (!(cfg.speed >= gen::kSceneSpeedMin && cfg.speed <= gen::kSceneSpeedMax) || cfg.width < gen::kSceneSideMin || cfg.height < gen::kSceneSideMin ||
+      cfg.width > gen::kSceneSideMax || cfg.height > gen::kSceneSideMax || cfg.movers < 0 || cfg.movers > 9) {
+    throw InputError(uri + ": speed must be from " + number_text(gen::kSceneSpeedMin) + " to " + number_text(gen::kSceneSpeedMax) +
+                     ", the sensor between " + std::to_string(gen::kSceneSideMin) + " and " + std::to_string(gen::kSceneSideMax) +
+                     " px, and movers 0 to 9");
   }
   return cfg;
 }

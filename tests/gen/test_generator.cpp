@@ -153,7 +153,7 @@ TEST(SceneFamily, AUriRefusesNumbersThatAreNotFiniteOrOutOfRange) {
       {"gen://rotation?noise-hz=nan", "gen://rotation?noise-hz=nan: 'noise-hz' needs a number, got 'nan'"},
       {"gen://rotation?noise-hz=-1", "gen://rotation?noise-hz=-1: noise-hz must be from 0 to 1000"},
       {"gen://rotation?speed=200", "gen://rotation?speed=200: speed must be from 0.01 to 100, the sensor between 64 and 4096 px, and movers 0 to 9"},
-      {"gen://family/still?duration-s=4000", "gen://family/still?duration-s=4000: duration-s must be more than 0 and at most 3600"},
+      {"gen://family/still?duration-s=4000", "gen://family/still?duration-s=4000: duration-s must be from 0.001 to 3600"},
       {"gen://family/still?noise-hz=inf", "gen://family/still?noise-hz=inf: 'noise-hz' needs a number, got 'inf'"},
   };
   for (const auto& [uri, message] : cases) {
