@@ -254,10 +254,11 @@ def main():
             subprocess.run([evms, "run", truth, "--preset", preset, *extra, "--out", os.path.join(d, preset), "--quiet"],
                            check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         f_paper = f_measure(evms, truth, os.path.join(d, "paper", "events.csv"))
-        scores = subprocess.run([evms, "metrics", "--truth", truth, "--pred", os.path.join(d, "evms", "events.csv"), "--chunk-us",
-                                 "10000", "--touching-px", str(TOUCHING_PX)], check=True, capture_output=True, text=True).stdout.split()
-        p, r, f_evms = (float(v) for v in scores[2:5])
-        f_touching = float(scores[10])  # the line "touching-merged ARI NMI P R F (...)"
+        lines = subprocess.run([evms, "metrics", "--truth", truth, "--pred", os.path.join(d, "evms", "events.csv"), "--chunk-us",
+                                "10000", "--touching-px", str(TOUCHING_PX)], check=True, capture_output=True, text=True).stdout.splitlines()
+        p, r, f_evms = (float(v) for v in lines[0].split()[2:5])
+        touching = next(line for line in lines if line.startswith("touching-merged "))  # "touching-merged ARI NMI P R F (...)"
+        f_touching = float(touching.split()[5])
         rows.append((motion, f_peer, f_paper, f_evms, f_touching))
         authors = f"{f_peer:.3f}" if f_peer is not None else "-"
         print(f"| {motion} {seed} | {events:,} | {authors} | {f_paper:.3f} | {f_evms:.3f} | {p:.3f} | {r:.3f} | {f_touching:.3f} |",
