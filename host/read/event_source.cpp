@@ -78,6 +78,15 @@ void DecodedEventSource::count_skipped(const std::string& kind, std::int64_t n) 
   skipped_.emplace_back(kind, n);
 }
 
+SensorSize smallest_usual_sensor_holding(long width, long height) {
+  static constexpr SensorSize kUsualSensors[] = {{128, 128}, {240, 180}, {304, 240}, {320, 240},
+                                                 {346, 260}, {640, 480}, {1280, 720}, {1280, 960}};
+  for (const SensorSize& usual : kUsualSensors) {
+    if (usual.width >= width && usual.height >= height) return usual;
+  }
+  return {static_cast<int>(width), static_cast<int>(height)};
+}
+
 std::optional<SensorSize> sensor_of_model(const std::string& model) {
   std::string m;
   for (char c : model) m += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));

@@ -146,4 +146,12 @@ std::unique_ptr<EventSource> open_ros2_bag(const std::string& name, const std::s
 // Sensor size of a camera model named in a header ("DAVIS240C", "DVS128", ...).
 std::optional<SensorSize> sensor_of_model(const std::string& model);
 
+// For a file that does not say its size: the smallest usual sensor (128x128 up to 1280x960)
+// whose width and height hold every event's x and y, where `width` and `height` are one past
+// the largest x and y; the extent itself when no usual sensor holds it. Background activity
+// fires over the whole array, so a recording's extent is its sensor's.
+SensorSize smallest_usual_sensor_holding(long width, long height);
+inline constexpr const char* kSensorAssumedFromExtent =
+    "assumed: the file does not say; the smallest usual sensor that holds every event; pass --width and --height";
+
 }  // namespace evms::read

@@ -104,13 +104,18 @@ TEST(MethodOutputs, TheSensorSizeSurvivesEvmssOwnFiles) {
 
 TEST(MethodOutputs, ATextFileWithoutASizeSaysWhatWasAssumed) {
   TempDir dir;
-  const std::string in = dir.write("plain.txt", "0.000001 10 10 1\n0.000002 11 10 1\n");
+  // The smallest usual sensor that holds every row: 240x180 for x up to 239 and y up to 179,
+  // 346x260 beyond.
+  const std::string in = dir.write("plain.txt", "0.000001 10 10 1\n0.000002 239 179 1\n");
   const auto r = run_command(evms_binary() + " run " + in + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("240x180 assumed: the file does not say"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("240x180 assumed: the file does not say; the smallest usual sensor that holds every event"), std::string::npos) << r.out;
   const auto info = run_command(evms_binary() + " info " + in);
   ASSERT_EQ(info.exit_code, 0) << info.err;
   EXPECT_NE(info.out.find("sensor      240x180 (assumed: the file does not say"), std::string::npos) << info.out;
+  const auto wider = run_command(evms_binary() + " info " + dir.write("wider.csv", "t,x,y,p\n1,10,10,1\n2,345,259,0\n"));
+  ASSERT_EQ(wider.exit_code, 0) << wider.err;
+  EXPECT_NE(wider.out.find("sensor      346x260 (assumed: the file does not say"), std::string::npos) << wider.out;
   const auto bad = run_command(evms_binary() + " run " + dir.write("bad.txt", "# sensor 240by180\n0.1 1 1 1\n") + " --quiet");
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("line 1: bad sensor comment"), std::string::npos) << bad.err;

@@ -152,8 +152,12 @@ TEST(BadInput, BadHeaders) {
 
 TEST(BadInput, CoordinatesOutsideTheSensor) {
   TempDir d;
-  expect_error(d.write("t.txt", "0.000001000 1 2 1\n0.000002000 240 5 0\n"), "line 2", "x=240 y=5 is outside the 240x180 sensor");
-  expect_error(d.write("c.csv", "t_us,x,y,p\n5,7,200,1\n"), "line 2", "x=7 y=200 is outside the 240x180 sensor");
+  expect_error(d.write("t.txt", "0.000001000 1 2 1\n0.000002000 240 5 0\n"), "line 2", "x=240 y=5 is outside the 240x180 sensor",
+               sized(240, 180, 1000));
+  expect_error(d.write("c.csv", "t_us,x,y,p\n5,7,200,1\n"), "line 2", "x=7 y=200 is outside the 240x180 sensor", sized(240, 180, 1000));
+  // Without a size, the text formats take the smallest usual sensor that holds every row.
+  expect_error(d.write("s.csv", "# sensor 240x180\nt_us,x,y,p\n5,7,200,1\n"), "line 3", "x=7 y=200 is outside the 240x180 sensor");
+  EXPECT_EQ(read_error(d.path("c.csv")), "");
   // The same CSV is fine on a taller sensor given on the command line.
   EXPECT_EQ(read_error(d.path("c.csv"), sized(240, 260, 1000)), "");
   auto wide = kEvents;

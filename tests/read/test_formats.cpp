@@ -1,6 +1,7 @@
 // Each reader decodes what a spec-based encoder wrote, event for event.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -12,6 +13,7 @@
 
 #include "tests/support/encoders.h"
 #include "tests/support/read_all.h"
+#include "host/read/event_source.h"
 #include "host/read/input_error.h"
 
 namespace evms::test {
@@ -202,6 +204,50 @@ TEST(Formats, NpyFromAPipeNeedsItsSensorSize) {
   };
   EXPECT_EQ(through_pipe({}).second, fifo + ": the file does not say the sensor size: pass --width and --height");
   EXPECT_EQ(through_pipe(sized(128, 128, 1000)).first, events);
+}
+
+// A text file that does not say its size (no "# sensor WxH", no --width/--height) takes the
+// smallest usual sensor that holds its rows, found by a first pass, and says it was assumed;
+// its events are those a sized read gives. A pipe cannot be read twice: 240x180 is assumed.
+TEST(Formats, TextWithoutASizeTakesTheSmallestUsualSensorThatHoldsItsRows) {
+  TempDir dir;
+  struct Case {
+    SensorSize sensor;
+    SensorSize assumed;
+  };
+  // An extent of 240x180 or less, 346x260 and 640x480, and one between 346x260 and 640x480.
+  for (const Case c : {Case{{128, 128}, {128, 128}}, Case{{240, 180}, {240, 180}}, Case{{346, 260}, {346, 260}},
+                       Case{{640, 480}, {640, 480}}, Case{{400, 300}, {640, 480}}}) {
+    const auto events = sample_events(3000, c.sensor);
+    long width = 0, height = 0;
+    for (const Event& e : events) width = std::max<long>(width, e.x + 1), height = std::max<long>(height, e.y + 1);
+    SCOPED_TRACE(std::to_string(width) + "x" + std::to_string(height));
+    for (const std::string& path : {dir.write("e.csv", csv(events)), dir.write("e.txt", rpg_text(events))}) {
+      const auto source = read::open_source(path, {});
+      EXPECT_EQ(source->info().sensor, c.assumed) << path;
+      EXPECT_EQ(source->info().sensor_origin, read::kSensorAssumedFromExtent) << path;
+      EXPECT_EQ(read_all(path), events) << path;
+      EXPECT_EQ(read::open_source(path, sized(1280, 720, 1000))->info().sensor, (SensorSize{1280, 720})) << path;
+    }
+  }
+  // The first pass stops at a bad row; the second names it after the events before it.
+  const std::string bad = dir.write("bad.csv", "t_us,x,y,p\n1,300,10,1\n2,x,1,1\n3,500,1,1\n");
+  EXPECT_EQ(read::open_source(bad, {})->info().sensor, (SensorSize{304, 240}));
+  EXPECT_EQ(read_error(bad), bad + ": line 3: field 'x' = 'x' is not an integer");
+  // Beyond any sensor: nothing is taken from the rows, and the row is named.
+  const std::string far = dir.write("far.csv", "t_us,x,y,p\n1,10,10,1\n2,4096,1,1\n");
+  EXPECT_EQ(read_error(far), far + ": line 3: event at x=4096 y=1 is outside the 240x180 sensor (set --width/--height if the size is wrong)");
+  // Through a pipe.
+  const std::string fifo = dir.path("pipe.csv");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::signal(SIGPIPE, SIG_IGN);
+  const std::string rows = "1,10,10,1\n2,300,200,0\n";
+  std::thread writer([&] {
+    std::FILE* f = std::fopen(fifo.c_str(), "wb");
+    if (f) std::fwrite(rows.data(), 1, rows.size(), f), std::fclose(f);
+  });
+  EXPECT_EQ(read_error(fifo), fifo + ": line 2: event at x=300 y=200 is outside the 240x180 sensor (set --width/--height if the size is wrong)");
+  writer.join();
 }
 
 TEST(Formats, Aedat2Dvs128AndDavisRoundTrip) {

@@ -275,9 +275,6 @@ double float_of(const unsigned char* b, const NpyScalar& s) {
   return d;
 }
 
-// Sensors of the usual event cameras, smallest first.
-constexpr SensorSize kUsualSensors[] = {{128, 128}, {240, 180}, {304, 240}, {320, 240}, {346, 260}, {640, 480}, {1280, 720}, {1280, 960}};
-
 class NpySource final : public FileEventSource {
  public:
   NpySource(ByteReader in, const SourceOptions& o) : FileEventSource(std::move(in), "NPY", o), layout_(read_npy_header(in_)) {
@@ -299,7 +296,7 @@ class NpySource final : public FileEventSource {
     }
     std::optional<SensorSize> extent;
     if (regular && (o.width <= 0 || o.height <= 0)) extent = sensor_holding_every_event();
-    set_sensor(std::nullopt, extent, origin_.c_str());
+    set_sensor(std::nullopt, extent, kSensorAssumedFromExtent);
   }
 
  protected:
@@ -370,21 +367,12 @@ class NpySource final : public FileEventSource {
       if (d.x < 0 || d.y < 0 || d.x >= kMaxSensorSide || d.y >= kMaxSensorSide) return std::nullopt;
       width = std::max(width, d.x + 1), height = std::max(height, d.y + 1);
     }
-    SensorSize size{static_cast<int>(width), static_cast<int>(height)};
-    for (const SensorSize& usual : kUsualSensors) {
-      if (usual.width >= width && usual.height >= height) {
-        size = usual;
-        break;
-      }
-    }
-    origin_ = "assumed: the file does not say; the smallest usual sensor that holds every event; pass --width and --height";
-    return size;
+    return smallest_usual_sensor_holding(width, height);
   }
 
   NpyLayout layout_;
   std::vector<unsigned char> record_;
   std::uint64_t next_ = 0;
-  std::string origin_ = "assumed";
 };
 
 }  // namespace

@@ -9,7 +9,12 @@
 //    rows, t in microseconds.
 // Blank lines and lines starting with '#' are skipped. p may also be -1 for OFF. A first line
 // "# sensor WxH" (evms writes one) or "%geometry:W,H" gives the sensor size; without it the size
-// comes from --width/--height, else the DAVIS240C's 240x180 is assumed, and said.
+// comes from --width/--height, else from a first pass over the rows (the smallest usual sensor
+// that holds every event), else (a pipe) the DAVIS240C's 240x180 is assumed; an assumed size is
+// said.
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <charconv>
 #include <limits>
 #include <optional>
@@ -25,14 +30,13 @@ constexpr SensorSize kDavis240{240, 180};
 
 class TextSource final : public FileEventSource {
  public:
-  TextSource(ByteReader in, const SourceOptions& o, bool csv)
-      : FileEventSource(std::move(in), csv ? "CSV" : "RPG events.txt", o), csv_(csv) {
-    if (in_.peek(kUtf8ByteOrderMark.size()) == kUtf8ByteOrderMark) in_.skip(kUtf8ByteOrderMark.size());
-    std::optional<SensorSize> sensor = sensor_comment();
-    if (csv_ && !sensor) sensor = metavision_geometry();
-    if (csv_) {
-      header_ahead();
-      describe_columns();
+  TextSource(ByteReader in, const SourceOptions& o, bool csv) : TextSource(std::move(in), o, csv, false) {
+    const std::optional<SensorSize> sensor = sensor_;
+    if (!sensor && (o.width <= 0 || o.height <= 0)) {
+      if (const std::optional<SensorSize> extent = extent_of_rows(in_.path(), o, csv)) {
+        set_sensor(std::nullopt, *extent, kSensorAssumedFromExtent);
+        return;
+      }
     }
     set_sensor(sensor, kDavis240, "assumed: the file does not say (DAVIS240C); pass --width and --height");
   }
@@ -48,6 +52,49 @@ class TextSource final : public FileEventSource {
   }
 
  private:
+  // Reads what comes before the rows; a source that only scans (`scan_only`) starts no ordering
+  // and takes no event, but the extent of the rows' coordinates.
+  TextSource(ByteReader in, const SourceOptions& o, bool csv, bool scan_only)
+      : FileEventSource(std::move(in), csv ? "CSV" : "RPG events.txt", o), csv_(csv), scan_only_(scan_only) {
+    if (in_.peek(kUtf8ByteOrderMark.size()) == kUtf8ByteOrderMark) in_.skip(kUtf8ByteOrderMark.size());
+    sensor_ = sensor_comment();
+    if (csv_ && !sensor_) sensor_ = metavision_geometry();
+    if (csv_) {
+      header_ahead();
+      describe_columns();
+    }
+  }
+
+  // A first pass over a regular file's rows, up to its end or its first bad row (the second
+  // pass reports that row after the events before it): the smallest usual sensor that holds
+  // every coordinate, or nothing for a pipe or a coordinate beyond any sensor (the second
+  // pass then names the event outside the 240x180 it assumes).
+  static std::optional<SensorSize> extent_of_rows(const std::string& path, const SourceOptions& o, bool csv) {
+    struct stat st {};
+    if (stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return std::nullopt;
+    TextSource scan(ByteReader(path), o, csv, true);
+    std::string_view line;
+    try {
+      while (scan.in_.next_line(line)) scan.parse(line);
+    } catch (const InputError&) {
+    }
+    if (scan.extent_beyond_sensors_) return std::nullopt;
+    return smallest_usual_sensor_holding(scan.extent_width_, scan.extent_height_);
+  }
+
+  // Every parsed row ends here.
+  void take(TimeUs t, long x, long y, bool on) {
+    records_ = true;
+    if (!scan_only_) {
+      emit(t, x, y, on, InputPosition::line(in_.line()));
+      return;
+    }
+    if (x < 0 || y < 0) return;  // the second pass names it
+    if (x >= kMaxSensorSide || y >= kMaxSensorSide) extent_beyond_sensors_ = true;
+    extent_width_ = std::max(extent_width_, x + 1);
+    extent_height_ = std::max(extent_height_, y + 1);
+  }
+
   // "# sensor WxH" on the first line.
   std::optional<SensorSize> sensor_comment() {
     const std::string_view tag = "# sensor ";
@@ -203,8 +250,7 @@ class TextSource final : public FileEventSource {
       if (p != end) return false;
     }
     if (pol > 1) return false;
-    records_ = true;
-    emit(t, x, y, pol == 1, InputPosition::line(in_.line()));
+    take(t, x, y, pol == 1);
     return true;
   }
 
@@ -249,8 +295,7 @@ class TextSource final : public FileEventSource {
       size_t more = rest.find_first_not_of(" \t");
       if (more != std::string_view::npos) bad("more than 4 fields");
     }
-    records_ = true;
-    emit(t, x, y, p == 1, InputPosition::line(in_.line()));
+    take(t, x, y, p == 1);
   }
 
   long polarity(std::string_view f, const char* name) const {
@@ -264,6 +309,10 @@ class TextSource final : public FileEventSource {
   }
 
   bool csv_;
+  bool scan_only_;
+  std::optional<SensorSize> sensor_;  // from the file's first line
+  long extent_width_ = 1, extent_height_ = 1;  // one past the largest x and y a scan met
+  bool extent_beyond_sensors_ = false;
   bool records_ = false;  // a record was read (a header may only come before)
   bool header_ = false;   // the header was passed (a second one is a bad record)
   bool header_read_ = false;  // the header's columns were read (ahead of the rows, or when met)
