@@ -270,6 +270,7 @@ void register_sweep(CLI::App& app) {
   cmd->callback([o] {
     const auto types = types_of(*o);
     for (const auto& t : types) eval::member_scene(t, 1);  // throws for an unknown type
+    parse_grid(o->vary);  // a bad --vary is refused before any output
     std::printf("<!-- %s -->\n", invocation().c_str());
     if (o->search) search(*o, types);
     else if (!o->vary.empty()) one_at_a_time(*o, types);

@@ -441,6 +441,11 @@ TEST(SweepCommand, UnknownTypesAndParametersAreOneLine) {
   const auto param = test::run_command(test::evms_binary() + " sweep --types rotation --seeds 1 --vary bandwith=0.1");
   EXPECT_NE(param.exit_code, 0);
   EXPECT_NE(param.err.find("unknown parameter 'bandwith'"), std::string::npos) << param.err;
+  // A value that is not a number is refused before anything is printed.
+  const auto value = test::run_command(test::evms_binary() + " sweep --types rotation --seeds 1 --vary bandwidth=0.04,nan");
+  EXPECT_NE(value.exit_code, 0);
+  EXPECT_NE(value.err.find("--bandwidth: 'nan' is not a number"), std::string::npos) << value.err;
+  EXPECT_EQ(value.out, "");
 }
 
 // What `evms sweep` prints is the family's pooling of its members: F the mean over members,
