@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <string>
 #include <utility>
 
 #include "host/read/input_error.h"
@@ -43,6 +44,19 @@ std::string CsvColumns::joined() const {
   return s;
 }
 
+std::string CsvColumns::unread() const {
+  std::string s;
+  for (int i = 0; i < count; ++i) {
+    if (field[static_cast<size_t>(i)] == CsvField::kUnread) s += (s.empty() ? "" : ",") + name[static_cast<size_t>(i)];
+  }
+  return s;
+}
+
+std::string CsvColumns::described() const {
+  const std::string not_read = unread();
+  return joined() + (not_read.empty() ? "" : " (not read: " + not_read + ")");
+}
+
 bool CsvColumns::has(CsvField f) const {
   for (int i = 0; i < count; ++i) {
     if (field[static_cast<size_t>(i)] == f) return true;
@@ -63,22 +77,28 @@ ColumnsByName::ColumnsByName(const std::string& path, InputPosition where, std::
 void ColumnsByName::refuse(const std::string& what) const { fail(path_, where_, prefix_ + what); }
 
 CsvField ColumnsByName::add(std::string_view raw) {
-  const std::optional<CsvField> f = column_named(raw);
-  if (!f) refuse("unknown " + noun_ + " '" + std::string(raw) + "' (the " + noun_ + "s: " + kColumnNamesKnown + ")");
-  const bool time = *f == CsvField::kMicroseconds || *f == CsvField::kSeconds;
-  // Five kinds, each once: a sixth name is unknown or a repeat, so the arrays cannot overflow.
-  if (time ? columns_.has_time() : columns_.has(*f)) refuse(noun_ + " '" + std::string(raw) + "' repeats " + (time ? "the time" : "a " + noun_));
+  if (columns_.count == CsvColumns::kMost) refuse("more than " + std::to_string(CsvColumns::kMost) + " " + noun_ + "s");
+  const CsvField f = column_named(raw).value_or(CsvField::kUnread);
+  const bool time = f == CsvField::kMicroseconds || f == CsvField::kSeconds;
+  if (f != CsvField::kUnread && (time ? columns_.has_time() : columns_.has(f))) {
+    refuse(noun_ + " '" + std::string(raw) + "' repeats " + (time ? "the time" : "a " + noun_));
+  }
   std::string name(raw);
-  for (char& ch : name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  columns_.field[static_cast<size_t>(columns_.count)] = *f;
+  if (f != CsvField::kUnread) {
+    for (char& ch : name) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  }
+  columns_.field[static_cast<size_t>(columns_.count)] = f;
   columns_.name[static_cast<size_t>(columns_.count)] = name;
   ++columns_.count;
-  return *f;
+  return f;
 }
 
 CsvColumns ColumnsByName::done() const {
   const auto require = [&](bool there, const char* what) {
-    if (!there) refuse(std::string("no ") + what + " " + noun_ + " (the " + noun_ + "s are " + columns_.joined() + ")");
+    if (!there) {
+      refuse(std::string("no ") + what + " " + noun_ + " (the " + noun_ + "s are " + columns_.joined() +
+             (columns_.unread().empty() ? "" : "; the names evms reads: " + std::string(kColumnNamesKnown)) + ")");
+    }
   };
   require(columns_.has_time(), "time");
   require(columns_.has(CsvField::kX), "x");

@@ -15,11 +15,12 @@
 
 namespace evms::read {
 
-// What a column holds: times are integer microseconds unless the column says seconds.
-enum class CsvField : std::uint8_t { kMicroseconds, kSeconds, kX, kY, kPolarity, kLabel };
+// What a column holds: times are integer microseconds unless the column says seconds. A column
+// of a name evms does not know is not read (kUnread), and said so.
+enum class CsvField : std::uint8_t { kMicroseconds, kSeconds, kX, kY, kPolarity, kLabel, kUnread };
 
 struct CsvColumns {
-  static constexpr int kMost = 5;
+  static constexpr int kMost = 16;
   std::array<CsvField, kMost> field{CsvField::kMicroseconds, CsvField::kX, CsvField::kY, CsvField::kPolarity,
                                     CsvField::kLabel};
   std::array<std::string, kMost> name{"t_us", "x", "y", "p", "label"};  // as messages name them
@@ -32,6 +33,10 @@ struct CsvColumns {
   static CsvColumns metavision();
 
   std::string joined() const;
+  // The names of the columns not read, comma-joined; empty when every column is read.
+  std::string unread() const;
+  // For the format line: the columns, and those not read.
+  std::string described() const;
   bool has(CsvField f) const;
   bool has_time() const { return has(CsvField::kMicroseconds) || has(CsvField::kSeconds); }
 };
@@ -44,8 +49,9 @@ inline constexpr const char* kColumnNamesKnown =
     "t_us, t, ts, timestamp or time in microseconds, or t_s in seconds; x; y; p, pol or polarity; and optionally label";
 
 // Builds the columns from their names, one at a time: a CSV header's columns or a NumPy
-// array's fields (`noun` says which in messages). An unknown or repeated name, and at the end
-// a missing time, x, y or polarity, fails with `path` at `where`, after `prefix`.
+// array's fields (`noun` says which in messages). A name evms does not know is a column not
+// read; a repeated name, more than kMost columns, and at the end a missing time, x, y or
+// polarity fail with `path` at `where`, after `prefix`.
 class ColumnsByName {
  public:
   ColumnsByName(const std::string& path, InputPosition where, std::string prefix, std::string noun);
@@ -65,7 +71,7 @@ class ColumnsByName {
 bool is_csv_header(std::string_view line);
 
 // The columns a header line names (case and quotes aside); t, x, y and p must each be there
-// once. Anything else fails with the file and line.
+// once, and other names are columns not read. Anything else fails with the file and line.
 CsvColumns csv_columns_of_header(std::string_view line, const std::string& path, std::uint64_t line_no);
 
 // Seconds with a decimal fraction of up to 9 digits, rounded half up to the microsecond without

@@ -19,11 +19,12 @@ LabelledCsvReader::LabelledCsvReader(const std::string& path) : in_(path) {
     // Without a header the columns are the event readers' (CsvColumns::headerless), the label
     // required; this first line is then a row.
     columns_ = CsvColumns::headerless();
-    columns_.count = CsvColumns::kMost;
+    ++columns_.count;  // the label that may follow the event's four
+    columns_.label_may_follow = false;
     first_row_ = header;
   }
   if (!columns_.has(CsvField::kLabel)) {
-    fail(path, InputPosition::line(in_.line()), "bad header: no label column (the columns are " + columns_.joined() + ")");
+    fail(path, InputPosition::line(in_.line()), "bad header: no label column (the columns are " + columns_.joined() + "; the labels are read from a column named label)");
   }
 }
 
@@ -45,6 +46,10 @@ bool LabelledCsvReader::next(LabelledEvent& out) {
       ++at;
     }
     const CsvField f = columns_.field[static_cast<size_t>(i)];
+    if (f == CsvField::kUnread) {
+      at = std::find(at, end, ',');
+      continue;
+    }
     if (f == CsvField::kSeconds) {
       const char* comma = std::find(at, end, ',');
       const auto us = seconds_to_us({at, static_cast<size_t>(comma - at)});

@@ -565,15 +565,16 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
   EXPECT_NE(bad.err.find("bad.csv: line 3: label -3 is not a track ID, -1 (noise) or -2 (lost on the board's link)"), std::string::npos)
       << bad.err;
   // Truth from another tool, its columns in another order and its times in seconds, scores the
-  // same: the header names the columns (host/read/csv_columns.h).
+  // same: the header names the columns (host/read/csv_columns.h), and a column of another name
+  // is not read.
   std::istringstream truth(read_file(dir.path("g/labels.csv")));
-  std::string line, reordered = "Label,X,Y,polarity,t_s\n";
+  std::string line, reordered = "Label,X,Y,polarity,t_s,kind\n";
   while (std::getline(truth, line)) {
     long long t = 0;
     int x = 0, y = 0, p = 0, object = 0;
     if (std::sscanf(line.c_str(), "%lld,%d,%d,%d,%d", &t, &x, &y, &p, &object) != 5) continue;
     char row[96];
-    std::snprintf(row, sizeof row, "%d,%d,%d,%d,%lld.%06lld\n", object, x, y, p, t / 1000000, t % 1000000);
+    std::snprintf(row, sizeof row, "%d,%d,%d,%d,%lld.%06lld,%s\n", object, x, y, p, t / 1000000, t % 1000000, object < 0 ? "" : "shape 2");
     reordered += row;
   }
   const auto other = run_command(evms_binary() + " metrics --chunk-us 10000 --truth " + dir.write("other.csv", reordered) +
@@ -597,7 +598,7 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
   const auto unlabelled = run_command(evms_binary() + " metrics --truth " + dir.write("u.csv", "t,x,y,p\n1,2,3,1\n") + " --pred " +
                                       dir.path("r/events.csv"));
   EXPECT_EQ(unlabelled.exit_code, 1);
-  EXPECT_NE(unlabelled.err.find("u.csv: line 1: bad header: no label column (the columns are t,x,y,p)"), std::string::npos) << unlabelled.err;
+  EXPECT_NE(unlabelled.err.find("u.csv: line 1: bad header: no label column (the columns are t,x,y,p; the labels are read from a column named label)"), std::string::npos) << unlabelled.err;
 }
 
 // evms metrics --touching-px adds a line: the truth scored with the objects that touch in a

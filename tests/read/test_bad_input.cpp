@@ -90,8 +90,10 @@ TEST(BadInput, BadHeaders) {
     expect_error(d.write("d.dat", b), "byte ", "bad header: event type 7");
   }
   // A CSV header names its columns (Formats.CsvColumnsGoByTheirHeader): each of t, x, y and p
-  // once, by a name evms knows.
-  expect_error(d.write("c.csv", "time,x,y,pixel\n1,2,3,1\n"), "line 1", "bad header: unknown column 'pixel'");
+  // once, by a name evms knows; a column of another name is not read.
+  expect_error(d.write("c.csv", "time,x,y,pixel\n1,2,3,1\n"), "line 1",
+               "bad header: no polarity column (the columns are time,x,y,pixel; the names evms reads: t_us, t, ts");
+  expect_error(d.write("c.csv", "t,x,y,p,a,b,c,d,e,f,g,h,i,j,k,l,m\n"), "line 1", "bad header: more than 16 columns");
   expect_error(d.write("c.csv", "t,x,y\n1,2,3\n"), "line 1", "bad header: no polarity column (the columns are t,x,y)");
   expect_error(d.write("c.csv", "t,x,y,p,ts\n"), "line 1", "bad header: column 'ts' repeats the time");
   expect_error(d.write("c.csv", ",t,x,y,p\n0,1,2,3,1\n"), "line 1", "bad header: column 1 has no name (pandas writes its index so");
@@ -116,7 +118,7 @@ TEST(BadInput, BadHeaders) {
     Bytes record;
     put_int(record, 10, 8), put_int(record, 1, 2), put_int(record, 2, 2), put_int(record, 1, 1);  // 13 bytes
     expect_error(d.write("n.npy", npy(header("[('t', '<i8'), ('x', '<u2'), ('y', '<u2'), ('q', '|u1')]", "(1,)"), record)), "byte ",
-                 "bad NPY header: unknown field 'q'");
+                 "bad NPY header: no polarity field (the fields are t,x,y,q; the names evms reads:");
     expect_error(d.write("n.npy", npy(header("[('t', '<f8'), ('x', '<u2'), ('y', '<u2'), ('p', '|u1')]", "(1,)"), record)), "byte ",
                  "field 't' is an integer number of microseconds (a float field named t_s holds seconds)");
     expect_error(d.write("n.npy", npy(header("[('t', '<i8'), ('x', '<u2'), ('p', '|u1')]", "(1,)"), record)), "byte ",

@@ -114,6 +114,10 @@ TEST(Formats, CsvColumnsGoByTheirHeader) {
        "CSV polarity,timestamp,label,y,x"},
       {"seconds.csv", rows("t_s,x,y,pol", [&](const Event& e) { return seconds(e.t) + "," + n(e.x) + "," + n(e.y) + "," + n(e.p); }),
        "CSV t_s,x,y,pol"},
+      // Columns of names evms does not know are not read, whatever they hold, empty too.
+      {"more.csv",
+       rows("Object,t,x,y,p,Note", [&](const Event& e) { return std::string(e.x % 3 ? "2.5" : "") + "," + n(e.t) + "," + n(e.x) + "," + n(e.y) + "," + n(e.p) + "," + (e.p ? "a b" : ""); }),
+       "CSV Object,t,x,y,p,Note (not read: Object,Note)"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.file);
@@ -137,10 +141,11 @@ TEST(Formats, NpyStructuredAndPlainArraysReadTheSame) {
   TempDir dir;
   const auto events = sample_events(2000, {346, 260});
   const std::string n = std::to_string(events.size());
-  Bytes ours, tonic, seconds, plain;
+  Bytes ours, tonic, seconds, plain, more;
   for (const Event& e : events) {
     put_int(ours, static_cast<std::uint64_t>(e.t), 8), put_int(ours, e.x, 2), put_int(ours, e.y, 2), put_int(ours, e.p, 1), put_int(ours, 7, 4);
     put_int(tonic, e.x, 2), put_int(tonic, e.y, 2), put_int(tonic, e.p, 1), put_int(tonic, static_cast<std::uint64_t>(e.t), 8);
+    put_int(more, e.x, 2), put_int(more, e.y, 2), put_int(more, e.p, 1), put_int(more, static_cast<std::uint64_t>(e.t), 8), put_int(more, 0x3fc00000u, 4);
     const double s = static_cast<double>(e.t) / 1e6;
     std::uint64_t bits = 0;
     std::memcpy(&bits, &s, 8);
@@ -160,6 +165,9 @@ TEST(Formats, NpyStructuredAndPlainArraysReadTheSame) {
       {"seconds.npy", npy("{'descr': [('t_s', '>f8'), ('x', '<i4'), ('y', '<i4'), ('polarity', '|i1')], 'fortran_order': False, 'shape': (" + n + ",), }", seconds, 3),
        "NPY t_s,x,y,polarity"},
       {"plain.npy", npy("{'descr': '>i4', 'fortran_order': False, 'shape': (" + n + ", 4), }", plain), "NPY (N, 4) >i4 as t_us,x,y,p"},
+      // A field of a name evms does not know is not read (here tonic's x,y,p,t and a float after).
+      {"more.npy", npy("{'descr': [('x', '<i2'), ('y', '<i2'), ('p', '|b1'), ('t', '<i8'), ('Weight', '<f4')], 'fortran_order': False, 'shape': (" + n + ",), }", more, 2),
+       "NPY x,y,p,t,Weight (not read: Weight)"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.file);

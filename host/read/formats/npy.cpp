@@ -4,7 +4,8 @@
 // Two layouts hold events:
 //  - a structured array of N records whose fields go by the names of CSV columns
 //    (csv_columns.h), in any order and of any integer type, bool for the polarity and float
-//    for a time in seconds (`t_s`): evms's own events.npy, and the arrays tonic and others save;
+//    for a time in seconds (`t_s`), and fields of other names not read: evms's own events.npy,
+//    and the arrays tonic and others save;
 //  - an integer array of shape (N, 4) or (N, 5) in C order, its columns t_us, x, y, p and a
 //    label, as a CSV without a header.
 // The file does not say the sensor size: it comes from --width/--height, else it is the
@@ -91,7 +92,6 @@ class NpyHeaderParser {
     if (!structured.empty()) {
       if (shape.size() != 1) refuse("a structured array of events has one dimension, not " + std::to_string(shape.size()));
       layout.records = n;
-      std::string names;
       ColumnsByName columns(path_, InputPosition::byte(at_ + pos_), "bad NPY header: ", "field");
       for (const auto& [name, type] : structured) {
         const NpyScalar scalar = scalar_of(type);
@@ -99,10 +99,8 @@ class NpyHeaderParser {
         check_type(name, holds, scalar);
         layout.fields.push_back({holds, scalar, layout.record_bytes, name});
         layout.record_bytes += static_cast<size_t>(scalar.bytes);
-        names += (names.empty() ? "" : ",") + name;
       }
-      columns.done();
-      layout.describe = "NPY " + names;
+      layout.describe = "NPY " + columns.done().described();
       return layout;
     }
     // A plain array: the columns of a CSV without a header.
@@ -221,7 +219,7 @@ class NpyHeaderParser {
     const bool integer = s.kind == 'i' || s.kind == 'u';
     if (holds == CsvField::kSeconds && s.kind != 'f') refuse("field '" + name + "' holds seconds: a float, not '" + std::string(1, s.kind) + "'");
     if (holds == CsvField::kPolarity && !integer && s.kind != 'b') refuse("field '" + name + "' is a polarity: a bool or an integer");
-    if (holds != CsvField::kSeconds && holds != CsvField::kPolarity && !integer) {
+    if (holds != CsvField::kSeconds && holds != CsvField::kPolarity && holds != CsvField::kUnread && !integer) {
       refuse("field '" + name + "' is an integer" + (holds == CsvField::kMicroseconds ? " number of microseconds (a float field named t_s holds seconds)" : ""));
     }
   }
@@ -325,6 +323,7 @@ class NpySource final : public FileEventSource {
     Decoded d;
     for (const NpyField& f : layout_.fields) {
       const unsigned char* b = r + f.offset;
+      if (f.holds == CsvField::kUnread) continue;
       if (f.holds == CsvField::kSeconds) {
         const double s = float_of(b, f.type);
         if (!(s >= 0 && s < 9.2e12)) fail(in_.path(), InputPosition::byte(at + f.offset), "field '" + f.name + "' = " + std::to_string(s) + " s is not a time");
@@ -347,7 +346,8 @@ class NpySource final : public FileEventSource {
           d.p = v == 1;
           break;
         case CsvField::kLabel:
-        case CsvField::kSeconds: break;
+        case CsvField::kSeconds:
+        case CsvField::kUnread: break;
       }
     }
     return d;

@@ -147,7 +147,7 @@ class TextSource final : public FileEventSource {
   // Whenever the columns are known: the format names them, and the one-pass reader knows
   // whether it can take the rows (it reads integers only).
   void describe_columns() {
-    info_.format = "CSV " + columns_.joined() + (metavision_ ? " (Metavision)" : "");
+    info_.format = "CSV " + columns_.described() + (metavision_ ? " (Metavision)" : "");
     has_seconds_ = columns_.has(CsvField::kSeconds);
   }
 
@@ -156,7 +156,7 @@ class TextSource final : public FileEventSource {
   }
 
   // Splits off the next field; separators are ',' for CSV, blanks otherwise.
-  std::string_view field(std::string_view& rest, const char* name) const {
+  std::string_view field(std::string_view& rest, const char* name, bool may_be_empty = false) const {
     if (!csv_) {
       size_t b = rest.find_first_not_of(" \t");
       rest = b == std::string_view::npos ? std::string_view{} : rest.substr(b);
@@ -168,7 +168,7 @@ class TextSource final : public FileEventSource {
       while (!f.empty() && (f.front() == ' ')) f.remove_prefix(1);
       while (!f.empty() && (f.back() == ' ')) f.remove_suffix(1);
     }
-    if (f.empty()) bad(std::string("missing field '") + name + "' (truncated record)");
+    if (f.empty() && !may_be_empty) bad(std::string("missing field '") + name + "' (truncated record)");
     return f;
   }
 
@@ -220,6 +220,10 @@ class TextSource final : public FileEventSource {
       for (int i = 0; i < columns_.count; ++i) {
         if (i > 0 && (p == end || *p++ != ',')) return false;
         const CsvField f = columns_.field[static_cast<size_t>(i)];
+        if (f == CsvField::kUnread) {
+          while (p < end && *p != ',') ++p;
+          continue;
+        }
         if (f == CsvField::kLabel && p < end && *p == '-') ++p;
         long& v = f == CsvField::kMicroseconds ? t : f == CsvField::kX ? x : f == CsvField::kY ? y : f == CsvField::kPolarity ? pol : label;
         if (!number(v, f == CsvField::kMicroseconds ? 18 : f == CsvField::kPolarity ? 1 : 9)) return false;
@@ -269,8 +273,10 @@ class TextSource final : public FileEventSource {
     if (csv_) {
       for (int i = 0; i < columns_.count; ++i) {
         const char* name = columns_.name[static_cast<size_t>(i)].c_str();
-        const std::string_view f = field(rest, name);
-        switch (columns_.field[static_cast<size_t>(i)]) {
+        const CsvField holds = columns_.field[static_cast<size_t>(i)];
+        if (holds == CsvField::kUnread && rest.empty() && i + 1 == columns_.count) break;  // "...,p," and an empty last column
+        const std::string_view f = field(rest, name, holds == CsvField::kUnread);
+        switch (holds) {
           case CsvField::kMicroseconds:
             if (f.find('.') != std::string_view::npos) {
               bad(std::string("field '") + name + "' = '" + std::string(f) +
@@ -283,6 +289,7 @@ class TextSource final : public FileEventSource {
           case CsvField::kY: y = integer(f, name); break;
           case CsvField::kPolarity: p = polarity(f, name); break;
           case CsvField::kLabel: integer(f, name); break;
+          case CsvField::kUnread: break;
         }
       }
       if (columns_.label_may_follow && !rest.empty()) integer(field(rest, "label"), "label");
