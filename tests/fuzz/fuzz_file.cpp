@@ -35,6 +35,7 @@ std::string prefix() {
   if (kFormat == "text") return "# sensor 346x260\n";
   if (kFormat == "ros2") return std::string("SQLite format 3\0"sv);
   if (kFormat == "ros1") return "#ROSBAG V2.0\n";
+  if (kFormat == "mcap") return "\x89MCAP0\r\n";
   if (kFormat == "npy") return std::string("\x93NUMPY\x01\x00"sv);
   std::abort();
 }

@@ -63,6 +63,33 @@ TEST(Ros2Bag, EveryEncodingDecodesToTheEventsEncoded) {
     EXPECT_EQ(read_all(bag), c.expected);
     // The storage file alone reads the same.
     EXPECT_EQ(read_all(bag + "/" + c.name + "_0.db3"), c.expected);
+    // And so does the bag in MCAP storage, rosbag2's default since ROS 2 Iron.
+    const std::string mcap = write_ros2_bag(d.path(std::string(c.name) + "_mcap"), {{"/events", c.type, c.messages}}, "mcap");
+    EXPECT_EQ(read::open_source(mcap, {})->info().sensor, kDavis346);
+    EXPECT_EQ(read_all(mcap), c.expected);
+    EXPECT_EQ(read_all(mcap + "/" + c.name + "_mcap_0.mcap"), c.expected);
+  }
+}
+
+// An MCAP file's messages read the same in chunks of every compression and outside chunks, with
+// other topics' channels and messages between them.
+TEST(Ros2Bag, McapFilesReadTheSameInEveryChunkCompression) {
+  TempDir d;
+  const std::vector<Event> events = sample_events(2000, kDavis346);
+  const std::vector<Bytes> messages = packets(events, 10, [](const std::vector<Event>& p) { return event_packet_cdr("evt3", 0, kDavis346, evt3_words(p)); });
+  const std::vector<BagTopic> topics = {{"/imu", "sensor_msgs/msg/Imu", std::vector<Bytes>(7, Bytes{0, 1, 0, 0})}, {"/events", kPacket, messages}};
+  struct Case {
+    const char* compression;
+    size_t per_chunk;
+  };
+  for (const Case c : {Case{"", 3}, Case{"lz4", 4}, Case{"zstd", 5}, Case{"zstd", 100}, Case{"", 0}}) {
+    SCOPED_TRACE(std::string(c.compression) + ", " + std::to_string(c.per_chunk) + " messages a chunk");
+    const std::string file = d.write("e.mcap", mcap_file(topics, c.compression, c.per_chunk));
+    const auto source = read::open_source(file, {});
+    EXPECT_EQ(source->info().format, "ROS 2 bag, event_camera_msgs/msg/EventPacket (evt3)");
+    EXPECT_EQ(read_all(file), events);
+    EXPECT_EQ(read_all(file + "?topic=/events"), events);
+    EXPECT_NE(read_error(file + "?topic=/imu").find("sensor_msgs/msg/Imu, not an event type"), std::string::npos);
   }
 }
 
@@ -168,6 +195,67 @@ TEST(Ros2Bag, BadBagsGetOneLineThatSaysWhereAndWhat) {
   {
     const std::string bag = write_ros2_bag(d.path("empty"), {{"/e", kPacket, {}}});
     expect_bag_error(bag, bag + ": ", "has no messages");
+  }
+}
+
+// A bad MCAP file: one line that names the file and the byte of the record (a chunk's, for a
+// record inside it), or the message and its byte, and what is wrong.
+TEST(Ros2Bag, BadMcapFilesGetOneLineThatSaysWhereAndWhat) {
+  TempDir d;
+  const std::vector<Event> events = sample_events(600, kDavis346);
+  const std::vector<BagTopic> topics = {{"/e", kPacket, packets(events, 6, [](const std::vector<Event>& p) {
+                                           return event_packet_cdr("evt3", 0, kDavis346, evt3_words(p));
+                                         })}};
+  const Bytes good = mcap_file(topics, "zstd", 2);
+  const size_t header_end = 8 + 9 + 4 + 4 + 4 + 9;  // magic, then the header: "ros2" and "evms test"
+  const size_t first_chunk_length = good[header_end + 1] | (good[header_end + 2] << 8) | (good[header_end + 3] << 16);
+  const std::string at_chunk = ": byte " + std::to_string(header_end) + ": ";
+  {
+    Bytes cut(good.begin(), good.begin() + static_cast<long>(header_end + 9 + first_chunk_length / 2));
+    const std::string f = d.write("cut.mcap", cut);
+    expect_bag_error(f, f + at_chunk, "a record of " + std::to_string(first_chunk_length) + " bytes runs past the end of the file");
+  }
+  {
+    Bytes cut(good.begin(), good.begin() + static_cast<long>(header_end + 9 + first_chunk_length));
+    const std::string f = d.write("short.mcap", cut);
+    expect_bag_error(f, f + ": byte " + std::to_string(cut.size()) + ": ", "the file ends without its Data End and Footer records");
+  }
+  {
+    Bytes corrupt = good;
+    corrupt[header_end + 9 + first_chunk_length - 3] ^= 0xFF;
+    const std::string f = d.write("corrupt.mcap", corrupt);
+    expect_bag_error(f, f + at_chunk, "a corrupt zstd chunk, or one that does not hold the ");
+  }
+  {
+    Bytes other = mcap_file(topics, "lz4", 2);
+    const std::string lz4 = "lz4";
+    const size_t name_at = header_end + 9 + 8 + 8 + 8 + 4 + 4;
+    ASSERT_TRUE(std::equal(lz4.begin(), lz4.end(), other.begin() + static_cast<long>(name_at)));
+    other[name_at] = 'x';
+    const std::string f = d.write("xz4.mcap", other);
+    expect_bag_error(f, f + at_chunk, "a chunk compressed with 'xz4': evms reads uncompressed, 'lz4' and 'zstd' chunks");
+  }
+  {
+    // A message on a channel no record defines: outside chunks, the message's own record is named.
+    Bytes loose = mcap_file(topics, "", 0);
+    const size_t schema_length = loose[header_end + 1], channel_at = header_end + 9 + schema_length;
+    const size_t message_at = channel_at + 9 + loose[channel_at + 1];
+    ASSERT_EQ(loose[message_at], 0x05);
+    loose[message_at + 9] = 7;
+    const std::string f = d.write("loose.mcap", loose);
+    expect_bag_error(f, f + ": byte " + std::to_string(message_at) + ": ", "message 1 is on channel 7, which no channel record before it defines");
+  }
+  {
+    // A message that does not decode: the message and its byte.
+    Bytes cut = event_packet_cdr("libcaer", 0, kDavis346, libcaer_events(events));
+    cut.resize(cut.size() - 5);
+    const std::string f = d.write("message.mcap", mcap_file({{"/e", kPacket, {cut}}}, "lz4", 2));
+    expect_bag_error(f, f + ": message 1, byte 6", "runs past the end of the message");
+  }
+  {
+    const std::string bag = write_ros2_bag(d.path("storage"), topics, "mcap");
+    std::ofstream(bag + "/metadata.yaml") << "rosbag2_bagfile_information:\n  storage_identifier: rocksdb\n  relative_file_paths:\n    - storage_0.mcap\n";
+    expect_bag_error(bag, bag + "/metadata.yaml: ", "storage 'rocksdb' is not supported (sqlite3 and mcap)");
   }
 }
 

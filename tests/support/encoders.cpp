@@ -368,14 +368,89 @@ void write_db3(const std::string& db3, const std::vector<BagTopic>& topics) {
   sqlite3_close(db);
 }
 
-std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& topics) {
+std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& topics, const std::string& storage) {
   std::filesystem::create_directories(dir);
   const std::string name = std::filesystem::path(dir).filename().string();
-  write_db3(dir + "/" + name + "_0.db3", topics);
-  std::ofstream(dir + "/metadata.yaml") << "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
-                                           "  compression_format: \"\"\n  compression_mode: \"\"\n  relative_file_paths:\n    - "
-                                        << name << "_0.db3\n";
+  const std::string file = name + (storage == "mcap" ? "_0.mcap" : "_0.db3");
+  if (storage == "mcap") {
+    const Bytes b = mcap_file(topics);
+    std::ofstream(dir + "/" + file, std::ios::binary).write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+  } else {
+    write_db3(dir + "/" + file, topics);
+  }
+  std::ofstream(dir + "/metadata.yaml") << "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: " << storage
+                                        << "\n  compression_format: \"\"\n  compression_mode: \"\"\n  relative_file_paths:\n    - " << file << "\n";
   return dir;
+}
+
+Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compression, size_t messages_per_chunk) {
+  const auto string = [](Bytes& b, const std::string& s) {
+    put_le32(b, static_cast<std::uint32_t>(s.size()));
+    b.insert(b.end(), s.begin(), s.end());
+  };
+  const auto record = [](Bytes& b, std::uint8_t op, const Bytes& body) {
+    b.push_back(op);
+    put_int(b, body.size(), 8);
+    b.insert(b.end(), body.begin(), body.end());
+  };
+  Bytes b = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
+  Bytes header;
+  string(header, "ros2"), string(header, "evms test");
+  record(b, 0x01, header);
+  std::vector<bool> announced(topics.size(), false);
+  size_t most = 0;
+  for (const BagTopic& t : topics) most = std::max(most, t.messages.size());
+  const bool chunked = messages_per_chunk > 0;
+  Bytes records;  // of the open chunk, or of the data section without chunks
+  size_t in_chunk = 0;
+  std::uint64_t log_ns = 1702309120000000000ull;
+  const auto close_chunk = [&] {
+    if (!chunked || records.empty()) return;
+    Bytes data = records;
+    if (compression == "lz4") {
+      data.resize(LZ4F_compressFrameBound(records.size(), nullptr));
+      data.resize(LZ4F_compressFrame(data.data(), data.size(), records.data(), records.size(), nullptr));
+    } else if (compression == "zstd") {
+      data.resize(ZSTD_compressBound(records.size()));
+      data.resize(ZSTD_compress(data.data(), data.size(), records.data(), records.size(), 3));
+    }
+    Bytes chunk;
+    put_int(chunk, 0, 8), put_int(chunk, 0, 8), put_int(chunk, records.size(), 8), put_le32(chunk, 0);
+    string(chunk, compression);
+    put_int(chunk, data.size(), 8);
+    chunk.insert(chunk.end(), data.begin(), data.end());
+    record(b, 0x06, chunk);
+    records.clear();
+    in_chunk = 0;
+  };
+  std::uint32_t sequence = 0;
+  for (size_t m = 0; m < most; ++m) {
+    for (size_t t = 0; t < topics.size(); ++t) {
+      if (m >= topics[t].messages.size()) continue;
+      Bytes& out = chunked ? records : b;
+      if (!announced[t]) {
+        Bytes schema, channel;
+        put_int(schema, t + 1, 2), string(schema, topics[t].type), string(schema, "ros2msg"), string(schema, "# test");
+        record(out, 0x03, schema);
+        put_int(channel, t, 2), put_int(channel, t + 1, 2), string(channel, topics[t].name), string(channel, "cdr"), put_le32(channel, 0);
+        record(out, 0x04, channel);
+        announced[t] = true;
+      }
+      Bytes message;
+      put_int(message, t, 2), put_le32(message, sequence++), put_int(message, log_ns, 8), put_int(message, log_ns, 8);
+      log_ns += 1000000;
+      message.insert(message.end(), topics[t].messages[m].begin(), topics[t].messages[m].end());
+      record(out, 0x05, message);
+      if (chunked && ++in_chunk == messages_per_chunk) close_chunk();
+    }
+  }
+  close_chunk();
+  record(b, 0x0F, Bytes{0, 0, 0, 0});
+  Bytes footer;
+  put_int(footer, 0, 8), put_int(footer, 0, 8), put_le32(footer, 0);
+  record(b, 0x02, footer);
+  b.insert(b.end(), {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'});
+  return b;
 }
 
 namespace {

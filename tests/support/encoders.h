@@ -46,8 +46,14 @@ struct BagTopic {
 };
 // Writes the sqlite3 storage file `db3` of a bag with these topics, messages 1 ms apart.
 void write_db3(const std::string& db3, const std::vector<BagTopic>& topics);
-// A bag folder `dir` with metadata.yaml and dir/NAME_0.db3; returns the folder.
-std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& topics);
+// A bag folder `dir` with metadata.yaml and dir/NAME_0.db3 (or NAME_0.mcap, by `storage`: "sqlite3"
+// or "mcap"); returns the folder.
+std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& topics, const std::string& storage = "sqlite3");
+// An MCAP file (https://mcap.dev/spec) of these topics, as rosbag2 writes one: a schema (the
+// type) and a cdr channel for each topic, its messages 1 ms apart in turn, in chunks of
+// `messages_per_chunk` compressed with `compression` ("", "lz4" or "zstd"; 0 messages a chunk:
+// no chunks), then Data End, an empty summary and the footer.
+Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compression = "zstd", size_t messages_per_chunk = 4);
 // A ROS 1 bag (format 2.0) of these topics, their messages in ROS 1's serialization, in chunks
 // of `messages_per_chunk` compressed with `compression` ("none", "lz4" or "bz2"), and its index.
 Bytes ros1_bag(const std::vector<BagTopic>& topics, const std::string& compression, size_t messages_per_chunk = 4);

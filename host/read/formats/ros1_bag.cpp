@@ -12,7 +12,6 @@
 // by `?topic=`. Its messages are taken in the order the file holds them. lz4 chunks are LZ4
 // frames (rosbag's roslz4 writes the standard frame format), bz2 chunks bzip2 streams.
 #include <bzlib.h>
-#include <lz4frame.h>
 
 #include <algorithm>
 #include <memory>
@@ -22,6 +21,7 @@
 #include <vector>
 
 #include "host/read/bytes.h"
+#include "host/read/decompress.h"
 #include "host/read/event_source.h"
 #include "host/read/formats/event_messages.h"
 
@@ -207,17 +207,7 @@ class Ros1BagSource final : public FileEventSource, EventMessageSink {
       if (r.data.size() != size) fail(in_.path(), InputPosition::byte(r.at), "a chunk of " + std::to_string(r.data.size()) + " bytes that says " + std::to_string(size));
       chunk_.assign(r.data.begin(), r.data.end());
     } else if (compression == "lz4") {
-      // LZ4 compresses at most 255 to 1: a larger size cannot be this chunk's.
-      if (size > 255 * std::uint64_t{r.data.size()} + 64) {
-        fail(in_.path(), InputPosition::byte(r.at), "an lz4 chunk of " + std::to_string(r.data.size()) + " bytes cannot hold the " + std::to_string(size) + " it says");
-      }
-      chunk_.resize(size);
-      LZ4F_dctx* dctx = nullptr;
-      if (LZ4F_isError(LZ4F_createDecompressionContext(&dctx, LZ4F_VERSION))) fail(in_.path(), {}, "cannot create an LZ4 decompressor");
-      const std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> owned(dctx, LZ4F_freeDecompressionContext);
-      size_t out = size, in = r.data.size();
-      const size_t left = LZ4F_decompress(dctx, chunk_.data(), &out, r.data.data(), &in, nullptr);
-      if (LZ4F_isError(left) || left != 0 || out != size) {
+      if (!lz4_frame_into(r.data, size, chunk_)) {
         fail(in_.path(), InputPosition::byte(r.at), "a corrupt lz4 chunk, or one that does not hold the " + std::to_string(size) + " bytes it says");
       }
     } else if (compression == "bz2") {

@@ -1,7 +1,9 @@
-// ROS 2 bags (rosbag2, sqlite3 storage): a folder with metadata.yaml and its .db3 files, or one
-// .db3 file. Each .db3 holds the tables topics(id, name, type, serialization_format, ...) and
+// ROS 2 bags (rosbag2): a folder with metadata.yaml and its storage files, or one storage file.
+// The storage is sqlite3 (.db3) or MCAP (.mcap, mcap_storage.cpp), told apart by their first
+// bytes. Each .db3 holds the tables topics(id, name, type, serialization_format, ...) and
 // messages(id, topic_id, timestamp, data); data is the CDR-serialized message. One topic
-// is read, in the order of the messages' receive timestamps.
+// is read, in the order of the messages' receive timestamps (MCAP: the order the file holds
+// them, which is the order rosbag2 received them).
 //
 // The event messages are decoded by event_messages.h.
 // Times become microseconds (floor). The sensor size is the first message's height and width.
@@ -16,7 +18,9 @@
 #include <optional>
 
 #include "host/read/bytes.h"
+#include "host/read/decompress.h"
 #include "host/read/event_source.h"
+#include "host/read/formats/bag_storage.h"
 #include "host/read/formats/event_messages.h"
 
 namespace evms::read {
@@ -61,7 +65,7 @@ BagLayout layout_of_folder(const std::string& folder) {
   BagLayout layout;
   try {
     const std::string storage = root["storage_identifier"] ? root["storage_identifier"].as<std::string>() : "sqlite3";
-    if (storage != "sqlite3") fail(meta.string(), {}, "storage '" + printable(storage) + "' is not supported (sqlite3 bags only)");
+    if (storage != "sqlite3" && storage != "mcap") fail(meta.string(), {}, "storage '" + printable(storage) + "' is not supported (sqlite3 and mcap)");
     const std::string format = root["compression_format"] ? root["compression_format"].as<std::string>() : "";
     const std::string mode = root["compression_mode"] ? root["compression_mode"].as<std::string>() : "";
     if (!format.empty() && format != "zstd") fail(meta.string(), {}, "compression '" + printable(format) + "' is not supported (zstd only)");
@@ -79,37 +83,32 @@ BagLayout layout_of_folder(const std::string& folder) {
 
 // One .db3 file, read-only, with the chosen topic's messages in receive order. The handle and
 // statements are released however a read ends, errors included.
-class Db3 {
+class Db3 final : public BagStorage {
  public:
   explicit Db3(const std::string& path) : path_(path) {
-    if (!fs::exists(path)) fail(path, {}, "cannot open: no such file (listed in the bag's metadata.yaml)");
     sqlite3* db = nullptr;
     const int rc = sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
     db_.reset(db);  // sqlite allocates a handle even when opening fails
     if (rc != SQLITE_OK) error("cannot open");
   }
 
-  struct Topic {
-    std::int64_t id;
-    std::string name, type, serialization;
-  };
-  std::vector<Topic> topics() {
+  std::vector<Topic> topics() override {
     Statement s = prepare("SELECT id, name, type, serialization_format FROM topics ORDER BY id");
     std::vector<Topic> out;
     while (step(s.get())) out.push_back({sqlite3_column_int64(s.get(), 0), text(s.get(), 1), text(s.get(), 2), text(s.get(), 3)});
     return out;
   }
-  std::int64_t count(std::int64_t topic) {
+  std::int64_t count(std::int64_t topic) override {
     Statement s = prepare("SELECT COUNT(*) FROM messages WHERE topic_id = ?");
     sqlite3_bind_int64(s.get(), 1, topic);
     return step(s.get()) ? sqlite3_column_int64(s.get(), 0) : 0;
   }
-  void select(std::int64_t topic) {
+  void select(std::int64_t topic) override {
     messages_ = prepare("SELECT id, data FROM messages WHERE topic_id = ? ORDER BY timestamp, id");
     sqlite3_bind_int64(messages_.get(), 1, topic);
   }
   // The next message's row id and bytes (valid until the next call); false at the end.
-  bool next(std::int64_t& id, std::span<const unsigned char>& data) {
+  bool next(std::int64_t& id, std::span<const unsigned char>& data) override {
     if (!step(messages_.get())) return false;
     id = sqlite3_column_int64(messages_.get(), 0);
     const void* blob = sqlite3_column_blob(messages_.get(), 1);
@@ -117,7 +116,7 @@ class Db3 {
     data = {static_cast<const unsigned char*>(blob), static_cast<size_t>(n)};
     return true;
   }
-  const std::string& path() const { return path_; }
+  const std::string& path() const override { return path_; }
 
  private:
   struct CloseDb {
@@ -153,6 +152,16 @@ class Db3 {
   std::unique_ptr<sqlite3, CloseDb> db_;
   Statement messages_;
 };
+
+// A storage file of either kind, by its first bytes.
+std::unique_ptr<BagStorage> open_storage(const std::string& path) {
+  if (!fs::exists(path)) fail(path, {}, "cannot open: no such file (listed in the bag's metadata.yaml)");
+  {
+    ByteReader in(path);
+    if (in.peek(sizeof kMcapMagic) == std::string_view(reinterpret_cast<const char*>(kMcapMagic), sizeof kMcapMagic)) return open_mcap_storage(path);
+  }
+  return std::make_unique<Db3>(path);
+}
 
 class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
  public:
@@ -190,11 +199,11 @@ class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
   }
 
   void choose_topic(const std::string& wanted) {
-    db_ = std::make_unique<Db3>(layout_.files[0]);
-    const std::vector<Db3::Topic> topics = db_->topics();
-    const Db3::Topic* chosen = nullptr;
+    db_ = open_storage(layout_.files[0]);
+    const std::vector<BagStorage::Topic> topics = db_->topics();
+    const BagStorage::Topic* chosen = nullptr;
     std::string listed;
-    for (const Db3::Topic& t : topics) {
+    for (const BagStorage::Topic& t : topics) {
       listed += (listed.empty() ? "" : ", ") + t.name + " (" + t.type + ")";
       if (wanted.empty() ? (!chosen && EventMessages::is_event_type(t.type)) : t.name == wanted) chosen = &t;
     }
@@ -212,13 +221,13 @@ class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
     }
     topic_ = chosen->name;
     messages_.emplace(chosen->type, EventMessages::Serialization::kCdr);
-    for (const Db3::Topic& t : topics) {
+    for (const BagStorage::Topic& t : topics) {
       if (t.name == topic_) total_ += db_->count(t.id);
     }
     for (size_t f = 1; f < layout_.files.size(); ++f) {
-      Db3 db(layout_.files[f]);
-      for (const Db3::Topic& t : db.topics()) {
-        if (t.name == topic_) total_ += db.count(t.id);
+      const std::unique_ptr<BagStorage> db = open_storage(layout_.files[f]);
+      for (const BagStorage::Topic& t : db->topics()) {
+        if (t.name == topic_) total_ += db->count(t.id);
       }
     }
     open_file(0);
@@ -226,8 +235,8 @@ class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
 
   void open_file(size_t index) {
     file_ = index;
-    if (!db_ || db_->path() != layout_.files[index]) db_ = std::make_unique<Db3>(layout_.files[index]);
-    for (const Db3::Topic& t : db_->topics()) {
+    if (!db_ || db_->path() != layout_.files[index]) db_ = open_storage(layout_.files[index]);
+    for (const BagStorage::Topic& t : db_->topics()) {
       if (t.name == topic_) {
         db_->select(t.id);
         has_topic_ = true;
@@ -255,9 +264,7 @@ class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
     const unsigned long long size = ZSTD_getFrameContentSize(data.data(), data.size());
     if (size == ZSTD_CONTENTSIZE_ERROR || size == ZSTD_CONTENTSIZE_UNKNOWN) fail_message(0, "not a zstd frame with its size");
     if (size > kMaxMessageBytes) fail_message(0, "a zstd frame of " + std::to_string(size) + " bytes (more than 128 MiB)");
-    unpacked_.resize(size);
-    const size_t got = ZSTD_decompress(unpacked_.data(), unpacked_.size(), data.data(), data.size());
-    if (ZSTD_isError(got) || got != size) fail_message(0, "corrupt zstd frame");
+    if (!zstd_frame_into(data, size, unpacked_)) fail_message(0, "corrupt zstd frame");
     return unpacked_;
   }
 
@@ -282,7 +289,7 @@ class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
   SourceOptions options_;
   std::string topic_;
   std::optional<EventMessages> messages_;
-  std::unique_ptr<Db3> db_;
+  std::unique_ptr<BagStorage> db_;
   size_t file_ = 0;
   bool has_topic_ = false;
   std::int64_t message_id_ = 0;

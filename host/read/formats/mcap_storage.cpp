@@ -1,0 +1,254 @@
+// MCAP files (https://mcap.dev/spec, major version 0): the magic "\x89MCAP0\r\n", then records,
+// each an opcode byte, a uint64 length and that many bytes, up to the Data End record; the
+// summary after it only repeats or indexes what came before, and is not read. The records read:
+//   0x01 Header    first: profile, library
+//   0x03 Schema    id (uint16), name (the message type, "event_camera_msgs/msg/EventPacket"),
+//                  encoding, data
+//   0x04 Channel   id, schema_id (uint16), topic, message_encoding ("cdr"), metadata
+//   0x05 Message   channel_id (uint16), sequence (uint32), log_time, publish_time (uint64),
+//                  then the message's bytes
+//   0x06 Chunk     message start and end times, uncompressed_size (uint64), uncompressed_crc
+//                  (uint32), compression ("", "lz4" or "zstd"), then its records as a
+//                  uint64-length byte string: schemas, channels and messages
+//   0x0F Data End  the end of the data section
+// Strings are a uint32 length and UTF-8; every integer is little-endian. Other records
+// (indexes, attachments, metadata) are passed over. A topic's messages are taken in the order
+// the file holds them, as rosbag2 wrote them on receipt; each has its number, counted from 1
+// over every message of the file, for errors. The file is read twice: once for its topics and
+// their counts, once for the messages.
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "host/read/byte_reader.h"
+#include "host/read/bytes.h"
+#include "host/read/decompress.h"
+#include "host/read/event_source.h"
+#include "host/read/formats/bag_storage.h"
+
+namespace evms::read {
+namespace mcap {  // apart from ros1_bag.cpp's records, which a unity build puts beside these
+namespace {
+
+// A record or a chunk larger than this is corrupt: writers cut chunks at about 1 MiB.
+constexpr std::uint64_t kMaxRecordBytes = std::uint64_t{256} << 20;
+
+enum Op : std::uint8_t { kHeader = 0x01, kFooter = 0x02, kSchema = 0x03, kChannel = 0x04, kMessage = 0x05, kChunk = 0x06, kDataEnd = 0x0F };
+
+struct Record {
+  std::uint8_t op = 0;
+  std::span<const unsigned char> body;
+  std::uint64_t at = 0;        // the record's byte in the file, or its chunk's
+  std::uint64_t in_chunk = 0;  // inside a chunk: the record's byte in the decompressed records, plus 1
+};
+
+// The fields of one record, read in order; running past its end fails with where.
+class Fields {
+ public:
+  Fields(const Record& r, const std::string& path) : r_(r), path_(path) {}
+  std::uint16_t u16() { return static_cast<std::uint16_t>(le(2)); }
+  std::uint32_t u32() { return static_cast<std::uint32_t>(le(4)); }
+  std::uint64_t u64() { return le(8); }
+  std::string string() {
+    const std::uint32_t n = u32();
+    return std::string(reinterpret_cast<const char*>(take(n).data()), n);
+  }
+  std::span<const unsigned char> bytes(std::uint64_t n) { return take(n); }
+  std::span<const unsigned char> rest() { return take(r_.body.size() - pos_); }
+
+  [[noreturn]] void refuse(const std::string& what) const {
+    fail(path_, InputPosition::byte(r_.at),
+         (r_.in_chunk ? "the chunk's record at byte " + std::to_string(r_.in_chunk - 1) + " of its records: " : std::string()) + what);
+  }
+
+ private:
+  std::uint64_t le(int n) {
+    const auto b = take(static_cast<std::uint64_t>(n));
+    std::uint64_t v = 0;
+    for (int i = n - 1; i >= 0; --i) v = (v << 8) | b[static_cast<size_t>(i)];
+    return v;
+  }
+  std::span<const unsigned char> take(std::uint64_t n) {
+    if (n > r_.body.size() - pos_) {
+      refuse("a record of opcode 0x" + hex(r_.op) + " and " + std::to_string(r_.body.size()) + " bytes is cut off inside its fields");
+    }
+    const auto s = r_.body.subspan(pos_, static_cast<size_t>(n));
+    pos_ += static_cast<size_t>(n);
+    return s;
+  }
+  static std::string hex(std::uint8_t v) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    return {kHex[v >> 4], kHex[v & 15]};
+  }
+
+  const Record& r_;
+  const std::string& path_;
+  size_t pos_ = 0;
+};
+
+// The data section's records, front to back, with a chunk's records in its place.
+class Records {
+ public:
+  explicit Records(const std::string& path) : in_(path) {
+    const std::string_view magic = in_.peek(sizeof kMcapMagic);
+    if (magic != std::string_view(reinterpret_cast<const char*>(kMcapMagic), sizeof kMcapMagic)) {
+      fail(path, InputPosition::byte(0), "not an MCAP file (its first bytes are not \\x89MCAP0\\r\\n)");
+    }
+    in_.skip(sizeof kMcapMagic);
+    Record header;
+    if (!next(header) || header.op != kHeader) fail(path, InputPosition::byte(sizeof kMcapMagic), "the first record is not the MCAP header");
+  }
+
+  const std::string& path() const { return in_.path(); }
+
+  bool next(Record& r) {
+    for (;;) {
+      if (chunk_pos_ < chunk_.size()) {
+        r.at = chunk_at_;
+        r.in_chunk = chunk_pos_ + 1;
+        if (chunk_.size() - chunk_pos_ < 9) Fields(r, path()).refuse("a record's opcode and length are cut off at the chunk's end");
+        r.op = chunk_[chunk_pos_];
+        std::uint64_t n = 0;
+        for (int i = 8; i >= 1; --i) n = (n << 8) | chunk_[chunk_pos_ + static_cast<size_t>(i)];
+        if (n > chunk_.size() - chunk_pos_ - 9) Fields(r, path()).refuse("a record of " + std::to_string(n) + " bytes runs past the chunk's end");
+        r.body = std::span<const unsigned char>(chunk_).subspan(chunk_pos_ + 9, static_cast<size_t>(n));
+        chunk_pos_ += 9 + static_cast<size_t>(n);
+        return true;
+      }
+      if (ended_) return false;
+      r.at = in_.offset();
+      r.in_chunk = 0;
+      unsigned char head[9];
+      const size_t got = in_.read(head, sizeof head);
+      if (got == 0) fail(path(), InputPosition::byte(r.at), "the file ends without its Data End and Footer records (a recording cut short)");
+      if (got < sizeof head) fail(path(), InputPosition::byte(r.at), "a record's opcode and length are cut off at the end of the file");
+      r.op = head[0];
+      std::uint64_t n = 0;
+      for (int i = 8; i >= 1; --i) n = (n << 8) | head[i];
+      const std::uint64_t left = in_.size() > in_.offset() ? in_.size() - in_.offset() : 0;
+      if (n > kMaxRecordBytes || (in_.size() > 0 && n > left)) {
+        fail(path(), InputPosition::byte(r.at), "a record of " + std::to_string(n) + " bytes runs past the end of the file");
+      }
+      record_.resize(static_cast<size_t>(n));
+      if (in_.read(record_.data(), record_.size()) < record_.size()) {
+        fail(path(), InputPosition::byte(r.at), "a record of " + std::to_string(n) + " bytes runs past the end of the file");
+      }
+      r.body = record_;
+      if (r.op == kDataEnd || r.op == kFooter) {
+        ended_ = true;
+        return false;
+      }
+      if (r.op != kChunk) return true;
+      open_chunk(r);
+    }
+  }
+
+ private:
+  void open_chunk(const Record& r) {
+    Fields f(r, path());
+    f.u64(), f.u64();  // the messages' first and last log times
+    const std::uint64_t size = f.u64();
+    f.u32();  // the records' CRC32
+    const std::string compression = f.string();
+    const std::span<const unsigned char> records = f.bytes(f.u64());
+    if (size > kMaxRecordBytes) f.refuse("a chunk of " + std::to_string(size) + " bytes uncompressed (more than 256 MiB)");
+    bool ok = true;
+    if (compression.empty()) {
+      ok = records.size() == size;
+      chunk_.assign(records.begin(), records.end());
+    } else if (compression == "lz4") {
+      ok = lz4_frame_into(records, size, chunk_);
+    } else if (compression == "zstd") {
+      ok = zstd_frame_into(records, size, chunk_);
+    } else {
+      f.refuse("a chunk compressed with '" + printable(compression) + "': evms reads uncompressed, 'lz4' and 'zstd' chunks");
+    }
+    if (!ok) f.refuse("a corrupt " + (compression.empty() ? std::string("uncompressed") : compression) + " chunk, or one that does not hold the " + std::to_string(size) + " bytes it says");
+    chunk_at_ = r.at;
+    chunk_pos_ = 0;
+  }
+
+  ByteReader in_;
+  std::vector<unsigned char> record_, chunk_;
+  size_t chunk_pos_ = 0;
+  std::uint64_t chunk_at_ = 0;
+  bool ended_ = false;
+};
+
+class McapStorage final : public BagStorage {
+ public:
+  explicit McapStorage(const std::string& path) : path_(path) {
+    // The first pass: every schema and channel, and each channel's messages.
+    Records records(path);
+    std::map<std::uint16_t, std::string> schemas;
+    std::int64_t number = 0;
+    for (Record r; records.next(r);) {
+      Fields f(r, path);
+      if (r.op == kSchema) {
+        const std::uint16_t id = f.u16();
+        schemas[id] = f.string();
+      } else if (r.op == kChannel) {
+        const std::uint16_t id = f.u16(), schema = f.u16();
+        std::string topic = f.string(), encoding = f.string();
+        if (channels_.count(id)) continue;  // a repeat, identical by the specification
+        const auto type = schemas.find(schema);
+        channels_[id] = {id, std::move(topic), type == schemas.end() ? std::string() : type->second, std::move(encoding)};
+      } else if (r.op == kMessage) {
+        ++number;
+        const std::uint16_t channel = f.u16();
+        if (!channels_.count(channel)) f.refuse("message " + std::to_string(number) + " is on channel " + std::to_string(channel) + ", which no channel record before it defines");
+        ++counts_[channel];
+      }
+    }
+  }
+
+  std::vector<Topic> topics() override {
+    std::vector<Topic> out;
+    for (const auto& [id, topic] : channels_) out.push_back(topic);
+    return out;
+  }
+  std::int64_t count(std::int64_t id) override {
+    const auto n = counts_.find(static_cast<std::uint16_t>(id));
+    return n == counts_.end() ? 0 : n->second;
+  }  // of one channel: the bag reader adds its topic's channels
+  // Every channel of the topic: a topic has one channel for each publisher that recorded it.
+  void select(std::int64_t id) override {
+    records_.emplace(path_);
+    selected_.clear();
+    const auto chosen = channels_.find(static_cast<std::uint16_t>(id));
+    for (const auto& [channel, topic] : channels_) {
+      if (chosen != channels_.end() && topic.name == chosen->second.name) selected_.insert(channel);
+    }
+    number_ = 0;
+  }
+  bool next(std::int64_t& id, std::span<const unsigned char>& data) override {
+    for (Record r; records_->next(r);) {
+      if (r.op != kMessage) continue;
+      ++number_;
+      Fields f(r, path_);
+      if (!selected_.count(f.u16())) continue;
+      f.u32(), f.u64(), f.u64();  // sequence, log and publish times
+      id = number_;
+      data = f.rest();
+      return true;
+    }
+    return false;
+  }
+  const std::string& path() const override { return path_; }
+
+ private:
+  std::string path_;
+  std::map<std::uint16_t, Topic> channels_;
+  std::map<std::uint16_t, std::int64_t> counts_;
+  std::optional<Records> records_;
+  std::set<std::uint16_t> selected_;
+  std::int64_t number_ = 0;
+};
+
+}  // namespace
+}  // namespace mcap
+
+std::unique_ptr<BagStorage> open_mcap_storage(const std::string& path) { return std::make_unique<mcap::McapStorage>(path); }
+
+}  // namespace evms::read
