@@ -45,7 +45,7 @@ BENCHMARK_CAPTURE(read_file, ros2_libcaer_rollover, "ros2/libcaer_rollover")->Un
 
 // The same 1 M events (640x480) in a file of each format that needs no recording: evms's own
 // events.csv and events.npy, a CSV in Metavision's column order, EVT 2.1 RAW (a word an event:
-// random events share none), a ROS 1 bag in lz4 or bz2 chunks.
+// random events share none), a ROS 1 bag in lz4 or bz2 chunks, a ROS 2 MCAP file in zstd chunks.
 void read_written(benchmark::State& state, const std::string& format) {
   const std::vector<Event> events = test::sample_events(1 << 20, {640, 480});
   static const test::TempDir dir;
@@ -65,12 +65,17 @@ void read_written(benchmark::State& state, const std::string& format) {
   } else if (format == "evt21.raw") {
     dir.write("events." + format, test::evt21(events, {640, 480}, true));
   } else {
+    const bool mcap = format == "mcap";
     std::vector<test::Bytes> messages;
     for (size_t at = 0; at < events.size(); at += 4096) {
       messages.push_back(test::dvs_event_array_cdr({events.begin() + static_cast<long>(at), events.begin() + static_cast<long>(std::min(events.size(), at + 4096))},
-                                                   {640, 480}, true));
+                                                   {640, 480}, !mcap));
     }
-    dir.write("events." + format, test::ros1_bag({{"/dvs/events", "dvs_msgs/EventArray", messages}}, format == "bz2.bag" ? "bz2" : "lz4", 16));
+    if (mcap) {
+      dir.write("events." + format, test::mcap_file({{"/dvs/events", "dvs_msgs/msg/EventArray", messages}}, "zstd", 16));
+    } else {
+      dir.write("events." + format, test::ros1_bag({{"/dvs/events", "dvs_msgs/EventArray", messages}}, format == "bz2.bag" ? "bz2" : "lz4", 16));
+    }
   }
   read::SourceOptions options;
   options.width = 640, options.height = 480;
@@ -83,6 +88,7 @@ BENCHMARK_CAPTURE(read_written, npy, "npy")->Unit(benchmark::kMillisecond)->MinT
 BENCHMARK_CAPTURE(read_written, evt21, "evt21.raw")->Unit(benchmark::kMillisecond)->MinTime(1);
 BENCHMARK_CAPTURE(read_written, ros1_bag_lz4, "bag")->Unit(benchmark::kMillisecond)->MinTime(1);
 BENCHMARK_CAPTURE(read_written, ros1_bag_bz2, "bz2.bag")->Unit(benchmark::kMillisecond)->MinTime(1);
+BENCHMARK_CAPTURE(read_written, ros2_mcap_zstd, "mcap")->Unit(benchmark::kMillisecond)->MinTime(1);
 
 template <class Writer>
 Writer make(const std::string& base);

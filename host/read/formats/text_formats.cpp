@@ -274,7 +274,8 @@ class TextSource final : public FileEventSource {
       for (int i = 0; i < columns_.count; ++i) {
         const char* name = columns_.name[static_cast<size_t>(i)].c_str();
         const CsvField holds = columns_.field[static_cast<size_t>(i)];
-        if (holds == CsvField::kUnread && rest.empty() && i + 1 == columns_.count) break;  // "...,p," and an empty last column
+        // A last column not read may be empty, with or without its comma.
+        if (holds == CsvField::kUnread && rest.empty() && i + 1 == columns_.count) break;
         const std::string_view f = field(rest, name, holds == CsvField::kUnread);
         switch (holds) {
           case CsvField::kMicroseconds:
