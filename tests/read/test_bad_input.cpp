@@ -185,6 +185,15 @@ TEST(BadInput, MalformedFields) {
   expect_error(d.write("t.txt", "0.1 1 2 1\nabc 1 2 1\n"), "line 2", "is not a non-negative decimal number of seconds");
   expect_error(d.write("p.txt", "0.1 1 2 5\n"), "line 1", "polarity 5 is not 0, 1 or -1");
   expect_error(d.write("f.txt", "0.1 1 2 1 9\n"), "line 1", "more than 4 fields");
+  // RPG times are seconds: a whole number of a million or more, before any time with a decimal
+  // point, is a count of microseconds, refused on either reading path (blanks send a line to the second).
+  for (const char* line : {"5 1 2 1\n1317888 1 2 1\n", "5 1 2 1\n 1317888  1 2 1\n"}) {
+    expect_error(d.write("us.txt", line), "line 2",
+                 "timestamp '1317888' has no decimal point and would be 15 days as seconds, the RPG format's unit; for microseconds write a CSV "
+                 "whose header names the column t_us");
+  }
+  EXPECT_EQ(read_all(d.write("s.txt", "999999 1 2 1\n")).front().t, TimeUs{999999000000});
+  EXPECT_EQ(read_all(d.write("s.txt", "0.5 1 2 1\n1317888 1 2 1\n")).back().t, TimeUs{1317888000000});
   expect_error(d.write("x.csv", "t_us,x,y,p\n10,1.5,2,1\n"), "line 2", "field 'x' = '1.5' is not an integer");
   {
     Bytes b = evt3(kEvents, {128, 128});

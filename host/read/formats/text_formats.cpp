@@ -190,6 +190,21 @@ class TextSource final : public FileEventSource {
     bad("timestamp '" + std::string(f) + "' is not a non-negative decimal number of seconds");
   }
 
+  // An RPG time: seconds. A whole number of a million or more seconds (11.6 days) in a file
+  // whose times have had no decimal point is a count of microseconds, which read as seconds
+  // would spread the events over weeks: refused, saying how to give microseconds.
+  TimeUs rpg_seconds(std::string_view f) {
+    const TimeUs t = seconds(f);
+    if (f.find('.') != std::string_view::npos) {
+      decimal_seen_ = true;
+    } else if (!decimal_seen_ && t >= kWholeSecondsRefused * 1000000) {
+      bad("timestamp '" + std::string(f) + "' has no decimal point and would be " + std::to_string(t / 86400000000) +
+          " days as seconds, the RPG format's unit; for microseconds write a CSV whose header names the column t_us");
+    }
+    return t;
+  }
+  static constexpr TimeUs kWholeSecondsRefused = 1000000;
+
   // The usual line, read in one pass: "t x y p" (t seconds with a fraction) or "t_us,x,y,p[,label]"
   // with digits only and no blanks inside a CSV row. Anything else (a comment, a header, a
   // negative coordinate, extra blanks, a bad field) is left to parse(), which reads it or names
@@ -240,6 +255,7 @@ class TextSource final : public FileEventSource {
       if (!number(whole, 12)) return false;
       TimeUs micro = 0;
       if (p < end && *p == '.') {
+        decimal_seen_ = true;
         ++p;
         int n = 0;
         for (; digit(p); ++p, ++n) {
@@ -249,6 +265,7 @@ class TextSource final : public FileEventSource {
         for (; n < 6; ++n) micro *= 10;
       }
       t = whole * 1000000 + micro;
+      if (!decimal_seen_ && whole >= kWholeSecondsRefused) return false;  // parse() refuses it
       if (!blanks() || !number(x, 9) || !blanks() || !number(y, 9) || !blanks() || !number(pol, 1)) return false;
       blanks();
       if (p != end) return false;
@@ -296,7 +313,7 @@ class TextSource final : public FileEventSource {
       if (columns_.label_may_follow && !rest.empty()) integer(field(rest, "label"), "label");
       if (!rest.empty()) bad("more than " + std::to_string(columns_.count + (columns_.label_may_follow ? 1 : 0)) + " fields");
     } else {
-      t = seconds(field(rest, "t"));
+      t = rpg_seconds(field(rest, "t"));
       x = integer(field(rest, "x"), "x");
       y = integer(field(rest, "y"), "y");
       p = polarity(field(rest, "p"), "p");
@@ -321,6 +338,7 @@ class TextSource final : public FileEventSource {
   std::optional<SensorSize> sensor_;  // from the file's first line
   long extent_width_ = 1, extent_height_ = 1;  // one past the largest x and y a scan met
   bool extent_beyond_sensors_ = false;
+  bool decimal_seen_ = false;  // an RPG time with a decimal point was read
   bool records_ = false;  // a record was read (a header may only come before)
   bool header_ = false;   // the header was passed (a second one is a bad record)
   bool header_read_ = false;  // the header's columns were read (ahead of the rows, or when met)
