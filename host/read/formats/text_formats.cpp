@@ -284,6 +284,10 @@ class TextSource final : public FileEventSource {
       header_ = true;
       return;
     }
+    if (!csv_ && !records_ && is_csv_header(line.substr(first))) {
+      bad("'" + printable(line.substr(first, 40)) + "' is not a row of time (s), x, y and polarity; a header naming the columns " +
+          "is read in a CSV file, whose columns are separated by commas");
+    }
     std::string_view rest = line.substr(first);
     TimeUs t = 0;
     long x = 0, y = 0, p = 0;
