@@ -107,10 +107,18 @@ CsvColumns ColumnsByName::done() const {
   return columns_;
 }
 
+char separator_of_header(std::string_view line) {
+  for (char c : {',', ';', '\t'}) {
+    if (line.find(c) != std::string_view::npos) return c;
+  }
+  return ',';
+}
+
 CsvColumns csv_columns_of_header(std::string_view line, const std::string& path, std::uint64_t line_no) {
   ColumnsByName columns(path, InputPosition::line(line_no), "bad header: ", "column");
+  const char separator = separator_of_header(line);
   for (int n = 1, more = 1; more; ++n) {
-    const size_t comma = line.find(',');
+    const size_t comma = line.find(separator);
     more = comma != std::string_view::npos;
     std::string_view raw = line.substr(0, comma);
     line.remove_prefix(more ? comma + 1 : line.size());
@@ -122,7 +130,9 @@ CsvColumns csv_columns_of_header(std::string_view line, const std::string& path,
     }
     columns.add(raw);
   }
-  return columns.done();
+  CsvColumns done = columns.done();
+  done.separator = separator;
+  return done;
 }
 
 std::optional<TimeUs> seconds_to_us(std::string_view f) {

@@ -26,6 +26,7 @@ struct CsvColumns {
   std::array<std::string, kMost> name{"t_us", "x", "y", "p", "label"};  // as messages name them
   int count = 4;                 // fields in a row
   bool label_may_follow = true;  // a fifth field, a label, may follow (no header said otherwise)
+  char separator = ',';          // between fields: ',' unless the header used ';' or a tab
 
   // Rows without a header: t_us,x,y,p with an optional label.
   static CsvColumns headerless() { return {}; }
@@ -70,8 +71,13 @@ class ColumnsByName {
 // A line of names, not numbers: it starts with a letter, a quote, or a column without a name.
 bool is_csv_header(std::string_view line);
 
-// The columns a header line names (case and quotes aside); t, x, y and p must each be there
-// once, and other names are columns not read. Anything else fails with the file and line.
+// The separator a header line uses: ',' when it holds one, else ';' (spreadsheets where the
+// comma is the decimal mark) or a tab (tab-separated values), else ','.
+char separator_of_header(std::string_view line);
+
+// The columns a header line names (case and quotes aside), split at its separator
+// (separator_of_header); t, x, y and p must each be there once, and other names are columns not
+// read. Anything else fails with the file and line.
 CsvColumns csv_columns_of_header(std::string_view line, const std::string& path, std::uint64_t line_no);
 
 // Seconds with a decimal fraction of up to 9 digits, rounded half up to the microsecond without

@@ -1,6 +1,7 @@
 #include "host/read/event_source.h"
 
 #include <utility>
+#include "host/read/csv_columns.h"
 #include "host/read/live/live_source.h"
 #include "host/read/source_window.h"
 
@@ -178,7 +179,9 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
   bool text = std::all_of(first.begin(), first.end(), [](char c) {
     return c == '\t' || c == '\r' || (c >= 32 && c < 127);
   });
-  if (text && first.find(',') != std::string_view::npos) return open_csv(std::move(in), options);
+  // A header with ';' or tabs between its names is a CSV too (csv_columns.h).
+  const bool separated_header = is_csv_header(first) && first.find_first_of(";\t") != std::string_view::npos;
+  if (text && (first.find(',') != std::string_view::npos || separated_header)) return open_csv(std::move(in), options);
   if (text) return open_rpg_text(std::move(in), options);
   fail(name, InputPosition::byte(0),
        "bad header: not a known event format (events.txt, CSV, AEDAT 2/3/4, EVT 2/3 RAW, DAT, NPY, ROS 1 or 2 bag)");

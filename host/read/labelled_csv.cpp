@@ -42,16 +42,16 @@ bool LabelledCsvReader::next(LabelledEvent& out) {
   for (int i = 0; i < columns_.count; ++i) {
     const std::string& name = columns_.name[static_cast<size_t>(i)];
     if (i > 0) {
-      if (at == end || *at != ',') refuse("truncated row: expected " + std::to_string(columns_.count) + " fields");
+      if (at == end || *at != columns_.separator) refuse("truncated row: expected " + std::to_string(columns_.count) + " fields");
       ++at;
     }
     const CsvField f = columns_.field[static_cast<size_t>(i)];
     if (f == CsvField::kUnread) {
-      at = std::find(at, end, ',');
+      at = std::find(at, end, columns_.separator);
       continue;
     }
     if (f == CsvField::kSeconds) {
-      const char* comma = std::find(at, end, ',');
+      const char* comma = std::find(at, end, columns_.separator);
       const auto us = seconds_to_us({at, static_cast<size_t>(comma - at)});
       if (!us) refuse("field '" + name + "' is missing or not a decimal number of seconds");
       t = *us;

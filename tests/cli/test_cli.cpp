@@ -565,16 +565,16 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
   EXPECT_NE(bad.err.find("bad.csv: line 3: label -3 is not a track ID, -1 (noise) or -2 (lost on the board's link)"), std::string::npos)
       << bad.err;
   // Truth from another tool, its columns in another order and its times in seconds, scores the
-  // same: the header names the columns (host/read/csv_columns.h), and a column of another name
-  // is not read.
+  // same: the header names the columns (host/read/csv_columns.h), a column of another name is
+  // not read, and tabs may separate them.
   std::istringstream truth(read_file(dir.path("g/labels.csv")));
-  std::string line, reordered = "Label,X,Y,polarity,t_s,kind\n";
+  std::string line, reordered = "Label\tX\tY\tpolarity\tt_s\tkind\n";
   while (std::getline(truth, line)) {
     long long t = 0;
     int x = 0, y = 0, p = 0, object = 0;
     if (std::sscanf(line.c_str(), "%lld,%d,%d,%d,%d", &t, &x, &y, &p, &object) != 5) continue;
     char row[96];
-    std::snprintf(row, sizeof row, "%d,%d,%d,%d,%lld.%06lld,%s\n", object, x, y, p, t / 1000000, t % 1000000, object < 0 ? "" : "shape 2");
+    std::snprintf(row, sizeof row, "%d\t%d\t%d\t%d\t%lld.%06lld\t%s\n", object, x, y, p, t / 1000000, t % 1000000, object < 0 ? "" : "shape 2");
     reordered += row;
   }
   const auto other = run_command(evms_binary() + " metrics --chunk-us 10000 --truth " + dir.write("other.csv", reordered) +

@@ -114,6 +114,10 @@ TEST(Formats, CsvColumnsGoByTheirHeader) {
        "CSV polarity,timestamp,label,y,x"},
       {"seconds.csv", rows("t_s,x,y,pol", [&](const Event& e) { return seconds(e.t) + "," + n(e.x) + "," + n(e.y) + "," + n(e.p); }),
        "CSV t_s,x,y,pol"},
+      // Semicolons (spreadsheets where the comma is the decimal mark) and tabs between the columns.
+      {"semicolons.csv", rows("t;x;y;p", [&](const Event& e) { return n(e.t) + ";" + n(e.x) + ";" + n(e.y) + ";" + n(e.p); }), "CSV t,x,y,p"},
+      {"tabs.tsv", rows("x\ty\tpolarity\tt_s", [&](const Event& e) { return n(e.x) + "\t" + n(e.y) + "\t" + n(e.p) + "\t" + seconds(e.t); }),
+       "CSV x,y,polarity,t_s"},
       // Columns of names evms does not know are not read, whatever they hold, empty too.
       {"more.csv",
        rows("Object,t,x,y,p,Note", [&](const Event& e) { return std::string(e.x % 3 ? "2.5" : "") + "," + n(e.t) + "," + n(e.x) + "," + n(e.y) + "," + n(e.p) + "," + (e.p ? "a b" : ""); }),

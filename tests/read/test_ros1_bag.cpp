@@ -34,9 +34,9 @@ TEST(Ros1Bag, EventArraysAndPacketsDecodeToTheEventsEncodedInEveryChunkCompressi
     const std::vector<Bytes>& messages;
     const char* format;
   };
-  const Case cases[] = {{"dvs_msgs/EventArray", arrays, "ROS 1 bag, dvs_msgs/EventArray"},
-                        {"prophesee_event_msgs/EventArray", arrays, "ROS 1 bag, prophesee_event_msgs/EventArray"},
-                        {"event_camera_msgs/EventPacket", packets, "ROS 1 bag, event_camera_msgs/EventPacket (evt3)"}};
+  const Case cases[] = {{"dvs_msgs/EventArray", arrays, "ROS 1 bag, /dvs/events: dvs_msgs/EventArray"},
+                        {"prophesee_event_msgs/EventArray", arrays, "ROS 1 bag, /dvs/events: prophesee_event_msgs/EventArray"},
+                        {"event_camera_msgs/EventPacket", packets, "ROS 1 bag, /dvs/events: event_camera_msgs/EventPacket (evt3)"}};
   for (const Case& c : cases) {
     for (const char* compression : {"none", "lz4", "bz2"}) {
       SCOPED_TRACE(std::string(c.type) + ", " + compression);

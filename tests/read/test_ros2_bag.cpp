@@ -86,7 +86,7 @@ TEST(Ros2Bag, McapFilesReadTheSameInEveryChunkCompression) {
     SCOPED_TRACE(std::string(c.compression) + ", " + std::to_string(c.per_chunk) + " messages a chunk");
     const std::string file = d.write("e.mcap", mcap_file(topics, c.compression, c.per_chunk));
     const auto source = read::open_source(file, {});
-    EXPECT_EQ(source->info().format, "ROS 2 bag, event_camera_msgs/msg/EventPacket (evt3)");
+    EXPECT_EQ(source->info().format, "ROS 2 bag, /events: event_camera_msgs/msg/EventPacket (evt3)");
     EXPECT_EQ(read_all(file), events);
     EXPECT_EQ(read_all(file + "?topic=/events"), events);
     EXPECT_NE(read_error(file + "?topic=/imu").find("sensor_msgs/msg/Imu, not an event type"), std::string::npos);
@@ -127,6 +127,9 @@ TEST(Ros2Bag, TheFirstEventTopicIsTheDefaultAndQueryChoosesAnother) {
                                                          {"/right/events", kPacket, {event_packet_cdr("evt3", 0, kDavis346, evt3_words(b))}}});
   EXPECT_EQ(read_all(bag), a);
   EXPECT_EQ(read_all(bag + "?topic=/right/events"), b);
+  // The format names the topic read.
+  EXPECT_EQ(read::open_source(bag, {})->info().format, "ROS 2 bag, /left/events: event_camera_msgs/msg/EventPacket (evt3)");
+  EXPECT_EQ(read::open_source(bag + "?topic=/right/events", {})->info().format, "ROS 2 bag, /right/events: event_camera_msgs/msg/EventPacket (evt3)");
   const std::string missing = read_error(bag + "?topic=/nope");
   EXPECT_NE(missing.find("no topic '/nope'"), std::string::npos) << missing;
   EXPECT_NE(missing.find("/left/events (event_camera_msgs/msg/EventPacket)"), std::string::npos) << missing;

@@ -131,7 +131,7 @@ class Ros1BagSource final : public FileEventSource, EventMessageSink {
  private:
   void decode_current() {
     messages_->decode(message_, *this);
-    if (info_.format == "ROS 1 bag") info_.format = "ROS 1 bag, " + messages_->format();
+    if (info_.format == "ROS 1 bag") info_.format = "ROS 1 bag, " + printable(topic_) + ": " + messages_->format();
   }
 
   void event(TimeUs t, std::uint64_t x, std::uint64_t y, int p, std::uint64_t at) override {

@@ -276,7 +276,7 @@ class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
 
   void decode_current() {
     messages_->decode(message_, *this);
-    if (info_.format.empty()) info_.format = "ROS 2 bag, " + messages_->format();
+    if (info_.format.empty()) info_.format = "ROS 2 bag, " + printable(topic_) + ": " + messages_->format();
   }
 
   void event(TimeUs t, std::uint64_t x, std::uint64_t y, int p, std::uint64_t at) override {

@@ -155,13 +155,14 @@ class TextSource final : public FileEventSource {
     fail(in_.path(), InputPosition::line(in_.line()), what);
   }
 
-  // Splits off the next field; separators are ',' for CSV, blanks otherwise.
+  // Splits off the next field; separators are the CSV's (',' unless its header used ';' or a
+  // tab), blanks otherwise.
   std::string_view field(std::string_view& rest, const char* name, bool may_be_empty = false) const {
     if (!csv_) {
       size_t b = rest.find_first_not_of(" \t");
       rest = b == std::string_view::npos ? std::string_view{} : rest.substr(b);
     }
-    size_t end = csv_ ? rest.find(',') : rest.find_first_of(" \t");
+    size_t end = csv_ ? rest.find(columns_.separator) : rest.find_first_of(" \t");
     std::string_view f = rest.substr(0, end);
     rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
     if (csv_) {
@@ -233,17 +234,17 @@ class TextSource final : public FileEventSource {
       if (has_seconds_) return false;
       long label = 0;
       for (int i = 0; i < columns_.count; ++i) {
-        if (i > 0 && (p == end || *p++ != ',')) return false;
+        if (i > 0 && (p == end || *p++ != columns_.separator)) return false;
         const CsvField f = columns_.field[static_cast<size_t>(i)];
         if (f == CsvField::kUnread) {
-          while (p < end && *p != ',') ++p;
+          while (p < end && *p != columns_.separator) ++p;
           continue;
         }
         if (f == CsvField::kLabel && p < end && *p == '-') ++p;
         long& v = f == CsvField::kMicroseconds ? t : f == CsvField::kX ? x : f == CsvField::kY ? y : f == CsvField::kPolarity ? pol : label;
         if (!number(v, f == CsvField::kMicroseconds ? 18 : f == CsvField::kPolarity ? 1 : 9)) return false;
       }
-      if (columns_.label_may_follow && p < end && *p == ',') {
+      if (columns_.label_may_follow && p < end && *p == columns_.separator) {
         ++p;
         if (p < end && *p == '-') ++p;
         if (!number(label, 9)) return false;
@@ -286,7 +287,7 @@ class TextSource final : public FileEventSource {
     }
     if (!csv_ && !records_ && is_csv_header(line.substr(first))) {
       bad("'" + printable(line.substr(first, 40)) + "' is not a row of time (s), x, y and polarity; a header naming the columns " +
-          "is read in a CSV file, whose columns are separated by commas");
+          "is read in a CSV file, whose columns are separated by commas, semicolons or tabs");
     }
     std::string_view rest = line.substr(first);
     TimeUs t = 0;
