@@ -285,7 +285,7 @@ class TextSource final : public FileEventSource {
       header_ = true;
       return;
     }
-    if (!csv_ && !records_ && is_csv_header(line.substr(first))) {
+    if (!csv_ && !records_ && names_columns(line.substr(first))) {
       bad("'" + printable(line.substr(first, 40)) + "' is not a row of time (s), x, y and polarity; a header naming the columns " +
           "is read in a CSV file, whose columns are separated by commas, semicolons or tabs");
     }
@@ -326,6 +326,18 @@ class TextSource final : public FileEventSource {
       if (more != std::string_view::npos) bad("more than 4 fields");
     }
     take(t, x, y, p == 1);
+  }
+
+  // Every word of the line, between blanks, is a column's name ("t x y p"): a header.
+  static bool names_columns(std::string_view line) {
+    bool named = false;
+    for (size_t at = line.find_first_not_of(" \t"); at != std::string_view::npos; at = line.find_first_not_of(" \t", at)) {
+      const size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
+      if (!column_named(line.substr(at, end - at))) return false;
+      named = true;
+      at = end;
+    }
+    return named;
   }
 
   long polarity(std::string_view f, const char* name) const {
