@@ -86,11 +86,18 @@ TEST(Ros2Bag, McapFilesReadTheSameInEveryChunkCompression) {
     SCOPED_TRACE(std::string(c.compression) + ", " + std::to_string(c.per_chunk) + " messages a chunk");
     const std::string file = d.write("e.mcap", mcap_file(topics, c.compression, c.per_chunk));
     const auto source = read::open_source(file, {});
-    EXPECT_EQ(source->info().format, "ROS 2 bag, /events: event_camera_msgs/msg/EventPacket (evt3)");
+    EXPECT_EQ(source->info().format, "MCAP, /events: event_camera_msgs/msg/EventPacket (evt3)");
     EXPECT_EQ(read_all(file), events);
     EXPECT_EQ(read_all(file + "?topic=/events"), events);
     EXPECT_NE(read_error(file + "?topic=/imu").find("sensor_msgs/msg/Imu, not an event type"), std::string::npos);
   }
+  // A ROS 1 bag converted to MCAP (`mcap convert`) keeps ROS 1's types and serialization.
+  const std::vector<Bytes> ros1 = packets(events, 10, [](const std::vector<Event>& p) { return dvs_event_array_cdr(p, kDavis346, true); });
+  const std::string converted = d.write("converted.mcap", mcap_file({{"/dvs/events", "dvs_msgs/EventArray", ros1}}, "lz4", 4, "ros1"));
+  EXPECT_EQ(read::open_source(converted, {})->info().format, "MCAP, /dvs/events: dvs_msgs/EventArray");
+  EXPECT_EQ(read_all(converted), events);
+  const std::string json = d.write("json.mcap", mcap_file({{"/dvs/events", "dvs_msgs/msg/EventArray", {Bytes{1}}}}, "", 0, "json"));
+  EXPECT_EQ(read_error(json), json + ": topic /dvs/events is serialized as 'json', not cdr or ros1");
 }
 
 TEST(Ros2Bag, LibcaerTimestampsRollOverInsideAPacket) {

@@ -383,7 +383,7 @@ std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& 
   return dir;
 }
 
-Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compression, size_t messages_per_chunk) {
+Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compression, size_t messages_per_chunk, const std::string& encoding) {
   const auto string = [](Bytes& b, const std::string& s) {
     put_le32(b, static_cast<std::uint32_t>(s.size()));
     b.insert(b.end(), s.begin(), s.end());
@@ -430,9 +430,9 @@ Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compress
       Bytes& out = chunked ? records : b;
       if (!announced[t]) {
         Bytes schema, channel;
-        put_int(schema, t + 1, 2), string(schema, topics[t].type), string(schema, "ros2msg"), string(schema, "# test");
+        put_int(schema, t + 1, 2), string(schema, topics[t].type), string(schema, encoding == "ros1" ? "ros1msg" : "ros2msg"), string(schema, "# test");
         record(out, 0x03, schema);
-        put_int(channel, t, 2), put_int(channel, t + 1, 2), string(channel, topics[t].name), string(channel, "cdr"), put_le32(channel, 0);
+        put_int(channel, t, 2), put_int(channel, t + 1, 2), string(channel, topics[t].name), string(channel, encoding), put_le32(channel, 0);
         record(out, 0x04, channel);
         announced[t] = true;
       }

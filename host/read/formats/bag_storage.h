@@ -27,6 +27,8 @@ class BagStorage {
   // message of an MCAP file) and bytes, valid until the next call; false at the end.
   virtual bool next(std::int64_t& id, std::span<const unsigned char>& data) = 0;
   virtual const std::string& path() const = 0;
+  // For the format line: "ROS 2 bag" (sqlite3) or "MCAP".
+  virtual const char* container() const = 0;
 };
 
 inline constexpr unsigned char kMcapMagic[8] = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};

@@ -236,6 +236,7 @@ class McapStorage final : public BagStorage {
     return false;
   }
   const std::string& path() const override { return path_; }
+  const char* container() const override { return "MCAP"; }
 
  private:
   std::string path_;

@@ -117,6 +117,7 @@ class Db3 final : public BagStorage {
     return true;
   }
   const std::string& path() const override { return path_; }
+  const char* container() const override { return "ROS 2 bag"; }
 
  private:
   struct CloseDb {
@@ -216,11 +217,13 @@ class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
       fail(info_.name, {}, "topic " + printable(chosen->name) + " has type " + printable(chosen->type) + ", not an event type (" +
                                EventMessages::types_known() + ")");
     }
-    if (chosen->serialization != "cdr") {
-      fail(info_.name, {}, "topic " + printable(chosen->name) + " is serialized as '" + printable(chosen->serialization) + "', not cdr");
+    // ROS 2 writes cdr; an MCAP file converted from a ROS 1 bag (`mcap convert`) keeps ROS 1's
+    // serialization, "ros1".
+    if (chosen->serialization != "cdr" && chosen->serialization != "ros1") {
+      fail(info_.name, {}, "topic " + printable(chosen->name) + " is serialized as '" + printable(chosen->serialization) + "', not cdr or ros1");
     }
     topic_ = chosen->name;
-    messages_.emplace(chosen->type, EventMessages::Serialization::kCdr);
+    messages_.emplace(chosen->type, chosen->serialization == "ros1" ? EventMessages::Serialization::kRos1 : EventMessages::Serialization::kCdr);
     for (const BagStorage::Topic& t : topics) {
       if (t.name == topic_) total_ += db_->count(t.id);
     }
@@ -276,7 +279,7 @@ class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
 
   void decode_current() {
     messages_->decode(message_, *this);
-    if (info_.format.empty()) info_.format = "ROS 2 bag, " + printable(topic_) + ": " + messages_->format();
+    if (info_.format.empty()) info_.format = std::string(db_->container()) + ", " + printable(topic_) + ": " + messages_->format();
   }
 
   void event(TimeUs t, std::uint64_t x, std::uint64_t y, int p, std::uint64_t at) override {
