@@ -179,10 +179,21 @@ class Records {
 class McapStorage final : public BagStorage {
  public:
   explicit McapStorage(const std::string& path) : path_(path) {
-    // The first pass: every schema and channel, and each channel's messages.
+    // The first pass: every schema and channel, and each channel's messages. A file cut short
+    // or corrupt further on is counted up to there: the second pass gives the messages before
+    // that place and then its error.
     Records records(path);
     std::map<std::uint16_t, std::string> schemas;
     std::int64_t number = 0;
+    try {
+      first_pass(records, schemas, number);
+    } catch (const InputError&) {
+      if (channels_.empty()) throw;
+    }
+  }
+
+  void first_pass(Records& records, std::map<std::uint16_t, std::string>& schemas, std::int64_t& number) {
+    const std::string& path = records.path();
     for (Record r; records.next(r);) {
       Fields f(r, path);
       if (r.op == kSchema) {
@@ -197,10 +208,14 @@ class McapStorage final : public BagStorage {
       } else if (r.op == kMessage) {
         ++number;
         const std::uint16_t channel = f.u16();
-        if (!channels_.count(channel)) f.refuse("message " + std::to_string(number) + " is on channel " + std::to_string(channel) + ", which no channel record before it defines");
+        if (!channels_.count(channel)) refuse_unknown_channel(f, number, channel);
         ++counts_[channel];
       }
     }
+  }
+
+  [[noreturn]] static void refuse_unknown_channel(const Fields& f, std::int64_t number, std::uint16_t channel) {
+    f.refuse("message " + std::to_string(number) + " is on channel " + std::to_string(channel) + ", which no channel record before it defines");
   }
 
   std::vector<Topic> topics() override {
@@ -208,10 +223,11 @@ class McapStorage final : public BagStorage {
     for (const auto& [id, topic] : channels_) out.push_back(topic);
     return out;
   }
+  // The messages of one channel: the bag reader adds up its topic's channels.
   std::int64_t count(std::int64_t id) override {
     const auto n = counts_.find(static_cast<std::uint16_t>(id));
     return n == counts_.end() ? 0 : n->second;
-  }  // of one channel: the bag reader adds its topic's channels
+  }
   // Every channel of the topic: a topic has one channel for each publisher that recorded it.
   void select(std::int64_t id) override {
     records_.emplace(path_);
@@ -227,7 +243,9 @@ class McapStorage final : public BagStorage {
       if (r.op != kMessage) continue;
       ++number_;
       Fields f(r, path_);
-      if (!selected_.count(f.u16())) continue;
+      const std::uint16_t channel = f.u16();
+      if (!channels_.count(channel)) refuse_unknown_channel(f, number_, channel);
+      if (!selected_.count(channel)) continue;
       f.u32(), f.u64(), f.u64();  // sequence, log and publish times
       id = number_;
       data = f.rest();
