@@ -135,8 +135,10 @@ TEST(Ros2Bag, TheFirstEventTopicIsTheDefaultAndQueryChoosesAnother) {
   EXPECT_EQ(read_all(bag), a);
   EXPECT_EQ(read_all(bag + "?topic=/right/events"), b);
   // The format names the topic read.
-  EXPECT_EQ(read::open_source(bag, {})->info().format, "ROS 2 bag, /left/events: event_camera_msgs/msg/EventPacket (evt3)");
-  EXPECT_EQ(read::open_source(bag + "?topic=/right/events", {})->info().format, "ROS 2 bag, /right/events: event_camera_msgs/msg/EventPacket (evt3)");
+  EXPECT_EQ(read::open_source(bag, {})->info().format,
+            "ROS 2 bag, /left/events: event_camera_msgs/msg/EventPacket (evt3) (other event topics, which ?topic= picks: /right/events)");
+  EXPECT_EQ(read::open_source(bag + "?topic=/right/events", {})->info().format,
+            "ROS 2 bag, /right/events: event_camera_msgs/msg/EventPacket (evt3) (other event topics, which ?topic= picks: /left/events)");
   const std::string missing = read_error(bag + "?topic=/nope");
   EXPECT_NE(missing.find("no topic '/nope'"), std::string::npos) << missing;
   EXPECT_NE(missing.find("/left/events (event_camera_msgs/msg/EventPacket)"), std::string::npos) << missing;

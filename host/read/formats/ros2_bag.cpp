@@ -223,6 +223,11 @@ class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
       fail(info_.name, {}, "topic " + printable(chosen->name) + " is serialized as '" + printable(chosen->serialization) + "', not cdr or ros1");
     }
     topic_ = chosen->name;
+    for (const BagStorage::Topic& t : topics) {
+      if (t.name != topic_ && EventMessages::is_event_type(t.type) && other_event_topics_.find(t.name) == std::string::npos) {
+        other_event_topics_ += (other_event_topics_.empty() ? "" : ", ") + t.name;
+      }
+    }
     messages_.emplace(chosen->type, chosen->serialization == "ros1" ? EventMessages::Serialization::kRos1 : EventMessages::Serialization::kCdr);
     for (const BagStorage::Topic& t : topics) {
       if (t.name == topic_) total_ += db_->count(t.id);
@@ -279,7 +284,10 @@ class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
 
   void decode_current() {
     messages_->decode(message_, *this);
-    if (info_.format.empty()) info_.format = std::string(db_->container()) + ", " + printable(topic_) + ": " + messages_->format();
+    if (info_.format.empty()) {
+      info_.format = std::string(db_->container()) + ", " + printable(topic_) + ": " + messages_->format() +
+                     (other_event_topics_.empty() ? "" : " (other event topics, which ?topic= picks: " + printable(other_event_topics_) + ")");
+    }
   }
 
   void event(TimeUs t, std::uint64_t x, std::uint64_t y, int p, std::uint64_t at) override {
@@ -291,6 +299,7 @@ class Ros2BagSource final : public DecodedEventSource, EventMessageSink {
   BagLayout layout_;
   SourceOptions options_;
   std::string topic_;
+  std::string other_event_topics_;  // for the format line
   std::optional<EventMessages> messages_;
   std::unique_ptr<BagStorage> db_;
   size_t file_ = 0;
