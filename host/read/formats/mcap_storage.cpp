@@ -4,7 +4,8 @@
 //   0x01 Header    first: profile, library
 //   0x03 Schema    id (uint16), name (the message type, "event_camera_msgs/msg/EventPacket"),
 //                  encoding, data
-//   0x04 Channel   id, schema_id (uint16), topic, message_encoding ("cdr"), metadata
+//   0x04 Channel   id, schema_id (uint16), topic, message_encoding ("cdr"; "ros1" in a file
+//                  converted from a ROS 1 bag), metadata
 //   0x05 Message   channel_id (uint16), sequence (uint32), log_time, publish_time (uint64),
 //                  then the message's bytes
 //   0x06 Chunk     message start and end times, uncompressed_size (uint64), uncompressed_crc
@@ -15,7 +16,8 @@
 // (indexes, attachments, metadata) are passed over. A topic's messages are taken in the order
 // the file holds them, as rosbag2 wrote them on receipt; each has its number, counted from 1
 // over every message of the file, for errors. The file is read twice: once for its topics and
-// their counts, once for the messages.
+// their counts (up to the first error, which the second pass reports after the messages
+// before it), once for the messages.
 #include <algorithm>
 #include <map>
 #include <optional>
