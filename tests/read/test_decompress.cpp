@@ -41,15 +41,21 @@ void check(Decompress decompress, std::vector<unsigned char> (*compress)(const s
     ASSERT_TRUE(decompress(frame, n, out));
     EXPECT_EQ(out, plain);
     EXPECT_FALSE(decompress(frame, n + 1, out));
-    if (n > 0) EXPECT_FALSE(decompress(frame, n - 1, out));
+    if (n > 0) {
+      EXPECT_FALSE(decompress(frame, n - 1, out));
+    }
     const std::vector<unsigned char> cut(frame.begin(), frame.end() - 1);
     EXPECT_FALSE(decompress(cut, n, out));
-    // A changed byte in each of 64 places: the frame's checksums or its structure catch it,
-    // or it still decompresses, to the same size only.
-    for (size_t k = 0; k < 64 && !frame.empty(); ++k) {
-      std::vector<unsigned char> bad = frame;
+    // A frame whose magic number is changed is no frame.
+    std::vector<unsigned char> bad = frame;
+    bad[0] ^= 0x5A;
+    EXPECT_FALSE(decompress(bad, n, out));
+    // A changed byte anywhere else may still decompress (neither frame carries a checksum by
+    // default), but never past the buffer: the sanitizer builds run this.
+    for (size_t k = 1; k < 64; ++k) {
+      bad = frame;
       bad[k * frame.size() / 64] ^= 0x5A;
-      if (decompress(bad, n, out)) EXPECT_EQ(out.size(), n);
+      decompress(bad, n, out);
     }
   }
 }
