@@ -118,10 +118,10 @@ CsvColumns csv_columns_of_header(std::string_view line, const std::string& path,
   ColumnsByName columns(path, InputPosition::line(line_no), "bad header: ", "column");
   const char separator = separator_of_header(line);
   for (int n = 1, more = 1; more; ++n) {
-    const size_t comma = line.find(separator);
-    more = comma != std::string_view::npos;
-    std::string_view raw = line.substr(0, comma);
-    line.remove_prefix(more ? comma + 1 : line.size());
+    const size_t split = line.find(separator);
+    more = split != std::string_view::npos;
+    std::string_view raw = line.substr(0, split);
+    line.remove_prefix(more ? split + 1 : line.size());
     while (!raw.empty() && (raw.front() == ' ' || raw.front() == '"')) raw.remove_prefix(1);
     while (!raw.empty() && (raw.back() == ' ' || raw.back() == '"' || raw.back() == '\r')) raw.remove_suffix(1);
     if (raw.empty()) {

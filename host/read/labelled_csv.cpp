@@ -51,11 +51,11 @@ bool LabelledCsvReader::next(LabelledEvent& out) {
       continue;
     }
     if (f == CsvField::kSeconds) {
-      const char* comma = std::find(at, end, columns_.separator);
-      const auto us = seconds_to_us({at, static_cast<size_t>(comma - at)});
+      const char* field_end = std::find(at, end, columns_.separator);
+      const auto us = seconds_to_us({at, static_cast<size_t>(field_end - at)});
       if (!us) refuse("field '" + name + "' is missing or not a decimal number of seconds");
       t = *us;
-      at = comma;
+      at = field_end;
       continue;
     }
     long long& v = f == CsvField::kMicroseconds ? t : f == CsvField::kX ? x : f == CsvField::kY ? y : f == CsvField::kPolarity ? p : label;
