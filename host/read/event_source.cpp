@@ -2,6 +2,7 @@
 
 #include <utility>
 #include "host/read/csv_columns.h"
+#include "host/read/formats/bag_storage.h"
 #include "host/read/live/live_source.h"
 #include "host/read/source_window.h"
 
@@ -144,7 +145,7 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
   ByteReader in(path);
   const std::string_view head = in.peek(64);
   if (head.empty()) fail(path, InputPosition::byte(0), "empty file");
-  if (head.substr(0, 16) == std::string_view("SQLite format 3\0", 16) || head.rfind("\x89MCAP0\r\n", 0) == 0) {
+  if (head.substr(0, 16) == std::string_view("SQLite format 3\0", 16) || head.rfind(kMcapMagic, 0) == 0) {
     return open_ros2_bag(name, path, topic, options);
   }
   if (head.rfind("#ROSBAG V2.0\n", 0) == 0) return open_ros1_bag(std::move(in), name, topic, options);

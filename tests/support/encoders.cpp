@@ -16,6 +16,7 @@
 #include "aedat4_events_generated.h"
 #include "aedat4_io_header_generated.h"
 #include "host/gen/random.h"
+#include "host/read/formats/bag_storage.h"
 
 namespace evms::test {
 namespace {
@@ -393,7 +394,7 @@ Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compress
     put_int(b, body.size(), 8);
     b.insert(b.end(), body.begin(), body.end());
   };
-  Bytes b = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
+  Bytes b(read::kMcapMagic.begin(), read::kMcapMagic.end());
   Bytes header;
   string(header, "ros2"), string(header, "evms test");
   record(b, 0x01, header);
@@ -449,7 +450,7 @@ Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compress
   Bytes footer;
   put_int(footer, 0, 8), put_int(footer, 0, 8), put_le32(footer, 0);
   record(b, 0x02, footer);
-  b.insert(b.end(), {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'});
+  b.insert(b.end(), read::kMcapMagic.begin(), read::kMcapMagic.end());
   return b;
 }
 

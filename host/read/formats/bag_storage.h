@@ -7,6 +7,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace evms::read {
@@ -31,7 +32,8 @@ class BagStorage {
   virtual const char* container() const = 0;
 };
 
-inline constexpr unsigned char kMcapMagic[8] = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
+// The first (and last) bytes of an MCAP file.
+inline constexpr std::string_view kMcapMagic{"\x89MCAP0\r\n", 8};
 
 // An MCAP file; fails with one line when it is not one.
 std::unique_ptr<BagStorage> open_mcap_storage(const std::string& path);

@@ -49,9 +49,9 @@ struct Record {
 class Fields {
  public:
   Fields(const Record& r, const std::string& path) : r_(r), path_(path) {}
-  std::uint16_t u16() { return static_cast<std::uint16_t>(le(2)); }
-  std::uint32_t u32() { return static_cast<std::uint32_t>(le(4)); }
-  std::uint64_t u64() { return le(8); }
+  std::uint16_t u16() { return le16(take(2).data()); }
+  std::uint32_t u32() { return le32(take(4).data()); }
+  std::uint64_t u64() { return le64(take(8).data()); }
   std::string string() {
     const std::uint32_t n = u32();
     return std::string(reinterpret_cast<const char*>(take(n).data()), n);
@@ -65,12 +65,6 @@ class Fields {
   }
 
  private:
-  std::uint64_t le(int n) {
-    const auto b = take(static_cast<std::uint64_t>(n));
-    std::uint64_t v = 0;
-    for (int i = n - 1; i >= 0; --i) v = (v << 8) | b[static_cast<size_t>(i)];
-    return v;
-  }
   std::span<const unsigned char> take(std::uint64_t n) {
     if (n > r_.body.size() - pos_) {
       refuse("a record of opcode 0x" + hex(r_.op) + " and " + std::to_string(r_.body.size()) + " bytes is cut off inside its fields");
@@ -93,13 +87,12 @@ class Fields {
 class Records {
  public:
   explicit Records(const std::string& path) : in_(path) {
-    const std::string_view magic = in_.peek(sizeof kMcapMagic);
-    if (magic != std::string_view(reinterpret_cast<const char*>(kMcapMagic), sizeof kMcapMagic)) {
+    if (in_.peek(kMcapMagic.size()) != kMcapMagic) {
       fail(path, InputPosition::byte(0), "not an MCAP file (its first bytes are not \\x89MCAP0\\r\\n)");
     }
-    in_.skip(sizeof kMcapMagic);
+    in_.skip(kMcapMagic.size());
     Record header;
-    if (!next(header) || header.op != kHeader) fail(path, InputPosition::byte(sizeof kMcapMagic), "the first record is not the MCAP header");
+    if (!next(header) || header.op != kHeader) fail(path, InputPosition::byte(kMcapMagic.size()), "the first record is not the MCAP header");
   }
 
   const std::string& path() const { return in_.path(); }
@@ -111,8 +104,7 @@ class Records {
         r.in_chunk = chunk_pos_ + 1;
         if (chunk_.size() - chunk_pos_ < 9) Fields(r, path()).refuse("a record's opcode and length are cut off at the chunk's end");
         r.op = chunk_[chunk_pos_];
-        std::uint64_t n = 0;
-        for (int i = 8; i >= 1; --i) n = (n << 8) | chunk_[chunk_pos_ + static_cast<size_t>(i)];
+        const std::uint64_t n = le64(&chunk_[chunk_pos_ + 1]);
         if (n > chunk_.size() - chunk_pos_ - 9) Fields(r, path()).refuse("a record of " + std::to_string(n) + " bytes runs past the chunk's end");
         r.body = std::span<const unsigned char>(chunk_).subspan(chunk_pos_ + 9, static_cast<size_t>(n));
         chunk_pos_ += 9 + static_cast<size_t>(n);
@@ -126,8 +118,7 @@ class Records {
       if (got == 0) fail(path(), InputPosition::byte(r.at), "the file ends without its Data End and Footer records (a recording cut short)");
       if (got < sizeof head) fail(path(), InputPosition::byte(r.at), "a record's opcode and length are cut off at the end of the file");
       r.op = head[0];
-      std::uint64_t n = 0;
-      for (int i = 8; i >= 1; --i) n = (n << 8) | head[i];
+      const std::uint64_t n = le64(head + 1);
       const std::uint64_t left = in_.size() > in_.offset() ? in_.size() - in_.offset() : 0;
       if (n > kMaxRecordBytes || (in_.size() > 0 && n > left)) {
         fail(path(), InputPosition::byte(r.at), "a record of " + std::to_string(n) + " bytes runs past the end of the file");

@@ -159,7 +159,7 @@ std::unique_ptr<BagStorage> open_storage(const std::string& path) {
   if (!fs::exists(path)) fail(path, {}, "cannot open: no such file (listed in the bag's metadata.yaml)");
   {
     ByteReader in(path);
-    if (in.peek(sizeof kMcapMagic) == std::string_view(reinterpret_cast<const char*>(kMcapMagic), sizeof kMcapMagic)) return open_mcap_storage(path);
+    if (in.peek(kMcapMagic.size()) == kMcapMagic) return open_mcap_storage(path);
   }
   return std::make_unique<Db3>(path);
 }
