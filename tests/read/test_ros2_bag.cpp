@@ -210,6 +210,18 @@ TEST(Ros2Bag, BadBagsGetOneLineThatSaysWhereAndWhat) {
   }
 }
 
+// The events a file gives before its first error, or all of them.
+std::vector<Event> read_until_error(const std::string& file) {
+  const auto source = read::open_source(file, {});
+  std::vector<Event> got;
+  try {
+    std::vector<Event> block(4096);
+    while (const size_t n = source->read(block)) got.insert(got.end(), block.begin(), block.begin() + static_cast<long>(n));
+  } catch (const read::InputError&) {
+  }
+  return got;
+}
+
 // A bad MCAP file: one line that names the file and the byte of the record (a chunk's, for a
 // record inside it), or the message and its byte, and what is wrong.
 TEST(Ros2Bag, BadMcapFilesGetOneLineThatSaysWhereAndWhat) {
@@ -232,21 +244,40 @@ TEST(Ros2Bag, BadMcapFilesGetOneLineThatSaysWhereAndWhat) {
     Bytes cut(good.begin(), good.begin() + static_cast<long>(header_end + 9 + first_chunk_length));
     const std::string f = d.write("short.mcap", cut);
     expect_bag_error(f, f + ": byte " + std::to_string(cut.size()) + ": ", "the file ends without its Data End and Footer records");
-    const auto source = read::open_source(f, {});
-    std::vector<Event> got(events.size());
-    size_t n = 0;
-    try {
-      while (const size_t more = source->read(std::span<Event>(got).subspan(n))) n += more;
-    } catch (const read::InputError&) {
-    }
-    EXPECT_EQ(std::vector<Event>(got.begin(), got.begin() + static_cast<long>(n)),
-              std::vector<Event>(events.begin(), events.begin() + static_cast<long>(events.size() * 2 / 6)));
+    EXPECT_EQ(read_until_error(f), std::vector<Event>(events.begin(), events.begin() + static_cast<long>(events.size() * 2 / 6)));
   }
   {
     Bytes corrupt = good;
     corrupt[header_end + 9 + first_chunk_length - 3] ^= 0xFF;
     const std::string f = d.write("corrupt.mcap", corrupt);
     expect_bag_error(f, f + at_chunk, "a corrupt zstd chunk, or one that does not hold the ");
+  }
+  {
+    // A changed byte inside an uncompressed chunk's records: its CRC-32 refuses it at the chunk,
+    // after the messages of the chunk before it.
+    Bytes flipped = mcap_file(topics, "", 2);
+    const size_t second_chunk_at = header_end + 9 + (flipped[header_end + 1] | (flipped[header_end + 2] << 8) | (flipped[header_end + 3] << 16));
+    ASSERT_EQ(flipped[second_chunk_at], 0x06);
+    const size_t second_chunk_end = second_chunk_at + 9 + (flipped[second_chunk_at + 1] | (flipped[second_chunk_at + 2] << 8) | (flipped[second_chunk_at + 3] << 16));
+    flipped[second_chunk_end - 4] ^= 0x01;  // the last EVT 3.0 word's lowest bit: an address or a time
+    const std::string f = d.write("flipped.mcap", flipped);
+    expect_bag_error(f, f + ": byte " + std::to_string(second_chunk_at) + ": ", "the chunk's records fail their CRC-32 (stored 0x");
+    EXPECT_EQ(read_until_error(f), std::vector<Event>(events.begin(), events.begin() + static_cast<long>(events.size() * 2 / 6)));
+    // A CRC of 0 is none: the same change then reads, into other events.
+    const size_t crc_at = second_chunk_at + 9 + 8 + 8 + 8;
+    std::fill(flipped.begin() + static_cast<long>(crc_at), flipped.begin() + static_cast<long>(crc_at + 4), 0);
+    const std::vector<Event> unchecked = read_until_error(d.write("unchecked.mcap", flipped));
+    EXPECT_EQ(unchecked.size(), events.size());
+    EXPECT_NE(unchecked, events);
+  }
+  {
+    // Without chunks the data section's CRC-32 finds the change, at the Data End record.
+    Bytes flipped = mcap_file(topics, "", 0);
+    const size_t data_end_at = flipped.size() - 8 - (9 + 20) - (9 + 4);
+    ASSERT_EQ(flipped[data_end_at], 0x0F);
+    flipped[data_end_at - 20] ^= 0x01;
+    const std::string f = d.write("section.mcap", flipped);
+    expect_bag_error(f, f + ": byte " + std::to_string(data_end_at) + ": ", "the data section fails its CRC-32 (stored 0x");
   }
   {
     Bytes other = mcap_file(topics, "lz4", 2);

@@ -5,6 +5,7 @@
 #include <lz4frame.h>
 #include <sqlite3.h>
 #include <unistd.h>
+#include <zlib.h>
 #include <zstd.h>
 
 #include <algorithm>
@@ -416,7 +417,8 @@ Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compress
       data.resize(ZSTD_compress(data.data(), data.size(), records.data(), records.size(), 3));
     }
     Bytes chunk;
-    put_int(chunk, 0, 8), put_int(chunk, 0, 8), put_int(chunk, records.size(), 8), put_le32(chunk, 0);
+    put_int(chunk, 0, 8), put_int(chunk, 0, 8), put_int(chunk, records.size(), 8);
+    put_le32(chunk, static_cast<std::uint32_t>(crc32(0, records.data(), static_cast<uInt>(records.size()))));
     string(chunk, compression);
     put_int(chunk, data.size(), 8);
     chunk.insert(chunk.end(), data.begin(), data.end());
@@ -446,7 +448,9 @@ Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compress
     }
   }
   close_chunk();
-  record(b, 0x0F, Bytes{0, 0, 0, 0});
+  Bytes data_end;
+  put_le32(data_end, static_cast<std::uint32_t>(crc32(0, b.data(), static_cast<uInt>(b.size()))));
+  record(b, 0x0F, data_end);
   Bytes footer;
   put_int(footer, 0, 8), put_int(footer, 0, 8), put_le32(footer, 0);
   record(b, 0x02, footer);

@@ -11,7 +11,11 @@
 //   0x06 Chunk     message start and end times, uncompressed_size (uint64), uncompressed_crc
 //                  (uint32), compression ("", "lz4" or "zstd"), then its records as a
 //                  uint64-length byte string: schemas, channels and messages
-//   0x0F Data End  the end of the data section
+//   0x0F Data End  the end of the data section: data_section_crc (uint32)
+// A CRC-32 (zlib's) of 0 means none was written. A chunk's covers its decompressed records; the
+// Data End's every byte of the file before that record, magic and header included. A file that
+// fails either is refused where it fails: its messages before that place come out first, as
+// from a file cut short.
 // Strings are a uint32 length and UTF-8; every integer is little-endian. Other records
 // (indexes, attachments, metadata) are passed over. A topic's messages are taken in the order
 // the file holds them, as rosbag2 wrote them on receipt; each has its number, counted from 1
@@ -22,6 +26,8 @@
 #include <map>
 #include <optional>
 #include <set>
+
+#include <zlib.h>
 
 #include "host/read/byte_reader.h"
 #include "host/read/bytes.h"
@@ -35,6 +41,13 @@ namespace {
 
 // A record or a chunk larger than this is corrupt: writers cut chunks at about 1 MiB.
 constexpr std::uint64_t kMaxRecordBytes = std::uint64_t{256} << 20;
+
+// v's last `digits` hexadecimal digits.
+std::string hex(std::uint32_t v, int digits) {
+  std::string s(static_cast<size_t>(digits), '0');
+  for (int i = digits - 1; i >= 0; --i, v >>= 4) s[static_cast<size_t>(i)] = "0123456789abcdef"[v & 15];
+  return s;
+}
 
 enum Op : std::uint8_t { kHeader = 0x01, kFooter = 0x02, kSchema = 0x03, kChannel = 0x04, kMessage = 0x05, kChunk = 0x06, kDataEnd = 0x0F };
 
@@ -67,17 +80,12 @@ class Fields {
  private:
   std::span<const unsigned char> take(std::uint64_t n) {
     if (n > r_.body.size() - pos_) {
-      refuse("a record of opcode 0x" + hex(r_.op) + " and " + std::to_string(r_.body.size()) + " bytes is cut off inside its fields");
+      refuse("a record of opcode 0x" + hex(r_.op, 2) + " and " + std::to_string(r_.body.size()) + " bytes is cut off inside its fields");
     }
     const auto s = r_.body.subspan(pos_, static_cast<size_t>(n));
     pos_ += static_cast<size_t>(n);
     return s;
   }
-  static std::string hex(std::uint8_t v) {
-    static constexpr char kHex[] = "0123456789abcdef";
-    return {kHex[v >> 4], kHex[v & 15]};
-  }
-
   const Record& r_;
   const std::string& path_;
   size_t pos_ = 0;
@@ -91,6 +99,7 @@ class Records {
       fail(path, InputPosition::byte(0), "not an MCAP file (its first bytes are not \\x89MCAP0\\r\\n)");
     }
     in_.skip(kMcapMagic.size());
+    crc_of_data_ = crc32_of(0, reinterpret_cast<const unsigned char*>(kMcapMagic.data()), kMcapMagic.size());
     Record header;
     if (!next(header) || header.op != kHeader) fail(path, InputPosition::byte(kMcapMagic.size()), "the first record is not the MCAP header");
   }
@@ -128,10 +137,13 @@ class Records {
         fail(path(), InputPosition::byte(r.at), "a record of " + std::to_string(n) + " bytes runs past the end of the file");
       }
       r.body = record_;
+      if (r.op == kDataEnd) check_data_section(r);
       if (r.op == kDataEnd || r.op == kFooter) {
         ended_ = true;
         return false;
       }
+      crc_of_data_ = crc32_of(crc_of_data_, head, sizeof head);
+      crc_of_data_ = crc32_of(crc_of_data_, record_.data(), record_.size());
       if (r.op != kChunk) return true;
       open_chunk(r);
     }
@@ -142,7 +154,7 @@ class Records {
     Fields f(r, path());
     f.u64(), f.u64();  // the messages' first and last log times
     const std::uint64_t size = f.u64();
-    f.u32();  // the records' CRC32
+    const std::uint32_t crc = f.u32();
     const std::string compression = f.string();
     const std::span<const unsigned char> records = f.bytes(f.u64());
     if (size > kMaxRecordBytes) f.refuse("a chunk of " + std::to_string(size) + " bytes uncompressed (more than 256 MiB)");
@@ -158,11 +170,28 @@ class Records {
       f.refuse("a chunk compressed with '" + printable(compression) + "': evms reads uncompressed, 'lz4' and 'zstd' chunks");
     }
     if (!ok) f.refuse("a corrupt " + (compression.empty() ? std::string("uncompressed") : compression) + " chunk, or one that does not hold the " + std::to_string(size) + " bytes it says");
+    refuse_unless_crc(f, crc, crc32_of(0, chunk_.data(), chunk_.size()), "the chunk's records fail their");
     chunk_at_ = r.at;
     chunk_pos_ = 0;
   }
 
+  void check_data_section(const Record& r) {
+    Fields f(r, path());
+    refuse_unless_crc(f, f.u32(), crc_of_data_, "the data section fails its");
+  }
+  // `what` names the bytes and the verb: "the data section fails its".
+  static void refuse_unless_crc(const Fields& f, std::uint32_t stored, std::uint32_t computed, const std::string& what) {
+    if (stored != 0 && stored != computed) {
+      f.refuse(what + " CRC-32 (stored 0x" + hex(stored, 8) + ", computed 0x" + hex(computed, 8) + "): the file is corrupt");
+    }
+  }
+  static std::uint32_t crc32_of(std::uint32_t crc, const unsigned char* data, size_t n) {
+    // zlib's length is a uInt: a 256 MiB record at most (kMaxRecordBytes) fits it.
+    return static_cast<std::uint32_t>(crc32(crc, data, static_cast<uInt>(n)));
+  }
+
   ByteReader in_;
+  std::uint32_t crc_of_data_ = 0;
   std::vector<unsigned char> record_, chunk_;
   size_t chunk_pos_ = 0;
   std::uint64_t chunk_at_ = 0;
