@@ -108,22 +108,51 @@ CsvColumns ColumnsByName::done() const {
 }
 
 char separator_of_header(std::string_view line) {
-  for (char c : {',', ';', '\t'}) {
-    if (line.find(c) != std::string_view::npos) return c;
+  bool seen[3] = {false, false, false}, quoted = false;
+  for (char c : line) {
+    if (c == '"') quoted = !quoted;  // a name in quotes may hold any of them
+    if (!quoted) seen[0] |= c == ',', seen[1] |= c == ';', seen[2] |= c == '\t';
   }
-  return ',';
+  return seen[0] ? ',' : seen[1] ? ';' : seen[2] ? '\t' : ',';
+}
+
+std::optional<size_t> csv_field_end(std::string_view row, char separator) {
+  const size_t first = row.find_first_not_of(' ');
+  if (first == std::string_view::npos || row[first] != '"') {
+    const size_t end = row.find(separator);
+    return end == std::string_view::npos ? row.size() : end;
+  }
+  size_t at = first + 1;
+  for (;;) {
+    const size_t quote = row.find('"', at);
+    if (quote == std::string_view::npos) return std::nullopt;
+    if (quote + 1 < row.size() && row[quote + 1] == '"') {
+      at = quote + 2;  // "" inside the quotes
+      continue;
+    }
+    size_t end = row.find_first_not_of(" \r", quote + 1);
+    if (end == std::string_view::npos) return row.size();
+    if (row[end] != separator) return std::nullopt;
+    return end;
+  }
+}
+
+std::string_view csv_field_text(std::string_view field) {
+  while (!field.empty() && (field.front() == ' ')) field.remove_prefix(1);
+  while (!field.empty() && (field.back() == ' ' || field.back() == '\r')) field.remove_suffix(1);
+  if (field.size() >= 2 && field.front() == '"' && field.back() == '"') field = field.substr(1, field.size() - 2);
+  return field;
 }
 
 CsvColumns csv_columns_of_header(std::string_view line, const std::string& path, std::uint64_t line_no) {
   ColumnsByName columns(path, InputPosition::line(line_no), "bad header: ", "column");
   const char separator = separator_of_header(line);
   for (int n = 1, more = 1; more; ++n) {
-    const size_t split = line.find(separator);
-    more = split != std::string_view::npos;
-    std::string_view raw = line.substr(0, split);
-    line.remove_prefix(more ? split + 1 : line.size());
-    while (!raw.empty() && (raw.front() == ' ' || raw.front() == '"')) raw.remove_prefix(1);
-    while (!raw.empty() && (raw.back() == ' ' || raw.back() == '"' || raw.back() == '\r')) raw.remove_suffix(1);
+    const std::optional<size_t> split = csv_field_end(line, separator);
+    if (!split) fail(path, InputPosition::line(line_no), "bad header: column " + std::to_string(n) + ": " + kCsvQuoteRefused);
+    more = *split < line.size();
+    std::string_view raw = csv_field_text(line.substr(0, *split));
+    line.remove_prefix(more ? *split + 1 : line.size());
     if (raw.empty()) {
       fail(path, InputPosition::line(line_no),
            "bad header: column " + std::to_string(n) + " has no name (pandas writes its index so; save with index=False)");

@@ -75,6 +75,16 @@ bool is_csv_header(std::string_view line);
 // comma is the decimal mark) or a tab (tab-separated values), else ','.
 char separator_of_header(std::string_view line);
 
+// Where the CSV field at the start of `row` ends: the index of the separator after it, or
+// row.size(). A field that opens with a double quote (blanks before it aside) runs to its
+// closing quote, separators inside it included, and "" inside it is a quote (RFC 4180). Nothing
+// when that quote does not close in the row, or text other than blanks follows it.
+std::optional<size_t> csv_field_end(std::string_view row, char separator);
+inline constexpr const char* kCsvQuoteRefused = "a quoted field does not close before the end of the row, or has more than blanks after its closing quote";
+
+// A field without the blanks around it and the quotes that enclose it.
+std::string_view csv_field_text(std::string_view field);
+
 // The columns a header line names (case and quotes aside), split at its separator
 // (separator_of_header); t, x, y and p must each be there once, and other names are columns not
 // read. Anything else fails with the file and line.

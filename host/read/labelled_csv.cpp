@@ -47,7 +47,9 @@ bool LabelledCsvReader::next(LabelledEvent& out) {
     }
     const CsvField f = columns_.field[static_cast<size_t>(i)];
     if (f == CsvField::kUnread) {
-      at = std::find(at, end, columns_.separator);
+      const std::optional<size_t> field_end = csv_field_end({at, static_cast<size_t>(end - at)}, columns_.separator);
+      if (!field_end) refuse("field '" + name + "': " + kCsvQuoteRefused);
+      at += *field_end;
       continue;
     }
     if (f == CsvField::kSeconds) {

@@ -566,9 +566,9 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
       << bad.err;
   // Truth from another tool, its columns in another order and its times in seconds, scores the
   // same: the header names the columns (host/read/csv_columns.h), a column of another name is
-  // not read, and tabs may separate them.
+  // not read, and tabs may separate them; a field in quotes may hold the separator.
   std::istringstream truth(read_file(dir.path("g/labels.csv")));
-  std::string line, reordered = "Label\tX\tY\tpolarity\tt_s\tkind\n";
+  std::string line, reordered = "Label\tX\tY\tpolarity\tt_s\tkind\n", quoted = "\"kind, of shape\",t_us,x,y,p,label\n";
   while (std::getline(truth, line)) {
     long long t = 0;
     int x = 0, y = 0, p = 0, object = 0;
@@ -576,6 +576,8 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
     char row[96];
     std::snprintf(row, sizeof row, "%d\t%d\t%d\t%d\t%lld.%06lld\t%s\n", object, x, y, p, t / 1000000, t % 1000000, object < 0 ? "" : "shape 2");
     reordered += row;
+    quoted += std::string(object < 0 ? "" : "\"a \"\"shape\"\", 2\"") + "," + std::to_string(t) + "," + std::to_string(x) + "," +
+              std::to_string(y) + "," + std::to_string(p) + "," + std::to_string(object) + "\n";
   }
   const auto other = run_command(evms_binary() + " metrics --chunk-us 10000 --truth " + dir.write("other.csv", reordered) +
                                  " --pred " + dir.path("r/events.csv"));
@@ -583,6 +585,10 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
                                 dir.path("r/events.csv"));
   ASSERT_EQ(other.exit_code, 0) << other.err;
   EXPECT_EQ(other.out, ours.out);
+  const auto commas = run_command(evms_binary() + " metrics --chunk-us 10000 --truth " + dir.write("quoted.csv", quoted) + " --pred " +
+                                  dir.path("r/events.csv"));
+  ASSERT_EQ(commas.exit_code, 0) << commas.err;
+  EXPECT_EQ(commas.out, ours.out);
   // Without a header the rows are t_us,x,y,p,label, as evms run reads them, and score the same.
   std::string headerless = read_file(dir.path("g/labels.csv"));
   const size_t header = headerless.find("t_us,");

@@ -97,6 +97,10 @@ TEST(BadInput, BadHeaders) {
   expect_error(d.write("c.csv", "t,x,y\n1,2,3\n"), "line 1", "bad header: no polarity column (the columns are t,x,y)");
   expect_error(d.write("c.csv", "t,x,y,p,ts\n"), "line 1", "bad header: column 'ts' repeats the time");
   expect_error(d.write("c.csv", ",t,x,y,p\n0,1,2,3,1\n"), "line 1", "bad header: column 1 has no name (pandas writes its index so");
+  // A quote that opens a field must close it, with nothing but blanks before the separator.
+  expect_error(d.write("c.csv", "t,x,y,p,\"note\n"), "line 1", "bad header: column 5: a quoted field does not close before the end of the row");
+  expect_error(d.write("c.csv", "t,x,y,p,note\n1,2,3,1,\"a,b\n"), "line 2", "field 'note': a quoted field does not close before the end of the row");
+  expect_error(d.write("c.csv", "t,x,y,p\n1,\"2\"3,3,1\n"), "line 2", "field 'x': a quoted field does not close before the end of the row, or has more than blanks after");
   expect_error(d.write("c.csv", "# sensor 64x64\n\nt,x,y,p\n0.5,1,2,1\n"), "line 4",
                "field 't' = '0.5' is not an integer number of microseconds (a column named t_s holds seconds)");
   expect_error(d.write("c.csv", "%geometry:320x240\n1,2,1,3\n"), "line 1", "bad header: expected '%geometry:W,H'");

@@ -122,6 +122,16 @@ TEST(Formats, CsvColumnsGoByTheirHeader) {
       {"more.csv",
        rows("Object,t,x,y,p,Note", [&](const Event& e) { return std::string(e.x % 3 ? "2.5" : "") + "," + n(e.t) + "," + n(e.x) + "," + n(e.y) + "," + n(e.p) + "," + (e.p ? "a b" : ""); }),
        "CSV Object,t,x,y,p,Note (not read: Object,Note)"},
+      // Fields in double quotes (RFC 4180) may hold the separator and "" for a quote; quoted
+      // numbers read as numbers, and a quoted name may hold the separator too.
+      {"quoted.csv",
+       rows("\"Note, free\",t,x,y,\"p\"", [&](const Event& e) {
+         return std::string(e.x % 2 ? "\"a, \"\"b\"\", c\"" : "\"\"") + "," + n(e.t) + ",\"" + n(e.x) + "\", " + n(e.y) + " ,\"" + n(e.p) + "\"";
+       }),
+       "CSV Note, free,t,x,y,p (not read: Note, free)"},
+      {"quoted;.csv",
+       rows("t;x;y;p;\"a;b\"", [&](const Event& e) { return n(e.t) + ";" + n(e.x) + ";" + n(e.y) + ";" + n(e.p) + ";\"1;2,3\""; }),
+       "CSV t,x,y,p,a;b (not read: a;b)"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.file);

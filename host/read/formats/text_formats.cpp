@@ -162,13 +162,15 @@ class TextSource final : public FileEventSource {
       size_t b = rest.find_first_not_of(" \t");
       rest = b == std::string_view::npos ? std::string_view{} : rest.substr(b);
     }
-    size_t end = csv_ ? rest.find(columns_.separator) : rest.find_first_of(" \t");
+    size_t end = rest.find_first_of(" \t");
+    if (csv_) {
+      const std::optional<size_t> quoted_end = csv_field_end(rest, columns_.separator);
+      if (!quoted_end) bad(std::string("field '") + name + "': " + kCsvQuoteRefused);
+      end = *quoted_end < rest.size() ? *quoted_end : std::string_view::npos;
+    }
     std::string_view f = rest.substr(0, end);
     rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
-    if (csv_) {
-      while (!f.empty() && (f.front() == ' ')) f.remove_prefix(1);
-      while (!f.empty() && (f.back() == ' ')) f.remove_suffix(1);
-    }
+    if (csv_) f = csv_field_text(f);
     if (f.empty() && !may_be_empty) bad(std::string("missing field '") + name + "' (truncated record)");
     return f;
   }
@@ -237,6 +239,7 @@ class TextSource final : public FileEventSource {
         if (i > 0 && (p == end || *p++ != columns_.separator)) return false;
         const CsvField f = columns_.field[static_cast<size_t>(i)];
         if (f == CsvField::kUnread) {
+          if (p < end && *p == '"') return false;  // parse() reads quotes
           while (p < end && *p != columns_.separator) ++p;
           continue;
         }
