@@ -75,6 +75,7 @@ ByteReader::ByteReader(const std::string& path) : path_(path) {
   file_ = std::fopen(path.c_str(), "rb");
   if (!file_) fail(path, {}, std::string("cannot open: ") + std::strerror(errno));
   size_ = static_cast<std::uint64_t>(st.st_size);
+  regular_ = S_ISREG(st.st_mode);
   // A small file gets a small buffer (it grows when a reader asks for more): opening many
   // small files, as the fuzz targets do, then costs no megabyte each.
   buffer_.resize(static_cast<size_t>(std::clamp<std::uint64_t>(size_ + 1, kMinChunk, kChunk)));
@@ -88,6 +89,7 @@ ByteReader::ByteReader(ByteReader&& o) noexcept
     : path_(std::move(o.path_)),
       file_(std::exchange(o.file_, nullptr)),
       size_(o.size_),
+      regular_(o.regular_),
       buffer_(std::move(o.buffer_)),
       pos_(o.pos_),
       end_(o.end_),
@@ -133,6 +135,15 @@ std::string_view ByteReader::peek(size_t n) {
 }
 
 void ByteReader::skip(std::uint64_t n) {
+  // Past what is buffered, a regular file seeks (to its end at most) instead of reading.
+  if (regular_ && n > end_ - pos_) {
+    const std::uint64_t to = std::min(offset() + n, size_);
+    if (fseeko(file_, static_cast<off_t>(to), SEEK_SET) == 0) {
+      offset_before_buffer_ = to;
+      pos_ = end_ = 0;
+      return;
+    }
+  }
   while (n > 0) {
     if (pos_ == end_ && !refill(1)) return;
     size_t take = static_cast<size_t>(std::min<std::uint64_t>(n, end_ - pos_));

@@ -30,7 +30,7 @@ class ByteReader {
   size_t read(void* dst, size_t n);
   // Makes at least n bytes available without consuming them (fewer only at the end).
   std::string_view peek(size_t n);
-  void skip(std::uint64_t n);
+  void skip(std::uint64_t n);  // to the end of the file at most
   bool at_end();
 
   // The next line without its "\n" or "\r\n"; false at the end of the file. The view stays
@@ -45,6 +45,7 @@ class ByteReader {
   std::string path_;
   std::FILE* file_ = nullptr;
   std::uint64_t size_ = 0;
+  bool regular_ = false;  // a regular file, which seeks; not a pipe
   std::vector<char> buffer_;
   size_t pos_ = 0;    // next unread byte in buffer_
   size_t end_ = 0;    // bytes valid in buffer_

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "host/read/bytes.h"
 #include "host/read/event_source.h"
 #include "tests/support/encoders.h"
 #include "tests/support/read_all.h"
@@ -98,6 +99,56 @@ TEST(Ros2Bag, McapFilesReadTheSameInEveryChunkCompression) {
   EXPECT_EQ(read_all(converted), events);
   const std::string json = d.write("json.mcap", mcap_file({{"/dvs/events", "dvs_msgs/msg/EventArray", {Bytes{1}}}}, "", 0, "json"));
   EXPECT_EQ(read_error(json), json + ": topic /dvs/events is serialized as 'json', not cdr or ros1");
+}
+
+// An MCAP file's topics and counts come from its summary when it holds schemas, channels and
+// statistics that pass its CRC, so the data section is read once; otherwise a first pass over
+// the data finds them. The count of the topic's messages is what the reading's progress goes by.
+TEST(Ros2Bag, McapSummariesGiveTheTopicsAndCountsWhenWhole) {
+  TempDir d;
+  const std::vector<Event> events = sample_events(2000, kDavis346);
+  const std::vector<Bytes> messages = packets(events, 10, [](const std::vector<Event>& p) { return event_packet_cdr("evt3", 0, kDavis346, evt3_words(p)); });
+  const std::vector<BagTopic> topics = {{"/imu", "sensor_msgs/msg/Imu", std::vector<Bytes>(7, Bytes{0, 1, 0, 0})}, {"/events", kPacket, messages}};
+  // The progress after the last event: the messages read over the messages counted.
+  const auto progress_at_end = [&](const std::string& file) {
+    const auto source = read::open_source(file, {});
+    std::vector<Event> got(events.size() + 1);
+    size_t n = 0;
+    while (const size_t more = source->read(std::span<Event>(got).subspan(n))) n += more;
+    EXPECT_EQ(n, events.size());
+    return source->progress();
+  };
+  for (const bool summary : {true, false}) {
+    for (const char* compression : {"", "zstd"}) {
+      SCOPED_TRACE(std::string(summary ? "summary, " : "no summary, ") + compression);
+      const std::string file = d.write("e.mcap", mcap_file(topics, compression, 3, "cdr", summary));
+      EXPECT_EQ(read_all(file), events);
+      EXPECT_DOUBLE_EQ(progress_at_end(file), 1.0);
+      EXPECT_NE(read_error(file + "?topic=/imu").find("sensor_msgs/msg/Imu, not an event type"), std::string::npos);
+    }
+  }
+  // The statistics' count of /events (channel 1) doubled: with the CRC cleared the summary is
+  // taken, and the progress ends at one half; with the CRC left as it was, the summary fails it
+  // and the first pass counts.
+  Bytes doubled = mcap_file(topics, "zstd", 3);
+  const size_t footer_at = doubled.size() - 8 - 29;
+  ASSERT_EQ(doubled[footer_at], 0x02);
+  size_t at = static_cast<size_t>(read::le64(&doubled[footer_at + 9]));
+  while (doubled[at] != 0x0B) at += 9 + static_cast<size_t>(read::le64(&doubled[at + 1]));
+  const size_t pair_at = at + 9 + static_cast<size_t>(read::le64(&doubled[at + 1])) - 10;
+  ASSERT_EQ(read::le16(&doubled[pair_at]), 1);
+  ASSERT_EQ(read::le64(&doubled[pair_at + 2]), messages.size());
+  doubled[pair_at + 2] = static_cast<unsigned char>(2 * messages.size());
+  EXPECT_DOUBLE_EQ(progress_at_end(d.write("crc.mcap", doubled)), 1.0);
+  std::fill(doubled.begin() + static_cast<long>(footer_at + 25), doubled.begin() + static_cast<long>(footer_at + 29), 0);
+  EXPECT_DOUBLE_EQ(progress_at_end(d.write("trusted.mcap", doubled)), 0.5);
+  // Statistics that count a channel the summary does not define: the first pass counts.
+  doubled[pair_at + 2] = static_cast<unsigned char>(messages.size());
+  doubled[at + 9 + 8 + 2] = 3;  // channels: 3
+  EXPECT_DOUBLE_EQ(progress_at_end(d.write("channels.mcap", doubled)), 1.0);
+  doubled[at + 9 + 8 + 2] = 2;
+  doubled[pair_at + 2] = static_cast<unsigned char>(2 * messages.size());
+  EXPECT_DOUBLE_EQ(progress_at_end(d.write("again.mcap", doubled)), 0.5);
 }
 
 TEST(Ros2Bag, LibcaerTimestampsRollOverInsideAPacket) {
@@ -272,7 +323,7 @@ TEST(Ros2Bag, BadMcapFilesGetOneLineThatSaysWhereAndWhat) {
   }
   {
     // Without chunks the data section's CRC-32 finds the change, at the Data End record.
-    Bytes flipped = mcap_file(topics, "", 0);
+    Bytes flipped = mcap_file(topics, "", 0, "cdr", false);
     const size_t data_end_at = flipped.size() - 8 - (9 + 20) - (9 + 4);
     ASSERT_EQ(flipped[data_end_at], 0x0F);
     flipped[data_end_at - 20] ^= 0x01;

@@ -385,7 +385,8 @@ std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& 
   return dir;
 }
 
-Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compression, size_t messages_per_chunk, const std::string& encoding) {
+Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compression, size_t messages_per_chunk, const std::string& encoding,
+                bool summary) {
   const auto string = [](Bytes& b, const std::string& s) {
     put_le32(b, static_cast<std::uint32_t>(s.size()));
     b.insert(b.end(), s.begin(), s.end());
@@ -399,6 +400,14 @@ Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compress
   Bytes header;
   string(header, "ros2"), string(header, "evms test");
   record(b, 0x01, header);
+  // Topic t's schema (ID t + 1) and channel (ID t).
+  const auto definitions = [&](Bytes& out, size_t t) {
+    Bytes schema, channel;
+    put_int(schema, t + 1, 2), string(schema, topics[t].type), string(schema, encoding == "ros1" ? "ros1msg" : "ros2msg"), string(schema, "# test");
+    record(out, 0x03, schema);
+    put_int(channel, t, 2), put_int(channel, t + 1, 2), string(channel, topics[t].name), string(channel, encoding), put_le32(channel, 0);
+    record(out, 0x04, channel);
+  };
   std::vector<bool> announced(topics.size(), false);
   size_t most = 0;
   for (const BagTopic& t : topics) most = std::max(most, t.messages.size());
@@ -432,11 +441,7 @@ Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compress
       if (m >= topics[t].messages.size()) continue;
       Bytes& out = chunked ? records : b;
       if (!announced[t]) {
-        Bytes schema, channel;
-        put_int(schema, t + 1, 2), string(schema, topics[t].type), string(schema, encoding == "ros1" ? "ros1msg" : "ros2msg"), string(schema, "# test");
-        record(out, 0x03, schema);
-        put_int(channel, t, 2), put_int(channel, t + 1, 2), string(channel, topics[t].name), string(channel, encoding), put_le32(channel, 0);
-        record(out, 0x04, channel);
+        definitions(out, t);
         announced[t] = true;
       }
       Bytes message;
@@ -451,9 +456,26 @@ Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compress
   Bytes data_end;
   put_le32(data_end, static_cast<std::uint32_t>(crc32(0, b.data(), static_cast<uInt>(b.size()))));
   record(b, 0x0F, data_end);
-  Bytes footer;
-  put_int(footer, 0, 8), put_int(footer, 0, 8), put_le32(footer, 0);
-  record(b, 0x02, footer);
+  const size_t summary_at = b.size();
+  size_t channels = 0, messages = 0;
+  Bytes counts;
+  for (size_t t = 0; summary && t < topics.size(); ++t) {
+    if (!announced[t]) continue;
+    definitions(b, t);
+    ++channels, messages += topics[t].messages.size();
+    put_int(counts, t, 2), put_int(counts, topics[t].messages.size(), 8);
+  }
+  if (summary) {
+    Bytes statistics;
+    put_int(statistics, messages, 8), put_int(statistics, channels, 2), put_le32(statistics, static_cast<std::uint32_t>(channels));
+    put_le32(statistics, 0), put_le32(statistics, 0), put_le32(statistics, 0), put_int(statistics, 0, 8), put_int(statistics, 0, 8);
+    put_le32(statistics, static_cast<std::uint32_t>(counts.size()));
+    statistics.insert(statistics.end(), counts.begin(), counts.end());
+    record(b, 0x0B, statistics);
+  }
+  b.push_back(0x02);
+  put_int(b, 20, 8), put_int(b, summary ? summary_at : 0, 8), put_int(b, 0, 8);
+  put_le32(b, summary ? static_cast<std::uint32_t>(crc32(0, b.data() + summary_at, static_cast<uInt>(b.size() - summary_at))) : 0);
   b.insert(b.end(), read::kMcapMagic.begin(), read::kMcapMagic.end());
   return b;
 }

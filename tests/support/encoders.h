@@ -52,11 +52,12 @@ std::string write_ros2_bag(const std::string& dir, const std::vector<BagTopic>& 
 // An MCAP file (https://mcap.dev/spec) of these topics, as rosbag2 writes one: a schema (the
 // type) and a cdr channel for each topic, its messages 1 ms apart in turn, in chunks of
 // `messages_per_chunk` compressed with `compression` ("", "lz4" or "zstd"; 0 messages a chunk:
-// no chunks), then Data End, an empty summary and the footer. Each chunk and the data section
-// carry their CRC-32.
+// no chunks), then Data End, a summary (each channel's schema and channel, and the statistics
+// with each channel's message count; none with `summary` false) and the footer. Each chunk, the
+// data section and the summary carry their CRC-32.
 // `encoding` is the channels' message encoding: "cdr" (ROS 2) or "ros1" (`mcap convert` of a ROS 1 bag).
 Bytes mcap_file(const std::vector<BagTopic>& topics, const std::string& compression = "zstd", size_t messages_per_chunk = 4,
-                const std::string& encoding = "cdr");
+                const std::string& encoding = "cdr", bool summary = true);
 // A ROS 1 bag (format 2.0) of these topics, their messages in ROS 1's serialization, in chunks
 // of `messages_per_chunk` compressed with `compression` ("none", "lz4" or "bz2"), and its index.
 Bytes ros1_bag(const std::vector<BagTopic>& topics, const std::string& compression, size_t messages_per_chunk = 4);

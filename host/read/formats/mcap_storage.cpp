@@ -12,6 +12,12 @@
 //                  (uint32), compression ("", "lz4" or "zstd"), then its records as a
 //                  uint64-length byte string: schemas, channels and messages
 //   0x0F Data End  the end of the data section: data_section_crc (uint32)
+// and, from the summary section that the footer points to (rosbag2 writes one):
+//   0x0B Statistics  counts of messages, schemas (uint16), channels, attachments, metadata and
+//                    chunks (uint32), the first and last log times (uint64), then each
+//                    channel's message count: a uint32 byte length of (uint16, uint64) pairs
+//   0x02 Footer      summary_start, summary_offset_start (uint64), summary_crc (uint32): the
+//                    CRC-32 of the summary section and the footer's fields before it
 // A CRC-32 (zlib's) of 0 means none was written. A chunk's covers its decompressed records; the
 // Data End's every byte of the file before that record, magic and header included. A file that
 // fails either is refused where it fails: its messages before that place come out first, as
@@ -19,9 +25,10 @@
 // Strings are a uint32 length and UTF-8; every integer is little-endian. Other records
 // (indexes, attachments, metadata) are passed over. A topic's messages are taken in the order
 // the file holds them, as rosbag2 wrote them on receipt; each has its number, counted from 1
-// over every message of the file, for errors. The file is read twice: once for its topics and
-// their counts (up to the first error, which the second pass reports after the messages
-// before it), once for the messages.
+// over every message of the file, for errors. The topics and their counts come from the
+// summary's schemas, channels and statistics when it has all three and they pass the CRC; a
+// file without them is read twice: once for its topics and their counts (up to the first error,
+// which the second pass reports after the messages before it), once for the messages.
 #include <algorithm>
 #include <map>
 #include <optional>
@@ -49,7 +56,9 @@ std::string hex(std::uint32_t v, int digits) {
   return s;
 }
 
-enum Op : std::uint8_t { kHeader = 0x01, kFooter = 0x02, kSchema = 0x03, kChannel = 0x04, kMessage = 0x05, kChunk = 0x06, kDataEnd = 0x0F };
+enum Op : std::uint8_t {
+  kHeader = 0x01, kFooter = 0x02, kSchema = 0x03, kChannel = 0x04, kMessage = 0x05, kChunk = 0x06, kStatistics = 0x0B, kDataEnd = 0x0F
+};
 
 struct Record {
   std::uint8_t op = 0;
@@ -71,6 +80,7 @@ class Fields {
   }
   std::span<const unsigned char> bytes(std::uint64_t n) { return take(n); }
   std::span<const unsigned char> rest() { return take(r_.body.size() - pos_); }
+  size_t consumed() const { return pos_; }
 
   [[noreturn]] void refuse(const std::string& what) const {
     fail(path_, InputPosition::byte(r_.at),
@@ -201,32 +211,81 @@ class Records {
 class McapStorage final : public BagStorage {
  public:
   explicit McapStorage(const std::string& path) : path_(path) {
-    // The first pass: every schema and channel, and each channel's messages. A file cut short
-    // or corrupt further on is counted up to there: the second pass gives the messages before
-    // that place and then its error.
+    // Without a summary, the first pass: every schema and channel, and each channel's
+    // messages. A file cut short or corrupt further on is counted up to there: the second pass
+    // gives the messages before that place and then its error.
     Records records(path);
-    std::map<std::uint16_t, std::string> schemas;
+    if (read_summary()) return;
     std::int64_t number = 0;
     try {
-      first_pass(records, schemas, number);
+      first_pass(records, number);
     } catch (const InputError&) {
       if (channels_.empty()) throw;
     }
   }
 
-  void first_pass(Records& records, std::map<std::uint16_t, std::string>& schemas, std::int64_t& number) {
+  // The topics and counts from the summary section; false, with nothing kept, when the file
+  // has no summary, or one without statistics or a channel record for each channel counted,
+  // or one that is malformed or fails its CRC: the first pass then finds them.
+  bool read_summary() {
+    constexpr std::uint64_t kFooterFields = 8 + 8 + 4, kFooterRecord = 9 + kFooterFields;
+    ByteReader in(path_);
+    if (in.size() < 2 * kMcapMagic.size() + kFooterRecord) return false;
+    const std::uint64_t footer_at = in.size() - kMcapMagic.size() - kFooterRecord;
+    in.skip(footer_at);
+    unsigned char footer[kFooterRecord + kMcapMagic.size()];
+    if (in.read(footer, sizeof footer) != sizeof footer || footer[0] != kFooter || le64(footer + 1) != kFooterFields ||
+        std::string_view(reinterpret_cast<const char*>(footer + kFooterRecord), kMcapMagic.size()) != kMcapMagic) {
+      return false;
+    }
+    const std::uint64_t summary_at = le64(footer + 9);
+    const std::uint32_t summary_crc = le32(footer + 9 + 16);
+    if (summary_at < kMcapMagic.size() || summary_at >= footer_at || footer_at - summary_at > kMaxRecordBytes) return false;
+    std::vector<unsigned char> summary(static_cast<size_t>(footer_at - summary_at));
+    ByteReader from(path_);
+    from.skip(summary_at);
+    if (from.read(summary.data(), summary.size()) != summary.size()) return false;
+    const std::uint32_t crc = static_cast<std::uint32_t>(crc32(crc32(0, summary.data(), static_cast<uInt>(summary.size())), footer, 9 + 16));
+    if (summary_crc != 0 && summary_crc != crc) return false;
+    try {
+      std::map<std::uint16_t, std::string> schemas;
+      std::optional<std::uint32_t> channels_counted;
+      for (size_t at = 0; at < summary.size();) {
+        Record r;
+        r.at = summary_at + at;
+        if (summary.size() - at < 9 || le64(&summary[at + 1]) > summary.size() - at - 9) return false;
+        r.op = summary[at];
+        r.body = std::span<const unsigned char>(summary).subspan(at + 9, static_cast<size_t>(le64(&summary[at + 1])));
+        at += 9 + r.body.size();
+        Fields f(r, path_);
+        if (r.op == kSchema || r.op == kChannel) {
+          take_definition(r, schemas);
+        } else if (r.op == kStatistics) {
+          f.u64(), f.u16();  // messages, schemas
+          channels_counted = f.u32();
+          f.u32(), f.u32(), f.u32(), f.u64(), f.u64();  // attachments, metadata, chunks, first and last times
+          Record pairs{r.op, f.bytes(f.u32()), r.at, 0};
+          for (Fields p(pairs, path_); pairs.body.size() - p.consumed() >= 10;) {
+            const std::uint16_t channel = p.u16();
+            counts_[channel] = static_cast<std::int64_t>(std::min<std::uint64_t>(p.u64(), INT64_MAX));
+          }
+        }
+      }
+      if (channels_counted && *channels_counted == channels_.size() && !channels_.empty()) return true;
+    } catch (const InputError&) {
+    }
+    channels_.clear();
+    counts_.clear();
+    return false;
+  }
+
+  void first_pass(Records& records, std::int64_t& number) {
     const std::string& path = records.path();
+    std::map<std::uint16_t, std::string> schemas;
     for (Record r; records.next(r);) {
       Fields f(r, path);
-      if (r.op == kSchema) {
-        const std::uint16_t id = f.u16();
-        schemas[id] = f.string();
-      } else if (r.op == kChannel) {
-        const std::uint16_t id = f.u16(), schema = f.u16();
-        std::string topic = f.string(), encoding = f.string();
-        if (channels_.count(id)) continue;  // a repeat, identical by the specification
-        const auto type = schemas.find(schema);
-        channels_[id] = {id, std::move(topic), type == schemas.end() ? std::string() : type->second, std::move(encoding)};
+      if (r.op == kSchema || r.op == kChannel) {
+        take_definition(r, schemas);
       } else if (r.op == kMessage) {
         ++number;
         const std::uint16_t channel = f.u16();
@@ -234,6 +293,23 @@ class McapStorage final : public BagStorage {
         ++counts_[channel];
       }
     }
+  }
+
+  // A schema (its message type, kept by its ID) or a channel (its topic, type and encoding); a
+  // channel seen before is a repeat, identical by the specification. The channel's topic is
+  // returned when it is new.
+  const Topic* take_definition(const Record& r, std::map<std::uint16_t, std::string>& schemas) {
+    Fields f(r, path_);
+    if (r.op == kSchema) {
+      const std::uint16_t id = f.u16();
+      schemas[id] = f.string();
+      return nullptr;
+    }
+    const std::uint16_t id = f.u16(), schema = f.u16();
+    std::string topic = f.string(), encoding = f.string();
+    if (channels_.count(id)) return nullptr;
+    const auto type = schemas.find(schema);
+    return &(channels_[id] = {id, std::move(topic), type == schemas.end() ? std::string() : type->second, std::move(encoding)});
   }
 
   [[noreturn]] static void refuse_unknown_channel(const Fields& f, std::int64_t number, std::uint16_t channel) {
@@ -255,13 +331,24 @@ class McapStorage final : public BagStorage {
     records_.emplace(path_);
     selected_.clear();
     const auto chosen = channels_.find(static_cast<std::uint16_t>(id));
+    selected_name_.reset();
+    if (chosen != channels_.end()) selected_name_ = chosen->second.name;
     for (const auto& [channel, topic] : channels_) {
-      if (chosen != channels_.end() && topic.name == chosen->second.name) selected_.insert(channel);
+      if (selected_name_ && topic.name == *selected_name_) selected_.insert(channel);
     }
+    data_schemas_.clear();
     number_ = 0;
   }
   bool next(std::int64_t& id, std::span<const unsigned char>& data) override {
     for (Record r; records_->next(r);) {
+      if (r.op == kSchema || r.op == kChannel) {
+        // Each channel's record repeats in the data section. One that a summary did not define
+        // (a summary that does not match its data) is known from here on, and read when it is
+        // the chosen topic's.
+        const Topic* added = take_definition(r, data_schemas_);
+        if (added && selected_name_ && added->name == *selected_name_) selected_.insert(static_cast<std::uint16_t>(added->id));
+        continue;
+      }
       if (r.op != kMessage) continue;
       ++number_;
       Fields f(r, path_);
@@ -284,6 +371,8 @@ class McapStorage final : public BagStorage {
   std::map<std::uint16_t, std::int64_t> counts_;
   std::optional<Records> records_;
   std::set<std::uint16_t> selected_;
+  std::optional<std::string> selected_name_;
+  std::map<std::uint16_t, std::string> data_schemas_;  // the second pass's schemas, by ID
   std::int64_t number_ = 0;
 };
 
