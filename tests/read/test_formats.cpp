@@ -296,14 +296,22 @@ TEST(Formats, Aedat3RoundTripsAcrossPackets) {
   EXPECT_EQ(read_all(dir.write("e.aedat", aedat3_davis240(events))), events);
 }
 
+// Each event packet is followed by an IMU packet, which is counted as skipped by what it holds.
 TEST(Formats, Aedat4RoundTripsWithEveryCompression) {
   TempDir dir;
   const auto events = sample_events(3210, {346, 260});
   for (auto c : {Aedat4Compression::kNone, Aedat4Compression::kLz4, Aedat4Compression::kZstd}) {
     SCOPED_TRACE(static_cast<int>(c));
-    const auto path = dir.write("e.aedat4", aedat4(events, {346, 260}, c));
+    const auto path = dir.write("e.aedat4", aedat4(events, {346, 260}, c, 1000));
     EXPECT_EQ(read_all(path), events);
-    EXPECT_EQ(read::open_source(path, {})->info().sensor, (SensorSize{346, 260}));
+    auto source = read::open_source(path, {});
+    EXPECT_EQ(source->info().sensor, (SensorSize{346, 260}));
+    std::vector<Event> sink(4096);
+    while (source->read(sink)) {
+    }
+    ASSERT_EQ(source->skipped().size(), 1u);
+    EXPECT_EQ(source->skipped()[0].first, "IMU packets");
+    EXPECT_EQ(source->skipped()[0].second, 4);
   }
 }
 

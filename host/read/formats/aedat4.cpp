@@ -21,6 +21,14 @@
 namespace evms::read {
 namespace {
 
+// What a stream's skipped packets are, by DV's type identifier.
+std::string packets_of(const std::string& type) {
+  if (type == "IMUS") return "IMU packets";
+  if (type == "FRME") return "frame packets";
+  if (type == "TRIG") return "trigger packets";
+  return "packets of type '" + printable(type) + "'";
+}
+
 // A header or a packet, stored or decompressed, is at most 128 MiB: DV writes packets of a few
 // MiB (10 ms of the densest sensor is 4 MiB), and a frame that would expand further is a
 // decompression bomb or corrupt, refused before its buffer grows past the cap.
@@ -151,7 +159,7 @@ class Aedat4Source final : public FileEventSource {
     auto it = streams_.find(stream);
     if (it == streams_.end()) fail(in_.path(), InputPosition::byte(at), "packet of undeclared stream " + std::to_string(stream));
     if (it->second.type != "EVTS") {
-      count_skipped(it->second.type + " packets");
+      count_skipped(packets_of(it->second.type));
       in_.skip(size);
       return true;
     }
