@@ -180,9 +180,10 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
   bool text = std::all_of(first.begin(), first.end(), [](char c) {
     return c == '\t' || c == '\r' || (c >= 32 && c < 127);
   });
-  // A header with ';' or tabs between its names is a CSV too (csv_columns.h).
+  // A header with ';' or tabs between its names is a CSV too (csv_columns.h), and so are rows
+  // separated by ';', which no events.txt holds.
   const bool separated_header = is_csv_header(first) && first.find_first_of(";\t") != std::string_view::npos;
-  if (text && (first.find(',') != std::string_view::npos || separated_header)) return open_csv(std::move(in), options);
+  if (text && (first.find_first_of(",;") != std::string_view::npos || separated_header)) return open_csv(std::move(in), options);
   if (text) return open_rpg_text(std::move(in), options);
   fail(name, InputPosition::byte(0),
        "bad header: not a known event format (events.txt, CSV, AEDAT 2/3/4, EVT 2/3 RAW, DAT, NPY, ROS 1 or 2 bag)");

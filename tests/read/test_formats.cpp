@@ -116,6 +116,8 @@ TEST(Formats, CsvColumnsGoByTheirHeader) {
        "CSV t_s,x,y,pol"},
       // Semicolons (spreadsheets where the comma is the decimal mark) and tabs between the columns.
       {"semicolons.csv", rows("t;x;y;p", [&](const Event& e) { return n(e.t) + ";" + n(e.x) + ";" + n(e.y) + ";" + n(e.p); }), "CSV t,x,y,p"},
+      {"bare semicolons.csv", rows("", [&](const Event& e) { return n(e.t) + ";" + n(e.x) + ";" + n(e.y) + ";" + n(e.p) + ";-1"; }),
+       "CSV t_us,x,y,p"},
       {"tabs.tsv", rows("x\ty\tpolarity\tt_s", [&](const Event& e) { return n(e.x) + "\t" + n(e.y) + "\t" + n(e.p) + "\t" + seconds(e.t); }),
        "CSV x,y,polarity,t_s"},
       // Columns of names evms does not know are not read, whatever they hold, empty too.

@@ -133,7 +133,11 @@ class TextSource final : public FileEventSource {
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
       const size_t first = line.find_first_not_of(" \t");
       if (first == std::string_view::npos || line[first] == '#') continue;
-      if (is_csv_header(line.substr(first))) read_header(line.substr(first), line_no);
+      if (is_csv_header(line.substr(first))) {
+        read_header(line.substr(first), line_no);
+      } else if (line.find(',') == std::string_view::npos && line.find(';') != std::string_view::npos) {
+        columns_.separator = ';';  // rows without a header, from a spreadsheet whose decimal mark is the comma
+      }
       return;
     }
   }
