@@ -137,7 +137,8 @@ std::string_view ByteReader::peek(size_t n) {
 void ByteReader::skip(std::uint64_t n) {
   // Past what is buffered, a regular file seeks (to its end at most) instead of reading.
   if (regular_ && n > end_ - pos_) {
-    const std::uint64_t to = std::min(offset() + n, size_);
+    const std::uint64_t at = std::min(offset(), size_);
+    const std::uint64_t to = n >= size_ - at ? size_ : at + n;
     if (fseeko(file_, static_cast<off_t>(to), SEEK_SET) == 0) {
       offset_before_buffer_ = to;
       pos_ = end_ = 0;
