@@ -116,6 +116,10 @@ char separator_of_header(std::string_view line) {
   return seen[0] ? ',' : seen[1] ? ';' : seen[2] ? '\t' : ',';
 }
 
+char separator_of_row(std::string_view row) {
+  return row.find(',') == std::string_view::npos && row.find(';') != std::string_view::npos ? ';' : ',';
+}
+
 std::optional<size_t> csv_field_end(std::string_view row, char separator) {
   const size_t first = row.find_first_not_of(' ');
   if (first == std::string_view::npos || row[first] != '"') {

@@ -75,6 +75,10 @@ bool is_csv_header(std::string_view line);
 // comma is the decimal mark) or a tab (tab-separated values), else ','.
 char separator_of_header(std::string_view line);
 
+// The separator of a row without a header: ';' when it holds one and no comma (a spreadsheet
+// whose decimal mark is the comma), else ','.
+char separator_of_row(std::string_view row);
+
 // Where the CSV field at the start of `row` ends: the index of the separator after it, or
 // row.size(). A field that opens with a double quote (blanks before it aside) runs to its
 // closing quote, separators inside it included, and "" inside it is a quote (RFC 4180). Nothing

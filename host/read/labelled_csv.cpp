@@ -21,6 +21,7 @@ LabelledCsvReader::LabelledCsvReader(const std::string& path) : in_(path) {
     columns_ = CsvColumns::headerless();
     ++columns_.count;  // the label that may follow the event's four
     columns_.label_may_follow = false;
+    columns_.separator = separator_of_row(header);
     first_row_ = header;
   }
   if (!columns_.has(CsvField::kLabel)) {

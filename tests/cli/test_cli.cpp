@@ -597,6 +597,12 @@ TEST(Cli, MetricsScoresWhatGenAndRunWrite) {
                                 " --pred " + dir.path("r/events.csv"));
   ASSERT_EQ(bare.exit_code, 0) << bare.err;
   EXPECT_EQ(bare.out, ours.out);
+  std::string semicolons = headerless;  // and so do they separated by ';'
+  std::replace(semicolons.begin(), semicolons.end(), ',', ';');
+  const auto semi = run_command(evms_binary() + " metrics --chunk-us 10000 --truth " + dir.write("semi.csv", semicolons) +
+                                " --pred " + dir.path("r/events.csv"));
+  ASSERT_EQ(semi.exit_code, 0) << semi.err;
+  EXPECT_EQ(semi.out, ours.out);
   const auto four = run_command(evms_binary() + " metrics --truth " + dir.write("four.csv", "1,2,3,1\n") + " --pred " +
                                 dir.path("r/events.csv"));
   EXPECT_EQ(four.exit_code, 1);

@@ -135,8 +135,8 @@ class TextSource final : public FileEventSource {
       if (first == std::string_view::npos || line[first] == '#') continue;
       if (is_csv_header(line.substr(first))) {
         read_header(line.substr(first), line_no);
-      } else if (line.find(',') == std::string_view::npos && line.find(';') != std::string_view::npos) {
-        columns_.separator = ';';  // rows without a header, from a spreadsheet whose decimal mark is the comma
+      } else {
+        columns_.separator = separator_of_row(line);
       }
       return;
     }
