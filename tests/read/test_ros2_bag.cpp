@@ -112,10 +112,9 @@ TEST(Ros2Bag, McapSummariesGiveTheTopicsAndCountsWhenWhole) {
   // The progress after the last event: the messages read over the messages counted.
   const auto progress_at_end = [&](const std::string& file) {
     const auto source = read::open_source(file, {});
-    std::vector<Event> got(events.size() + 1);
-    size_t n = 0;
-    while (const size_t more = source->read(std::span<Event>(got).subspan(n))) n += more;
-    EXPECT_EQ(n, events.size());
+    std::vector<Event> got;
+    read_into(*source, got);
+    EXPECT_EQ(got.size(), events.size());
     return source->progress();
   };
   for (const bool summary : {true, false}) {
@@ -266,8 +265,7 @@ std::vector<Event> read_until_error(const std::string& file) {
   const auto source = read::open_source(file, {});
   std::vector<Event> got;
   try {
-    std::vector<Event> block(4096);
-    while (const size_t n = source->read(block)) got.insert(got.end(), block.begin(), block.begin() + static_cast<long>(n));
+    read_into(*source, got);
   } catch (const read::InputError&) {
   }
   return got;

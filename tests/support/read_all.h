@@ -14,10 +14,16 @@ inline read::SourceOptions sized(int width, int height, TimeUs reorder_us) {
   return o;
 }
 
+// Appends the events `source` gives to `all`; what came before an error it throws stays there.
+inline void read_into(read::EventSource& source, std::vector<Event>& all) {
+  std::vector<Event> batch(1000);
+  while (size_t n = source.read(batch)) all.insert(all.end(), batch.begin(), batch.begin() + static_cast<long>(n));
+}
+
 inline std::vector<Event> read_all(const std::string& path, const read::SourceOptions& o = {}) {
   auto source = read::open_source(path, o);
-  std::vector<Event> all, batch(1000);
-  while (size_t n = source->read(batch)) all.insert(all.end(), batch.begin(), batch.begin() + static_cast<long>(n));
+  std::vector<Event> all;
+  read_into(*source, all);
   return all;
 }
 

@@ -56,6 +56,12 @@ std::string hex(std::uint32_t v, int digits) {
   return s;
 }
 
+// zlib's CRC-32 of n more bytes; its length is a uInt, which a record or a summary of at most
+// kMaxRecordBytes fits.
+std::uint32_t crc32_of(std::uint32_t crc, const unsigned char* data, size_t n) {
+  return static_cast<std::uint32_t>(crc32(crc, data, static_cast<uInt>(n)));
+}
+
 enum Op : std::uint8_t {
   kHeader = 0x01, kFooter = 0x02, kSchema = 0x03, kChannel = 0x04, kMessage = 0x05, kChunk = 0x06, kStatistics = 0x0B, kDataEnd = 0x0F
 };
@@ -195,10 +201,6 @@ class Records {
       f.refuse(what + " CRC-32 (stored 0x" + hex(stored, 8) + ", computed 0x" + hex(computed, 8) + "): the file is corrupt");
     }
   }
-  static std::uint32_t crc32_of(std::uint32_t crc, const unsigned char* data, size_t n) {
-    // zlib's length is a uInt: a 256 MiB record at most (kMaxRecordBytes) fits it.
-    return static_cast<std::uint32_t>(crc32(crc, data, static_cast<uInt>(n)));
-  }
 
   ByteReader in_;
   std::uint32_t crc_of_data_ = 0;
@@ -245,7 +247,7 @@ class McapStorage final : public BagStorage {
     ByteReader from(path_);
     from.skip(summary_at);
     if (from.read(summary.data(), summary.size()) != summary.size()) return false;
-    const std::uint32_t crc = static_cast<std::uint32_t>(crc32(crc32(0, summary.data(), static_cast<uInt>(summary.size())), footer, 9 + 16));
+    const std::uint32_t crc = crc32_of(crc32_of(0, summary.data(), summary.size()), footer, 9 + 16);
     if (summary_crc != 0 && summary_crc != crc) return false;
     try {
       std::map<std::uint16_t, std::string> schemas;
@@ -257,10 +259,10 @@ class McapStorage final : public BagStorage {
         r.op = summary[at];
         r.body = std::span<const unsigned char>(summary).subspan(at + 9, static_cast<size_t>(le64(&summary[at + 1])));
         at += 9 + r.body.size();
-        Fields f(r, path_);
         if (r.op == kSchema || r.op == kChannel) {
           take_definition(r, schemas);
         } else if (r.op == kStatistics) {
+          Fields f(r, path_);
           f.u64(), f.u16();  // messages, schemas
           channels_counted = f.u32();
           f.u32(), f.u32(), f.u32(), f.u64(), f.u64();  // attachments, metadata, chunks, first and last times

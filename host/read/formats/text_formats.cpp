@@ -166,11 +166,13 @@ class TextSource final : public FileEventSource {
       size_t b = rest.find_first_not_of(" \t");
       rest = b == std::string_view::npos ? std::string_view{} : rest.substr(b);
     }
-    size_t end = rest.find_first_of(" \t");
+    size_t end = std::string_view::npos;
     if (csv_) {
-      const std::optional<size_t> quoted_end = csv_field_end(rest, columns_.separator);
-      if (!quoted_end) bad(std::string("field '") + name + "': " + kCsvQuoteRefused);
-      end = *quoted_end < rest.size() ? *quoted_end : std::string_view::npos;
+      const std::optional<size_t> csv_end = csv_field_end(rest, columns_.separator);
+      if (!csv_end) bad(std::string("field '") + name + "': " + kCsvQuoteRefused);
+      if (*csv_end < rest.size()) end = *csv_end;
+    } else {
+      end = rest.find_first_of(" \t");
     }
     std::string_view f = rest.substr(0, end);
     rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
