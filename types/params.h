@@ -90,7 +90,7 @@ struct Params {
                                      // hold both polarities is split (golden/cluster/polarity_split.h); 0 = off
   double split_share = 0.1;          // ... counting the parts of at least this share of its events
   int split_min_events = 64;         // ... and of at least this many events
-  double split_cell = 0.5;           // ... parts of 8-connected cells this many bandwidths a side
+  double split_cell = 0.4;           // ... parts of 8-connected cells this many bandwidths a side
 
   // --- tracker --------------------------------------------------------------------------
   Measure measure = Measure::kPolarityMidpoint;

@@ -16,7 +16,7 @@ using test::concat;
 
 Params splitting() {
   Params p;
-  p.split_balance = 0.3;  // cells of 0.5 h = 4.8 px on this sensor
+  p.split_balance = 0.3;  // cells of 0.4 h = 3.84 x 2.88 px on this sensor
   return p;
 }
 
@@ -74,7 +74,7 @@ TEST(PolaritySplit, TwoEdgesOfOnePolarityEachStayOneCluster) {
 }
 
 TEST(PolaritySplit, PartsWithinACellOfEachOtherAreOnePart) {
-  // 3 px apart: neighbouring cells of 4.8 px, so one part.
+  // 3 px apart: pixels 29 and 33 fall in neighbouring cells of 3.84 px, so one part.
   const Split near = split_one_cluster(concat(square(20, 20, 10, kChecker), square(33, 20, 10, kChecker)), splitting());
   EXPECT_EQ(near.modes.size(), 1u);
   // 30 px apart: separate parts.
