@@ -52,8 +52,8 @@ TEST(SourceWindow, RoiCropsAndCountsWhatItLeavesOut) {
   for (Event e : events) {
     if (e.x >= 50 && e.x < 150 && e.y >= 40 && e.y < 100) e.x = static_cast<std::uint16_t>(e.x - 50), e.y = static_cast<std::uint16_t>(e.y - 40), expected.push_back(e);
   }
-  std::vector<Event> got, batch(256);
-  while (size_t n = source->read(batch)) got.insert(got.end(), batch.begin(), batch.begin() + static_cast<long>(n));
+  std::vector<Event> got;
+  read_into(*source, got, 256);
   EXPECT_EQ(got, expected);
   EXPECT_EQ(skipped_of(*source)["events outside --roi"], static_cast<std::int64_t>(events.size() - expected.size()));
   o.window.roi = read::parse_roi("200,0,41,10");
@@ -75,8 +75,8 @@ TEST(SourceWindow, HotPixelsFromAListOrFoundAlone) {
   read::SourceOptions o;
   o.window.hot_pixels = "auto";
   auto source = read::open_source(in, o);
-  std::vector<Event> got, batch(512);
-  while (size_t n = source->read(batch)) got.insert(got.end(), batch.begin(), batch.begin() + static_cast<long>(n));
+  std::vector<Event> got;
+  read_into(*source, got, 512);
   EXPECT_EQ(got, cool);
   ASSERT_EQ(source->skipped().size(), 1u);
   EXPECT_EQ(source->skipped()[0].first, "events of 1 hot pixel masked: (7,9)");

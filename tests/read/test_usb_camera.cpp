@@ -9,6 +9,7 @@
 #include "host/read/live/usb_port.h"
 #include "tests/support/command.h"
 #include "tests/support/encoders.h"
+#include "tests/support/read_all.h"
 #include "tests/support/scripted_usb_port.h"
 
 namespace evms::test {
@@ -40,9 +41,8 @@ Drained drain(const std::string& uri) {
   Drained d;
   auto source = read::open_source(uri, {});
   d.sensor = source->info().sensor;
-  std::vector<Event> batch(1000);
   try {
-    while (const size_t n = source->read(batch)) d.events.insert(d.events.end(), batch.begin(), batch.begin() + static_cast<std::ptrdiff_t>(n));
+    read_into(*source, d.events);
   } catch (const read::InputError& e) {
     d.error = e.what();
   }

@@ -15,8 +15,9 @@ inline read::SourceOptions sized(int width, int height, TimeUs reorder_us) {
 }
 
 // Appends the events `source` gives to `all`; what came before an error it throws stays there.
-inline void read_into(read::EventSource& source, std::vector<Event>& all) {
-  std::vector<Event> batch(1000);
+// `batch_size` events at a time.
+inline void read_into(read::EventSource& source, std::vector<Event>& all, size_t batch_size = 1000) {
+  std::vector<Event> batch(batch_size);
   while (size_t n = source.read(batch)) all.insert(all.end(), batch.begin(), batch.begin() + static_cast<long>(n));
 }
 
