@@ -1,6 +1,7 @@
 // evms sweep : the method's choices measured on the scene family (host/gen/family.h), as
 // Markdown. Three forms:
 //   evms sweep                    the presets side by side on the tuning and validation splits
+//                                 (with --preset or method options: that method alone)
 //   evms sweep --vary NAME=A,B    one parameter at a time around the method given
 //   evms sweep --search           coordinate ascent from the method given over the standard
 //                                 grid on the tuning split, then the result checked on the
@@ -28,6 +29,7 @@ struct SweepOptions {
   std::string backend = "golden";
   gen::FamilyPins pins;
   Method method;
+  bool method_given = false;  // --preset or a method option on the command line
 };
 
 // The grid --search walks, one parameter at a time. Every event climbing (--seeding every, the
@@ -152,16 +154,17 @@ void print_scenes(const std::vector<eval::FamilyScene>& family, const std::vecto
   }
 }
 
-// The presets on both splits.
+// The presets on both splits, or the method the command line gives.
 void compare_presets(const SweepOptions& o, const std::vector<std::string>& types) {
   std::vector<Method> methods;
-  for (const char* name : preset_names()) methods.push_back({name, {}});
+  if (o.method_given) methods.push_back(o.method);
+  else for (const char* name : preset_names()) methods.push_back({name, {}});
   for (gen::Split split : {gen::Split::kTuning, gen::Split::kValidation}) {
     const auto family = eval::generate_family(split, o.seeds, types, o.jobs, o.pins);
     std::printf("\n## %s split (%d seeds a type)\n\n", split == gen::Split::kTuning ? "Tuning" : "Validation", o.seeds);
-    print_header(types, "preset");
+    print_header(types, o.method_given ? "method" : "preset");
     const auto results = eval::evaluate_family(family, methods, o.backend, o.jobs);
-    for (size_t m = 0; m < methods.size(); ++m) print_row(methods[m].preset, results[m]);
+    for (size_t m = 0; m < methods.size(); ++m) print_row(o.method_given ? methods[m].describe() : methods[m].preset, results[m]);
     if (o.per_scene) print_scenes(family, methods, results);
   }
 }
@@ -267,7 +270,8 @@ void register_sweep(CLI::App& app) {
   cmd->add_option("--noise-hz", o->pins.noise_hz, "the family's members with this background activity a pixel instead of the seed's draw")
       ->check(finite_in(0.0, 1000.0));
   add_method_options(*cmd, o->method);
-  cmd->callback([o] {
+  cmd->callback([o, cmd] {
+    o->method_given = cmd->count("--preset") > 0 || !o->method.settings.empty();
     const auto types = types_of(*o);
     for (const auto& t : types) eval::member_scene(t, 1);  // throws for an unknown type
     parse_grid(o->vary);  // a bad --vary is refused before any output

@@ -450,6 +450,23 @@ TEST(Cli, EvalNamesTheRecordingsItSkipsAndWhy) {
   EXPECT_NE(r.err.find("eval: skipped notes.txt: "), std::string::npos) << r.err;
 }
 
+// Without method options, sweep measures the three presets; with them, the method they give
+// alone, so that an option is never silently left out of the measurement.
+TEST(Cli, SweepMeasuresTheMethodTheCommandLineGives) {
+  const std::string base = evms_binary() + " sweep --seeds 1 --types paper-translation";
+  const auto presets = run_command(base);
+  ASSERT_EQ(presets.exit_code, 0) << presets.err;
+  for (const char* row : {"\n| evms |", "\n| paper |", "\n| gaussian |"}) EXPECT_NE(presets.out.find(row), std::string::npos) << row;
+  const auto given = run_command(base + " --bandwidth 0.15");
+  ASSERT_EQ(given.exit_code, 0) << given.err;
+  EXPECT_EQ(given.out.find("\n| paper |"), std::string::npos);
+  const size_t row = given.out.find("\n| --preset evms --bandwidth 0.15 |");
+  ASSERT_NE(row, std::string::npos) << given.out;
+  // The row's F differs from the defaults' row: the option took effect.
+  const auto f_of = [](const std::string& out, size_t at) { return out.substr(out.find('|', at + 2), 8); };
+  EXPECT_NE(f_of(given.out, row), f_of(presets.out, presets.out.find("\n| evms |"))) << given.out;
+}
+
 TEST(Cli, GenIsDeterministicOnDisk) {
   TempDir dir;
   for (const char* d : {"a", "b"}) {
