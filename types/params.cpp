@@ -103,6 +103,11 @@ const std::array kTable = {
     ParamInfo{"link-px", "px", "with seeded climbs, clusters that have events within this distance of each other "
               "become one (an outline split by a small kernel joins again); 0 = off",
               &Params::link_px, 0, 100},
+    ParamInfo{"link-px-width", "px",
+              "the sensor width up to which link-px holds: on a sensor W px wide and wider than this, clusters link "
+              "within link-px min(2, W / this), as a finer sensor spreads an outline's events over more pixels; 0 = link-px "
+              "on every sensor",
+              &Params::link_px_width, 0, 1e5},
     ParamInfo{"join-boxes", "", "with seeded climbs, clusters whose bounding boxes overlap become one",
               &Params::join_boxes, 0, 1},
     ParamInfo{"split-balance", "1", "with seeded climbs, a cluster whose events form two or more separate parts, each "
@@ -199,6 +204,11 @@ double accel_psd_at(const Params& p, SensorSize sensor) {
   if (p.accel_psd_width <= 0) return p.accel_psd;
   const double k = sensor.width / p.accel_psd_width;
   return p.accel_psd * k * k;
+}
+
+double link_px_at(const Params& p, SensorSize sensor) {
+  if (p.link_px_width <= 0 || sensor.width <= p.link_px_width) return p.link_px;
+  return p.link_px * std::min(2.0, sensor.width / p.link_px_width);
 }
 
 SplitRule split_rule(const Params& p, SensorSize sensor) {

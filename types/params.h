@@ -83,7 +83,9 @@ struct Params {
   int min_cluster_size = 8;          // smaller clusters become noise
   double min_density = 0;            // seeded climbs: a mode whose ball holds fewer than this many
                                      // times the events a uniform spread would put there is noise
-  double link_px = 4;                // seeded climbs: clusters with events this close become one
+  double link_px = 4;                // seeded climbs: clusters with events this close become one, ...
+  double link_px_width = 320;        // ... on a sensor up to this wide; on a wider one W px wide,
+                                     // link_px min(2, W / this) (link_px_at); 0 = link_px on every sensor
   bool join_boxes = false;           // seeded climbs: clusters whose bounding boxes overlap become one
   int max_clusters = 128;            // modes beyond this many clusters become noise
   double split_balance = 0.3;        // seeded climbs: a cluster of two or more separate parts that each
@@ -153,6 +155,13 @@ std::int64_t filter_quiet_count(const Params& p, SensorSize sensor);
 // with k times the pixels across moves k times as many pixels a second, so its accelerations'
 // spectral density is k^2 times larger.
 double accel_psd_at(const Params& p, SensorSize sensor);
+
+// The distance in pixels within which the seeded climbs' clusters link on `sensor`: link_px, scaled
+// by the sensor's width over link_px_width when that is wider, up to twice link_px. A finer
+// sensor spreads a packet's events along an outline over more pixels, so the gaps a link must
+// bridge grow with it (docs/sweep.md, "Links on large sensors"); the family's sensors reach
+// 640 px, twice the reference width, and no wider sensor was measured.
+double link_px_at(const Params& p, SensorSize sensor);
 
 // The polarity split's rule in integers, which golden (golden/cluster/polarity_split.h) and the
 // fixed-point core (hls/cluster/polarity_split.h) share so that they find the same parts:

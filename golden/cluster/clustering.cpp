@@ -65,7 +65,7 @@ PacketClusters PacketClusterer::finish(std::span<const Event> events, const Feat
   for (int& c : raw) {
     if (c >= 0 && climbs_.support()[static_cast<size_t>(c)] < params_.min_density * uniform) c = -1;
   }
-  if (params_.link_px > 0) links_.join(events, params_.link_px, static_cast<int>(modes.size()), raw);
+  if (params_.link_px > 0) links_.join(events, link_px_at(params_, sensor_), static_cast<int>(modes.size()), raw);
   if (params_.join_boxes) join_overlapping_boxes(events, raw);
   if (params_.split_balance > 0) split_.split(events, features, modes, raw);
   std::vector<int> size(modes.size(), 0);

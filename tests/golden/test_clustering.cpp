@@ -108,6 +108,34 @@ TEST(SeededClimbs, TheLinkDoesNotJoinShapesAGapApart) {
   EXPECT_EQ(packet.cluster(p).count, 2);
 }
 
+// The link distance holds up to link_px_width and grows with a wider sensor, to twice link_px.
+TEST(SeededClimbs, TheLinkDistanceGrowsWithTheSensorWidthUpToTwice) {
+  const Params p;
+  ASSERT_EQ(p.link_px_width, 320);
+  EXPECT_DOUBLE_EQ(link_px_at(p, {128, 128}), p.link_px);
+  EXPECT_DOUBLE_EQ(link_px_at(p, {320, 240}), p.link_px);
+  EXPECT_DOUBLE_EQ(link_px_at(p, {480, 360}), 1.5 * p.link_px);
+  EXPECT_DOUBLE_EQ(link_px_at(p, {640, 480}), 2 * p.link_px);
+  EXPECT_DOUBLE_EQ(link_px_at(p, {1280, 720}), 2 * p.link_px) << "no wider sensor was measured";
+  Params unscaled = p;
+  unscaled.link_px_width = 0;
+  EXPECT_DOUBLE_EQ(link_px_at(unscaled, {1280, 720}), p.link_px) << "width 0: the same on every sensor";
+}
+
+// A ring of radius 120 px on a 640x480 sensor with events 6-7 px apart: the kernel (h = 25.6
+// px there) splits it into arcs, 4 px links leave them apart, and the defaults' 8 px on that
+// sensor join them.
+TEST(SeededClimbs, OnAWideSensorTheLinkBridgesTheWiderGapsOfAnOutline) {
+  const SensorSize wide{640, 480};
+  Params p = seeded();
+  const std::vector<Event> events = ring(320, 240, 120, 3);
+  const FeatureMatrix features = packet_features(events, wide, p);
+  ASSERT_DOUBLE_EQ(link_px_at(p, wide), 8);
+  EXPECT_EQ(cluster_packet(events, features, p, {}, {}, wide).count, 1);
+  p.link_px_width = 0;
+  EXPECT_GT(cluster_packet(events, features, p, {}, {}, wide).count, 2);
+}
+
 TEST(SeededClimbs, AWarmSeedClimbsWithItsClustersSize) {
   // A ring of radius 30 px and a warm seed 10 px inside its right edge. With h (9.6 px) the
   // seed's ball holds nothing; with its own bandwidth (1.5 times its cluster's spread of 30 px,
