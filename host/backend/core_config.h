@@ -185,8 +185,9 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   need(p.coast_us <= (1 << 18), "the core predicts at most 262 ms ahead (--coast-us)");
   need(p.confirm_hits <= 255 && p.min_cluster_size <= 65535, "confirm-hits or min-cluster-size too large for the core");
 
-  need(link_px_at(p, sensor) < S::kLinkMax + 1, "the core links clusters at most " + std::to_string(S::kLinkMax) +
-                                                     " px apart (--link-px, scaled on this sensor by --link-px-width)");
+  const double link_px = link_px_at(p, sensor);
+  need(link_px < S::kLinkMax + 1, "the core links clusters at most " + std::to_string(S::kLinkMax) +
+                                      " px apart (--link-px, scaled on this sensor by --link-px-width)");
   need(p.seeding == Seeding::kEvery || p.warm_max_bandwidth <= S::kReachMax * p.bandwidth,
        "the core's warm balls reach at most " + std::to_string(S::kReachMax) + " bandwidths (--warm-max-bandwidth)");
   need(p.filter_support <= 8, "--filter-support is at most 8");
@@ -234,7 +235,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.warm_start = p.warm_start;
   c.warm_scale2 = static_cast<std::uint32_t>(rnd(p.warm_scale * p.warm_scale * std::ldexp(1.0, hls::kSpreadFrac)));
   c.warm_ball2_max = static_cast<std::uint64_t>(rnd(std::pow(std::max(p.bandwidth, p.warm_max_bandwidth) / unit * climb, 2)));
-  c.link2 = static_cast<std::uint32_t>(std::floor(link_px_at(p, sensor) * link_px_at(p, sensor)));
+  c.link2 = static_cast<std::uint32_t>(std::floor(link_px * link_px));
   c.max_iterations = static_cast<std::uint8_t>(p.max_iterations);
   c.tolerance = static_cast<std::uint32_t>(rnd(p.tolerance / unit * climb));
   c.merge_radius2 = static_cast<std::uint64_t>(rnd(std::pow(p.merge_radius / unit * climb, 2)));
