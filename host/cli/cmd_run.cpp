@@ -76,6 +76,11 @@ void run(const RunOptions& o) {
     throw std::logic_error("backend '" + o.backend + "' returned " + grouped(sink.events) + " labelled events for " +
                            grouped(s.events_in) + " inputs");
   }
+  // A source that failed before its first event has nothing to summarize: the error alone.
+  if (!source_error.empty() && s.events_in == 0) {
+    std::fprintf(stderr, "evms: %s\n", read::printable(source_error).c_str());
+    throw ExitStatus{1};
+  }
   // With the rows on standard output, the summary goes to standard error.
   std::FILE* summary = o.out == "-" ? stderr : stdout;
   const double span_s = static_cast<double>(t_last - t_first) * 1e-6;

@@ -143,6 +143,21 @@ TEST(Cli, BadInputIsOneLineNamingFileAndPosition) {
   }
 }
 
+// A file that is not events at all (a text file given by mistake) gets its error and no summary
+// of zero events; one that fails later keeps the summary of what was read before.
+TEST(Cli, ASourceThatFailsBeforeItsFirstEventPrintsOnlyItsError) {
+  TempDir dir;
+  const std::string prose = dir.write("LICENSE.txt", "GNU GENERAL PUBLIC LICENSE\nVersion 3\n");
+  const auto r = run_command(evms_binary() + " run " + prose + " --quiet");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, "evms: " + prose + ": line 1: timestamp 'GNU' is not a non-negative decimal number of seconds\n");
+  const std::string later = dir.write("later.txt", "0.1 1 2 1\n0.2 1 2\n");
+  const auto l = run_command(evms_binary() + " run " + later + " --quiet");
+  EXPECT_EQ(l.exit_code, 1);
+  EXPECT_NE(l.out.find("events in   1 "), std::string::npos) << l.out;
+}
+
 // A file cannot put terminal escapes on the screen through an error message that quotes it.
 TEST(Cli, ErrorMessagesEscapeTheInputsControlBytes) {
   TempDir dir;
