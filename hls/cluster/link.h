@@ -65,11 +65,19 @@ class ModeLinks {
         if (k >= listed) break;
         const int x0 = listed_[k] % S::kMaxWidth, y0 = listed_[k] / S::kMaxWidth;
         const int mode = mode_[listed_[k]];
+      // Only the disc's own pixels: a build whose kLinkMax exceeds the registered distance
+      // (the host build holds 8 px for wide sensors and links 4 px below 320 px) does not pay
+      // for the largest window on every sensor. The rows shrink as dy grows, so the first row
+      // without reach ends the window.
       window:
         for (int dy = 0; dy <= S::kLinkMax; ++dy) {
-          for (int dx = -S::kLinkMax; dx <= S::kLinkMax; ++dx) {
+          if (half_width[dy] < 0) break;
+          const int first_dx = dy == 0 ? 1 : -half_width[dy];
+        row:
+          for (int i = 0; i <= 2 * S::kLinkMax; ++i) {
 #pragma HLS PIPELINE II = 1
-            if (dx > half_width[dy] || -dx > half_width[dy] || (dy == 0 && dx <= 0)) continue;
+            const int dx = first_dx + i;
+            if (dx > half_width[dy]) break;
             const int x = x0 + dx, y = y0 + dy;
             if (x < 0 || x >= cfg.sensor_width || y >= cfg.sensor_height || !is_marked(x, y)) continue;
             const int other = mode_[y * S::kMaxWidth + x];
