@@ -76,11 +76,12 @@ void run(const RunOptions& o) {
     throw std::logic_error("backend '" + o.backend + "' returned " + grouped(sink.events) + " labelled events for " +
                            grouped(s.events_in) + " inputs");
   }
-  // A source that failed before its first event has nothing to summarize: the error alone.
-  if (!source_error.empty() && s.events_in == 0) {
+  const auto fail_on_source_error = [&source_error] {
     std::fprintf(stderr, "evms: %s\n", read::printable(source_error).c_str());
     throw ExitStatus{1};
-  }
+  };
+  // A source that failed before its first event has nothing to summarize: the error alone.
+  if (!source_error.empty() && s.events_in == 0) fail_on_source_error();
   // With the rows on standard output, the summary goes to standard error.
   std::FILE* summary = o.out == "-" ? stderr : stdout;
   const double span_s = static_cast<double>(t_last - t_first) * 1e-6;
@@ -154,8 +155,7 @@ void run(const RunOptions& o) {
   }
   if (!source_error.empty()) {
     std::fflush(summary);
-    std::fprintf(stderr, "evms: %s\n", read::printable(source_error).c_str());
-    throw ExitStatus{1};
+    fail_on_source_error();
   }
   // A live source has no end but the one the user gives it; a recording cut short says so.
   if (interrupted() && !live) {
