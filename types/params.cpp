@@ -120,6 +120,14 @@ const std::array kTable = {
               "(and min-cluster-size): a sparse part's polarities say little", &Params::split_min_events, 1, 65535},
     ParamInfo{"split-cell", "h", "with --split-balance, a part is 8-connected cells of this many bandwidths a side (at least 2 px)",
               &Params::split_cell, 0.05, 10},
+    ParamInfo{"edge-join", "h", "with seeded climbs, a cluster of mostly ON events and a cluster of mostly OFF events "
+              "whose centres lie within this many bandwidths of the sensor's larger side, each the other's nearest such and neither more than four "
+              "times the other's events, become one: the leading and trailing edges of an outline too large for one "
+              "ball; 0 = off", &Params::edge_join, 0, 100},
+    ParamInfo{"edge-balance", "1", "with --edge-join, a cluster is mostly one polarity when |ON - OFF| is at least this "
+              "times its events (in steps of 1/256)", &Params::edge_balance, 0, 1},
+    ParamInfo{"edge-min-events", "events", "with --edge-join, the clusters it looks at hold at least this many events "
+              "(and min-cluster-size)", &Params::edge_min_events, 1, 65535},
     ParamInfo{"max-clusters", "clusters",
               "clusters per packet; modes that would open a further one become noise",
               &Params::max_clusters, 1, 256},
@@ -227,6 +235,17 @@ SplitRule split_rule(const Params& p, SensorSize sensor) {
   rule.balance = std::max<std::uint32_t>(1, fraction(p.split_balance));
   rule.share = fraction(p.split_share);
   rule.min_events = static_cast<std::uint32_t>(std::max(p.split_min_events, p.min_cluster_size));
+  return rule;
+}
+
+EdgeRule edge_rule(const Params& p, SensorSize sensor) {
+  EdgeRule rule;
+  if (p.edge_join <= 0) return rule;
+  // In pixels: edge_join bandwidths of the sensor's larger side, in 1/16 px.
+  const double side = std::max(sensor.width, sensor.height) / p.scale_xy;
+  rule.radius2 = static_cast<std::uint64_t>(std::llround(std::pow(16 * p.edge_join * p.bandwidth * side, 2)));
+  rule.balance = std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::lround(std::ldexp(p.edge_balance, kSplitFractionFrac))));
+  rule.min_events = static_cast<std::uint32_t>(std::max(p.edge_min_events, p.min_cluster_size));
   return rule;
 }
 

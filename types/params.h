@@ -93,6 +93,11 @@ struct Params {
   double split_share = 0.1;          // ... counting the parts of at least this share of its events
   int split_min_events = 64;         // ... and of at least this many events
   double split_cell = 0.4;           // ... parts of 8-connected cells this many bandwidths a side
+  double edge_join = 5;              // seeded climbs: a cluster of mostly ON events and one of mostly OFF
+                                     // events whose centres lie within this many bandwidths of the larger
+                                     // side, each the other's nearest, become one (golden/cluster/edge_join.h); 0 = off
+  double edge_balance = 0.5;         // ... mostly one polarity: |ON - OFF| at least this times its events
+  int edge_min_events = 16;          // ... in a cluster of at least this many events
 
   // --- tracker --------------------------------------------------------------------------
   Measure measure = Measure::kPolarityMidpoint;
@@ -175,12 +180,25 @@ double link_px_at(const Params& p, SensorSize sensor);
 // balance = 0 turns the split off.
 inline constexpr int kSplitCellFrac = 16;
 inline constexpr int kSplitFractionFrac = 8;
+// A centre of `events` pixels along one axis from their coordinates' sum, in 1/16 px, rounded
+// half up: the polarity split's parts and the edge join's clusters (the same in hls/math/round.h).
+constexpr std::int64_t centre_sixteenths(std::int64_t sum, int events) { return (32 * sum + events) / (2 * std::int64_t{events}); }
 struct SplitRule {
   std::uint32_t cell_scale_x = 0, cell_scale_y = 0;  // 2^kSplitCellFrac / cell side in px, rounded
   std::uint32_t balance = 0, share = 0;              // split_balance, split_share: kSplitFractionFrac fraction bits
   std::uint32_t min_events = 0;                      // the larger of split_min_events and min_cluster_size
 };
 SplitRule split_rule(const Params& p, SensorSize sensor);
+
+// The edge join's rule in integers (golden/cluster/edge_join.h, hls/cluster/edge_join.h): two
+// centres (1/16 px) lie within reach when dx^2 + dy^2 <= radius2.
+inline constexpr int kEdgeSizeRatio = 4;  // neither cluster of a pair holds more than this many times the other's events
+struct EdgeRule {
+  std::uint64_t radius2 = 0;     // (16 edge_join h max(W, H) / scale_xy)^2, rounded; 0 = off
+  std::uint32_t balance = 0;     // edge_balance, kSplitFractionFrac fraction bits (at least 1)
+  std::uint32_t min_events = 0;  // the larger of edge_min_events and min_cluster_size
+};
+EdgeRule edge_rule(const Params& p, SensorSize sensor);
 
 std::span<const ParamInfo> param_table();
 const ParamInfo* find_param(const std::string& name);
@@ -211,6 +229,8 @@ struct Method {
   Params resolve(SensorSize sensor) const;
   // "--preset paper --bandwidth 0.1", for reports.
   std::string describe() const;
+  // Whether the command line set parameter `name` (a preset's value does not count).
+  bool sets(const std::string& name) const;
 };
 
 }  // namespace evms

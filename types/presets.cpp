@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -42,6 +43,7 @@ Params gaussian() {
   p.link_px = 0;
   p.join_boxes = false;
   p.split_balance = 0;
+  p.edge_join = 0;
   p.max_clusters = 16;
   p.measure = Measure::kCentroid;
   p.association = Association::kKalman;
@@ -109,6 +111,10 @@ Params Method::resolve(SensorSize sensor) const {
   }
   if (std::string error = validate(p); !error.empty()) throw std::invalid_argument(error);
   return p;
+}
+
+bool Method::sets(const std::string& name) const {
+  return std::any_of(settings.begin(), settings.end(), [&](const auto& setting) { return setting.first == name; });
 }
 
 std::string Method::describe() const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "golden/cluster/edge_join.h"
 #include "golden/cluster/kernel.h"
 #include "golden/cluster/mean_shift.h"
 
@@ -30,7 +31,7 @@ PacketClusters every_event(const FeatureMatrix& features, const Params& params) 
 }  // namespace
 
 PacketClusterer::PacketClusterer(const Params& params, SensorSize sensor)
-    : params_(params), sensor_(sensor), sensor_area_(feature_area(sensor, params)), links_(sensor), split_(params, sensor) {}
+    : params_(params), sensor_(sensor), sensor_area_(feature_area(sensor, params)), links_(sensor), split_(params, sensor), edge_(edge_rule(params, sensor)) {}
 
 PacketClusters PacketClusterer::cluster(std::span<const Event> events, const FeatureMatrix& features,
                                         const std::vector<Eigen::Vector4d>& warm_modes, const std::vector<double>& warm_spreads) {
@@ -68,6 +69,7 @@ PacketClusters PacketClusterer::finish(std::span<const Event> events, const Feat
   if (params_.link_px > 0) links_.join(events, link_px_at(params_, sensor_), static_cast<int>(modes.size()), raw);
   if (params_.join_boxes) join_overlapping_boxes(events, raw);
   if (params_.split_balance > 0) split_.split(events, features, modes, raw);
+  join_edges(events, edge_, static_cast<int>(modes.size()), raw);
   std::vector<int> size(modes.size(), 0);
   for (int c : raw) {
     if (c >= 0) ++size[static_cast<size_t>(c)];

@@ -61,6 +61,7 @@ class PacketClusterer {
   SeededClimbs climbs_;
   ModeLinks links_;
   PolaritySplit split_;
+  EdgeRule edge_;  // the edge join's (golden/cluster/edge_join.h)
 };
 
 // One packet on its own.

@@ -7,13 +7,6 @@
 
 namespace evms::golden {
 
-namespace {
-
-// A part's centre along one axis, 1/16 px, rounded half up.
-std::int64_t centre(std::int64_t sum, int events) { return (32 * sum + events) / (2 * std::int64_t{events}); }
-
-}  // namespace
-
 PolaritySplit::PolaritySplit(const Params& params, SensorSize sensor)
     : rule_(split_rule(params, sensor)) {
   if (rule_.balance == 0) return;
@@ -103,7 +96,8 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
           int nearest = 0;
           for (const int r : large_) {
             const Part& l = part_[static_cast<size_t>(r)];
-            const std::int64_t dx = centre(q.x, q.events) - centre(l.x, l.events), dy = centre(q.y, q.events) - centre(l.y, l.events);
+            const std::int64_t dx = centre_sixteenths(q.x, q.events) - centre_sixteenths(l.x, l.events);
+            const std::int64_t dy = centre_sixteenths(q.y, q.events) - centre_sixteenths(l.y, l.events);
             if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, nearest = l.large;
           }
           q.large = nearest;

@@ -27,6 +27,7 @@
 #include "hls/cluster/seeded_climbs.h"
 #include "hls/cluster/union_find.h"
 #include "hls/core/config.h"
+#include "hls/math/round.h"
 
 namespace evms::hls {
 
@@ -179,9 +180,6 @@ class PolaritySplit {
     return large;
   }
 
-  // A part's centre along one axis, 1/16 px, rounded half up.
-  static std::int64_t centre(std::int64_t sum, int events) { return (32 * sum + events) / (2 * std::int64_t{events}); }
-
   // Large part k takes mode c (k = 0) or mode modes.count + k - 1; a small part the large part
   // with the nearest centre. Each large part's mode is its events' mean.
   void reassign(const Features<S>& phi, int first, int size, int large, int c, std::int16_t mode_of[S::kPacketMax],
@@ -205,8 +203,8 @@ class PolaritySplit {
 #pragma HLS PIPELINE II = 1
           if (l >= large) break;
           const int q = large_root_[l];
-          const std::int64_t dx = centre(sum_x_[r], events_[r]) - centre(sum_x_[q], events_[q]);
-          const std::int64_t dy = centre(sum_y_[r], events_[r]) - centre(sum_y_[q], events_[q]);
+          const std::int64_t dx = mean_sixteenths(sum_x_[r], events_[r]) - mean_sixteenths(sum_x_[q], events_[q]);
+          const std::int64_t dy = mean_sixteenths(sum_y_[r], events_[r]) - mean_sixteenths(sum_y_[q], events_[q]);
           if (k < 0 || dx * dx + dy * dy < best) best = dx * dx + dy * dy, k = l;
         }
         large_of_[r] = static_cast<std::int16_t>(k);

@@ -1,6 +1,7 @@
-// The evms core: filter -> packets -> features -> hybrid mean shift -> mode merging ->
-// centroids -> tracking -> labels, bit-accurate, for one Shape. rtl/ implements exactly this
-// and sim/ checks every output word against it.
+// The evms core: filter -> packets -> features -> hybrid mean shift -> mode merging (or seeded
+// climbs -> links -> polarity split -> edge join) -> centroids -> tracking -> labels,
+// bit-accurate, for one Shape. rtl/ implements all of it but the edge join, and sim/ checks
+// every output word against it.
 //
 // Word by word: an event passes the background-activity filter (or is noise), joins the
 // pending queue (every event, in input order) and, when kept, the open packet. A packet closes
@@ -14,6 +15,7 @@
 #include <cstdint>
 
 #include "hls/cluster/centroid.h"
+#include "hls/cluster/edge_join.h"
 #include "hls/cluster/features.h"
 #include "hls/cluster/link.h"
 #include "hls/cluster/mean_shift.h"
@@ -37,6 +39,7 @@ struct PacketTrace {
   int sweeps = 0;       // Gaussian sweeps, or seeded climb steps
   int clusters = 0;
   int splits_left_whole = 0;  // clusters the polarity split left whole: no room in the mode table
+  int edges_joined = 0;       // pairs of one-polarity modes the edge join made one
   MergeTrace merge;
   ClimbTrace climbs;
   TrackerTrace track;
@@ -118,6 +121,7 @@ class Core {
         climbs_.run(phi, n_, cfg_, warm_, mode_of, modes, trace.climbs);
         links_.run(packet_, n_, modes.count, cfg_, mode_of);
         trace.splits_left_whole = split_.run(packet_, phi, n_, cfg_, mode_of, modes);
+        trace.edges_joined = edges_.run(packet_, n_, cfg_, modes.count, mode_of);
         clusters = keep_clusters<S>(mode_of, n_, modes, cfg_, cluster_of, warm_);
         warm_balls<S>(phi, n_, cluster_of, cfg_, warm_);
         sweeps = trace.climbs.steps;
@@ -163,6 +167,7 @@ class Core {
   SeededClimbs<S> climbs_;
   ModeLinks<S> links_;
   PolaritySplit<S> split_;
+  EdgeJoin<S> edges_;
   Modes<S> warm_;                // the previous packet's cluster modes
   PacketEvents<S> packet_;
   int n_ = 0;

@@ -28,7 +28,7 @@ template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsM
           int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,
           int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4,
           int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0, int HasPolaritySplit = 0,
-          int HasPolarityMidpoint = 0>
+          int HasPolarityMidpoint = 0, int HasEdgeJoin = 0>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -61,6 +61,10 @@ struct Shape {
   // rtl/cluster/evms_centroid.sv); a build without it measures by the centre of mass, and the
   // host refuses --measure polarity-midpoint for it.
   static constexpr int kHasPolarityMidpoint = HasPolarityMidpoint;
+  // Whether the build's method joins the two edges of an outline (hls/cluster/edge_join.h). The
+  // C++ core holds it; no RTL holds it yet, so the rtl backend refuses it, and the board builds,
+  // which lack it, run without it in every backend (host/backend/core_config.h).
+  static constexpr int kHasEdgeJoin = HasEdgeJoin;
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;
@@ -143,10 +147,11 @@ using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // method's default packets (3,000 events), clusters and tracks (128 each), and a pending queue
 // deep enough that noisy recordings (a third noise, say) never close a packet early, as golden
 // never does.
-using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1>;
+using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1>;
 // The RTL's host-simulation build: HostShape's sensor, words and tables with smaller packet,
 // cluster and track sizes, both clustering paths and the polarity split. For settings within
-// those sizes the two give the same words.
-using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 8, 32, 8, 1, 1, 1, 1>;
+// those sizes the two give the same words. Its method keeps the edge join, which its RTL lacks,
+// so that the rtl backend refuses the default method rather than run another.
+using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 8, 32, 8, 1, 1, 1, 1, 1>;
 
 }  // namespace evms::hls

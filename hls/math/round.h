@@ -10,6 +10,9 @@ constexpr std::int64_t shr_rnd(std::int64_t v, int s) {
   return s <= 0 ? v * (std::int64_t{1} << -s) : (v + (std::int64_t{1} << (s - 1))) >> s;
 }
 
+// A mean of `count` pixel coordinates from their sum, in 1/16 px, rounded half up (count > 0).
+constexpr std::int64_t mean_sixteenths(std::int64_t sum, int count) { return (32 * sum + count) / (2 * std::int64_t{count}); }
+
 constexpr std::int64_t clamp_sym(std::int64_t v, std::int64_t bound) {
   return v > bound ? bound : (v < -bound ? -bound : v);
 }

@@ -14,6 +14,7 @@
 
 #include "types/params.h"
 #include "hls/cluster/centroid.h"
+#include "hls/cluster/edge_join.h"
 #include "hls/cluster/seeded_climbs.h"
 #include "hls/core/config.h"
 #include "hls/core/configs.h"
@@ -36,9 +37,9 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 }
 
 // The method `p` within build S: the packet size, cluster and track counts cut to what S holds,
-// and without the polarity split and the polarity midpoint where S does not hold them
-// (Shape::kHasPolaritySplit, kHasPolarityMidpoint: the board builds), each unless `kept(name)`
-// says the command line set it, for the backend to refuse what S cannot run.
+// and without the polarity split, the polarity midpoint and the edge join where S does not hold
+// them (Shape::kHasPolaritySplit, kHasPolarityMidpoint, kHasEdgeJoin: the board builds), each
+// unless `kept(name)` says the command line set it, for the backend to refuse what S cannot run.
 template <class S, class Kept>
 Params within_build(Params p, Kept kept) {
   auto cut = [&](int& value, const char* name, int build_max) {
@@ -49,6 +50,7 @@ Params within_build(Params p, Kept kept) {
   cut(p.max_tracks, "max-tracks", S::kTracksMax);
   if (!S::kHasPolaritySplit && !kept("split-balance")) p.split_balance = 0;
   if (!S::kHasPolarityMidpoint && !kept("measure")) p.measure = Measure::kCentroid;
+  if (!S::kHasEdgeJoin && !kept("edge-join")) p.edge_join = 0;
   return p;
 }
 
@@ -120,7 +122,7 @@ inline std::string core_unsupported(const Params& p) {
 // Gaussian mean shift of every event, the seeded climbs, or both: Shape::kHasGaussianPath,
 // kHasSeededPath), the polarity split and the polarity midpoint where it holds them
 // (kHasPolaritySplit, kHasPolarityMidpoint) and the tracker's policies but the gate's widening by
-// the spread and coasting by packets.
+// the spread and coasting by packets. No build holds the edge join (hls/cluster/edge_join.h).
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
   bool gaussian_path = false, seeded_path = false, polarity_split = false, polarity_midpoint = false;
@@ -138,7 +140,7 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!seeded && !gaussian_path) return "the RTL build '" + build + "' clusters by seeded climbs only, not " + detail::setting(p, "seeding");
   const Params rtl = preset("gaussian");
-  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets"})) {
+  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets", "edge-join"})) {
     return "the RTL core does not implement " + detail::setting(p, name) + " (add --" + name + " " + param_text(rtl, *find_param(name)) + ")";
   }
   if (!polarity_split && seeded && p.split_balance != 0) {
@@ -256,6 +258,11 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.split_min_events = static_cast<std::uint16_t>(split.min_events);
   c.split_cell_scale_x = split.cell_scale_x;
   c.split_cell_scale_y = split.cell_scale_y;
+  static_assert(hls::kEdgeSizeRatio == kEdgeSizeRatio);
+  const EdgeRule edge = seeded ? edge_rule(p, sensor) : EdgeRule{};  // golden joins the seeded path's clusters only
+  c.edge_radius2 = edge.radius2;
+  c.edge_balance = static_cast<std::uint16_t>(edge.balance);
+  c.edge_min_events = static_cast<std::uint16_t>(edge.min_events);
   c.midpoint_min = seeded && p.measure == Measure::kPolarityMidpoint ? static_cast<std::uint16_t>(p.midpoint_min_events) : 0;
   c.evict_stale = p.evict_stale;
   c.report_tentative = p.report_tentative;

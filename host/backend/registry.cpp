@@ -29,15 +29,11 @@ void check_core_build(const std::string& core) {
 
 namespace {
 
-bool set_by_user(const Method& method, const char* name) {
-  return std::any_of(method.settings.begin(), method.settings.end(), [&](const auto& setting) { return setting.first == name; });
-}
-
 // The method within build S (within_build, host/backend/core_config.h), keeping what the
 // command line set.
 template <class S>
 Params fit_sizes(Params p, const Method& method) {
-  return within_build<S>(p, [&](const char* name) { return set_by_user(method, name); });
+  return within_build<S>(p, [&](const char* name) { return method.sets(name); });
 }
 
 }  // namespace

@@ -126,6 +126,14 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("the RTL core does not implement --coast-packets 3 (add --coast-packets 0)"), std::string::npos) << r.err;
+  // No RTL build joins edges: the default method on the host build is refused, not run without it.
+  const auto edges = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --quiet");
+  EXPECT_EQ(edges.exit_code, 1);
+  EXPECT_EQ(std::count(edges.err.begin(), edges.err.end(), '\n'), 1) << edges.err;
+  EXPECT_NE(edges.err.find("the RTL core does not implement --edge-join 5 (add --edge-join 0)"), std::string::npos) << edges.err;
+  const auto board_edges = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --edge-join 5 --quiet");
+  EXPECT_EQ(board_edges.exit_code, 1);
+  EXPECT_NE(board_edges.err.find("does not implement --edge-join 5"), std::string::npos) << board_edges.err;
   // The boards' builds do not hold the polarity split.
   const auto split = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --split-balance 0.3 --quiet");
   EXPECT_EQ(split.exit_code, 1);
@@ -165,13 +173,13 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   EXPECT_EQ(fixed_split.exit_code, 0) << fixed_split.err;
 }
 
-// The host RTL build runs the default method in its sizes, the polarity split included; its labels
-// and tracks are the fixed-point core's.
+// The host RTL build runs the default method in its sizes, the polarity split included and the
+// edge join left out (no RTL build holds it); its labels and tracks are the fixed-point core's.
 TEST(MethodOutputs, TheRtlRunsTheDefaultMethodAsTheFixedCore) {
   TempDir dir;
   // Packets of 256 events hold few clusters of twice the default 64 events a part, so the parts
   // counted here are smaller, which also sets the register to a value other than its default.
-  const std::string scene = " run 'gen://SCENE' --packet-size 256 --max-clusters 16 --max-tracks 16 --split-min-events 16 --quiet";
+  const std::string scene = " run 'gen://SCENE' --packet-size 256 --max-clusters 16 --max-tracks 16 --split-min-events 16 --edge-join 0 --quiet";
   auto run = [&](const std::string& name, const std::string& backend, const std::string& extra) {
     const std::string out = dir.path(name);
     std::string command = scene;
