@@ -5,6 +5,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/common.h"
 #include "host/cli/config_file.h"
+#include "types/markdown.h"
 
 namespace evms::cli {
 
@@ -17,7 +18,7 @@ std::string parameters_markdown() {
       "| option | default | unit | meaning |\n|---|---|---|---|\n";
   for (const ParamInfo& info : param_table()) {
     s += std::string("| `--") + info.name + "` | " + param_text(defaults, info) + " | " + info.unit +
-         " | " + info.help + " |\n";
+         " | " + markdown_cell(info.help) + " |\n";
   }
   return s;
 }

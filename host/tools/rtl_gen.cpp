@@ -39,6 +39,7 @@
 #include "hls/core/words.h"
 #include "host/backend/core_config.h"
 #include "host/link/link_frames.h"
+#include "types/markdown.h"
 #include "types/params.h"
 
 namespace {
@@ -338,7 +339,7 @@ void write_docs(const std::string& path, const std::vector<BuildFiles>& builds) 
        "Formats (fraction bits and units) are those of hls/core/shape.h.\n\n## Builds\n\n";
   d << "| build | reset registers for | reset method | what it is |\n|---|---|---|---|\n";
   for (const BuildFiles& b : builds) {
-    d << "| " << b.name << " | " << b.width << "x" << b.height << " | `--preset " << backend::kBuildResetPreset << "` | " << b.description << " |\n";
+    d << "| " << b.name << " | " << b.width << "x" << b.height << " | `--preset " << backend::kBuildResetPreset << "` | " << markdown_cell(b.description) << " |\n";
   }
   d << "\n## Shape parameters (hls/core/shape.h)\n\n| parameter |";
   for (const BuildFiles& b : builds) d << " " << b.name << " |";
@@ -363,12 +364,12 @@ void write_docs(const std::string& path, const std::vector<BuildFiles>& builds) 
     const Register& r = kRtlRegisters[i];
     d << "| `" << r.name << "` | " << r.bits << " | yes |";
     for (const BuildFiles& b : builds) d << " " << b.registers[i] << " |";
-    d << " " << r.description << " |\n";
+    d << " " << markdown_cell(r.description) << " |\n";
   }
   for (const Register& r : kHlsRegisters) {
     d << "| `" << r.name << "` | " << r.bits << " | no |";
     for (size_t k = 0; k < builds.size(); ++k) d << "  |";
-    d << " " << r.description << " |\n";
+    d << " " << markdown_cell(r.description) << " |\n";
   }
   d << "\n## Controller states (hls/core/schedule.h)\n\n| encoding | state | counted as |\n|---|---|---|\n";
   for (int s = 0; s < hls::kControllerStates; ++s) {

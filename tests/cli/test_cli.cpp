@@ -829,6 +829,17 @@ TEST(Cli, ParameterDocsAreCurrent) {
   std::stringstream ss;
   ss << doc.rdbuf();
   EXPECT_EQ(ss.str(), r.out) << "docs/parameters.md is stale: regenerate it with 'evms params --markdown'";
+  // Every row has its four cells: a '|' in a meaning ("|ON - OFF|") is escaped, not a cell's end.
+  std::istringstream rows(r.out);
+  int table_rows = 0;
+  for (std::string row; std::getline(rows, row);) {
+    if (row.rfind("| `--", 0) != 0) continue;
+    ++table_rows;
+    int ends = 0;
+    for (size_t i = 0; i < row.size(); ++i) ends += row[i] == '|' && (i == 0 || row[i - 1] != '\\');
+    EXPECT_EQ(ends, 5) << row;
+  }
+  EXPECT_GT(table_rows, 50);
 }
 
 }  // namespace
