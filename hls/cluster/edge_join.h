@@ -55,7 +55,7 @@ class EdgeJoin {
 #pragma HLS PIPELINE II = 1
       if (c >= modes) break;
       nearest_[c] = -1;
-      if (events_[c] < cfg.edge_min_events) continue;
+      if (events_[c] == 0 || events_[c] < cfg.edge_min_events) continue;  // an empty mode has no centre, whatever the register
       const std::int64_t surplus = 2 * std::int64_t{on_[c]} - events_[c];
       const std::int64_t needed = std::int64_t{cfg.edge_balance} * events_[c];
       const int lean = surplus * (1 << kSplitFractionFrac) >= needed ? 1 : (-surplus * (1 << kSplitFractionFrac) >= needed ? -1 : 0);
