@@ -86,6 +86,18 @@ TEST(BackendsAgree, CyclesOfTheSeededArtyBuildAreMeasuredOnTheRtl) {
   EXPECT_NE(table.err.find("--table"), std::string::npos) << table.err;
 }
 
+// No RTL build holds the edge join: the host build's cycles are those of the default method
+// without it, which the report says, and asking for it is refused.
+TEST(BackendsAgree, CyclesOfTheHostBuildLeaveTheEdgeJoinOutAndSaySo) {
+  const std::string scene = " cycles \"gen://rotation?duration-s=0.03&seed=9\" --build host";
+  const auto plain = run_command(evms_binary() + scene);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.out.find("--preset evms without the edge join (no RTL build holds it)"), std::string::npos) << plain.out;
+  const auto asked = run_command(evms_binary() + scene + " --edge-join 5");
+  EXPECT_NE(asked.exit_code, 0);
+  EXPECT_NE(asked.err.find("does not implement --edge-join 5"), std::string::npos) << asked.err;
+}
+
 TEST(BackendsAgree, ACoreBuildRefusesParametersBeyondItsLimits) {
   const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --core ice40 --quiet");
   EXPECT_NE(r.exit_code, 0);
