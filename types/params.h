@@ -180,9 +180,9 @@ double link_px_at(const Params& p, SensorSize sensor);
 // balance = 0 turns the split off.
 inline constexpr int kSplitCellFrac = 16;
 inline constexpr int kSplitFractionFrac = 8;
-// A centre of `events` pixels along one axis from their coordinates' sum, in 1/16 px, rounded
-// half up: the polarity split's parts and the edge join's clusters (the same in hls/math/round.h).
-constexpr std::int64_t centre_sixteenths(std::int64_t sum, int events) { return (32 * sum + events) / (2 * std::int64_t{events}); }
+// The mean of `count` pixel coordinates from their sum, in 1/16 px, rounded half up: the centres
+// of the polarity split's parts and the edge join's clusters (hls/math/round.h has the same).
+constexpr std::int64_t mean_sixteenths(std::int64_t sum, int count) { return (32 * sum + count) / (2 * std::int64_t{count}); }
 struct SplitRule {
   std::uint32_t cell_scale_x = 0, cell_scale_y = 0;  // 2^kSplitCellFrac / cell side in px, rounded
   std::uint32_t balance = 0, share = 0;              // split_balance, split_share: kSplitFractionFrac fraction bits

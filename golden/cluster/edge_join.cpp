@@ -36,8 +36,8 @@ void join_edges(std::span<const Event> events, const EdgeRule& rule, int cluster
     for (size_t b = 0; b < cl.size(); ++b) {
       if (cl[b].lean != -cl[a].lean) continue;
       if (cl[a].events > kEdgeSizeRatio * cl[b].events || cl[b].events > kEdgeSizeRatio * cl[a].events) continue;
-      const std::int64_t dx = centre_sixteenths(cl[a].x, cl[a].events) - centre_sixteenths(cl[b].x, cl[b].events);
-      const std::int64_t dy = centre_sixteenths(cl[a].y, cl[a].events) - centre_sixteenths(cl[b].y, cl[b].events);
+      const std::int64_t dx = mean_sixteenths(cl[a].x, cl[a].events) - mean_sixteenths(cl[b].x, cl[b].events);
+      const std::int64_t dy = mean_sixteenths(cl[a].y, cl[a].events) - mean_sixteenths(cl[b].y, cl[b].events);
       const auto d2 = static_cast<std::uint64_t>(dx * dx + dy * dy);
       if (d2 <= rule.radius2 && (nearest[a] < 0 || d2 < best)) nearest[a] = static_cast<int>(b), best = d2;
     }

@@ -96,8 +96,8 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
           int nearest = 0;
           for (const int r : large_) {
             const Part& l = part_[static_cast<size_t>(r)];
-            const std::int64_t dx = centre_sixteenths(q.x, q.events) - centre_sixteenths(l.x, l.events);
-            const std::int64_t dy = centre_sixteenths(q.y, q.events) - centre_sixteenths(l.y, l.events);
+            const std::int64_t dx = mean_sixteenths(q.x, q.events) - mean_sixteenths(l.x, l.events);
+            const std::int64_t dy = mean_sixteenths(q.y, q.events) - mean_sixteenths(l.y, l.events);
             if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, nearest = l.large;
           }
           q.large = nearest;

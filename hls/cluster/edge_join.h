@@ -58,7 +58,8 @@ class EdgeJoin {
       if (events_[c] == 0 || events_[c] < cfg.edge_min_events) continue;  // an empty mode has no centre, whatever the register
       const std::int64_t surplus = 2 * std::int64_t{on_[c]} - events_[c];
       const std::int64_t needed = std::int64_t{cfg.edge_balance} * events_[c];
-      const int lean = surplus * (1 << kSplitFractionFrac) >= needed ? 1 : (-surplus * (1 << kSplitFractionFrac) >= needed ? -1 : 0);
+      const std::int64_t scaled = surplus * (1 << kSplitFractionFrac);
+      const int lean = scaled >= needed ? 1 : (-scaled >= needed ? -1 : 0);
       if (lean == 0) continue;
       list_[leaning] = static_cast<std::int16_t>(c);
       lean_[leaning] = static_cast<std::int8_t>(lean);
