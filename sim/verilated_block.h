@@ -1,20 +1,24 @@
 // What the block-level cosimulations (tests/sim/test_seeded_climbs.cpp, test_mode_links.cpp,
-// test_polarity_split.cpp, test_warm_seeds.cpp) share: the run's seed, drawn anew and printed
-// (EVMS_SEED=N repeats a run), and one Verilated block with its clock, its reset, its start and
-// done and, when a mismatch is being repeated, an FST trace.
+// test_polarity_split.cpp, test_warm_seeds.cpp) share: the run's seed, drawn
+// anew and printed (EVMS_SEED=N repeats a run), the draws their packets are made of, and one
+// Verilated block with its clock, its reset, its start and done and, when a mismatch is being
+// repeated, an FST trace.
 #pragma once
 
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace evms::sim {
 
@@ -29,6 +33,22 @@ inline std::uint64_t cosim_seed() {
 inline std::string cosim_trace_path(const std::string& block, std::uint64_t seed) {
   return (std::filesystem::temp_directory_path() / ("evms_" + block + "_" + std::to_string(seed) + ".fst")).string();
 }
+
+// Draws on the run's generator.
+struct Draws {
+  std::mt19937_64& rng;
+  int below(int k) { return static_cast<int>(rng() % static_cast<std::uint64_t>(k)); }
+  double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+  template <class T>
+  T one_of(std::initializer_list<T> values) {
+    return values.begin()[below(static_cast<int>(values.size()))];
+  }
+  // A usual sensor up to 1280x720, never taller than wide: {width, height}.
+  std::pair<int, int> sensor() {
+    const int width = one_of({128, 240, 346, 640, 1280});
+    return {width, std::min(width, one_of({128, 180, 260, 480, 720}))};
+  }
+};
 
 template <class Model>
 class VerilatedBlock {

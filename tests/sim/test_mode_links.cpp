@@ -39,29 +39,29 @@ struct Packet {
 // distances from off to beyond LinkMax.
 Packet draw_packet(std::mt19937_64& rng) {
   Packet p;
-  auto below = [&](int k) { return static_cast<int>(rng() % static_cast<std::uint64_t>(k)); };
-  p.cfg.sensor_width = static_cast<std::uint16_t>(below(4) == 0 ? 1 + below(S::kMaxWidth) : S::kMaxWidth);
-  p.cfg.sensor_height = static_cast<std::uint16_t>(below(4) == 0 ? 1 + below(S::kMaxHeight) : S::kMaxHeight);
-  p.cfg.link2 = std::vector<std::uint32_t>{0, 1, 2, 4, 5, 9, 16, 18, 25, 32, 100}[static_cast<size_t>(below(11))];
-  p.modes = 1 + below(S::kModesMax);
-  const int n = 1 + below(S::kPacketMax), blobs = 1 + below(12);
+  sim::Draws draw{rng};
+  p.cfg.sensor_width = static_cast<std::uint16_t>(draw.below(4) == 0 ? 1 + draw.below(S::kMaxWidth) : S::kMaxWidth);
+  p.cfg.sensor_height = static_cast<std::uint16_t>(draw.below(4) == 0 ? 1 + draw.below(S::kMaxHeight) : S::kMaxHeight);
+  p.cfg.link2 = draw.one_of<std::uint32_t>({0, 1, 2, 4, 5, 9, 16, 18, 25, 32, 100});
+  p.modes = 1 + draw.below(S::kModesMax);
+  const int n = 1 + draw.below(S::kPacketMax), blobs = 1 + draw.below(12);
   std::vector<double> bx(static_cast<size_t>(blobs)), by(bx), br(bx);
   std::vector<int> mode_base(static_cast<size_t>(blobs));
   for (size_t b = 0; b < bx.size(); ++b) {
-    bx[b] = std::uniform_real_distribution<double>(0, p.cfg.sensor_width - 1)(rng);
-    by[b] = std::uniform_real_distribution<double>(0, p.cfg.sensor_height - 1)(rng);
-    if (below(3) == 0) bx[b] = below(2) == 0 ? 0 : p.cfg.sensor_width - 1;   // on an edge, where the window leaves the sensor
-    if (below(3) == 0) by[b] = below(2) == 0 ? 0 : p.cfg.sensor_height - 1;
-    br[b] = std::uniform_real_distribution<double>(0.3, 7.0)(rng);
-    mode_base[b] = below(p.modes);
+    bx[b] = draw.uniform(0, p.cfg.sensor_width - 1);
+    by[b] = draw.uniform(0, p.cfg.sensor_height - 1);
+    if (draw.below(3) == 0) bx[b] = draw.below(2) == 0 ? 0 : p.cfg.sensor_width - 1;   // on an edge, where the window leaves the sensor
+    if (draw.below(3) == 0) by[b] = draw.below(2) == 0 ? 0 : p.cfg.sensor_height - 1;
+    br[b] = draw.uniform(0.3, 7.0);
+    mode_base[b] = draw.below(p.modes);
   }
   for (int j = 0; j < n; ++j) {
-    const size_t b = static_cast<size_t>(below(blobs));
+    const size_t b = static_cast<size_t>(draw.below(blobs));
     const long x = std::lround(std::normal_distribution<double>(bx[b], br[b])(rng));
     const long y = std::lround(std::normal_distribution<double>(by[b], br[b])(rng));
     p.events.x[j] = static_cast<std::uint16_t>(std::clamp(x, 0L, long{p.cfg.sensor_width - 1}));
     p.events.y[j] = static_cast<std::uint16_t>(std::clamp(y, 0L, long{p.cfg.sensor_height - 1}));
-    const int mode = below(8) == 0 ? -1 : std::min(p.modes - 1, mode_base[b] + below(3));
+    const int mode = draw.below(8) == 0 ? -1 : std::min(p.modes - 1, mode_base[b] + draw.below(3));
     p.first_mode.push_back(static_cast<std::int16_t>(mode));
   }
   return p;

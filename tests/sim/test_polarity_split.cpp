@@ -41,17 +41,15 @@ struct Packet {
 // nearly full, where a split finds no room.
 Packet draw_packet(std::mt19937_64& rng) {
   Packet p;
-  auto below = [&](int k) { return static_cast<int>(rng() % static_cast<std::uint64_t>(k)); };
-  auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
-  const int width = std::vector<int>{128, 240, 346, 640, 1280}[static_cast<size_t>(below(5))];
-  const int height = std::min(width, std::vector<int>{128, 180, 260, 480, 720}[static_cast<size_t>(below(5))]);
-  p.cfg.split_balance = std::vector<std::uint16_t>{26, 77, 128, 256}[static_cast<size_t>(below(4))];
-  p.cfg.split_share = std::vector<std::uint16_t>{0, 13, 26, 51}[static_cast<size_t>(below(4))];
-  p.cfg.split_cell_scale_x = std::vector<std::uint32_t>{32768, 16384, 7000, 3000, 1500}[static_cast<size_t>(below(5))];
-  p.cfg.split_cell_scale_y = below(3) == 0 ? std::vector<std::uint32_t>{32768, 9000, 1500}[static_cast<size_t>(below(3))] : p.cfg.split_cell_scale_x;
-  p.cfg.split_min_events = static_cast<std::uint16_t>(std::vector<int>{2, 4, 8, 16}[static_cast<size_t>(below(4))]);
-  const int modes = below(3) == 0 ? S::kModesMax - below(2) : 1 + below(5);
-  const int n = 16 + below(S::kPacketMax - 15), blobs = 2 + below(6);
+  sim::Draws draw{rng};
+  const auto [width, height] = draw.sensor();
+  p.cfg.split_balance = draw.one_of<std::uint16_t>({26, 77, 128, 256});
+  p.cfg.split_share = draw.one_of<std::uint16_t>({0, 13, 26, 51});
+  p.cfg.split_cell_scale_x = draw.one_of<std::uint32_t>({32768, 16384, 7000, 3000, 1500});
+  p.cfg.split_cell_scale_y = draw.below(3) == 0 ? draw.one_of<std::uint32_t>({32768, 9000, 1500}) : p.cfg.split_cell_scale_x;
+  p.cfg.split_min_events = static_cast<std::uint16_t>(draw.one_of<int>({2, 4, 8, 16}));
+  const int modes = draw.below(3) == 0 ? S::kModesMax - draw.below(2) : 1 + draw.below(5);
+  const int n = 16 + draw.below(S::kPacketMax - 15), blobs = 2 + draw.below(6);
   struct Blob {
     double x, y, radius, on_share;
     bool ring;
@@ -59,28 +57,28 @@ Packet draw_packet(std::mt19937_64& rng) {
   };
   std::vector<Blob> blob;
   for (int b = 0; b < blobs; ++b) {
-    blob.push_back({uniform(0, width - 1), uniform(0, height - 1), uniform(0.5, 30), std::vector<double>{0.5, 0.5, 0.45, 0.9, 0.05}[static_cast<size_t>(below(5))],
-                    below(3) == 0, below(std::min(modes, 4))});
+    blob.push_back({draw.uniform(0, width - 1), draw.uniform(0, height - 1), draw.uniform(0.5, 30), draw.one_of<double>({0.5, 0.5, 0.45, 0.9, 0.05}),
+                    draw.below(3) == 0, draw.below(std::min(modes, 4))});
   }
   for (int j = 0; j < n; ++j) {
-    int x = below(width), y = below(height), mode = -1, on = below(2);
-    if (below(20) != 0) {
-      const Blob& b = blob[static_cast<size_t>(below(blobs))];
-      const double r = b.ring ? b.radius : uniform(0, b.radius), a = uniform(0, 2 * M_PI);
+    int x = draw.below(width), y = draw.below(height), mode = -1, on = draw.below(2);
+    if (draw.below(20) != 0) {
+      const Blob& b = blob[static_cast<size_t>(draw.below(blobs))];
+      const double r = b.ring ? b.radius : draw.uniform(0, b.radius), a = draw.uniform(0, 2 * M_PI);
       x = static_cast<int>(std::clamp(std::lround(b.x + r * std::cos(a)), 0L, static_cast<long>(width - 1)));
       y = static_cast<int>(std::clamp(std::lround(b.y + r * std::sin(a)), 0L, static_cast<long>(height - 1)));
       mode = b.mode;
-      on = uniform(0, 1) < b.on_share;
+      on = draw.uniform(0, 1) < b.on_share;
     }
     p.events->x[j] = static_cast<std::uint16_t>(x), p.events->y[j] = static_cast<std::uint16_t>(y), p.events->p[j] = static_cast<std::uint8_t>(on);
     // Climb features: the pixel in 1/4096 px with a fraction of its own, as the climbs' scales give.
-    p.phi->x[j] = static_cast<std::uint32_t>(x * 4096 + below(4096));
-    p.phi->y[j] = static_cast<std::uint32_t>(y * 4096 + below(4096));
+    p.phi->x[j] = static_cast<std::uint32_t>(x * 4096 + draw.below(4096));
+    p.phi->y[j] = static_cast<std::uint32_t>(y * 4096 + draw.below(4096));
     p.mode.push_back(static_cast<std::int16_t>(mode));
   }
   for (int m = 0; m < modes; ++m) {
-    p.mode_x.push_back(below(width) * 4096);
-    p.mode_y.push_back(below(height) * 4096);
+    p.mode_x.push_back(draw.below(width) * 4096);
+    p.mode_y.push_back(draw.below(height) * 4096);
   }
   return p;
 }

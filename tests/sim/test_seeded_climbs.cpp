@@ -42,41 +42,40 @@ struct Case {
 // 0-8, warm seeds with balls of 1-8 bandwidths (some on no event, some beyond the sensor).
 Case draw_case(std::mt19937_64& rng) {
   Case c;
-  auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
-  auto below = [&](int k) { return static_cast<int>(rng() % static_cast<std::uint64_t>(k)); };
-  const double h = std::vector<double>{0.03, 0.05, 0.08, 0.15}[static_cast<size_t>(below(4))];
+  sim::Draws draw{rng};
+  const double h = draw.one_of<double>({0.03, 0.05, 0.08, 0.15});
   constexpr double kClimbUnit = 1 << (S::kFeatFrac + hls::kClimbFrac);
   c.cfg.climb_scale_x = static_cast<std::uint64_t>(std::llround(std::ldexp(1.0 / (kWidth * h), hls::kClimbScaleFrac)));
   c.cfg.climb_scale_y = static_cast<std::uint64_t>(std::llround(std::ldexp(1.0 / (kHeight * h), hls::kClimbScaleFrac)));
-  c.cfg.max_iterations = static_cast<std::uint8_t>(below(9));
-  c.cfg.tolerance = static_cast<std::uint32_t>(std::vector<double>{0, 0.001, 0.01, 0.05}[static_cast<size_t>(below(4))] * kClimbUnit);
-  const double merge = std::vector<double>{0.1, 0.5, 1.0}[static_cast<size_t>(below(3))] * kClimbUnit;
+  c.cfg.max_iterations = static_cast<std::uint8_t>(draw.below(9));
+  c.cfg.tolerance = static_cast<std::uint32_t>(draw.one_of<double>({0, 0.001, 0.01, 0.05}) * kClimbUnit);
+  const double merge = draw.one_of<double>({0.1, 0.5, 1.0}) * kClimbUnit;
   c.cfg.merge_radius2 = static_cast<std::uint64_t>(merge * merge);
-  c.cfg.warm_start = below(4) != 0;
+  c.cfg.warm_start = draw.below(4) != 0;
 
-  c.n = 1 + below(S::kPacketMax);
-  const int blobs = 1 + below(6);
+  c.n = 1 + draw.below(S::kPacketMax);
+  const int blobs = 1 + draw.below(6);
   double bx[6], by[6], br[6];
-  for (int b = 0; b < blobs; ++b) bx[b] = uniform(0, kWidth - 1), by[b] = uniform(0, kHeight - 1), br[b] = uniform(1, 12);
+  for (int b = 0; b < blobs; ++b) bx[b] = draw.uniform(0, kWidth - 1), by[b] = draw.uniform(0, kHeight - 1), br[b] = draw.uniform(1, 12);
   for (int i = 0; i < c.n; ++i) {
     double x, y;
-    if (below(10) == 0) {
-      x = uniform(0, kWidth - 1), y = uniform(0, kHeight - 1);
+    if (draw.below(10) == 0) {
+      x = draw.uniform(0, kWidth - 1), y = draw.uniform(0, kHeight - 1);
     } else {
-      const int b = below(blobs);
+      const int b = draw.below(blobs);
       x = std::normal_distribution<double>(bx[b], br[b])(rng), y = std::normal_distribution<double>(by[b], br[b])(rng);
     }
     c.events.x[i] = static_cast<std::uint16_t>(std::clamp(std::lround(x), 0L, long{kWidth - 1}));
     c.events.y[i] = static_cast<std::uint16_t>(std::clamp(std::lround(y), 0L, long{kHeight - 1}));
   }
   constexpr std::uint64_t kOne = hls::SeededClimbs<S>::kOne;
-  c.warm.count = below(12);
+  c.warm.count = draw.below(12);
   for (int k = 0; k < c.warm.count; ++k) {
-    const bool far = below(8) == 0;
-    c.warm.x[k] = static_cast<std::int64_t>((far ? uniform(0, 40) : uniform(0, 1.0 / h)) * kClimbUnit);
-    c.warm.y[k] = static_cast<std::int64_t>((far ? uniform(0, 40) : uniform(0, 1.0 / h)) * kClimbUnit);
-    const double r = uniform(1, S::kReachMax);
-    c.warm.ball2[k] = below(3) == 0 ? kOne : static_cast<std::uint64_t>(r * r * static_cast<double>(kOne));
+    const bool far = draw.below(8) == 0;
+    c.warm.x[k] = static_cast<std::int64_t>((far ? draw.uniform(0, 40) : draw.uniform(0, 1.0 / h)) * kClimbUnit);
+    c.warm.y[k] = static_cast<std::int64_t>((far ? draw.uniform(0, 40) : draw.uniform(0, 1.0 / h)) * kClimbUnit);
+    const double r = draw.uniform(1, S::kReachMax);
+    c.warm.ball2[k] = draw.below(3) == 0 ? kOne : static_cast<std::uint64_t>(r * r * static_cast<double>(kOne));
   }
   hls::climb_features(c.events, c.n, c.cfg, c.phi);
   return c;
