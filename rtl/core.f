@@ -11,6 +11,7 @@ cluster/evms_merge.sv
 cluster/evms_seeded_climbs.sv
 cluster/evms_mode_links.sv
 cluster/evms_polarity_split.sv
+cluster/evms_edge_join.sv
 cluster/evms_warm_seeds.sv
 cluster/evms_centroid.sv
 track/evms_tracker.sv

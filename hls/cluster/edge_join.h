@@ -11,9 +11,9 @@
 //   nearest          the least such distance; ties to the lower mode
 // The later mode's events take the earlier mode, which keeps its position.
 //
-// In hardware form: one pass over the packet accumulates each mode's sums, then each leaning mode
-// scans the modes of the other lean (listed once) for its nearest, and a last pass relabels. No
-// RTL build holds it yet (host/backend/core_config.h refuses it there).
+// In hardware form (rtl/cluster/evms_edge_join.sv): one pass over the packet accumulates each
+// mode's sums, then each leaning mode scans the modes of the other lean (listed once) for its
+// nearest, and a table from mode to mode relabels.
 #pragma once
 
 #include <cstdint>
@@ -24,8 +24,6 @@
 #include "hls/math/round.h"
 
 namespace evms::hls {
-
-inline constexpr int kEdgeSizeRatio = 4;
 
 template <class S>
 class EdgeJoin {

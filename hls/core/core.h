@@ -1,7 +1,7 @@
 // The evms core: filter -> packets -> features -> hybrid mean shift -> mode merging (or seeded
 // climbs -> links -> polarity split -> edge join) -> centroids -> tracking -> labels,
-// bit-accurate, for one Shape. rtl/ implements all of it but the edge join, and sim/ checks
-// every output word against it.
+// bit-accurate, for one Shape. rtl/ implements all of it, and sim/ checks every output word
+// against it.
 //
 // Word by word: an event passes the background-activity filter (or is noise), joins the
 // pending queue (every event, in input order) and, when kept, the open packet. A packet closes

@@ -72,6 +72,7 @@ constexpr const char* kStageNames[kStageCount] = {"accept",     "filter", "packe
   X(Climb, kMeanShift)                 \
   X(Link, kMerge)                      \
   X(Split, kMerge)                     \
+  X(Edge, kMerge)                      \
   X(Warm, kMerge)                      \
   X(Centroid, kCentroid)               \
   X(Track, kTrack)                     \

@@ -23,6 +23,9 @@ inline constexpr int kSpreadFrac = 8;
 // (x * scale) >> kSplitCellFrac; balance and share carry kSplitFractionFrac fraction bits.
 inline constexpr int kSplitCellFrac = 16;
 inline constexpr int kSplitFractionFrac = 8;
+// The edge join's size ratio (hls/cluster/edge_join.h): neither of two joined modes holds more
+// than this many times the other's events.
+inline constexpr int kEdgeSizeRatio = 4;
 
 template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsMax, int ClustersMax, int TracksMax,
           int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,
@@ -61,9 +64,9 @@ struct Shape {
   // rtl/cluster/evms_centroid.sv); a build without it measures by the centre of mass, and the
   // host refuses --measure polarity-midpoint for it.
   static constexpr int kHasPolarityMidpoint = HasPolarityMidpoint;
-  // Whether the build's method joins the two edges of an outline (hls/cluster/edge_join.h). The
-  // C++ core holds it; no RTL holds it yet, so the rtl backend refuses it, and the board builds,
-  // which lack it, run without it in every backend (host/backend/core_config.h).
+  // Whether the build joins the two edges of an outline after the polarity split
+  // (hls/cluster/edge_join.h, rtl/cluster/evms_edge_join.sv); a build without it runs the method
+  // with --edge-join 0, and the host refuses any other setting for it.
   static constexpr int kHasEdgeJoin = HasEdgeJoin;
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
@@ -82,6 +85,7 @@ struct Shape {
   static constexpr int kSpreadFrac = hls::kSpreadFrac;
   static constexpr int kSplitCellFrac = hls::kSplitCellFrac;
   static constexpr int kSplitFractionFrac = hls::kSplitFractionFrac;
+  static constexpr int kEdgeSizeRatio = hls::kEdgeSizeRatio;
   // Tracker words.
   static constexpr int kPosFrac = PosFrac;
   static constexpr int kTickLog2 = 14;           // 16.384 ms
@@ -133,10 +137,12 @@ struct Shape {
   X(SpreadFrac)                      \
   X(SplitCellFrac)                   \
   X(SplitFractionFrac)               \
+  X(EdgeSizeRatio)                   \
   X(HasGaussianPath)                 \
   X(HasSeededPath)                   \
   X(HasPolaritySplit)                \
-  X(HasPolarityMidpoint)
+  X(HasPolarityMidpoint)             \
+  X(HasEdgeJoin)
 
 // The default board build: a DAVIS240-class sensor, the defaults of docs/sweep.md, a 16-bit
 // timestamp per pixel in 128 us units (one iCE40 SPRAM word), and eight kernel lanes: 88 of an
@@ -149,9 +155,8 @@ using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // never does.
 using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1>;
 // The RTL's host-simulation build: HostShape's sensor, words and tables with smaller packet,
-// cluster and track sizes, both clustering paths and the polarity split. For settings within
-// those sizes the two give the same words. Its method keeps the edge join, which its RTL lacks,
-// so that the rtl backend refuses the default method rather than run another.
+// cluster and track sizes, both clustering paths, the polarity split and the edge join. For
+// settings within those sizes the two give the same words.
 using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 8, 32, 8, 1, 1, 1, 1, 1>;
 
 }  // namespace evms::hls

@@ -120,16 +120,17 @@ inline std::string core_unsupported(const Params& p) {
 // The first setting of `p` that RTL build `build` (hls/core/configs.h, and a board built from
 // it) does not implement. Every build implements the numbers of its clustering paths (the
 // Gaussian mean shift of every event, the seeded climbs, or both: Shape::kHasGaussianPath,
-// kHasSeededPath), the polarity split and the polarity midpoint where it holds them
-// (kHasPolaritySplit, kHasPolarityMidpoint) and the tracker's policies but the gate's widening by
-// the spread and coasting by packets. No build holds the edge join (hls/cluster/edge_join.h).
+// kHasSeededPath), the polarity split, the edge join and the polarity midpoint where it holds them
+// (kHasPolaritySplit, kHasEdgeJoin, kHasPolarityMidpoint) and the tracker's policies but the
+// gate's widening by the spread and coasting by packets.
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
-  bool gaussian_path = false, seeded_path = false, polarity_split = false, polarity_midpoint = false;
+  bool gaussian_path = false, seeded_path = false, polarity_split = false, edge_join = false, polarity_midpoint = false;
 #define EVMS_PATHS_OF_BUILD(name, fixed, rtl, width, height, description)                                             \
   if (build == #name) {                                                                                               \
     gaussian_path = hls::rtl::kHasGaussianPath != 0, seeded_path = hls::rtl::kHasSeededPath != 0;                     \
-    polarity_split = hls::rtl::kHasPolaritySplit != 0, polarity_midpoint = hls::rtl::kHasPolarityMidpoint != 0;       \
+    polarity_split = hls::rtl::kHasPolaritySplit != 0, edge_join = hls::rtl::kHasEdgeJoin != 0;                       \
+    polarity_midpoint = hls::rtl::kHasPolarityMidpoint != 0;                                                          \
   }
   EVMS_CORE_BUILDS(EVMS_PATHS_OF_BUILD)
 #undef EVMS_PATHS_OF_BUILD
@@ -140,11 +141,14 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!seeded && !gaussian_path) return "the RTL build '" + build + "' clusters by seeded climbs only, not " + detail::setting(p, "seeding");
   const Params rtl = preset("gaussian");
-  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets", "edge-join"})) {
+  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets"})) {
     return "the RTL core does not implement " + detail::setting(p, name) + " (add --" + name + " " + param_text(rtl, *find_param(name)) + ")";
   }
   if (!polarity_split && seeded && p.split_balance != 0) {
     return "the RTL build '" + build + "' does not hold the polarity split, not " + detail::setting(p, "split-balance") + " (add --split-balance 0)";
+  }
+  if (!edge_join && seeded && p.edge_join != 0) {
+    return "the RTL build '" + build + "' does not hold the edge join, not " + detail::setting(p, "edge-join") + " (add --edge-join 0)";
   }
   if (!polarity_midpoint && p.measure == Measure::kPolarityMidpoint) {
     return "the RTL build '" + build + "' does not hold the polarity midpoint, not " + detail::setting(p, "measure") + " (add --measure centroid)";

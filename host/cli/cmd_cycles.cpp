@@ -91,10 +91,7 @@ void cycles(const CyclesOptions& o) {
   const std::vector<Event> events = read_events(o, sensor);
   // The cycle model is the RTL's: it counts the method the RTL implements.
   const Method& method = o.method;
-  Params params = backend::fit_core_build("rtl", o.build, method.resolve(sensor), method);
-  // No RTL build joins edges (hls/cluster/edge_join.h): the default method is counted without it.
-  const bool edges_left_out = params.edge_join != 0 && !method.sets("edge-join");
-  if (edges_left_out) params.edge_join = 0;
+  const Params params = backend::fit_core_build("rtl", o.build, method.resolve(sensor), method);
   if (std::string unsupported = backend::rtl_unsupported(params, o.build); !unsupported.empty()) {
     throw std::invalid_argument(unsupported + "; the cycle model counts the RTL's method");
   }
@@ -130,9 +127,8 @@ void cycles(const CyclesOptions& o) {
   const hls::Config cfg = backend::core_config<S>(params, sensor);
   const auto model = model_run<S>(words, cfg);
   const double n_events = static_cast<double>(model.events());
-  std::printf("build %s (P = %d, multiplier latency %d), %s%s, packets of %d, %d clusters, %d tracks\n", o.build.c_str(), S::kLanes,
-              hls::multiplier_latency(S::kMulDigitBits), method.describe().c_str(),
-              edges_left_out ? " without the edge join (no RTL build holds it)" : "", params.packet_size, params.max_clusters, params.max_tracks);
+  std::printf("build %s (P = %d, multiplier latency %d), %s, packets of %d, %d clusters, %d tracks\n", o.build.c_str(), S::kLanes,
+              hls::multiplier_latency(S::kMulDigitBits), method.describe().c_str(), params.packet_size, params.max_clusters, params.max_tracks);
   std::printf("%s events, %s kept, %s packets, %.2f %s a packet\n", grouped(model.events()).c_str(), grouped(model.kept()).c_str(),
               grouped(model.packets()).c_str(), model.mean_sweeps(), seeded ? "climb steps" : "sweeps");
   const hls::StageCycles predicted = model.cycles();
@@ -163,7 +159,7 @@ void cycles(const CyclesOptions& o) {
                 o.build.c_str());
   }
   if (!modelled) {
-    std::printf("\nthe seeded path, measured on the RTL (the cycle model counts the Gaussian path): climbs count in \"mean shift\", links, the polarity split and warm seeds in \"merge\"\n");
+    std::printf("\nthe seeded path, measured on the RTL (the cycle model counts the Gaussian path): climbs count in \"mean shift\", links, the polarity split, the edge join and warm seeds in \"merge\"\n");
     return;
   }
   std::printf("\nmodel, other lane counts:");

@@ -6,9 +6,9 @@
 // Clustering takes one of two paths, chosen by cfg_seeded among those the build holds
 // (HasGaussianPath, HasSeededPath): the Gaussian mean shift of every event and the merging of
 // its modes, or the seeded climbs with the flat kernel (cluster/evms_seeded_climbs.sv), the
-// links of clusters that touch (cluster/evms_mode_links.sv), in a build that holds it the polarity
-// split (cluster/evms_polarity_split.sv), and the clusters kept with their warm seeds for the next
-// packet (cluster/evms_warm_seeds.sv).
+// links of clusters that touch (cluster/evms_mode_links.sv), in a build that holds them the polarity
+// split (cluster/evms_polarity_split.sv) and the edge join (cluster/evms_edge_join.sv), and the
+// clusters kept with their warm seeds for the next packet (cluster/evms_warm_seeds.sv).
 //
 // Word by word, as the controller takes it from the intake: an event that passed the filter (or
 // is noise) joins the pending queue, and,
@@ -203,12 +203,23 @@ module evms_core #(
   // linked mode and climb features, and the warm seeds then read each event's mode and the moved
   // modes' positions from it.
   logic sp_ready, sp_start_q, sp_done, sp_rd_moved;
-  logic [15:0] sp_ev_j, sp_mode_count;
+  logic [15:0] sp_ev_j, sp_rd_j, sp_mode_count;
   logic signed [15:0] sp_rd_mode;
   logic [31:0] sp_rd_mode_x, sp_rd_mode_y;
   logic split_on;
   assign split_on = HasPolaritySplit != 0 && cfg_split_balance != 0;
-  assign ws_ev_mode = split_on ? sp_rd_mode : linked_mode;
+  logic signed [15:0] split_mode;   // an event's mode after the links and the split
+  assign split_mode = split_on ? sp_rd_mode : linked_mode;
+  // The edge join (cluster/evms_edge_join.sv), in a build that holds it and with cfg_edge_radius2
+  // set, runs after the split: it reads an event's pixel and mode after the split, and leaves a
+  // table from mode to mode that the warm seeds read each event's mode through. The modes keep
+  // their positions.
+  logic ej_start_q, ej_done;
+  logic [15:0] ej_ev_j;
+  logic [7:0] ej_rd_into;
+  logic edge_on;
+  assign edge_on = HasEdgeJoin != 0 && cfg_edge_radius2 != 0;
+  assign ws_ev_mode = edge_on && split_mode >= 0 ? $signed(16'(ej_rd_into)) : split_mode;
   logic [15:0] ws_mode_count;
   logic [31:0] ws_md_x, ws_md_y;
   assign ws_mode_count = split_on ? sp_mode_count : cl_mode_count;
@@ -265,14 +276,29 @@ module evms_core #(
       .cfg_split_min_events(cfg_split_min_events), .cfg_split_balance(cfg_split_balance), .cfg_split_share(cfg_split_share),
       .cfg_split_cell_scale_x(cfg_split_cell_scale_x), .cfg_split_cell_scale_y(cfg_split_cell_scale_y), .ev_j(sp_ev_j),
       .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_p(rd_pk_p), .ev_mode(linked_mode), .ev_fx(cl_rd_x), .ev_fy(cl_rd_y),
-      .done(sp_done), .modes_after(sp_mode_count), .rd_j(ws_ev_j), .rd_mode(sp_rd_mode), .rd_c(ws_md_c),
+      .done(sp_done), .modes_after(sp_mode_count), .rd_j(sp_rd_j), .rd_mode(sp_rd_mode), .rd_c(ws_md_c),
       .rd_moved(sp_rd_moved), .rd_mode_x(sp_rd_mode_x), .rd_mode_y(sp_rd_mode_y));
   end else begin : g_no_split
     assign {sp_done, sp_ev_j, sp_mode_count, sp_rd_mode, sp_rd_moved, sp_rd_mode_x, sp_rd_mode_y} = '0;
     assign sp_ready = 1'b1;
     // What only the polarity split reads (waived in core/evms_core.vlt).
     logic unused_split;
-    assign unused_split = ^{sp_start_q, cfg_split_share, cfg_split_min_events, cfg_split_cell_scale_x, cfg_split_cell_scale_y};
+    assign unused_split = ^{sp_start_q, sp_rd_j, cfg_split_share, cfg_split_min_events, cfg_split_cell_scale_x, cfg_split_cell_scale_y};
+  end
+  if (HasSeededPath != 0 && HasEdgeJoin != 0) begin : g_edge_join
+    logic [15:0] joined_unused;
+    evms_edge_join #(
+      .PacketMax(PacketMax), .ModesMax(ModesMax), .SplitFractionFrac(SplitFractionFrac), .EdgeSizeRatio(EdgeSizeRatio)
+    ) u_edge_join (
+      .clk(clk), .rst_n(rst_n), .start(ej_start_q), .n(16'(n_q)), .mode_count(ws_mode_count),
+      .cfg_edge_radius2(cfg_edge_radius2), .cfg_edge_balance(cfg_edge_balance), .cfg_edge_min_events(cfg_edge_min_events),
+      .ev_j(ej_ev_j), .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_p(rd_pk_p), .ev_mode(split_mode), .done(ej_done),
+      .joined(joined_unused), .rd_c(8'(split_mode)), .rd_into(ej_rd_into));
+  end else begin : g_no_edge_join
+    assign {ej_done, ej_ev_j, ej_rd_into} = '0;
+    // What only the edge join reads (waived in core/evms_core.vlt).
+    logic unused_edge_join;
+    assign unused_edge_join = ^{ej_start_q, cfg_edge_balance, cfg_edge_min_events};
   end
 
   // The path a packet takes, and its clusters. A build with one path takes it whatever
@@ -366,8 +392,9 @@ module evms_core #(
   assign pend_we = take_noise || state_q == StAppend;
   wire [15:0] append_index = 16'(n_q);  // named: Yosys 0.23 sizes a cast inside a concatenation by its operand
   assign pend_wdata = state_q == StAppend ? {e_t_q, e_x_q, e_y_q, e_p_q, append_index} : {q_t, q_x, q_y, q_p, 16'hFFFF};
-  assign rd_pk_i = state_q == StCentroid ? ct_rd_i : (state_q == StLink ? lk_ev_j : (state_q == StSplit ? sp_ev_j : fi_q));
-  assign cl_rd_j = state_q == StLink ? lk_ev_j : (state_q == StSplit ? sp_ev_j : ws_ev_j);
+  assign rd_pk_i = state_q == StCentroid ? ct_rd_i : (state_q == StLink ? lk_ev_j : (state_q == StSplit ? sp_ev_j : (state_q == StEdge ? ej_ev_j : fi_q)));
+  assign cl_rd_j = state_q == StLink ? lk_ev_j : (state_q == StSplit ? sp_ev_j : (state_q == StEdge ? ej_ev_j : ws_ev_j));
+  assign sp_rd_j = state_q == StEdge ? ej_ev_j : ws_ev_j;
   assign co_i = state_q == StMerge ? mg_co_i : (state_q == StCentroid ? ct_rd_i :
                 (state_q == StReleaseWait ? pend_rdata_q[15:0] : 16'(rel_idx_q)));
   assign ms_rd_i = mg_rd_i;
@@ -441,6 +468,7 @@ module evms_core #(
       cl_start_q <= 1'b0;
       lk_start_q <= 1'b0;
       sp_start_q <= 1'b0;
+      ej_start_q <= 1'b0;
       ws_start_q <= 1'b0;
       warm_count_q <= '0;
       ct_start_q <= 1'b0;
@@ -461,6 +489,7 @@ module evms_core #(
       cl_start_q <= 1'b0;
       lk_start_q <= 1'b0;
       sp_start_q <= 1'b0;
+      ej_start_q <= 1'b0;
       ws_start_q <= 1'b0;
       ct_start_q <= 1'b0;
       tk_start_q <= 1'b0;
@@ -559,10 +588,16 @@ module evms_core #(
         end
         StLink: if (lk_done) begin
           sp_start_q <= split_on;
-          ws_start_q <= !split_on;
-          state_q <= split_on ? StSplit : StWarm;
+          ej_start_q <= !split_on && edge_on;
+          ws_start_q <= !split_on && !edge_on;
+          state_q <= split_on ? StSplit : (edge_on ? StEdge : StWarm);
         end
         StSplit: if (sp_done) begin
+          ej_start_q <= edge_on;
+          ws_start_q <= !edge_on;
+          state_q <= edge_on ? StEdge : StWarm;
+        end
+        StEdge: if (ej_done) begin
           ws_start_q <= 1'b1;
           state_q <= StWarm;
         end

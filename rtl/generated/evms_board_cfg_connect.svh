@@ -47,3 +47,6 @@
 .cfg_split_cell_scale_x(CfgSplitCellScaleX),
 .cfg_split_cell_scale_y(CfgSplitCellScaleY),
 .cfg_midpoint_min(CfgMidpointMin),
+.cfg_edge_radius2(CfgEdgeRadius2),
+.cfg_edge_balance(CfgEdgeBalance),
+.cfg_edge_min_events(CfgEdgeMinEvents),

@@ -35,8 +35,10 @@
 .SpreadFrac(SpreadFrac),
 .SplitCellFrac(SplitCellFrac),
 .SplitFractionFrac(SplitFractionFrac),
+.EdgeSizeRatio(EdgeSizeRatio),
 .HasGaussianPath(HasGaussianPath),
 .HasSeededPath(HasSeededPath),
 .HasPolaritySplit(HasPolaritySplit),
 .HasPolarityMidpoint(HasPolarityMidpoint),
+.HasEdgeJoin(HasEdgeJoin),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

@@ -18,12 +18,13 @@ typedef enum logic [4:0] {
   StClimb,  // 14: mean shift
   StLink,  // 15: merge
   StSplit,  // 16: merge
-  StWarm,  // 17: merge
-  StCentroid,  // 18: centroids
-  StTrack,  // 19: tracking
-  StPacket,  // 20: packet control
-  StReleaseRead,  // 21: release
-  StReleaseWait,  // 22: release
-  StReleaseCluster,  // 23: release
-  StReleaseSend  // 24: release
+  StEdge,  // 17: merge
+  StWarm,  // 18: merge
+  StCentroid,  // 19: centroids
+  StTrack,  // 20: tracking
+  StPacket,  // 21: packet control
+  StReleaseRead,  // 22: release
+  StReleaseWait,  // 23: release
+  StReleaseCluster,  // 24: release
+  StReleaseSend  // 25: release
 } state_e;

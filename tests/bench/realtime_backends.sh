@@ -6,6 +6,7 @@
 #
 #   tests/bench/realtime_backends.sh [BUILD_DIR] [RECORDING ...]
 #
+# BACKENDS="rtl" (a list) measures those backends only; all three by default.
 # Default recordings: every file in ../shared/data/real.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -18,12 +19,9 @@ fi
 evms=$build/bin/evms
 max_speed=256
 
-# The method each backend runs: the defaults, without the edge join on the RTL, which lacks it.
-method() { [ "$1" = rtl ] && echo "--edge-join 0" || true; }
-
 run() {  # run FILE BACKEND SPEED: prints "dropped p50 p99 events_per_s"
   local out
-  out=$("$evms" run "$1" --backend "$2" $(method "$2") --realtime --speed "$3" --live-buffer 65536 --quiet)
+  out=$("$evms" run "$1" --backend "$2" --realtime --speed "$3" --live-buffer 65536 --quiet)
   local dropped p50 p99 rate
   dropped=$(sed -n 's/^live *\([0-9,]*\) events dropped.*/\1/p' <<<"$out" | tr -d ,)
   p50=$(sed -n 's/^latency .*p50 \([0-9]*\) us.*/\1/p' <<<"$out")
@@ -36,8 +34,8 @@ echo "| recording | input rate | backend | unpaced events/s | p50 at 1x | p99 at
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for f in "${recordings[@]}"; do
   input=$("$evms" info "$f" | sed -n 's/.*mean rate *\([0-9.]* [kM]*\)events\/s.*/\1/p')
-  for backend in golden fixed rtl; do
-    unpaced=$("$evms" run "$f" --backend $backend $(method $backend) --quiet | sed -n 's/^throughput *\([0-9.]* [kM]*\)events\/s.*/\1/p')
+  for backend in ${BACKENDS:-golden fixed rtl}; do
+    unpaced=$("$evms" run "$f" --backend $backend --quiet | sed -n 's/^throughput *\([0-9.]* [kM]*\)events\/s.*/\1/p')
     read -r d1 a1 b1 r1 < <(run "$f" $backend 1)
     best=0 bp50=- bp99=- brate=-
     speed=1

@@ -126,15 +126,13 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("the RTL core does not implement --coast-packets 3 (add --coast-packets 0)"), std::string::npos) << r.err;
-  // No RTL build joins edges: the default method on the host build is refused, not run without it.
-  const auto edges = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --quiet");
-  EXPECT_EQ(edges.exit_code, 1);
-  EXPECT_EQ(std::count(edges.err.begin(), edges.err.end(), '\n'), 1) << edges.err;
-  EXPECT_NE(edges.err.find("the RTL core does not implement --edge-join 5 (add --edge-join 0)"), std::string::npos) << edges.err;
+  // The boards' builds do not hold the edge join, which they run without unless told it.
   const auto board_edges = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --edge-join 5 --quiet");
   EXPECT_EQ(board_edges.exit_code, 1);
-  EXPECT_NE(board_edges.err.find("does not implement --edge-join 5"), std::string::npos) << board_edges.err;
-  // The boards' builds do not hold the polarity split.
+  EXPECT_EQ(std::count(board_edges.err.begin(), board_edges.err.end(), '\n'), 1) << board_edges.err;
+  EXPECT_NE(board_edges.err.find("the RTL build 'arty' does not hold the edge join, not --edge-join 5 (add --edge-join 0)"), std::string::npos)
+      << board_edges.err;
+  // Nor the polarity split.
   const auto split = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --split-balance 0.3 --quiet");
   EXPECT_EQ(split.exit_code, 1);
   EXPECT_NE(split.err.find("the RTL build 'arty' does not hold the polarity split, not --split-balance 0.3 (add --split-balance 0)"), std::string::npos)
@@ -173,28 +171,31 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   EXPECT_EQ(fixed_split.exit_code, 0) << fixed_split.err;
 }
 
-// The host RTL build runs the default method in its sizes, the polarity split included and the
-// edge join left out (no RTL build holds it); its labels and tracks are the fixed-point core's.
+// The host RTL build runs the default method in its sizes, the polarity split and the edge join
+// included; its labels and tracks are the fixed-point core's.
 TEST(MethodOutputs, TheRtlRunsTheDefaultMethodAsTheFixedCore) {
   TempDir dir;
   // Packets of 256 events hold few clusters of twice the default 64 events a part, so the parts
   // counted here are smaller, which also sets the register to a value other than its default.
-  const std::string scene = " run 'gen://SCENE' --packet-size 256 --max-clusters 16 --max-tracks 16 --split-min-events 16 --edge-join 0 --quiet";
+  const std::string scene = " run 'gen://SCENE' --packet-size 256 --max-clusters 16 --max-tracks 16 --split-min-events 16 --quiet";
   auto run = [&](const std::string& name, const std::string& backend, const std::string& extra) {
     const std::string out = dir.path(name);
     std::string command = scene;
-    command.replace(command.find("SCENE"), 5, "family/crossing?duration-s=0.1&seed=4&width=240&height=180");
+    command.replace(command.find("SCENE"), 5, "family/shake?duration-s=0.1&seed=4&width=240&height=180");
     const auto r = run_command(evms_binary() + command + " --backend " + backend + extra + " --out " + out);
     EXPECT_EQ(r.exit_code, 0) << backend << extra << ": " << r.err;
     return out;
   };
   const std::string rtl = run("rtl", "rtl", ""), fixed = run("fixed", "fixed", ""), unsplit = run("unsplit", "rtl", " --split-balance 0");
+  const std::string unjoined = run("unjoined", "rtl", " --edge-join 0");
   EXPECT_GT(csv_rows(rtl + "/tracks.csv").size(), 10u);
   EXPECT_TRUE(same_text(read_file(rtl + "/events.csv"), read_file(fixed + "/events.csv"))) << "the labels";
   // Every column: the RTL's track words carry the measurement's count and box and the variances.
   EXPECT_TRUE(same_text(read_file(rtl + "/tracks.csv"), read_file(fixed + "/tracks.csv"))) << "the tracks";
-  // The scene has clusters that the split parts, so the equality covers the RTL's split.
+  // The scene has clusters that the split parts and edges that the join makes one, so the equality
+  // covers both in the RTL.
   EXPECT_FALSE(same_text(read_file(rtl + "/events.csv"), read_file(unsplit + "/events.csv"))) << "the split changed no label: the scene does not test it";
+  EXPECT_FALSE(same_text(read_file(rtl + "/events.csv"), read_file(unjoined + "/events.csv"))) << "the edge join changed no label: the scene does not test it";
 }
 
 TEST(MethodOutputs, ThePaperPresetRunsTheAuthorsRule) {

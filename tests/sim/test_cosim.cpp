@@ -166,14 +166,10 @@ std::vector<Event> scene_events(gen::Motion m, double duration_s, int width, int
   return eval::generate_scene(c).events;
 }
 
-// The default method (seeded climbs, links, the polarity split, warm seeds; the tracker's
-// last-measurement gating, eviction of the stalest track and tentative reports) as the host RTL
-// build runs it: in its sizes, and without the edge join, which no RTL build holds.
-Params seeded_method() {
-  Params p = backend::fit_core_build("rtl", "host", Params{}, {});
-  p.edge_join = 0;
-  return p;
-}
+// The default method (seeded climbs, links, the polarity split, the edge join, warm seeds; the
+// tracker's last-measurement gating, eviction of the stalest track and tentative reports) as the
+// host RTL build runs it, in its sizes.
+Params seeded_method() { return backend::fit_core_build("rtl", "host", Params{}, {}); }
 
 TEST(Cosim, SeededPathHostBuild) {
   for (auto m : {gen::Motion::kTranslation, gen::Motion::kRotation, gen::Motion::kSixDof}) {
