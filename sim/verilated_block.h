@@ -19,6 +19,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace evms::sim {
 
@@ -48,6 +49,13 @@ struct Draws {
     const int width = one_of({128, 240, 346, 640, 1280});
     return {width, std::min(width, one_of({128, 180, 260, 480, 720}))};
   }
+};
+
+// What a block gave over a run of packets, and the clocks it took for their events.
+template <class Result>
+struct BlockRun {
+  std::vector<Result> results;
+  std::uint64_t cycles = 0, events = 0;
 };
 
 template <class Model>

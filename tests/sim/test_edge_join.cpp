@@ -145,10 +145,7 @@ std::vector<Result> run_model(const std::vector<Packet>& run) {
   return out;
 }
 
-struct RtlRun {
-  std::vector<Result> results;
-  std::uint64_t cycles = 0, events = 0;
-};
+using RtlRun = sim::BlockRun<Result>;
 
 RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
   sim::VerilatedBlock<Vedge_join> rtl(trace_path);

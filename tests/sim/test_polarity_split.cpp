@@ -109,10 +109,7 @@ std::vector<Result> run_model(const std::vector<Packet>& run, int* left_whole = 
   return out;
 }
 
-struct RtlRun {
-  std::vector<Result> results;
-  std::uint64_t cycles = 0, events = 0;
-};
+using RtlRun = sim::BlockRun<Result>;
 
 RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
   sim::VerilatedBlock<Vpolarity_split> rtl(trace_path);
