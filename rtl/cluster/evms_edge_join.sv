@@ -21,8 +21,8 @@
 //
 // Schedule: 1 to start; n + 2 to count; 1 a mode to list, and 1 + DivBits + 2 more a listed mode;
 // (list + 1) a listed mode to pair; 1 a mode to relabel, and 1 for done.
-// The sums and the list are register files, which suits the host simulation build (a board
-// build would keep them in distributed RAM: one entry is read and written a clock).
+// The sums (with a valid bit each) and the list are register files written one entry a clock,
+// which a board build would map to distributed RAM.
 `include "evms_assert.svh"
 
 module evms_edge_join #(
@@ -78,7 +78,10 @@ module evms_edge_join #(
   logic [DivBits-1:0] quotient_x, quotient_y;
   logic [ModeBits-1:0] c_mode;
   assign c_mode = ModeBits'(c_q);
-  logic [CntBits-1:0] events_q [ModesMax];    // per mode: events, ON events, sums of x and y
+  // Per mode: events, ON events, sums of x and y, each entry valid once its mode's first event
+  // wrote it (a start clears the valid bits, not the entries).
+  logic [ModesMax-1:0] counted_q;
+  logic [CntBits-1:0] events_q [ModesMax];
   logic [CntBits-1:0] on_q [ModesMax];
   logic [SumBits-1:0] sum_x_q [ModesMax];
   logic [SumBits-1:0] sum_y_q [ModesMax];
@@ -103,8 +106,8 @@ module evms_edge_join #(
   logic [CntBits:0]   c_surplus;                  // |2 ON - events|
   logic               c_more_on, c_looked, c_leans;
   logic [63:0]        c_needed;
-  assign c_events = events_q[c_mode];
-  assign c_on = on_q[c_mode];
+  assign c_events = counted_q[c_mode] ? events_q[c_mode] : '0;
+  assign c_on = on_q[c_mode];   // read only where c_events is not 0
   assign c_more_on = 2 * (CntBits + 1)'(c_on) >= (CntBits + 1)'(c_events);
   assign c_surplus = c_more_on ? 2 * (CntBits + 1)'(c_on) - (CntBits + 1)'(c_events) : (CntBits + 1)'(c_events) - 2 * (CntBits + 1)'(c_on);
   assign c_needed = 64'(cfg_edge_balance) * 64'(c_events);
@@ -121,7 +124,7 @@ module evms_edge_join #(
   assign b_entry = ModeBits'(b_q);
   assign a_mode = list_q[a_entry];
   assign b_mode = list_q[b_entry];
-  assign a_events = events_q[a_mode];
+  assign a_events = events_q[a_mode];   // a listed mode holds events
   assign b_events = events_q[b_mode];
   assign dx = $signed({1'b0, centre_x_q[a_entry]}) - $signed({1'b0, centre_x_q[b_entry]});
   assign dy = $signed({1'b0, centre_y_q[a_entry]}) - $signed({1'b0, centre_y_q[b_entry]});
@@ -219,23 +222,24 @@ module evms_edge_join #(
     endcase
   end
 
-  // The register files, written by the states above (a start clears the sums and the choices in
-  // one clock; the test is outside the loops, so that a simulator does not walk them every clock).
+  // The register files, written by the states above: one entry a clock (a start clears the valid
+  // bits and the choices, packed vectors, in one clock).
   wire count_event = state_q == StCount && have_q && ev_mode >= 0;
   wire [ModeBits-1:0] ev_m = ModeBits'(ev_mode);
+  wire ev_m_counted = counted_q[ev_m];
   always_ff @(posedge clk) begin
     if (state_q == StIdle && start) begin
-      for (int m = 0; m < ModesMax; m++) begin
-        events_q[m] <= '0;
-        on_q[m] <= '0;
-        sum_x_q[m] <= '0;
-        sum_y_q[m] <= '0;
-      end
+      counted_q <= '0;
     end else if (count_event) begin
-      events_q[ev_m] <= events_q[ev_m] + 1'b1;
-      on_q[ev_m] <= on_q[ev_m] + CntBits'(ev_p);
-      sum_x_q[ev_m] <= sum_x_q[ev_m] + SumBits'(ev_x);
-      sum_y_q[ev_m] <= sum_y_q[ev_m] + SumBits'(ev_y);
+      counted_q[ev_m] <= 1'b1;
+    end
+  end
+  always_ff @(posedge clk) begin
+    if (count_event) begin
+      events_q[ev_m] <= (ev_m_counted ? events_q[ev_m] : '0) + 1'b1;
+      on_q[ev_m] <= (ev_m_counted ? on_q[ev_m] : '0) + CntBits'(ev_p);
+      sum_x_q[ev_m] <= (ev_m_counted ? sum_x_q[ev_m] : '0) + SumBits'(ev_x);
+      sum_y_q[ev_m] <= (ev_m_counted ? sum_y_q[ev_m] : '0) + SumBits'(ev_y);
     end
   end
   wire [ModeBits-1:0] listed = ModeBits'(leaning_q);
