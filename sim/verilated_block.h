@@ -35,6 +35,18 @@ inline std::string cosim_trace_path(const std::string& block, std::uint64_t seed
   return (std::filesystem::temp_directory_path() / ("evms_" + block + "_" + std::to_string(seed) + ".fst")).string();
 }
 
+// The lockstep check's verdict on one run of a block: empty when the RTL gave what the model
+// gave (`difference` empty); otherwise the run is repeated with an FST trace (`retrace(path)`)
+// and the verdict names the seed, the run (`what`), the first difference and the trace.
+template <class Retrace>
+std::string mismatch_traced(const std::string& block, std::uint64_t seed, const std::string& what, const std::string& difference,
+                            Retrace retrace) {
+  if (difference.empty()) return "";
+  const std::string trace = cosim_trace_path(block, seed);
+  retrace(trace);
+  return "seed " + std::to_string(seed) + ", " + what + ": " + difference + "; trace in " + trace;
+}
+
 // Draws on the run's generator.
 struct Draws {
   std::mt19937_64& rng;

@@ -208,11 +208,9 @@ TEST(EdgeJoinRtl, EveryEventsModeAndThePairsJoinedEqualTheCppModelOverRunsOfPack
     for (int k = 0; k < 25; ++k) run.push_back(draw_packet(rng));
     const std::vector<Result> want = run_model(run);
     const RtlRun got = run_rtl(run, "");
-    if (const std::string d = difference(want, got.results); !d.empty()) {
-      const std::string trace = sim::cosim_trace_path("edge_join", seed);
-      run_rtl(run, trace);
-      FAIL() << "seed " << seed << ", run " << r << ": " << d << "; trace in " << trace;
-    }
+    const std::string verdict = sim::mismatch_traced("edge_join", seed, "run " + std::to_string(r), difference(want, got.results),
+                                                     [&](const std::string& trace) { run_rtl(run, trace); });
+    ASSERT_TRUE(verdict.empty()) << verdict;
     cycles += got.cycles, events += got.events;
     for (const Result& w : want) {
       ++packets;

@@ -147,11 +147,9 @@ TEST(ModeLinksRtl, EveryEventsLinkedModeEqualsTheCppModelOverRunsOfPackets) {
     for (int k = 0; k < 20; ++k) run.push_back(draw_packet(rng));
     const Modes want = run_model(run);
     const RtlRun got = run_rtl(run, "");
-    if (const std::string d = difference(want, got.modes); !d.empty()) {
-      const std::string trace = sim::cosim_trace_path("mode_links", seed);
-      run_rtl(run, trace);
-      FAIL() << "seed " << seed << ", run " << r << ": " << d << "; trace in " << trace;
-    }
+    const std::string verdict = sim::mismatch_traced("mode_links", seed, "run " + std::to_string(r), difference(want, got.modes),
+                                                     [&](const std::string& trace) { run_rtl(run, trace); });
+    ASSERT_TRUE(verdict.empty()) << verdict;
     cycles += got.cycles, events += got.events;
     for (size_t k = 0; k < run.size(); ++k) {
       for (size_t j = 0; j < want[k].size(); ++j) joined += want[k][j] != run[k].first_mode[j];

@@ -189,11 +189,9 @@ TEST(PolaritySplitRtl, EveryEventsModeAndEveryModesPositionEqualTheCppModelOverR
     for (int k = 0; k < 25; ++k) run.push_back(draw_packet(rng));
     const std::vector<Result> want = run_model(run, &whole_for_room);
     const RtlRun got = run_rtl(run, "");
-    if (const std::string d = difference(want, got.results); !d.empty()) {
-      const std::string trace = sim::cosim_trace_path("polarity_split", seed);
-      run_rtl(run, trace);
-      FAIL() << "seed " << seed << ", run " << r << ": " << d << "; trace in " << trace;
-    }
+    const std::string verdict = sim::mismatch_traced("polarity_split", seed, "run " + std::to_string(r), difference(want, got.results),
+                                                     [&](const std::string& trace) { run_rtl(run, trace); });
+    ASSERT_TRUE(verdict.empty()) << verdict;
     cycles += got.cycles, events += got.events;
     for (size_t k = 0; k < run.size(); ++k) {
       ++packets;

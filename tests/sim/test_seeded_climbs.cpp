@@ -168,12 +168,11 @@ TEST(SeededClimbsRtl, EveryModeAndLabelEqualTheCppModelOnRandomPackets) {
     const Case c = draw_case(rng);
     const Result want = run_model(c);
     const Result got = run_rtl(c, "");
-    if (const std::string d = difference(want, got); !d.empty()) {
-      const std::string trace = sim::cosim_trace_path("seeded_climbs", seed);
-      run_rtl(c, trace);
-      FAIL() << "seed " << seed << ", packet " << packet << " (n " << c.n << ", warm " << c.warm.count << ", iterations "
-             << int{c.cfg.max_iterations} << "): " << d << "; trace in " << trace;
-    }
+    const std::string verdict = sim::mismatch_traced("seeded_climbs", seed,
+                                                     "packet " + std::to_string(packet) + " (n " + std::to_string(c.n) + ", warm " +
+                                                         std::to_string(c.warm.count) + ", iterations " + std::to_string(int{c.cfg.max_iterations}) + ")",
+                                                     difference(want, got), [&](const std::string& trace) { run_rtl(c, trace); });
+    ASSERT_TRUE(verdict.empty()) << verdict;
     cycles += got.cycles, events += static_cast<std::uint64_t>(c.n), climbs += static_cast<std::uint64_t>(got.climbs);
   }
   std::printf("%llu events, %llu climbs, %.1f cycles an event\n", static_cast<unsigned long long>(events),

@@ -150,12 +150,11 @@ TEST(WarmSeedsRtl, ClustersLabelsAndWarmBallsEqualTheCppModelOnRandomPackets) {
     const Case c = draw_case(rng);
     const Result want = run_model(c);
     const Result got = run_rtl(c, "");
-    if (const std::string d = difference(want, got); !d.empty()) {
-      const std::string trace = sim::cosim_trace_path("warm_seeds", seed);
-      run_rtl(c, trace);
-      FAIL() << "seed " << seed << ", packet " << packet << " (n " << c.n << ", modes " << c.modes.count << "): " << d << "; trace in "
-             << trace;
-    }
+    const std::string verdict = sim::mismatch_traced("warm_seeds", seed,
+                                                     "packet " + std::to_string(packet) + " (n " + std::to_string(c.n) + ", modes " +
+                                                         std::to_string(c.modes.count) + ")",
+                                                     difference(want, got), [&](const std::string& trace) { run_rtl(c, trace); });
+    ASSERT_TRUE(verdict.empty()) << verdict;
     cycles += got.cycles, events += static_cast<std::uint64_t>(c.n);
     for (size_t i = 2; i < want.seeds.size(); i += 3) {
       ++balls;
