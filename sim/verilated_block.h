@@ -1,8 +1,8 @@
 // What the block-level cosimulations (tests/sim/test_seeded_climbs.cpp, test_mode_links.cpp,
 // test_polarity_split.cpp, test_edge_join.cpp, test_warm_seeds.cpp) share: the run's seed, drawn
 // anew and printed (EVMS_SEED=N repeats a run), the verdict of a run's lockstep check, the
-// draws their packets are made of, and one Verilated block with its clock, its reset, its start
-// and done and, when a mismatch is being repeated, an FST trace.
+// draws their packets are made of, a run's results and clocks, and one Verilated block with its
+// clock, its reset, its start and done and, when a mismatch is being repeated, an FST trace.
 #pragma once
 
 #include <verilated.h>

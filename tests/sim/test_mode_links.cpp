@@ -83,10 +83,7 @@ Modes run_model(const std::vector<Packet>& run) {
   return out;
 }
 
-struct RtlRun {
-  Modes modes;
-  std::uint64_t cycles = 0, events = 0;
-};
+using RtlRun = sim::BlockRun<std::vector<std::int16_t>>;  // its results: Modes
 
 RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
   sim::VerilatedBlock<Vmode_links> rtl(trace_path);
@@ -119,7 +116,7 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
       rtl->eval();
       modes.push_back(static_cast<std::int16_t>(rtl->rd_root));
     }
-    r.modes.push_back(modes);
+    r.results.push_back(modes);
     rtl.tick();
   }
   return r;
@@ -147,7 +144,7 @@ TEST(ModeLinksRtl, EveryEventsLinkedModeEqualsTheCppModelOverRunsOfPackets) {
     for (int k = 0; k < 20; ++k) run.push_back(draw_packet(rng));
     const Modes want = run_model(run);
     const RtlRun got = run_rtl(run, "");
-    const std::string verdict = sim::mismatch_traced("mode_links", seed, "run " + std::to_string(r), difference(want, got.modes),
+    const std::string verdict = sim::mismatch_traced("mode_links", seed, "run " + std::to_string(r), difference(want, got.results),
                                                      [&](const std::string& trace) { run_rtl(run, trace); });
     ASSERT_TRUE(verdict.empty()) << verdict;
     cycles += got.cycles, events += got.events;
