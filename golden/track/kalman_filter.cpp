@@ -26,10 +26,10 @@ void KalmanFilter::predict(TimeUs t) {
   t_ = t;
 }
 
-void KalmanFilter::update(double zx, double zy) {
+void KalmanFilter::update(double zx, double zy, double r_px2) {
   Eigen::Matrix<double, 2, 4> h = Eigen::Matrix<double, 2, 4>::Zero();
   h(0, 0) = h(1, 1) = 1.0;
-  const Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * r_;
+  const Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * r_px2;
   const Eigen::Matrix2d s = h * p_ * h.transpose() + r;
   const Eigen::Matrix<double, 4, 2> k = p_ * h.transpose() * s.inverse();
   const Eigen::Vector2d innovation = Eigen::Vector2d(zx, zy) - h * x_;

@@ -1,7 +1,7 @@
 // Constant-velocity Kalman filter of one target, as in the paper: state [x, y, vx, vy] in px
 // and px/s, measurement z = [x, y] (a cluster's centre of mass), and
 //
-//   A = [[I, dt I], [0, I]],   H = [I 0],   R = sigma_z^2 I,
+//   A = [[I, dt I], [0, I]],   H = [I 0],   R = r I (r = sigma_z^2, or given per measurement),
 //   Q = q [[dt^3/3 I, dt^2/2 I], [dt^2/2 I, dt I]]   (white-noise acceleration, q in px^2/s^3)
 //
 // with dt the time between the measurements' event timestamps. The covariance is updated in
@@ -25,8 +25,10 @@ class KalmanFilter {
 
   // Advances the state and covariance to time t (no-op when t is not newer).
   void predict(TimeUs t);
-  // Corrects with a measured position at the current time.
-  void update(double zx, double zy);
+  // Corrects with a measured position at the current time, of variance r px^2 per axis
+  // (without r: sigma_z^2, Params::meas_sigma_px).
+  void update(double zx, double zy) { update(zx, zy, r_); }
+  void update(double zx, double zy, double r);
   // Where the target is expected at time t, without changing the filter.
   Eigen::Vector2d predicted_position(TimeUs t) const;
 

@@ -27,6 +27,15 @@ double MultiTargetTracker::gate(const Measurement& z) const {
   return std::max(params_.gate_px, params_.gate_spread * z.spread);
 }
 
+double MultiTargetTracker::measurement_variance(const Measurement& z) const {
+  const double sigma2 = params_.meas_sigma_px * params_.meas_sigma_px;
+  if (!params_.meas_noise_from_spread || z.events <= 0) return sigma2;
+  // The spread is the events' RMS distance from their centre over both axes, from whole pixels;
+  // a pixel's own width adds 1/12 px^2 an axis, which also keeps R above 0 for a cluster of
+  // events on one pixel.
+  return sigma2 * (z.spread * z.spread + 1.0 / 6.0) / z.events;
+}
+
 bool MultiTargetTracker::sizes_match(int track_events, int measurement_events) const {
   if (params_.size_ratio <= 0) return true;
   const double ratio = std::max(params_.size_ratio, 1.0);
@@ -95,7 +104,7 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
     Track& track = *slots_[c.slot];
     const Measurement& z = measurements[c.measurement];
     track.filter.predict(z.t);
-    track.filter.update(z.x, z.y);
+    track.filter.update(z.x, z.y, measurement_variance(z));
     track.confirmed = track.confirmed || ++track.hits >= params_.confirm_hits;
     track.missed = 0;
     track.last_z = {z.x, z.y};

@@ -85,6 +85,8 @@ class MultiTargetTracker final : public Tracker {
   };
 
   double gate(const Measurement& z) const;
+  // The variance (px^2 per axis) of measurement z's position (Params::meas_noise_from_spread).
+  double measurement_variance(const Measurement& z) const;
   bool sizes_match(int track_events, int measurement_events) const;
   std::optional<size_t> slot_for_new_track(const std::vector<bool>& matched) const;
   void report(const Track& track, const Measurement& z, std::vector<TrackUpdate>& updates) const;

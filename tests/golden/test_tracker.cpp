@@ -291,6 +291,35 @@ TEST(Tracker, TheProcessNoiseScalesWithTheSquareOfTheSensorWidth) {
   EXPECT_GT(apart_from_240, 1.0) << "px/s: the 240-wide sensor's filter is another filter";
 }
 
+// A track born at (50, 50), then measured 4 px to the right by a tight cluster of 400 events
+// (spread 4 px: a centre of mass known to 0.2 px) or by 10 scattered events (spread 8 px: known
+// to 2.5 px). With the measurement noise from the spread the tight cluster moves the estimate
+// nearly all the way and the scattered one less than half; with one noise for every cluster
+// both move it alike.
+TEST(Tracker, TheMeasurementNoiseFromTheSpreadTrustsATightClusterMoreThanAScatteredOne) {
+  const auto moved_by = [](bool from_spread, int events, double spread) {
+    Params p = tracker_params();
+    p.association = Association::kLastMeasurement;
+    p.meas_noise_from_spread = from_spread;
+    p.meas_sigma_px = 1;
+    MultiTargetTracker tracker(p);
+    std::vector<TrackUpdate> updates;
+    Measurement z{0, 50, 50, events, spread};
+    tracker.step(0, std::vector<Measurement>{z}, updates);
+    z.t = 1000, z.x = 54;
+    EXPECT_EQ(tracker.step(1000, std::vector<Measurement>{z}, updates)[0], 0);
+    return updates.back();
+  };
+  const TrackUpdate tight = moved_by(true, 400, 4), scattered = moved_by(true, 10, 8);
+  EXPECT_GT(tight.x, 53.9);
+  EXPECT_LT(scattered.x, 52.0);
+  EXPECT_GT(scattered.x, 50.5);
+  // The posterior variance is P R / (P + R), with R = sigma^2 (spread^2 + 1/6) / events.
+  const double r_tight = (16.0 + 1.0 / 6) / 400, prior = tight.var_x * r_tight / (r_tight - tight.var_x);
+  EXPECT_NEAR(prior, 4.04, 1e-3) << "P0's (2 px)^2, and its velocity's (200 px/s)^2 over 1 ms";
+  EXPECT_EQ(moved_by(false, 400, 4).x, moved_by(false, 10, 8).x);
+}
+
 TEST(NearestCentreIds, ClustersTakeTheNearestPreviousCentreEvenTwice) {
   Params p = preset("paper");
   NearestCentreIds ids_of(p);
