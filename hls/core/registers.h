@@ -69,9 +69,10 @@
   X(edge_min_events, std::uint16_t, 16, 0, "seeded: the edge join looks at modes of at least this many events")
 
 // Registers of the C++ core only: the filter's support count, the gate's widening by a
-// cluster's spread and coasting by packets. The RTL refuses a setting that needs them
-// (host/backend/core_config.h).
+// cluster's spread, coasting by packets and the measurement noise from a cluster's spread. The
+// RTL refuses a setting that needs them (host/backend/core_config.h).
 #define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
   X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
   X(gate_spread2, std::uint32_t, 32, 0, "widening of the gate by the spread of the cluster, squared, kSpreadFrac bits") \
-  X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never")
+  X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never") \
+  X(meas_from_spread, bool, 1, false, "the measurement variance is r (spread^2 + 1/6 px^2) / events instead of r")

@@ -56,8 +56,10 @@ struct KalmanAxis {
     a.p11 = cov(p11 + shr_rnd(cfg.q * dt, S::kNoiseFrac + S::kTickLog2 - S::kCovFrac));
   }
 
-  static void update(AxisState& a, std::int32_t z, const Config& cfg) {
-    const std::int64_t s = a.p00 + cfg.r;  // > 0: r > 0 and p00 >= 0
+  static void update(AxisState& a, std::int32_t z, const Config& cfg) { update(a, z, cfg.r); }
+  // The same with the measurement variance r (px^2, kCovFrac fraction bits, 0 < r <= kCovMax).
+  static void update(AxisState& a, std::int32_t z, std::int64_t r) {
+    const std::int64_t s = a.p00 + r;  // > 0: r > 0 and p00 >= 0
     const auto k0 = static_cast<std::int64_t>(Tables<S>::recip.template divide<S::kGainFrac>(static_cast<std::uint64_t>(a.p00), static_cast<std::uint64_t>(s)));
     const std::int64_t k1_mag = static_cast<std::int64_t>(
         Tables<S>::recip.template divide<S::kGainFrac>(static_cast<std::uint64_t>(a.p01 < 0 ? -a.p01 : a.p01), static_cast<std::uint64_t>(s)));
@@ -66,8 +68,8 @@ struct KalmanAxis {
     a.pos = word(a.pos + shr_rnd(k0 * e, S::kGainFrac));
     a.vel = word(a.vel + shr_rnd(k1 * clamp_sym(e, kGainMax), S::kGainFrac));
     const std::int64_t p01 = a.p01;
-    a.p00 = cov(shr_rnd(cfg.r * k0, S::kGainFrac));
-    a.p01 = cov(shr_rnd(cfg.r * k1, S::kGainFrac));
+    a.p00 = cov(shr_rnd(r * k0, S::kGainFrac));
+    a.p01 = cov(shr_rnd(r * k1, S::kGainFrac));
     a.p11 = cov(a.p11 - shr_rnd(k1 * p01, S::kGainFrac));
   }
 };

@@ -23,6 +23,7 @@
 #include "hls/core/words.h"
 #include "hls/fixed/stream.h"
 #include "hls/track/kalman_axis.h"
+#include "hls/track/measurement_variance.h"
 
 namespace evms::hls {
 
@@ -126,8 +127,9 @@ class Tracker {
       Axis::predict(t.ax, dt, cfg);
       Axis::predict(t.ay, dt, cfg);
       t.t_last = z[best_m].t;
-      Axis::update(t.ax, z[best_m].x, cfg);
-      Axis::update(t.ay, z[best_m].y, cfg);
+      const std::int64_t r = measurement_variance<S>(z[best_m], cfg);
+      Axis::update(t.ax, z[best_m].x, r);
+      Axis::update(t.ay, z[best_m].y, r);
       if (!t.confirmed) t.confirmed = ++t.hits >= cfg.confirm_hits;
       t.missed = 0;
       t.zx = z[best_m].x, t.zy = z[best_m].y;

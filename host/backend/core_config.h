@@ -100,7 +100,7 @@ inline std::string core_unsupported(const Params& p) {
   if (p.seeding == Seeding::kGrid) return "the fixed-point core seeds from events, not " + detail::setting(p, "seeding");
   if (seeded && p.labelling != Labelling::kFirst) return "the fixed-point core labels an event by the first climb that reached it, not " + detail::setting(p, "labelling");
   const Params off = preset("gaussian");
-  if (const char* name = detail::first_difference(p, off, {"filter-look-ahead-us", "packet-support", "min-density", "join-boxes", "meas-noise-from-spread"})) {
+  if (const char* name = detail::first_difference(p, off, {"filter-look-ahead-us", "packet-support", "min-density", "join-boxes"})) {
     return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
   }
   if (p.measure == Measure::kBoxCentre || (!seeded && p.measure != Measure::kCentroid)) {
@@ -141,7 +141,7 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!seeded && !gaussian_path) return "the RTL build '" + build + "' clusters by seeded climbs only, not " + detail::setting(p, "seeding");
   const Params rtl = preset("gaussian");
-  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets"})) {
+  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets", "meas-noise-from-spread"})) {
     return "the RTL core does not implement " + detail::setting(p, name) + " (add --" + name + " " + param_text(rtl, *find_param(name)) + ")";
   }
   if (!polarity_split && seeded && p.split_balance != 0) {
@@ -255,6 +255,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.gate_spread2 = static_cast<std::uint32_t>(rnd(p.gate_spread * p.gate_spread * std::ldexp(1.0, hls::kSpreadFrac)));
   c.size_ratio_log2 = static_cast<std::uint8_t>(detail::size_ratio_log2(p));
   c.coast_packets = static_cast<std::uint32_t>(p.coast_packets);
+  c.meas_from_spread = p.meas_noise_from_spread;
   static_assert(hls::kSplitCellFrac == kSplitCellFrac && hls::kSplitFractionFrac == kSplitFractionFrac);
   const SplitRule split = seeded ? split_rule(p, sensor) : SplitRule{};  // golden splits the seeded path's clusters only
   c.split_balance = static_cast<std::uint16_t>(split.balance);

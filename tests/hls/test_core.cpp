@@ -204,6 +204,26 @@ TEST(CoreAgreesWithGolden, ThePolaritySplitOnTheFamilysValidationSplit) {
   }
 }
 
+// The measurement noise from the clusters' spreads (hls/track/measurement_variance.h): the tracks
+// follow golden's as closely as with one noise for every cluster, and closer than the core's
+// own tracks with one noise do (so the core does take the spread).
+TEST(CoreAgreesWithGolden, TheMeasurementNoiseFromTheSpread) {
+  Params p;
+  p.meas_noise_from_spread = true;
+  for (const char* type : {"translation", "crossing"}) {
+    gen::SceneConfig c = gen::family_scene(type, gen::split_seed(gen::Split::kValidation, 0));
+    c.duration_s = std::min(c.duration_s, 0.25);
+    const eval::Scene scene = eval::generate_scene(c);
+    expect_chunk_agreement(scene, std::string(type) + " " + std::to_string(c.seed), p);
+    const auto golden = eval::run_backend("golden", p, scene.sensor, scene.events);
+    const auto one_noise = eval::run_backend("fixed", Params{}, scene.sensor, scene.events);
+    const auto from_spread = eval::run_backend("fixed", p, scene.sensor, scene.events);
+    EXPECT_LT(eval::agreement(scene.events, golden, from_spread, {}).track_mean_px,
+              eval::agreement(scene.events, golden, one_noise, {}).track_mean_px / 2)
+        << type;
+  }
+}
+
 constexpr const char* kRealRecordings[] = {"dvxplorer_indoor.aedat4", "gen3_moving_blob.evt2.raw", "gen41_dense_scene.evt3.raw",
                                            "atis_ncars_sample.dat"};
 

@@ -2,11 +2,14 @@
 // one, and its covariance stays symmetric and positive.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "golden/track/kalman_filter.h"
 #include "hls/core/shape.h"
 #include "hls/track/kalman_axis.h"
+#include "hls/track/measurement_variance.h"
 #include "host/backend/core_config.h"
 #include "host/gen/random.h"
 
@@ -159,6 +162,49 @@ TEST(KalmanAxisFixed, CovarianceStaysPositiveOverAMillionUpdates) {
     ASSERT_GT(a.p11, 0) << k;
     ASSERT_GT(det, 0) << k;
   }
+}
+
+// measurement_variance against r (spread^2 + 1/6) / events in double precision, densely over
+// spreads from 0 to 1,000 px (geometric steps, and every 1/256 px^2 up to 1 px^2), event counts
+// from 1 to 4,096 and r from 0.01 to 100 px^2, to the bound stated in
+// hls/track/measurement_variance.h.
+TEST(MeasurementVarianceFixed, FollowsTheScatterOfTheCentreOfMassWithinItsBound) {
+  Config cfg;
+  cfg.meas_from_spread = true;
+  std::vector<std::uint64_t> spreads2;
+  for (std::uint64_t v = 0; v <= 256; ++v) spreads2.push_back(v);
+  for (double v = 257; v < 1000.0 * 1000 * 256; v *= 1.05) spreads2.push_back(static_cast<std::uint64_t>(v));
+  std::vector<std::uint32_t> counts;
+  for (std::uint32_t n = 1; n <= 64; ++n) counts.push_back(n);
+  for (double n = 65; n <= 4096; n *= 1.07) counts.push_back(static_cast<std::uint32_t>(n));
+  counts.push_back(4096);
+  const double unit = std::ldexp(1.0, S::kCovFrac);
+  std::int64_t checked = 0;
+  for (const double r_px2 : {0.01, 1.0, 100.0}) {
+    cfg.r = std::llround(r_px2 * unit);
+    for (const std::uint64_t spread2 : spreads2) {
+      for (const std::uint32_t n : counts) {
+        Measurement z;
+        z.events = n, z.spread2 = spread2;
+        const double per_event = std::min((std::ldexp(static_cast<double>(spread2), -kSpreadFrac) + 1.0 / 6) / n,
+                                          std::ldexp(static_cast<double>(kPerEventMax), -kPerEventFrac));
+        const double exact = std::clamp(static_cast<double>(cfg.r) * per_event, 1.0, static_cast<double>(KalmanAxis<S>::kCovMax));
+        const double bound = static_cast<double>(cfg.r) * (std::ldexp(1.0, -17) + 1.0 / (768.0 * n)) + 0.5 + 1e-9 * exact;
+        const auto got = static_cast<double>(measurement_variance<S>(z, cfg));
+        ASSERT_LE(std::abs(got - exact), bound) << "r " << r_px2 << " px^2, spread2 " << spread2 << ", events " << n;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 100000);
+  // Off, or a measurement without events: r itself.
+  Measurement z;
+  z.events = 100, z.spread2 = 1 << 20;
+  cfg.meas_from_spread = false;
+  EXPECT_EQ(measurement_variance<S>(z, cfg), cfg.r);
+  cfg.meas_from_spread = true;
+  z.events = 0;
+  EXPECT_EQ(measurement_variance<S>(z, cfg), cfg.r);
 }
 
 }  // namespace
