@@ -156,10 +156,7 @@ void expect_agreement(const eval::Scene& scene, const char* what) {
 
 // The default method (seeded climbs): every 10 ms chunk's ARI between the fixed core's labels
 // and golden's at least 0.99, and the median track update within 0.25 px of golden's.
-void expect_chunk_agreement(const eval::Scene& scene, const std::string& what, const Params& p = {}) {
-  SCOPED_TRACE(what);
-  const auto golden = eval::run_backend("golden", p, scene.sensor, scene.events);
-  const auto fixed = eval::run_backend("fixed", p, scene.sensor, scene.events);
+void expect_runs_agree(const eval::Scene& scene, const eval::RunResult& golden, const eval::RunResult& fixed) {
   double worst = 1;
   std::int64_t chunks = 0;
   for (const auto& [begin, end] : eval::chunk_ranges(scene.events, eval::kFamilyChunking)) {
@@ -172,6 +169,12 @@ void expect_chunk_agreement(const eval::Scene& scene, const std::string& what, c
   EXPECT_GE(worst, 0.99) << "the least agreeing 10 ms chunk";
   // The tracks too, which the labels cannot show: the filters' noise for this sensor included.
   expect_tracks_agree(eval::agreement(scene.events, golden, fixed, {}));
+}
+
+void expect_chunk_agreement(const eval::Scene& scene, const std::string& what, const Params& p = {}) {
+  SCOPED_TRACE(what);
+  expect_runs_agree(scene, eval::run_backend("golden", p, scene.sensor, scene.events),
+                    eval::run_backend("fixed", p, scene.sensor, scene.events));
 }
 
 // Each type's first validation member, its first 0.25 s (a 640x480 member makes up to 5 M
@@ -214,10 +217,11 @@ TEST(CoreAgreesWithGolden, TheMeasurementNoiseFromTheSpread) {
     gen::SceneConfig c = gen::family_scene(type, gen::split_seed(gen::Split::kValidation, 0));
     c.duration_s = std::min(c.duration_s, 0.25);
     const eval::Scene scene = eval::generate_scene(c);
-    expect_chunk_agreement(scene, std::string(type) + " " + std::to_string(c.seed), p);
+    SCOPED_TRACE(std::string(type) + " " + std::to_string(c.seed));
     const auto golden = eval::run_backend("golden", p, scene.sensor, scene.events);
-    const auto one_noise = eval::run_backend("fixed", Params{}, scene.sensor, scene.events);
     const auto from_spread = eval::run_backend("fixed", p, scene.sensor, scene.events);
+    expect_runs_agree(scene, golden, from_spread);
+    const auto one_noise = eval::run_backend("fixed", Params{}, scene.sensor, scene.events);
     EXPECT_LT(eval::agreement(scene.events, golden, from_spread, {}).track_mean_px,
               eval::agreement(scene.events, golden, one_noise, {}).track_mean_px / 2)
         << type;
