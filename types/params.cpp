@@ -174,7 +174,7 @@ const std::array kTable = {
               &Params::meas_sigma_px, 1e-6, 1e6},
     ParamInfo{"meas-noise-from-spread", "", "a centroid's variance is meas-sigma-px^2 (spread^2 + 1/6) / events "
               "px^2 (its events' scatter over their count, a pixel's width included) instead of meas-sigma-px^2: a "
-              "large, tight cluster is trusted more than a few scattered events (not in the RTL)",
+              "large, tight cluster is trusted more than a few scattered events (not in the board builds)",
               &Params::meas_noise_from_spread, 0, 1},
     ParamInfo{"init-sigma-px", "px", "initial standard deviation of a new track's position",
               &Params::init_sigma_px, 1e-6, 1e6},

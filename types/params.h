@@ -118,8 +118,8 @@ struct Params {
   double accel_psd_width = 240;      // ... on a sensor this wide, scaled by (W / this)^2 on a sensor
                                      // W px wide (accel_psd_at); 0 = accel_psd on every sensor
   double meas_sigma_px = 1.0;        // centroid measurement noise (R = sigma^2 I)
-  bool meas_noise_from_spread = false;  // R = sigma^2 (spread^2 + 1/6) / events I: the scatter
-                                        // of the cluster's centre of mass, times sigma^2
+  bool meas_noise_from_spread = true;   // R = sigma^2 (spread^2 + 1/6) / events I: the scatter
+                                        // of the cluster's centre of mass, times sigma^2; else sigma^2 I
   double init_sigma_px = 2.0;        // initial position uncertainty (P0)
   double init_sigma_vel = 200.0;     // initial velocity uncertainty (P0), px/s
   int max_tracks = 128;              // tracks held at once

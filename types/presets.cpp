@@ -58,6 +58,7 @@ Params gaussian() {
   p.accel_psd = 1000.0;
   p.accel_psd_width = 0;
   p.meas_sigma_px = 2.0;
+  p.meas_noise_from_spread = false;
   p.init_sigma_px = 2.0;
   p.init_sigma_vel = 200.0;
   p.max_tracks = 16;

@@ -72,9 +72,11 @@ SensorSize core_build_sensor(const std::string& build);
 // limits): each of the three that the method's preset makes larger than the build holds is cut
 // to the build's, unless the command line set it (then the backend refuses it with a one-line
 // error). So `--core ice40` alone runs the iCE40 build's sizes. The board builds (arty, ice40),
-// in every backend, also run without the polarity split (--split-balance 0) and the edge join
-// (--edge-join 0) and measure by the centroid (--measure centroid), as they hold none of them
-// (Shape::kHasPolaritySplit, kHasEdgeJoin, kHasPolarityMidpoint), unless the command line set them.
+// in every backend, also run without the polarity split (--split-balance 0), the edge join
+// (--edge-join 0) and the measurement noise from the spread (--meas-noise-from-spread false),
+// and measure by the centroid (--measure centroid), as they hold none of them
+// (Shape::kHasPolaritySplit, kHasEdgeJoin, kHasSpreadNoise, kHasPolarityMidpoint), unless the
+// command line set them.
 Params fit_core_build(const std::string& backend, const std::string& core, Params p, const Method& method);
 
 class Backend {

@@ -37,9 +37,10 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 }
 
 // The method `p` within build S: the packet size, cluster and track counts cut to what S holds,
-// and without the polarity split, the polarity midpoint and the edge join where S does not hold
-// them (Shape::kHasPolaritySplit, kHasPolarityMidpoint, kHasEdgeJoin: the board builds), each
-// unless `kept(name)` says the command line set it, for the backend to refuse what S cannot run.
+// and without the polarity split, the polarity midpoint, the edge join and the measurement noise
+// from the spread where S does not hold them (Shape::kHasPolaritySplit, kHasPolarityMidpoint,
+// kHasEdgeJoin, kHasSpreadNoise: the board builds), each unless `kept(name)` says the command
+// line set it, for the backend to refuse what S cannot run.
 template <class S, class Kept>
 Params within_build(Params p, Kept kept) {
   auto cut = [&](int& value, const char* name, int build_max) {
@@ -51,6 +52,7 @@ Params within_build(Params p, Kept kept) {
   if (!S::kHasPolaritySplit && !kept("split-balance")) p.split_balance = 0;
   if (!S::kHasPolarityMidpoint && !kept("measure")) p.measure = Measure::kCentroid;
   if (!S::kHasEdgeJoin && !kept("edge-join")) p.edge_join = 0;
+  if (!S::kHasSpreadNoise && !kept("meas-noise-from-spread")) p.meas_noise_from_spread = false;
   return p;
 }
 
@@ -120,17 +122,19 @@ inline std::string core_unsupported(const Params& p) {
 // The first setting of `p` that RTL build `build` (hls/core/configs.h, and a board built from
 // it) does not implement. Every build implements the numbers of its clustering paths (the
 // Gaussian mean shift of every event, the seeded climbs, or both: Shape::kHasGaussianPath,
-// kHasSeededPath), the polarity split, the edge join and the polarity midpoint where it holds them
-// (kHasPolaritySplit, kHasEdgeJoin, kHasPolarityMidpoint) and the tracker's policies but the
-// gate's widening by the spread and coasting by packets.
+// kHasSeededPath), the polarity split, the edge join, the polarity midpoint and the measurement
+// noise from the spread where it holds them (kHasPolaritySplit, kHasEdgeJoin,
+// kHasPolarityMidpoint, kHasSpreadNoise) and the tracker's policies but the gate's widening by
+// the spread and coasting by packets.
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
-  bool gaussian_path = false, seeded_path = false, polarity_split = false, edge_join = false, polarity_midpoint = false;
+  bool gaussian_path = false, seeded_path = false, polarity_split = false, edge_join = false, polarity_midpoint = false,
+       spread_noise = false;
 #define EVMS_PATHS_OF_BUILD(name, fixed, rtl, width, height, description)                                             \
   if (build == #name) {                                                                                               \
     gaussian_path = hls::rtl::kHasGaussianPath != 0, seeded_path = hls::rtl::kHasSeededPath != 0;                     \
     polarity_split = hls::rtl::kHasPolaritySplit != 0, edge_join = hls::rtl::kHasEdgeJoin != 0;                       \
-    polarity_midpoint = hls::rtl::kHasPolarityMidpoint != 0;                                                          \
+    polarity_midpoint = hls::rtl::kHasPolarityMidpoint != 0, spread_noise = hls::rtl::kHasSpreadNoise != 0;           \
   }
   EVMS_CORE_BUILDS(EVMS_PATHS_OF_BUILD)
 #undef EVMS_PATHS_OF_BUILD
@@ -141,7 +145,7 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!seeded && !gaussian_path) return "the RTL build '" + build + "' clusters by seeded climbs only, not " + detail::setting(p, "seeding");
   const Params rtl = preset("gaussian");
-  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets", "meas-noise-from-spread"})) {
+  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets"})) {
     return "the RTL core does not implement " + detail::setting(p, name) + " (add --" + name + " " + param_text(rtl, *find_param(name)) + ")";
   }
   if (!polarity_split && seeded && p.split_balance != 0) {
@@ -152,6 +156,10 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!polarity_midpoint && p.measure == Measure::kPolarityMidpoint) {
     return "the RTL build '" + build + "' does not hold the polarity midpoint, not " + detail::setting(p, "measure") + " (add --measure centroid)";
+  }
+  if (!spread_noise && p.meas_noise_from_spread) {
+    return "the RTL build '" + build + "' does not hold the measurement noise from the spread, not " +
+           detail::setting(p, "meas-noise-from-spread") + " (add --meas-noise-from-spread false)";
   }
   return {};
 }

@@ -14,6 +14,12 @@
 // centres of mass, (Sx_on n_off + Sx_off n_on) / (2 n_on n_off), through the same divider; the
 // ON events' sums are a second memory beside the sums.
 //
+// With HasSpreadNoise and cfg_meas_from_spread, each cluster also takes its measurement
+// variance, as hls/track/measurement_variance.h: its spread squared, (n S2 - Sx^2 - Sy^2) / n^2
+// with S2 the sum of x^2 + y^2 (a third memory beside the sums; the three products through the
+// shared multiplier), then r (spread^2 + 1/6 px^2) / n, through a divider of its own and the
+// multiplier. Otherwise, and for a cluster of no events, its variance is cfg_r.
+//
 // Area: the sums and the results are memories with one write port and a combinational read
 // (distributed RAM on a Xilinx part) instead of registers with a write multiplexer each; a
 // valid bit per cluster clears the sums at once at the start of a packet, so the schedule is
@@ -25,8 +31,10 @@ module evms_centroid #(
   parameter int PosFrac     = 12,
   parameter int RecipFrac   = 20,
   parameter int PacketMax   = 256,
+  parameter int SpreadFrac  = 8,      // fraction bits of a spread squared (hls/core/shape.h)
   parameter bit HasExact    = 1'b1,   // 0: no divider; `exact` must stay low
-  parameter bit HasPolarityMidpoint = 1'b0  // 0: cfg_midpoint_min is not read (the centre of mass)
+  parameter bit HasPolarityMidpoint = 1'b0,  // 0: cfg_midpoint_min is not read (the centre of mass)
+  parameter bit HasSpreadNoise = 1'b0  // 0: cfg_meas_from_spread is not read (every variance is cfg_r)
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -36,6 +44,8 @@ module evms_centroid #(
   input  logic [7:0]  clusters,
   input  logic [31:0] t0,                  // the packet's first event
   input  logic [15:0] cfg_midpoint_min,    // ON and OFF events a cluster needs for the midpoint; 0: off
+  input  logic        cfg_meas_from_spread,  // a cluster's variance from its spread
+  input  logic signed [63:0] cfg_r,        // the measurement variance, px^2 (CovFrac fraction bits)
   // Packet and cluster_of reads (1-cycle latency), by rd_i.
   output logic [15:0] rd_i,
   input  logic [15:0] ev_x,
@@ -61,11 +71,13 @@ module evms_centroid #(
   output logic signed [31:0] z_y,
   output logic [15:0] z_events,            // the cluster's event count (at most PacketMax)
   output logic [15:0] z_x_min, z_y_min, z_x_max, z_y_max,  // the bounding box of its events
+  output logic signed [63:0] z_r,          // its measurement variance, px^2 (CovFrac fraction bits)
   output logic        done
 );
   localparam int ClusterIndexBits = ClustersMax > 1 ? $clog2(ClustersMax) : 1;
-  typedef enum logic [3:0] {StIdle, StAccRead, StAccWait, StAccAdd, StDiv, StDivRecip, StDivX, StDivY, StDivT,
-                            StDone, StExactX, StExactY, StExactT} state_e;
+  typedef enum logic [4:0] {StIdle, StAccRead, StAccWait, StAccAdd, StDiv, StDivRecip, StDivX, StDivY, StDivT,
+                            StDone, StExactX, StExactY, StExactT, StSpreadN, StSpreadX, StSpreadY, StSpreadDiv,
+                            StSpreadPerEvent, StSpreadR} state_e;
   state_e state_q, state_d;
   // Per cluster: {x_min, y_min, x_max, y_max, sx, sy, st, count}, valid when the packet has
   // added to it.
@@ -84,6 +96,14 @@ module evms_centroid #(
   logic        div_start_q, div_start_d;
   logic        done_d, recip_start_d, mul_start_d;
   logic signed [63:0] mul_a_d, mul_b_d;
+  // The measurement variance (HasSpreadNoise): n^2 var accumulated from the three products, the
+  // spread squared, and the variance, stored with the cluster's results.
+  logic        spread_on;                    // this cluster's variance comes from its spread
+  logic signed [63:0] n2var_q, n2var_d;
+  logic [63:0] spread2_q, spread2_d;
+  logic signed [63:0] meas_r_q, meas_r_d;
+  logic        spread_div_start_q, spread_div_start_d, spread_div_done;
+  logic [63:0] s2, spread_quotient;          // the cluster's sum of x^2 + y^2; the divider's result
 
   assign {z_t, z_x, z_y} = results[ClusterIndexBits'(z_c)];
   // The count and the bounding box stay in the sums until the next packet starts, after the
@@ -114,7 +134,8 @@ module evms_centroid #(
     state_d = state_q;
     {i_d, c_d, shift_xy_m1_d, shift_t_m1_d, r_d, mean_age_d, store_c_d} = {i_q, c_q, shift_xy_m1_q, shift_t_m1_q, r_q, mean_age_q, store_c_q};
     {sums_valid_d, x_d, y_d, mul_a_d, mul_b_d} = {sums_valid_q, x_q, y_q, mul_a, mul_b};
-    {done_d, recip_start_d, mul_start_d, div_start_d, store_d} = '0;
+    {n2var_d, spread2_d, meas_r_d} = {n2var_q, spread2_q, meas_r_q};
+    {done_d, recip_start_d, mul_start_d, div_start_d, store_d, spread_div_start_d} = '0;
     case (state_q)
       StIdle: if (start) begin
         sums_valid_d = '0;
@@ -157,10 +178,17 @@ module evms_centroid #(
       end
       StExactT: if (div_done) begin
         mean_age_d = 32'(div_quotient);
-        store_d = 1'b1;
-        store_c_d = ClusterIndexBits'(c_q);
-        c_d = c_q + 1'b1;
-        state_d = StDiv;
+        if (spread_on) begin
+          mul_start_d = 1'b1;
+          {mul_a_d, mul_b_d} = {$signed(64'(count)), $signed(s2)};
+          state_d = StSpreadN;
+        end else begin
+          meas_r_d = cfg_r;
+          store_d = 1'b1;
+          store_c_d = ClusterIndexBits'(c_q);
+          c_d = c_q + 1'b1;
+          state_d = StDiv;
+        end
       end
       StDivRecip: if (recip_done) begin
         r_d = recip_r;
@@ -187,6 +215,48 @@ module evms_centroid #(
       end
       StDivT: if (mul_done) begin
         mean_age_d = q_rounded;
+        if (spread_on) begin
+          mul_start_d = 1'b1;
+          {mul_a_d, mul_b_d} = {$signed(64'(count)), $signed(s2)};
+          state_d = StSpreadN;
+        end else begin
+          meas_r_d = cfg_r;
+          store_d = 1'b1;
+          store_c_d = ClusterIndexBits'(c_q);
+          c_d = c_q + 1'b1;
+          state_d = StDiv;
+        end
+      end
+      // n^2 var = n S2 - Sx^2 - Sy^2, exact.
+      StSpreadN: if (mul_done) begin
+        n2var_d = mul_p;
+        mul_start_d = 1'b1;
+        {mul_a_d, mul_b_d} = {$signed(64'(sx)), $signed(64'(sx))};
+        state_d = StSpreadX;
+      end
+      StSpreadX: if (mul_done) begin
+        n2var_d = n2var_q - mul_p;
+        mul_start_d = 1'b1;
+        {mul_a_d, mul_b_d} = {$signed(64'(sy)), $signed(64'(sy))};
+        state_d = StSpreadY;
+      end
+      StSpreadY: if (mul_done) begin
+        n2var_d = n2var_q - mul_p;
+        spread_div_start_d = 1'b1;
+        state_d = StSpreadDiv;
+      end
+      StSpreadDiv: if (spread_div_done) begin
+        spread2_d = spread_quotient;
+        spread_div_start_d = 1'b1;
+        state_d = StSpreadPerEvent;
+      end
+      StSpreadPerEvent: if (spread_div_done) begin
+        mul_start_d = 1'b1;
+        {mul_a_d, mul_b_d} = {cfg_r, $signed(spread_quotient > PerEventMax ? PerEventMax : spread_quotient)};
+        state_d = StSpreadR;
+      end
+      StSpreadR: if (mul_done) begin
+        meas_r_d = spread_r < 64'sd1 ? 64'sd1 : (spread_r > CovMax ? CovMax : spread_r);
         store_d = 1'b1;
         store_c_d = ClusterIndexBits'(c_q);
         c_d = c_q + 1'b1;
@@ -205,12 +275,15 @@ module evms_centroid #(
       state_q <= StIdle;
       {i_q, c_q, shift_xy_m1_q, shift_t_m1_q, r_q, mean_age_q, store_c_q} <= '0;
       {sums_valid_q, x_q, y_q, mul_a, mul_b} <= '0;
-      {done, recip_start, mul_start, div_start_q, store_q} <= '0;
+      {n2var_q, spread2_q, meas_r_q} <= '0;
+      {done, recip_start, mul_start, div_start_q, store_q, spread_div_start_q} <= '0;
     end else begin
       state_q <= state_d;
       {i_q, c_q, shift_xy_m1_q, shift_t_m1_q, r_q, mean_age_q, store_c_q} <= {i_d, c_d, shift_xy_m1_d, shift_t_m1_d, r_d, mean_age_d, store_c_d};
       {sums_valid_q, x_q, y_q, mul_a, mul_b} <= {sums_valid_d, x_d, y_d, mul_a_d, mul_b_d};
-      {done, recip_start, mul_start, div_start_q, store_q} <= {done_d, recip_start_d, mul_start_d, div_start_d, store_d};
+      {n2var_q, spread2_q, meas_r_q} <= {n2var_d, spread2_d, meas_r_d};
+      {done, recip_start, mul_start, div_start_q, store_q, spread_div_start_q} <=
+          {done_d, recip_start_d, mul_start_d, div_start_d, store_d, spread_div_start_d};
     end
   end
 
@@ -264,6 +337,53 @@ module evms_centroid #(
     logic unused_exact;   // waived in cluster/evms_cluster.vlt
     assign unused_exact = ^{div_start_q, div_num};
     `EVMS_ASSERT("a build without the divider cannot divide exactly", !(start && exact), clk, rst_n)
+  end
+
+  // The measurement variance's divisions, each rounded half up: round(n^2 var 2^SpreadFrac / n^2)
+  // (the spread squared), then round((spread^2 + 1/6 px^2) 2^PerEventFrac / n), capped at
+  // PerEventMax so that cfg_r (below 2^35) times it fits 63 bits; then r = that times cfg_r,
+  // rounded to CovFrac bits and clamped to [1, CovMax] (hls/track/measurement_variance.h).
+  localparam int PerEventFrac = 16;
+  localparam logic [63:0] PerEventMax = (64'd1 << 28) - 1;
+  localparam logic signed [63:0] CovMax = (64'sd1 <<< 35) - 1;
+  localparam logic [63:0] PixelWidth2 = ((64'd1 << SpreadFrac) + 64'd3) / 64'd6;   // 1/6 px^2, rounded
+  // n S2 < n^2 2^33 (x, y < 2^16); the second numerator is below 2^(34 + PerEventFrac).
+  localparam int SpreadNumBits = 2 * CountBits + 33 + SpreadFrac > 34 + PerEventFrac ? 2 * CountBits + 33 + SpreadFrac
+                                                                                       : 34 + PerEventFrac;
+  localparam int SpreadDenBits = 2 * CountBits;
+  logic signed [63:0] spread_r;
+  assign spread_r = evms_round_pkg::shr_rnd(mul_p, PerEventFrac);
+  if (HasSpreadNoise) begin : g_spread
+    // Per cluster: the sum of x^2 + y^2 of its events, valid with the sums.
+    logic [63:0] s2_sums [ClustersMax];
+    logic signed [63:0] meas_r_mem [ClustersMax];
+    assign s2 = sums_valid_q[sum_c] ? s2_sums[sum_c] : 64'd0;
+    always_ff @(posedge clk) begin
+      if (adding) s2_sums[sum_c] <= s2 + 64'(square_x) + 64'(square_y);
+      if (store_q) meas_r_mem[store_c_q] <= meas_r_q;
+    end
+    assign spread_on = cfg_meas_from_spread && count != 0;
+    assign z_r = cfg_meas_from_spread ? meas_r_mem[ClusterIndexBits'(z_c)] : cfg_r;
+    logic [SpreadNumBits-1:0] spread_num, spread_div_quotient;
+    logic [SpreadDenBits-1:0] spread_den;
+    logic [31:0] square_x, square_y;
+    assign square_x = ev_x * ev_x;
+    assign square_y = ev_y * ev_y;
+    assign spread_num = state_q == StSpreadDiv ? SpreadNumBits'(n2var_q) << SpreadFrac
+                                               : SpreadNumBits'(spread2_q + PixelWidth2) << (PerEventFrac - SpreadFrac);
+    assign spread_den = state_q == StSpreadDiv ? SpreadDenBits'(count) * SpreadDenBits'(count) : SpreadDenBits'(count);
+    evms_divide_rounded #(.NumBits(SpreadNumBits), .DenBits(SpreadDenBits)) u_spread_divide (
+      .clk, .rst_n, .start(spread_div_start_q), .num(spread_num), .den(spread_den), .done(spread_div_done),
+      .quotient(spread_div_quotient));
+    assign spread_quotient = 64'(spread_div_quotient);
+  end else begin : g_no_spread
+    assign s2 = '0;
+    assign spread_on = 1'b0;
+    assign z_r = cfg_r;
+    assign spread_div_done = 1'b0;
+    assign spread_quotient = '0;
+    logic unused_spread;   // waived in cluster/evms_cluster.vlt
+    assign unused_spread = ^{cfg_meas_from_spread, n2var_q, spread2_q, meas_r_q, spread_div_start_q, spread_r};
   end
 
   // One rounding shifter for the three quotients, round(p * 2^-(RecipFrac + m - extra)) as

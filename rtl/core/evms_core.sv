@@ -317,16 +317,18 @@ module evms_core #(
   logic [31:0] z_t;
   logic signed [31:0] z_x, z_y;
   logic [15:0] z_events, z_x_min, z_y_min, z_x_max, z_y_max;
+  logic signed [63:0] z_r;
   evms_centroid #(
-    .ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac), .PacketMax(PacketMax), .HasExact(HasSeededPath != 0),
-    .HasPolarityMidpoint(HasSeededPath != 0 && HasPolarityMidpoint != 0)
+    .ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac), .PacketMax(PacketMax), .SpreadFrac(SpreadFrac),
+    .HasExact(HasSeededPath != 0), .HasPolarityMidpoint(HasSeededPath != 0 && HasPolarityMidpoint != 0),
+    .HasSpreadNoise(HasSpreadNoise != 0)
   ) u_centroid (
     .clk(clk), .rst_n(rst_n), .start(ct_start_q), .exact(seeded), .n(16'(n_q)), .clusters(clusters), .t0(t_first_q),
-    .cfg_midpoint_min(cfg_midpoint_min), .rd_i(ct_rd_i), .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_p(rd_pk_p),
+    .cfg_midpoint_min(cfg_midpoint_min), .cfg_meas_from_spread(cfg_meas_from_spread), .cfg_r(cfg_r), .rd_i(ct_rd_i), .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_p(rd_pk_p),
     .ev_cluster(co_rdata_q), .recip_start(ct_recip_start),
     .recip_x(ct_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m), .mul_start(ct_mul_start),
     .mul_a(ct_mul_a), .mul_b(ct_mul_b), .mul_done(mul_done), .mul_p(mul_p), .z_c(z_c), .z_t(z_t), .z_x(z_x), .z_y(z_y),
-    .z_events(z_events), .z_x_min(z_x_min), .z_y_min(z_y_min), .z_x_max(z_x_max), .z_y_max(z_y_max), .done(ct_done));
+    .z_events(z_events), .z_x_min(z_x_min), .z_y_min(z_y_min), .z_x_max(z_x_max), .z_y_max(z_y_max), .z_r(z_r), .done(ct_done));
 
   // ---- tracker ----------------------------------------------------------------------------------
   logic tk_start_q, tk_done, tk_recip_start, tk_mul_start;
@@ -340,10 +342,10 @@ module evms_core #(
   ) u_tracker (
     .clk(clk), .rst_n(rst_n), .cfg_gate2(cfg_gate2), .cfg_confirm_hits(cfg_confirm_hits), .cfg_coast_us(cfg_coast_us),
     .cfg_max_tracks(cfg_max_tracks), .cfg_associate_last(cfg_associate_last), .cfg_evict_stale(cfg_evict_stale),
-    .cfg_report_tentative(cfg_report_tentative), .cfg_size_ratio_log2(cfg_size_ratio_log2), .cfg_q_third(cfg_q_third), .cfg_q_half(cfg_q_half), .cfg_q(cfg_q), .cfg_r(cfg_r),
+    .cfg_report_tentative(cfg_report_tentative), .cfg_size_ratio_log2(cfg_size_ratio_log2), .cfg_q_third(cfg_q_third), .cfg_q_half(cfg_q_half), .cfg_q(cfg_q),
     .cfg_p0_pos(cfg_p0_pos), .cfg_p0_vel(cfg_p0_vel), .start(tk_start_q), .packet_time(t_last_q), .m(clusters), .z_c(z_c),
     .z_t(z_t), .z_x(z_x), .z_y(z_y), .z_events(z_events), .z_x_min(z_x_min), .z_y_min(z_y_min), .z_x_max(z_x_max),
-    .z_y_max(z_y_max), .id_c(id_c), .id_of(id_of), .upd_valid(trk_valid), .upd_ready(trk_ready),
+    .z_y_max(z_y_max), .z_r(z_r), .id_c(id_c), .id_of(id_of), .upd_valid(trk_valid), .upd_ready(trk_ready),
     .upd_t(trk_t), .upd_id(trk_id), .upd_x(trk_x), .upd_y(trk_y), .upd_vx(trk_vx), .upd_vy(trk_vy), .upd_zx(trk_zx),
     .upd_zy(trk_zy), .upd_confirmed(trk_confirmed), .upd_events(trk_events), .upd_x_min(trk_x_min), .upd_y_min(trk_y_min),
     .upd_x_max(trk_x_max), .upd_y_max(trk_y_max), .upd_var_x(trk_var_x), .upd_var_y(trk_var_y), .recip_start(tk_recip_start), .recip_x(tk_recip_x),

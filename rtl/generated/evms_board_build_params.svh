@@ -50,6 +50,7 @@
 .CfgEdgeRadius2(CfgEdgeRadius2),
 .CfgEdgeBalance(CfgEdgeBalance),
 .CfgEdgeMinEvents(CfgEdgeMinEvents),
+.CfgMeasFromSpread(CfgMeasFromSpread),
 .MaxWidth(MaxWidth),
 .MaxHeight(MaxHeight),
 .TimestampBits(TimestampBits),
@@ -91,4 +92,5 @@
 .HasPolaritySplit(HasPolaritySplit),
 .HasPolarityMidpoint(HasPolarityMidpoint),
 .HasEdgeJoin(HasEdgeJoin),
+.HasSpreadNoise(HasSpreadNoise),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

@@ -50,3 +50,4 @@
 .cfg_edge_radius2(CfgEdgeRadius2),
 .cfg_edge_balance(CfgEdgeBalance),
 .cfg_edge_min_events(CfgEdgeMinEvents),
+.cfg_meas_from_spread(CfgMeasFromSpread),

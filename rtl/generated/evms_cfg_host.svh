@@ -41,6 +41,7 @@ localparam int HasSeededPath = 1;
 localparam int HasPolaritySplit = 1;
 localparam int HasPolarityMidpoint = 1;
 localparam int HasEdgeJoin = 1;
+localparam int HasSpreadNoise = 1;
 localparam ExpTableFile = "../generated/exp_10_16.mem";
 localparam RecipTableFile = "../generated/recip_8_20.mem";
 // Reset registers: the method of --preset evms, within this build's limits, for a 1280x720 sensor.
@@ -94,3 +95,4 @@ localparam logic [15:0] CfgMidpointMin = 16'd16;
 localparam logic [63:0] CfgEdgeRadius2 = 64'd16777216;
 localparam logic [15:0] CfgEdgeBalance = 16'd128;
 localparam logic [15:0] CfgEdgeMinEvents = 16'd16;
+localparam logic CfgMeasFromSpread = 1'd1;

@@ -41,6 +41,7 @@ localparam int HasSeededPath = 1;
 localparam int HasPolaritySplit = 0;
 localparam int HasPolarityMidpoint = 0;
 localparam int HasEdgeJoin = 0;
+localparam int HasSpreadNoise = 0;
 localparam ExpTableFile = "../generated/exp_8_15.mem";
 localparam RecipTableFile = "../generated/recip_8_20.mem";
 // Reset registers: the method of --preset evms, within this build's limits, for a 128x128 sensor.
@@ -94,6 +95,7 @@ localparam logic [15:0] CfgMidpointMin = 16'd0;
 localparam logic [63:0] CfgEdgeRadius2 = 64'd0;
 localparam logic [15:0] CfgEdgeBalance = 16'd0;
 localparam logic [15:0] CfgEdgeMinEvents = 16'd0;
+localparam logic CfgMeasFromSpread = 1'd0;
 // The board: its clock, its UART's clocks a bit, its link queue's depth in events, and whether
 // its core stops at the filter (the host clusters and tracks).
 localparam int BoardClockHz = 12000000, BoardClocksPerBit = 4, BoardLinkFifoDepth = 1024, BoardCoreStopsAtFilter = 1;

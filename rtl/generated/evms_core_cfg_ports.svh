@@ -50,3 +50,4 @@ input  logic [15:0] cfg_midpoint_min,  // seeded: a cluster whose ON and OFF eve
 input  logic [63:0] cfg_edge_radius2,  // seeded: a mostly-ON and a mostly-OFF mode whose centres lie within sqrt(this) / 16 px join (hls/cluster/edge_join.h); 0: off (the only setting of a build without HasEdgeJoin)
 input  logic [15:0] cfg_edge_balance,  // seeded: a mode is mostly one polarity when |2 ON - events| >= this * events, kSplitFractionFrac bits
 input  logic [15:0] cfg_edge_min_events,  // seeded: the edge join looks at modes of at least this many events
+input  logic cfg_meas_from_spread,  // the measurement variance is r (spread^2 + 1/6 px^2) / events instead of r (hls/track/measurement_variance.h); false: r (the only setting of a build without HasSpreadNoise)

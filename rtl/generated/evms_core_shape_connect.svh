@@ -41,4 +41,5 @@
 .HasPolaritySplit(HasPolaritySplit),
 .HasPolarityMidpoint(HasPolarityMidpoint),
 .HasEdgeJoin(HasEdgeJoin),
+.HasSpreadNoise(HasSpreadNoise),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

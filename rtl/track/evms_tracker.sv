@@ -45,7 +45,6 @@ module evms_tracker #(
   input  logic signed [63:0] cfg_q_third,
   input  logic signed [63:0] cfg_q_half,
   input  logic signed [63:0] cfg_q,
-  input  logic signed [63:0] cfg_r,
   input  logic signed [63:0] cfg_p0_pos,
   input  logic signed [63:0] cfg_p0_vel,
   input  logic        start,
@@ -58,6 +57,7 @@ module evms_tracker #(
   input  logic signed [31:0] z_y,
   input  logic [15:0] z_events,
   input  logic [15:0] z_x_min, z_y_min, z_x_max, z_y_max,
+  input  logic signed [63:0] z_r,        // its variance, px^2 (CovFrac fraction bits): cfg_r, or from its spread
   // Track ID given to each measurement (-1: none), by index.
   input  logic [7:0]  id_c,
   output logic signed [31:0] id_of,
@@ -535,7 +535,7 @@ module evms_tracker #(
           w_p11_q <= step;
           w_p00_q <= p00n_q;
           // update: s = p00 + r, through the reciprocal
-          recip_x <= 64'(p00n_q + cfg_r);
+          recip_x <= 64'(p00n_q + z_r);
           recip_start <= 1'b1;
           state_q <= StUpdateRecip;
         end
@@ -567,12 +567,12 @@ module evms_tracker #(
         end
         StUpdateVel: if (mul_done) begin
           w_vel_q <= step;
-          `EVMS_REQUEST(cfg_r, k0_q)
+          `EVMS_REQUEST(z_r, k0_q)
           state_q <= StUpdateP00;
         end
         StUpdateP00: if (mul_done) begin
           p00n_q <= step;
-          `EVMS_REQUEST(cfg_r, k1_q)
+          `EVMS_REQUEST(z_r, k1_q)
           state_q <= StUpdateP01;
         end
         StUpdateP01: if (mul_done) begin

@@ -167,19 +167,23 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   const auto ahead = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --filter-look-ahead-us 10000 --quiet");
   EXPECT_EQ(ahead.exit_code, 1);
   EXPECT_NE(ahead.err.find("does not implement --filter-look-ahead-us 10000 (only --filter-look-ahead-us 0)"), std::string::npos) << ahead.err;
-  // The measurement noise from the clusters' spreads is the C++ core's, not the RTL's.
-  const auto spread = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --meas-noise-from-spread true --quiet");
+  // Nor the measurement noise from the clusters' spreads, which the host build and the C++
+  // cores hold.
+  const auto spread = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --meas-noise-from-spread true --quiet");
   EXPECT_EQ(spread.exit_code, 1);
-  EXPECT_NE(spread.err.find("the RTL core does not implement --meas-noise-from-spread true (add --meas-noise-from-spread false)"), std::string::npos)
+  EXPECT_EQ(std::count(spread.err.begin(), spread.err.end(), '\n'), 1) << spread.err;
+  EXPECT_NE(spread.err.find("the RTL build 'arty' does not hold the measurement noise from the spread, not --meas-noise-from-spread true "
+                            "(add --meas-noise-from-spread false)"),
+            std::string::npos)
       << spread.err;
-  const auto fixed_spread = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --meas-noise-from-spread true --quiet");
+  const auto fixed_spread = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --core arty --meas-noise-from-spread true --quiet");
   EXPECT_EQ(fixed_spread.exit_code, 0) << fixed_spread.err;
   const auto fixed_split = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --split-balance 0.3 --quiet");
   EXPECT_EQ(fixed_split.exit_code, 0) << fixed_split.err;
 }
 
-// The host RTL build runs the default method in its sizes, the polarity split and the edge join
-// included; its labels and tracks are the fixed-point core's.
+// The host RTL build runs the default method in its sizes, the polarity split, the edge join and
+// the measurement noise from the spread included; its labels and tracks are the fixed-point core's.
 TEST(MethodOutputs, TheRtlRunsTheDefaultMethodAsTheFixedCore) {
   TempDir dir;
   // Packets of 256 events hold few clusters of twice the default 64 events a part, so the parts
@@ -195,14 +199,16 @@ TEST(MethodOutputs, TheRtlRunsTheDefaultMethodAsTheFixedCore) {
   };
   const std::string rtl = run("rtl", "rtl", ""), fixed = run("fixed", "fixed", ""), unsplit = run("unsplit", "rtl", " --split-balance 0");
   const std::string unjoined = run("unjoined", "rtl", " --edge-join 0");
+  const std::string one_noise = run("one_noise", "rtl", " --meas-noise-from-spread false");
   EXPECT_GT(csv_rows(rtl + "/tracks.csv").size(), 10u);
   EXPECT_TRUE(same_text(read_file(rtl + "/events.csv"), read_file(fixed + "/events.csv"))) << "the labels";
   // Every column: the RTL's track words carry the measurement's count and box and the variances.
   EXPECT_TRUE(same_text(read_file(rtl + "/tracks.csv"), read_file(fixed + "/tracks.csv"))) << "the tracks";
-  // The scene has clusters that the split parts and edges that the join makes one, so the equality
-  // covers both in the RTL.
+  // The scene has clusters that the split parts and edges that the join makes one, and the
+  // clusters' spreads move the tracks, so the equality covers all three in the RTL.
   EXPECT_FALSE(same_text(read_file(rtl + "/events.csv"), read_file(unsplit + "/events.csv"))) << "the split changed no label: the scene does not test it";
   EXPECT_FALSE(same_text(read_file(rtl + "/events.csv"), read_file(unjoined + "/events.csv"))) << "the edge join changed no label: the scene does not test it";
+  EXPECT_FALSE(same_text(read_file(rtl + "/tracks.csv"), read_file(one_noise + "/tracks.csv"))) << "the measurement noise changed no track";
 }
 
 TEST(MethodOutputs, ThePaperPresetRunsTheAuthorsRule) {
