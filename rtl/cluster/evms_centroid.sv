@@ -104,6 +104,7 @@ module evms_centroid #(
   logic signed [63:0] meas_r_q, meas_r_d;
   logic        spread_div_start_q, spread_div_start_d, spread_div_done;
   logic [63:0] s2, spread_quotient;          // the cluster's sum of x^2 + y^2; the divider's result
+  logic        last_quotient_done;          // a cluster's mean age lands this clock
 
   assign {z_t, z_x, z_y} = results[ClusterIndexBits'(z_c)];
   // The count and the bounding box stay in the sums until the next packet starts, after the
@@ -178,17 +179,6 @@ module evms_centroid #(
       end
       StExactT: if (div_done) begin
         mean_age_d = 32'(div_quotient);
-        if (spread_on) begin
-          mul_start_d = 1'b1;
-          {mul_a_d, mul_b_d} = {$signed(64'(count)), $signed(s2)};
-          state_d = StSpreadN;
-        end else begin
-          meas_r_d = cfg_r;
-          store_d = 1'b1;
-          store_c_d = ClusterIndexBits'(c_q);
-          c_d = c_q + 1'b1;
-          state_d = StDiv;
-        end
       end
       StDivRecip: if (recip_done) begin
         r_d = recip_r;
@@ -215,17 +205,6 @@ module evms_centroid #(
       end
       StDivT: if (mul_done) begin
         mean_age_d = q_rounded;
-        if (spread_on) begin
-          mul_start_d = 1'b1;
-          {mul_a_d, mul_b_d} = {$signed(64'(count)), $signed(s2)};
-          state_d = StSpreadN;
-        end else begin
-          meas_r_d = cfg_r;
-          store_d = 1'b1;
-          store_c_d = ClusterIndexBits'(c_q);
-          c_d = c_q + 1'b1;
-          state_d = StDiv;
-        end
       end
       // n^2 var = n S2 - Sx^2 - Sy^2, exact.
       StSpreadN: if (mul_done) begin
@@ -268,6 +247,20 @@ module evms_centroid #(
       end
       default: state_d = StIdle;
     endcase
+    // A cluster's last quotient (its mean age) has landed: its variance next, or it is stored.
+    if (last_quotient_done) begin
+      if (spread_on) begin
+        mul_start_d = 1'b1;
+        {mul_a_d, mul_b_d} = {$signed(64'(count)), $signed(s2)};
+        state_d = StSpreadN;
+      end else begin
+        meas_r_d = cfg_r;
+        store_d = 1'b1;
+        store_c_d = ClusterIndexBits'(c_q);
+        c_d = c_q + 1'b1;
+        state_d = StDiv;
+      end
+    end
   end
 
   always_ff @(posedge clk or negedge rst_n) begin
@@ -350,6 +343,8 @@ module evms_centroid #(
   // n S2 < n^2 2^33 (x, y < 2^16); the second numerator is below 2^(34 + PerEventFrac).
   localparam int SpreadNumBits = 2 * CountBits + 33 + SpreadFrac > 34 + PerEventFrac ? 2 * CountBits + 33 + SpreadFrac
                                                                                        : 34 + PerEventFrac;
+  assign last_quotient_done = (state_q == StExactT && div_done) || (state_q == StDivT && mul_done);
+
   localparam int SpreadDenBits = 2 * CountBits;
   logic signed [63:0] spread_r;
   assign spread_r = evms_round_pkg::shr_rnd(mul_p, PerEventFrac);
