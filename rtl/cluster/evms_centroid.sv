@@ -349,9 +349,14 @@ module evms_centroid #(
   logic signed [63:0] spread_r;
   assign spread_r = evms_round_pkg::shr_rnd(mul_p, PerEventFrac);
   if (HasSpreadNoise) begin : g_spread
-    // Per cluster: the sum of x^2 + y^2 of its events, valid with the sums.
+    // Per cluster: the sum of x^2 + y^2 of its events, valid with the sums; the variance.
     logic [63:0] s2_sums [ClustersMax];
     logic signed [63:0] meas_r_mem [ClustersMax];
+    logic [31:0] square_x, square_y;
+    logic [SpreadNumBits-1:0] spread_num, spread_div_quotient;
+    logic [SpreadDenBits-1:0] spread_den;
+    assign square_x = ev_x * ev_x;
+    assign square_y = ev_y * ev_y;
     assign s2 = sums_valid_q[sum_c] ? s2_sums[sum_c] : 64'd0;
     always_ff @(posedge clk) begin
       if (adding) s2_sums[sum_c] <= s2 + 64'(square_x) + 64'(square_y);
@@ -359,14 +364,13 @@ module evms_centroid #(
     end
     assign spread_on = cfg_meas_from_spread && count != 0;
     assign z_r = cfg_meas_from_spread ? meas_r_mem[ClusterIndexBits'(z_c)] : cfg_r;
-    logic [SpreadNumBits-1:0] spread_num, spread_div_quotient;
-    logic [SpreadDenBits-1:0] spread_den;
-    logic [31:0] square_x, square_y;
-    assign square_x = ev_x * ev_x;
-    assign square_y = ev_y * ev_y;
     assign spread_num = state_q == StSpreadDiv ? SpreadNumBits'(n2var_q) << SpreadFrac
                                                : SpreadNumBits'(spread2_q + PixelWidth2) << (PerEventFrac - SpreadFrac);
-    assign spread_den = state_q == StSpreadDiv ? SpreadDenBits'(count) * SpreadDenBits'(count) : SpreadDenBits'(count);
+    // n^2, registered: the cluster (c_q) holds from its first division to its store, so the
+    // product is ready when the spread's division starts, off the divider's start path.
+    logic [SpreadDenBits-1:0] count_squared_q;
+    always_ff @(posedge clk) count_squared_q <= SpreadDenBits'(count) * SpreadDenBits'(count);
+    assign spread_den = state_q == StSpreadDiv ? count_squared_q : SpreadDenBits'(count);
     evms_divide_rounded #(.NumBits(SpreadNumBits), .DenBits(SpreadDenBits)) u_spread_divide (
       .clk, .rst_n, .start(spread_div_start_q), .num(spread_num), .den(spread_den), .done(spread_div_done),
       .quotient(spread_div_quotient));
