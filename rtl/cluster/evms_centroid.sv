@@ -307,9 +307,12 @@ module evms_centroid #(
     logic use_midpoint;
     assign count_off = 16'(count) - count_on;
     assign use_midpoint = cfg_midpoint_min != 0 && count_on >= cfg_midpoint_min && count_off >= cfg_midpoint_min;
-    assign num_x = use_midpoint ? (ExactBits'(sx_on) * ExactBits'(count_off) + ExactBits'(sx - sx_on) * ExactBits'(count_on)) << PosFrac
+    logic [31:0] sx_off, sy_off;   // the OFF events' sums, 32-bit as the C++ core's
+    assign sx_off = sx - sx_on;
+    assign sy_off = sy - sy_on;
+    assign num_x = use_midpoint ? (ExactBits'(sx_on) * ExactBits'(count_off) + ExactBits'(sx_off) * ExactBits'(count_on)) << PosFrac
                                 : mass_num_x;
-    assign num_y = use_midpoint ? (ExactBits'(sy_on) * ExactBits'(count_off) + ExactBits'(sy - sy_on) * ExactBits'(count_on)) << PosFrac
+    assign num_y = use_midpoint ? (ExactBits'(sy_on) * ExactBits'(count_off) + ExactBits'(sy_off) * ExactBits'(count_on)) << PosFrac
                                 : mass_num_y;
     assign den_xy = use_midpoint ? (DenBits'(count_on) * DenBits'(count_off)) << 1 : DenBits'(count);
   end else begin : g_centre

@@ -5,6 +5,8 @@
 // order. One cycle per (mode, seed) pair, through a three-stage pipeline (the differences to the
 // seed, their squared sum, the comparison), so that no clock holds a multiply and a 64-bit
 // comparison in series: a mode's seeds take seeds + 2 clocks.
+`include "evms_assert.svh"
+
 module evms_merge #(
   parameter int ClustersMax = 16,
   parameter int ModeBits           = 17      // mode width (features + 1)
@@ -31,6 +33,7 @@ module evms_merge #(
   output logic [7:0]    clusters
 );
   localparam int ClusterIndexBits = ClustersMax > 1 ? $clog2(ClustersMax) : 1;
+  `EVMS_ASSERT_INIT("a cluster's index fits the 8-bit signed label (ClustersMax <= 127)", ClustersMax <= 127)
   typedef enum logic [3:0] {StIdle, StRead, StWait, StSeeds, StDecide, StRenumber, StRelabelRead, StRelabelWait,
                             StRelabelWrite, StDone} state_e;
   state_e state_q, state_d;
