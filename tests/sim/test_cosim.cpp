@@ -232,6 +232,7 @@ TEST(Cosim, ParameterCorners) {
   open.confirm_hits = 1;
   open.min_cluster_size = 1;
   open.size_ratio = 2;
+  open.meas_noise_from_spread = true;   // after the reciprocal's quotients, on clusters of one event too
   expect_equal<Vcore_host, hls::RtlHostShape>("corner_open", events, {240, 180}, 42, 0.5, open);
   Params tight = backend::build_default_params<hls::ArtyShape>();   // the seeded path
   tight.max_clusters = 3;
