@@ -56,8 +56,7 @@ struct KalmanAxis {
     a.p11 = cov(p11 + shr_rnd(cfg.q * dt, S::kNoiseFrac + S::kTickLog2 - S::kCovFrac));
   }
 
-  static void update(AxisState& a, std::int32_t z, const Config& cfg) { update(a, z, cfg.r); }
-  // The same with the measurement variance r (px^2, kCovFrac fraction bits, 0 < r <= kCovMax).
+  // With the measurement variance r (px^2, kCovFrac fraction bits, 0 < r <= kCovMax).
   static void update(AxisState& a, std::int32_t z, std::int64_t r) {
     const std::int64_t s = a.p00 + r;  // > 0: r > 0 and p00 >= 0
     const auto k0 = static_cast<std::int64_t>(Tables<S>::recip.template divide<S::kGainFrac>(static_cast<std::uint64_t>(a.p00), static_cast<std::uint64_t>(s)));

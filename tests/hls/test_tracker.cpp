@@ -85,7 +85,7 @@ TEST(KalmanAxisFixed, FollowsTheDoubleFilter) {
     const double z = truth + 0.7 * rng.normal();
     const auto zq = static_cast<std::int32_t>(std::lround(z / pos_unit));
     KalmanAxis<S>::predict(a, dt, cfg);
-    KalmanAxis<S>::update(a, zq, cfg);
+    KalmanAxis<S>::update(a, zq, cfg.r);
     d.predict(dt * 1e-6, p.accel_psd);
     d.update(zq * pos_unit, p.meas_sigma_px * p.meas_sigma_px);
     if (k > 100) {
@@ -126,7 +126,7 @@ TEST(KalmanAxisFixed, TheLargestProcessNoiseTheCoreTakesFollowsTheDoubleFilter) 
     if (std::abs(truth) > 1000 || std::abs(v) > 5000) truth = 0, v = 0;
     const auto zq = static_cast<std::int32_t>(std::lround((truth + rng.normal()) / pos_unit));
     KalmanAxis<S>::predict(a, dt, cfg);
-    KalmanAxis<S>::update(a, zq, cfg);
+    KalmanAxis<S>::update(a, zq, cfg.r);
     d.predict(dt * 1e-6, p.accel_psd);
     d.update(zq * pos_unit, p.meas_sigma_px * p.meas_sigma_px);
     ASSERT_GT(a.p00, 0) << k;
@@ -156,7 +156,7 @@ TEST(KalmanAxisFixed, CovarianceStaysPositiveOverAMillionUpdates) {
     truth += v * dt * 1e-6;
     if (std::abs(truth) > 1500) truth = 0, v = 0;
     KalmanAxis<S>::predict(a, dt, cfg);
-    KalmanAxis<S>::update(a, static_cast<std::int32_t>(std::lround((truth + rng.normal()) * 4096)), cfg);
+    KalmanAxis<S>::update(a, static_cast<std::int32_t>(std::lround((truth + rng.normal()) * 4096)), cfg.r);
     const __int128 det = static_cast<__int128>(a.p00) * a.p11 - static_cast<__int128>(a.p01) * a.p01;
     ASSERT_GT(a.p00, 0) << k;
     ASSERT_GT(a.p11, 0) << k;
