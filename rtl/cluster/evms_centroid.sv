@@ -366,7 +366,7 @@ module evms_centroid #(
       if (store_q) meas_r_mem[store_c_q] <= meas_r_q;
     end
     assign spread_on = cfg_meas_from_spread && count != 0;
-    assign z_r = cfg_meas_from_spread ? meas_r_mem[ClusterIndexBits'(z_c)] : cfg_r;
+    assign z_r = meas_r_mem[ClusterIndexBits'(z_c)];   // every cluster stores one, cfg_r when not from its spread
     assign spread_num = state_q == StSpreadDiv ? SpreadNumBits'(n2var_q) << SpreadFrac
                                                : SpreadNumBits'(spread2_q + PixelWidth2) << (PerEventFrac - SpreadFrac);
     // n^2, registered: the cluster (c_q) holds from its first division to its store, so the
