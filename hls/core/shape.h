@@ -97,7 +97,20 @@ struct Shape {
   static constexpr int kCovFrac = 16;
   static constexpr int kGainFrac = 20;
   static constexpr int kNoiseFrac = 32;          // q / 3, q / 2 and q per tick^3
-  static constexpr int kMaxDtLog2 = 20;          // time steps above 2^20 us (1 s) are clamped
+  static constexpr int kMaxDtLog2 = 18;          // time steps above 2^18 us (262 ms) are clamped
+  // Saturation bounds, each +-(2^n - 1): covariances (stored in kCovLog2 + 1 bits), gains and
+  // the error a velocity gain multiplies, positions and velocities (32-bit words).
+  static constexpr int kCovLog2 = 35;
+  static constexpr int kGainLog2 = 27;
+  static constexpr int kPosLog2 = 31;
+  static constexpr int kGateDistLog2 = 12 + PosFrac;  // gating differences saturate at +-2^12 px
+  // The measurement variance from the spread (hls/track/measurement_variance.h): the scatter
+  // per event has kPerEventFrac fraction bits and is capped at 2^kPerEventLog2 - 1, so that r
+  // (below 2^kCovLog2) times it fits 63 bits; a pixel's own width, 1/6 px^2, in kSpreadFrac bits.
+  static constexpr int kPerEventFrac = 16;
+  static constexpr int kPerEventLog2 = 28;
+  static constexpr int kPixelWidth2 = ((1 << kSpreadFrac) + 3) / 6;
+  static_assert(kCovLog2 + kPerEventLog2 <= 63, "r times the scatter per event fits 63 bits");
   // The RTL's shared 64-bit multiplier (features, centroids, tracking): 64 = one product a
   // clock (DSP cascades), fewer = that many bits of the multiplier a clock (iCE40 LUTs).
   static constexpr int kMulDigitBits = MulDigitBits;
@@ -132,6 +145,14 @@ struct Shape {
   X(CovFrac)                         \
   X(GainFrac)                        \
   X(NoiseFrac)                       \
+  X(MaxDtLog2)                       \
+  X(CovLog2)                         \
+  X(GainLog2)                        \
+  X(PosLog2)                         \
+  X(GateDistLog2)                    \
+  X(PerEventFrac)                    \
+  X(PerEventLog2)                    \
+  X(PixelWidth2)                     \
   X(MulDigitBits)                    \
   X(ModesMax)                        \
   X(LinkMax)                         \

@@ -30,10 +30,10 @@ struct AxisState {
 
 template <class S>
 struct KalmanAxis {
-  static constexpr std::int64_t kCovMax = (std::int64_t{1} << 35) - 1;
-  static constexpr std::int64_t kGainMax = (std::int64_t{1} << 27) - 1;
-  static constexpr std::int64_t kPosMax = (std::int64_t{1} << 31) - 1;
-  static constexpr std::uint32_t kMaxDt = (1u << 18);  // 262 ms: longer steps are clamped
+  static constexpr std::int64_t kCovMax = (std::int64_t{1} << S::kCovLog2) - 1;
+  static constexpr std::int64_t kGainMax = (std::int64_t{1} << S::kGainLog2) - 1;
+  static constexpr std::int64_t kPosMax = (std::int64_t{1} << S::kPosLog2) - 1;
+  static constexpr std::uint32_t kMaxDt = (1u << S::kMaxDtLog2);  // longer steps are clamped
 
   static std::int64_t cov(std::int64_t v) { return clamp_sym(v, kCovMax); }
   static std::int32_t word(std::int64_t v) { return static_cast<std::int32_t>(clamp_sym(v, kPosMax)); }

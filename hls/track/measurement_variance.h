@@ -6,9 +6,9 @@
 // MultiTargetTracker::measurement_variance (golden/track/tracker.cpp). In px^2 with kCovFrac
 // fraction bits, as r.
 //
-// The scatter per event is one exact division rounded half up, to kPerEventFrac fraction bits
-// and at most 2^28 - 1 (2^12 px^2), so that r (below 2^35) times it fits 63 bits; the result is
-// clamped to [1, kCovMax], as the update needs 0 < r.
+// The scatter per event is one exact division rounded half up, to S::kPerEventFrac fraction
+// bits and at most 2^S::kPerEventLog2 - 1 (2^12 px^2), so that r (below 2^S::kCovLog2) times it
+// fits 63 bits; the result is clamped to [1, kCovMax], as the update needs 0 < r.
 //
 // Bound (tests/hls/test_tracker.cpp, dense over spreads from 0 to 1,000 px, 1 to 4,096 events
 // and r from 0.01 to 100 px^2): within r (2^-17 + 1 / (768 events)) + 1/2 units of
@@ -25,17 +25,14 @@
 
 namespace evms::hls {
 
-inline constexpr int kPerEventFrac = 16;
-inline constexpr std::uint64_t kPerEventMax = (std::uint64_t{1} << 28) - 1;
-
 template <class S>
 std::int64_t measurement_variance(const Measurement& z, const Config& cfg) {
   if (!cfg.meas_from_spread || z.events == 0) return cfg.r;
-  constexpr std::uint64_t kPixelWidth2 = ((std::uint64_t{1} << S::kSpreadFrac) + 3) / 6;  // 1/6 px^2, rounded
-  const std::uint64_t scatter = (z.spread2 + kPixelWidth2) << (kPerEventFrac - S::kSpreadFrac);
+  constexpr std::uint64_t kPerEventMax = (std::uint64_t{1} << S::kPerEventLog2) - 1;
+  const std::uint64_t scatter = (z.spread2 + S::kPixelWidth2) << (S::kPerEventFrac - S::kSpreadFrac);
   std::uint64_t per_event = (2 * scatter + z.events) / (2 * std::uint64_t{z.events});
   if (per_event > kPerEventMax) per_event = kPerEventMax;
-  const std::int64_t r = shr_rnd(cfg.r * static_cast<std::int64_t>(per_event), kPerEventFrac);
+  const std::int64_t r = shr_rnd(cfg.r * static_cast<std::int64_t>(per_event), S::kPerEventFrac);
   return r < 1 ? 1 : r > KalmanAxis<S>::kCovMax ? KalmanAxis<S>::kCovMax : r;
 }
 

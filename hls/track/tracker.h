@@ -249,7 +249,7 @@ class Tracker {
   static std::uint64_t distance2(const Slot& t, const Measurement& z) {
     const std::int32_t dt_raw = static_cast<std::int32_t>(z.t - t.t_last);
     const std::uint32_t dt = dt_raw > 0 ? static_cast<std::uint32_t>(dt_raw) : 0;
-    constexpr std::int64_t kLimit = std::int64_t{4096} << S::kPosFrac;  // px
+    constexpr std::int64_t kLimit = std::int64_t{1} << S::kGateDistLog2;
     const std::int64_t dx = clamp_sym(std::int64_t{z.x} - Axis::predicted(t.ax, dt), kLimit);
     const std::int64_t dy = clamp_sym(std::int64_t{z.y} - Axis::predicted(t.ay, dt), kLimit);
     return static_cast<std::uint64_t>(dx * dx + dy * dy);

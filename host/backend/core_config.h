@@ -175,7 +175,7 @@ constexpr double tick_seconds() {
 // rounds its shift, must be a signed 64-bit number (hls/track/kalman_axis.h).
 template <class S>
 double max_accel_psd() {
-  const int longest_step_log2 = std::bit_width(hls::KalmanAxis<S>::kMaxDt) - 1 - S::kTickLog2;  // ticks
+  const int longest_step_log2 = S::kMaxDtLog2 - S::kTickLog2;  // ticks
   const int dt3_bits = 3 * longest_step_log2 + S::kCovFrac;
   const std::int64_t q_third_max = (INT64_MAX - (std::int64_t{1} << (S::kNoiseFrac - 1))) >> dt3_bits;
   const double tick_s = tick_seconds<S>();

@@ -34,7 +34,12 @@ module evms_centroid #(
   parameter int SpreadFrac  = 8,      // fraction bits of a spread squared (hls/core/shape.h)
   parameter bit HasExact    = 1'b1,   // 0: no divider; `exact` must stay low
   parameter bit HasPolarityMidpoint = 1'b0,  // 0: cfg_midpoint_min is not read (the centre of mass)
-  parameter bit HasSpreadNoise = 1'b0  // 0: cfg_meas_from_spread is not read (every variance is cfg_r)
+  parameter bit HasSpreadNoise = 1'b0,  // 0: cfg_meas_from_spread is not read (every variance is cfg_r)
+  // The measurement variance's words (hls/core/shape.h).
+  parameter int CovLog2      = 35,
+  parameter int PerEventFrac = 16,
+  parameter int PerEventLog2 = 28,
+  parameter int PixelWidth2  = 43
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -337,12 +342,10 @@ module evms_centroid #(
 
   // The measurement variance's divisions, each rounded half up: round(n^2 var 2^SpreadFrac / n^2)
   // (the spread squared), then round((spread^2 + 1/6 px^2) 2^PerEventFrac / n), capped at
-  // PerEventMax so that cfg_r (below 2^35) times it fits 63 bits; then r = that times cfg_r,
+  // PerEventMax so that cfg_r (below 2^CovLog2) times it fits 63 bits; then r = that times cfg_r,
   // rounded to CovFrac bits and clamped to [1, CovMax] (hls/track/measurement_variance.h).
-  localparam int PerEventFrac = 16;
-  localparam logic [63:0] PerEventMax = (64'd1 << 28) - 1;
-  localparam logic signed [63:0] CovMax = (64'sd1 <<< 35) - 1;
-  localparam logic [63:0] PixelWidth2 = ((64'd1 << SpreadFrac) + 64'd3) / 64'd6;   // 1/6 px^2, rounded
+  localparam logic [63:0] PerEventMax = (64'd1 << PerEventLog2) - 1;
+  localparam logic signed [63:0] CovMax = (64'sd1 <<< CovLog2) - 1;
   // n S2 < n^2 2^33 (x, y < 2^16); the second numerator is below 2^(34 + PerEventFrac).
   localparam int SpreadNumBits = 2 * CountBits + 33 + SpreadFrac > 34 + PerEventFrac ? 2 * CountBits + 33 + SpreadFrac
                                                                                        : 34 + PerEventFrac;
@@ -368,7 +371,7 @@ module evms_centroid #(
     assign spread_on = cfg_meas_from_spread && count != 0;
     assign z_r = meas_r_mem[ClusterIndexBits'(z_c)];   // every cluster stores one, cfg_r when not from its spread
     assign spread_num = state_q == StSpreadDiv ? SpreadNumBits'(n2var_q) << SpreadFrac
-                                               : SpreadNumBits'(spread2_q + PixelWidth2) << (PerEventFrac - SpreadFrac);
+                                               : SpreadNumBits'(spread2_q + 64'(PixelWidth2)) << (PerEventFrac - SpreadFrac);
     // n^2, registered: the cluster (c_q) holds from its first division to its store, so the
     // product is ready when the spread's division starts, off the divider's start path.
     logic [SpreadDenBits-1:0] count_squared_q;

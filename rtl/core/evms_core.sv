@@ -321,7 +321,8 @@ module evms_core #(
   evms_centroid #(
     .ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac), .PacketMax(PacketMax), .SpreadFrac(SpreadFrac),
     .HasExact(HasSeededPath != 0), .HasPolarityMidpoint(HasSeededPath != 0 && HasPolarityMidpoint != 0),
-    .HasSpreadNoise(HasSpreadNoise != 0)
+    .HasSpreadNoise(HasSpreadNoise != 0), .CovLog2(CovLog2), .PerEventFrac(PerEventFrac), .PerEventLog2(PerEventLog2),
+    .PixelWidth2(PixelWidth2)
   ) u_centroid (
     .clk(clk), .rst_n(rst_n), .start(ct_start_q), .exact(seeded), .n(16'(n_q)), .clusters(clusters), .t0(t_first_q),
     .cfg_midpoint_min(cfg_midpoint_min), .cfg_meas_from_spread(cfg_meas_from_spread), .cfg_r(cfg_r), .rd_i(ct_rd_i), .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_p(rd_pk_p),
@@ -338,7 +339,8 @@ module evms_core #(
   logic signed [31:0] id_of;
   evms_tracker #(
     .ClustersMax(ClustersMax), .TracksMax(TracksMax), .PosFrac(PosFrac), .TickLog2(TickLog2), .CovFrac(CovFrac),
-    .GainFrac(GainFrac), .NoiseFrac(NoiseFrac), .RecipFrac(RecipFrac)
+    .GainFrac(GainFrac), .NoiseFrac(NoiseFrac), .RecipFrac(RecipFrac), .CovLog2(CovLog2), .GainLog2(GainLog2),
+    .PosLog2(PosLog2), .GateDistLog2(GateDistLog2), .MaxDtLog2(MaxDtLog2)
   ) u_tracker (
     .clk(clk), .rst_n(rst_n), .cfg_gate2(cfg_gate2), .cfg_confirm_hits(cfg_confirm_hits), .cfg_coast_us(cfg_coast_us),
     .cfg_max_tracks(cfg_max_tracks), .cfg_associate_last(cfg_associate_last), .cfg_evict_stale(cfg_evict_stale),

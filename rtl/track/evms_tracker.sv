@@ -19,7 +19,7 @@
 // and a combinational read (distributed RAM on a Xilinx part), not registers with a write
 // multiplexer each; so are each slot's ID and last time, and each measurement's track ID (with
 // a valid bit a measurement, cleared in one clock). Covariances are stored in CovBits bits: every stored covariance is clamped
-// to +-(2^35 - 1) or is P0, which host/backend/core_config.h keeps below 2^35.
+// to +-(2^CovLog2 - 1) or is P0, which host/backend/core_config.h keeps below 2^CovLog2.
 `include "evms_assert.svh"
 
 module evms_tracker #(
@@ -30,7 +30,14 @@ module evms_tracker #(
   parameter int CovFrac     = 16,
   parameter int GainFrac    = 20,
   parameter int NoiseFrac   = 32,
-  parameter int RecipFrac   = 20
+  parameter int RecipFrac   = 20,
+  // Saturation bounds, each +-(2^n - 1), the gating differences' +-2^GateDistLog2, and the
+  // longest time step (hls/core/shape.h).
+  parameter int CovLog2      = 35,
+  parameter int GainLog2     = 27,
+  parameter int PosLog2      = 31,
+  parameter int GateDistLog2 = 24,
+  parameter int MaxDtLog2    = 18
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -86,15 +93,13 @@ module evms_tracker #(
 );
   localparam int TrackIndexBits = TracksMax > 1 ? $clog2(TracksMax) : 1;
   localparam int ClusterIndexBits = ClustersMax > 1 ? $clog2(ClustersMax) : 1;
-  // Bounds: covariances +-(2^35 - 1), gains +-(2^27 - 1), positions +-(2^31 - 1), gating
-  // distances +-2^(12 + PosFrac) (4096 px).
-  localparam int CovLog2 = 35, GainLog2 = 27, PosLog2 = 31, DistLog2 = 12 + PosFrac;
-  localparam logic signed [63:0] MaxDt = 64'sd1 <<< 18;   // longer time steps are clamped
-  localparam int CovBits = 36;
+  localparam logic signed [63:0] MaxDt = 64'sd1 <<< MaxDtLog2;   // longer time steps are clamped
+  localparam int CovBits = CovLog2 + 1;
+  localparam int GainBits = GainLog2 + 1, GainSumBits = GainLog2 + 2;
   `EVMS_ASSERT_INIT("the step unit rounds right shifts of at least one bit",
                    TickLog2 >= 1 && 2 * TickLog2 - CovFrac >= 1 && CovFrac >= 1 && NoiseFrac >= 1 && NoiseFrac + TickLog2 - CovFrac >= 1 && GainFrac >= 1)
-  `EVMS_ASSERT_INIT("the gains' quotient shifts right (RecipFrac >= GainFrac) and clamps at 2^27 - 1", RecipFrac >= GainFrac && GainLog2 == 27)
-  `EVMS_ASSERT_INIT("the gating distance assumes 2^(16 + PosFrac) + 2^DistLog2 < 2^31 - 1", PosFrac <= 14)
+  `EVMS_ASSERT_INIT("the gains' quotient shifts right (RecipFrac >= GainFrac) and its clamp fits 64 bits", RecipFrac >= GainFrac && GainLog2 <= 62)
+  `EVMS_ASSERT_INIT("the gating distance assumes 2^(16 + PosFrac) + 2^GateDistLog2 < 2^PosLog2 - 1", 16 + PosFrac < PosLog2 - 1 && GateDistLog2 < PosLog2 - 1)
 
   // clamp_sym(v, b) for the bounds the tracker uses, b = 2^n - 1 (ones) and b = 2^n (pow2),
   // decided from the sign and the high bits instead of two 64-bit comparisons, which are carry
@@ -294,10 +299,10 @@ module evms_tracker #(
     // The gating distance of the predicted position to the measurement, clamp(z - step): from
     // z - pos (registered when the pair was issued) minus the rounded term, a second carry chain
     // beside the step's rather than after it. When the prediction saturates at +-(2^31 - 1) the
-    // distance saturates at -+2^DistLog2, as |z| < 2^(16 + PosFrac) (pixel coordinates).
+    // distance saturates at -+2^GateDistLog2, as |z| < 2^(16 + PosFrac) (pixel coordinates).
     gate_sum = zp_q[step_axis_q] + ~step_hs + 64'(!step_carry);   // zp - (hs + carry)
-    if (outside_ones(step_sum, PosLog2)) gate_dist = step_sum[63] ? 64'sd1 <<< DistLog2 : -(64'sd1 <<< DistLog2);
-    else gate_dist = clamp_pow2(gate_sum, DistLog2);
+    if (outside_ones(step_sum, PosLog2)) gate_dist = step_sum[63] ? 64'sd1 <<< GateDistLog2 : -(64'sd1 <<< GateDistLog2);
+    else gate_dist = clamp_pow2(gate_sum, GateDistLog2);
   end
 
   // The lowest free slot a birth takes (-1: none); with none, the slot an eviction scan found.
@@ -551,10 +556,11 @@ module evms_tracker #(
           state_q <= StUpdateK1;
         end
         StUpdateK1: if (mul_done) begin
-          logic [27:0] mag;
-          // clamp_sym(+-q, G) == +-min(q, G) for q >= 0; q >= 2^27 exactly when t >= 2^28 - 1,
-          // so the add is 28 bits and the negation 29.
-          mag = q_t >> 28 != 0 || &q_t[27:0] ? 28'((1 << GainLog2) - 1) : 28'(({1'b0, q_t[27:0]} + 29'd1) >> 1);
+          logic [GainBits-1:0] mag;
+          // clamp_sym(+-q, G) == +-min(q, G) for q >= 0; q >= 2^GainLog2 exactly when
+          // t >= 2^GainBits - 1, so the add is GainBits bits and the negation one more.
+          mag = q_t >> GainBits != 0 || &q_t[GainBits-1:0] ? GainBits'((65'd1 << GainLog2) - 65'd1)
+                                                           : GainBits'(({1'b0, q_t[GainBits-1:0]} + GainSumBits'(1)) >> 1);
           k1_q <= 64'($signed(w_p01_q < 0 ? -{1'b0, mag} : {1'b0, mag}));
           w_e_q <= w_z_q - w_pos_q;
           `EVMS_REQUEST(k0_q, w_z_q - w_pos_q)

@@ -187,7 +187,7 @@ TEST(MeasurementVarianceFixed, FollowsTheScatterOfTheCentreOfMassWithinItsBound)
         Measurement z;
         z.events = n, z.spread2 = spread2;
         const double per_event = std::min((std::ldexp(static_cast<double>(spread2), -kSpreadFrac) + 1.0 / 6) / n,
-                                          std::ldexp(static_cast<double>(kPerEventMax), -kPerEventFrac));
+                                          std::ldexp(std::ldexp(1.0, S::kPerEventLog2) - 1, -S::kPerEventFrac));
         const double exact = std::clamp(static_cast<double>(cfg.r) * per_event, 1.0, static_cast<double>(KalmanAxis<S>::kCovMax));
         const double bound = static_cast<double>(cfg.r) * (std::ldexp(1.0, -17) + 1.0 / (768.0 * n)) + 0.5 + 1e-9 * exact;
         const auto got = static_cast<double>(measurement_variance<S>(z, cfg));
