@@ -38,6 +38,9 @@ struct Shape {
   static constexpr int kMaxHeight = MaxHeight;
   static constexpr int kTimestampBits = TimestampBits;    // per-pixel timestamp memory word: 16 or 32
   static constexpr int kTimestampShift = TimestampShift;  // stored time unit: 2^shift us
+  // The filter's noise check counts in intervals of 2^kNoiseIntervalLog2 us (32.8 ms), the
+  // method's kFilterNoiseIntervalLog2 (types/params.h; host/backend/core_config.h checks them equal).
+  static constexpr int kNoiseIntervalLog2 = 15;
   // Packets.
   static constexpr int kPacketMax = PacketMax;   // N: kept events per packet (the runtime size may be smaller)
   static constexpr int kPendingDepth = PendingDepth;   // events held until their packet is labelled
@@ -124,6 +127,7 @@ struct Shape {
   X(MaxHeight)                       \
   X(TimestampBits)                   \
   X(TimestampShift)                  \
+  X(NoiseIntervalLog2)               \
   X(PacketMax)                       \
   X(PendingDepth)                    \
   X(Lanes)                           \

@@ -124,7 +124,7 @@ class BackgroundActivityFilter {
     return bits;
   }
   static constexpr int kScrubPerEvent = 2;
-  static constexpr int kNoiseIntervalLog2 = 15;  // types/params.h: kFilterNoiseIntervalLog2
+  static constexpr int kNoiseIntervalLog2 = S::kNoiseIntervalLog2;
   static constexpr std::uint32_t kIntervalMask = (std::uint32_t{1} << (32 - kNoiseIntervalLog2)) - 1;
   static constexpr std::uint32_t kCountMax = (std::uint32_t{1} << 24) - 1;
   // The time scrubber's pace: one entry each 2^kSweepLog2 us sweeps the memory within an eighth

@@ -188,6 +188,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   auto need = [](bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument(what);
   };
+  static_assert(S::kNoiseIntervalLog2 == kFilterNoiseIntervalLog2, "the core's filter counts in the method's intervals");
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) throw std::invalid_argument(unsupported);
   need(sensor.width <= S::kMaxWidth && sensor.height <= S::kMaxHeight,
        "the core is built for sensors up to " + std::to_string(S::kMaxWidth) + "x" + std::to_string(S::kMaxHeight) + ", not " +
@@ -196,7 +197,8 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   need(p.max_iterations <= S::kIterationsMax, "the core runs at most " + std::to_string(S::kIterationsMax) + " iterations (--max-iterations)");
   need(p.max_clusters <= S::kClustersMax, "the core holds at most " + std::to_string(S::kClustersMax) + " clusters (--max-clusters)");
   need(p.max_tracks <= S::kTracksMax, "the core holds at most " + std::to_string(S::kTracksMax) + " tracks (--max-tracks)");
-  need(p.coast_us <= (1 << 18), "the core predicts at most 262 ms ahead (--coast-us)");
+  need(p.coast_us <= (1 << S::kMaxDtLog2),
+       "the core predicts at most " + std::to_string((1 << S::kMaxDtLog2) / 1000) + " ms ahead (--coast-us)");
   need(p.confirm_hits <= 255 && p.min_cluster_size <= 65535, "confirm-hits or min-cluster-size too large for the core");
 
   const double link_px = link_px_at(p, sensor);

@@ -114,7 +114,8 @@ module evms_board #(
   if (CoreStopsAtFilter != 0) begin : g_filter_core
     // Every event comes back as a label frame (noise or passed); no track or packet words.
     evms_filter_core #(
-      .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift)
+      .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift),
+      .NoiseIntervalLog2(NoiseIntervalLog2)
     ) u_core (
       .clk(clk), .rst_n(run_rst_n),
       `include "evms_board_filter_cfg_connect.svh"

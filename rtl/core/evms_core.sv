@@ -113,7 +113,7 @@ module evms_core #(
   logic [15:0] q_x, q_y;
   evms_intake #(
     .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift),
-    .QueueDepth(PacketMax), .HasClimbScale(HasSeededPath), .ClimbShift(ClimbShift)
+    .NoiseIntervalLog2(NoiseIntervalLog2), .QueueDepth(PacketMax), .HasClimbScale(HasSeededPath), .ClimbShift(ClimbShift)
   ) u_intake (
     .clk(clk), .rst_n(rst_n),
     `include "evms_filter_cfg_connect.svh"

@@ -9,6 +9,7 @@ module evms_filter_core #(
   parameter int MaxHeight      = 128,
   parameter int TimestampBits  = 16,
   parameter int TimestampShift = 7,
+  parameter int NoiseIntervalLog2 = 15,
   parameter int QueueDepth     = 4     // decided words that wait for the label stream
 ) (
   input  logic        clk,
@@ -27,7 +28,7 @@ module evms_filter_core #(
   logic [31:0] unused_climb_x, unused_climb_y;
   evms_intake #(
     .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift),
-    .QueueDepth(QueueDepth), .HasClimbScale(0)
+    .NoiseIntervalLog2(NoiseIntervalLog2), .QueueDepth(QueueDepth), .HasClimbScale(0)
   ) u_intake (
     .clk(clk), .rst_n(rst_n),
     `include "evms_filter_cfg_connect.svh"

@@ -16,6 +16,7 @@ module evms_intake #(
   parameter int MaxHeight      = 180,
   parameter int TimestampBits  = 16,
   parameter int TimestampShift = 7,
+  parameter int NoiseIntervalLog2 = 15,
   parameter int QueueDepth     = 256,
   parameter int HasClimbScale  = 1,   // compute the climb features (a build with the seeded path)
   parameter int ClimbShift     = 21   // kClimbScaleFrac - kFeatFrac - kClimbFrac
@@ -55,7 +56,8 @@ module evms_intake #(
   logic [CountBits-1:0] taken_q;       // taken and not yet popped
 
   logic f_ready, f_start, f_done, f_kept;
-  evms_ba_filter #(.MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift)) u_filter (
+  evms_ba_filter #(.MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift),
+                   .NoiseIntervalLog2(NoiseIntervalLog2)) u_filter (
     .clk(clk), .rst_n(rst_n), .cfg_enabled(cfg_filter_enabled), .cfg_width(cfg_sensor_width), .cfg_height(cfg_sensor_height),
     .cfg_window(cfg_filter_window), .cfg_noise_count(cfg_filter_noise_count), .cfg_quiet_count(cfg_filter_quiet_count),
     .cfg_quiet_window(cfg_filter_quiet_window), .cfg_warm_up(cfg_filter_warm_up), .ready(f_ready), .start(f_start), .t(in_t), .x(in_x), .y(in_y), .done(f_done), .kept(f_kept));

@@ -8,8 +8,8 @@
 //     (up to) 8 neighbours inside the sensor, keep when one holds a time t' != 0 with
 //     (now - t') mod 2^TimestampBits <= window, where now = t >> TimestampShift; write now (or 1
 //     for 0) to the own pixel; then scrub two more entries;
-//   - the noise check: the events no neighbour supported are counted in intervals of 2^15 us
-//     (t[31:15]); an interval with cfg_noise_count or more of them makes the next one noisy,
+//   - the noise check: the events no neighbour supported are counted in intervals of 2^NoiseIntervalLog2 us
+//     (t[31:NoiseIntervalLog2]); an interval with cfg_noise_count or more of them makes the next one noisy,
 //     and there an event needs two supporting neighbours instead of one (cfg_noise_count 0: off);
 //   - the quiet window: an interval with fewer than cfg_quiet_count of them (counted against
 //     cfg_window) makes the next one quiet, and there an event's supporters are its neighbours
@@ -21,7 +21,8 @@ module evms_ba_filter #(
   parameter int MaxWidth  = 240,
   parameter int MaxHeight = 180,
   parameter int TimestampBits    = 16,
-  parameter int TimestampShift   = 7
+  parameter int TimestampShift   = 7,
+  parameter int NoiseIntervalLog2 = 15   // the noise check's interval, 2^n us (hls/core/shape.h)
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -83,7 +84,7 @@ module evms_ba_filter #(
   logic [3:0]    quiet_supporters_q, quiet_supporters_d;  // neighbours that fired within the quiet window, 0..8
   // The noise check: the current interval, its unsupported events (saturating), and whether
   // the previous interval was noisy.
-  localparam int IntervalBits = 17;
+  localparam int IntervalBits = 32 - NoiseIntervalLog2;
   localparam logic [23:0] CountMax = '1;
   logic                    started_q, started_d, noisy_q, noisy_d, quiet_q, quiet_d;
   // The warm-up: the first judged event's time, whether the warm-up still runs, and whether it
@@ -93,7 +94,7 @@ module evms_ba_filter #(
   wire                     warm_within = t - warm_start_q < cfg_warm_up;
   logic [IntervalBits-1:0] interval_q, interval_d;
   logic [23:0]             unsupported_q, unsupported_d;
-  wire  [IntervalBits-1:0] interval = t[31:15];
+  wire  [IntervalBits-1:0] interval = t[31:NoiseIntervalLog2];
   logic [TimestampBits-1:0] now_q, now_d;
   wire  [31:0]              age = 32'(TimestampBits'(now_q - rdata_q));  // of the neighbour rdata_q holds
   logic [15:0]   ex_q, ex_d, ey_q, ey_d;

@@ -55,6 +55,7 @@
 .MaxHeight(MaxHeight),
 .TimestampBits(TimestampBits),
 .TimestampShift(TimestampShift),
+.NoiseIntervalLog2(NoiseIntervalLog2),
 .PacketMax(PacketMax),
 .PendingDepth(PendingDepth),
 .Lanes(LanesOverride > 0 ? LanesOverride : Lanes),

@@ -4,6 +4,7 @@ localparam int MaxWidth = 240;
 localparam int MaxHeight = 180;
 localparam int TimestampBits = 16;
 localparam int TimestampShift = 7;
+localparam int NoiseIntervalLog2 = 15;
 localparam int PacketMax = 512;
 localparam int PendingDepth = 1024;
 localparam int Lanes = 8;

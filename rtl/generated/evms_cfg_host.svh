@@ -4,6 +4,7 @@ localparam int MaxWidth = 1280;
 localparam int MaxHeight = 720;
 localparam int TimestampBits = 32;
 localparam int TimestampShift = 0;
+localparam int NoiseIntervalLog2 = 15;
 localparam int PacketMax = 256;
 localparam int PendingDepth = 16384;
 localparam int Lanes = 8;

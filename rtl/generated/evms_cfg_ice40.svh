@@ -4,6 +4,7 @@ localparam int MaxWidth = 128;
 localparam int MaxHeight = 128;
 localparam int TimestampBits = 16;
 localparam int TimestampShift = 7;
+localparam int NoiseIntervalLog2 = 15;
 localparam int PacketMax = 256;
 localparam int PendingDepth = 512;
 localparam int Lanes = 1;

@@ -4,6 +4,7 @@
 .MaxHeight(MaxHeight),
 .TimestampBits(TimestampBits),
 .TimestampShift(TimestampShift),
+.NoiseIntervalLog2(NoiseIntervalLog2),
 .PacketMax(PacketMax),
 .PendingDepth(PendingDepth),
 .Lanes(Lanes),
