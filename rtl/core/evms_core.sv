@@ -79,10 +79,10 @@ module evms_core #(
   // ---- memories ---------------------------------------------------------------------------
   // Each has one write port and one registered read port, so that it maps to block RAM.
   // Pending queue: every event since the last release, with its index in the packet or -1.
-  localparam int PendW = 32 + 16 + 16 + 1 + 16;
-  logic [PendW-1:0] pend_mem [PendingDepth];
+  localparam int PendingWordBits = 32 + 16 + 16 + 1 + 16;   // t, x, y, p, the packet index
+  logic [PendingWordBits-1:0] pend_mem [PendingDepth];
   logic             pend_we;
-  logic [PendW-1:0] pend_wdata, pend_rdata_q;
+  logic [PendingWordBits-1:0] pend_wdata, pend_rdata_q;
   // The open packet, and each of its events' cluster.
   logic [64:0] pk_mem [PacketMax];
   logic [64:0] pk_rdata_q;

@@ -139,8 +139,8 @@ module evms_tracker #(
   logic signed [31:0]       s_id [TracksMax];
   logic [31:0]              s_t [TracksMax];
   // Filter state of each slot, one memory per axis: {pos, vel, p00, p01, p11}.
-  localparam int KW = 64 + 3 * CovBits;
-  logic [KW-1:0]            kal_x [TracksMax], kal_y [TracksMax];
+  localparam int AxisStateBits = 64 + 3 * CovBits;
+  logic [AxisStateBits-1:0] kal_x [TracksMax], kal_y [TracksMax];
   logic [TracksMax-1:0]    slot_matched_q;
   logic [ClustersMax-1:0]  meas_matched_q;
   // Each measurement's track ID (memory), where ids_valid_q says it has one this packet.
@@ -211,17 +211,17 @@ module evms_tracker #(
   assign si = TrackIndexBits'(s_q);
 
   // The slot being scanned or updated, both axes.
-  logic [KW-1:0]             kx, ky;
+  logic [AxisStateBits-1:0]             kx, ky;
   logic [3*CovBits-1:0]      ka;  // the covariances of the axis being filtered
   logic signed [31:0]        pos_of [2], vel_of [2];
   logic signed [CovBits-1:0] p00_of, p01_of, p11_of;
   assign kx = kal_x[si];
   assign ky = kal_y[si];
   assign ka = axis_q ? ky[3*CovBits-1:0] : kx[3*CovBits-1:0];
-  assign pos_of[0] = kx[KW-1 -: 32];
-  assign pos_of[1] = ky[KW-1 -: 32];
-  assign vel_of[0] = kx[KW-33 -: 32];
-  assign vel_of[1] = ky[KW-33 -: 32];
+  assign pos_of[0] = kx[AxisStateBits-1 -: 32];
+  assign pos_of[1] = ky[AxisStateBits-1 -: 32];
+  assign vel_of[0] = kx[AxisStateBits-33 -: 32];
+  assign vel_of[1] = ky[AxisStateBits-33 -: 32];
   assign {p00_of, p01_of, p11_of} = ka;
   assign z_c = state_q == StMatch ? best_m_q : k_q;
 
@@ -736,13 +736,13 @@ module evms_tracker #(
   // ---- the filter-state memories: a birth writes both axes, an update the axis it filtered --
   logic          birth_now, update_now;
   logic [TrackIndexBits-1:0] kal_addr;
-  logic [KW-1:0] kal_update;
+  logic [AxisStateBits-1:0] kal_update;
   assign birth_now = state_q == StBirth && k_q < m && !meas_matched_q[ClusterIndexBits'(k_q)] && !evict_scan_needed && birth_slot >= 0;
   assign update_now = state_q == StUpdateP11 && mul_done;
   assign kal_addr = birth_now ? TrackIndexBits'(birth_slot) : si;
   assign kal_update = {32'(w_pos_q), 32'(w_vel_q), CovBits'(p00n_q), p01n_q, CovBits'(step)};
   // A new track's axis: at the measurement, at rest, with the initial covariance.
-  function automatic [KW-1:0] born_at(input signed [31:0] z);
+  function automatic [AxisStateBits-1:0] born_at(input signed [31:0] z);
     begin
       born_at = {z, 32'd0, CovBits'(cfg_p0_pos), CovBits'(0), CovBits'(cfg_p0_vel)};
     end
