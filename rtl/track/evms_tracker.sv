@@ -99,7 +99,7 @@ module evms_tracker #(
   `EVMS_ASSERT_INIT("the step unit rounds right shifts of at least one bit",
                    TickLog2 >= 1 && 2 * TickLog2 - CovFrac >= 1 && CovFrac >= 1 && NoiseFrac >= 1 && NoiseFrac + TickLog2 - CovFrac >= 1 && GainFrac >= 1)
   `EVMS_ASSERT_INIT("the gains' quotient shifts right (RecipFrac >= GainFrac) and its clamp fits 64 bits", RecipFrac >= GainFrac && GainLog2 <= 62)
-  `EVMS_ASSERT_INIT("the gating distance assumes 2^(16 + PosFrac) + 2^GateDistLog2 < 2^PosLog2 - 1", 16 + PosFrac < PosLog2 - 1 && GateDistLog2 < PosLog2 - 1)
+  `EVMS_ASSERT_INIT("the gating distance assumes 2^(16 + PosFrac) + 2^GateDistLog2 < 2^PosLog2 - 1", (64'd1 << (16 + PosFrac)) + (64'd1 << GateDistLog2) < (64'd1 << PosLog2) - 64'd1)
 
   // clamp_sym(v, b) for the bounds the tracker uses, b = 2^n - 1 (ones) and b = 2^n (pow2),
   // decided from the sign and the high bits instead of two 64-bit comparisons, which are carry
