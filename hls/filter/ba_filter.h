@@ -82,7 +82,7 @@ class BackgroundActivityFilter {
     stamp_[e.y * S::kMaxWidth + e.x] = now == 0 ? 1 : now;
   scrub:
     for (int k = 0; k < kScrubPerEvent; ++k) scrub_one(now);
-    const std::uint32_t interval = e.t >> kNoiseIntervalLog2;
+    const std::uint32_t interval = e.t >> S::kNoiseIntervalLog2;
     if (!started_) started_ = true, interval_ = interval, warm_start_ = e.t, warming_ = cfg.filter_warm_up != 0;
     bool warm = false;
     if (warming_) {
@@ -124,8 +124,7 @@ class BackgroundActivityFilter {
     return bits;
   }
   static constexpr int kScrubPerEvent = 2;
-  static constexpr int kNoiseIntervalLog2 = S::kNoiseIntervalLog2;
-  static constexpr std::uint32_t kIntervalMask = (std::uint32_t{1} << (32 - kNoiseIntervalLog2)) - 1;
+  static constexpr std::uint32_t kIntervalMask = (std::uint32_t{1} << (32 - S::kNoiseIntervalLog2)) - 1;
   static constexpr std::uint32_t kCountMax = (std::uint32_t{1} << 24) - 1;
   // The time scrubber's pace: one entry each 2^kSweepLog2 us sweeps the memory within an eighth
   // of the wrap; more than kClearCrossings of them (a gap of more than a quarter of the wrap)

@@ -211,7 +211,7 @@ module evms_tracker #(
   assign si = TrackIndexBits'(s_q);
 
   // The slot being scanned or updated, both axes.
-  logic [AxisStateBits-1:0]             kx, ky;
+  logic [AxisStateBits-1:0] kx, ky;
   logic [3*CovBits-1:0]      ka;  // the covariances of the axis being filtered
   logic signed [31:0]        pos_of [2], vel_of [2];
   logic signed [CovBits-1:0] p00_of, p01_of, p11_of;
@@ -298,7 +298,7 @@ module evms_tracker #(
     step = step_bound_q == BoundPos ? clamp_ones(step_sum, PosLog2) : step_bound_q == BoundCov ? clamp_ones(step_sum, CovLog2) : step_sum;
     // The gating distance of the predicted position to the measurement, clamp(z - step): from
     // z - pos (registered when the pair was issued) minus the rounded term, a second carry chain
-    // beside the step's rather than after it. When the prediction saturates at +-(2^31 - 1) the
+    // beside the step's rather than after it. When the prediction saturates at +-(2^PosLog2 - 1) the
     // distance saturates at -+2^GateDistLog2, as |z| < 2^(16 + PosFrac) (pixel coordinates).
     gate_sum = zp_q[step_axis_q] + ~step_hs + 64'(!step_carry);   // zp - (hs + carry)
     if (outside_ones(step_sum, PosLog2)) gate_dist = step_sum[63] ? 64'sd1 <<< GateDistLog2 : -(64'sd1 <<< GateDistLog2);
