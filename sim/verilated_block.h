@@ -70,6 +70,42 @@ struct BlockRun {
   std::uint64_t cycles = 0, events = 0;
 };
 
+// Where a run's results first differ: "packet K: " and what `describe(want, got)` says of that
+// packet's two results; empty when every packet's are equal.
+template <class Result, class Describe>
+std::string first_packet_difference(const std::vector<Result>& want, const std::vector<Result>& got, Describe describe) {
+  for (size_t k = 0; k < want.size(); ++k) {
+    if (k >= got.size()) return "packet " + std::to_string(k) + ": no result from the RTL";
+    if (!(want[k] == got[k])) return "packet " + std::to_string(k) + ": " + describe(want[k], got[k]);
+  }
+  return "";
+}
+
+// The lockstep check of a block over `runs` runs of packets: run r is `draw(r)`, the model's
+// results are `model(run)`, the RTL's `rtl(run, trace_path)` (a BlockRun), and a packet's
+// results differ as `describe` says (first_packet_difference). The first run that differs ends
+// the check with mismatch_traced's verdict; `tally(run, want)` sees each run that agreed.
+struct RunsCompared {
+  std::string verdict;   // empty: every run agreed
+  std::uint64_t cycles = 0, events = 0;
+};
+template <class Draw, class Model, class Rtl, class Describe, class Tally>
+RunsCompared compare_runs(const std::string& block, std::uint64_t seed, int runs, Draw draw, Model model, Rtl rtl, Describe describe,
+                          Tally tally) {
+  RunsCompared c;
+  for (int r = 0; r < runs; ++r) {
+    const auto run = draw(r);
+    const auto want = model(run);
+    const auto got = rtl(run, std::string());
+    c.verdict = mismatch_traced(block, seed, "run " + std::to_string(r), first_packet_difference(want, got.results, describe),
+                                [&](const std::string& trace) { rtl(run, trace); });
+    if (!c.verdict.empty()) return c;
+    c.cycles += got.cycles, c.events += got.events;
+    tally(run, want);
+  }
+  return c;
+}
+
 template <class Model>
 class VerilatedBlock {
  public:

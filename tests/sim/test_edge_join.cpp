@@ -181,43 +181,37 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
   return r;
 }
 
-std::string difference(const std::vector<Result>& want, const std::vector<Result>& got) {
-  for (size_t k = 0; k < want.size(); ++k) {
-    if (want[k] == got[k]) continue;
-    std::ostringstream o;
-    o << "packet " << k << ": ";
-    if (want[k].joined != got[k].joined) o << got[k].joined << " pairs joined, want " << want[k].joined << "; ";
-    for (size_t j = 0; j < want[k].mode.size(); ++j) {
-      if (want[k].mode[j] != got[k].mode[j]) {
-        o << "event " << j << ": mode " << got[k].mode[j] << ", want " << want[k].mode[j];
-        break;
-      }
+// What differs between two results of one packet.
+std::string describe(const Result& want, const Result& got) {
+  std::ostringstream o;
+  if (want.joined != got.joined) o << got.joined << " pairs joined, want " << want.joined << "; ";
+  for (size_t j = 0; j < want.mode.size(); ++j) {
+    if (want.mode[j] != got.mode[j]) {
+      o << "event " << j << ": mode " << got.mode[j] << ", want " << want.mode[j];
+      break;
     }
-    return o.str();
   }
-  return "";
+  return o.str();
 }
 
 TEST(EdgeJoinRtl, EveryEventsModeAndThePairsJoinedEqualTheCppModelOverRunsOfPackets) {
   const std::uint64_t seed = sim::cosim_seed();
   std::mt19937_64 rng(seed);
-  std::uint64_t cycles = 0, events = 0;
   int packets = 0, joined_packets = 0, pairs = 0;
-  for (int r = 0; r < 8; ++r) {
+  const auto draw_run = [&](int r) {
     std::vector<Packet> run = r == 0 ? edge_packets() : std::vector<Packet>{};
     for (int k = 0; k < 25; ++k) run.push_back(draw_packet(rng));
-    const std::vector<Result> want = run_model(run);
-    const RtlRun got = run_rtl(run, "");
-    const std::string verdict = sim::mismatch_traced("edge_join", seed, "run " + std::to_string(r), difference(want, got.results),
-                                                     [&](const std::string& trace) { run_rtl(run, trace); });
-    ASSERT_TRUE(verdict.empty()) << verdict;
-    cycles += got.cycles, events += got.events;
+    return run;
+  };
+  const auto tally = [&](const std::vector<Packet>&, const std::vector<Result>& want) {
     for (const Result& w : want) {
       ++packets;
       joined_packets += w.joined > 0;
       pairs += w.joined;
     }
-  }
+  };
+  const sim::RunsCompared compared = sim::compare_runs("edge_join", seed, 8, draw_run, run_model, run_rtl, describe, tally);
+  ASSERT_TRUE(compared.verdict.empty()) << compared.verdict;
   // The edge packets' outcomes, as worked by hand: the pair at the reach joins, the one beyond
   // it does not, and of equal distances the lower cluster is taken.
   const std::vector<Result> edges = run_model(edge_packets());
@@ -229,7 +223,7 @@ TEST(EdgeJoinRtl, EveryEventsModeAndThePairsJoinedEqualTheCppModelOverRunsOfPack
   EXPECT_EQ(edges[0].mode, modes_of({0, 0, 2, 3}));
   EXPECT_EQ(edges[1].mode, modes_of({0, 0, 2}));
   std::printf("%d packets, %d with a join, %d pairs joined, %.1f cycles an event\n", packets, joined_packets, pairs,
-              static_cast<double>(cycles) / static_cast<double>(events));
+              static_cast<double>(compared.cycles) / static_cast<double>(compared.events));
   // Both outcomes, many times: the packets reach the rule's every branch.
   EXPECT_GE(joined_packets, 10) << "too few packets joined a pair to test the join";
   EXPECT_GE(packets - joined_packets, 10) << "too few packets joined nothing to test the rule";

@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -122,38 +121,34 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
   return r;
 }
 
-std::string difference(const Modes& want, const Modes& got) {
-  for (size_t k = 0; k < want.size(); ++k) {
-    for (size_t j = 0; j < want[k].size(); ++j) {
-      if (want[k][j] != got[k][j]) {
-        std::ostringstream o;
-        o << "packet " << k << ", event " << j << ": mode " << got[k][j] << ", want " << want[k][j];
-        return o.str();
-      }
-    }
+// What differs between two results of one packet: its events' modes.
+std::string describe(const std::vector<std::int16_t>& want, const std::vector<std::int16_t>& got) {
+  for (size_t j = 0; j < want.size(); ++j) {
+    if (j >= got.size()) return "event " + std::to_string(j) + ": no mode";
+    if (want[j] != got[j]) return "event " + std::to_string(j) + ": mode " + std::to_string(got[j]) + ", want " + std::to_string(want[j]);
   }
-  return "";
+  return std::to_string(got.size()) + " modes, want " + std::to_string(want.size());
 }
 
 TEST(ModeLinksRtl, EveryEventsLinkedModeEqualsTheCppModelOverRunsOfPackets) {
   const std::uint64_t seed = sim::cosim_seed();
   std::mt19937_64 rng(seed);
-  std::uint64_t cycles = 0, events = 0, joined = 0;
-  for (int r = 0; r < 12; ++r) {
+  std::uint64_t joined = 0;
+  const auto draw_run = [&](int) {
     std::vector<Packet> run;
     for (int k = 0; k < 20; ++k) run.push_back(draw_packet(rng));
-    const Modes want = run_model(run);
-    const RtlRun got = run_rtl(run, "");
-    const std::string verdict = sim::mismatch_traced("mode_links", seed, "run " + std::to_string(r), difference(want, got.results),
-                                                     [&](const std::string& trace) { run_rtl(run, trace); });
-    ASSERT_TRUE(verdict.empty()) << verdict;
-    cycles += got.cycles, events += got.events;
+    return run;
+  };
+  const auto tally = [&](const std::vector<Packet>& run, const Modes& want) {
     for (size_t k = 0; k < run.size(); ++k) {
       for (size_t j = 0; j < want[k].size(); ++j) joined += want[k][j] != run[k].first_mode[j];
     }
-  }
+  };
+  const sim::RunsCompared compared = sim::compare_runs("mode_links", seed, 12, draw_run, run_model, run_rtl, describe, tally);
+  ASSERT_TRUE(compared.verdict.empty()) << compared.verdict;
+  const std::uint64_t events = compared.events;
   std::printf("%llu events, %llu took an older mode, %.1f cycles an event\n", static_cast<unsigned long long>(events),
-              static_cast<unsigned long long>(joined), static_cast<double>(cycles) / static_cast<double>(events));
+              static_cast<unsigned long long>(joined), static_cast<double>(compared.cycles) / static_cast<double>(events));
   EXPECT_GT(joined, events / 10) << "too few packets joined modes to test the links";
 }
 

@@ -156,50 +156,45 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
   return r;
 }
 
-std::string difference(const std::vector<Result>& want, const std::vector<Result>& got) {
-  for (size_t k = 0; k < want.size(); ++k) {
-    if (want[k] == got[k]) continue;
-    std::ostringstream o;
-    o << "packet " << k << ": ";
-    if (want[k].mode_x.size() != got[k].mode_x.size()) {
-      o << got[k].mode_x.size() << " modes, want " << want[k].mode_x.size();
-      return o.str();
-    }
-    for (size_t j = 0; j < want[k].mode.size(); ++j) {
-      if (want[k].mode[j] != got[k].mode[j]) {
-        o << "event " << j << ": mode " << got[k].mode[j] << ", want " << want[k].mode[j];
-        return o.str();
-      }
-    }
-    for (size_t m = 0; m < want[k].mode_x.size(); ++m) {
-      o << "mode " << m << ": (" << got[k].mode_x[m] << ", " << got[k].mode_y[m] << "), want (" << want[k].mode_x[m] << ", " << want[k].mode_y[m] << ") ";
-    }
+// What differs between two results of one packet.
+std::string describe(const Result& want, const Result& got) {
+  std::ostringstream o;
+  if (want.mode_x.size() != got.mode_x.size()) {
+    o << got.mode_x.size() << " modes, want " << want.mode_x.size();
     return o.str();
   }
-  return "";
+  for (size_t j = 0; j < want.mode.size(); ++j) {
+    if (want.mode[j] != got.mode[j]) {
+      o << "event " << j << ": mode " << got.mode[j] << ", want " << want.mode[j];
+      return o.str();
+    }
+  }
+  for (size_t m = 0; m < want.mode_x.size(); ++m) {
+    o << "mode " << m << ": (" << got.mode_x[m] << ", " << got.mode_y[m] << "), want (" << want.mode_x[m] << ", " << want.mode_y[m] << ") ";
+  }
+  return o.str();
 }
 
 TEST(PolaritySplitRtl, EveryEventsModeAndEveryModesPositionEqualTheCppModelOverRunsOfPackets) {
   const std::uint64_t seed = sim::cosim_seed();
   std::mt19937_64 rng(seed);
-  std::uint64_t cycles = 0, events = 0;
   int packets = 0, split = 0, whole_for_room = 0;
-  for (int r = 0; r < 8; ++r) {
+  const auto draw_run = [&](int) {
     std::vector<Packet> run;
     for (int k = 0; k < 25; ++k) run.push_back(draw_packet(rng));
-    const std::vector<Result> want = run_model(run, &whole_for_room);
-    const RtlRun got = run_rtl(run, "");
-    const std::string verdict = sim::mismatch_traced("polarity_split", seed, "run " + std::to_string(r), difference(want, got.results),
-                                                     [&](const std::string& trace) { run_rtl(run, trace); });
-    ASSERT_TRUE(verdict.empty()) << verdict;
-    cycles += got.cycles, events += got.events;
+    return run;
+  };
+  const auto model = [&](const std::vector<Packet>& run) { return run_model(run, &whole_for_room); };
+  const auto tally = [&](const std::vector<Packet>& run, const std::vector<Result>& want) {
     for (size_t k = 0; k < run.size(); ++k) {
       ++packets;
       split += want[k].mode_x.size() > run[k].mode_x.size();
     }
-  }
+  };
+  const sim::RunsCompared compared = sim::compare_runs("polarity_split", seed, 8, draw_run, model, run_rtl, describe, tally);
+  ASSERT_TRUE(compared.verdict.empty()) << compared.verdict;
   std::printf("%d packets, %d split, %d clusters left whole for want of room, %.1f cycles an event\n", packets, split, whole_for_room,
-              static_cast<double>(cycles) / static_cast<double>(events));
+              static_cast<double>(compared.cycles) / static_cast<double>(compared.events));
   // Both outcomes, many times: the packets reach the rule's every branch. The bounds are far
   // in the tails of what random seeds give (over 300 seeds, 23 to 53 of the 200 packets split),
   // so a seed drawn in CI does not fail them by chance.
