@@ -11,14 +11,23 @@
 #include <chrono>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 
 #include "tests/support/encoders.h"
 
 namespace evms::test {
 
-std::string evms_binary() { return EVMS_BINARY; }
-std::string scripted_usb_binary() { return EVMS_SCRIPTED_USB_BINARY; }
+namespace {
+// `path`, a program the build makes; a test that needs it before it is built fails saying so.
+std::string built_program(const char* path) {
+  if (access(path, X_OK) != 0) throw std::runtime_error(std::string(path) + " is not built yet: build the whole tree (cmake --build build) before ctest");
+  return path;
+}
+}  // namespace
+
+std::string evms_binary() { return built_program(EVMS_BINARY); }
+std::string scripted_usb_binary() { return built_program(EVMS_SCRIPTED_USB_BINARY); }
 
 std::string read_file(const std::string& path) {
   std::stringstream ss;
