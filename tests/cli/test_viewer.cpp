@@ -178,9 +178,8 @@ TEST(Viewer, ListeningToABoardsAerPinsDrawsItsTracks) {
   VirtualBoardProcess vboard(dir, {"--build", "arty", "--aer", "gen://translation?duration-s=0.1&seed=3&width=128&height=128"});
   const std::string& device = vboard.device();
   ASSERT_FALSE(device.empty()) << "evms vboard did not start";
-  // 400 frames of 20 ms of wall clock. The simulated board's pace is the host's: on the
-  // development machines it labelled over 500 events in the first 2 s in some runs and none in others (its first labels
-  // wait for a packet) and 2,666 in 6 s, so 8 s leaves it room on a slow or busy host.
+  // 400 frames of 20 ms of wall clock: 8 s. The simulated board runs at the host's pace and its
+  // first labels wait for a full packet, so a slow or busy host needs seconds for the 500 below.
   const auto r = run_command(evms_binary() + " view --listen --backend board --core arty --board-link tracks --device " + device +
                              " --headless --fps 50 --max-frames 400 --frames " + dir.path("frames"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
