@@ -28,7 +28,7 @@ struct Compiled {
 
 Compiled compile_top(const TempDir& dir) {
   const std::string out = dir.path("top.o");
-  const std::string cmd = std::string(EVMS_CXX) + " -std=c++17 -O1 -fno-exceptions -fno-rtti -Werror -Wall -Wextra" +
+  const std::string cmd = std::string(EVMS_HLS_RULES_CXX) + " -std=c++17 -O1 -fno-exceptions -fno-rtti -Werror -Wall -Wextra" +
                           " -Wno-unknown-pragmas -Wno-unused-label -H -fcallgraph-info -I" + EVMS_SOURCE_DIR + " -c " + EVMS_SOURCE_DIR +
                           "/hls/top.cpp -o " + out;
   Compiled c{run_command("cd " + dir.path("") + " && " + cmd), ""};
