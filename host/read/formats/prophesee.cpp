@@ -105,28 +105,48 @@ std::optional<SensorSize> size_of_plugin(const std::string& plugin) {
   return std::nullopt;
 }
 
-// EVT 2.0 and EVT 2.1: a 2.1 word is a 2.0 word and a mask of the events at x, x + 1, ...
-class Evt2Source final : public FileEventSource {
+// A RAW recording: its sensor from the header's geometry or its plugin's name, and its words
+// a block at a time, straight from the reader's buffer.
+class RawSource : public FileEventSource {
  public:
-  Evt2Source(ByteReader in, const SourceOptions& o, const PropheseeHeader& h)
-      : FileEventSource(std::move(in), h.kind == PropheseeHeader::Kind::kEvt21 ? "EVT 2.1 RAW" : "EVT 2.0 RAW", o),
-        vectors_(h.kind == PropheseeHeader::Kind::kEvt21),
-        first_word_at_(in_.offset()),
-        word_bytes_(vectors_ ? 8 : 4),
-        head_at_(h.mask_first ? 4 : 0) {
+  RawSource(ByteReader in, std::string format, const SourceOptions& o, const PropheseeHeader& h)
+      : FileEventSource(std::move(in), std::move(format), o) {
     set_sensor(h.size ? h.size : size_of_plugin(h.plugin), std::nullopt, "");
     if (!h.size && size_of_plugin(h.plugin) && options_.width == 0) info_.sensor_origin = "plugin name in header";
   }
 
  protected:
-  bool decode_more() override {
-    // A block of whole words at a time, straight from the reader's buffer.
-    const std::uint64_t base = in_.offset();
+  // The next block of whole words (empty at the end); a piece of a word at the end is an error.
+  std::string_view next_words(size_t word_bytes) {
     const std::string_view block = in_.peek(kBlockBytes);
-    if (block.empty()) return false;
-    if (block.size() < word_bytes_) {
-      fail(in_.path(), InputPosition::byte(base), "truncated word (" + std::to_string(block.size()) + " of " + std::to_string(word_bytes_) + " bytes)");
+    if (!block.empty() && block.size() < word_bytes) {
+      fail(in_.path(), InputPosition::byte(in_.offset()),
+           "truncated word (" + std::to_string(block.size()) + " of " + std::to_string(word_bytes) + " bytes)");
     }
+    return block.substr(0, block.size() - block.size() % word_bytes);
+  }
+  static std::string hex(unsigned v) {
+    char b[8];
+    std::snprintf(b, sizeof b, "%X", v);
+    return b;
+  }
+};
+
+// EVT 2.0 and EVT 2.1: a 2.1 word is a 2.0 word and a mask of the events at x, x + 1, ...
+class Evt2Source final : public RawSource {
+ public:
+  Evt2Source(ByteReader in, const SourceOptions& o, const PropheseeHeader& h)
+      : RawSource(std::move(in), h.kind == PropheseeHeader::Kind::kEvt21 ? "EVT 2.1 RAW" : "EVT 2.0 RAW", o, h),
+        vectors_(h.kind == PropheseeHeader::Kind::kEvt21),
+        first_word_at_(in_.offset()),
+        word_bytes_(vectors_ ? 8 : 4),
+        head_at_(h.mask_first ? 4 : 0) {}
+
+ protected:
+  bool decode_more() override {
+    const std::uint64_t base = in_.offset();
+    const std::string_view block = next_words(word_bytes_);
+    if (block.empty()) return false;
     const size_t words = block.size() / word_bytes_;
     const auto* bytes = reinterpret_cast<const unsigned char*>(block.data());
     if (vectors_ && base == first_word_at_ && le32(bytes + head_at_) == 0 && (le32(bytes + (4 - head_at_)) >> 28) == 0x8) head_at_ = 4 - head_at_;
@@ -174,7 +194,6 @@ class Evt2Source final : public FileEventSource {
 
  private:
   static constexpr TimeUs kMask = (TimeUs{1} << 34) - 1;
-  static std::string hex(unsigned v) { char b[8]; std::snprintf(b, sizeof b, "%X", v); return b; }
   const bool vectors_;
   const std::uint64_t first_word_at_;
   const size_t word_bytes_;
@@ -184,28 +203,22 @@ class Evt2Source final : public FileEventSource {
   TimeUs epoch_ = 0;
 };
 
-class Evt3Source final : public FileEventSource {
+class Evt3Source final : public RawSource {
  public:
   Evt3Source(ByteReader in, const SourceOptions& o, const PropheseeHeader& h)
-      : FileEventSource(std::move(in), "EVT 3.0 RAW", o), decoder_(h.time_base_us) {
-    set_sensor(h.size ? h.size : size_of_plugin(h.plugin), std::nullopt, "");
-    if (!h.size && size_of_plugin(h.plugin) && options_.width == 0) info_.sensor_origin = "plugin name in header";
-  }
+      : RawSource(std::move(in), "EVT 3.0 RAW", o, h), decoder_(h.time_base_us) {}
 
  protected:
   bool decode_more() override {
     const std::uint64_t base = in_.offset();
-    const std::string_view block = in_.peek(kBlockBytes);
+    const std::string_view block = next_words(2);
     if (block.empty()) return false;
-    if (block.size() < 2) fail(in_.path(), InputPosition::byte(base), "truncated word (1 of 2 bytes)");
     const size_t words = block.size() / 2;
     const auto* bytes = reinterpret_cast<const unsigned char*>(block.data());
     for (size_t i = 0; i < words; ++i) {
       sink_.at = base + 2 * i;
       if (!decoder_.word(le16(bytes + 2 * i), sink_)) {
-        char b[8];
-        std::snprintf(b, sizeof b, "%X", le16(bytes + 2 * i) >> 12);
-        fail(in_.path(), InputPosition::byte(sink_.at), std::string("reserved EVT 3.0 word type 0x") + b);
+        fail(in_.path(), InputPosition::byte(sink_.at), "reserved EVT 3.0 word type 0x" + hex(le16(bytes + 2 * i) >> 12u));
       }
     }
     in_.skip(words * 2);
