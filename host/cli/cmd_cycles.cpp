@@ -52,25 +52,6 @@ std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {
   return words;
 }
 
-// The C++ core with the schedule counter as its observer.
-template <class S>
-hls::ScheduleCounter<S> model_run(const std::vector<hls::EventWord>& words, const hls::Config& cfg) {
-  using Core = hls::Core<S, hls::ScheduleCounter<S>>;
-  auto core = std::make_unique<Core>();
-  auto labels = std::make_unique<typename Core::LabelStream>();
-  typename Core::TrackStream tracks;
-  typename Core::PacketStream packets;
-  core->reset(cfg);
-  core->observer().configure(cfg);
-  for (const auto& w : words) {
-    core->process(w, *labels, tracks, packets);
-    labels->clear();
-    tracks.clear();
-    packets.clear();
-  }
-  return core->observer();
-}
-
 template <class V>
 hls::StageCycles rtl_run(const std::vector<hls::EventWord>& words, const hls::Config& cfg) {
   sim::RtlCore<V> core(cfg);
@@ -116,7 +97,7 @@ void cycles(const CyclesOptions& o) {
         Params p = params;
         p.packet_size = n;
         p.max_iterations = it;
-        const auto model = model_run<S>(words, backend::core_config<S>(p, sensor));
+        const auto model = sim::modelled_schedule<S>(words, backend::core_config<S>(p, sensor));
         std::printf("| %d | %d | %.2f |", n, it, model.mean_sweeps());
         for (int lanes : o.lanes) std::printf(" %.0f |", model.cycles(lanes).total() / model.events());
         std::printf("\n");
@@ -125,7 +106,7 @@ void cycles(const CyclesOptions& o) {
     return;
   }
   const hls::Config cfg = backend::core_config<S>(params, sensor);
-  const auto model = model_run<S>(words, cfg);
+  const auto model = sim::modelled_schedule<S>(words, cfg);
   const double n_events = static_cast<double>(model.events());
   std::printf("build %s (P = %d, multiplier latency %d), %s, packets of %d, %d clusters, %d tracks\n", o.build.c_str(), S::kLanes,
               hls::multiplier_latency(S::kMulDigitBits), method.describe().c_str(), params.packet_size, params.max_clusters, params.max_tracks);

@@ -420,30 +420,22 @@ void expect_schedule(const std::string& name, const std::vector<Event>& events, 
                      bool evicts = false) {
   const hls::Config cfg = backend::core_config<S>(params, sensor);
   const auto words = words_of(events);
-  using Core = hls::Core<S, hls::ScheduleCounter<S>>;
-  auto model = std::make_unique<Core>();
-  auto labels = std::make_unique<typename Core::LabelStream>();
-  typename Core::TrackStream tracks;
-  typename Core::PacketStream packets;
-  model->reset(cfg);
-  model->observer().configure(cfg);
+  const auto model = sim::modelled_schedule<S>(words, cfg);
+  const hls::StageCycles predicted = model.cycles();
   sim::RtlCore<V> rtl(cfg);
   for (const auto& w : words) {
-    model->process(w, *labels, tracks, packets);
-    labels->clear(), tracks.clear(), packets.clear();
     rtl.push(w);
     rtl.labels.clear(), rtl.tracks.clear(), rtl.packets.clear();
   }
   rtl.settle();
-  const hls::StageCycles predicted = model->observer().cycles();
   const hls::StageCycles measured = sim::stage_cycles(rtl.state_cycles());
   std::printf("schedule %s: %zu events, %.1f cycles/event\n", name.c_str(), events.size(), measured.total() / events.size());
   for (int s = 0; s < hls::kStageCount; ++s) {
     EXPECT_EQ(predicted[s], measured[s]) << name << ": stage " << hls::kStageNames[s];
   }
-  EXPECT_GT(model->observer().packets(), 0);
+  EXPECT_GT(model.packets(), 0);
   if (evicts) {
-    EXPECT_GT(model->observer().evict_scans(), 0) << name << ": no birth looked for a slot to evict";
+    EXPECT_GT(model.evict_scans(), 0) << name << ": no birth looked for a slot to evict";
   }
 }
 
