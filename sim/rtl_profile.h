@@ -5,10 +5,7 @@
 
 #include <array>
 #include <cstdint>
-#include <memory>
-#include <vector>
 
-#include "hls/core/core.h"
 #include "hls/core/schedule.h"
 
 namespace evms::sim {
@@ -23,24 +20,6 @@ inline hls::StageCycles stage_cycles(const StateCycles& state_cycles) {
   for (int i = 0; i < hls::kControllerStates; ++i) s[hls::kControllerStateStage[i]] += static_cast<double>(state_cycles[i]);
   s[hls::Stage::kFilter] += static_cast<double>(state_cycles[kWaitingForIntake]);
   return s;
-}
-
-// The cycle model's side: the C++ core of shape S over the words, with the schedule counter as
-// its observer and its outputs dropped.
-template <class S>
-hls::ScheduleCounter<S> modelled_schedule(const std::vector<hls::EventWord>& words, const hls::Config& cfg) {
-  using Core = hls::Core<S, hls::ScheduleCounter<S>>;
-  auto core = std::make_unique<Core>();  // too large for the stack
-  auto labels = std::make_unique<typename Core::LabelStream>();
-  typename Core::TrackStream tracks;
-  typename Core::PacketStream packets;
-  core->reset(cfg);
-  core->observer().configure(cfg);
-  for (const auto& w : words) {
-    core->process(w, *labels, tracks, packets);
-    labels->clear(), tracks.clear(), packets.clear();
-  }
-  return core->observer();
 }
 
 }  // namespace evms::sim

@@ -16,8 +16,7 @@
 #include "host/backend/core_backend.h"
 #include "host/cli/commands.h"
 #include "host/cli/common.h"
-#include "sim/rtl_core.h"
-#include "sim/rtl_profile.h"
+#include "sim/schedule_runs.h"
 
 namespace evms::cli {
 namespace {
@@ -54,16 +53,12 @@ std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {
 
 template <class V>
 hls::StageCycles rtl_run(const std::vector<hls::EventWord>& words, const hls::Config& cfg) {
-  sim::RtlCore<V> core(cfg);
   Progress progress(true);
-  for (size_t i = 0; i < words.size(); ++i) {
-    core.push(words[i]);
-    core.labels.clear(), core.tracks.clear(), core.packets.clear();
+  const hls::StageCycles cycles = sim::measured_schedule<V>(words, cfg, [&](size_t i) {
     if (i % 4096 == 0) progress.update(static_cast<double>(i) / words.size(), static_cast<std::int64_t>(i));
-  }
-  core.settle();
+  });
   progress.done();
-  return sim::stage_cycles(core.state_cycles());
+  return cycles;
 }
 
 template <class V, class S>

@@ -24,7 +24,7 @@
 #include "host/eval/scene_run.h"
 #include "host/gen/family.h"
 #include "sim/rtl_core.h"
-#include "sim/rtl_profile.h"
+#include "sim/schedule_runs.h"
 #include "tests/support/core_words.h"
 #include "tests/support/read_all.h"
 #include "tests/support/scenes.h"
@@ -422,13 +422,7 @@ void expect_schedule(const std::string& name, const std::vector<Event>& events, 
   const auto words = words_of(events);
   const auto model = sim::modelled_schedule<S>(words, cfg);
   const hls::StageCycles predicted = model.cycles();
-  sim::RtlCore<V> rtl(cfg);
-  for (const auto& w : words) {
-    rtl.push(w);
-    rtl.labels.clear(), rtl.tracks.clear(), rtl.packets.clear();
-  }
-  rtl.settle();
-  const hls::StageCycles measured = sim::stage_cycles(rtl.state_cycles());
+  const hls::StageCycles measured = sim::measured_schedule<V>(words, cfg, [](size_t) {});
   std::printf("schedule %s: %zu events, %.1f cycles/event\n", name.c_str(), events.size(), measured.total() / events.size());
   for (int s = 0; s < hls::kStageCount; ++s) {
     EXPECT_EQ(predicted[s], measured[s]) << name << ": stage " << hls::kStageNames[s];

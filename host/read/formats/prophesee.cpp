@@ -111,8 +111,9 @@ class RawSource : public FileEventSource {
  public:
   RawSource(ByteReader in, std::string format, const SourceOptions& o, const PropheseeHeader& h)
       : FileEventSource(std::move(in), std::move(format), o) {
-    set_sensor(h.size ? h.size : size_of_plugin(h.plugin), std::nullopt, "");
-    if (!h.size && size_of_plugin(h.plugin) && options_.width == 0) info_.sensor_origin = "plugin name in header";
+    const std::optional<SensorSize> from_plugin = size_of_plugin(h.plugin);
+    set_sensor(h.size ? h.size : from_plugin, std::nullopt, "");
+    if (!h.size && from_plugin && options_.width == 0) info_.sensor_origin = "plugin name in header";
   }
 
  protected:
