@@ -43,8 +43,12 @@ module evms_fifo #(
   assign out_data = ob_head_q ? ob1_q : ob0_q;
   assign ob_landing = ob_head_q ^ ob_n_q[0];
   wire take = out_valid && out_ready;
-  // Read only when the word will find room in the output buffer when it lands.
-  assign rd_en = !ram_empty && (32'(ob_n_q) + 32'(rd_inflight_q) - 32'(take)) < 2;
+  // Read only when the word will find room in the output buffer when it lands: the buffer's
+  // words and the one in flight, less the one taken now, are fewer than two. Written as a test
+  // of those two bits rather than a sum, so that the reader's ready (often a long path from
+  // the consumer's own logic) meets a LUT, not a carry chain, before this enable's fan-out.
+  wire [1:0] ob_filling = ob_n_q + {1'b0, rd_inflight_q};   // at most 2
+  assign rd_en = !ram_empty && (ob_filling < 2'd2 || (take && ob_filling == 2'd2));
 
   always_ff @(posedge clk) begin
     if (in_valid && in_ready) mem[AddrBits'(tail_q)] <= in_data;
