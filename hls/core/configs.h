@@ -39,7 +39,7 @@ using ArtyShape = Shape<240, 180, 512, 8, 8, 16, 16, 16, 7, 2 * 512, 11, 16, 9, 
 // board backend keeps at most the link queue's depth of events unanswered. The queue must be
 // deeper than what the core can hold unlabelled, its pending queue and its intake's packet
 // (checked by rtl/board/evms_board.sv and host/backend/board_backend.cpp).
-// The whole ice40 core is 5.4 times the UP5K's LUTs (docs/rtl.md, "Area"), so the iCEBreaker's
+// The whole ice40 core is 5.3 times the UP5K's LUTs (docs/rtl.md, "Area"), so the iCEBreaker's
 // core stops at the filter (rtl/core/evms_filter_core.sv): the board returns each event's
 // verdict and the host runs the rest of the ice40 core on them (Core::process_decided), which
 // gives the words of the whole core.

@@ -45,7 +45,7 @@ struct BackendOptions {
   SensorSize sensor;
   std::string core = "host";           // core build of the fixed and rtl backends: host, arty or ice40
   std::string device;                  // serial device, for the board backend
-  int baud = 3000000;                  // its line rate
+  int baud = 0;                        // its line rate; 0: the board's own (BoardOfBuild::baud)
   bool board_keeps_labels = false;     // the board backend's tracks mode (docs/link.md)
 };
 

@@ -71,7 +71,7 @@ class BoardBackend final : public Backend {
 
  public:
   BoardBackend(const BackendOptions& o, const char* build)
-      : port_(check(o, build), o.baud), mode_(o.board_keeps_labels ? link::LinkMode::kTracks : link::LinkMode::kLabels) {
+      : port_(check(o, build), o.baud > 0 ? o.baud : static_cast<int>(board_of(build).baud())), mode_(o.board_keeps_labels ? link::LinkMode::kTracks : link::LinkMode::kLabels) {
     if (board_of(build).core_stops_at_filter) rest_ = std::make_unique<HostCore<S>>(core_config<S>(o.params, o.sensor));
     // Let what the board is still sending from before go by (up to 2 s of it).
     std::uint8_t old[4096];

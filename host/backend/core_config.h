@@ -27,6 +27,9 @@ namespace evms::backend {
 struct BoardOfBuild {
   long long clock_hz = 0, clocks_per_bit = 0, link_fifo_depth = 0;
   bool core_stops_at_filter = false;  // the board returns verdicts; the host clusters and tracks
+  // Its UART's line rate, which the host's serial port must match: 3 Mbaud on the iCEBreaker,
+  // 2 Mbaud on the Arty.
+  constexpr long long baud() const { return clocks_per_bit > 0 ? clock_hz / clocks_per_bit : 0; }
 };
 constexpr BoardOfBuild board_of(std::string_view build) {
 #define EVMS_BOARD_OF(name, clock_hz, clocks_per_bit, link_fifo_depth, stops_at_filter) \

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "host/backend/backend.h"
+#include "host/backend/core_config.h"
 #include "host/cli/common.h"
 #include "host/cli/commands.h"
 #include "host/cli/run_stages.h"
@@ -27,7 +28,7 @@ struct RunOptions {
   std::string format = "csv";
   std::string device;
   std::string core = "host";
-  int baud = 3000000;
+  int baud = 0;
   std::string board_link = "labels";
   read::SourceOptions source_options;
   Method method;
@@ -183,7 +184,12 @@ void register_run(CLI::App& app) {
                                      "of the board backend: ice40 (the iCEBreaker, also for host) or arty")
       ->default_val(o->core);
   cmd->add_option("--device", o->device, "serial device of the board backend (or the path evms vboard prints)");
-  cmd->add_option("--baud", o->baud, "line rate of the board's serial link")->default_val(o->baud);
+  std::string board_rates;  // each board's own line rate, from EVMS_BOARD_BUILDS (hls/core/configs.h)
+#define EVMS_BOARD_RATE(name, clock_hz, clocks_per_bit, link_fifo_depth, stops_at_filter) \
+  board_rates += std::string(board_rates.empty() ? "" : ", ") + std::to_string(backend::board_of(#name).baud()) + " on " #name;
+  EVMS_BOARD_BUILDS(EVMS_BOARD_RATE)
+#undef EVMS_BOARD_RATE
+  cmd->add_option("--baud", o->baud, "line rate of the board's serial link; 0: the board's own (" + board_rates + ")")->default_val(o->baud);
   add_board_link_option(*cmd, o->board_link, "tracks.csv and the board's counts, no event rows");
   cmd->add_flag("--quiet", o->quiet, "no progress bar");
   cmd->add_option("--threads", o->threads, "1: read, label and write in turn; 2 or more: reading, the method and writing each in a "

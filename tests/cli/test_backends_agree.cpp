@@ -5,6 +5,10 @@
 // whose verdicts the host completes, and the Arty's, which holds the whole core.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <termios.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -274,6 +278,35 @@ long noise_in_summary(const std::string& out) {
     if (out[i] != ',') n += (out[i] - '0') * scale, scale *= 10;
   }
   return at == std::string::npos ? -1 : n;
+}
+
+// The line rate a terminal is set to, as the host left it (the virtual board holds the terminal
+// open, so its settings outlast the host's run); 0 when it cannot be read.
+speed_t line_rate_of(const std::string& device) {
+  const int fd = ::open(device.c_str(), O_RDWR | O_NOCTTY);
+  if (fd < 0) return 0;
+  termios t{};
+  const speed_t rate = tcgetattr(fd, &t) == 0 ? cfgetospeed(&t) : 0;
+  ::close(fd);
+  return rate;
+}
+
+// The board backend opens the line at the rate of the board its --core names (EVMS_BOARD_BUILDS:
+// the Arty's UART runs at 100 MHz / 50 = 2 Mbaud, the iCEBreaker's at 3 Mbaud), and --baud sets
+// another.
+TEST(BackendsAgree, TheBoardBackendOpensTheLineAtItsBoardsRate) {
+  static_assert(backend::board_of("arty").baud() == 2000000 && backend::board_of("ice40").baud() == 3000000);
+  TempDir dir;
+  VirtualBoardProcess board(dir, {"--build", "arty"});
+  ASSERT_FALSE(board.device().empty()) << "evms vboard did not start";
+  const std::string run = evms_binary() + " run \"gen://rotation?duration-s=0.005&seed=5\" --quiet --backend board --core arty --device " +
+                          board.device() + " --out " + dir.path("out");
+  const auto own = run_command(run);
+  ASSERT_EQ(own.exit_code, 0) << own.err;
+  EXPECT_EQ(line_rate_of(board.device()), static_cast<speed_t>(B2000000));
+  const auto set = run_command(run + " --baud 1000000");
+  ASSERT_EQ(set.exit_code, 0) << set.err;
+  EXPECT_EQ(line_rate_of(board.device()), static_cast<speed_t>(B1000000));
 }
 
 // Tracks mode (--board-link tracks, the Arty's board): the board keeps the labels and counts
