@@ -189,7 +189,9 @@ void register_run(CLI::App& app) {
   board_rates += std::string(board_rates.empty() ? "" : ", ") + std::to_string(backend::board_of(#name).baud()) + " on " #name;
   EVMS_BOARD_BUILDS(EVMS_BOARD_RATE)
 #undef EVMS_BOARD_RATE
-  cmd->add_option("--baud", o->baud, "line rate of the board's serial link; 0: the board's own (" + board_rates + ")")->default_val(o->baud);
+  cmd->add_option("--baud", o->baud, "line rate of the board's serial link; 0: the board's own (" + board_rates + ")")
+      ->default_val(o->baud)
+      ->check(CLI::Range(0, 12000000));
   add_board_link_option(*cmd, o->board_link, "tracks.csv and the board's counts, no event rows");
   cmd->add_flag("--quiet", o->quiet, "no progress bar");
   cmd->add_option("--threads", o->threads, "1: read, label and write in turn; 2 or more: reading, the method and writing each in a "

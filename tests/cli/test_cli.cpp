@@ -271,6 +271,7 @@ TEST(Cli, ARefusedCommandLineIsOneLineAndAMistypedOptionNamesTheNearest) {
        "unknown option '--bandwith' for evms run; did you mean '--bandwidth'? (evms run --help lists the options)"},
       {"sweep --seedz=3", "unknown option '--seedz' for evms sweep; did you mean '--seeds'? (evms sweep --help lists the options)"},
       {"run --threads 0", "--threads: Value 0 not in range 1 to 256 (evms run --help lists the options)"},
+      {"run gen://rotation --backend board --baud -5", "--baud: Value -5 not in range 0 to 12000000 (evms run --help lists the options)"},
       {"run --bandwidth -1", "--bandwidth: -1 is outside [0.0001, 10] (evms run --help lists the options)"},
       {"run --coast-us -5", "--coast-us: -5 is outside [0, 1e+12] us (evms run --help lists the options)"},
       {"metrics", "--truth is required (evms metrics --help lists the options)"},
