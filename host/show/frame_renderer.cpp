@@ -40,7 +40,7 @@ void FrameRenderer::prune(TimeUs now) {
   }
 }
 
-void FrameRenderer::render(TimeUs now, Canvas& canvas, const std::vector<std::string>& overlay) {
+FrameRenderer::TracksShown FrameRenderer::render(TimeUs now, Canvas& canvas, const std::vector<std::string>& overlay) {
   prune(now);
   canvas.clear(kBackground);
   const int s = style_.scale;
@@ -51,6 +51,7 @@ void FrameRenderer::render(TimeUs now, Canvas& canvas, const std::vector<std::st
     const double f = (e.event.p ? 1.0 : 0.62) * (1.0 - 0.6 * age);
     canvas.fill_rect(e.event.x * s, e.event.y * s, s, s, shade(label_colour(e.label), f));
   }
+  TracksShown shown_tracks;
   for (const auto& [id, trail] : trails_) {
     // The newest update at or before `now` says how long the track has gone without one.
     size_t shown = trail.size();
@@ -60,6 +61,23 @@ void FrameRenderer::render(TimeUs now, Canvas& canvas, const std::vector<std::st
     const double fade = 1.0 - static_cast<double>(now - last.t) / static_cast<double>(std::max<TimeUs>(1, style_.track_fade_us));
     if (fade <= 0) continue;
     const Rgb c = label_colour(id);
+    if (last.state == TrackState::kTentative) {
+      // Most tentative tracks are a few packets of a small cluster that never confirm: a faint
+      // dot says where the tracker is looking without burying the confirmed tracks under IDs.
+      ++shown_tracks.tentative;
+      canvas.circle((last.x + 0.5) * s, (last.y + 0.5) * s, 1.5 * s, shade(c, 0.5 * fade));
+      continue;
+    }
+    ++shown_tracks.confirmed;
+    if (last.events > 0 && last.x_max >= last.x_min && last.y_max >= last.y_min) {
+      // The box of the cluster that last measured it (a board in tracks mode sends none).
+      const double x0 = last.x_min * s, y0 = last.y_min * s, x1 = (last.x_max + 1) * s - 1, y1 = (last.y_max + 1) * s - 1;
+      const double a = 0.7 * fade;
+      canvas.line(x0, y0, x1, y0, c, a);
+      canvas.line(x1, y0, x1, y1, c, a);
+      canvas.line(x1, y1, x0, y1, c, a);
+      canvas.line(x0, y1, x0, y0, c, a);
+    }
     for (size_t i = 1; i < shown; ++i) {
       const double a = (0.35 + 0.65 * static_cast<double>(i) / static_cast<double>(shown)) * fade;
       canvas.line((trail[i - 1].x + 0.5) * s, (trail[i - 1].y + 0.5) * s, (trail[i].x + 0.5) * s, (trail[i].y + 0.5) * s, c, a);
@@ -83,10 +101,13 @@ void FrameRenderer::render(TimeUs now, Canvas& canvas, const std::vector<std::st
   // The overlay grows with the frame, so that it stays readable on a large sensor.
   const int text_scale = std::max(1, canvas.width() / 640);
   int line_y = 4 * text_scale;
-  for (const std::string& line : overlay) {
+  std::vector<std::string> lines = overlay;
+  lines.push_back("tracks " + std::to_string(shown_tracks.confirmed) + " (" + std::to_string(shown_tracks.tentative) + " tentative)");
+  for (const std::string& line : lines) {
     canvas.text(4 * text_scale, line_y, line, kText, text_scale);
     line_y += 10 * text_scale;
   }
+  return shown_tracks;
 }
 
 }  // namespace evms::show

@@ -1,5 +1,7 @@
-// Draws what a user sees: recent events coloured by track ID (shaded by polarity), each
-// track's trail over the last second, its ID and a velocity arrow, and an overlay of figures.
+// Draws what a user sees: recent events coloured by track ID (shaded by polarity); for each
+// confirmed track its trail over the last second, the box of the cluster that last measured it,
+// its ID and a velocity arrow; for each tentative track a faint dot; and an overlay of figures
+// that ends with the count of tracks shown.
 // A track that stops being updated fades out over track_fade_us (the tracker's coasting time:
 // after it, the tracker has ended the track), and so does its trail.
 // The live viewer, its headless PNG frames and the evaluation pictures share it.
@@ -30,9 +32,12 @@ class FrameRenderer {
 
   void add(const LabelledEvent& e);
   void add(const TrackUpdate& u);
+  struct TracksShown {
+    int confirmed = 0, tentative = 0;
+  };
   // Draws the scene as of time `now` (events and trails older than their windows fade out),
-  // with `overlay` lines of text in the top-left corner.
-  void render(TimeUs now, Canvas& canvas, const std::vector<std::string>& overlay = {});
+  // with `overlay` lines of text in the top-left corner; returns the tracks it drew.
+  TracksShown render(TimeUs now, Canvas& canvas, const std::vector<std::string>& overlay = {});
   Canvas make_canvas() const;
   TimeUs latest() const { return latest_; }
   const ViewStyle& style() const { return style_; }

@@ -250,6 +250,41 @@ TEST(Viewer, EndedTracksFadeWithinTheCoastingTimeAndArrowsStayShort) {
   EXPECT_LT(marker(), 100) << "an ended track is gone after the coasting time";
 }
 
+TEST(Viewer, ConfirmedTracksShowTheirBoxAndIdTentativeTracksAFaintDot) {
+  show::ViewStyle style;
+  style.scale = 2;
+  show::FrameRenderer renderer({240, 180}, style);
+  TrackUpdate confirmed;
+  confirmed.t = 1000, confirmed.id = 3, confirmed.x = 60, confirmed.y = 90, confirmed.events = 200;
+  confirmed.x_min = 40, confirmed.x_max = 80, confirmed.y_min = 70, confirmed.y_max = 110;
+  TrackUpdate tentative = confirmed;
+  tentative.id = 5, tentative.x = 180, tentative.state = TrackState::kTentative;
+  tentative.x_min = 170, tentative.x_max = 190;
+  // A board in tracks mode sends no box: nothing is drawn where the fields say.
+  TrackUpdate boxless = confirmed;
+  boxless.id = 7, boxless.x = 120, boxless.y = 40, boxless.events = 0;
+  boxless.x_min = 100, boxless.x_max = 140, boxless.y_min = 20, boxless.y_max = 60;
+  for (const TrackUpdate& u : {confirmed, tentative, boxless}) renderer.add(u);
+  show::Canvas canvas = renderer.make_canvas();
+  const auto shown = renderer.render(1000, canvas);
+  EXPECT_EQ(shown.confirmed, 2);
+  EXPECT_EQ(shown.tentative, 1);
+  const int background = brightest(canvas, 2 * 100, 2 * 150, 2 * 110, 2 * 160);
+  // The confirmed track: its box's left and bottom edges away from the marker, and its white marker.
+  EXPECT_GT(brightest(canvas, 2 * 40, 2 * 90, 2 * 40, 2 * 90), background + 100);
+  EXPECT_GT(brightest(canvas, 2 * 60, 2 * 111 - 1, 2 * 60, 2 * 111 - 1), background + 100);
+  EXPECT_GE(brightest(canvas, 2 * 60 - 8, 2 * 90 - 8, 2 * 60 + 8, 2 * 90 + 8), 3 * 250);
+  // The tentative one: a dot at half its colour, no white marker, no box, no ID beside it.
+  const int dot = brightest(canvas, 2 * 180 - 4, 2 * 90 - 4, 2 * 180 + 4, 2 * 90 + 4);
+  EXPECT_GT(dot, background + 40);
+  EXPECT_LE(dot, 3 * 128);
+  EXPECT_EQ(brightest(canvas, 2 * 170, 2 * 80, 2 * 170, 2 * 100), background) << "no box";
+  EXPECT_EQ(brightest(canvas, 2 * 180 + 6, 2 * 90 - 16, 2 * 180 + 30, 2 * 90 - 4), background) << "no ID";
+  // The boxless confirmed track has its marker but no box.
+  EXPECT_GE(brightest(canvas, 2 * 120 - 8, 2 * 40 - 8, 2 * 120 + 8, 2 * 40 + 8), 3 * 250);
+  EXPECT_EQ(brightest(canvas, 2 * 100, 2 * 30, 2 * 100, 2 * 50), background);
+}
+
 TEST(Viewer, TheOverlayGrowsWithTheSensor) {
   for (const int width : {240, 1280}) {
     show::ViewStyle style;
@@ -257,10 +292,12 @@ TEST(Viewer, TheOverlayGrowsWithTheSensor) {
     show::FrameRenderer renderer({width, 180}, style);
     show::Canvas canvas = renderer.make_canvas();
     renderer.render(0, canvas, {"8888"});
-    // The glyphs' height: rows with text in the top-left corner.
+    // The glyphs' height: rows with text in the first line's band (lines are 10 rows apart at
+    // scale 1, the first starting at row 4; the renderer's count of tracks follows it).
+    const int text_scale = std::max(1, canvas.width() / 640);
     int rows = 0;
-    for (int y = 0; y < 60; ++y) rows += brightest(canvas, 0, y, 80, y) > 300;
-    EXPECT_EQ(rows, 7 * std::max(1, canvas.width() / 640)) << width;
+    for (int y = 0; y < 12 * text_scale; ++y) rows += brightest(canvas, 0, y, 80, y) > 300;
+    EXPECT_EQ(rows, 7 * text_scale) << width;
   }
 }
 
