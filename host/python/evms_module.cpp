@@ -1,0 +1,170 @@
+// The Python module `evms`: the readers and the golden model on NumPy arrays, for users who
+// work in Python (tonic, NumPy) rather than through the evms program's files.
+//
+//   import evms
+//   events, (width, height) = evms.read("recording.aedat4")     # or "gen://rotation", ...
+//   labels, tracks = evms.run(events, (width, height), preset="evms", bandwidth=0.05)
+//
+// `events` is a structured array with fields t (int64, us), x, y (uint16) and p (uint8, 1 = ON);
+// run() takes any structured array with those four field names (tonic's included). `labels` has
+// one int32 a event, as events.csv's label column; `tracks` has tracks.csv's columns. Keyword
+// arguments are the evms program's parameters with '_' for '-' (`evms params` lists them).
+// Bad input raises ValueError with the evms program's one-line message.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "golden/pipeline.h"
+#include "host/read/event_source.h"
+#include "host/read/input_error.h"
+#include "types/params.h"
+
+namespace py = pybind11;
+
+namespace evms::python {
+namespace {
+
+struct TrackRow {
+  std::int64_t t_us;
+  std::int32_t track_id;
+  std::uint8_t confirmed;
+  double x, y, vx, vy;
+  std::int32_t events, x_min, y_min, x_max, y_max;
+  double var_x, cov_xy, var_y;
+};
+
+class Collector final : public OutputSink {
+ public:
+  void on_event(const LabelledEvent& e) override { labels.push_back(e.label); }
+  void on_track(const TrackUpdate& u) override {
+    tracks.push_back({u.t, u.id, static_cast<std::uint8_t>(u.state == TrackState::kConfirmed), u.x, u.y, u.vx, u.vy, u.events,
+                      u.x_min, u.y_min, u.x_max, u.y_max, u.var_x, u.cov_xy, u.var_y});
+  }
+  std::vector<std::int32_t> labels;
+  std::vector<TrackRow> tracks;
+};
+
+py::tuple read_source(const std::string& source, int width, int height) {
+  // A camera or a network stream has no end to read to.
+  if (source.rfind("usb://", 0) == 0 || source.rfind("udp://", 0) == 0) {
+    throw py::value_error(source + ": evms.read takes files and gen:// scenes; a live source has no end (use the evms program: evms view " + source + ")");
+  }
+  read::SourceOptions options;
+  options.width = width, options.height = height;
+  std::vector<Event> events;
+  SensorSize sensor;
+  try {
+    auto in = read::open_source(source, options);
+    sensor = in->info().sensor;
+    std::vector<Event> chunk(1 << 16);
+    for (size_t n; (n = in->read(chunk)) > 0;) events.insert(events.end(), chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(n));
+  } catch (const std::exception& e) {
+    throw py::value_error(e.what());
+  }
+  py::array_t<Event> out(static_cast<py::ssize_t>(events.size()));
+  if (!events.empty()) std::memcpy(out.mutable_data(), events.data(), events.size() * sizeof(Event));
+  return py::make_tuple(out, py::make_tuple(sensor.width, sensor.height));
+}
+
+// One field of a structured array, as a contiguous array of T.
+template <typename T>
+py::array_t<T, py::array::c_style | py::array::forcecast> field(const py::array& events, const char* name) {
+  if (!events.dtype().attr("names").is_none()) {
+    const auto names = events.dtype().attr("names").cast<std::vector<std::string>>();
+    for (const auto& n : names) {
+      if (n == name) return py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(events[py::str(name)]);
+    }
+  }
+  throw py::value_error(std::string("events: no field '") + name + "' (a structured array with fields t, x, y and p is needed)");
+}
+
+py::tuple run_golden(const py::array& events, std::pair<int, int> sensor_size, const std::string& preset, const py::kwargs& params) {
+  const SensorSize sensor{sensor_size.first, sensor_size.second};
+  if (sensor.width < 1 || sensor.height < 1 || sensor.width > read::kMaxSensorSide || sensor.height > read::kMaxSensorSide) {
+    throw py::value_error("sensor: " + std::to_string(sensor.width) + "x" + std::to_string(sensor.height) + " is not a sensor size (1 to " +
+                          std::to_string(read::kMaxSensorSide) + " px a side)");
+  }
+  Method method;
+  method.preset = preset;
+  for (const auto& [key, value] : params) {
+    std::string name = key.cast<std::string>();
+    for (char& c : name) c = c == '_' ? '-' : c;
+    // Python's True/False, as the evms program's true/false.
+    const std::string text = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "true" : "false") : py::str(value).cast<std::string>();
+    method.settings.emplace_back(name, text);
+  }
+  Params p;
+  try {
+    p = method.resolve(sensor);
+  } catch (const std::exception& e) {
+    throw py::value_error(e.what());
+  }
+  const auto t = field<std::int64_t>(events, "t");
+  const auto x = field<std::int64_t>(events, "x");
+  const auto y = field<std::int64_t>(events, "y");
+  const auto pol = field<std::int64_t>(events, "p");
+  const py::ssize_t n = t.size();
+  Collector out;
+  out.labels.reserve(static_cast<size_t>(n));
+  {
+    py::gil_scoped_release unlocked;
+    golden::Pipeline pipeline(p, sensor);
+    const std::int64_t *tt = t.data(), *xx = x.data(), *yy = y.data(), *pp = pol.data();
+    for (py::ssize_t i = 0; i < n; ++i) {
+      std::string wrong;
+      if (xx[i] < 0 || yy[i] < 0 || xx[i] >= sensor.width || yy[i] >= sensor.height) {
+        wrong = "(" + std::to_string(xx[i]) + "," + std::to_string(yy[i]) + ") is outside the " + std::to_string(sensor.width) + "x" +
+                std::to_string(sensor.height) + " sensor";
+      } else if (pp[i] != 0 && pp[i] != 1) {
+        wrong = "polarity " + std::to_string(pp[i]) + " is not 0 (OFF) or 1 (ON)";
+      } else if (i > 0 && tt[i] < tt[i - 1]) {
+        wrong = "t=" + std::to_string(tt[i]) + " us is earlier than the event before it (" + std::to_string(tt[i - 1]) + " us): sort by t";
+      }
+      if (!wrong.empty()) {
+        py::gil_scoped_acquire locked;
+        throw py::value_error("events[" + std::to_string(i) + "]: " + wrong);
+      }
+      pipeline.push(Event{tt[i], static_cast<std::uint16_t>(xx[i]), static_cast<std::uint16_t>(yy[i]), static_cast<std::uint8_t>(pp[i])}, out);
+    }
+    pipeline.finish(out);
+  }
+  py::array_t<std::int32_t> labels(static_cast<py::ssize_t>(out.labels.size()));
+  if (!out.labels.empty()) std::memcpy(labels.mutable_data(), out.labels.data(), out.labels.size() * sizeof(std::int32_t));
+  py::array_t<TrackRow> tracks(static_cast<py::ssize_t>(out.tracks.size()));
+  if (!out.tracks.empty()) std::memcpy(tracks.mutable_data(), out.tracks.data(), out.tracks.size() * sizeof(TrackRow));
+  return py::make_tuple(labels, tracks);
+}
+
+py::dict parameters() {
+  py::dict d;
+  const Params defaults;
+  for (const ParamInfo& info : param_table()) {
+    std::string name = info.name;
+    for (char& c : name) c = c == '-' ? '_' : c;
+    d[py::str(name)] = param_text(defaults, info);
+  }
+  return d;
+}
+
+}  // namespace
+}  // namespace evms::python
+
+PYBIND11_MODULE(evms, m) {
+  using namespace evms::python;
+  PYBIND11_NUMPY_DTYPE(evms::Event, t, x, y, p);
+  PYBIND11_NUMPY_DTYPE(TrackRow, t_us, track_id, confirmed, x, y, vx, vy, events, x_min, y_min, x_max, y_max, var_x, cov_xy, var_y);
+  m.doc() = "evms: event-based mean-shift clustering and tracking (Barranco, Fermuller & Ros, IROS 2018); the readers and the golden model";
+  m.def("read", &read_source, py::arg("source"), py::arg("width") = 0, py::arg("height") = 0,
+        "Reads every event of a file or gen:// scene that `evms run` takes (no live source): returns (events, (width, height)),\n"
+        "events a structured array with fields t (us), x, y and p. width and height are for formats without a sensor size.");
+  m.def("run", &run_golden, py::arg("events"), py::arg("sensor"), py::kw_only(), py::arg("preset") = "evms",
+        "Clusters and tracks time-ordered events on a sensor (width, height) with the golden model: returns (labels, tracks),\n"
+        "one int32 label per event (-1 noise) and the track updates with tracks.csv's columns (confirmed: 1, tentative: 0).\n"
+        "Keyword arguments set parameters, '_' for '-': evms.run(events, (240, 180), bandwidth=0.05, warm_start=False).");
+  m.def("parameters", &parameters, "The method's parameters (with '_' for '-', as run() takes them) and their defaults (--preset evms), as text.");
+}

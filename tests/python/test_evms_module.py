@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""The Python module evms (host/python/evms_module.cpp) against the evms program.
+
+ctest runs it with PYTHONPATH at the built module, EVMS_BINARY the evms program and
+EVMS_SHARED_DATA the shared recordings' folder (the recordings' test skips when it is absent).
+"""
+import csv
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+
+import evms
+
+EVMS = os.environ["EVMS_BINARY"]
+SCENE = "gen://rotation?duration-s=0.3&seed=4"
+
+
+def program_run(source, *args):
+    """Labels and track rows that `evms run` writes for the source."""
+    with tempfile.TemporaryDirectory() as out:
+        subprocess.run([EVMS, "run", source, "--out", out, *args], check=True, capture_output=True)
+        with open(os.path.join(out, "events.csv")) as f:
+            rows = [line for line in f if not line.startswith("#")][1:]
+        labels = np.array([int(r.rsplit(",", 1)[1]) for r in rows], dtype=np.int32)
+        with open(os.path.join(out, "tracks.csv")) as f:
+            tracks = list(csv.DictReader(f))
+    return labels, tracks
+
+
+class ModuleAgainstTheProgram(unittest.TestCase):
+    def setUp(self):
+        self.events, self.sensor = evms.read(SCENE)
+
+    def test_read_gives_the_events_the_program_labels(self):
+        self.assertEqual(self.sensor, (240, 180))
+        self.assertEqual(self.events.dtype.names, ("t", "x", "y", "p"))
+        self.assertGreater(len(self.events), 5000)
+        self.assertTrue(np.all(np.diff(self.events["t"]) >= 0))
+        with tempfile.TemporaryDirectory() as out:
+            subprocess.run([EVMS, "run", SCENE, "--out", out], check=True, capture_output=True)
+            table = np.loadtxt(os.path.join(out, "events.csv"), delimiter=",", skiprows=2, dtype=np.int64)
+        np.testing.assert_array_equal(table[:, 0], self.events["t"])
+        np.testing.assert_array_equal(table[:, 1], self.events["x"])
+        np.testing.assert_array_equal(table[:, 2], self.events["y"])
+        np.testing.assert_array_equal(table[:, 3], self.events["p"])
+
+    def test_run_labels_and_tracks_as_the_program(self):
+        labels, tracks = evms.run(self.events, self.sensor)
+        want_labels, want_tracks = program_run(SCENE)
+        np.testing.assert_array_equal(labels, want_labels)
+        self.assertGreater(len(np.unique(labels[labels >= 0])), 3)
+        self.assertEqual(len(tracks), len(want_tracks))
+        for got, want in zip(tracks, want_tracks):
+            self.assertEqual(int(got["t_us"]), int(want["t_us"]))
+            self.assertEqual(int(got["track_id"]), int(want["track_id"]))
+            self.assertEqual(bool(got["confirmed"]), want["state"] == "confirmed")
+            for name in ("x", "y", "vx", "vy"):
+                self.assertAlmostEqual(float(got[name]), float(want[name]), delta=6e-4)
+            for name in ("events", "x_min", "y_min", "x_max", "y_max"):
+                self.assertEqual(int(got[name]), int(want[name]))
+        # Every label is noise or a track the tracks name.
+        self.assertTrue(set(np.unique(labels[labels >= 0])) <= set(tracks["track_id"]))
+
+    def test_keyword_parameters_are_the_programs_options(self):
+        labels, _ = evms.run(self.events, self.sensor, bandwidth=0.06, warm_start=False)
+        want, _ = program_run(SCENE, "--bandwidth", "0.06", "--warm-start", "false")
+        np.testing.assert_array_equal(labels, want)
+        default, _ = evms.run(self.events, self.sensor)
+        self.assertFalse(np.array_equal(labels, default))
+        paper, _ = evms.run(self.events, self.sensor, preset="paper")
+        want, _ = program_run(SCENE, "--preset", "paper")
+        np.testing.assert_array_equal(paper, want)
+        self.assertEqual(evms.parameters()["packet_size"], "3000")
+
+    def test_any_structured_array_with_the_four_fields(self):
+        # tonic's layout: int64 fields in another order.
+        other = np.zeros(len(self.events), dtype=[("x", "<i8"), ("y", "<i8"), ("p", "<i8"), ("t", "<i8")])
+        for name in ("t", "x", "y", "p"):
+            other[name] = self.events[name]
+        np.testing.assert_array_equal(evms.run(other, self.sensor)[0], evms.run(self.events, self.sensor)[0])
+
+    def test_bad_input_is_one_line_naming_where(self):
+        cases = []
+        outside = self.events.copy()
+        outside["x"][7] = 240
+        cases.append((outside, (240, 180), {}, "events[7]: (240,%d) is outside the 240x180 sensor" % outside["y"][7]))
+        unsorted = self.events.copy()
+        unsorted["t"][9] = unsorted["t"][8] - 1
+        cases.append((unsorted, (240, 180), {}, "events[9]: t=%d us is earlier than the event before it" % unsorted["t"][9]))
+        polarity = self.events.copy()
+        polarity["p"][3] = 2
+        cases.append((polarity, (240, 180), {}, "events[3]: polarity 2 is not 0 (OFF) or 1 (ON)"))
+        cases.append((self.events[["t", "x", "y"]], (240, 180), {}, "events: no field 'p'"))
+        cases.append((self.events, (0, 180), {}, "sensor: 0x180 is not a sensor size"))
+        cases.append((self.events, (240, 180), {"bandwdith": 0.1}, "unknown parameter 'bandwdith'"))
+        for events, sensor, params, message in cases:
+            with self.assertRaises(ValueError) as caught:
+                evms.run(events, sensor, **params)
+            self.assertIn(message, str(caught.exception))
+            self.assertNotIn("\n", str(caught.exception))
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "cut.aedat")
+            with open(path, "wb") as f:
+                f.write(b"#!AER-DAT2.0\r\n\x00\x00\x01")
+            with self.assertRaises(ValueError) as caught:
+                evms.read(path)
+            self.assertEqual(str(caught.exception), path + ": byte 14: truncated record (3 of 8 bytes)")
+        with self.assertRaises(ValueError) as caught:
+            evms.read("usb://dvs128")
+        self.assertIn("a live source has no end", str(caught.exception))
+
+
+class RealRecordings(unittest.TestCase):
+    def test_the_shared_recordings_reference_figures(self):
+        shared = os.environ.get("EVMS_SHARED_DATA", "")
+        if not os.path.isdir(shared):
+            self.skipTest("the shared recordings are not here (" + shared + ")")
+        # ../shared/data/real/README.md: events, first and last time, ON count.
+        for name, sensor, count, first, last, on in [
+            ("gen3_moving_blob.evt2.raw", (640, 480), 539481, 1317888, 1367888, 367855),
+            ("dvxplorer_indoor.aedat4", (320, 240), 111954, 1605537493718345, 1605537494308262, 55023),
+        ]:
+            events, size = evms.read(os.path.join(shared, name))
+            self.assertEqual(size, sensor, name)
+            self.assertEqual(len(events), count, name)
+            self.assertEqual(int(events["t"][0]), first, name)
+            self.assertEqual(int(events["t"][-1]), last, name)
+            self.assertEqual(int(events["p"].sum()), on, name)
+        labels, tracks = evms.run(*evms.read(os.path.join(shared, "gen3_moving_blob.evt2.raw")))
+        want, _ = program_run(os.path.join(shared, "gen3_moving_blob.evt2.raw"))
+        np.testing.assert_array_equal(labels, want)
+
+
+if __name__ == "__main__":
+    unittest.main()
