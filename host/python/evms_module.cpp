@@ -4,6 +4,7 @@
 //   import evms
 //   events, (width, height) = evms.read("recording.aedat4")     # or "gen://rotation", ...
 //   labels, tracks = evms.run(events, (width, height), preset="evms", bandwidth=0.05)
+//   scores = evms.score(events, true_labels, labels, chunk_us=10000)   # as `evms metrics`
 //
 // `events` is a structured array with fields t (int64, us), x, y (uint16) and p (uint8, 1 = ON);
 // run() takes any structured array with those four field names (tonic's included). `labels` has
@@ -20,6 +21,8 @@
 #include <vector>
 
 #include "golden/pipeline.h"
+#include "host/eval/chunks.h"
+#include "host/eval/clustering_metrics.h"
 #include "host/read/event_source.h"
 #include "host/read/input_error.h"
 #include "types/params.h"
@@ -83,6 +86,30 @@ py::array_t<T, py::array::c_style | py::array::forcecast> field(const py::array&
   throw py::value_error(std::string("events: no field '") + name + "' (a structured array with fields t, x, y and p is needed)");
 }
 
+// The events of a structured array, each checked: inside the sensor, polarity 0 or 1, in time order.
+std::vector<Event> events_of(const py::array& events, SensorSize sensor) {
+  const auto t = field<std::int64_t>(events, "t");
+  const auto x = field<std::int64_t>(events, "x");
+  const auto y = field<std::int64_t>(events, "y");
+  const auto p = field<std::int64_t>(events, "p");
+  std::vector<Event> out(static_cast<size_t>(t.size()));
+  for (py::ssize_t i = 0; i < t.size(); ++i) {
+    std::string wrong;
+    if (x.data()[i] < 0 || y.data()[i] < 0 || x.data()[i] >= sensor.width || y.data()[i] >= sensor.height) {
+      wrong = "(" + std::to_string(x.data()[i]) + "," + std::to_string(y.data()[i]) + ") is outside the " + std::to_string(sensor.width) + "x" +
+              std::to_string(sensor.height) + " sensor";
+    } else if (p.data()[i] != 0 && p.data()[i] != 1) {
+      wrong = "polarity " + std::to_string(p.data()[i]) + " is not 0 (OFF) or 1 (ON)";
+    } else if (i > 0 && t.data()[i] < t.data()[i - 1]) {
+      wrong = "t=" + std::to_string(t.data()[i]) + " us is earlier than the event before it (" + std::to_string(t.data()[i - 1]) + " us): sort by t";
+    }
+    if (!wrong.empty()) throw py::value_error("events[" + std::to_string(i) + "]: " + wrong);
+    out[static_cast<size_t>(i)] = Event{t.data()[i], static_cast<std::uint16_t>(x.data()[i]), static_cast<std::uint16_t>(y.data()[i]),
+                                        static_cast<std::uint8_t>(p.data()[i])};
+  }
+  return out;
+}
+
 py::tuple run_golden(const py::array& events, std::pair<int, int> sensor_size, const std::string& preset, const py::kwargs& params) {
   const SensorSize sensor{sensor_size.first, sensor_size.second};
   if (sensor.width < 1 || sensor.height < 1 || sensor.width > read::kMaxSensorSide || sensor.height > read::kMaxSensorSide) {
@@ -104,33 +131,13 @@ py::tuple run_golden(const py::array& events, std::pair<int, int> sensor_size, c
   } catch (const std::exception& e) {
     throw py::value_error(e.what());
   }
-  const auto t = field<std::int64_t>(events, "t");
-  const auto x = field<std::int64_t>(events, "x");
-  const auto y = field<std::int64_t>(events, "y");
-  const auto pol = field<std::int64_t>(events, "p");
-  const py::ssize_t n = t.size();
+  const std::vector<Event> input = events_of(events, sensor);
   Collector out;
-  out.labels.reserve(static_cast<size_t>(n));
+  out.labels.reserve(input.size());
   {
     py::gil_scoped_release unlocked;
     golden::Pipeline pipeline(p, sensor);
-    const std::int64_t *tt = t.data(), *xx = x.data(), *yy = y.data(), *pp = pol.data();
-    for (py::ssize_t i = 0; i < n; ++i) {
-      std::string wrong;
-      if (xx[i] < 0 || yy[i] < 0 || xx[i] >= sensor.width || yy[i] >= sensor.height) {
-        wrong = "(" + std::to_string(xx[i]) + "," + std::to_string(yy[i]) + ") is outside the " + std::to_string(sensor.width) + "x" +
-                std::to_string(sensor.height) + " sensor";
-      } else if (pp[i] != 0 && pp[i] != 1) {
-        wrong = "polarity " + std::to_string(pp[i]) + " is not 0 (OFF) or 1 (ON)";
-      } else if (i > 0 && tt[i] < tt[i - 1]) {
-        wrong = "t=" + std::to_string(tt[i]) + " us is earlier than the event before it (" + std::to_string(tt[i - 1]) + " us): sort by t";
-      }
-      if (!wrong.empty()) {
-        py::gil_scoped_acquire locked;
-        throw py::value_error("events[" + std::to_string(i) + "]: " + wrong);
-      }
-      pipeline.push(Event{tt[i], static_cast<std::uint16_t>(xx[i]), static_cast<std::uint16_t>(yy[i]), static_cast<std::uint8_t>(pp[i])}, out);
-    }
+    for (const Event& e : input) pipeline.push(e, out);
     pipeline.finish(out);
   }
   py::array_t<std::int32_t> labels(static_cast<py::ssize_t>(out.labels.size()));
@@ -138,6 +145,34 @@ py::tuple run_golden(const py::array& events, std::pair<int, int> sensor_size, c
   py::array_t<TrackRow> tracks(static_cast<py::ssize_t>(out.tracks.size()));
   if (!out.tracks.empty()) std::memcpy(tracks.mutable_data(), out.tracks.data(), out.tracks.size() * sizeof(TrackRow));
   return py::make_tuple(labels, tracks);
+}
+
+py::dict score_labels(const py::array& events, const py::array& truth, const py::array& pred, std::int64_t chunk_us, std::int64_t chunk_events) {
+  if (chunk_us > 0 && chunk_events > 0) throw py::value_error("give chunk_us or chunk_events, not both");
+  if (chunk_us < 0 || chunk_events < 0 || chunk_events == 1) throw py::value_error("chunk_us must be 1 us or more, chunk_events 2 or more");
+  const auto t = py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>::ensure(truth);
+  const auto p = py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>::ensure(pred);
+  // Any sensor holds the events: score() looks at their times only.
+  const std::vector<Event> ev = events_of(events, SensorSize{1 << 16, 1 << 16});
+  if (!t || !p || t.ndim() != 1 || p.ndim() != 1 || t.size() != static_cast<py::ssize_t>(ev.size()) ||
+      p.size() != static_cast<py::ssize_t>(ev.size())) {
+    throw py::value_error("truth and pred must be one label an event (" + std::to_string(ev.size()) + " events)");
+  }
+  eval::Chunking chunking;
+  if (chunk_us > 0) chunking = {eval::Chunking::Kind::kTime, chunk_us};
+  if (chunk_events > 0) chunking = {eval::Chunking::Kind::kEvents, chunk_events};
+  eval::ScoreAverage average;
+  for (const auto& [first, last] : eval::chunk_ranges(ev, chunking)) {
+    if (last - first < 2) continue;
+    const auto n = static_cast<size_t>(last - first);
+    average.add(eval::score({t.data() + first, n}, {p.data() + first, n}));
+  }
+  if (average.chunks() == 0) throw py::value_error("fewer than 2 events: nothing to score");
+  const eval::ClusteringScores s = average.mean();
+  py::dict d;
+  d["ari"] = s.ari, d["nmi"] = s.nmi, d["precision"] = s.precision, d["recall"] = s.recall, d["f"] = s.f;
+  d["chunks"] = average.chunks();
+  return d;
 }
 
 py::dict parameters() {
@@ -166,5 +201,10 @@ PYBIND11_MODULE(evms, m) {
         "Clusters and tracks time-ordered events on a sensor (width, height) with the golden model: returns (labels, tracks),\n"
         "one int32 label per event (-1 noise) and the track updates with tracks.csv's columns (confirmed: 1, tentative: 0).\n"
         "Keyword arguments set parameters, '_' for '-': evms.run(events, (240, 180), bandwidth=0.05, warm_start=False).");
+  m.def("score", &score_labels, py::arg("events"), py::arg("truth"), py::arg("pred"), py::kw_only(), py::arg("chunk_us") = 0,
+        py::arg("chunk_events") = 0,
+        "Scores a labelling of the events against the true one as `evms metrics` does: the means over chunks (chunk_us-long windows,\n"
+        "or chunk_events events, 256 by default) of the pair-counting ARI, NMI, precision, recall and F, each noise (-1) event a\n"
+        "cluster of its own; returns a dict with those and the chunks scored.");
   m.def("parameters", &parameters, "The method's parameters (with '_' for '-', as run() takes them) and their defaults (--preset evms), as text.");
 }

@@ -113,6 +113,31 @@ class ModuleAgainstTheProgram(unittest.TestCase):
         self.assertIn("a live source has no end", str(caught.exception))
 
 
+class Scores(unittest.TestCase):
+    def test_score_is_evms_metrics(self):
+        with tempfile.TemporaryDirectory() as d:
+            subprocess.run([EVMS, "gen", "--family", "crossing", "--seed", "3", "--duration-s", "0.4", "--out", d], check=True, capture_output=True)
+            events, sensor = evms.read(os.path.join(d, "events.txt"))
+            truth = np.loadtxt(os.path.join(d, "labels.csv"), delimiter=",", skiprows=2, dtype=np.int64)
+            np.testing.assert_array_equal(truth[:, 0], events["t"])
+            labels, _ = evms.run(events, sensor)
+            subprocess.run([EVMS, "run", os.path.join(d, "events.txt"), "--out", os.path.join(d, "run")], check=True, capture_output=True)
+            for args, kwargs in [(["--chunk-us", "10000"], {"chunk_us": 10000}), ([], {}), (["--chunk-events", "1000"], {"chunk_events": 1000})]:
+                printed = subprocess.run([EVMS, "metrics", "--truth", os.path.join(d, "labels.csv"), "--pred", os.path.join(d, "run", "events.csv"), *args],
+                                         check=True, capture_output=True, text=True).stdout.split()
+                got = evms.score(events, truth[:, 4], labels, **kwargs)
+                for name, want in zip(("ari", "nmi", "precision", "recall", "f"), printed):
+                    self.assertAlmostEqual(got[name], float(want), delta=1e-6, msg=name + " " + str(args))
+                self.assertGreater(got["chunks"], 10)
+            self.assertLess(evms.score(events, truth[:, 4], np.roll(labels, 500), chunk_us=10000)["f"], got["f"])
+            self.assertEqual(evms.score(events, truth[:, 4], truth[:, 4], chunk_us=10000)["f"], 1.0)
+            with self.assertRaises(ValueError) as caught:
+                evms.score(events, truth[:-1, 4], labels)
+            self.assertIn("one label an event (%d events)" % len(events), str(caught.exception))
+            with self.assertRaises(ValueError):
+                evms.score(events, truth[:, 4], labels, chunk_us=10000, chunk_events=100)
+
+
 class RealRecordings(unittest.TestCase):
     def test_the_shared_recordings_reference_figures(self):
         shared = os.environ.get("EVMS_SHARED_DATA", "")
