@@ -1,9 +1,11 @@
-// The Python module `evms`: the readers and the golden model on NumPy arrays, for users who
-// work in Python (tonic, NumPy) rather than through the evms program's files.
+// The Python module `evms`: the readers, the golden model and the bit-accurate fixed-point core
+// on NumPy arrays, for users who work in Python (tonic, NumPy) rather than through the evms
+// program's files.
 //
 //   import evms
 //   events, (width, height) = evms.read("recording.aedat4")     # or "gen://rotation", ...
 //   labels, tracks = evms.run(events, (width, height), preset="evms", bandwidth=0.05)
+//   labels, tracks = evms.run(events, (width, height), backend="fixed", core="ice40")
 //   scores = evms.score(events, true_labels, labels, chunk_us=10000)   # as `evms metrics`
 //
 // `events` is a structured array with fields t (int64, us), x, y (uint16) and p (uint8, 1 = ON);
@@ -20,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "golden/pipeline.h"
+#include "host/backend/registry.h"
 #include "host/eval/chunks.h"
 #include "host/eval/clustering_metrics.h"
 #include "host/read/event_source.h"
@@ -110,7 +112,8 @@ std::vector<Event> events_of(const py::array& events, SensorSize sensor) {
   return out;
 }
 
-py::tuple run_golden(const py::array& events, std::pair<int, int> sensor_size, const std::string& preset, const py::kwargs& params) {
+py::tuple run_method(const py::array& events, std::pair<int, int> sensor_size, const std::string& backend_name, const std::string& core,
+                     const std::string& preset, const py::kwargs& params) {
   const SensorSize sensor{sensor_size.first, sensor_size.second};
   if (sensor.width < 1 || sensor.height < 1 || sensor.width > read::kMaxSensorSide || sensor.height > read::kMaxSensorSide) {
     throw py::value_error("sensor: " + std::to_string(sensor.width) + "x" + std::to_string(sensor.height) + " is not a sensor size (1 to " +
@@ -125,9 +128,17 @@ py::tuple run_golden(const py::array& events, std::pair<int, int> sensor_size, c
     const std::string text = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "true" : "false") : py::str(value).cast<std::string>();
     method.settings.emplace_back(name, text);
   }
-  Params p;
+  // The RTL and the board are the evms program's (--backend rtl|board): this module carries
+  // neither the Verilated models nor the serial link.
+  if (backend_name != "golden" && backend_name != "fixed") {
+    throw py::value_error("backend '" + backend_name + "': the module runs golden and fixed (the evms program runs rtl and board)");
+  }
+  std::unique_ptr<backend::Backend> method_backend;
   try {
-    p = method.resolve(sensor);
+    const Params p = backend::fit_core_build(backend_name, core, method.resolve(sensor), method);
+    backend::BackendOptions options = backend::options_for(p, sensor);
+    options.core = core;
+    method_backend = backend_name == "golden" ? backend::make_golden_backend(options) : backend::make_fixed_backend(options);
   } catch (const std::exception& e) {
     throw py::value_error(e.what());
   }
@@ -136,9 +147,8 @@ py::tuple run_golden(const py::array& events, std::pair<int, int> sensor_size, c
   out.labels.reserve(input.size());
   {
     py::gil_scoped_release unlocked;
-    golden::Pipeline pipeline(p, sensor);
-    for (const Event& e : input) pipeline.push(e, out);
-    pipeline.finish(out);
+    method_backend->push(input, out);
+    method_backend->finish(out);
   }
   py::array_t<std::int32_t> labels(static_cast<py::ssize_t>(out.labels.size()));
   if (!out.labels.empty()) std::memcpy(labels.mutable_data(), out.labels.data(), out.labels.size() * sizeof(std::int32_t));
@@ -193,12 +203,14 @@ PYBIND11_MODULE(evms, m) {
   using namespace evms::python;
   PYBIND11_NUMPY_DTYPE(evms::Event, t, x, y, p);
   PYBIND11_NUMPY_DTYPE(TrackRow, t_us, track_id, confirmed, x, y, vx, vy, events, x_min, y_min, x_max, y_max, var_x, cov_xy, var_y);
-  m.doc() = "evms: event-based mean-shift clustering and tracking (Barranco, Fermuller & Ros, IROS 2018); the readers and the golden model";
+  m.doc() = "evms: event-based mean-shift clustering and tracking (Barranco, Fermuller & Ros, IROS 2018); the readers, the golden model and the fixed-point core";
   m.def("read", &read_source, py::arg("source"), py::arg("width") = 0, py::arg("height") = 0,
         "Reads every event of a file or gen:// scene that `evms run` takes (no live source): returns (events, (width, height)),\n"
         "events a structured array with fields t (us), x, y and p. width and height are for formats without a sensor size.");
-  m.def("run", &run_golden, py::arg("events"), py::arg("sensor"), py::kw_only(), py::arg("preset") = "evms",
-        "Clusters and tracks time-ordered events on a sensor (width, height) with the golden model: returns (labels, tracks),\n"
+  m.def("run", &run_method, py::arg("events"), py::arg("sensor"), py::kw_only(), py::arg("backend") = "golden", py::arg("core") = "host",
+        py::arg("preset") = "evms",
+        "Clusters and tracks time-ordered events on a sensor (width, height) with the golden model, or with backend=\"fixed\" the\n"
+        "bit-accurate core of build core (host, arty or ice40, in that build's sizes): returns (labels, tracks),\n"
         "one int32 label per event (-1 noise) and the track updates with tracks.csv's columns (confirmed: 1, tentative: 0).\n"
         "Keyword arguments set parameters, '_' for '-': evms.run(events, (240, 180), bandwidth=0.05, warm_start=False).");
   m.def("score", &score_labels, py::arg("events"), py::arg("truth"), py::arg("pred"), py::kw_only(), py::arg("chunk_us") = 0,

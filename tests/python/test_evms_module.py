@@ -75,6 +75,30 @@ class ModuleAgainstTheProgram(unittest.TestCase):
         np.testing.assert_array_equal(paper, want)
         self.assertEqual(evms.parameters()["packet_size"], "3000")
 
+    def test_the_fixed_point_core_gives_the_programs_labels(self):
+        # The iCE40 build holds sensors up to 128x128.
+        for core, scene in (("host", SCENE), ("ice40", SCENE + "&width=128&height=128")):
+            events, sensor = evms.read(scene)
+            labels, tracks = evms.run(events, sensor, backend="fixed", core=core)
+            want, want_tracks = program_run(scene, "--backend", "fixed", "--core", core)
+            np.testing.assert_array_equal(labels, want, err_msg=core)
+            self.assertEqual(len(tracks), len(want_tracks), core)
+            self.assertEqual([int(t["track_id"]) for t in want_tracks], list(tracks["track_id"]), core)
+            self.assertGreater(len(np.unique(labels[labels >= 0])), 2, core)
+            # Its positions are fixed-point: multiples of a power of two, which golden's are not.
+            _, golden_tracks = evms.run(events, sensor)
+            self.assertTrue(np.all(tracks["x"] * 2**12 == np.round(tracks["x"] * 2**12)), core)
+            self.assertFalse(np.all(golden_tracks["x"] * 2**12 == np.round(golden_tracks["x"] * 2**12)), core)
+        with self.assertRaises(ValueError) as caught:
+            evms.run(self.events, self.sensor, backend="fixed", core="ice40")
+        self.assertIn("the core is built for sensors up to 128x128, not 240x180", str(caught.exception))
+        with self.assertRaises(ValueError) as caught:
+            evms.run(self.events, self.sensor, backend="rtl")
+        self.assertIn("the module runs golden and fixed", str(caught.exception))
+        with self.assertRaises(ValueError) as caught:
+            evms.run(self.events, self.sensor, backend="fixed", core="zynq")
+        self.assertIn("unknown core build 'zynq'", str(caught.exception))
+
     def test_any_structured_array_with_the_four_fields(self):
         # tonic's layout: int64 fields in another order.
         other = np.zeros(len(self.events), dtype=[("x", "<i8"), ("y", "<i8"), ("p", "<i8"), ("t", "<i8")])
