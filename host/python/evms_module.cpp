@@ -63,13 +63,20 @@ py::tuple read_source(const std::string& source, int width, int height) {
   options.width = width, options.height = height;
   std::vector<Event> events;
   SensorSize sensor;
+  std::string origin;  // how the size was assumed, when the source does not give it
   try {
     auto in = read::open_source(source, options);
     sensor = in->info().sensor;
+    if (in->info().sensor_assumed()) origin = in->info().sensor_origin;
     std::vector<Event> chunk(1 << 16);
     for (size_t n; (n = in->read(chunk)) > 0;) events.insert(events.end(), chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(n));
   } catch (const std::exception& e) {
     throw py::value_error(e.what());
+  }
+  if (!origin.empty()) {
+    // A size the file does not give changes the labels, so it is said, as the program says it.
+    const std::string said = source + ": sensor " + std::to_string(sensor.width) + "x" + std::to_string(sensor.height) + " " + origin;
+    if (PyErr_WarnEx(PyExc_UserWarning, said.c_str(), 1) != 0) throw py::error_already_set();
   }
   py::array_t<Event> out(static_cast<py::ssize_t>(events.size()));
   if (!events.empty()) std::memcpy(out.mutable_data(), events.data(), events.size() * sizeof(Event));
@@ -206,7 +213,8 @@ PYBIND11_MODULE(evms, m) {
   m.doc() = "evms: event-based mean-shift clustering and tracking (Barranco, Fermuller & Ros, IROS 2018); the readers, the golden model and the fixed-point core";
   m.def("read", &read_source, py::arg("source"), py::arg("width") = 0, py::arg("height") = 0,
         "Reads every event of a file or gen:// scene that `evms run` takes (no live source): returns (events, (width, height)),\n"
-        "events a structured array with fields t (us), x, y and p. width and height are for formats without a sensor size.");
+        "events a structured array with fields t (us), x, y and p. width and height are for formats without a sensor size;\n"
+        "without them such a file's size is assumed, with a UserWarning that says so.");
   m.def("run", &run_method, py::arg("events"), py::arg("sensor"), py::kw_only(), py::arg("backend") = "golden", py::arg("core") = "host",
         py::arg("preset") = "evms",
         "Clusters and tracks time-ordered events on a sensor (width, height) with the golden model, or with backend=\"fixed\" the\n"

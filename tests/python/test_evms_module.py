@@ -9,6 +9,7 @@ import os
 import subprocess
 import tempfile
 import unittest
+import warnings
 
 import numpy as np
 
@@ -132,6 +133,16 @@ class ModuleAgainstTheProgram(unittest.TestCase):
             with self.assertRaises(ValueError) as caught:
                 evms.read(path)
             self.assertEqual(str(caught.exception), path + ": byte 14: truncated record (3 of 8 bytes)")
+            # A text file without a size: it is assumed, and said.
+            path = os.path.join(d, "events.txt")
+            with open(path, "w") as f:
+                f.write("0.000001 3 4 1\n0.000002 100 6 0\n")
+            with self.assertWarns(UserWarning) as warned:
+                _, sensor = evms.read(path)
+            self.assertIn(path + ": sensor %dx%d assumed" % sensor, str(warned.warning))
+            with warnings.catch_warnings():
+                warnings.simplefilter("error")
+                self.assertEqual(evms.read(path, width=128, height=128)[1], (128, 128))
         with self.assertRaises(ValueError) as caught:
             evms.read("usb://dvs128")
         self.assertIn("a live source has no end", str(caught.exception))
