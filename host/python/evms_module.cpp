@@ -7,6 +7,7 @@
 //   labels, tracks = evms.run(events, (width, height), preset="evms", bandwidth=0.05)
 //   labels, tracks = evms.run(events, (width, height), backend="fixed", core="ice40")
 //   scores = evms.score(events, true_labels, labels, chunk_us=10000)   # as `evms metrics`
+//   events, true_labels, truth, sensor = evms.generate("gen://family/crossing?seed=3")
 //
 // `events` is a structured array with fields t (int64, us), x, y (uint16) and p (uint8, 1 = ON);
 // run() takes any structured array with those four field names (tonic's included). `labels` has
@@ -23,9 +24,11 @@
 #include <vector>
 
 #include "host/backend/registry.h"
+#include "host/gen/scene_generator.h"
 #include "host/eval/chunks.h"
 #include "host/eval/clustering_metrics.h"
 #include "host/read/event_source.h"
+#include "host/read/generated_source.h"
 #include "host/read/input_error.h"
 #include "types/params.h"
 
@@ -33,6 +36,12 @@ namespace py = pybind11;
 
 namespace evms::python {
 namespace {
+
+struct TruthRow {
+  std::int64_t t_us;
+  std::int32_t object;
+  double x, y;
+};
 
 struct TrackRow {
   std::int64_t t_us;
@@ -81,6 +90,34 @@ py::tuple read_source(const std::string& source, int width, int height) {
   py::array_t<Event> out(static_cast<py::ssize_t>(events.size()));
   if (!events.empty()) std::memcpy(out.mutable_data(), events.data(), events.size() * sizeof(Event));
   return py::make_tuple(out, py::make_tuple(sensor.width, sensor.height));
+}
+
+// A labelled scene with its truth, as `evms gen` writes it (events.txt, labels.csv, gt_tracks.csv).
+py::tuple generate_scene(const std::string& uri) {
+  std::vector<Event> events;
+  std::vector<std::int32_t> labels;
+  std::vector<TruthRow> truth;
+  SensorSize sensor;
+  try {
+    gen::SceneGenerator generator(read::parse_scene_uri(uri));
+    sensor = generator.sensor();
+    std::vector<LabelledEvent> batch;
+    std::vector<gen::TruthSample> samples;
+    while (generator.next(batch, samples)) {
+      for (const LabelledEvent& e : batch) events.push_back(e.event), labels.push_back(e.label);
+      for (const gen::TruthSample& t : samples) truth.push_back({t.t, t.object, t.x, t.y});
+      batch.clear(), samples.clear();
+    }
+  } catch (const std::exception& e) {
+    throw py::value_error(e.what());
+  }
+  py::array_t<Event> ev(static_cast<py::ssize_t>(events.size()));
+  if (!events.empty()) std::memcpy(ev.mutable_data(), events.data(), events.size() * sizeof(Event));
+  py::array_t<std::int32_t> lab(static_cast<py::ssize_t>(labels.size()));
+  if (!labels.empty()) std::memcpy(lab.mutable_data(), labels.data(), labels.size() * sizeof(std::int32_t));
+  py::array_t<TruthRow> tr(static_cast<py::ssize_t>(truth.size()));
+  if (!truth.empty()) std::memcpy(tr.mutable_data(), truth.data(), truth.size() * sizeof(TruthRow));
+  return py::make_tuple(ev, lab, tr, py::make_tuple(sensor.width, sensor.height));
 }
 
 // One field of a structured array, as a contiguous array of T.
@@ -209,12 +246,17 @@ py::dict parameters() {
 PYBIND11_MODULE(evms, m) {
   using namespace evms::python;
   PYBIND11_NUMPY_DTYPE(evms::Event, t, x, y, p);
+  PYBIND11_NUMPY_DTYPE(TruthRow, t_us, object, x, y);
   PYBIND11_NUMPY_DTYPE(TrackRow, t_us, track_id, confirmed, x, y, vx, vy, events, x_min, y_min, x_max, y_max, var_x, cov_xy, var_y);
   m.doc() = "evms: event-based mean-shift clustering and tracking (Barranco, Fermuller & Ros, IROS 2018); the readers, the golden model and the fixed-point core";
   m.def("read", &read_source, py::arg("source"), py::arg("width") = 0, py::arg("height") = 0,
         "Reads every event of a file or gen:// scene that `evms run` takes (no live source): returns (events, (width, height)),\n"
         "events a structured array with fields t (us), x, y and p. width and height are for formats without a sensor size;\n"
         "without them such a file's size is assumed, with a UserWarning that says so.");
+  m.def("generate", &generate_scene, py::arg("scene"),
+        "Generates a labelled scene named as a gen:// source (gen://rotation?seed=2, gen://family/crossing?seed=1003&width=240&height=180):\n"
+        "returns (events, labels, truth, (width, height)): the events as read() gives them, each one's object (-1 noise), and each\n"
+        "object's centre every ms while it is wholly in view (t_us, object, x, y), as `evms gen` writes them.");
   m.def("run", &run_method, py::arg("events"), py::arg("sensor"), py::kw_only(), py::arg("backend") = "golden", py::arg("core") = "host",
         py::arg("preset") = "evms",
         "Clusters and tracks time-ordered events on a sensor (width, height) with the golden model, or with backend=\"fixed\" the\n"

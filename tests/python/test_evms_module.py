@@ -173,6 +173,27 @@ class Scores(unittest.TestCase):
                 evms.score(events, truth[:, 4], labels, chunk_us=10000, chunk_events=100)
 
 
+class Generate(unittest.TestCase):
+    def test_generate_gives_what_evms_gen_writes(self):
+        events, labels, truth, sensor = evms.generate("gen://family/crossing?seed=3&duration-s=0.4")
+        self.assertEqual(sensor, evms.read("gen://family/crossing?seed=3&duration-s=0.4")[1])
+        with tempfile.TemporaryDirectory() as d:
+            subprocess.run([EVMS, "gen", "--family", "crossing", "--seed", "3", "--duration-s", "0.4", "--out", d], check=True, capture_output=True)
+            want = np.loadtxt(os.path.join(d, "labels.csv"), delimiter=",", skiprows=2, dtype=np.int64)
+            gt = np.loadtxt(os.path.join(d, "gt_tracks.csv"), delimiter=",", skiprows=1)
+        for column, name in enumerate(("t", "x", "y", "p")):
+            np.testing.assert_array_equal(events[name], want[:, column])
+        np.testing.assert_array_equal(labels, want[:, 4])
+        self.assertGreater(len(np.unique(labels[labels >= 0])), 1)
+        np.testing.assert_array_equal(truth["t_us"], gt[:, 0])
+        np.testing.assert_array_equal(truth["object"], gt[:, 1])
+        np.testing.assert_allclose(truth["x"], gt[:, 2], atol=6e-4)
+        np.testing.assert_allclose(truth["y"], gt[:, 3], atol=6e-4)
+        with self.assertRaises(ValueError) as caught:
+            evms.generate("gen://family/parade?seed=3")
+        self.assertIn("parade", str(caught.exception))
+
+
 class RealRecordings(unittest.TestCase):
     def test_the_shared_recordings_reference_figures(self):
         shared = os.environ.get("EVMS_SHARED_DATA", "")
