@@ -11,7 +11,7 @@
 //
 // `events` is a structured array with fields t (int64, us), x, y (uint16) and p (uint8, 1 = ON);
 // run() takes any structured array with those four field names (tonic's included). `labels` has
-// one int32 a event, as events.csv's label column; `tracks` has tracks.csv's columns. Keyword
+// one int32 an event, as events.csv's label column; `tracks` has tracks.csv's columns. Keyword
 // arguments are the evms program's parameters with '_' for '-' (`evms params` lists them).
 // Bad input raises ValueError with the evms program's one-line message.
 #include <pybind11/numpy.h>
@@ -63,6 +63,20 @@ class Collector final : public OutputSink {
   std::vector<TrackRow> tracks;
 };
 
+// A parameter's name as the program spells it ('-') or as Python keywords do ('_').
+std::string spelled(std::string name, char from, char to) {
+  for (char& c : name) c = c == from ? to : c;
+  return name;
+}
+
+// A vector's records as a NumPy array of their dtype (PYBIND11_NUMPY_DTYPE below), copied.
+template <typename T>
+py::array_t<T> to_numpy(const std::vector<T>& v) {
+  py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
+  if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(T));
+  return a;
+}
+
 py::tuple read_source(const std::string& source, int width, int height) {
   // A camera or a network stream has no end to read to.
   if (source.rfind("usb://", 0) == 0 || source.rfind("udp://", 0) == 0) {
@@ -87,9 +101,7 @@ py::tuple read_source(const std::string& source, int width, int height) {
     const std::string said = source + ": sensor " + std::to_string(sensor.width) + "x" + std::to_string(sensor.height) + " " + origin;
     if (PyErr_WarnEx(PyExc_UserWarning, said.c_str(), 1) != 0) throw py::error_already_set();
   }
-  py::array_t<Event> out(static_cast<py::ssize_t>(events.size()));
-  if (!events.empty()) std::memcpy(out.mutable_data(), events.data(), events.size() * sizeof(Event));
-  return py::make_tuple(out, py::make_tuple(sensor.width, sensor.height));
+  return py::make_tuple(to_numpy(events), py::make_tuple(sensor.width, sensor.height));
 }
 
 // A labelled scene with its truth, as `evms gen` writes it (events.txt, labels.csv, gt_tracks.csv).
@@ -111,13 +123,7 @@ py::tuple generate_scene(const std::string& uri) {
   } catch (const std::exception& e) {
     throw py::value_error(e.what());
   }
-  py::array_t<Event> ev(static_cast<py::ssize_t>(events.size()));
-  if (!events.empty()) std::memcpy(ev.mutable_data(), events.data(), events.size() * sizeof(Event));
-  py::array_t<std::int32_t> lab(static_cast<py::ssize_t>(labels.size()));
-  if (!labels.empty()) std::memcpy(lab.mutable_data(), labels.data(), labels.size() * sizeof(std::int32_t));
-  py::array_t<TruthRow> tr(static_cast<py::ssize_t>(truth.size()));
-  if (!truth.empty()) std::memcpy(tr.mutable_data(), truth.data(), truth.size() * sizeof(TruthRow));
-  return py::make_tuple(ev, lab, tr, py::make_tuple(sensor.width, sensor.height));
+  return py::make_tuple(to_numpy(events), to_numpy(labels), to_numpy(truth), py::make_tuple(sensor.width, sensor.height));
 }
 
 // One field of a structured array, as a contiguous array of T.
@@ -166,11 +172,9 @@ py::tuple run_method(const py::array& events, std::pair<int, int> sensor_size, c
   Method method;
   method.preset = preset;
   for (const auto& [key, value] : params) {
-    std::string name = key.cast<std::string>();
-    for (char& c : name) c = c == '_' ? '-' : c;
     // Python's True/False, as the evms program's true/false.
     const std::string text = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "true" : "false") : py::str(value).cast<std::string>();
-    method.settings.emplace_back(name, text);
+    method.settings.emplace_back(spelled(key.cast<std::string>(), '_', '-'), text);
   }
   // The RTL and the board are the evms program's (--backend rtl|board): this module carries
   // neither the Verilated models nor the serial link.
@@ -194,11 +198,7 @@ py::tuple run_method(const py::array& events, std::pair<int, int> sensor_size, c
     method_backend->push(input, out);
     method_backend->finish(out);
   }
-  py::array_t<std::int32_t> labels(static_cast<py::ssize_t>(out.labels.size()));
-  if (!out.labels.empty()) std::memcpy(labels.mutable_data(), out.labels.data(), out.labels.size() * sizeof(std::int32_t));
-  py::array_t<TrackRow> tracks(static_cast<py::ssize_t>(out.tracks.size()));
-  if (!out.tracks.empty()) std::memcpy(tracks.mutable_data(), out.tracks.data(), out.tracks.size() * sizeof(TrackRow));
-  return py::make_tuple(labels, tracks);
+  return py::make_tuple(to_numpy(out.labels), to_numpy(out.tracks));
 }
 
 py::dict score_labels(const py::array& events, const py::array& truth, const py::array& pred, std::int64_t chunk_us, std::int64_t chunk_events) {
@@ -232,11 +232,7 @@ py::dict score_labels(const py::array& events, const py::array& truth, const py:
 py::dict parameters() {
   py::dict d;
   const Params defaults;
-  for (const ParamInfo& info : param_table()) {
-    std::string name = info.name;
-    for (char& c : name) c = c == '-' ? '_' : c;
-    d[py::str(name)] = param_text(defaults, info);
-  }
+  for (const ParamInfo& info : param_table()) d[py::str(spelled(info.name, '-', '_'))] = param_text(defaults, info);
   return d;
 }
 
