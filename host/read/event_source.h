@@ -83,6 +83,10 @@ class EventSource {
   virtual std::span<const std::int64_t> arrivals() const { return {}; }
   // Live sources: events that arrived while the buffer was full.
   virtual std::int64_t dropped() const { return 0; }
+  // Whether read() would return at once (events are waiting, or the input ended), waiting up to
+  // `wait_ms` for it. A recorded source always would; a live one lets a caller that must stay
+  // responsive (Ctrl-C in the Python module) wait in steps instead of inside read().
+  virtual bool ready_within(int /*wait_ms*/) { return true; }
 };
 
 // Base of every decoder of recorded input (files, bags): decodes on demand into the ordering

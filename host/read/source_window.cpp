@@ -43,6 +43,7 @@ class WindowedSource final : public EventSource {
   double progress() const override { return inner_->progress(); }
   std::int64_t reordered() const override { return inner_->reordered(); }
   std::int64_t dropped() const override { return inner_->dropped(); }
+  bool ready_within(int wait_ms) override { return inner_->ready_within(wait_ms); }
   std::span<const std::int64_t> arrivals() const override { return arrivals_; }
   std::vector<std::pair<std::string, std::int64_t>> skipped() const override {
     auto s = inner_->skipped();

@@ -118,6 +118,27 @@ TEST(LiveBuffer, DropsAndCountsWhatDoesNotFitAndDeliversTheRest) {
   EXPECT_EQ(buffer.pop(out, arrival), 0u);
 }
 
+TEST(LiveBuffer, ReadyWithinWaitsForAnEventOrTheEndAndNoLonger) {
+  LiveBuffer buffer(4);
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_FALSE(buffer.ready_within(20));
+  EXPECT_GE(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(20));
+  std::vector<Event> in(1);
+  buffer.push(in, 1);
+  EXPECT_TRUE(buffer.ready_within(0));
+  std::vector<Event> out(4);
+  std::vector<std::int64_t> arrival(4);
+  ASSERT_EQ(buffer.pop(out, arrival), 1u);
+  EXPECT_FALSE(buffer.ready_within(0));
+  // A producer on another thread wakes the wait before its time is up.
+  std::jthread producer([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    buffer.close();
+  });
+  EXPECT_TRUE(buffer.ready_within(60000));
+  EXPECT_EQ(buffer.pop(out, arrival), 0u);
+}
+
 TEST(LiveBuffer, AProducerFailureIsReportedAfterTheEventsBeforeIt) {
   LiveBuffer buffer(4);
   std::vector<Event> in(2);

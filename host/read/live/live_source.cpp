@@ -77,6 +77,11 @@ size_t LiveBuffer::pop(std::span<Event> out, std::span<std::int64_t> arrival_ns)
   return n;
 }
 
+bool LiveBuffer::ready_within(int wait_ms) {
+  std::unique_lock lock(mutex_);
+  return ready_.wait_for(lock, std::chrono::milliseconds(wait_ms), [&] { return size_ > 0 || closed_ || g_end_requested.load(); });
+}
+
 std::int64_t LiveBuffer::dropped() const {
   std::lock_guard lock(mutex_);
   return dropped_;

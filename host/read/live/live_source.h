@@ -41,6 +41,8 @@ class LiveBuffer {
   // Consumer side. Waits for at least one event (or the end) and takes up to out.size();
   // returns 0 only at the end. Throws InputError with the producer's message when it failed.
   size_t pop(std::span<Event> out, std::span<std::int64_t> arrival_ns);
+  // Waits up to `wait_ms` for at least one event or the end; whether either came.
+  bool ready_within(int wait_ms);
 
   std::int64_t dropped() const;
 
@@ -64,6 +66,7 @@ class LiveSource : public EventSource {
   size_t read(std::span<Event> out) override;
   std::span<const std::int64_t> arrivals() const override { return arrivals_; }
   std::int64_t dropped() const override { return buffer_.dropped(); }
+  bool ready_within(int wait_ms) override { return buffer_.ready_within(wait_ms); }
   std::vector<std::pair<std::string, std::int64_t>> skipped() const override;
 
  protected:
