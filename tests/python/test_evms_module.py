@@ -6,8 +6,14 @@ EVMS_SHARED_DATA the shared recordings' folder (the recordings' test skips when 
 """
 import csv
 import os
+import signal
+import socket
+import struct
 import subprocess
+import sys
 import tempfile
+import threading
+import time
 import unittest
 import warnings
 
@@ -145,7 +151,105 @@ class ModuleAgainstTheProgram(unittest.TestCase):
                 self.assertEqual(evms.read(path, width=128, height=128)[1], (128, 128))
         with self.assertRaises(ValueError) as caught:
             evms.read("usb://dvs128")
-        self.assertIn("a live source has no end", str(caught.exception))
+        self.assertIn("a live source has no end (evms.stream reads it in chunks)", str(caught.exception))
+
+
+def free_udp_port():
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class Streams(unittest.TestCase):
+    def setUp(self):
+        self.events, self.sensor = evms.read(SCENE)
+
+    def test_a_stream_in_chunks_is_the_whole_source(self):
+        stream = evms.stream(SCENE, chunk=1000)
+        self.assertEqual(stream.sensor, self.sensor)
+        self.assertEqual(stream.format, "generated scene")
+        chunks = list(stream)
+        self.assertGreater(len(chunks), 50)
+        self.assertTrue(all(0 < len(c) <= 1000 for c in chunks))
+        np.testing.assert_array_equal(np.concatenate(chunks), self.events)
+        self.assertEqual(stream.sensor, self.sensor)  # still known at the end
+        self.assertEqual(list(stream), [])
+        # Replayed at 20 times its pace, through a live source's buffer and thread.
+        started = time.monotonic()
+        replay = evms.stream(SCENE, realtime=True, speed=20)
+        np.testing.assert_array_equal(np.concatenate(list(replay)), self.events)
+        self.assertGreaterEqual(time.monotonic() - started, (self.events["t"][-1] - self.events["t"][0]) / 20e6)
+        self.assertEqual(replay.dropped, 0)
+        with self.assertRaises(ValueError) as caught:
+            evms.stream(SCENE, chunk=0)
+        self.assertIn("chunk: 0 events", str(caught.exception))
+
+    def test_a_tracker_fed_chunks_gives_what_run_gives(self):
+        for backend in ("golden", "fixed"):
+            labels, tracks = evms.run(self.events, self.sensor, backend=backend, bandwidth=0.06)
+            tracker = evms.Tracker(self.sensor, backend=backend, bandwidth=0.06)
+            done, updates = [], []
+            for first in range(0, len(self.events), 777):
+                labelled, new = tracker.push(self.events[first:first + 777])
+                done.append(labelled), updates.append(new)
+            # Labels come as packets close, so some lag behind the events pushed.
+            self.assertLess(sum(len(d) for d in done), len(self.events), backend)
+            labelled, new = tracker.finish()
+            done.append(labelled), updates.append(new)
+            done, updates = np.concatenate(done), np.concatenate(updates)
+            self.assertEqual(done.dtype.names, ("t", "x", "y", "p", "label"))
+            for name in ("t", "x", "y", "p"):
+                np.testing.assert_array_equal(done[name], self.events[name], err_msg=backend)
+            np.testing.assert_array_equal(done["label"], labels, err_msg=backend)
+            np.testing.assert_array_equal(updates, tracks, err_msg=backend)
+            self.assertEqual(tracker.stats["events_in"], len(self.events), backend)
+            self.assertGreater(tracker.stats["packets"], 10, backend)
+            self.assertEqual(len(tracker.finish()[0]), 0, backend)
+            with self.assertRaises(ValueError) as caught:
+                tracker.push(self.events[:10])
+            self.assertIn("the Tracker has finished", str(caught.exception))
+        tracker = evms.Tracker(self.sensor)
+        tracker.push(self.events[100:200])
+        with self.assertRaises(ValueError) as caught:
+            tracker.push(self.events[:10])
+        self.assertEqual(str(caught.exception), "events[0]: t=%d us is earlier than the last event pushed before it (%d us)"
+                         % (self.events["t"][0], self.events["t"][199]))
+
+    def test_a_udp_stream_as_it_arrives(self):
+        # jAER AEUnicast datagrams (host/read/live/jaer_datagram.h): a big-endian sequence number,
+        # then {address, timestamp} records; a DVS128 address is y << 8 | x << 1 | polarity.
+        port = free_udp_port()
+        stream = evms.stream("udp://127.0.0.1:%d?camera=dvs128&idle-s=1" % port, chunk=100)
+        self.assertEqual(stream.sensor, (128, 128))
+        sent = [(1000 + 7 * i, (3 * i) % 128, (5 * i) % 128, i % 2) for i in range(600)]
+
+        def send():
+            with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+                for seq, first in enumerate(range(0, len(sent), 50)):
+                    records = b"".join(struct.pack(">ii", y << 8 | x << 1 | p, t) for t, x, y, p in sent[first:first + 50])
+                    s.sendto(struct.pack(">i", seq) + records, ("127.0.0.1", port))
+                    time.sleep(0.01)
+
+        sender = threading.Thread(target=send)
+        sender.start()
+        got = np.concatenate(list(stream))
+        sender.join()
+        self.assertEqual([tuple(int(v) for v in e) for e in got], sent)
+
+    def test_ctrl_c_reaches_python_while_a_live_source_is_quiet(self):
+        port = free_udp_port()
+        script = ("import evms\nprint('open', flush=True)\n"
+                  "for chunk in evms.stream('udp://127.0.0.1:%d?camera=dvs128'):\n    pass\n" % port)
+        with subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as child:
+            try:
+                self.assertEqual(child.stdout.readline().strip(), "open")
+                time.sleep(0.5)
+                child.send_signal(signal.SIGINT)
+                _, stderr = child.communicate(timeout=10)
+            finally:
+                child.kill()
+        self.assertNotEqual(child.returncode, 0)
+        self.assertIn("KeyboardInterrupt", stderr)
 
 
 class Scores(unittest.TestCase):
