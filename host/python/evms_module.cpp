@@ -25,6 +25,8 @@
 
 #include <cstring>
 #include <limits>
+#include <optional>
+#include <tuple>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -37,6 +39,7 @@
 #include "host/read/event_source.h"
 #include "host/read/generated_source.h"
 #include "host/read/input_error.h"
+#include "host/read/source_window.h"
 #include "types/params.h"
 
 namespace py = pybind11;
@@ -113,10 +116,7 @@ bool is_live_uri(const std::string& source) { return source.rfind("usb://", 0) =
 // A source read in chunks as they come: a file, a gen:// scene, a camera or a network stream.
 class Stream {
  public:
-  Stream(const std::string& source, int width, int height, std::int64_t chunk, bool realtime, double speed) : buffer_(checked_chunk(chunk)) {
-    read::SourceOptions options;
-    options.width = width, options.height = height;
-    options.realtime = realtime, options.speed = speed;
+  Stream(const std::string& source, const read::SourceOptions& options, std::int64_t chunk) : buffer_(checked_chunk(chunk)) {
     try {
       source_ = read::open_source(source, options);
     } catch (const std::exception& e) {
@@ -186,16 +186,48 @@ class Stream {
   std::int64_t dropped_ = 0;
 };
 
-py::tuple read_source(const std::string& source, int width, int height) {
+// The options of read() and stream(): the size of a file that gives none, and what of the source
+// to take, as the program's --width/--height, --start-us, --duration-us, --limit, --roi and
+// --hot-pixels (host/read/source_window.h).
+read::SourceOptions source_options(int width, int height, std::int64_t start_us, std::int64_t duration_us, std::int64_t limit,
+                                   const std::optional<std::tuple<int, int, int, int>>& roi, const std::string& hot_pixels) {
+  for (const auto& [name, value] : {std::pair{"start_us", start_us}, {"duration_us", duration_us}, {"limit", limit}}) {
+    if (value < 0) throw py::value_error(std::string(name) + ": " + std::to_string(value) + " (0 or more)");
+  }
+  read::SourceOptions options;
+  options.width = width, options.height = height;
+  options.window.start_us = start_us, options.window.duration_us = duration_us, options.window.limit = limit;
+  options.window.hot_pixels = hot_pixels;
+  try {
+    if (roi) {
+      const auto& [x, y, w, h] = *roi;
+      options.window.roi = read::parse_roi(std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(w) + "," + std::to_string(h));
+    }
+  } catch (const std::exception& e) {
+    throw py::value_error(e.what());
+  }
+  return options;
+}
+
+py::tuple read_source(const std::string& source, int width, int height, std::int64_t start_us, std::int64_t duration_us, std::int64_t limit,
+                      const std::optional<std::tuple<int, int, int, int>>& roi, const std::string& hot_pixels) {
   // A camera or a network stream has no end to read to.
   if (is_live_uri(source)) {
     throw py::value_error(source + ": evms.read takes files and gen:// scenes; a live source has no end (evms.stream reads it in chunks)");
   }
-  Stream stream(source, width, height, 1 << 16, false, 1.0);
+  Stream stream(source, source_options(width, height, start_us, duration_us, limit, roi, hot_pixels), 1 << 16);
   const py::tuple sensor = stream.sensor();
   std::vector<Event> events;
   for (std::span<const Event> chunk; !(chunk = stream.next()).empty();) events.insert(events.end(), chunk.begin(), chunk.end());
   return py::make_tuple(to_numpy(events), sensor);
+}
+
+std::unique_ptr<Stream> open_stream(const std::string& source, int width, int height, std::int64_t chunk, bool realtime, double speed,
+                                    std::int64_t start_us, std::int64_t duration_us, std::int64_t limit,
+                                    const std::optional<std::tuple<int, int, int, int>>& roi, const std::string& hot_pixels) {
+  read::SourceOptions options = source_options(width, height, start_us, duration_us, limit, roi, hot_pixels);
+  options.realtime = realtime, options.speed = speed;
+  return std::make_unique<Stream>(source, options, chunk);
 }
 
 // A labelled scene with its truth, as `evms gen` writes it (events.txt, labels.csv, gt_tracks.csv).
@@ -408,10 +440,12 @@ PYBIND11_MODULE(evms, m) {
   PYBIND11_NUMPY_DTYPE(LabelledRow, t, x, y, p, label);
   PYBIND11_NUMPY_DTYPE(TrackRow, t_us, track_id, confirmed, x, y, vx, vy, events, x_min, y_min, x_max, y_max, var_x, cov_xy, var_y);
   m.doc() = "evms: event-based mean-shift clustering and tracking (Barranco, Fermuller & Ros, IROS 2018); the readers, the golden model and the fixed-point core";
-  m.def("read", &read_source, py::arg("source"), py::arg("width") = 0, py::arg("height") = 0,
+  m.def("read", &read_source, py::arg("source"), py::arg("width") = 0, py::arg("height") = 0, py::kw_only(), py::arg("start_us") = 0,
+        py::arg("duration_us") = 0, py::arg("limit") = 0, py::arg("roi") = py::none(), py::arg("hot_pixels") = "",
         "Reads every event of a file or gen:// scene that `evms run` takes (no live source): returns (events, (width, height)),\n"
         "events a structured array with fields t (us), x, y and p. width and height are for formats without a sensor size;\n"
-        "without them such a file's size is assumed, with a UserWarning that says so.");
+        "without them such a file's size is assumed, with a UserWarning that says so. start_us, duration_us, limit, roi=(x, y, w, h)\n"
+        "(the sensor becomes w x h) and hot_pixels (a file of x,y lines, or \"auto\") take part of it, as evms run's options do.");
   m.def("generate", &generate_scene, py::arg("scene"),
         "Generates a labelled scene named as a gen:// source (gen://rotation?seed=2, gen://family/crossing?seed=1003&width=240&height=180):\n"
         "returns (events, labels, truth, (width, height)): the events as read() gives them, each one's object (-1 noise), and each\n"
@@ -436,14 +470,13 @@ PYBIND11_MODULE(evms, m) {
       .def_property_readonly("sensor", &Stream::sensor, "(width, height)")
       .def_property_readonly("format", &Stream::format, "the format read, as `evms info` names it")
       .def_property_readonly("dropped", &Stream::dropped, "events a live source dropped while its buffer was full (read faster to keep them)");
-  m.def("stream", [](const std::string& source, int width, int height, std::int64_t chunk, bool realtime, double speed) {
-          return std::make_unique<Stream>(source, width, height, chunk, realtime, speed);
-        },
-        py::arg("source"), py::kw_only(), py::arg("width") = 0, py::arg("height") = 0, py::arg("chunk") = 65536, py::arg("realtime") = false,
-        py::arg("speed") = 1.0,
+  m.def("stream", &open_stream, py::arg("source"), py::kw_only(), py::arg("width") = 0, py::arg("height") = 0, py::arg("chunk") = 65536, py::arg("realtime") = false,
+        py::arg("speed") = 1.0, py::arg("start_us") = 0, py::arg("duration_us") = 0, py::arg("limit") = 0, py::arg("roi") = py::none(),
+        py::arg("hot_pixels") = "",
         "Opens any source `evms run` takes, live ones too (usb://dvs128, udp://0.0.0.0:8991?camera=dvs128), to read in chunks:\n"
         "for events in evms.stream(source): ... realtime=True replays a recording at `speed` times its own pace, as a camera\n"
-        "would send it. Its sensor is stream.sensor; width and height are for formats without one.");
+        "would send it. Its sensor is stream.sensor; width and height are for formats without one, and the other keywords are\n"
+        "read()'s.");
   py::class_<Tracker>(m, "Tracker",
                       "The method on a stream's chunks as they come: Tracker(sensor, *, backend, core, preset, **parameters) as run()\n"
                       "takes them. push(events) gives (labelled, tracks): the events whose packets have closed, as a structured array\n"

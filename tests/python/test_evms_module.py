@@ -184,6 +184,29 @@ class Streams(unittest.TestCase):
             evms.stream(SCENE, chunk=0)
         self.assertIn("chunk: 0 events", str(caught.exception))
 
+    def test_part_of_a_source_as_the_programs_options_take_it(self):
+        t = self.events["t"]
+        part, _ = evms.read(SCENE, start_us=50000, duration_us=100000)
+        np.testing.assert_array_equal(part, self.events[(t >= t[0] + 50000) & (t < t[0] + 150000)])
+        np.testing.assert_array_equal(np.concatenate(list(evms.stream(SCENE, limit=1234, chunk=500))), self.events[:1234])
+        cropped, sensor = evms.read(SCENE, roi=(10, 20, 100, 50))
+        self.assertEqual(sensor, (100, 50))
+        inside = self.events[(self.events["x"] >= 10) & (self.events["x"] < 110) & (self.events["y"] >= 20) & (self.events["y"] < 70)]
+        np.testing.assert_array_equal(cropped["x"], inside["x"] - 10)
+        np.testing.assert_array_equal(cropped["y"], inside["y"] - 20)
+        busiest = np.bincount(self.events["y"].astype(np.int64) * 240 + self.events["x"]).argmax()
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "hot.txt")
+            with open(path, "w") as f:
+                f.write("%d,%d\n" % (busiest % 240, busiest // 240))
+            masked, _ = evms.read(SCENE, hot_pixels=path)
+        at = (self.events["x"] == busiest % 240) & (self.events["y"] == busiest // 240)
+        np.testing.assert_array_equal(masked, self.events[~at])
+        for bad, message in [({"roi": (200, 0, 100, 5)}, "reaches outside the 240x180 sensor"), ({"limit": -1}, "limit: -1 (0 or more)")]:
+            with self.assertRaises(ValueError) as caught:
+                evms.read(SCENE, **bad)
+            self.assertIn(message, str(caught.exception))
+
     def test_a_tracker_fed_chunks_gives_what_run_gives(self):
         for backend in ("golden", "fixed"):
             labels, tracks = evms.run(self.events, self.sensor, backend=backend, bandwidth=0.06)
