@@ -1,5 +1,12 @@
-// UART receiver, 8 data bits, no parity, one stop bit, LSB first; samples mid-bit. A byte
-// whose stop bit is low is a framing error: dropped and counted.
+// UART receiver, 8 data bits, no parity, one stop bit, LSB first. A byte whose stop bit is low
+// is a framing error: dropped and counted.
+//
+// Where it samples: the synchronized line first reads low 0 to 1 clock after the start bit's
+// edge, and each bit is read ClksPerBit / 2 clocks after that, and every ClksPerBit clocks on:
+// 0 to 1 clock after the bit's middle (at 4 clocks a bit, 0 to a quarter of a bit late). A sender
+// 2 % fast or slow moves the middle of the stop bit by a fifth of a bit, so its bytes still
+// arrive (tests/sim/test_uart_rx.cpp plays such senders at every phase of the clock).
+`include "evms_assert.svh"
 module evms_uart_rx #(
   parameter int ClksPerBit = 4
 ) (
@@ -11,6 +18,7 @@ module evms_uart_rx #(
   output logic [31:0] framing_errors
 );
   localparam int CountBits = $clog2(ClksPerBit + 1);
+  `EVMS_ASSERT_INIT("a bit lasts at least 3 clocks, so that its middle can be found", ClksPerBit >= 3)
   logic line;
   evms_sync #(.Width(1), .ResetValue(1'b1)) u_sync (.clk(clk), .rst_n(rst_n), .d(rx), .q(line));
 
@@ -36,7 +44,7 @@ module evms_uart_rx #(
     framing_errors_d = framing_errors_q;
     case (state_q)
       StIdle: if (!line) begin
-        count_d = CountBits'(ClksPerBit / 2);
+        count_d = CountBits'(ClksPerBit / 2 - 1);
         state_d = StStart;
       end
       StStart: if (count_q == 0) begin
