@@ -9,26 +9,12 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "host/link/line_rate.h"
+
 namespace evms::link {
-namespace {
-
-speed_t speed_of(int baud) {
-  switch (baud) {
-    case 115200: return B115200;
-    case 230400: return B230400;
-    case 460800: return B460800;
-    case 921600: return B921600;
-    case 1000000: return B1000000;
-    case 2000000: return B2000000;
-    case 3000000: return B3000000;
-    default: throw std::invalid_argument("unsupported baud rate " + std::to_string(baud));
-  }
-}
-
-}  // namespace
 
 SerialPort::SerialPort(const std::string& path, int baud) : path_(path) {
-  const speed_t speed = speed_of(baud);
+  if (baud < 50 || baud > 12000000) throw std::invalid_argument("unsupported baud rate " + std::to_string(baud));
   fd_ = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
   if (fd_ < 0) {
     const std::string why = std::strerror(errno);
@@ -45,11 +31,14 @@ SerialPort::SerialPort(const std::string& path, int baud) : path_(path) {
   t.c_cflag &= ~static_cast<tcflag_t>(CSTOPB | CRTSCTS | PARENB);
   t.c_cc[VMIN] = 0;
   t.c_cc[VTIME] = 0;
-  cfsetispeed(&t, speed);
-  cfsetospeed(&t, speed);
   if (tcsetattr(fd_, TCSANOW, &t) != 0) {
     ::close(fd_);
     throw std::runtime_error(path + ": cannot configure the serial device (" + std::strerror(errno) + ")");
+  }
+  if (!set_line_rate(fd_, baud)) {
+    const std::string why = std::strerror(errno);
+    ::close(fd_);
+    throw std::runtime_error(path + ": the device does not take " + std::to_string(baud) + " baud (" + why + ")");
   }
   tcflush(fd_, TCIOFLUSH);
 }

@@ -10,8 +10,9 @@ namespace evms::link {
 
 class SerialPort {
  public:
-  // Opens `path` raw, 8N1, no flow control, at `baud` (3000000, 2000000, 1000000, 921600,
-  // 460800, 230400 or 115200). Throws std::runtime_error naming the device on failure.
+  // Opens `path` raw, 8N1, no flow control, at `baud` (any rate the driver takes: the FT2232H's
+  // 12 MHz / n, the iCEBreaker's 6 Mbaud among them). Throws std::runtime_error naming the device
+  // on failure.
   SerialPort(const std::string& path, int baud);
   ~SerialPort();
   SerialPort(const SerialPort&) = delete;
