@@ -1,7 +1,8 @@
 #!/bin/bash
 # Synthesizes the board tops with Yosys (synth_ice40 for the iCEBreaker's iCE40 UP5K,
 # synth_xilinx for the Arty's XC7A35T), places and routes the iCE40 ones that fit with
-# nextpnr-ice40 over several seeds (constraints/icebreaker.pcf, 12 MHz asked), packs the
+# nextpnr-ice40 over several seeds (constraints/icebreaker.pcf, the build's clock asked: 18 MHz,
+# BoardClockHz of rtl/generated/evms_cfg_ice40.svh, made by the PLL of the 12 MHz oscillator), packs the
 # best-routed seed's bitstream with icepack, and writes one JSON report: LUT, FF, DSP, BRAM and
 # SPRAM use, the routed Fmax (median and worst over the seeds), the bitstream's path, and for
 # every configuration the logic delay of its longest
@@ -54,6 +55,9 @@ work=$(dirname "$out")/work
 mkdir -p "$work"
 sources=()
 while read -r f; do sources+=("$root/rtl/$f"); done < <(cat "$root/rtl/core.f" "$root/rtl/board.f")
+# The iCEBreaker build's clock in MHz (EVMS_BOARD_ice40: clock Hz, UART clocks a bit, ...).
+ice40_mhz=$(sed -nE 's/^set\(EVMS_BOARD_ice40 ([0-9]+) .*/\1/p' "$root/rtl/generated/evms_cfg_ice40.cmake" | awk '{ print $1 / 1e6 }')
+[ -n "$ice40_mhz" ] || { echo "synth.sh: rtl/generated/evms_cfg_ice40.cmake: no EVMS_BOARD_ice40 clock" >&2; exit 1; }
 
 # The cell models with their specify delays, minus the asynchronous set/reset-to-Q arcs, which
 # sta would otherwise chain into the reset tree (a reset is not a clocked path).
@@ -100,7 +104,9 @@ run_config() {
     top=evms_icebreaker_top
     synth="synth_ice40 -dsp -spram -top $top"
     netlist="write_json $dir/netlist.json"   # for nextpnr
-    timing="read_verilog -D ICE40_U -lib -specify $work/timing_ice40.v"
+    # The PLL's model has no timing arcs, so sta would time nothing it clocks: for sta, its
+    # output is an input of the design, as the oscillator's pin was.
+    timing="read_verilog -D ICE40_U -lib -specify $work/timing_ice40.v; expose -input t:SB_PLL40_PAD %co:+[PLLOUTGLOBAL] w:* %i; delete t:SB_PLL40_PAD"
   else
     top=evms_arty_top
     synth="synth_xilinx -family xc7 -flatten -top $top"
@@ -147,7 +153,7 @@ run_config() {
   if [ "$family" = ice40 ] && [ $fits = true ]; then
     local f=() best_seed="" best=0
     for seed in $(seq 1 "$seeds"); do
-      if nextpnr-ice40 --up5k --package sg48 --pcf "$root/constraints/icebreaker.pcf" --json "$dir/netlist.json" --freq 12 \
+      if nextpnr-ice40 --up5k --package sg48 --pcf "$root/constraints/icebreaker.pcf" --json "$dir/netlist.json" --freq "$ice40_mhz" \
            --seed "$seed" --report "$dir/pnr_$seed.json" --asc "$dir/top_$seed.asc" -q -l "$dir/pnr_$seed.log" >/dev/null 2>&1; then
         local achieved
         achieved=$(grep -oE '"achieved": [0-9.]+' "$dir/pnr_$seed.json" | head -1 | awk '{ print $2 }')

@@ -27,7 +27,7 @@ namespace evms::backend {
 struct BoardOfBuild {
   long long clock_hz = 0, clocks_per_bit = 0, link_fifo_depth = 0;
   bool core_stops_at_filter = false;  // the board returns verdicts; the host clusters and tracks
-  // Its UART's line rate, which the host's serial port must match: 3 Mbaud on the iCEBreaker,
+  // Its UART's line rate, which the host's serial port must match: 6 Mbaud on the iCEBreaker,
   // 2 Mbaud on the Arty.
   constexpr long long baud() const { return clocks_per_bit > 0 ? clock_hz / clocks_per_bit : 0; }
 };

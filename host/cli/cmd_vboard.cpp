@@ -9,7 +9,7 @@
 // host clusters and tracks its verdicts. The Arty's holds the whole core, and tracks mode.
 //
 // Bytes written to the terminal go into the board's receive line at the board's clocks a bit
-// (4 on the iCEBreaker's 12 MHz, 50 on the Arty's 100 MHz); bytes the board transmits come out
+// (3 on the iCEBreaker's 18 MHz, 50 on the Arty's 100 MHz); bytes the board transmits come out
 // of it. It runs until it is interrupted.
 //
 // --aer SOURCE plays a recording into the board's AER pins as a DVS128 would, from the moment
@@ -219,7 +219,7 @@ void serve(const VboardOptions& o, const backend::BoardOfBuild& of_build) {
 void register_vboard(CLI::App& app) {
   auto o = std::make_shared<VboardOptions>();
   CLI::App* cmd = app.add_subcommand("vboard", "the virtual board: the simulated board top behind a pseudo-terminal, for --backend board");
-  cmd->add_option("--build", o->build, "the board's core build: ice40 (the iCEBreaker, 12 MHz; its core stops at the filter, "
+  cmd->add_option("--build", o->build, "the board's core build: ice40 (the iCEBreaker, 18 MHz; its core stops at the filter, "
                                        "the host clusters and tracks) or arty (the Arty, 100 MHz, the whole core); evms run --core names the same")
       ->default_val(o->build)
       ->check(CLI::IsMember({"ice40", "arty"}));

@@ -11,5 +11,9 @@ module evms_arty_top #(
   `include "evms_board_top_ports.svh"
 );
   `include "evms_cfg_arty.svh"
+  // The board's 100 MHz oscillator is the build's clock.
+  logic board_clk, board_clk_locked;
+  assign board_clk = CLK;
+  assign board_clk_locked = 1'b1;
   `include "evms_board_top_body.svh"
 endmodule

@@ -1,12 +1,14 @@
-// What every board top holds once its build's constants are included (evms_cfg_<build>.svh):
-// a power-on reset and the board (rtl/board/evms_board.sv) at the build's shape, its LEDs
-// active low. The top's LanesOverride and CoreStopsAtFilterOverride let the synthesis flow
-// (constraints/flow/synth.sh) sweep the lanes and measure the whole core where the build cuts it.
+// What every board top holds once its build's constants are included (evms_cfg_<build>.svh)
+// and its clock is made (board_clk, and board_clk_locked once it is steady): a power-on reset
+// and the board (rtl/board/evms_board.sv) at the build's shape, its LEDs active low. The top's
+// LanesOverride and CoreStopsAtFilterOverride let the synthesis flow (constraints/flow/synth.sh)
+// sweep the lanes and measure the whole core where the build cuts it.
 
-  // Power-on reset: hold the design in reset for 16 clocks, and while the button is pressed.
+  // Power-on reset: hold the design in reset until the clock is steady and 16 clocks after, and
+  // while the button is pressed.
   logic [4:0] por = '0;
   logic rst_n;
-  always_ff @(posedge CLK) if (!por[4]) por <= por + 1'b1;
+  always_ff @(posedge board_clk) if (!board_clk_locked) por <= '0; else if (!por[4]) por <= por + 1'b1;
   assign rst_n = por[4] && BTN_N;
 
   logic busy, error;
@@ -15,7 +17,7 @@
     .CoreStopsAtFilter(CoreStopsAtFilterOverride >= 0 ? CoreStopsAtFilterOverride : BoardCoreStopsAtFilter),
     `include "evms_board_build_params.svh"
   ) u_board (
-    .clk(CLK), .rst_n(rst_n), .aer_req_n(AER_REQ_N), .aer_ack_n(AER_ACK_N), .aer_addr(AER_ADDR), .uart_rx(RX),
+    .clk(board_clk), .rst_n(rst_n), .aer_req_n(AER_REQ_N), .aer_ack_n(AER_ACK_N), .aer_addr(AER_ADDR), .uart_rx(RX),
     .uart_tx(TX), .led_busy(busy), .led_error(error));
   assign LEDG_N = !busy;
   assign LEDR_N = !error;

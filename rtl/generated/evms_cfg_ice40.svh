@@ -107,4 +107,4 @@ localparam logic [15:0] CfgEdgeMinEvents = 16'd0;
 localparam logic CfgMeasFromSpread = 1'd0;
 // The board: its clock, its UART's clocks a bit, its link queue's depth in events, and whether
 // its core stops at the filter (the host clusters and tracks).
-localparam int BoardClockHz = 12000000, BoardClocksPerBit = 4, BoardLinkFifoDepth = 1024, BoardCoreStopsAtFilter = 1;
+localparam int BoardClockHz = 18000000, BoardClocksPerBit = 3, BoardLinkFifoDepth = 1024, BoardCoreStopsAtFilter = 1;

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
-#include <termios.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -21,6 +20,7 @@
 #include "hls/core/configs.h"
 #include "host/backend/core_backend.h"
 #include "host/backend/core_config.h"
+#include "host/link/line_rate.h"
 #include "tests/support/command.h"
 #include "tests/support/encoders.h"
 #include "tests/support/core_words.h"
@@ -281,32 +281,34 @@ long noise_in_summary(const std::string& out) {
 }
 
 // The line rate a terminal is set to, as the host left it (the virtual board holds the terminal
-// open, so its settings outlast the host's run); 0 when it cannot be read.
-speed_t line_rate_of(const std::string& device) {
+// open, so its settings outlast the host's run); -1 when it cannot be read.
+int line_rate_of(const std::string& device) {
   const int fd = ::open(device.c_str(), O_RDWR | O_NOCTTY);
-  if (fd < 0) return 0;
-  termios t{};
-  const speed_t rate = tcgetattr(fd, &t) == 0 ? cfgetospeed(&t) : 0;
+  if (fd < 0) return -1;
+  const int rate = link::line_rate(fd);
   ::close(fd);
   return rate;
 }
 
 // The board backend opens the line at the rate of the board its --core names (EVMS_BOARD_BUILDS:
-// the Arty's UART runs at 100 MHz / 50 = 2 Mbaud, the iCEBreaker's at 3 Mbaud), and --baud sets
-// another.
+// the Arty's UART runs at 100 MHz / 50 = 2 Mbaud, the iCEBreaker's at 18 MHz / 3 = 6 Mbaud, a
+// rate without a Bnnn constant), and --baud sets another.
 TEST(BackendsAgree, TheBoardBackendOpensTheLineAtItsBoardsRate) {
-  static_assert(backend::board_of("arty").baud() == 2000000 && backend::board_of("ice40").baud() == 3000000);
+  static_assert(backend::board_of("arty").baud() == 2000000 && backend::board_of("ice40").baud() == 6000000);
   TempDir dir;
-  VirtualBoardProcess board(dir, {"--build", "arty"});
-  ASSERT_FALSE(board.device().empty()) << "evms vboard did not start";
-  const std::string run = evms_binary() + " run \"gen://rotation?duration-s=0.005&seed=5\" --quiet --backend board --core arty --device " +
-                          board.device() + " --out " + dir.path("out");
-  const auto own = run_command(run);
-  ASSERT_EQ(own.exit_code, 0) << own.err;
-  EXPECT_EQ(line_rate_of(board.device()), static_cast<speed_t>(B2000000));
-  const auto set = run_command(run + " --baud 1000000");
-  ASSERT_EQ(set.exit_code, 0) << set.err;
-  EXPECT_EQ(line_rate_of(board.device()), static_cast<speed_t>(B1000000));
+  for (const std::string build : {"arty", "ice40"}) {
+    VirtualBoardProcess board(dir, {"--build", build});
+    ASSERT_FALSE(board.device().empty()) << "evms vboard did not start";
+    const std::string scene = build == "ice40" ? "gen://rotation?duration-s=0.005&seed=5&width=128&height=128" : "gen://rotation?duration-s=0.005&seed=5";
+    const std::string run = evms_binary() + " run \"" + scene + "\" --quiet --backend board --core " + build + " --device " + board.device() +
+                            " --out " + dir.path("out");
+    const auto own = run_command(run);
+    ASSERT_EQ(own.exit_code, 0) << own.err;
+    EXPECT_EQ(line_rate_of(board.device()), backend::board_of(build).baud()) << build;
+    const auto set = run_command(run + " --baud 1000000");
+    ASSERT_EQ(set.exit_code, 0) << set.err;
+    EXPECT_EQ(line_rate_of(board.device()), 1000000) << build;
+  }
 }
 
 // Tracks mode (--board-link tracks, the Arty's board): the board keeps the labels and counts
