@@ -111,7 +111,20 @@ py::array_t<T> to_numpy(const std::vector<T>& v) {
   return to_numpy(std::span<const T>(v));
 }
 
-bool is_live_uri(const std::string& source) { return source.rfind("usb://", 0) == 0 || source.rfind("udp://", 0) == 0; }
+// Runs a step (a read, a backend's push) without the GIL; its errors as ValueError.
+template <typename Step>
+void unlocked(Step&& step) {
+  std::string failure;
+  {
+    py::gil_scoped_release released;
+    try {
+      step();
+    } catch (const std::exception& e) {
+      failure = e.what();
+    }
+  }
+  if (!failure.empty()) throw py::value_error(failure);
+}
 
 // A source read in chunks as they come: a file, a gen:// scene, a camera or a network stream.
 class Stream {
@@ -137,26 +150,19 @@ class Stream {
     // A quiet live source is waited for in steps, so that Ctrl-C reaches Python between them.
     for (bool ready = false; !ready;) {
       {
-        py::gil_scoped_release unlocked;
+        py::gil_scoped_release released;
         ready = source_->ready_within(100);
       }
       if (!ready && PyErr_CheckSignals() != 0) throw py::error_already_set();
     }
     size_t n = 0;
-    std::string failure;
-    {
-      py::gil_scoped_release unlocked;
-      try {
-        n = source_->read(buffer_);
-      } catch (const std::exception& e) {
-        failure = e.what();
-      }
+    try {
+      unlocked([&] { n = source_->read(buffer_); });
+    } catch (const py::value_error&) {
+      close();
+      throw;
     }
-    if (!failure.empty() || n == 0) {
-      dropped_ = source_->dropped();
-      source_.reset();  // a live source's thread stops here
-      if (!failure.empty()) throw py::value_error(failure);
-    }
+    if (n == 0) close();  // a live source's thread stops here
     return {buffer_.data(), n};
   }
 
@@ -212,7 +218,7 @@ read::SourceOptions source_options(int width, int height, std::int64_t start_us,
 py::tuple read_source(const std::string& source, int width, int height, std::int64_t start_us, std::int64_t duration_us, std::int64_t limit,
                       const std::optional<std::tuple<int, int, int, int>>& roi, const std::string& hot_pixels) {
   // A camera or a network stream has no end to read to.
-  if (is_live_uri(source)) {
+  if (read::is_live_source(source)) {
     throw py::value_error(source + ": evms.read takes files and gen:// scenes; a live source has no end (evms.stream reads it in chunks)");
   }
   Stream stream(source, source_options(width, height, start_us, duration_us, limit, roi, hot_pixels), 1 << 16);
@@ -324,21 +330,6 @@ std::unique_ptr<backend::Backend> make_method(SensorSize sensor, const std::stri
   } catch (const std::exception& e) {
     throw py::value_error(e.what());
   }
-}
-
-// Runs a backend step without the GIL; its errors as ValueError.
-template <typename Step>
-void unlocked(Step&& step) {
-  std::string failure;
-  {
-    py::gil_scoped_release released;
-    try {
-      step();
-    } catch (const std::exception& e) {
-      failure = e.what();
-    }
-  }
-  if (!failure.empty()) throw py::value_error(failure);
 }
 
 py::tuple run_method(const py::array& events, std::pair<int, int> sensor_size, const std::string& backend_name, const std::string& core,

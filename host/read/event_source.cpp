@@ -122,8 +122,9 @@ std::unique_ptr<EventSource> open_recorded(const std::string& name, const Source
 }  // namespace
 
 std::unique_ptr<EventSource> open_source(const std::string& name, const SourceOptions& options) {
-  if (name.rfind("usb://", 0) == 0) return window_source(open_usb_camera(name, options), options.window, nullptr);
-  if (name.rfind("udp://", 0) == 0) return window_source(open_udp_stream(name, options), options.window, nullptr);
+  if (is_live_source(name)) {
+    return window_source(name.rfind("usb://", 0) == 0 ? open_usb_camera(name, options) : open_udp_stream(name, options), options.window, nullptr);
+  }
   auto source = window_source(open_recorded(name, options), options.window, [&] { return open_recorded(name, options); });
   if (!options.realtime) return source;
   return replay_in_real_time(std::move(source), options.speed, options.live_buffer_events);

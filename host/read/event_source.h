@@ -132,6 +132,9 @@ class FileEventSource : public DecodedEventSource {
 };
 
 std::unique_ptr<EventSource> open_source(const std::string& name, const SourceOptions& options);
+// Whether open_source(name) is a live source (a camera, a network stream), which has no end to
+// read to and cannot be read twice.
+inline bool is_live_source(const std::string& name) { return name.rfind("usb://", 0) == 0 || name.rfind("udp://", 0) == 0; }
 
 // The format decoders (one file each under formats/).
 std::unique_ptr<EventSource> open_rpg_text(ByteReader in, const SourceOptions& o);
