@@ -133,6 +133,9 @@ void run(const RunOptions& o) {
                    grouped(s.board_labelled).c_str(), grouped(s.board_noise).c_str(), grouped(s.link_packets_skipped).c_str());
     }
   }
+  // Events put back into time order change no label's meaning, but the user should know the
+  // file was not in order (the tolerance is --reorder-us; docs/formats.md).
+  if (source->reordered()) std::fprintf(summary, "reordered   %s events moved back into time order\n", grouped(source->reordered()).c_str());
   if (!live && !source->skipped().empty()) {
     const char* separator = "skipped     ";
     for (const auto& [kind, count] : source->skipped()) {

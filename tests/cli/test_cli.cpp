@@ -169,6 +169,21 @@ TEST(Cli, ErrorMessagesEscapeTheInputsControlBytes) {
   EXPECT_EQ(r.err.find('\x07'), std::string::npos);
 }
 
+// Events a little out of time order are put back in order, and both commands say how many.
+TEST(Cli, RunAndInfoSayHowManyEventsWerePutBackInOrder) {
+  TempDir dir;
+  const std::string in = dir.write("late.csv", "t_us,x,y,p\n10,1,1,1\n30,2,1,0\n20,3,1,1\n40,4,1,1\n35,5,1,0\n");
+  const auto info = run_command(evms_binary() + " info " + in + " --width 8 --height 8");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("reordered   2 events moved back into time order"), std::string::npos) << info.out;
+  const auto run = run_command(evms_binary() + " run " + in + " --width 8 --height 8 --quiet --out " + dir.path("out"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("reordered   2 events moved back into time order"), std::string::npos) << run.out;
+  const auto in_order = run_command(evms_binary() + " run gen://rotation?duration-s=0.01 --quiet --out " + dir.path("out2"));
+  ASSERT_EQ(in_order.exit_code, 0) << in_order.err;
+  EXPECT_EQ(in_order.out.find("reordered"), std::string::npos) << in_order.out;
+}
+
 // Peak rate windows step over a gap of any length at once.
 TEST(Cli, InfoStepsOverAGapOfCenturies) {
   TempDir dir;
