@@ -173,12 +173,13 @@ class Stream {
   }
 
   void close() {
-    if (source_) dropped_ = source_->dropped();
+    if (source_) dropped_ = source_->dropped(), reordered_ = source_->reordered();
     source_.reset();
   }
   py::tuple sensor() const { return py::make_tuple(info_.sensor.width, info_.sensor.height); }
   const std::string& format() const { return info_.format; }
   std::int64_t dropped() const { return source_ ? source_->dropped() : dropped_; }
+  std::int64_t reordered() const { return source_ ? source_->reordered() : reordered_; }
 
  private:
   static size_t checked_chunk(std::int64_t chunk) {
@@ -189,7 +190,7 @@ class Stream {
   std::unique_ptr<read::EventSource> source_;
   read::SourceInfo info_;
   std::vector<Event> buffer_;
-  std::int64_t dropped_ = 0;
+  std::int64_t dropped_ = 0, reordered_ = 0;
 };
 
 // The options of read() and stream(): the size of a file that gives none, and what of the source
@@ -460,7 +461,9 @@ PYBIND11_MODULE(evms, m) {
       .def("close", &Stream::close, "Stops reading (a live source's thread and its device are released).")
       .def_property_readonly("sensor", &Stream::sensor, "(width, height)")
       .def_property_readonly("format", &Stream::format, "the format read, as `evms info` names it")
-      .def_property_readonly("dropped", &Stream::dropped, "events a live source dropped while its buffer was full (read faster to keep them)");
+      .def_property_readonly("dropped", &Stream::dropped, "events a live source dropped while its buffer was full (read faster to keep them)")
+      .def_property_readonly("reordered", &Stream::reordered,
+                             "events read so far that came late and were moved back into time order (within the reader's tolerance)");
   m.def("stream", &open_stream, py::arg("source"), py::kw_only(), py::arg("width") = 0, py::arg("height") = 0, py::arg("chunk") = 65536, py::arg("realtime") = false,
         py::arg("speed") = 1.0, py::arg("start_us") = 0, py::arg("duration_us") = 0, py::arg("limit") = 0, py::arg("roi") = py::none(),
         py::arg("hot_pixels") = "",

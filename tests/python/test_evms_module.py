@@ -180,9 +180,20 @@ class Streams(unittest.TestCase):
         np.testing.assert_array_equal(np.concatenate(list(replay)), self.events)
         self.assertGreaterEqual(time.monotonic() - started, (self.events["t"][-1] - self.events["t"][0]) / 20e6)
         self.assertEqual(replay.dropped, 0)
+        self.assertEqual(replay.reordered, 0)
         with self.assertRaises(ValueError) as caught:
             evms.stream(SCENE, chunk=0)
         self.assertIn("chunk: 0 events", str(caught.exception))
+
+    def test_late_events_are_put_in_order_and_counted(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "late.csv")
+            with open(path, "w") as f:
+                f.write("t_us,x,y,p\n10,1,1,1\n30,2,1,0\n20,3,1,1\n40,4,1,1\n35,5,1,0\n")
+            stream = evms.stream(path, width=8, height=8, chunk=2)
+            chunks = list(stream)
+            self.assertEqual(stream.reordered, 2)
+            self.assertEqual(list(np.concatenate(chunks)["t"]), [10, 20, 30, 35, 40])
 
     def test_part_of_a_source_as_the_programs_options_take_it(self):
         t = self.events["t"]
