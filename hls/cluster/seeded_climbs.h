@@ -11,6 +11,11 @@
 // within the merge radius or opens a mode (while fewer than kModesMax are open; otherwise it
 // is lost and its events stay unlabelled unless a later climb reaches them first).
 //
+// A mode's support is the number of events in the ball at the last step of the climbs that
+// joined it (the most of them). With min_density, a mode whose support is below
+// n * min_density (golden: the events a uniform spread of the packet's n events over the sensor
+// would put in a ball of radius h, times --min-density) is noise, and so are its events.
+//
 // Seeds, in order: the previous packet's modes (warm start, each climbing with its own ball,
 // Modes::ball2), then the first event no climb has reached yet, with the ball of radius h, until
 // every event was reached. An event's cluster is the mode of the first climb
@@ -102,6 +107,15 @@ class SeededClimbs {
       if (i >= n) break;
       if (!reached_[i]) climb(cfg, phi.x[i], phi.y[i], kOne, first_mode, modes, trace);
     }
+    if (cfg.min_density == 0) return;
+    const std::uint64_t least = static_cast<std::uint64_t>(n) * cfg.min_density;  // kDensityFrac fraction bits
+  sparse_modes:
+    for (int j = 0; j < S::kPacketMax; ++j) {
+#pragma HLS PIPELINE II = 1
+      if (j >= n) break;
+      const int c = first_mode[j];
+      if (c >= 0 && (static_cast<std::uint64_t>(support_[c]) << kDensityFrac) < least) first_mode[j] = -1;
+    }
   }
 
  private:
@@ -151,6 +165,7 @@ class SeededClimbs {
       reach = r + 1;
     }
     int touched = 0;
+    int inside = 0;  // events in the ball at the last step
   steps:
     for (int step = 0; step < S::kIterationsMax; ++step) {
       if (step >= cfg.max_iterations) break;
@@ -176,13 +191,14 @@ class SeededClimbs {
         }
       }
       ++trace.steps;
+      inside = static_cast<int>(count);
       if (count == 0) break;  // nothing in reach: the climb stays where it is
       const std::int64_t nx = detail::divide_rounded(sx, count), ny = detail::divide_rounded(sy, count);
       const std::int64_t move_x = nx > mx ? nx - mx : mx - nx, move_y = ny > my ? ny - my : my - ny;
       mx = nx, my = ny;
       if ((move_x > move_y ? move_x : move_y) <= cfg.tolerance) break;
     }
-    const int mode = join_or_open(cfg, mx, my, 0, 0, modes, trace);
+    const int mode = join_or_open(cfg, mx, my, 0, 0, inside, modes, trace);
   label:
     for (int t = 0; t < S::kPacketMax; ++t) {
 #pragma HLS PIPELINE II = 1
@@ -194,9 +210,9 @@ class SeededClimbs {
   }
 
   // The nearest mode within the merge radius (ties: the older), else a new one; -1 when the
-  // table is full.
-  static int join_or_open(const Config& cfg, std::int64_t mx, std::int64_t my, std::int64_t mp, std::int64_t mt, Modes<S>& modes,
-                          ClimbTrace& trace) {
+  // table is full. The mode's support becomes the climb's `inside` if that is more.
+  int join_or_open(const Config& cfg, std::int64_t mx, std::int64_t my, std::int64_t mp, std::int64_t mt, int inside, Modes<S>& modes,
+                   ClimbTrace& trace) {
     int best = -1;
     std::uint64_t best_d2 = 0;
   modes_loop:
@@ -207,16 +223,21 @@ class SeededClimbs {
       const std::uint64_t d2 = squared_distance(dx, dy, dp, dt);
       if (d2 <= cfg.merge_radius2 && (best < 0 || d2 < best_d2)) best = c, best_d2 = d2;
     }
-    if (best >= 0) return best;
+    if (best >= 0) {
+      if (inside > support_[best]) support_[best] = static_cast<std::uint16_t>(inside);
+      return best;
+    }
     if (modes.count == S::kModesMax) {
       ++trace.modes_lost;
       return -1;
     }
     const int c = modes.count++;
     modes.x[c] = mx, modes.y[c] = my, modes.p[c] = mp, modes.t[c] = mt;
+    support_[c] = static_cast<std::uint16_t>(inside);
     return c;
   }
 
+  std::uint16_t support_[S::kModesMax];  // each mode's support (above)
   bool reached_[S::kPacketMax];
   bool in_climb_[S::kPacketMax];
   std::uint16_t touched_[S::kPacketMax];   // the current climb's events, in the order it reached them

@@ -19,6 +19,9 @@ inline constexpr int kClimbFrac = 8;
 inline constexpr int kClimbScaleFrac = 40;
 // Fraction bits of a spread squared and of the registers that scale one (hls/cluster/centroid.h).
 inline constexpr int kSpreadFrac = 8;
+// Fraction bits of the density a mode's ball needs, in events per event of the packet
+// (hls/cluster/seeded_climbs.h).
+inline constexpr int kDensityFrac = 24;
 // The polarity split's cell scales and fractions (hls/cluster/polarity_split.h): a cell index is
 // (x * scale) >> kSplitCellFrac; balance and share carry kSplitFractionFrac fraction bits.
 inline constexpr int kSplitCellFrac = 16;

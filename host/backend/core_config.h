@@ -105,7 +105,7 @@ inline std::string core_unsupported(const Params& p) {
   if (p.seeding == Seeding::kGrid) return "the fixed-point core seeds from events, not " + detail::setting(p, "seeding");
   if (seeded && p.labelling != Labelling::kFirst) return "the fixed-point core labels an event by the first climb that reached it, not " + detail::setting(p, "labelling");
   const Params off = preset("gaussian");
-  if (const char* name = detail::first_difference(p, off, {"filter-look-ahead-us", "packet-support", "min-density", "join-boxes"})) {
+  if (const char* name = detail::first_difference(p, off, {"filter-look-ahead-us", "packet-support", "join-boxes"})) {
     return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
   }
   if (p.measure == Measure::kBoxCentre || (!seeded && p.measure != Measure::kCentroid)) {
@@ -128,7 +128,7 @@ inline std::string core_unsupported(const Params& p) {
 // kHasSeededPath), the polarity split, the edge join, the polarity midpoint and the measurement
 // noise from the spread where it holds them (kHasPolaritySplit, kHasEdgeJoin,
 // kHasPolarityMidpoint, kHasSpreadNoise) and the tracker's policies but the gate's widening by
-// the spread and coasting by packets.
+// the spread, coasting by packets and the modes' least density.
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
   bool gaussian_path = false, seeded_path = false, polarity_split = false, edge_join = false, polarity_midpoint = false,
@@ -148,7 +148,7 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!seeded && !gaussian_path) return "the RTL build '" + build + "' clusters by seeded climbs only, not " + detail::setting(p, "seeding");
   const Params rtl = preset("gaussian");
-  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets"})) {
+  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets", "min-density"})) {
     return "the RTL core does not implement " + detail::setting(p, name) + " (add --" + name + " " + param_text(rtl, *find_param(name)) + ")";
   }
   if (!polarity_split && seeded && p.split_balance != 0) {
@@ -268,6 +268,11 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.gate_spread2 = static_cast<std::uint32_t>(rnd(p.gate_spread * p.gate_spread * std::ldexp(1.0, hls::kSpreadFrac)));
   c.size_ratio_log2 = static_cast<std::uint8_t>(detail::size_ratio_log2(p));
   c.coast_packets = static_cast<std::uint32_t>(p.coast_packets);
+  // A mode's least support: min-density times the events a uniform spread of the packet puts in a
+  // ball of radius h, per event of the packet (golden/cluster/clustering.cpp).
+  const double ball_share = M_PI * p.bandwidth * p.bandwidth / ((sensor.width / side_x) * (sensor.height / side_y));
+  need(!seeded || p.min_density * ball_share < 256, "--min-density is too large for the core's 32-bit density");
+  c.min_density = seeded ? static_cast<std::uint32_t>(rnd(p.min_density * ball_share * std::ldexp(1.0, hls::kDensityFrac))) : 0;
   c.meas_from_spread = p.meas_noise_from_spread;
   static_assert(hls::kSplitCellFrac == kSplitCellFrac && hls::kSplitFractionFrac == kSplitFractionFrac);
   const SplitRule split = seeded ? split_rule(p, sensor) : SplitRule{};  // golden splits the seeded path's clusters only
