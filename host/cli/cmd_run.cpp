@@ -135,7 +135,7 @@ void run(const RunOptions& o) {
   }
   // Events put back into time order change no label's meaning, but the user should know the
   // file was not in order (the tolerance is --reorder-us; docs/formats.md).
-  if (source->reordered()) std::fprintf(summary, "reordered   %s events moved back into time order\n", grouped(source->reordered()).c_str());
+  if (source && source->reordered()) std::fprintf(summary, "reordered   %s events moved back into time order\n", grouped(source->reordered()).c_str());
   if (!live && !source->skipped().empty()) {
     const char* separator = "skipped     ";
     for (const auto& [kind, count] : source->skipped()) {
