@@ -81,7 +81,7 @@ struct Params {
   double tolerance = 4e-5;           // stop when no coordinate moves more than this (h / 1000)
   double merge_radius = 0.02;        // modes closer than this are one cluster
   int min_cluster_size = 8;          // smaller clusters become noise
-  double min_density = 0;            // seeded climbs: a mode whose ball holds fewer than this many
+  double min_density = 2;            // seeded climbs: a mode whose ball holds fewer than this many
                                      // times the events a uniform spread would put there is noise
   double link_px = 4;                // seeded climbs: clusters with events this close become one, ...
   double link_px_width = 320;        // ... on a sensor up to this wide; on a wider one W px wide,

@@ -67,13 +67,13 @@
   X(edge_radius2, std::uint64_t, 64, 0, "seeded: a mostly-ON and a mostly-OFF mode whose centres lie within sqrt(this) / 16 px join (hls/cluster/edge_join.h); 0: off (the only setting of a build without HasEdgeJoin)") \
   X(edge_balance, std::uint16_t, 16, 0, "seeded: a mode is mostly one polarity when |2 ON - events| >= this * events, kSplitFractionFrac bits") \
   X(edge_min_events, std::uint16_t, 16, 0, "seeded: the edge join looks at modes of at least this many events")        \
-  X(meas_from_spread, bool, 1, false, "the measurement variance is r (spread^2 + 1/6 px^2) / events instead of r (hls/track/measurement_variance.h); false: r (the only setting of a build without HasSpreadNoise)")
+  X(meas_from_spread, bool, 1, false, "the measurement variance is r (spread^2 + 1/6 px^2) / events instead of r (hls/track/measurement_variance.h); false: r (the only setting of a build without HasSpreadNoise)") \
+  X(min_density, std::uint32_t, 32, 0, "seeded: a mode whose climbs' last balls held fewer than n * this events (n the packet's) is noise, kDensityFrac fraction bits; 0: off")
 
 // Registers of the C++ core only: the filter's support count, the gate's widening by a
-// cluster's spread, coasting by packets and the modes' least density. The RTL refuses a
-// setting that needs them (host/backend/core_config.h).
+// cluster's spread and coasting by packets. The RTL refuses a setting that needs them
+// (host/backend/core_config.h).
 #define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
   X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
   X(gate_spread2, std::uint32_t, 32, 0, "widening of the gate by the spread of the cluster, squared, kSpreadFrac bits") \
-  X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never")   \
-  X(min_density, std::uint32_t, 32, 0, "seeded: a mode whose climbs' last balls held fewer than n * this events (n the packet's) is noise, kDensityFrac fraction bits; 0: off")
+  X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never")

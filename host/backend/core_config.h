@@ -128,7 +128,7 @@ inline std::string core_unsupported(const Params& p) {
 // kHasSeededPath), the polarity split, the edge join, the polarity midpoint and the measurement
 // noise from the spread where it holds them (kHasPolaritySplit, kHasEdgeJoin,
 // kHasPolarityMidpoint, kHasSpreadNoise) and the tracker's policies but the gate's widening by
-// the spread, coasting by packets and the modes' least density.
+// the spread and coasting by packets.
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
   bool gaussian_path = false, seeded_path = false, polarity_split = false, edge_join = false, polarity_midpoint = false,
@@ -148,7 +148,7 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!seeded && !gaussian_path) return "the RTL build '" + build + "' clusters by seeded climbs only, not " + detail::setting(p, "seeding");
   const Params rtl = preset("gaussian");
-  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets", "min-density"})) {
+  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets"})) {
     return "the RTL core does not implement " + detail::setting(p, name) + " (add --" + name + " " + param_text(rtl, *find_param(name)) + ")";
   }
   if (!polarity_split && seeded && p.split_balance != 0) {

@@ -6,7 +6,9 @@
 // around the climb's cell, moves to their mean (exact division, rounded half up), and stops on
 // an empty ball, a move within the tolerance or the iteration cap. The converged climb joins
 // the nearest mode within the merge radius or opens one; the events it reached that have no
-// mode yet take it.
+// mode yet take it. A mode's support is the most events a climb that joined it held at its
+// last step; an event of a mode whose support is below n * cfg_min_density reads as noise
+// (the sum is made while the flags clear, the test at each join: no clock more).
 //
 // Schedule:
 //   sort    Cells + 1 clearing the cell counts, 3 a event counting, Cells + 2 for the prefix
@@ -54,6 +56,7 @@ module evms_seeded_climbs #(
   input  logic [7:0]           cfg_max_iterations,
   input  logic [31:0]          cfg_tolerance,
   input  logic [63:0]          cfg_merge_radius2,
+  input  logic [31:0]          cfg_min_density,   // kDensityFrac (24) fraction bits; 0: off
   output logic                 done,         // one clock
   output logic [15:0]          mode_count,
   output logic [15:0]          climbs,
@@ -129,6 +132,13 @@ module evms_seeded_climbs #(
   logic [CntBits-1:0]   t_q;                 // labelling: touched index read
   logic                 lv_q;                // labelling: a read is in flight
   logic [15:0]          climbs_q, steps_q, lost_q;
+  // A mode's support (the most events a climb that joined it held at its last step) and whether
+  // that is below the packet's least, n * cfg_min_density, summed while the flags clear.
+  localparam int DensityFrac = 24;
+  localparam int LeastBits = CntBits + 32;
+  logic [LeastBits-1:0] least_q;
+  logic [CntBits-1:0]   support_q [ModesMax];
+  logic                 sparse_q [ModesMax];
 
   // Where a converged climb goes: the scan of the open modes, or straight to opening one.
   state_e join_state;
@@ -210,7 +220,19 @@ module evms_seeded_climbs #(
     if (flags_clearing || touched_we || (state_q == StLabel && lv_q)) in_climb_mem[in_climb_addr] <= touched_we && !flags_clearing;
     if (flags_clearing || first_mode_we) labelled_mem[labelled_addr] <= !flags_clearing;
   end
-  assign rd_mode = rd_labelled_q ? 16'(first_mode_q) : -16'sd1;
+  // An event of a sparse mode reads as noise.
+  assign rd_mode = rd_labelled_q && !sparse_q[first_mode_q] ? 16'(first_mode_q) : -16'sd1;
+
+  // A converged climb's support becomes its mode's when the mode opens, or when it is more than the
+  // joined mode's (count_q holds the climb's last step's events at the join).
+  wire [ModeBits-1:0] support_c = best_valid_q ? best_q : ModeBits'(modes_q);
+  wire support_we = state_q == StJoinDecide && (best_valid_q ? count_q > support_q[best_q] : modes_q != ModeCntBits'(ModesMax));
+  always_ff @(posedge clk) begin
+    if (support_we) begin
+      support_q[support_c] <= count_q;
+      sparse_q[support_c] <= LeastBits'({count_q, DensityFrac'(0)}) < least_q;
+    end
+  end
 
   // The modes.
   logic [CoordBits-1:0] mode_x_q, mode_y_q;
@@ -352,6 +374,7 @@ module evms_seeded_climbs #(
       {sum_x_q, sum_y_q, count_q, touched_q, scan_c_q, best_valid_q, best_q, best_d2_q} <= '0;
       {modes_q, t_q, lv_q, climbs_q, steps_q, lost_q} <= '0;
       mode_q <= '0;
+      least_q <= '0;
     end else begin
       done <= 1'b0;
       unique case (state_q)
@@ -360,11 +383,13 @@ module evms_seeded_climbs #(
           {climbs_q, steps_q, lost_q} <= '0;
           modes_q <= '0;
           c_q <= '0;
+          least_q <= '0;
           state_q <= StClear;
         end
         // Sorting into cells: count, prefix sums, place.
         StClear: begin
           c_q <= c_q + 1'b1;
+          if (16'(c_q) < n) least_q <= least_q + LeastBits'(cfg_min_density);
           if (c_q == CellBits'(Cells)) begin
             j_q <= '0;
             state_q <= n == '0 ? StSeedWarm : StCountRead;

@@ -235,7 +235,7 @@ module evms_core #(
       .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),
       .start(cl_start_q), .n(16'(n_q)), .warm_count(warm_count_q), .cfg_warm_start(cfg_warm_start),
       .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance), .cfg_merge_radius2(cfg_merge_radius2),
-      .done(cl_done), .mode_count(cl_mode_count), .climbs(climbs_unused), .steps(cl_steps), .modes_lost(modes_lost_unused),
+      .cfg_min_density(cfg_min_density), .done(cl_done), .mode_count(cl_mode_count), .climbs(climbs_unused), .steps(cl_steps), .modes_lost(modes_lost_unused),
       .rd_j(cl_rd_j), .rd_mode(cl_rd_mode), .rd_x(cl_rd_x), .rd_y(cl_rd_y), .rd_c(ws_md_c), .rd_mode_x(cl_rd_mode_x),
       .rd_mode_y(cl_rd_mode_y));
     evms_mode_links #(
@@ -262,7 +262,7 @@ module evms_core #(
     assign {ws_warm_x, ws_warm_y, ws_warm_ball2} = '0;
     // What only the seeded path reads (waived in core/evms_core.vlt).
     logic unused_seeded_path;
-    assign unused_seeded_path = ^{cfg_warm_start, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we_q, cl_load_i_q, cl_lx_q, cl_ly_q,
+    assign unused_seeded_path = ^{cfg_warm_start, cfg_min_density, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we_q, cl_load_i_q, cl_lx_q, cl_ly_q,
                                   cl_start_q, cl_mode_count, cl_rd_j, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, first_mode, lk_start_q,
                                   warm_count_q, ws_ev_mode, ws_md_c, ws_start_q, ws_warm_we, ws_warm_k, ws_warm_x, ws_warm_y,
                                   ws_warm_ball2, linked_mode, ws_mode_count, ws_md_x, ws_md_y};

@@ -51,6 +51,7 @@
 .CfgEdgeBalance(CfgEdgeBalance),
 .CfgEdgeMinEvents(CfgEdgeMinEvents),
 .CfgMeasFromSpread(CfgMeasFromSpread),
+.CfgMinDensity(CfgMinDensity),
 .MaxWidth(MaxWidth),
 .MaxHeight(MaxHeight),
 .TimestampBits(TimestampBits),

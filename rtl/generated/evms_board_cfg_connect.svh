@@ -51,3 +51,4 @@
 .cfg_edge_balance(CfgEdgeBalance),
 .cfg_edge_min_events(CfgEdgeMinEvents),
 .cfg_meas_from_spread(CfgMeasFromSpread),
+.cfg_min_density(CfgMinDensity),

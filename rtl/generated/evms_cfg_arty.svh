@@ -105,6 +105,7 @@ localparam logic [63:0] CfgEdgeRadius2 = 64'd0;
 localparam logic [15:0] CfgEdgeBalance = 16'd0;
 localparam logic [15:0] CfgEdgeMinEvents = 16'd0;
 localparam logic CfgMeasFromSpread = 1'd0;
+localparam logic [31:0] CfgMinDensity = 32'd168663;
 // The board: its clock, its UART's clocks a bit, its link queue's depth in events, and whether
 // its core stops at the filter (the host clusters and tracks).
 localparam int BoardClockHz = 100000000, BoardClocksPerBit = 50, BoardLinkFifoDepth = 2048, BoardCoreStopsAtFilter = 0;

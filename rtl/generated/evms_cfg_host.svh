@@ -105,3 +105,4 @@ localparam logic [63:0] CfgEdgeRadius2 = 64'd16777216;
 localparam logic [15:0] CfgEdgeBalance = 16'd128;
 localparam logic [15:0] CfgEdgeMinEvents = 16'd16;
 localparam logic CfgMeasFromSpread = 1'd1;
+localparam logic [31:0] CfgMinDensity = 32'd168663;

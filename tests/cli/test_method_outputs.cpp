@@ -85,6 +85,12 @@ TEST(MethodOutputs, TheSingleBlobOfTheGen3RecordingKeepsOneId) {
   }
   EXPECT_GE(votes.size(), 12u);
   EXPECT_EQ(dominant.size(), 1u) << "the blob changed its ID";
+  // And the blob is the one confirmed track: its scattered events make no track of their own.
+  std::set<std::string> confirmed;
+  for (const auto& row : csv_rows(dir.path("o/tracks.csv"))) {
+    if (row[2] == "confirmed") confirmed.insert(row[1]);
+  }
+  EXPECT_EQ(confirmed.size(), 1u);
 }
 
 TEST(MethodOutputs, TheSensorSizeSurvivesEvmssOwnFiles) {

@@ -280,6 +280,20 @@ size_t kept_only_by(const std::vector<Event>& events, const Params& keeps, const
   return n;
 }
 
+// The least density (--min-density): on a noisy sensor the C++ core labels noise some events it
+// clusters without it, and the RTL's words equal the C++ core's on the iCE40 and host builds.
+TEST(Cosim, SparseModesAreNoise) {
+  const std::vector<Event> events = translation_128(0.15, 2.0, 9);
+  Params dense = backend::build_default_params<hls::Ice40Shape>(), any = dense;
+  dense.min_density = 6;  // packets of 256 on 128x128: at least 7.7 events in a mode's last ball
+  any.min_density = 0;
+  EXPECT_GT(kept_only_by(events, any, dense), 200u) << "no mode was sparse";
+  expect_equal<Vcore_ice40, hls::Ice40Shape>("sparse_ice40", events, {128, 128}, 48, 0.6, dense);
+  Params host = seeded_method();
+  host.min_density = 6;
+  expect_equal<Vcore_host, hls::RtlHostShape>("sparse_host", events, {128, 128}, 49, 0.7, host);
+}
+
 // A sensor noisy enough that the filter's noise check asks two neighbours (hls/filter/ba_filter.h):
 // the C++ core's labels differ from those with the check off, and the RTL's equal the C++ core's
 // on the host and the iCE40 builds, and with the smallest count, which makes every interval after

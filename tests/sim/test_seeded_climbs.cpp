@@ -5,6 +5,7 @@
 // trace in the temporary directory (sim/verilated_block.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -39,7 +40,8 @@ struct Case {
 
 // A packet of blobs (1 to 6, 2 to 25 px across) and uniform noise, under registers drawn from
 // the ranges the method uses: bandwidth 0.03-0.15, tolerance, merge radius, iteration cap
-// 0-8, warm seeds with balls of 1-8 bandwidths (some on no event, some beyond the sensor).
+// 0-8, warm seeds with balls of 1-8 bandwidths (some on no event, some beyond the sensor), the
+// least density off or 0.5-20 times a uniform spread's.
 Case draw_case(std::mt19937_64& rng) {
   Case c;
   sim::Draws draw{rng};
@@ -52,6 +54,9 @@ Case draw_case(std::mt19937_64& rng) {
   const double merge = draw.one_of<double>({0.1, 0.5, 1.0}) * kClimbUnit;
   c.cfg.merge_radius2 = static_cast<std::uint64_t>(merge * merge);
   c.cfg.warm_start = draw.below(4) != 0;
+  // The least density (0: off, as half the cases): md times n pi h^2 events on (x/W, y/H).
+  const double min_density = draw.one_of<double>({0, 0, 0.5, 2, 6, 20});
+  c.cfg.min_density = static_cast<std::uint32_t>(std::llround(std::ldexp(min_density * M_PI * h * h, hls::kDensityFrac)));
 
   c.n = 1 + draw.below(S::kPacketMax);
   const int blobs = 1 + draw.below(6);
@@ -121,6 +126,7 @@ Result run_rtl(const Case& c, const std::string& trace_path) {
   rtl->cfg_max_iterations = c.cfg.max_iterations;
   rtl->cfg_tolerance = c.cfg.tolerance;
   rtl->cfg_merge_radius2 = c.cfg.merge_radius2;
+  rtl->cfg_min_density = c.cfg.min_density;
   Result r;
   r.cycles = rtl.run_until_done([&] { rtl.tick(); }, 50'000'000);
   for (int j = 0; j < c.n; ++j) {
@@ -164,9 +170,17 @@ TEST(SeededClimbsRtl, EveryModeAndLabelEqualTheCppModelOnRandomPackets) {
   const std::uint64_t seed = sim::cosim_seed();
   std::mt19937_64 rng(seed);
   std::uint64_t cycles = 0, events = 0, climbs = 0;
+  int sparse_packets = 0;  // packets in which the least density made some event noise
   for (int packet = 0; packet < 200; ++packet) {
     const Case c = draw_case(rng);
     const Result want = run_model(c);
+    if (c.cfg.min_density != 0) {
+      Case any = c;
+      any.cfg.min_density = 0;
+      const Result without = run_model(any);
+      sparse_packets += std::count(want.first_mode.begin(), want.first_mode.end(), -1) >
+                        std::count(without.first_mode.begin(), without.first_mode.end(), -1);
+    }
     const Result got = run_rtl(c, "");
     const std::string verdict = sim::mismatch_traced("seeded_climbs", seed,
                                                      "packet " + std::to_string(packet) + " (n " + std::to_string(c.n) + ", warm " +
@@ -178,6 +192,7 @@ TEST(SeededClimbsRtl, EveryModeAndLabelEqualTheCppModelOnRandomPackets) {
   std::printf("%llu events, %llu climbs, %.1f cycles an event\n", static_cast<unsigned long long>(events),
               static_cast<unsigned long long>(climbs), static_cast<double>(cycles) / static_cast<double>(events));
   EXPECT_GT(climbs, 200u);
+  EXPECT_GT(sparse_packets, 10) << "packets with a sparse mode";
 }
 
 }  // namespace
