@@ -94,6 +94,7 @@ struct Shape {
   static constexpr int kClimbFrac = hls::kClimbFrac;
   static constexpr int kClimbScaleFrac = hls::kClimbScaleFrac;
   static constexpr int kSpreadFrac = hls::kSpreadFrac;
+  static constexpr int kDensityFrac = hls::kDensityFrac;
   static constexpr int kSplitCellFrac = hls::kSplitCellFrac;
   static constexpr int kSplitFractionFrac = hls::kSplitFractionFrac;
   static constexpr int kEdgeSizeRatio = hls::kEdgeSizeRatio;
@@ -168,6 +169,7 @@ struct Shape {
   X(ClimbFrac)                       \
   X(ClimbScaleFrac)                  \
   X(SpreadFrac)                      \
+  X(DensityFrac)                     \
   X(SplitCellFrac)                   \
   X(SplitFractionFrac)               \
   X(EdgeSizeRatio)                   \

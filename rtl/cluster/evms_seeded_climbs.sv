@@ -33,6 +33,7 @@ module evms_seeded_climbs #(
   parameter int ReachMax      = 8,
   parameter int IterationsMax = 8,
   parameter int UnitShift     = 19,   // kFeatFrac + kClimbFrac: fraction bits of a climb feature
+  parameter int DensityFrac   = 24,   // fraction bits of cfg_min_density (kDensityFrac)
   parameter int CoordBits     = 32
 ) (
   input  logic                 clk,
@@ -56,7 +57,7 @@ module evms_seeded_climbs #(
   input  logic [7:0]           cfg_max_iterations,
   input  logic [31:0]          cfg_tolerance,
   input  logic [63:0]          cfg_merge_radius2,
-  input  logic [31:0]          cfg_min_density,   // kDensityFrac (24) fraction bits; 0: off
+  input  logic [31:0]          cfg_min_density,   // DensityFrac fraction bits; 0: off
   output logic                 done,         // one clock
   output logic [15:0]          mode_count,
   output logic [15:0]          climbs,
@@ -134,7 +135,6 @@ module evms_seeded_climbs #(
   logic [15:0]          climbs_q, steps_q, lost_q;
   // A mode's support (the most events a climb that joined it held at its last step) and whether
   // that is below the packet's least, n * cfg_min_density, summed while the flags clear.
-  localparam int DensityFrac = 24;
   localparam int LeastBits = CntBits + 32;
   logic [LeastBits-1:0] least_q;
   logic [CntBits-1:0]   support_q [ModesMax];

@@ -229,7 +229,7 @@ module evms_core #(
     logic [15:0] climbs_unused, modes_lost_unused;
     evms_seeded_climbs #(
       .PacketMax(PacketMax), .ModesMax(ModesMax), .GridSide(GridSide), .ReachMax(ReachMax), .IterationsMax(IterationsMax),
-      .UnitShift(UnitShift), .CoordBits(32)
+      .UnitShift(UnitShift), .DensityFrac(DensityFrac), .CoordBits(32)
     ) u_climbs (
       .clk(clk), .rst_n(rst_n), .load_we(cl_load_we_q), .load_i(cl_load_i_q), .load_x(cl_lx_q), .load_y(cl_ly_q),
       .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),

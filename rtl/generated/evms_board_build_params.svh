@@ -94,6 +94,7 @@
 .ClimbFrac(ClimbFrac),
 .ClimbScaleFrac(ClimbScaleFrac),
 .SpreadFrac(SpreadFrac),
+.DensityFrac(DensityFrac),
 .SplitCellFrac(SplitCellFrac),
 .SplitFractionFrac(SplitFractionFrac),
 .EdgeSizeRatio(EdgeSizeRatio),

@@ -42,6 +42,7 @@ localparam int ReachMax = 8;
 localparam int ClimbFrac = 8;
 localparam int ClimbScaleFrac = 40;
 localparam int SpreadFrac = 8;
+localparam int DensityFrac = 24;
 localparam int SplitCellFrac = 16;
 localparam int SplitFractionFrac = 8;
 localparam int EdgeSizeRatio = 4;

@@ -42,6 +42,7 @@
 .ClimbFrac(ClimbFrac),
 .ClimbScaleFrac(ClimbScaleFrac),
 .SpreadFrac(SpreadFrac),
+.DensityFrac(DensityFrac),
 .SplitCellFrac(SplitCellFrac),
 .SplitFractionFrac(SplitFractionFrac),
 .EdgeSizeRatio(EdgeSizeRatio),
