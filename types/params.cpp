@@ -223,6 +223,14 @@ double link_px_at(const Params& p, SensorSize sensor) {
   return p.link_px * std::min(2.0, sensor.width / p.link_px_width);
 }
 
+double least_support_per_event(const Params& p, SensorSize sensor) {
+  // The sensor's area on the feature plane (golden/cluster/features.cpp).
+  const double side_x = p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.width;
+  const double side_y = p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.height;
+  const double area = p.scale_xy * sensor.width / side_x * p.scale_xy * sensor.height / side_y;
+  return p.min_density * M_PI * p.bandwidth * p.bandwidth / area;
+}
+
 SplitRule split_rule(const Params& p, SensorSize sensor) {
   SplitRule rule;
   if (p.split_balance <= 0) return rule;

@@ -170,6 +170,12 @@ double accel_psd_at(const Params& p, SensorSize sensor);
 // 640 px, twice the reference width, and no wider sensor was measured.
 double link_px_at(const Params& p, SensorSize sensor);
 
+// min_density times the events a uniform spread of one event over `sensor` puts in a ball of
+// radius h on the feature plane (x/W, y/H): a packet of n events makes a mode noise whose
+// support is below n times this. Golden (golden/cluster/clustering.cpp) and the fixed-point core's
+// register (host/backend/core_config.h) both take it from here.
+double least_support_per_event(const Params& p, SensorSize sensor);
+
 // The polarity split's rule in integers, which golden (golden/cluster/polarity_split.h) and the
 // fixed-point core (hls/cluster/polarity_split.h) share so that they find the same parts:
 //   - an event at (x, y) px lies in cell ((x * cell_scale_x) >> kSplitCellFrac, (y * cell_scale_y)

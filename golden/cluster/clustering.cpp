@@ -31,7 +31,7 @@ PacketClusters every_event(const FeatureMatrix& features, const Params& params) 
 }  // namespace
 
 PacketClusterer::PacketClusterer(const Params& params, SensorSize sensor)
-    : params_(params), sensor_(sensor), sensor_area_(feature_area(sensor, params)), links_(sensor), split_(params, sensor), edge_(edge_rule(params, sensor)) {}
+    : params_(params), sensor_(sensor), least_support_per_event_(least_support_per_event(params, sensor)), links_(sensor), split_(params, sensor), edge_(edge_rule(params, sensor)) {}
 
 PacketClusters PacketClusterer::cluster(std::span<const Event> events, const FeatureMatrix& features,
                                         const std::vector<Eigen::Vector4d>& warm_modes, const std::vector<double>& warm_spreads) {
@@ -62,9 +62,9 @@ PacketClusters PacketClusterer::finish(std::span<const Event> events, const Feat
   result.iterations = climbs_.iterations();
   result.kernel_evaluations = climbs_.kernel_evaluations();
   // A mode no denser than a uniform spread of the packet, times min_density, is noise.
-  const double uniform = static_cast<double>(n) * M_PI * params_.bandwidth * params_.bandwidth / sensor_area_;
+  const double least = static_cast<double>(n) * least_support_per_event_;
   for (int& c : raw) {
-    if (c >= 0 && climbs_.support()[static_cast<size_t>(c)] < params_.min_density * uniform) c = -1;
+    if (c >= 0 && climbs_.support()[static_cast<size_t>(c)] < least) c = -1;
   }
   if (params_.link_px > 0) links_.join(events, link_px_at(params_, sensor_), static_cast<int>(modes.size()), raw);
   if (params_.join_boxes) join_overlapping_boxes(events, raw);

@@ -55,7 +55,7 @@ class PacketClusterer {
 
   Params params_;
   SensorSize sensor_;
-  double sensor_area_;    // in (x, y) feature units
+  double least_support_per_event_;  // least_support_per_event (types/params.h)
   PacketGrid grid_;       // cells of h / 2, for the climbs
   PacketGrid cells_;      // cells of h, the seeds of grid seeding
   SeededClimbs climbs_;

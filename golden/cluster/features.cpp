@@ -13,11 +13,6 @@ Eigen::Vector2d feature_pixels(SensorSize sensor, const Params& params) {
   return {static_cast<double>(sensor.width), static_cast<double>(sensor.height)};
 }
 
-double feature_area(SensorSize sensor, const Params& params) {
-  const Eigen::Vector2d px = feature_pixels(sensor, params);
-  return params.scale_xy * sensor.width / px.x() * params.scale_xy * sensor.height / px.y();
-}
-
 FeatureMatrix packet_features(std::span<const Event> events, SensorSize sensor,
                               const Params& params) {
   FeatureMatrix f(4, static_cast<Eigen::Index>(events.size()));

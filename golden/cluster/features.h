@@ -18,8 +18,6 @@ using FeatureMatrix = Eigen::Matrix<double, 4, Eigen::Dynamic>;
 
 // The pixel size of one unit of the x and y features.
 Eigen::Vector2d feature_pixels(SensorSize sensor, const Params& params);
-// The sensor's area in (x, y) feature units.
-double feature_area(SensorSize sensor, const Params& params);
 
 FeatureMatrix packet_features(std::span<const Event> events, SensorSize sensor,
                               const Params& params);

@@ -43,8 +43,8 @@ using ArtyShape = Shape<240, 180, 512, 8, 8, 16, 16, 16, 7, 2 * 512, 11, 16, 9, 
 // core stops at the filter (rtl/core/evms_filter_core.sv): the board returns each event's
 // verdict and the host runs the rest of the ice40 core on them (Core::process_decided), which
 // gives the words of the whole core. The iCEBreaker's PLL makes 18 MHz of its 12 MHz oscillator
-// (rtl/board/evms_icebreaker_top.sv), so that 3 clocks a bit give the FT2232H's 6 Mbaud: its link
-// carries twice the events of 3 Mbaud at 12 MHz, and the build routes above 18 MHz (docs/rtl.md).
+// (rtl/board/evms_icebreaker_top.sv), so that 3 clocks a bit give the FT2232H's 6 Mbaud (137 k
+// events/s each way, docs/link.md); the build routes above 18 MHz (docs/rtl.md).
 #define EVMS_BOARD_BUILDS(X)        \
   X(ice40, 18000000, 3, 1024, 1)   \
   X(arty, 100000000, 50, 2048, 0)

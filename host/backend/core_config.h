@@ -268,11 +268,9 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.gate_spread2 = static_cast<std::uint32_t>(rnd(p.gate_spread * p.gate_spread * std::ldexp(1.0, hls::kSpreadFrac)));
   c.size_ratio_log2 = static_cast<std::uint8_t>(detail::size_ratio_log2(p));
   c.coast_packets = static_cast<std::uint32_t>(p.coast_packets);
-  // A mode's least support: min-density times the events a uniform spread of the packet puts in a
-  // ball of radius h, per event of the packet (golden/cluster/clustering.cpp).
-  const double ball_share = M_PI * p.bandwidth * p.bandwidth / ((sensor.width / side_x) * (sensor.height / side_y));
-  need(!seeded || p.min_density * ball_share < 256, "--min-density is too large for the core's 32-bit density");
-  c.min_density = seeded ? static_cast<std::uint32_t>(rnd(p.min_density * ball_share * std::ldexp(1.0, hls::kDensityFrac))) : 0;
+  const double least_per_event = least_support_per_event(p, sensor);
+  need(!seeded || least_per_event < 256, "--min-density is too large for the core's 32-bit density");
+  c.min_density = seeded ? static_cast<std::uint32_t>(rnd(least_per_event * std::ldexp(1.0, hls::kDensityFrac))) : 0;
   c.meas_from_spread = p.meas_noise_from_spread;
   static_assert(hls::kSplitCellFrac == kSplitCellFrac && hls::kSplitFractionFrac == kSplitFractionFrac);
   const SplitRule split = seeded ? split_rule(p, sensor) : SplitRule{};  // golden splits the seeded path's clusters only
