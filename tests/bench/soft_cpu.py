@@ -63,17 +63,6 @@ def main():
                  "-lgcc", "-o", elf])
             return elf, checksum
 
-        def executed(elf):
-            """How many times each instruction address executed: one trace line each (one instruction a block)."""
-            counts = collections.Counter()
-            trace = subprocess.Popen(["qemu-riscv32", "-singlestep", "-d", "nochain,exec", "-D", "/dev/stderr", elf],
-                                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-            for line in trace.stderr:
-                if line.startswith("Trace"):
-                    counts[int(line.split("[")[1].split("/")[1], 16)] += 1
-            trace.wait()
-            return counts
-
         elf, host_checksum = firmware(args.events)
         checksum, stack = run(["qemu-riscv32", elf]).split()
         if checksum != host_checksum:
@@ -100,25 +89,28 @@ def main():
         print(f"core state   {state} bytes (Core<Ice40Shape>, its filter's timestamps included)")
         print(f"stack        {stack} bytes used")
 
-        mnemonic = {}
-        for line in run([CROSS + "objdump", "-d", "--no-show-raw-insn", elf]).splitlines():
-            parts = line.split()
-            if len(parts) >= 2 and parts[0].endswith(":") and all(c in "0123456789abcdef" for c in parts[0][:-1]):
-                mnemonic[int(parts[0][:-1], 16)] = parts[1]
+        def executed_mnemonics(elf):
+            """How many times each mnemonic executed: each trace line's address (one instruction a
+            block) looked up in the disassembly."""
+            mnemonic = {}
+            for line in run([CROSS + "objdump", "-d", "--no-show-raw-insn", elf]).splitlines():
+                parts = line.split()
+                if len(parts) >= 2 and parts[0].endswith(":") and all(c in "0123456789abcdef" for c in parts[0][:-1]):
+                    mnemonic[int(parts[0][:-1], 16)] = parts[1]
+            counts = collections.Counter()
+            trace = subprocess.Popen(["qemu-riscv32", "-singlestep", "-d", "nochain,exec", "-D", "/dev/stderr", elf],
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+            for line in trace.stderr:
+                if line.startswith("Trace"):
+                    counts[mnemonic.get(int(line.split("[")[1].split("/")[1], 16), "?")] += 1
+            trace.wait()
+            return counts
+
         # Per event: the run over every event less a run over one, which starts the same way (the
-        # statics' constructors, the filter's memory cleared) and differs only in its events array's
-        # place, so the two are compared by mnemonic, not by address.
-        one_elf, _ = firmware(1)
-        one_mnemonic = {}
-        for line in run([CROSS + "objdump", "-d", "--no-show-raw-insn", one_elf]).splitlines():
-            parts = line.split()
-            if len(parts) >= 2 and parts[0].endswith(":") and all(c in "0123456789abcdef" for c in parts[0][:-1]):
-                one_mnemonic[int(parts[0][:-1], 16)] = parts[1]
-        by_mnemonic = collections.Counter()
-        for pc, n in executed(elf).items():
-            by_mnemonic[mnemonic.get(pc, "?")] += n
-        for pc, n in executed(one_elf).items():
-            by_mnemonic[one_mnemonic.get(pc, "?")] -= n
+        # statics' constructors, the filter's memory cleared) and differs only in where its
+        # events array lies, so the two are compared by mnemonic, not by address.
+        by_mnemonic = executed_mnemonics(elf)
+        by_mnemonic.subtract(executed_mnemonics(firmware(1)[0]))
         per_event = args.events - 1
         kinds = collections.Counter()
         for m, n in by_mnemonic.items():
@@ -133,7 +125,7 @@ def main():
             elif m.startswith(("b", "j")) or m in ("ret", "call", "tail"):
                 kinds["branch or jump"] += n
             else:
-                kinds["other"] += n
+                kinds["ALU"] += n
         total = sum(kinds.values())
         print(f"instructions {total / per_event:.0f} an event ({total} over events 2 to {args.events})")
         for kind, n in kinds.most_common():
