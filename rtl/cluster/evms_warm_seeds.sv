@@ -141,7 +141,15 @@ module evms_warm_seeds #(
   // ---- the ball -------------------------------------------------------------------------------------
   logic signed [63:0] variance;
   logic [63:0] ball2_scaled, ball2_top, ball2;
-  assign variance = $signed(quotient_x - mean_x_q * mean_x_q + quotient_y - mean_y_q * mean_y_q);
+  // The means' squared length, registered a clock after the means: the second division, whose
+  // quotients the variance waits for in StBallSquares, takes longer, so the squares cost no clock
+  // and leave the variance two adds.
+  logic [63:0] mean2_q;
+  always_ff @(posedge clk) mean2_q <= 64'(mean_x_q) * 64'(mean_x_q) + 64'(mean_y_q) * 64'(mean_y_q);
+  assign variance = $signed(quotient_x + quotient_y - mean2_q);
+  `EVMS_ASSERT("the means' squares are registered before the variance takes them",
+               !(state_q == StBallSquares && div_done) || mean2_q == 64'(mean_x_q) * 64'(mean_x_q) + 64'(mean_y_q) * 64'(mean_y_q),
+               clk, rst_n)
   assign ball2_scaled = (64'(cfg_warm_scale2) * var_q + (64'(1) << (SpreadFrac - 1))) >> SpreadFrac;
   assign ball2_top = cfg_warm_ball2_max > One ? cfg_warm_ball2_max : One;
   assign ball2 = ball2_scaled < One ? One : (ball2_scaled > ball2_top ? ball2_top : ball2_scaled);
