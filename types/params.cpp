@@ -223,20 +223,28 @@ double link_px_at(const Params& p, SensorSize sensor) {
   return p.link_px * std::min(2.0, sensor.width / p.link_px_width);
 }
 
+FeatureSides feature_sides(const Params& p, SensorSize sensor) {
+  if (p.xy_scale == XyScale::kIsotropic) {
+    const double side = std::max(sensor.width, sensor.height);
+    return {side, side};
+  }
+  return {static_cast<double>(sensor.width), static_cast<double>(sensor.height)};
+}
+
 double least_support_per_event(const Params& p, SensorSize sensor) {
-  // The sensor's area on the feature plane (golden/cluster/features.cpp).
-  const double side_x = p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.width;
-  const double side_y = p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.height;
-  const double area = p.scale_xy * sensor.width / side_x * p.scale_xy * sensor.height / side_y;
+  // The sensor's area on the feature plane.
+  const FeatureSides side = feature_sides(p, sensor);
+  const double area = p.scale_xy * sensor.width / side.x * p.scale_xy * sensor.height / side.y;
   return p.min_density * M_PI * p.bandwidth * p.bandwidth / area;
 }
 
 SplitRule split_rule(const Params& p, SensorSize sensor) {
   SplitRule rule;
   if (p.split_balance <= 0) return rule;
-  // The pixels of one feature unit along x and y (golden/cluster/features.cpp).
-  const double unit_x = (p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.width) / p.scale_xy;
-  const double unit_y = (p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.height) / p.scale_xy;
+  // The pixels of one feature unit along x and y.
+  const FeatureSides side = feature_sides(p, sensor);
+  const double unit_x = side.x / p.scale_xy;
+  const double unit_y = side.y / p.scale_xy;
   auto scale = [&](double unit) {
     const double side = std::max(2.0, p.split_cell * p.bandwidth * unit);
     return static_cast<std::uint32_t>(std::min(std::ldexp(1.0, kSplitCellFrac - 1), std::round(std::ldexp(1.0, kSplitCellFrac) / side)));

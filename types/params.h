@@ -170,6 +170,15 @@ double accel_psd_at(const Params& p, SensorSize sensor);
 // 640 px, twice the reference width, and no wider sensor was measured.
 double link_px_at(const Params& p, SensorSize sensor);
 
+// The sensor's side, in pixels, that one x and one y feature unit span before scale_xy: its width
+// and height, or its larger side for both with --xy-scale isotropic. Golden's features
+// (golden/cluster/features.cpp), the core's registers (host/backend/core_config.h) and the rules
+// below take it from here.
+struct FeatureSides {
+  double x = 0, y = 0;
+};
+FeatureSides feature_sides(const Params& p, SensorSize sensor);
+
 // min_density times the events a uniform spread of one event over `sensor` puts in a ball of
 // radius h on the feature plane (x/W, y/H): a packet of n events makes a mode noise whose
 // support is below n times this. Golden (golden/cluster/clustering.cpp) and the fixed-point core's

@@ -1,16 +1,12 @@
 #include "golden/cluster/features.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace evms::golden {
 
 Eigen::Vector2d feature_pixels(SensorSize sensor, const Params& params) {
-  if (params.xy_scale == XyScale::kIsotropic) {
-    const double side = std::max(sensor.width, sensor.height);
-    return {side, side};
-  }
-  return {static_cast<double>(sensor.width), static_cast<double>(sensor.height)};
+  const FeatureSides side = feature_sides(params, sensor);
+  return {side.x, side.y};
 }
 
 FeatureMatrix packet_features(std::span<const Event> events, SensorSize sensor,

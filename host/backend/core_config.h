@@ -221,8 +221,8 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   // One phi unit in normalized feature space: h for the flat ball (|dphi|^2 < 1), h sqrt(2)
   // for the Gaussian (exp(-|dphi|^2)).
   const double unit = seeded ? p.bandwidth : p.bandwidth * std::sqrt(2.0);
-  const double side_x = p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.width;
-  const double side_y = p.xy_scale == XyScale::kIsotropic ? std::max(sensor.width, sensor.height) : sensor.height;
+  const FeatureSides side = feature_sides(p, sensor);
+  const double side_x = side.x, side_y = side.y;
   const double feat = std::ldexp(1.0, S::kFeatFrac);
   const double tick_s = tick_seconds<S>();
   auto rnd = [](double v) { return static_cast<std::int64_t>(std::llround(v)); };
