@@ -18,7 +18,7 @@ static Ice40Core::PacketStream packets;
 
 extern "C" unsigned char __stack_bottom[], __stack_top[];
 extern "C" void (*__init_array_start[])(), (*__init_array_end[])();
-static constexpr unsigned char kStackPaint = 0xA5;
+static constexpr unsigned char kStackPaint = 0xA5;  // the byte _start paints the stack with (its li t1)
 
 static long system_call(long number, long a0, long a1, long a2) {
   register long r_a0 asm("a0") = a0;
