@@ -13,13 +13,15 @@
 // Schedule:
 //   sort    Cells + 1 clearing the cell counts, 3 a event counting, Cells + 2 for the prefix
 //           sums, 3 a event placing;
-//   climbs  per step: 3 per row of cells, then one event a clock through a 3-stage pipeline
-//           (read; difference to the climb; square, test and accumulate), 2 to drain, and when
-//           the ball held events a divide of SumBits + 2 clocks (x and y at once);
-//           per climb: one open mode a clock through the same pipeline, 2 to drain, 1 to
+//   climbs  per step: per row of cells 3 to read its run, one event a clock and 1 more, through
+//           a 4-stage pipeline (read; difference to the climb; squares; test and accumulate)
+//           that drains while the next row's run is read, 3 to drain after the last row, and
+//           when the ball held events a divide of SumBits + 2 clocks (x and y at once);
+//           per climb: one open mode a clock through the same pipeline, 3 to drain, 1 to
 //           decide, touched events + 2 to label.
-// The kernel's events and the join's modes share the pipeline's difference register and its
-// squares: a memory's read, the subtraction and the squares are not one clock's path.
+// The kernel's events and the join's modes share the pipeline's difference and squared-distance
+// registers: a memory's read, the subtraction, the squares and the comparisons are each a
+// clock's path of their own.
 // Memories have one write port and a registered read port (common/evms_ram_1w1r). The per-event
 // flags (reached, in the current climb, labelled) are one-bit memories with one address each and
 // a combinational read (distributed RAM on a Xilinx part, not 256 registers with a decoder and a
@@ -117,11 +119,12 @@ module evms_seeded_climbs #(
   logic [AxisBits-1:0]  row_q, row_last_q, x0_q, x1_q;
   logic [CntBits-1:0]   k_q, k_end_q;        // the row's run of sorted events
   // The distance pipeline: s1 a point read (an event in the kernel, a mode in the join), s2 its
-  // difference to the climb registered (diff_*_q, every clock).
-  logic                 s1_valid_q, s2_valid_q;
-  logic [CoordBits-1:0] s2_x_q, s2_y_q;      // the kernel's event at s2, and its index
-  logic [IdxBits-1:0]   s2_j_q;
-  logic [ModeBits-1:0]  s1_c_q, s2_c_q;      // the join's mode at s1 and s2
+  // difference to the climb registered (diff_*_q), s3 its squared distance (dist2_q). Stages s2
+  // and s3 advance every clock, so a row's last events finish while the next row's run is read.
+  logic                 s1_valid_q, s2_valid_q, s3_valid_q;
+  logic [CoordBits-1:0] s2_x_q, s2_y_q, s3_x_q, s3_y_q;   // the kernel's event at s2 and s3, and its index
+  logic [IdxBits-1:0]   s2_j_q, s3_j_q;
+  logic [ModeBits-1:0]  s1_c_q, s2_c_q, s3_c_q;           // the join's mode at s1, s2 and s3
   logic [SumBits-1:0]   sum_x_q, sum_y_q;
   logic [CntBits-1:0]   count_q, touched_q;
   logic [ModeCntBits-1:0] scan_c_q;         // the join's next mode to read
@@ -192,21 +195,24 @@ module evms_seeded_climbs #(
   wire [IdxBits-1:0] clear_index = IdxBits'(c_q);
   logic [IdxBits-1:0] touched_rd_q;
   logic reached_mem [PacketMax], in_climb_mem [PacketMax], labelled_mem [PacketMax];
+  // A kernel event at s3: the pipeline's last stage outside the join scan (a row's last events
+  // finish while the next row's run is read).
+  wire               kernel_at_s3 = s3_valid_q && state_q != StJoinScan;
   // reached: set by the kernel, read by the event seeds.
-  wire [IdxBits-1:0] reached_addr = flags_clearing ? clear_index : state_q == StKernel ? s2_j_q : j_index;
+  wire [IdxBits-1:0] reached_addr = flags_clearing ? clear_index : kernel_at_s3 ? s3_j_q : j_index;
   wire               reached = reached_mem[reached_addr];
-  wire               reached_we = flags_clearing || (state_q == StKernel && s2_valid_q && kernel_in);
+  wire               reached_we = flags_clearing || (kernel_at_s3 && kernel_in);
   // in_climb: set by the kernel, cleared by the labelling.
-  wire [IdxBits-1:0] in_climb_addr = flags_clearing ? clear_index : state_q == StLabel ? touched_rd_q : s2_j_q;
+  wire [IdxBits-1:0] in_climb_addr = flags_clearing ? clear_index : state_q == StLabel ? touched_rd_q : s3_j_q;
   wire               in_climb = in_climb_mem[in_climb_addr];
   // labelled: read and set by the labelling, read through rd_j after done.
   wire [IdxBits-1:0] labelled_addr = flags_clearing ? clear_index : state_q == StLabel ? touched_rd_q : IdxBits'(rd_j);
   wire               labelled = labelled_mem[labelled_addr];
 
   // The current climb's events, in the order it reached them.
-  wire touched_we = state_q == StKernel && s2_valid_q && kernel_in && !in_climb;
+  wire touched_we = kernel_at_s3 && kernel_in && !in_climb;
   evms_ram_1w1r #(.Width(IdxBits), .Depth(PacketMax)) u_touched (
-    .clk, .we(touched_we), .wa(IdxBits'(touched_q)), .wd(s2_j_q), .ra(IdxBits'(t_q)), .rd(touched_rd_q));
+    .clk, .we(touched_we), .wa(IdxBits'(touched_q)), .wd(s3_j_q), .ra(IdxBits'(t_q)), .rd(touched_rd_q));
 
   // Each event's mode, valid where labelled.
   logic [ModeBits-1:0] first_mode_q;
@@ -280,9 +286,10 @@ module evms_seeded_climbs #(
       magnitude = DistBits'(d);
     end
   endfunction
-  // The point at s1: the kernel's event, or the join's mode.
-  wire [CoordBits-1:0] point_x = state_q == StKernel ? sorted_x_q : mode_x_q;
-  wire [CoordBits-1:0] point_y = state_q == StKernel ? sorted_y_q : mode_y_q;
+  // The point at s1: the join's mode, or the kernel's event (in a kernel row or the next row's
+  // three clocks of setup, where the row's last events drain).
+  wire [CoordBits-1:0] point_x = state_q == StJoinScan ? mode_x_q : sorted_x_q;
+  wire [CoordBits-1:0] point_y = state_q == StJoinScan ? mode_y_q : sorted_y_q;
   logic far_x, far_y;
   logic [DistBits-1:0] diff_x, diff_y;
   always_comb begin
@@ -290,15 +297,17 @@ module evms_seeded_climbs #(
     diff_y = magnitude(my_q, point_y, far_y);
   end
   logic [DistBits-1:0] diff_x_q, diff_y_q;
-  logic                diff_far_q;
+  logic                diff_far_q, dist2_far_q;
+  logic [63:0]         dist2_q;
   always_ff @(posedge clk) begin
     diff_x_q <= diff_x;
     diff_y_q <= diff_y;
     diff_far_q <= far_x || far_y;
+    dist2_q <= 64'(diff_x_q) * 64'(diff_x_q) + 64'(diff_y_q) * 64'(diff_y_q);
+    dist2_far_q <= diff_far_q;
   end
-  wire [63:0] dist2 = 64'(diff_x_q) * 64'(diff_x_q) + 64'(diff_y_q) * 64'(diff_y_q);
-  wire kernel_in = !diff_far_q && dist2 < ball2_q;
-  wire join_near = !diff_far_q && dist2 <= cfg_merge_radius2;
+  wire kernel_in = !dist2_far_q && dist2_q < ball2_q;
+  wire join_near = !dist2_far_q && dist2_q <= cfg_merge_radius2;
 
   // The climb's cell and the rows and columns of cells its ball reaches, clamped to the grid.
   wire signed [AxisBits:0] climb_cx = $signed({1'b0, cell_of(mx_q)});
@@ -370,13 +379,31 @@ module evms_seeded_climbs #(
       done <= 1'b0;
       {j_q, c_q, pc_q, pv_q, acc_q, seed_k_q, seeding_warm_q} <= '0;
       {mx_q, my_q, ball2_q, reach_q, step_q, row_q, row_last_q, x0_q, x1_q, k_q, k_end_q} <= '0;
-      {s1_valid_q, s2_valid_q, s2_x_q, s2_y_q, s2_j_q, s1_c_q, s2_c_q} <= '0;
+      {s1_valid_q, s2_valid_q, s3_valid_q, s2_x_q, s2_y_q, s3_x_q, s3_y_q, s2_j_q, s3_j_q, s1_c_q, s2_c_q, s3_c_q} <= '0;
       {sum_x_q, sum_y_q, count_q, touched_q, scan_c_q, best_valid_q, best_q, best_d2_q} <= '0;
       {modes_q, t_q, lv_q, climbs_q, steps_q, lost_q} <= '0;
       mode_q <= '0;
       least_q <= '0;
     end else begin
       done <= 1'b0;
+      // The distance pipeline: only the kernel rows and the join scan issue into s1.
+      s1_valid_q <= 1'b0;
+      s2_valid_q <= s1_valid_q;
+      s3_valid_q <= s2_valid_q;
+      s2_x_q <= sorted_x_q;
+      s2_y_q <= sorted_y_q;
+      s2_j_q <= event_q;
+      s2_c_q <= s1_c_q;
+      s3_x_q <= s2_x_q;
+      s3_y_q <= s2_y_q;
+      s3_j_q <= s2_j_q;
+      s3_c_q <= s2_c_q;
+      if (kernel_at_s3 && kernel_in) begin
+        sum_x_q <= sum_x_q + SumBits'(s3_x_q);
+        sum_y_q <= sum_y_q + SumBits'(s3_y_q);
+        count_q <= count_q + 1'b1;
+      end
+      if (touched_we) touched_q <= touched_q + 1'b1;
       unique case (state_q)
         // Idle, or done with the last packet (its results stay readable until the next start).
         StIdle, StDone: if (start) begin
@@ -476,8 +503,6 @@ module evms_seeded_climbs #(
           state_q <= iteration_cap == '0 ? join_state : StStepInit;
           scan_c_q <= '0;
           best_valid_q <= 1'b0;
-          s1_valid_q <= 1'b0;
-          s2_valid_q <= 1'b0;
         end
         StStepInit: begin
           row_q <= climb_cy - climb_r < 0 ? '0 : AxisBits'(climb_cy - climb_r);
@@ -496,32 +521,19 @@ module evms_seeded_climbs #(
         end
         StRowRange: begin
           k_end_q <= start_q;
-          s1_valid_q <= 1'b0;
-          s2_valid_q <= 1'b0;
           state_q <= StKernel;
         end
         StKernel: begin
-          // Issue (the memories read k), the difference, then its test and the sums.
+          // Issue (the memories read k); the difference, its square, the test and the sums follow
+          // in the pipeline. The next row starts after the last issue, the step ends on the drain.
           s1_valid_q <= k_q < k_end_q;
           if (k_q < k_end_q) k_q <= k_q + 1'b1;
-          s2_valid_q <= s1_valid_q;
-          s2_x_q <= sorted_x_q;
-          s2_y_q <= sorted_y_q;
-          s2_j_q <= event_q;
-          if (s2_valid_q && kernel_in) begin
-            sum_x_q <= sum_x_q + SumBits'(s2_x_q);
-            sum_y_q <= sum_y_q + SumBits'(s2_y_q);
-            count_q <= count_q + 1'b1;
-          end
-          if (touched_we) begin
-            touched_q <= touched_q + 1'b1;
-          end
-          if (k_q >= k_end_q && !s1_valid_q && !s2_valid_q) begin
-            if (row_q == row_last_q) begin
-              state_q <= StStepEnd;
-            end else begin
+          if (k_q >= k_end_q) begin
+            if (row_q != row_last_q) begin
               row_q <= row_q + 1'b1;
               state_q <= StRowLow;
+            end else if (!s1_valid_q && !s2_valid_q && !s3_valid_q) begin
+              state_q <= StStepEnd;
             end
           end
         end
@@ -545,14 +557,12 @@ module evms_seeded_climbs #(
           s1_valid_q <= scan_c_q < modes_q;
           s1_c_q <= ModeBits'(scan_c_q);
           if (scan_c_q < modes_q) scan_c_q <= scan_c_q + 1'b1;
-          s2_valid_q <= s1_valid_q;
-          s2_c_q <= s1_c_q;
-          if (s2_valid_q && join_near && (!best_valid_q || dist2 < best_d2_q)) begin
+          if (s3_valid_q && join_near && (!best_valid_q || dist2_q < best_d2_q)) begin
             best_valid_q <= 1'b1;
-            best_q <= s2_c_q;
-            best_d2_q <= dist2;
+            best_q <= s3_c_q;
+            best_d2_q <= dist2_q;
           end
-          if (scan_c_q == modes_q && !s1_valid_q && !s2_valid_q) state_q <= StJoinDecide;
+          if (scan_c_q == modes_q && !s1_valid_q && !s2_valid_q && !s3_valid_q) state_q <= StJoinDecide;
         end
         StJoinDecide: begin
           if (best_valid_q) begin
