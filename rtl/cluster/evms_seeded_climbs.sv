@@ -15,9 +15,9 @@
 //           sums, 3 a event placing;
 //   climbs  per step: per row of cells 3 to read its run, one event a clock and 1 more, through
 //           a 4-stage pipeline (read; difference to the climb; squares; test and accumulate)
-//           that drains while the next row's run is read, 3 to drain after the last row, and
+//           that drains while the next row's run is read, 2 to drain after the last row, and
 //           when the ball held events a divide of SumBits + 2 clocks (x and y at once);
-//           per climb: one open mode a clock through the same pipeline, 3 to drain, 1 to
+//           per climb: one open mode a clock through the same pipeline, 2 to drain, 1 to
 //           decide, touched events + 2 to label.
 // The kernel's events and the join's modes share the pipeline's difference and squared-distance
 // registers: a memory's read, the subtraction, the squares and the comparisons are each a
@@ -525,14 +525,15 @@ module evms_seeded_climbs #(
         end
         StKernel: begin
           // Issue (the memories read k); the difference, its square, the test and the sums follow
-          // in the pipeline. The next row starts after the last issue, the step ends on the drain.
+          // in the pipeline. The next row starts after the last issue; the step ends when the last
+          // event is at s3, whose sum is taken in the same clock.
           s1_valid_q <= k_q < k_end_q;
           if (k_q < k_end_q) k_q <= k_q + 1'b1;
           if (k_q >= k_end_q) begin
             if (row_q != row_last_q) begin
               row_q <= row_q + 1'b1;
               state_q <= StRowLow;
-            end else if (!s1_valid_q && !s2_valid_q && !s3_valid_q) begin
+            end else if (!s1_valid_q && !s2_valid_q) begin   // s3's last sum is this clock's
               state_q <= StStepEnd;
             end
           end
@@ -562,7 +563,7 @@ module evms_seeded_climbs #(
             best_q <= s3_c_q;
             best_d2_q <= dist2_q;
           end
-          if (scan_c_q == modes_q && !s1_valid_q && !s2_valid_q && !s3_valid_q) state_q <= StJoinDecide;
+          if (scan_c_q == modes_q && !s1_valid_q && !s2_valid_q) state_q <= StJoinDecide;   // s3's last test is this clock's
         end
         StJoinDecide: begin
           if (best_valid_q) begin
@@ -595,6 +596,10 @@ module evms_seeded_climbs #(
   assign modes_lost = lost_q;
 
   `EVMS_ASSERT("a packet holds at most PacketMax events", !(start && n > 16'(PacketMax)), clk, rst_n)
+  `EVMS_ASSERT("a step's sums are complete when it ends: the distance pipeline has drained",
+               state_q != StStepEnd || !(s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
+  `EVMS_ASSERT("the join's decision follows its last test: the distance pipeline has drained",
+               state_q != StJoinDecide || !(s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
   `EVMS_ASSERT("a ball reaches at most ReachMax bandwidths", state_q != StClimbStart || ball2_q <= 64'(ReachMax * ReachMax) * One, clk, rst_n)
   `EVMS_ASSERT("the merge radius is below 2^ReachBits bandwidths", !start || cfg_merge_radius2 < (64'(1) << (2 * DistBits)), clk, rst_n)
 endmodule
