@@ -222,7 +222,6 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   // for the Gaussian (exp(-|dphi|^2)).
   const double unit = seeded ? p.bandwidth : p.bandwidth * std::sqrt(2.0);
   const FeatureSides side = feature_sides(p, sensor);
-  const double side_x = side.x, side_y = side.y;
   const double feat = std::ldexp(1.0, S::kFeatFrac);
   const double tick_s = tick_seconds<S>();
   auto rnd = [](double v) { return static_cast<std::int64_t>(std::llround(v)); };
@@ -239,16 +238,16 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.filter_warm_up = static_cast<std::uint32_t>(p.filter_warm_up_us);  // at most 1e9 (types/params.cpp)
   c.packet_size = static_cast<std::uint16_t>(p.packet_size);
   c.packet_max_span_us = static_cast<std::uint32_t>(std::min<TimeUs>(p.packet_max_span_us, 0xFFFFFFFF));
-  c.scale_x = static_cast<std::uint32_t>(rnd(p.scale_xy / (side_x * unit) * std::ldexp(1.0, S::kCoordScaleFrac)));
-  c.scale_y = static_cast<std::uint32_t>(rnd(p.scale_xy / (side_y * unit) * std::ldexp(1.0, S::kCoordScaleFrac)));
+  c.scale_x = static_cast<std::uint32_t>(rnd(p.scale_xy / (side.x * unit) * std::ldexp(1.0, S::kCoordScaleFrac)));
+  c.scale_y = static_cast<std::uint32_t>(rnd(p.scale_xy / (side.y * unit) * std::ldexp(1.0, S::kCoordScaleFrac)));
   c.phi_on = static_cast<std::uint32_t>(rnd(p.scale_p / unit * feat));
   c.phi_t_max = static_cast<std::uint32_t>(rnd(p.scale_t / unit * feat));
   c.inv_tau = static_cast<std::uint64_t>(rnd(std::ldexp(1.0, S::kDecayFrac) / p.tau_us));
   // Seeded climbs' features and positions carry kClimbFrac more fraction bits.
   const double climb = seeded ? feat * std::ldexp(1.0, hls::kClimbFrac) : feat;
   if (seeded) {
-    c.climb_scale_x = static_cast<std::uint64_t>(rnd(p.scale_xy / (side_x * unit) * std::ldexp(1.0, hls::kClimbScaleFrac)));
-    c.climb_scale_y = static_cast<std::uint64_t>(rnd(p.scale_xy / (side_y * unit) * std::ldexp(1.0, hls::kClimbScaleFrac)));
+    c.climb_scale_x = static_cast<std::uint64_t>(rnd(p.scale_xy / (side.x * unit) * std::ldexp(1.0, hls::kClimbScaleFrac)));
+    c.climb_scale_y = static_cast<std::uint64_t>(rnd(p.scale_xy / (side.y * unit) * std::ldexp(1.0, hls::kClimbScaleFrac)));
   }
   c.seeded = seeded;
   c.warm_start = p.warm_start;
