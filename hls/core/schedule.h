@@ -10,8 +10,8 @@
 // (3 clocks for a 64-bit product, pipelined over its digit products, ceil(64 / d) + 1 for d bits
 // a clock) and R = 6 the reciprocal's:
 //   accept      1 per input word (the controller takes it from the intake's queue)
-//   filter      the controller's clocks waiting for the intake: the filter takes 19..21 clocks
-//               an event (21 inside the sensor, less on its last row and column; 1 when it is
+//   filter      the controller's clocks waiting for the intake: the filter takes 20..22 clocks
+//               an event (22 inside the sensor, less on its last row and column; 1 when it is
 //               off or the event is outside the sensor), plus 3 for each entry its time
 //               scrubber owes (hls/filter/ba_filter.h) or the RAM's size after a long gap, at
 //               least 3 with the climb features and 3 more through the queue, but runs while
@@ -208,10 +208,11 @@ class ScheduleCounter {
       scrub = owed.clear_all ? BackgroundActivityFilter<S>::kPixels : 3 * owed.entries;
     }
     filter_started_ = true, filter_last_t_ = w.t;
-    // The filter waits two clocks for the RAM after the last neighbour inside the sensor it
-    // reads; neighbours are read row by row, so the bottom row and the right column end sooner.
-    if (w.y + 1 >= cfg_.sensor_height) return scrub + 19;
-    return scrub + (w.x + 1 >= cfg_.sensor_width ? 20 : 21);
+    // The filter registers the event for a clock before it judges it, and waits two clocks for
+    // the RAM after the last neighbour inside the sensor it reads; neighbours are read row by
+    // row, so the bottom row and the right column end sooner.
+    if (w.y + 1 >= cfg_.sensor_height) return scrub + 20;
+    return scrub + (w.x + 1 >= cfg_.sensor_width ? 21 : 22);
   }
 
  private:

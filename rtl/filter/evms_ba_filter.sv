@@ -1,13 +1,18 @@
 // Background-activity filter with its per-pixel timestamp RAM, as hls/filter/ba_filter.h.
-// One event at a time: start with (t, x, y) -> done with kept, about 15 cycles later.
+// One event at a time: start with (t, x, y) -> done with kept, 20 to 22 clocks later (and 3 for
+// each entry the scrubber owes; hls/core/schedule.h counts them).
 //   - filter off: kept at once, no memory access;
 //   - outside the configured sensor: noise, no memory access;
-//   - else first scrub for the time since the last judged event: one entry for each 2^SweepLog2
-//     us boundary crossed (at most the whole RAM), clearing each whose age is at least half the
-//     wrap, or, after a gap of more than a quarter of the wrap, clear the whole RAM; then read the
-//     (up to) 8 neighbours inside the sensor, keep when one holds a time t' != 0 with
-//     (now - t') mod 2^TimestampBits <= window, where now = t >> TimestampShift; write now (or 1
-//     for 0) to the own pixel; then scrub two more entries;
+//   - else the event is registered with its time's distances from the scrubber's last time and
+//     the warm-up's start (the clock in which start is high does no more, so that the input's
+//     path from the link queue through the intake ends at a register, not at the scrubber's and
+//     the warm-up's comparisons), and judged from the next clock on. First it scrubs for the
+//     time since the last judged event: one entry for each 2^SweepLog2 us boundary crossed (at
+//     most the whole RAM), clearing each whose age is at least half the wrap, or, after a gap of
+//     more than a quarter of the wrap, clears the whole RAM; then it reads the (up to) 8
+//     neighbours inside the sensor and keeps the event when one holds a time t' != 0 with
+//     (now - t') mod 2^TimestampBits <= window, where now = t >> TimestampShift; it writes now
+//     (or 1 for 0) to the own pixel, then scrubs two more entries;
 //   - the noise check: the events no neighbour supported are counted in intervals of 2^NoiseIntervalLog2 us
 //     (t[31:NoiseIntervalLog2]); an interval with cfg_noise_count or more of them makes the next one noisy,
 //     and there an event needs two supporting neighbours instead of one (cfg_noise_count 0: off);
@@ -66,7 +71,7 @@ module evms_ba_filter #(
     else rdata_q <= ram[addr_q];
   end
 
-  typedef enum logic [3:0] {StClear, StIdle, StRead, StWrite, StScrubRead, StScrubWait, StScrubDecide, StDone} state_e;
+  typedef enum logic [3:0] {StClear, StIdle, StAccept, StRead, StWrite, StScrubRead, StScrubWait, StScrubDecide, StDone} state_e;
   state_e state_q, state_d;
   logic [AddrBits-1:0] clear_addr_q, clear_addr_d, scrub_q, scrub_d;
   // The scrubber: the last judged event's time in 2^SweepLog2 us units, the entries it still
@@ -76,8 +81,9 @@ module evms_ba_filter #(
   logic [CrossedBits-1:0] last_sweep_q, last_sweep_d;
   logic [OwedBits-1:0]    owed_q, owed_d;
   logic                   owed_before_reads_q, owed_before_reads_d;
-  wire  [CrossedBits-1:0] crossed = CrossedBits'(t >> SweepLog2) - last_sweep_q;
-  wire  [OwedBits-1:0]    owed = crossed >= CrossedBits'(Pixels) ? OwedBits'(Pixels) : OwedBits'(crossed);
+  // The accepted event's sweep boundaries crossed since the last judged event's, registered with it.
+  logic [CrossedBits-1:0] crossed_q, crossed_d;
+  wire  [OwedBits-1:0]    owed = crossed_q >= CrossedBits'(Pixels) ? OwedBits'(Pixels) : OwedBits'(crossed_q);
   logic [3:0]    k_q, k_d;            // neighbour being addressed (0..8)
   logic [1:0]    pending_cmp_q, pending_cmp_d;  // [0]: address registered last cycle; [1]: rdata_q holds that neighbour
   logic [3:0]    supporters_q, supporters_d;   // neighbours that fired within the window, 0..8
@@ -91,24 +97,29 @@ module evms_ba_filter #(
   // keeps the event being judged.
   logic [31:0]             warm_start_q, warm_start_d;
   logic                    warming_q, warming_d, warm_keep_q, warm_keep_d;
-  wire                     warm_within = t - warm_start_q < cfg_warm_up;
+  logic [31:0]             warm_elapsed_q, warm_elapsed_d;   // the accepted event's time since warm_start_q
+  wire                     warm_within = warm_elapsed_q < cfg_warm_up;
   logic [IntervalBits-1:0] interval_q, interval_d;
   logic [23:0]             unsupported_q, unsupported_d;
-  wire  [IntervalBits-1:0] interval = t[31:NoiseIntervalLog2];
+  logic [IntervalBits-1:0] event_interval_q, event_interval_d;   // the accepted event's interval
   logic [TimestampBits-1:0] now_q, now_d;
   wire  [31:0]              age = 32'(TimestampBits'(now_q - rdata_q));  // of the neighbour rdata_q holds
   logic [15:0]   ex_q, ex_d, ey_q, ey_d;
 
   // Neighbour k_q of the event, and whether it is inside the sensor (and not the pixel itself).
   // k_q / 3 and k_q % 3 by comparison: a '/' or '%' here would synthesize a 32-bit divider.
+  // Which of the rows above, at and below the event, and of the columns left of, at and right of
+  // it, lie inside the sensor is decided once an event (StAccept), so that choosing a neighbour
+  // takes no comparison with the sensor's size.
   logic [1:0]         k_row, k_col;
   logic signed [17:0] nx, ny;
+  logic [2:0]         rows_inside_q, rows_inside_d, cols_inside_q, cols_inside_d;
   logic               n_inside;
   assign k_row = k_q >= 4'd6 ? 2'd2 : (k_q >= 4'd3 ? 2'd1 : 2'd0);
   assign k_col = 2'(k_q - 4'(k_row) * 4'd3);
   assign nx = $signed({2'b00, ex_q}) + $signed({16'd0, k_col}) - 18'sd1;
   assign ny = $signed({2'b00, ey_q}) + $signed({16'd0, k_row}) - 18'sd1;
-  assign n_inside = k_q != 4 && nx >= 0 && ny >= 0 && nx < $signed({2'b00, cfg_width}) && ny < $signed({2'b00, cfg_height});
+  assign n_inside = k_q != 4 && rows_inside_q[k_row] && cols_inside_q[k_col];
 
   assign ready = state_q == StIdle;
 
@@ -118,6 +129,7 @@ module evms_ba_filter #(
     clear_addr_d = clear_addr_q;
     scrub_d = scrub_q;
     last_sweep_d = last_sweep_q;
+    crossed_d = crossed_q;
     owed_d = owed_q;
     owed_before_reads_d = owed_before_reads_q;
     done_d = 1'b0;
@@ -135,11 +147,15 @@ module evms_ba_filter #(
     warm_start_d = warm_start_q;
     warming_d = warming_q;
     warm_keep_d = warm_keep_q;
+    warm_elapsed_d = warm_elapsed_q;
+    event_interval_d = event_interval_q;
     interval_d = interval_q;
     unsupported_d = unsupported_q;
     now_d = now_q;
     ex_d = ex_q;
     ey_d = ey_q;
+    rows_inside_d = rows_inside_q;
+    cols_inside_d = cols_inside_q;
     case (state_q)
       StClear: begin
         we_d = 1'b1;
@@ -159,39 +175,48 @@ module evms_ba_filter #(
           ex_d = x;
           ey_d = y;
           now_d = TimestampBits'(t >> TimestampShift);
-          k_d = '0;
-          pending_cmp_d = '0;
-          supporters_d = '0;
-          quiet_supporters_d = '0;
           last_sweep_d = CrossedBits'(t >> SweepLog2);
-          // Scrubbing owed for the time since the last judged event comes before the reads.
-          if (started_q && crossed > ClearCrossings) begin
-            clear_addr_d = '0;
-            state_d = StClear;
-          end else if (started_q && owed != 0) begin
-            owed_d = owed;
-            owed_before_reads_d = 1'b1;
-            state_d = StScrubRead;
-          end else begin
-            state_d = StRead;
+          crossed_d = CrossedBits'(t >> SweepLog2) - last_sweep_q;
+          event_interval_d = t[31:NoiseIntervalLog2];
+          if (!started_q) warm_start_d = t;
+          warm_elapsed_d = t - warm_start_q;
+          state_d = StAccept;
+        end
+      end
+      StAccept: begin
+        // The event itself is inside the sensor (StIdle), so its own row and column are.
+        rows_inside_d = {17'(ey_q) + 17'd1 < 17'(cfg_height), 1'b1, ey_q != 0};
+        cols_inside_d = {17'(ex_q) + 17'd1 < 17'(cfg_width), 1'b1, ex_q != 0};
+        k_d = '0;
+        pending_cmp_d = '0;
+        supporters_d = '0;
+        quiet_supporters_d = '0;
+        // Scrubbing owed for the time since the last judged event comes before the reads.
+        if (started_q && crossed_q > ClearCrossings) begin
+          clear_addr_d = '0;
+          state_d = StClear;
+        end else if (started_q && owed != 0) begin
+          owed_d = owed;
+          owed_before_reads_d = 1'b1;
+          state_d = StScrubRead;
+        end else begin
+          state_d = StRead;
+        end
+        // A new interval latches whether the one before it was noisy.
+        if (!started_q) begin
+          started_d = 1'b1;
+          interval_d = event_interval_q;
+          warming_d = cfg_warm_up != 0;
+          warm_keep_d = cfg_warm_up != 0;
+        end else begin
+          if (event_interval_q != interval_q) begin
+            noisy_d = cfg_noise_count != 0 && event_interval_q == interval_q + 1'b1 && unsupported_q >= cfg_noise_count;
+            quiet_d = cfg_quiet_count != 0 && unsupported_q < cfg_quiet_count;
+            interval_d = event_interval_q;
+            unsupported_d = '0;
           end
-          // A new interval latches whether the one before it was noisy.
-          if (!started_q) begin
-            started_d = 1'b1;
-            interval_d = interval;
-            warm_start_d = t;
-            warming_d = cfg_warm_up != 0;
-            warm_keep_d = cfg_warm_up != 0;
-          end else begin
-            if (interval != interval_q) begin
-              noisy_d = cfg_noise_count != 0 && interval == interval_q + 1'b1 && unsupported_q >= cfg_noise_count;
-              quiet_d = cfg_quiet_count != 0 && unsupported_q < cfg_quiet_count;
-              interval_d = interval;
-              unsupported_d = '0;
-            end
-            warm_keep_d = warming_q && warm_within;
-            if (!warm_within) warming_d = 1'b0;
-          end
+          warm_keep_d = warming_q && warm_within;
+          if (!warm_within) warming_d = 1'b0;
         end
       end
       StRead: begin
@@ -248,6 +273,7 @@ module evms_ba_filter #(
       clear_addr_q <= '0;
       scrub_q <= '0;
       last_sweep_q <= '0;
+      crossed_q <= '0;
       owed_q <= '0;
       owed_before_reads_q <= 1'b0;
       done <= 1'b0;
@@ -265,16 +291,21 @@ module evms_ba_filter #(
       warm_start_q <= '0;
       warming_q <= 1'b0;
       warm_keep_q <= 1'b0;
+      warm_elapsed_q <= '0;
+      event_interval_q <= '0;
       interval_q <= '0;
       unsupported_q <= '0;
       now_q <= '0;
       ex_q <= '0;
       ey_q <= '0;
+      rows_inside_q <= '0;
+      cols_inside_q <= '0;
     end else begin
       state_q <= state_d;
       clear_addr_q <= clear_addr_d;
       scrub_q <= scrub_d;
       last_sweep_q <= last_sweep_d;
+      crossed_q <= crossed_d;
       owed_q <= owed_d;
       owed_before_reads_q <= owed_before_reads_d;
       done <= done_d;
@@ -292,11 +323,15 @@ module evms_ba_filter #(
       warm_start_q <= warm_start_d;
       warming_q <= warming_d;
       warm_keep_q <= warm_keep_d;
+      warm_elapsed_q <= warm_elapsed_d;
+      event_interval_q <= event_interval_d;
       interval_q <= interval_d;
       unsupported_q <= unsupported_d;
       now_q <= now_d;
       ex_q <= ex_d;
       ey_q <= ey_d;
+      rows_inside_q <= rows_inside_d;
+      cols_inside_q <= cols_inside_d;
     end
   end
 endmodule
