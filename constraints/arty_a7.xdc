@@ -6,8 +6,9 @@ set_property -dict { PACKAGE_PIN C2  IOSTANDARD LVCMOS33 } [get_ports { BTN_N }]
 ## USB UART: A9 carries the host's bytes in, D10 ours out.
 set_property -dict { PACKAGE_PIN A9  IOSTANDARD LVCMOS33 } [get_ports { RX }]
 set_property -dict { PACKAGE_PIN D10 IOSTANDARD LVCMOS33 } [get_ports { TX }]
-set_property -dict { PACKAGE_PIN H5  IOSTANDARD LVCMOS33 } [get_ports { LEDG_N }]
-set_property -dict { PACKAGE_PIN J5  IOSTANDARD LVCMOS33 } [get_ports { LEDR_N }]
+## LD4 and LD5 (lit by a high level): the core at work, a link error since reset.
+set_property -dict { PACKAGE_PIN H5  IOSTANDARD LVCMOS33 } [get_ports { LED_BUSY }]
+set_property -dict { PACKAGE_PIN J5  IOSTANDARD LVCMOS33 } [get_ports { LED_ERROR }]
 ## AER address bits 7..0 on PMOD JA, 15..8 on JB; request and acknowledge on JC.
 set_property -dict { PACKAGE_PIN G13 IOSTANDARD LVCMOS33 } [get_ports { AER_ADDR[0] }]
 set_property -dict { PACKAGE_PIN B11 IOSTANDARD LVCMOS33 } [get_ports { AER_ADDR[1] }]

@@ -8,6 +8,9 @@ module evms_arty_top #(
   // 0 or 1 overrides the build's BoardCoreStopsAtFilter; -1 keeps it.
   parameter int CoreStopsAtFilterOverride = -1
 ) (
+  // LD4 and LD5, lit by a high level (the board's LEDs are anode-connected to the pins).
+  output logic LED_BUSY,
+  output logic LED_ERROR,
   `include "evms_board_top_ports.svh"
 );
   `include "evms_cfg_arty.svh"
@@ -16,4 +19,6 @@ module evms_arty_top #(
   assign board_clk = CLK;
   assign board_clk_locked = 1'b1;
   `include "evms_board_top_body.svh"
+  assign LED_BUSY = busy;
+  assign LED_ERROR = error;
 endmodule

@@ -1,6 +1,7 @@
 // What every board top holds once its build's constants are included (evms_cfg_<build>.svh)
 // and its clock is made (board_clk, and board_clk_locked once it is steady): a power-on reset
-// and the board (rtl/board/evms_board.sv) at the build's shape, its LEDs active low. The top's
+// and the board (rtl/board/evms_board.sv) at the build's shape, whose busy and error the top
+// drives its LEDs with, at its board's polarity. The top's
 // LanesOverride and CoreStopsAtFilterOverride let the synthesis flow (constraints/flow/synth.sh)
 // sweep the lanes and measure the whole core where the build cuts it.
 
@@ -19,5 +20,3 @@
   ) u_board (
     .clk(board_clk), .rst_n(rst_n), .aer_req_n(AER_REQ_N), .aer_ack_n(AER_ACK_N), .aer_addr(AER_ADDR), .uart_rx(RX),
     .uart_tx(TX), .led_busy(busy), .led_error(error));
-  assign LEDG_N = !busy;
-  assign LEDR_N = !error;

@@ -14,6 +14,9 @@ module evms_icebreaker_top #(
   // puts it in; -1 keeps the build's BoardCoreStopsAtFilter.
   parameter int CoreStopsAtFilterOverride = -1
 ) (
+  // The red and the green LED beside the button, lit by a low level.
+  output logic LEDR_N,
+  output logic LEDG_N,
   `include "evms_board_top_ports.svh"
 );
   `include "evms_cfg_ice40.svh"
@@ -36,4 +39,6 @@ module evms_icebreaker_top #(
   assign board_clk_locked = 1'b1;
 `endif
   `include "evms_board_top_body.svh"
+  assign LEDG_N = !busy;
+  assign LEDR_N = !error;
 endmodule
