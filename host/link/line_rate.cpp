@@ -2,6 +2,7 @@
 #include "host/link/line_rate.h"
 
 #include <asm/termbits.h>
+#include <linux/serial.h>
 #include <sys/ioctl.h>
 
 namespace evms::link {
@@ -13,6 +14,13 @@ bool set_line_rate(int fd, int baud) {
   t.c_cflag |= BOTHER | (BOTHER << IBSHIFT);
   t.c_ispeed = t.c_ospeed = static_cast<speed_t>(baud);
   return ioctl(fd, TCSETS2, &t) == 0;
+}
+
+bool set_low_latency(int fd) {
+  serial_struct s{};
+  if (ioctl(fd, TIOCGSERIAL, &s) != 0) return false;
+  s.flags |= ASYNC_LOW_LATENCY;
+  return ioctl(fd, TIOCSSERIAL, &s) == 0;
 }
 
 int line_rate(int fd) {

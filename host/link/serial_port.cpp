@@ -40,6 +40,9 @@ SerialPort::SerialPort(const std::string& path, int baud) : path_(path) {
     ::close(fd_);
     throw std::runtime_error(path + ": the device does not take " + std::to_string(baud) + " baud (" + why + ")");
   }
+  // A board's labels and tracks come in small frames: without the mode, an FTDI bridge would hold
+  // each quiet stretch's last frames up to 16 ms. A driver without it refuses, and nothing changes.
+  set_low_latency(fd_);
   tcflush(fd_, TCIOFLUSH);
 }
 
