@@ -42,7 +42,7 @@ awk '/^ *(input|output|inout) / {
 # The file's constraints, one line each: LINE NAME PIN, and for an .xdc LINE NAME STANDARD and
 # the clock's LINE NAME PERIOD.
 if [ $kind = pcf ]; then
-  awk '{ sub(/#.*/, "") } $1 == "set_io" { n = 0; for (i = 2; i <= NF; ++i) if ($i !~ /^-/) a[++n] = $i
+  awk '{ sub(/#.*/, "") } $1 == "set_io" { n = 0; a[1] = a[2] = ""; for (i = 2; i <= NF; ++i) if ($i !~ /^-/) a[++n] = $i
                                             print FNR, a[1], a[2] }' "$file" >"$tmp/pins"
 else
   # Each line that names a port: its PACKAGE_PIN, IOSTANDARD and create_clock -period, into three lists.
@@ -65,6 +65,7 @@ errors=0
 fail() { echo "check_pins.sh: $*" >&2; errors=$((errors + 1)); }
 while read -r line name pin; do
   grep -qxF "$name" "$tmp/ports" || fail "$file:$line: $name is not a port of $top (rtl/board/$top.sv)"
+  [ -n "$pin" ] || fail "$file:$line: $name has no pin"
 done <"$tmp/pins"
 while read -r port; do
   n=$(awk -v p="$port" '$2 == p' "$tmp/pins" | wc -l)
