@@ -72,8 +72,8 @@ TEST(BackendsAgree, ACoreBuildAppliesItsOwnSizes) {
 }
 
 // The Arty build runs the seeded path, which the cycle model does not count: evms cycles measures
-// it on the RTL without being asked (the same figures as with --rtl), and refuses only --table,
-// which sweeps the model.
+// it on the RTL without being asked (the same figures as with --rtl), gives the rate that total
+// sustains at the build's clock, and refuses only --table, which sweeps the model.
 TEST(BackendsAgree, CyclesOfTheSeededArtyBuildAreMeasuredOnTheRtl) {
   const std::string scene = " cycles \"gen://rotation?duration-s=0.1&seed=9\" --build arty";
   const auto plain = run_command(evms_binary() + scene);
@@ -84,7 +84,13 @@ TEST(BackendsAgree, CyclesOfTheSeededArtyBuildAreMeasuredOnTheRtl) {
   EXPECT_EQ(plain.out, asked.out);
   const size_t total = plain.out.find("\ntotal");
   ASSERT_NE(total, std::string::npos) << plain.out;
-  EXPECT_GT(std::stod(plain.out.substr(total + 6)), 10.0) << plain.out;
+  const double per_event = std::stod(plain.out.substr(total + 6));
+  EXPECT_GT(per_event, 10.0) << plain.out;
+  const size_t rate = plain.out.find("\nrate");
+  ASSERT_NE(rate, std::string::npos) << plain.out;
+  const double clock_hz = static_cast<double>(backend::board_of("arty").clock_hz);
+  EXPECT_NEAR(std::stod(plain.out.substr(rate + 5)) * 1e6, clock_hz / per_event, 0.006e6) << plain.out;
+  EXPECT_NE(plain.out.find(" M events/s at the build's 100 MHz clock (the RTL's cycles)"), std::string::npos) << plain.out;
   const auto table = run_command(evms_binary() + scene + " --table");
   EXPECT_NE(table.exit_code, 0);
   EXPECT_NE(table.err.find("--table"), std::string::npos) << table.err;
