@@ -47,6 +47,7 @@
 #include "host/backend/core_backend.h"
 #include "host/backend/fixed_backend.h"
 #include "host/backend/registry.h"
+#include "host/link/find_bridge.h"
 #include "host/link/link_protocol.h"
 #include "host/link/serial_port.h"
 
@@ -164,8 +165,9 @@ class BoardBackend final : public Backend {
   }
 
  private:
-  static const std::string& check(const BackendOptions& o, const char* build) {
-    if (o.device.empty()) throw std::invalid_argument("the board backend needs --device (e.g. /dev/ttyUSB1, or the path evms vboard prints)");
+  // The device to open, once the settings are ones the board runs: --device, or the one board's
+  // UART connected (host/link/find_bridge.h).
+  static std::string check(const BackendOptions& o, const char* build) {
     if (board_of(build).core_stops_at_filter && o.board_keeps_labels) {
       throw std::invalid_argument(std::string("the ") + build + " board's core stops at the filter and the host clusters its verdicts, so " +
                                   "they must cross the link: --board-link tracks needs a board with the whole core (--core arty)");
@@ -177,7 +179,7 @@ class BoardBackend final : public Backend {
                                   " --max-clusters " + std::to_string(S::kClustersMax) + " --max-tracks " + std::to_string(S::kTracksMax) +
                                   " and the method its registers hold (evms params --core " + build + "); run with exactly those");
     }
-    return o.device;
+    return o.device.empty() ? link::the_board_uart() : o.device;
   }
 
   struct DiscardSink final : OutputSink {

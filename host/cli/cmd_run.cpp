@@ -186,7 +186,7 @@ void register_run(CLI::App& app) {
   cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host (1280x720), arty or ice40 (hls/core/shape.h); "
                                      "of the board backend: ice40 (the iCEBreaker, also for host) or arty")
       ->default_val(o->core);
-  cmd->add_option("--device", o->device, "serial device of the board backend (or the path evms vboard prints)");
+  cmd->add_option("--device", o->device, "serial device of the board backend (or the path evms vboard prints); without it, the one board's UART connected (an FT2232H's channel B)");
   std::string board_rates;  // each board's own line rate, from EVMS_BOARD_BUILDS (hls/core/configs.h)
 #define EVMS_BOARD_RATE(name, clock_hz, clocks_per_bit, link_fifo_depth, stops_at_filter) \
   board_rates += std::string(board_rates.empty() ? "" : ", ") + std::to_string(backend::board_of(#name).baud()) + " on " #name;

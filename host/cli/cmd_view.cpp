@@ -250,7 +250,7 @@ void add_view_command(CLI::App& app, const char* name, const char* help, bool li
   cmd->add_option("--backend", o->backend, "implementation: golden, fixed, rtl or board (b switches among the first three that implement the method)")
       ->default_val(o->backend);
   cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host, arty or ice40")->default_val(o->core);
-  cmd->add_option("--device", o->device, "serial device of the board backend");
+  cmd->add_option("--device", o->device, "serial device of the board backend; without it, the one board's UART connected (an FT2232H's channel B)");
   add_board_link_option(*cmd, o->board_link, "the events drawn grey, with the board's tracks over them");
   cmd->add_option("--fps", o->fps, "frames per second of sensor time")->default_val(o->fps)->check(finite_in(1.0, 1000.0));
   cmd->add_option("--scale", o->scale, "screen pixels per sensor pixel")->default_val(o->scale)->check(CLI::Range(1, 8));

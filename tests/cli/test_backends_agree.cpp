@@ -20,6 +20,7 @@
 #include "hls/core/configs.h"
 #include "host/backend/core_backend.h"
 #include "host/backend/core_config.h"
+#include "host/link/find_bridge.h"
 #include "host/link/line_rate.h"
 #include "tests/support/command.h"
 #include "tests/support/encoders.h"
@@ -271,6 +272,59 @@ TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {
                                " run gen://rotation?width=128\\&height=128 --backend board --board-link tracks --device /dev/null --quiet");
   EXPECT_NE(cut.exit_code, 0);
   EXPECT_NE(cut.err.find("the ice40 board's core stops at the filter"), std::string::npos) << cut.err;
+}
+
+// Without --device the board backend takes the one board's UART connected: an FT2232H's channel
+// B (USB 0403:6010, interface 01), as sysfs shows it. Here a sysfs tree laid out as Linux's: each
+// /sys/class/tty/ttyUSB*'s device a link to its usb-serial port, below the USB interface, below the
+// USB device. Channel A, another vendor's bridge and a non-USB tty are passed over; none, or two
+// boards, is an error that says so.
+TEST(BackendsAgree, TheBoardsUartIsFoundInSysfsWithoutDevice) {
+  namespace fs = std::filesystem;
+  TempDir dir;
+  const fs::path root = dir.path("sys");
+  auto text = [](const fs::path& file, const std::string& line) {
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << line << "\n";
+  };
+  auto usb_device = [&](const std::string& at, const std::string& vendor, const std::string& product) {
+    const fs::path d = root / "devices/pci0000:00/usb1" / at;
+    text(d / "idVendor", vendor);
+    text(d / "idProduct", product);
+    return d;
+  };
+  auto tty = [&](const std::string& name, const fs::path& usb, const std::string& interface) {
+    const fs::path intf = usb / (usb.filename().string() + ":1." + std::to_string(std::stoi(interface)));
+    text(intf / "bInterfaceNumber", interface);
+    fs::create_directories(intf / name / "tty" / name);
+    fs::create_directories(root / "class/tty");
+    fs::create_directory_symlink(intf / name / "tty" / name, root / "class/tty" / name);
+    fs::create_directory_symlink(intf / name, intf / name / "tty" / name / "device");
+  };
+  EXPECT_TRUE(link::ft2232h_uarts(root).empty());
+  try {
+    link::the_board_uart(root);
+    ADD_FAILURE() << "no UART in the tree, yet one was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no board's UART is connected"), std::string::npos) << e.what();
+  }
+  const fs::path board = usb_device("1-1", "0403", "6010");
+  tty("ttyUSB0", board, "00");
+  tty("ttyUSB1", board, "01");
+  tty("ttyUSB2", usb_device("1-2", "10c4", "ea60"), "00");
+  fs::create_directories(root / "class/tty/ttyS0");
+  EXPECT_EQ(link::ft2232h_uarts(root), std::vector<std::string>{"/dev/ttyUSB1"});
+  EXPECT_EQ(link::the_board_uart(root), "/dev/ttyUSB1");
+  const fs::path second = usb_device("1-3", "0403", "6010");
+  tty("ttyUSB3", second, "00");
+  tty("ttyUSB4", second, "01");
+  EXPECT_EQ(link::ft2232h_uarts(root), (std::vector<std::string>{"/dev/ttyUSB1", "/dev/ttyUSB4"}));
+  try {
+    link::the_board_uart(root);
+    ADD_FAILURE() << "two boards, yet one was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("(/dev/ttyUSB1, /dev/ttyUSB4): name the one to use with --device"), std::string::npos) << e.what();
+  }
 }
 
 // The count of "events in   N" in a run's summary; -1 when it has none.
