@@ -1,4 +1,5 @@
 board/evms_sync.sv
+board/evms_reset_gen.sv
 board/evms_crc16_pkg.sv
 board/evms_aer_rx.sv
 board/evms_uart_rx.sv

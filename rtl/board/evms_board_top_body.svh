@@ -5,12 +5,10 @@
 // LanesOverride and CoreStopsAtFilterOverride let the synthesis flow (constraints/flow/synth.sh)
 // sweep the lanes and measure the whole core where the build cuts it.
 
-  // Power-on reset: hold the design in reset until the clock is steady and 16 clocks after, and
-  // while the button is pressed.
-  logic [4:0] por = '0;
+  // The design is in reset from power-up until the clock is steady and 18 clocks after, and while
+  // the button is pressed; it leaves the reset on a clock edge (rtl/board/evms_reset_gen.sv).
   logic rst_n;
-  always_ff @(posedge board_clk) if (!board_clk_locked) por <= '0; else if (!por[4]) por <= por + 1'b1;
-  assign rst_n = por[4] && BTN_N;
+  evms_reset_gen #(.HoldClocksLog2(4)) u_reset (.clk(board_clk), .clk_locked(board_clk_locked), .button_n(BTN_N), .rst_n(rst_n));
 
   logic busy, error;
   evms_board #(
