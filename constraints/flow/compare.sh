@@ -1,8 +1,10 @@
 #!/bin/bash
 # Compares a synthesis report (synth.sh) with the committed baseline: prints every resource
 # and the logic delay of the longest path beside its baseline, and fails when a resource grew by
-# more than the tolerance (default 2 %), the logic delay by more than its own (default 5 %), or
-# when a configuration that fitted its device no longer does.
+# more than the tolerance (default 2 %), the logic delay by more than its own (default 5 %),
+# when a configuration that fitted its device no longer does, or when an Arty configuration that
+# fitted takes more than its budget of the XC7A35T's LUTs (devices.sh: 80 %), which a growth
+# within the tolerance can pass.
 #
 # The logic delay has the wider tolerance because Yosys's mapping moves it by several percent
 # for changes that touch no path: a configuration register that the iCEBreaker build never reads
@@ -14,6 +16,7 @@
 # After a change that is worth its area, copy the report over baseline.json in the same commit.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
+source "$here/devices.sh"
 report=${1:?usage: compare.sh REPORT.json [BASELINE.json] [TOLERANCE_PERCENT] [LOGIC_TOLERANCE_PERCENT]}
 baseline=${2:-$here/baseline.json}
 resource_tolerance=${3:-2}
@@ -44,6 +47,11 @@ for config in $(grep -oE '^ *"[a-z0-9_]+":' "$report" | tr -d ' ":'); do
   done
   if [ "$(field "$baseline" "$config" fits)" = true ] && [ "$(field "$report" "$config" fits)" != true ]; then
     echo "compare.sh: $config no longer fits its device" >&2
+    status=1
+  fi
+  budget=$((capacity[xc7_lut] * xc7_lut_budget_percent / 100))
+  if [[ $config == xc7_* ]] && [ "$(field "$baseline" "$config" fits)" = true ] && [ "$(field "$report" "$config" lut)" -gt $budget ]; then
+    echo "compare.sh: $config takes $(field "$report" "$config" lut) LUTs, above its budget of $budget ($xc7_lut_budget_percent % of the XC7A35T's ${capacity[xc7_lut]})" >&2
     status=1
   fi
 done

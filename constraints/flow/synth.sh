@@ -70,8 +70,7 @@ for family in xilinx ice40; do
 done
 
 # The iCE40 UP5K and the XC7A35T, for the "fits" verdict.
-declare -A capacity=([ice40_lut]=5280 [ice40_ff]=5280 [ice40_dsp]=8 [ice40_bram]=30 [ice40_spram]=4
-                     [xc7_lut]=20800 [xc7_ff]=41600 [xc7_dsp]=90 [xc7_bram]=50 [xc7_spram]=0)
+source "$here/devices.sh"
 
 count() {  # count FILE SECTION CELL-REGEX: the sum of the matching cell counts of SECTION ("design",
            # the whole design, or a module's name as yosys stat -json spells it) in a yosys stat -json
