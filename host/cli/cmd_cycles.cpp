@@ -131,14 +131,15 @@ void cycles(const CyclesOptions& o) {
   std::printf("\n");
   // What the build sustains at its board's clock (the RTL's cycles where they were measured):
   // the figure a sensor's peak rate is held against.
-  if (const backend::BoardOfBuild board = backend::board_of(o.build); board.clock_hz > 0) {
+  const backend::BoardOfBuild board = backend::board_of(o.build);
+  if (board.clock_hz > 0) {
     const double per_event = (measure_rtl ? measured.total() : predicted.total()) / n_events;
     const double rate = static_cast<double>(board.clock_hz) / per_event;
     std::printf("rate             %.*f %s events/s at the build's %.0f MHz clock (%s cycles)\n", rate >= 1e6 ? 2 : 0,
                 rate >= 1e6 ? rate / 1e6 : rate / 1e3, rate >= 1e6 ? "M" : "k", static_cast<double>(board.clock_hz) / 1e6,
                 measure_rtl ? "the RTL's" : "the model's");
   }
-  if (backend::board_of(o.build).core_stops_at_filter) {
+  if (board.core_stops_at_filter) {
     std::printf("\nthese are the whole %s core's cycles; its board runs it cut after the filter (the whole core does not fit the "
                 "device) and the host runs the rest: docs/rtl.md, \"Builds\"\n",
                 o.build.c_str());
