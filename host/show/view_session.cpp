@@ -84,6 +84,7 @@ void ViewSession::push_until(TimeUs t) {
       if (!pending_arrival_.empty()) sink_->latency_.arrived(std::span(pending_arrival_).subspan(pending_at_, end - pending_at_));
       const auto pushed = std::span(pending_).subspan(pending_at_, end - pending_at_);
       backend_->push(pushed, *sink_);
+      last_pushed_t_ = std::max(last_pushed_t_, pushed.back().t);
       if (labels_on_board()) {
         for (const Event& e : pushed) renderer_.add(LabelledEvent{e, kNoiseLabel});
       }
@@ -112,10 +113,14 @@ bool ViewSession::advance() {
     }
   }
   ++frame_;
+  const TimeUs previous_frame_t = frame_t_;
   frame_t_ = t_first_ + frame_ * period_us_;
   push_until(frame_t_);
   if (ended_) {
     backend_->finish(*sink_);
+    // The last frame is at the recording's last event, not up to a frame period past it: a
+    // recording shorter than the events' window would otherwise end on a frame with none of them.
+    frame_t_ = std::max(previous_frame_t, std::min(frame_t_, last_pushed_t_));
     return false;
   }
   return true;

@@ -65,6 +65,7 @@ class ViewSession {
   size_t pending_at_ = 0;
   bool started_ = false, ended_ = false;
   TimeUs t_first_ = 0, frame_t_ = 0;
+  TimeUs last_pushed_t_ = 0;  // the latest event pushed: where the last frame of a recording is
   std::int64_t frame_ = -1;
   std::deque<std::pair<TimeUs, std::int64_t>> history_;  // (frame time, events labelled by then)
 };

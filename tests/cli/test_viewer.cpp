@@ -60,6 +60,24 @@ TEST(Viewer, HeadlessFramesAreDeterministic) {
   EXPECT_GT(lit, 500u);
 }
 
+// A recording shorter than the events' window (20 ms, host/show/frame_renderer.h) ends on a
+// frame at its last event, which shows its events, not on one a frame period past it.
+TEST(Viewer, TheLastFrameOfAShortRecordingShowsItsEvents) {
+  TempDir dir;
+  const auto r = run_command(evms_binary() + " view \"gen://rotation?duration-s=0.012&seed=2\" --headless --fps 30 --frames " +
+                             dir.path("f"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 frames in " + dir.path("f")), std::string::npos) << r.out;
+  const Image img = read_png(dir.path("f/frame_000001.png"));
+  ASSERT_EQ(img.width, 480);
+  // Below the overlay's lines of text: the events.
+  size_t lit = 0;
+  for (size_t i = static_cast<size_t>(img.width) * 3 * 70; i + 2 < img.rgb.size(); i += 3) {
+    lit += (img.rgb[i] + img.rgb[i + 1] + img.rgb[i + 2]) > 120;
+  }
+  EXPECT_GT(lit, 1000u);  // 1,980 at the last event; 105 (the tracks alone) a frame period past it
+}
+
 TEST(Viewer, WithoutADisplayItSaysSoAndFailsOrWritesTheFrames) {
   TempDir dir;
   const std::string no_display = "env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER " + evms_binary() + " view \"" + kScene + "\"";
