@@ -1,8 +1,9 @@
 ## Arty A7-35T for rtl/board/evms_arty_top.sv.
 set_property -dict { PACKAGE_PIN E3  IOSTANDARD LVCMOS33 } [get_ports { CLK }]
 create_clock -add -name sys_clk -period 10.00 -waveform {0 5} [get_ports { CLK }]
-## ck_rst (active low) stands in for the iCEBreaker's button.
-set_property -dict { PACKAGE_PIN C2  IOSTANDARD LVCMOS33 } [get_ports { BTN_N }]
+## ck_rst (active low) stands in for the iCEBreaker's button. It and the sensor's request are
+## pulled up inside the FPGA: with no sensor on the PMODs the request idles high, not floating.
+set_property -dict { PACKAGE_PIN C2  IOSTANDARD LVCMOS33 PULLUP TRUE } [get_ports { BTN_N }]
 ## USB UART: A9 carries the host's bytes in, D10 ours out.
 set_property -dict { PACKAGE_PIN A9  IOSTANDARD LVCMOS33 } [get_ports { RX }]
 set_property -dict { PACKAGE_PIN D10 IOSTANDARD LVCMOS33 } [get_ports { TX }]
@@ -26,5 +27,5 @@ set_property -dict { PACKAGE_PIN J17 IOSTANDARD LVCMOS33 } [get_ports { AER_ADDR
 set_property -dict { PACKAGE_PIN J18 IOSTANDARD LVCMOS33 } [get_ports { AER_ADDR[13] }]
 set_property -dict { PACKAGE_PIN K15 IOSTANDARD LVCMOS33 } [get_ports { AER_ADDR[14] }]
 set_property -dict { PACKAGE_PIN J15 IOSTANDARD LVCMOS33 } [get_ports { AER_ADDR[15] }]
-set_property -dict { PACKAGE_PIN U12 IOSTANDARD LVCMOS33 } [get_ports { AER_REQ_N }]
+set_property -dict { PACKAGE_PIN U12 IOSTANDARD LVCMOS33 PULLUP TRUE } [get_ports { AER_REQ_N }]
 set_property -dict { PACKAGE_PIN V12 IOSTANDARD LVCMOS33 } [get_ports { AER_ACK_N }]

@@ -4,7 +4,10 @@
 #  - every name the file constrains is a bit of a port;
 #  - no pin carries two bits;
 #  - in an .xdc, every port bit has an I/O standard, and with CLOCK_HZ the clock constrained on
-#    the port CLK has the period of the build's clock.
+#    the port CLK has the period of the build's clock;
+#  - every active-low input (a name ending in _N: the button, the sensor's request) has the
+#    FPGA's pull-up, so that it idles high with nothing connected: a floating AER request line
+#    would take noise for the sensor's handshake and feed the core events no sensor sent.
 # nextpnr-ice40 refuses a port without a pin, but the .pcf's -nowarn lets a stale name pass, and
 # Vivado, which the Arty's place and route needs (docs/rtl.md), only warns of either. Each error
 # is one line naming the file and the line.
@@ -37,16 +40,26 @@ awk '/^ *(input|output|inout) / {
                          for (i = lo; i <= hi; ++i) print name "[" i "]" }
        else print name
      }' "$tmp/top.v" | sort >"$tmp/ports"
+awk '/^ *input / { sub(/;.*/, ""); if ($NF ~ /_N$/) print $NF }' "$tmp/top.v" | sort >"$tmp/active_low_inputs"
 [ -s "$tmp/ports" ] || { echo "check_pins.sh: $top: no ports read" >&2; exit 1; }
 
-# The file's constraints, one line each: LINE NAME PIN, and for an .xdc LINE NAME STANDARD and
-# the clock's LINE NAME PERIOD.
+# The file's constraints, one line each: LINE NAME PIN, LINE NAME for each name with a pull-up,
+# and for an .xdc LINE NAME STANDARD and the clock's LINE NAME PERIOD.
 if [ $kind = pcf ]; then
-  awk '{ sub(/#.*/, "") } $1 == "set_io" { n = 0; a[1] = a[2] = ""; for (i = 2; i <= NF; ++i) if ($i !~ /^-/) a[++n] = $i
-                                            print FNR, a[1], a[2] }' "$file" >"$tmp/pins"
+  # set_io [-nowarn] [-pullup yes|no] [-pullup_resistor R] NAME PIN (nextpnr's docs/ice40.md).
+  awk -v pullups="$tmp/pullups" '{ sub(/#.*/, "") }
+       $1 == "set_io" { n = 0; a[1] = a[2] = ""; pullup = 0
+                        for (i = 2; i <= NF; ++i) {
+                          if ($i == "-pullup") pullup = $(++i) == "yes"
+                          else if ($i == "-pullup_resistor") ++i
+                          else if ($i !~ /^-/) a[++n] = $i
+                        }
+                        print FNR, a[1], a[2]
+                        if (pullup) print FNR, a[1] > pullups }' "$file" >"$tmp/pins"
+  touch "$tmp/pullups"
 else
   # Each line that names a port: its PACKAGE_PIN, IOSTANDARD and create_clock -period, into three lists.
-  awk -v pins="$tmp/pins" -v standards="$tmp/standards" -v clocks="$tmp/clocks" '
+  awk -v pins="$tmp/pins" -v standards="$tmp/standards" -v clocks="$tmp/clocks" -v pullups="$tmp/pullups" '
     function after(key,   v) { if (!match($0, key " +[^ }]+")) return ""; v = substr($0, RSTART, RLENGTH); sub(key " +", "", v); return v }
     { sub(/^ *#.*/, "") }
     match($0, /get_ports *[{][^}]*[}]/) {
@@ -55,10 +68,11 @@ else
       for (i = 1; i <= n; ++i) {
         if (after("PACKAGE_PIN") != "") print FNR, names[i], after("PACKAGE_PIN") > pins
         if (after("IOSTANDARD") != "") print FNR, names[i] > standards
+        if (toupper(after("PULLUP")) == "TRUE") print FNR, names[i] > pullups
         if (/create_clock/) print FNR, names[i], after("-period") > clocks
       }
     }' "$file"
-  touch "$tmp/pins" "$tmp/standards" "$tmp/clocks"
+  touch "$tmp/pins" "$tmp/standards" "$tmp/clocks" "$tmp/pullups"
 fi
 
 errors=0
@@ -74,6 +88,10 @@ while read -r port; do
     awk -v p="$port" '$2 == p { f = 1 } END { exit !f }' "$tmp/standards" || fail "$file: $top's port $port has no IOSTANDARD"
   fi
 done <"$tmp/ports"
+while read -r port; do
+  awk -v p="$port" '$2 == p { f = 1 } END { exit !f }' "$tmp/pullups" ||
+    fail "$file: $top's active-low input $port has no pull-up (it floats with nothing connected)"
+done <"$tmp/active_low_inputs"
 awk '{ if ($3 in first) printf "%s:%d: pin %s carries %s and, on line %d, %s\n", FILENAME, $1, $3, $2, first[$3], name[$3]
        else { first[$3] = $1; name[$3] = $2 } }' "$tmp/pins" | sed "s|^$tmp/pins|$file|" >"$tmp/twice"
 while read -r message; do fail "$message"; done <"$tmp/twice"
@@ -87,4 +105,4 @@ if [ $kind = xdc ] && [ -n "$clock_hz" ]; then
   fi
 fi
 [ $errors -eq 0 ] || exit 1
-echo "check_pins.sh: $file: each of $top's $(wc -l <"$tmp/ports") port bits on a pin of its own"
+echo "check_pins.sh: $file: each of $top's $(wc -l <"$tmp/ports") port bits on a pin of its own, its $(wc -l <"$tmp/active_low_inputs") active-low inputs pulled up"
