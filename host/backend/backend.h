@@ -78,6 +78,9 @@ SensorSize core_build_sensor(const std::string& build);
 // (Shape::kHasPolaritySplit, kHasEdgeJoin, kHasSpreadNoise, kHasPolarityMidpoint), unless the
 // command line set them.
 Params fit_core_build(const std::string& backend, const std::string& core, Params p, const Method& method);
+// What fit_core_build changed, for the user: "--packet-size 256 (the method's 2048), ...", or
+// empty when the build runs the method as it is.
+std::string fitted_settings(const Params& method, const Params& fitted);
 
 class Backend {
  public:

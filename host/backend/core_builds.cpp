@@ -2,6 +2,7 @@
 // method within their sizes, and the sensor each is sized for (backend.h). Apart from the
 // registry, so that what runs the C++ core alone (the Python module) needs no RTL model.
 #include <stdexcept>
+#include <string>
 
 #include "hls/core/configs.h"
 #include "host/backend/backend.h"
@@ -39,6 +40,16 @@ Params fit_core_build(const std::string& backend, const std::string& core, Param
   EVMS_CORE_BUILDS(EVMS_FIT_BUILD)
 #undef EVMS_FIT_BUILD
   return p;
+}
+
+std::string fitted_settings(const Params& method, const Params& fitted) {
+  std::string changes;
+  for (const ParamInfo& info : param_table()) {
+    if (param_value(method, info) == param_value(fitted, info)) continue;
+    changes += (changes.empty() ? "--" : ", --") + std::string(info.name) + " " + param_text(fitted, info) + " (the method's " +
+               param_text(method, info) + ")";
+  }
+  return changes;
 }
 
 SensorSize core_build_sensor(const std::string& build) {

@@ -45,7 +45,8 @@ void run(const RunOptions& o) {
   std::unique_ptr<read::EventSource> source = o.listen ? nullptr : read::open_source(o.source, o.source_options);
   const read::SourceInfo info =
       o.listen ? listening_input(o.backend, o.core, keeps_labels, o.source_given, o.source_options) : source->info();
-  const Params params = backend::fit_core_build(o.backend, o.core, o.method.resolve(info.sensor), o.method);
+  const Params method_params = o.method.resolve(info.sensor);
+  const Params params = backend::fit_core_build(o.backend, o.core, method_params, o.method);
   auto backend = backend::make_backend(o.backend, {params, info.sensor, o.core, o.device, o.baud, keeps_labels});
   Writers writers(o.out, o.format, info.sensor);
   Progress progress(!o.quiet);
@@ -88,6 +89,9 @@ void run(const RunOptions& o) {
   const double span_s = static_cast<double>(t_last - t_first) * 1e-6;
   std::fprintf(summary, "source      %s (%s, %s)\n", info.name.c_str(), info.format.c_str(), sensor_text(info).c_str());
   std::fprintf(summary, "backend     %s\n", o.backend.c_str());
+  if (const std::string note = core_build_note(o.backend, o.core, method_params, params); !note.empty()) {
+    std::fprintf(summary, "            %s\n", note.c_str());
+  }
   std::fprintf(summary, "events in   %s over %.3f s of sensor time (%s labelled noise%s)\n", grouped(s.events_in).c_str(), span_s,
               grouped(sink.noise + s.board_noise).c_str(), s.labels_kept_on_board ? ", on the board" : "");
   std::fprintf(summary, "throughput  %sevents/s (%.2f s wall clock, reading included)\n", si(s.events_in / std::max(wall, 1e-9)).c_str(), wall);

@@ -112,7 +112,9 @@ void view(const ViewOptions& o) {
   auto source = o.listen ? nullptr : read::open_source(o.source, so);
   const SensorSize sensor =
       o.listen ? listening_input(o.backend, o.core, bo.board_keeps_labels, o.source_given, o.source_options).sensor : source->info().sensor;
-  bo.params = backend::fit_core_build(o.backend, o.core, o.method.resolve(sensor), o.method);
+  const Params method_params = o.method.resolve(sensor);
+  bo.params = backend::fit_core_build(o.backend, o.core, method_params, o.method);
+  const std::string build_note = core_build_note(o.backend, o.core, method_params, bo.params);
   bo.core = o.core;
   bo.device = o.device;
   show::ViewStyle style;
@@ -155,6 +157,7 @@ void view(const ViewOptions& o) {
     }
     finish();
     print_summary(session);
+    if (!build_note.empty()) std::printf("%s\n", build_note.c_str());
     const bool recording_cut = interrupted() && more && session.source() && !dynamic_cast<read::LiveSource*>(session.source());
     if (recording_cut) {
       std::printf("interrupted before the end of the source: the frames hold what was shown until then\n");
@@ -237,6 +240,7 @@ void view(const ViewOptions& o) {
   }
   finish();
   print_summary(session);
+  if (!build_note.empty()) std::printf("%s\n", build_note.c_str());
 }
 
 }  // namespace

@@ -32,6 +32,12 @@ bool board_keeps_labels(const std::string& board_link, const std::string& backen
   return board_link == "tracks";
 }
 
+std::string core_build_note(const std::string& backend, const std::string& core, const Params& method, const Params& fitted) {
+  const std::string changes = backend::fitted_settings(method, fitted);
+  if (changes.empty()) return "";
+  return "the " + (backend == "board" ? backend::board_build(core) : core) + " build runs " + changes;
+}
+
 namespace {
 volatile std::sig_atomic_t g_interrupted = 0;
 }  // namespace

@@ -35,6 +35,11 @@ void add_board_link_option(CLI::App& cmd, std::string& board_link, const std::st
 // Whether --board-link keeps the labels on the board; refuses it with any backend but the board.
 bool board_keeps_labels(const std::string& board_link, const std::string& backend);
 
+// How the backend's core build runs the method (backend::fit_core_build): "the host build runs
+// --packet-size 256 (the method's 2048)", or empty when it runs the method as it is (golden
+// always does).
+std::string core_build_note(const std::string& backend, const std::string& core, const Params& method, const Params& fitted);
+
 // --listen: the events enter at the board's AER pins (a sensor wired to the board), and the
 // host sends none.
 void add_listen_option(CLI::App& cmd, bool& listen);

@@ -72,6 +72,33 @@ TEST(BackendsAgree, ACoreBuildAppliesItsOwnSizes) {
   EXPECT_NE(cycles.out.find("packets of 256, 8 clusters, 8 tracks"), std::string::npos) << cycles.out;
 }
 
+// A build that runs the method otherwise than golden does says so in the summary, naming each
+// setting it changed with the method's value; what the command line set, or a build that holds
+// the method as it is, is not named.
+TEST(BackendsAgree, TheSummarySaysWhatACoreBuildChangesOfTheMethod) {
+  TempDir dir;
+  const std::string small = "gen://rotation?duration-s=0.05&seed=9&width=128&height=128";
+  const auto note = [&](const std::string& options) {
+    const auto r = run_command(evms_binary() + " run \"" + small + "\" --quiet --out " + dir.path("out") + " " + options);
+    EXPECT_EQ(r.exit_code, 0) << options << ": " << r.err;
+    const size_t at = r.out.find("            the ");
+    return at == std::string::npos ? std::string() : r.out.substr(at + 12, r.out.find('\n', at) - at - 12);
+  };
+  const std::string ice40 = note("--backend fixed --core ice40");
+  EXPECT_EQ(ice40.rfind("the ice40 build runs --packet-size 256 (the method's ", 0), 0u) << ice40;
+  for (const char* changed : {"--max-clusters 8 (the method's ", "--max-tracks 8 (the method's ", "--split-balance 0 (the method's ",
+                              "--edge-join 0 (the method's ", "--measure centroid (the method's polarity-midpoint)",
+                              "--meas-noise-from-spread false (the method's true)"}) {
+    EXPECT_NE(ice40.find(changed), std::string::npos) << changed << " in: " << ice40;
+  }
+  const std::string by_hand = note("--backend fixed --core ice40 --packet-size 256 --max-clusters 8 --max-tracks 8 --edge-join 0");
+  EXPECT_EQ(by_hand.find("--packet-size"), std::string::npos) << by_hand;
+  EXPECT_EQ(by_hand.find("--edge-join"), std::string::npos) << by_hand;
+  EXPECT_NE(by_hand.find("--split-balance 0"), std::string::npos) << by_hand;
+  EXPECT_EQ(note("--backend golden"), "");
+  EXPECT_EQ(note("--backend fixed"), "") << "the host build's C++ core holds the method's sizes";
+}
+
 // The Arty build runs the seeded path, which the cycle model does not count: evms cycles measures
 // it on the RTL without being asked (the same figures as with --rtl), gives the rate that total
 // sustains at the build's clock, and refuses only --table, which sweeps the model.
