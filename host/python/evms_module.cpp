@@ -323,14 +323,23 @@ std::unique_ptr<backend::Backend> make_method(SensorSize sensor, const std::stri
   if (backend_name != "golden" && backend_name != "fixed") {
     throw py::value_error("backend '" + backend_name + "': the module runs golden and fixed (the evms program runs rtl and board)");
   }
+  Params resolved, p;
+  std::unique_ptr<backend::Backend> made;
   try {
-    const Params p = backend::fit_core_build(backend_name, core, method.resolve(sensor), method);
+    resolved = method.resolve(sensor);
+    p = backend::fit_core_build(backend_name, core, resolved, method);
     backend::BackendOptions options = backend::options_for(p, sensor);
     options.core = core;
-    return backend_name == "golden" ? backend::make_golden_backend(options) : backend::make_fixed_backend(options);
+    made = backend_name == "golden" ? backend::make_golden_backend(options) : backend::make_fixed_backend(options);
   } catch (const std::exception& e) {
     throw py::value_error(e.what());
   }
+  // As evms run's summary says it: what the core build changed of the method.
+  if (const std::string changes = backend::fitted_settings(resolved, p); !changes.empty()) {
+    const std::string said = "the " + core + " build runs " + changes;
+    if (PyErr_WarnEx(PyExc_UserWarning, said.c_str(), 1) != 0) throw py::error_already_set();
+  }
+  return made;
 }
 
 py::tuple run_method(const py::array& events, std::pair<int, int> sensor_size, const std::string& backend_name, const std::string& core,

@@ -86,7 +86,17 @@ class ModuleAgainstTheProgram(unittest.TestCase):
         # The iCE40 build holds sensors up to 128x128.
         for core, scene in (("host", SCENE), ("ice40", SCENE + "&width=128&height=128")):
             events, sensor = evms.read(scene)
-            labels, tracks = evms.run(events, sensor, backend="fixed", core=core)
+            with warnings.catch_warnings(record=True) as caught_warnings:
+                warnings.simplefilter("always")
+                labels, tracks = evms.run(events, sensor, backend="fixed", core=core)
+            # What a build changes of the method is said, as evms run's summary says it.
+            said = [str(w.message) for w in caught_warnings if issubclass(w.category, UserWarning)]
+            if core == "ice40":
+                self.assertEqual(len(said), 1, said)
+                self.assertTrue(said[0].startswith("the ice40 build runs --packet-size 256 (the method's "), said)
+                self.assertIn("--max-tracks 8", said[0])
+            else:
+                self.assertEqual(said, [], core)
             want, want_tracks = program_run(scene, "--backend", "fixed", "--core", core)
             np.testing.assert_array_equal(labels, want, err_msg=core)
             self.assertEqual(len(tracks), len(want_tracks), core)
