@@ -173,11 +173,25 @@ class BoardBackend final : public Backend {
                                   "they must cross the link: --board-link tracks needs a board with the whole core (--core arty)");
     }
     if (std::string unsupported = rtl_unsupported(o.params, build); !unsupported.empty()) throw std::invalid_argument(unsupported);
-    if (!(o.params == build_default_params<S>()) || !(o.sensor == SensorSize{S::kMaxWidth, S::kMaxHeight})) {
+    const Params held = build_default_params<S>();
+    const SensorSize board_sensor{S::kMaxWidth, S::kMaxHeight};
+    if (!(o.params == held) || !(o.sensor == board_sensor)) {
+      // The first difference, named: the source's size, or a setting and the value the board holds.
+      std::string differs;
+      if (!(o.sensor == board_sensor)) {
+        differs = "the source is " + std::to_string(o.sensor.width) + "x" + std::to_string(o.sensor.height) +
+                  " (--roi X,Y," + std::to_string(board_sensor.width) + "," + std::to_string(board_sensor.height) + " takes a part of it)";
+      } else {
+        for (const ParamInfo& info : param_table()) {
+          if (param_value(o.params, info) == param_value(held, info)) continue;
+          differs = std::string("--") + info.name + " is " + param_text(o.params, info) + ", the board's " + param_text(held, info);
+          break;
+        }
+      }
       throw std::invalid_argument(std::string("the ") + build + " board runs its build's settings: a " + std::to_string(S::kMaxWidth) + "x" +
                                   std::to_string(S::kMaxHeight) + " sensor, --packet-size " + std::to_string(S::kPacketMax) +
                                   " --max-clusters " + std::to_string(S::kClustersMax) + " --max-tracks " + std::to_string(S::kTracksMax) +
-                                  " and the method its registers hold (evms params --core " + build + "); run with exactly those");
+                                  " and the method its registers hold (evms params --core " + build + "), but " + differs);
     }
     return o.device.empty() ? link::the_board_uart() : o.device;
   }

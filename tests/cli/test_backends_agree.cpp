@@ -290,6 +290,11 @@ TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {
                                   " run gen://rotation?width=128\\&height=128 --backend board --device /dev/null --packet-size 32 --quiet");
   EXPECT_NE(params.exit_code, 0);
   EXPECT_NE(params.err.find("board runs its build's settings"), std::string::npos) << params.err;
+  EXPECT_NE(params.err.find(", but --packet-size is 32, the board's 256\n"), std::string::npos) << params.err;
+  // So is a source of another size, named with the --roi that takes a part of it.
+  const auto size = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend board --device /dev/null --quiet");
+  EXPECT_NE(size.exit_code, 0);
+  EXPECT_NE(size.err.find(", but the source is 240x180 (--roi X,Y,128,128 takes a part of it)\n"), std::string::npos) << size.err;
   // Tracks mode is the board backend's.
   const auto link_mode = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --board-link tracks --quiet");
   EXPECT_NE(link_mode.exit_code, 0);
