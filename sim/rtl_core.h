@@ -130,16 +130,18 @@ class RtlCore {
       labels.push_back(l);
     }
     if (top_->trk_valid && top_->trk_ready) {
-      tracks.push_back({top_->trk_t, static_cast<std::int32_t>(top_->trk_id), static_cast<std::int32_t>(top_->trk_x),
-                        static_cast<std::int32_t>(top_->trk_y), static_cast<std::int32_t>(top_->trk_vx),
-                        static_cast<std::int32_t>(top_->trk_vy), static_cast<std::int32_t>(top_->trk_zx),
-                        static_cast<std::int32_t>(top_->trk_zy), top_->trk_confirmed != 0, top_->trk_events, top_->trk_x_min,
-                        top_->trk_y_min, top_->trk_x_max, top_->trk_y_max, static_cast<std::int64_t>(top_->trk_var_x),
-                        static_cast<std::int64_t>(top_->trk_var_y)});
+      hls::TrackWord w;
+#define EVMS_TAKE_FIELD(name, type, bits, reset) w.name = static_cast<type>(top_->trk_##name);
+      EVMS_TRACK_WORD_FIELDS(EVMS_TAKE_FIELD)
+#undef EVMS_TAKE_FIELD
+      tracks.push_back(w);
     }
     if (top_->pkt_valid && top_->pkt_ready) {
-      packets.push_back({top_->pkt_t_first, top_->pkt_t_last, static_cast<std::uint16_t>(top_->pkt_events),
-                         static_cast<std::uint8_t>(top_->pkt_clusters), static_cast<std::uint16_t>(top_->pkt_iterations)});
+      hls::PacketWord w;
+#define EVMS_TAKE_FIELD(name, type, bits, reset) w.name = static_cast<type>(top_->pkt_##name);
+      EVMS_PACKET_WORD_FIELDS(EVMS_TAKE_FIELD)
+#undef EVMS_TAKE_FIELD
+      packets.push_back(w);
     }
     top_->clk = 1;
     top_->eval();

@@ -25,6 +25,24 @@ inline constexpr std::int32_t kLabelPassedFilter = -3;
   X(t, std::uint32_t, 32, 0) X(x, std::uint16_t, 16, 0) X(y, std::uint16_t, 16, 0) X(p, std::uint8_t, 1, 0)        \
   X(label, std::int32_t, 32, kLabelNoise)
 
+// The fields of the track-update and packet-summary streams, in the order of the RTL's trk_
+// and pkt_ ports (rtl/core/evms_core.sv), as X(name, type, bits, reset). Track updates: the
+// measurement time; the ID; the filtered position and velocity (Shape::kPosFrac fraction bits,
+// px and px per tick); the measurement, the cluster's centre (kPosFrac, px); confirmed, else
+// tentative (reported with Config::report_tentative); the cluster's event count and bounding
+// box (px); the position variances (kCovFrac fraction bits, px^2). Packet summaries: the first
+// and last event's times, the kept events, the clusters, and the Gaussian sweeps or seeded climb
+// steps (saturating).
+#define EVMS_TRACK_WORD_FIELDS(X)                                                                                        \
+  X(t, std::uint32_t, 32, 0) X(id, std::int32_t, 32, 0) X(x, std::int32_t, 32, 0) X(y, std::int32_t, 32, 0)             \
+  X(vx, std::int32_t, 32, 0) X(vy, std::int32_t, 32, 0) X(zx, std::int32_t, 32, 0) X(zy, std::int32_t, 32, 0)           \
+  X(confirmed, bool, 1, true) X(events, std::uint32_t, 16, 0) X(x_min, std::uint16_t, 16, 0)                             \
+  X(y_min, std::uint16_t, 16, 0) X(x_max, std::uint16_t, 16, 0) X(y_max, std::uint16_t, 16, 0)                           \
+  X(var_x, std::int64_t, 64, 0) X(var_y, std::int64_t, 64, 0)
+#define EVMS_PACKET_WORD_FIELDS(X)                                                                                       \
+  X(t_first, std::uint32_t, 32, 0) X(t_last, std::uint32_t, 32, 0) X(events, std::uint16_t, 16, 0)                      \
+  X(clusters, std::uint8_t, 8, 0) X(iterations, std::uint16_t, 16, 0)
+
 #define EVMS_WORD_MEMBER(name, type, bits, reset) type name = reset;
 struct EventWord {
   EVMS_EVENT_WORD_FIELDS(EVMS_WORD_MEMBER)
@@ -33,25 +51,14 @@ struct EventWord {
 struct LabelWord {
   EVMS_LABEL_WORD_FIELDS(EVMS_WORD_MEMBER)
 };
-#undef EVMS_WORD_MEMBER
 
 struct TrackWord {
-  std::uint32_t t = 0;      // measurement time
-  std::int32_t id = 0;
-  std::int32_t x = 0, y = 0;    // filtered position, Shape::kPosFrac fraction bits, px
-  std::int32_t vx = 0, vy = 0;  // filtered velocity, kPosFrac fraction bits, px per tick
-  std::int32_t zx = 0, zy = 0;  // the measurement (cluster centre of mass), kPosFrac, px
-  bool confirmed = true;        // else tentative (reported with Config::report_tentative)
-  std::uint32_t events = 0;     // the cluster's events
-  std::uint16_t x_min = 0, y_min = 0, x_max = 0, y_max = 0;  // its bounding box, px
-  std::int64_t var_x = 0, var_y = 0;  // the position variances, kCovFrac fraction bits, px^2
+  EVMS_TRACK_WORD_FIELDS(EVMS_WORD_MEMBER)
 };
 
 struct PacketWord {
-  std::uint32_t t_first = 0, t_last = 0;
-  std::uint16_t events = 0;
-  std::uint8_t clusters = 0;
-  std::uint16_t iterations = 0;  // Gaussian sweeps, or seeded climb steps (saturating)
+  EVMS_PACKET_WORD_FIELDS(EVMS_WORD_MEMBER)
 };
+#undef EVMS_WORD_MEMBER
 
 }  // namespace evms::hls

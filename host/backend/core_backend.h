@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <deque>
+#include <span>
+#include <vector>
 
 #include "host/backend/backend.h"
 #include "host/backend/core_config.h"
@@ -72,6 +74,20 @@ class CoreWordMapper {
   TimeUs base_ = 0, latest_ = 0;
   std::deque<Event> pending_;
 };
+
+// A run's words for the core: each event's, as CoreWordMapper makes them, then the flush that
+// closes the last packet (the cycle model, the RTL's cycles and the vector testbench take these).
+template <class S>
+std::vector<hls::EventWord> core_words_of(std::span<const Event> events) {
+  CoreWordMapper<S> mapper;
+  std::vector<hls::EventWord> words;
+  words.reserve(events.size() + 1);
+  for (const Event& e : events) words.push_back(mapper.to_word(e));
+  hls::EventWord flush;
+  flush.flush = true;
+  words.push_back(flush);
+  return words;
+}
 
 // Statistics every core backend counts from its output words.
 struct CoreStats {

@@ -31,26 +31,6 @@ struct CyclesOptions {
   Method method;  // the defaults unless told another, in the build's sizes
 };
 
-std::vector<Event> read_events(const CyclesOptions& o, SensorSize& sensor) {
-  auto source = read::open_source(o.source, o.source_options);
-  sensor = source->info().sensor;
-  std::vector<Event> events, batch(8192);
-  while (const size_t n = source->read(batch)) events.insert(events.end(), batch.begin(), batch.begin() + static_cast<long>(n));
-  return events;
-}
-
-template <class S>
-std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {
-  backend::CoreWordMapper<S> mapper;
-  std::vector<hls::EventWord> words;
-  words.reserve(events.size() + 1);
-  for (const Event& e : events) words.push_back(mapper.to_word(e));
-  hls::EventWord flush;
-  flush.flush = true;
-  words.push_back(flush);
-  return words;
-}
-
 template <class V>
 hls::StageCycles rtl_run(const std::vector<hls::EventWord>& words, const hls::Config& cfg) {
   Progress progress(true);
@@ -64,7 +44,7 @@ hls::StageCycles rtl_run(const std::vector<hls::EventWord>& words, const hls::Co
 template <class V, class S>
 void cycles(const CyclesOptions& o) {
   SensorSize sensor;
-  const std::vector<Event> events = read_events(o, sensor);
+  const std::vector<Event> events = read_all_events(o.source, o.source_options, sensor);
   // The cycle model is the RTL's: it counts the method the RTL implements.
   const Method& method = o.method;
   const Params params = backend::fit_core_build("rtl", o.build, method.resolve(sensor), method);
@@ -77,7 +57,7 @@ void cycles(const CyclesOptions& o) {
     throw std::invalid_argument("--table sweeps the cycle model, which counts the Gaussian path only (--preset gaussian on the host build); without --table the seeded path is measured on the RTL");
   }
   const bool measure_rtl = o.rtl || seeded;
-  const auto words = words_of<S>(events);
+  const auto words = backend::core_words_of<S>(events);
   if (o.table) {
     // Cycles per event against packet size, iteration cap and lane count.
     std::printf("| packet size | iterations cap | mean sweeps |");

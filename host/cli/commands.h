@@ -32,4 +32,5 @@ void register_widths(CLI::App& app);
 void register_cycles(CLI::App& app);
 void register_vboard(CLI::App& app);
 void register_view(CLI::App& app);
+void register_vectors(CLI::App& app);
 }  // namespace evms::cli

@@ -32,6 +32,14 @@ bool board_keeps_labels(const std::string& board_link, const std::string& backen
   return board_link == "tracks";
 }
 
+std::vector<Event> read_all_events(const std::string& source, const read::SourceOptions& options, SensorSize& sensor) {
+  auto opened = read::open_source(source, options);
+  sensor = opened->info().sensor;
+  std::vector<Event> events, batch(8192);
+  while (const size_t n = opened->read(batch)) events.insert(events.end(), batch.begin(), batch.begin() + static_cast<long>(n));
+  return events;
+}
+
 std::string core_build_note(const std::string& backend, const std::string& core, const Params& method, const Params& fitted) {
   const std::string changes = backend::fitted_settings(method, fitted);
   if (changes.empty()) return "";

@@ -35,6 +35,10 @@ void add_board_link_option(CLI::App& cmd, std::string& board_link, const std::st
 // Whether --board-link keeps the labels on the board; refuses it with any backend but the board.
 bool board_keeps_labels(const std::string& board_link, const std::string& backend);
 
+// Every event of SOURCE (read with `options`), and its sensor size: for the subcommands that
+// hold a whole run (evms cycles, evms vectors).
+std::vector<Event> read_all_events(const std::string& source, const read::SourceOptions& options, SensorSize& sensor);
+
 // How the backend's core build runs the method (backend::fit_core_build): "the host build runs
 // --packet-size 256 (the method's 2048)", or empty when it runs the method as it is (golden
 // always does).

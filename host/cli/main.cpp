@@ -112,6 +112,7 @@ int evms::cli::run_evms(int argc, char** argv) {
   evms::cli::register_cycles(app);
   evms::cli::register_vboard(app);
   evms::cli::register_view(app);
+  evms::cli::register_vectors(app);
   // A first word that is no subcommand is named, with the nearest one.
   if (argc > 1 && argv[1][0] != '-') {
     const std::string given = argv[1];

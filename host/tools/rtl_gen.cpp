@@ -20,6 +20,8 @@
 //                                to same-named signals, and those signals
 //   evms_stream_lab_{source_ports,sink_ports,connect,wires}.svh  the same of the labelled-event
 //                                stream (lab_*), and the ports of a module that drives it
+//   evms_core_vectors_tb.svh     the vector testbench's registers, event word and output
+//                                words (sim/tb/evms_core_vectors_tb.sv)
 // and per build: evms_cfg_<build>.svh (its Shape and reset registers as localparams),
 // evms_cfg_<build>.cmake (the same as Verilator -G overrides; with a board build's board, from
 // EVMS_BOARD_BUILDS, in both), and its exp and reciprocal ROM
@@ -31,6 +33,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "hls/cluster/tables.h"
@@ -239,6 +242,58 @@ const std::vector<StreamField> kEventWordFields = {EVMS_EVENT_WORD_FIELDS(EVMS_S
 const std::vector<StreamField> kLabelWordFields = {EVMS_LABEL_WORD_FIELDS(EVMS_STREAM_FIELD)};
 #undef EVMS_STREAM_FIELD
 
+// An output word's field as the vector testbench prints it: signed where its C++ type is.
+struct PrintedField {
+  const char* name;
+  int bits;
+  bool is_signed;
+};
+#define EVMS_PRINTED_FIELD(name, type, bits, reset) {#name, bits, std::is_signed_v<type>},
+const std::vector<PrintedField> kLabelPrinted = {EVMS_LABEL_WORD_FIELDS(EVMS_PRINTED_FIELD)};
+const std::vector<PrintedField> kTrackPrinted = {EVMS_TRACK_WORD_FIELDS(EVMS_PRINTED_FIELD)};
+const std::vector<PrintedField> kPacketPrinted = {EVMS_PACKET_WORD_FIELDS(EVMS_PRINTED_FIELD)};
+#undef EVMS_PRINTED_FIELD
+
+// evms_core_vectors_tb.svh, for sim/tb/evms_core_vectors_tb.sv (after the in_ and lab_ streams'
+// wires): the registers from the words of cfg.hex, the event word's fields, the track and packet
+// streams' signals, and one task a stream that prints a word taken as `evms vectors` prints the
+// C++ core's (host/cli/cmd_vectors.cpp).
+void write_vectors_testbench(const std::string& dir) {
+  std::ostringstream o;
+  o << "// " << kGeneratedBy << "\n// The vector testbench's registers and words (hls/core/registers.h, hls/core/words.h).\n";
+  o << "localparam int CfgWords = " << kRtlRegisters.size() << ";\nlogic [63:0] cfg_words [CfgWords];\n";
+  for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
+    const Register& r = kRtlRegisters[i];
+    o << sv_type(r.bits) << " cfg_" << r.name << ";\nassign cfg_" << r.name << " = cfg_words[" << i << "][" << r.bits - 1 << ":0];\n";
+  }
+  int event_bits = 0;
+  std::string event_fields;
+  for (const StreamField& f : kEventWordFields) {
+    event_bits += f.bits;
+    event_fields += (event_fields.empty() ? "in_" : ", in_") + std::string(f.name);
+  }
+  o << "// An event word of events.hex: its fields, most significant first.\nlocalparam int EventWordBits = " << event_bits
+    << ";\nlogic [EventWordBits-1:0] event_word;\nassign {" << event_fields << "} = event_word;\n";
+  const auto stream = [&](const char* prefix, const char* task, const std::vector<PrintedField>& fields, bool declare) {
+    if (declare) {
+      o << "logic " << prefix << "_valid, " << prefix << "_ready;\n";
+      for (const PrintedField& f : fields) o << sv_type(f.bits) << " " << prefix << "_" << f.name << ";\n";
+    }
+    std::string format, args;
+    for (const PrintedField& f : fields) {
+      format += format.empty() ? "%0d" : " %0d";
+      const std::string signal = std::string(prefix) + "_" + f.name;
+      args += ", " + (f.is_signed ? "$signed(" + signal + ")" : signal);
+    }
+    o << "task automatic " << task << "(input integer fd);\n  $fwrite(fd, \"" << format << "\\n\"" << args << ");\nendtask\n";
+  };
+  o << "// One line a word taken, its fields in decimal.\n";
+  stream("lab", "write_label", kLabelPrinted, false);
+  stream("trk", "write_track", kTrackPrinted, true);
+  stream("pkt", "write_packet", kPacketPrinted, true);
+  write(dir + "/evms_core_vectors_tb.svh", o.str());
+}
+
 // A valid/ready stream of `fields` as signals named <prefix>_<field>: evms_stream_<prefix>_
 // source_ports.svh (the ports of a module that drives it; only where one does), _sink_ports.svh
 // (of a module that takes it), _connect.svh (an instance's ports on same-named signals) and
@@ -417,6 +472,7 @@ int main(int argc, char** argv) {
   // The event stream enters at the board's own signals; the labelled events leave a core's ports.
   write_stream(dir, "in", "The event stream", kEventWordFields, false);
   write_stream(dir, "lab", "The labelled-event stream", kLabelWordFields, true);
+  write_vectors_testbench(dir);
   write_docs(std::string(argv[2]) + "/registers.md", builds);
   std::ostringstream frames;
   frames << "// " << kGeneratedBy << "\n// The link's frames (host/link/link_frames.h, docs/link.md): type codes and payload lengths.\n"
