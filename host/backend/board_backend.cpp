@@ -177,7 +177,7 @@ class BoardBackend final : public Backend {
     const SensorSize board_sensor{S::kMaxWidth, S::kMaxHeight};
     if (!(o.params == held) || !(o.sensor == board_sensor)) {
       // The first difference, named: the source's size, or a setting and the value the board holds.
-      std::string differs;
+      std::string differs = "a setting differs";
       if (!(o.sensor == board_sensor)) {
         differs = "the source is " + std::to_string(o.sensor.width) + "x" + std::to_string(o.sensor.height) +
                   " (--roi X,Y," + std::to_string(board_sensor.width) + "," + std::to_string(board_sensor.height) + " takes a part of it)";
