@@ -190,6 +190,42 @@ std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
+// evms vectors (the words of the vector testbench, sim/tb/evms_core_vectors_tb.sv): one register
+// a line, the event words with their count and the closing flush, and output words that are the
+// C++ core's: the labels those `evms run --backend fixed` gives, one a line, in input order.
+TEST(BackendsAgree, VectorsHoldTheCoresWordsAsTheFixedBackendLabelsThem) {
+  TempDir dir;
+  const std::string scene = "gen://rotation?duration-s=0.05&width=128&height=128&seed=3";
+  const auto r = run_command(evms_binary() + " vectors \"" + scene + "\" --core ice40 --out " + dir.path("v"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto fixed = run_backend(dir, "fixed", scene, "--backend fixed --core ice40");
+  const std::vector<std::string> rows = lines_of(fixed.first);  // "# sensor", the header, then t_us,x,y,p,label
+  ASSERT_GT(rows.size(), 1002u);
+  const std::vector<std::string> words = lines_of(read_file(dir.path("v/events.hex")));
+  EXPECT_EQ(words.size(), rows.size() - 2 + 1) << "an event word a row, and the flush";
+  EXPECT_EQ(std::stoul(read_file(dir.path("v/count.hex")), nullptr, 16), words.size());
+  for (const std::string& w : words) ASSERT_EQ(w.find_first_not_of("0123456789abcdef"), std::string::npos) << w;
+  EXPECT_EQ(words.back(), std::string(words.back().size() - 1, '0') + "1") << "the last word flushes";
+  EXPECT_EQ(lines_of(read_file(dir.path("v/cfg.hex"))).size(), static_cast<size_t>(hls::kRtlRegisterCount));
+  const std::vector<std::string> labels = lines_of(read_file(dir.path("v/expected_labels.txt")));
+  ASSERT_EQ(labels.size(), rows.size() - 2);
+  for (size_t i = 0; i < labels.size(); ++i) {
+    // "t x y p label" against the row's x, y, p and label (its t is the host's, not the core's).
+    std::istringstream word(labels[i]), row(rows[i + 2]);
+    long long t, x, y, p, label, rt, rx, ry, rp, rlabel;
+    char c;
+    word >> t >> x >> y >> p >> label;
+    row >> rt >> c >> rx >> c >> ry >> c >> rp >> c >> rlabel;
+    ASSERT_EQ(std::vector<long long>({x, y, p, label}), std::vector<long long>({rx, ry, rp, rlabel})) << "word " << i;
+  }
+  EXPECT_FALSE(lines_of(read_file(dir.path("v/expected_tracks.txt"))).empty());
+  EXPECT_FALSE(lines_of(read_file(dir.path("v/expected_packets.txt"))).empty());
+  // What the RTL does not hold is refused, as --backend rtl refuses it.
+  const auto refused = run_command(evms_binary() + " vectors \"" + scene + "\" --core ice40 --preset gaussian --out " + dir.path("g"));
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_EQ(refused.err, "evms: the RTL build 'ice40' clusters by seeded climbs only, not --seeding every\n");
+}
+
 // Every row of `rows` is a row of `all`, in the same order (a board in tracks mode sends whole
 // packets' track updates, and skips some packets whole when its line is busy).
 void expect_rows_in_order(const std::vector<std::string>& rows, const std::vector<std::string>& all) {
