@@ -7,6 +7,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "types/event.h"
 #include "types/output.h"
@@ -78,6 +79,8 @@ SensorSize core_build_sensor(const std::string& build);
 // (Shape::kHasPolaritySplit, kHasEdgeJoin, kHasSpreadNoise, kHasPolarityMidpoint), unless the
 // command line set them.
 Params fit_core_build(const std::string& backend, const std::string& core, Params p, const Method& method);
+// The parameters (types/params.h's table, in its order) whose values differ between a and b.
+std::vector<const ParamInfo*> differing_params(const Params& a, const Params& b);
 // What fit_core_build changed, for the user: "--packet-size 256 (the method's 2048), ...", or
 // empty when the build runs the method as it is.
 std::string fitted_settings(const Params& method, const Params& fitted);

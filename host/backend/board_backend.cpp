@@ -181,12 +181,9 @@ class BoardBackend final : public Backend {
       if (!(o.sensor == board_sensor)) {
         differs = "the source is " + std::to_string(o.sensor.width) + "x" + std::to_string(o.sensor.height) +
                   " (--roi X,Y," + std::to_string(board_sensor.width) + "," + std::to_string(board_sensor.height) + " takes a part of it)";
-      } else {
-        for (const ParamInfo& info : param_table()) {
-          if (param_value(o.params, info) == param_value(held, info)) continue;
-          differs = std::string("--") + info.name + " is " + param_text(o.params, info) + ", the board's " + param_text(held, info);
-          break;
-        }
+      } else if (const auto differ = differing_params(o.params, held); !differ.empty()) {
+        const ParamInfo& info = *differ.front();
+        differs = std::string("--") + info.name + " is " + param_text(o.params, info) + ", the board's " + param_text(held, info);
       }
       throw std::invalid_argument(std::string("the ") + build + " board runs its build's settings: a " + std::to_string(S::kMaxWidth) + "x" +
                                   std::to_string(S::kMaxHeight) + " sensor, --packet-size " + std::to_string(S::kPacketMax) +

@@ -3,6 +3,7 @@
 // registry, so that what runs the C++ core alone (the Python module) needs no RTL model.
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "hls/core/configs.h"
 #include "host/backend/backend.h"
@@ -42,12 +43,19 @@ Params fit_core_build(const std::string& backend, const std::string& core, Param
   return p;
 }
 
+std::vector<const ParamInfo*> differing_params(const Params& a, const Params& b) {
+  std::vector<const ParamInfo*> differ;
+  for (const ParamInfo& info : param_table()) {
+    if (param_value(a, info) != param_value(b, info)) differ.push_back(&info);
+  }
+  return differ;
+}
+
 std::string fitted_settings(const Params& method, const Params& fitted) {
   std::string changes;
-  for (const ParamInfo& info : param_table()) {
-    if (param_value(method, info) == param_value(fitted, info)) continue;
-    changes += (changes.empty() ? "--" : ", --") + std::string(info.name) + " " + param_text(fitted, info) + " (the method's " +
-               param_text(method, info) + ")";
+  for (const ParamInfo* info : differing_params(method, fitted)) {
+    changes += (changes.empty() ? "--" : ", --") + std::string(info->name) + " " + param_text(fitted, *info) + " (the method's " +
+               param_text(method, *info) + ")";
   }
   return changes;
 }

@@ -81,7 +81,9 @@ void vectors(const VectorsOptions& o) {
 #undef EVMS_EVENT_BITS
     bits.insert(0, (4 - bits.size() % 4) % 4, '0');
     std::string digits;
-    for (size_t i = 0; i < bits.size(); i += 4) digits += "0123456789abcdef"[std::stoi(bits.substr(i, 4), nullptr, 2)];
+    for (size_t i = 0; i < bits.size(); i += 4) {
+      digits += "0123456789abcdef"[(bits[i] - '0') * 8 + (bits[i + 1] - '0') * 4 + (bits[i + 2] - '0') * 2 + (bits[i + 3] - '0')];
+    }
     event_file << digits << '\n';
   }
 
