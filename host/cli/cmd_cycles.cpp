@@ -140,6 +140,7 @@ void register_cycles(CLI::App& app) {
   auto* cmd = app.add_subcommand("cycles", "Clocks per event of a core build, stage by stage: the cycle model, and the RTL with --rtl (always for the seeded path)");
   cmd->add_option("source", o->source, "Event file or gen:// scene")->required();
   cmd->add_option("--build", o->build, "Core build: host, arty or ice40 (hls/core/configs.h); its packet, cluster and track sizes apply")
+      ->default_val(o->build)
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(hls::kCoreBuildNames), std::end(hls::kCoreBuildNames))));
   cmd->add_flag("--rtl", o->rtl, "Also simulate the Verilated RTL and print its measured cycles (done without it when the method is seeded, which the model does not count)");
   cmd->add_flag("--table", o->table, "Print cycles per event against packet size, iteration cap and lanes (markdown)");
