@@ -1,4 +1,4 @@
-// The firmware side of tests/bench/soft_cpu.sh: the ice40 core (hls::Core<Ice40Shape>, the same
+// The firmware side of tests/bench/soft_cpu.py: the ice40 core (hls::Core<Ice40Shape>, the same
 // source as every other build of it) run bare on an RV32IM CPU over the events and registers
 // that host_reference wrote to scene.h. It prints the labels' checksum, which must equal the
 // host's, and the bytes of stack it used, then exits: under qemu-riscv32's user mode, through

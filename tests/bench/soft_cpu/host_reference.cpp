@@ -1,4 +1,4 @@
-// The host side of tests/bench/soft_cpu.sh: the ice40 build's registers at the default method
+// The host side of tests/bench/soft_cpu.py: the ice40 build's registers at the default method
 // (the bytes of hls::Config, whose layout is the same on x86-64 and RV32 ilp32: the firmware
 // checks its size), the scene's first events as a C array, and the checksum of the labels the
 // same C++ core gives them on the host, which the firmware must reproduce.
