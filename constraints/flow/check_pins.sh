@@ -46,7 +46,7 @@ awk '/^ *input / { sub(/;.*/, ""); if ($NF ~ /_N$/) print $NF }' "$tmp/top.v" | 
 # The file's constraints, one line each: LINE NAME PIN, LINE NAME for each name with a pull-up,
 # and for an .xdc LINE NAME STANDARD and the clock's LINE NAME PERIOD.
 if [ $kind = pcf ]; then
-  # set_io [-nowarn] [-pullup yes|no] [-pullup_resistor R] NAME PIN (nextpnr's docs/ice40.md).
+  # set_io [-nowarn] [-pullup yes|no] [-pullup_resistor R] NAME PIN (the .pcf syntax of nextpnr-ice40's documentation).
   awk -v pullups="$tmp/pullups" '{ sub(/#.*/, "") }
        $1 == "set_io" { n = 0; a[1] = a[2] = ""; pullup = 0
                         for (i = 2; i <= NF; ++i) {

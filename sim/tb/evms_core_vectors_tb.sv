@@ -5,7 +5,7 @@
 // the format of the C++ core's expected_*.txt. The RTL agrees when the files are equal:
 //
 //   evms vectors SOURCE --core BUILD --out DIR
-//   (simulate this module with the build's parameters, rtl/generated/evms_cfg_BUILD.cmake,
+//   (simulate this module with the build's parameters, as rtl/generated/evms_cfg_ice40.cmake lists the ice40 build's,
 //    from rtl/generated/, where the tables' paths start, with +vectors=DIR [+seed=N])
 //   diff DIR/expected_labels.txt DIR/rtl_labels.txt   (and _tracks, _packets)
 //
