@@ -1,5 +1,5 @@
 // evms vectors SOURCE --core BUILD --out DIR : the words of a run of a core build's C++ core, for
-// the vector testbench (sim/tb/evms_core_vectors_tb.sv) in any simulator. DIR gets:
+// the vector testbench (sim/tb/evms_core_vectors_tb.sv) in another simulator. DIR gets:
 //   cfg.hex                the registers, one 64-bit hex word a line (hls/core/registers.h order)
 //   count.hex              the number of event words
 //   events.hex             the event words (hls/core/words.h's fields, most significant first)
@@ -134,7 +134,7 @@ void vectors(const VectorsOptions& o) {
 
 void register_vectors(CLI::App& app) {
   auto o = std::make_shared<VectorsOptions>();
-  auto* cmd = app.add_subcommand("vectors", "the words of a core build's C++ core on a source, for the RTL's vector testbench in any simulator");
+  auto* cmd = app.add_subcommand("vectors", "the words of a core build's C++ core on a source, for the RTL's vector testbench in another simulator");
   cmd->add_option("source", o->source, "event file or URI")->required();
   cmd->add_option("--core", o->core, "core build: host, arty or ice40 (hls/core/configs.h), in its RTL's sizes")
       ->default_val(o->core)

@@ -1,12 +1,14 @@
-// A vector testbench of evms_core for any SystemVerilog simulator (Verilator --binary --timing
-// here; xsim, Questa or Xcelium elsewhere): it plays the words `evms vectors` wrote from the C++
-// core (host/cli/cmd_vectors.cpp) into the core, with random gaps on its input and random
-// backpressure on its three outputs, and prints every output word it takes, one line each, in
-// the format of the C++ core's expected_*.txt. The RTL agrees when the files are equal:
+// A vector testbench of evms_core for a SystemVerilog simulator with no C++ harness (Verilator
+// --binary --timing here; xsim, Questa or Xcelium elsewhere; not Icarus Verilog 11, docs/rtl.md):
+// it plays the words `evms vectors` wrote from the C++ core (host/cli/cmd_vectors.cpp) into the
+// core, with random gaps on its input and random backpressure on its three outputs, and prints
+// every output word it takes, one line each, in the format of the C++ core's expected_*.txt.
+// The RTL agrees when the files are equal:
 //
 //   evms vectors SOURCE --core BUILD --out DIR
-//   (simulate this module with the build's parameters, as rtl/generated/evms_cfg_ice40.cmake lists the ice40 build's,
-//    from rtl/generated/, where the tables' paths start, with +vectors=DIR [+seed=N])
+//   (simulate this module with the build's parameters, which rtl/generated/evms_cfg_ice40.cmake
+//    lists for the ice40 build, from rtl/generated/, where the tables' paths start, with
+//    +vectors=DIR [+seed=N])
 //   diff DIR/expected_labels.txt DIR/rtl_labels.txt   (and _tracks, _packets)
 //
 // The random patterns come from xorshift32 generators seeded by +seed, so that every simulator
