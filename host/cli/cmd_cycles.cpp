@@ -139,9 +139,7 @@ void register_cycles(CLI::App& app) {
   auto o = std::make_shared<CyclesOptions>();
   auto* cmd = app.add_subcommand("cycles", "Clocks per event of a core build, stage by stage: the cycle model, and the RTL with --rtl (always for the seeded path)");
   cmd->add_option("source", o->source, "Event file or gen:// scene")->required();
-  cmd->add_option("--build", o->build, "Core build: host, arty or ice40 (hls/core/configs.h); its packet, cluster and track sizes apply")
-      ->default_val(o->build)
-      ->check(CLI::IsMember(std::vector<std::string>(std::begin(hls::kCoreBuildNames), std::end(hls::kCoreBuildNames))));
+  add_core_build_option(*cmd, "--build", o->build, "Core build: host, arty or ice40 (hls/core/configs.h); its packet, cluster and track sizes apply");
   cmd->add_flag("--rtl", o->rtl, "Also simulate the Verilated RTL and print its measured cycles (done without it when the method is seeded, which the model does not count)");
   cmd->add_flag("--table", o->table, "Print cycles per event against packet size, iteration cap and lanes (markdown)");
   cmd->add_option("--lanes", o->lanes, "Lane counts for the model's comparison (1, 2, 4 .. 64)")

@@ -136,9 +136,7 @@ void register_vectors(CLI::App& app) {
   auto o = std::make_shared<VectorsOptions>();
   auto* cmd = app.add_subcommand("vectors", "the words of a core build's C++ core on a source, for the RTL's vector testbench in another simulator");
   cmd->add_option("source", o->source, "event file or URI")->required();
-  cmd->add_option("--core", o->core, "core build: host, arty or ice40 (hls/core/configs.h), in its RTL's sizes")
-      ->default_val(o->core)
-      ->check(CLI::IsMember(std::vector<std::string>(std::begin(hls::kCoreBuildNames), std::end(hls::kCoreBuildNames))));
+  add_core_build_option(*cmd, "--core", o->core, "core build: host, arty or ice40 (hls/core/configs.h), in its RTL's sizes");
   cmd->add_option("--out", o->out, "folder for the vectors")->required();
   add_source_options(*cmd, o->source_options);
   add_method_options(*cmd, o->method);

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "hls/core/configs.h"
 #include "host/backend/backend.h"
 #include "host/backend/core_config.h"
 #include "host/cli/config_file.h"
@@ -23,6 +24,12 @@ void add_board_link_option(CLI::App& cmd, std::string& board_link, const std::st
                                               "sensor's rate, and whole packets' track updates come when the line is free; " + in_tracks_mode + ")")
       ->default_val(board_link)
       ->check(CLI::IsMember({"labels", "tracks"}));
+}
+
+void add_core_build_option(CLI::App& cmd, const std::string& name, std::string& build, const std::string& description) {
+  cmd.add_option(name, build, description)
+      ->default_val(build)
+      ->check(CLI::IsMember(std::vector<std::string>(std::begin(hls::kCoreBuildNames), std::end(hls::kCoreBuildNames))));
 }
 
 bool board_keeps_labels(const std::string& board_link, const std::string& backend) {

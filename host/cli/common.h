@@ -44,6 +44,10 @@ std::vector<Event> read_all_events(const std::string& source, const read::Source
 // always does).
 std::string core_build_note(const std::string& backend, const std::string& core, const Params& method, const Params& fitted);
 
+// An option naming one of the core builds of hls/core/configs.h (host, arty, ice40), whose
+// default is `build` as it stands.
+void add_core_build_option(CLI::App& cmd, const std::string& name, std::string& build, const std::string& description);
+
 // --listen: the events enter at the board's AER pins (a sensor wired to the board), and the
 // host sends none.
 void add_listen_option(CLI::App& cmd, bool& listen);
