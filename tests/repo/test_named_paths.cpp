@@ -5,33 +5,35 @@
 // CMakeLists.txt's own sources).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace fs = std::filesystem;
 
 namespace {
 
-const char* const kFolders[] = {"golden/", "hls/", "rtl/", "sim/", "host/", "tests/", "constraints/", "docs/", "types/", ".ci/"};
-const char* const kExtensions[] = {".h",  ".cpp", ".sv",   ".svh", ".vlt",   ".md",  ".py",  ".sh",  ".tcl", ".pcf",
-                                   ".xdc", ".f",   ".json", ".cmake", ".mem", ".txt", ".yml", ".yaml", ".hex"};
+constexpr std::string_view kFolders[] = {"golden/", "hls/", "rtl/", "sim/", "host/", "tests/", "constraints/", "docs/", "types/", ".ci/"};
+// Files the check reads, and which a path may name; and files a path may name only.
+constexpr std::string_view kSourceExtensions[] = {".h", ".cpp", ".sv", ".svh", ".vlt", ".md", ".py", ".sh", ".tcl", ".pcf", ".xdc", ".f", ".cmake"};
+constexpr std::string_view kDataExtensions[] = {".json", ".mem", ".txt", ".yml", ".yaml", ".hex"};
 
 bool is_path_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '/' || c == '-'; }
 
-bool ends_with(const std::string& s, const std::string& tail) { return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0; }
+template <std::size_t N>
+bool has_extension_in(const fs::path& file, const std::string_view (&extensions)[N]) {
+  const std::string ext = file.extension().string();
+  return std::find(std::begin(extensions), std::end(extensions), ext) != std::end(extensions);
+}
 
 bool scanned(const fs::path& file) {
-  const std::string name = file.filename().string();
-  if (name == "CMakeLists.txt") return true;
-  const std::string ext = file.extension().string();
-  for (const char* e : {".h", ".cpp", ".sv", ".svh", ".vlt", ".md", ".py", ".sh", ".tcl", ".pcf", ".xdc", ".f", ".cmake"}) {
-    if (ext == e) return true;
-  }
-  return file.parent_path().filename() == ".ci";  // its scripts have no extension
+  return file.filename() == "CMakeLists.txt" || has_extension_in(file, kSourceExtensions) ||
+         file.parent_path().filename() == ".ci";  // its scripts have no extension
 }
 
 // A folder of the tree that is not the project's source: git's, a build's, or a fetched one.
@@ -52,17 +54,14 @@ std::vector<std::string> missing_named_paths(const fs::path& root) {
     std::ifstream in(it->path());
     std::string line;
     for (int line_no = 1; std::getline(in, line); ++line_no) {
-      for (const char* folder : kFolders) {
-        const std::string f = folder;
-        for (std::size_t at = line.find(f); at != std::string::npos; at = line.find(f, at + 1)) {
+      for (const std::string_view folder : kFolders) {
+        for (std::size_t at = line.find(folder); at != std::string::npos; at = line.find(folder, at + 1)) {
           if (at > 0 && is_path_char(line[at - 1])) continue;  // inside a longer path or word
           std::size_t end = at;
           while (end < line.size() && is_path_char(line[end])) ++end;
           std::string path = line.substr(at, end - at);
           while (!path.empty() && (path.back() == '.' || path.back() == '/')) path.pop_back();
-          bool is_file = false;
-          for (const char* e : kExtensions) is_file = is_file || ends_with(path, e);
-          if (!is_file) continue;
+          if (!has_extension_in(path, kSourceExtensions) && !has_extension_in(path, kDataExtensions)) continue;
           if (fs::exists(root / path) || fs::exists(it->path().parent_path() / path)) continue;
           std::ostringstream os;
           os << fs::relative(it->path(), root).string() << ":" << line_no << " names " << path << ", which does not exist";
