@@ -147,6 +147,10 @@ const std::array kTable = {
     ParamInfo{"gate-spread", "1", "the gate widens to this many times the cluster's spread (RMS radius of "
               "its events) when that is larger; 0 = gate-px only",
               &Params::gate_spread, 0, 100},
+    ParamInfo{"gate-boxes", "", "a (track, cluster) pair beyond the gate is still a candidate, taken only after every pair "
+              "within it, when the track's last cluster centre lies in the cluster's bounding box or the cluster's centre in the "
+              "box of the track's last cluster (an object that merges with a neighbour, or splits from it, keeps its ID)",
+              &Params::gate_boxes, 0, 1},
     ParamInfo{"size-ratio", "1", "a (track, cluster) pair whose cluster has more than this many times the events of the "
               "track's last cluster, or fewer than 1/this, is taken only after every pair within it (a faint object's track "
               "does not take a bright one passing over it); 0 = off, from 1",

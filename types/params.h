@@ -105,6 +105,9 @@ struct Params {
   Association association = Association::kLastMeasurement;
   double gate_px = 20.0;             // association gate around the predicted position
   double gate_spread = 0.0;          // ... widened to this many times the cluster's spread
+  bool gate_boxes = true;            // a pair beyond the gate is a candidate after every pair
+                                     // within it when the track's last cluster centre lies in the
+                                     // cluster's box, or the cluster's centre in that cluster's box
   double size_ratio = 4.0;           // a (track, cluster) pair whose cluster has more than this
                                      // many times the track's last cluster's events, or fewer than
                                      // 1/this, is taken after every pair within it; 0 = off

@@ -49,6 +49,7 @@ Params gaussian() {
   p.association = Association::kKalman;
   p.gate_px = 20.0;
   p.gate_spread = 0.0;
+  p.gate_boxes = false;
   p.size_ratio = 0.0;
   p.confirm_hits = 3;
   p.coast_us = 100000;

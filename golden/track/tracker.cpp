@@ -51,6 +51,10 @@ void MultiTargetTracker::report(const Track& track, const Measurement& z, std::v
                      z.y_max, p(0, 0), p(0, 1), p(1, 1)});
 }
 
+bool MultiTargetTracker::boxes_cover(const Track& track, const Measurement& z) const {
+  return params_.gate_boxes && (z.box().holds(track.last_z.x(), track.last_z.y()) || track.last_box.holds(z.x, z.y));
+}
+
 std::optional<size_t> MultiTargetTracker::slot_for_new_track(const std::vector<bool>& matched) const {
   auto free = std::find_if(slots_.begin(), slots_.end(), [](const auto& s) { return !s; });
   if (free != slots_.end()) return static_cast<size_t>(free - slots_.begin());
@@ -74,6 +78,7 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
   }
 
   struct Candidate {
+    bool beyond_gate;   // a gate_boxes pair: taken only after every pair within the gate
     bool sizes_differ;  // taken only after every pair whose sizes match
     double distance;
     size_t slot;
@@ -87,12 +92,15 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
       const Eigen::Vector2d from = params_.association == Association::kLastMeasurement ? slots_[s]->last_z
                                                                                          : slots_[s]->filter.predicted_position(z.t);
       const double d = (from - Eigen::Vector2d(z.x, z.y)).norm();
-      if (d <= gate(z)) candidates.push_back({!sizes_match(slots_[s]->last_events, z.events), d, s, m});
+      const bool within = d <= gate(z);
+      if (within || boxes_cover(*slots_[s], z)) {
+        candidates.push_back({!within, !sizes_match(slots_[s]->last_events, z.events), d, s, m});
+      }
     }
   }
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-    return std::tie(a.sizes_differ, a.distance, a.slot, a.measurement) <
-           std::tie(b.sizes_differ, b.distance, b.slot, b.measurement);
+    return std::tie(a.beyond_gate, a.sizes_differ, a.distance, a.slot, a.measurement) <
+           std::tie(b.beyond_gate, b.sizes_differ, b.distance, b.slot, b.measurement);
   });
 
   std::vector<std::int32_t> ids(measurements.size(), kNoiseLabel);
@@ -109,6 +117,7 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
     track.missed = 0;
     track.last_z = {z.x, z.y};
     track.last_events = z.events;
+    track.last_box = z.box();
     ids[c.measurement] = track.id;
     report(track, z, updates);
   }
@@ -127,7 +136,7 @@ std::vector<std::int32_t> MultiTargetTracker::step(TimeUs packet_time,
       continue;
     }
     const Measurement& z = measurements[m];
-    slots_[*slot].emplace(Track{next_id_++, KalmanFilter(z.x, z.y, z.t, params_), 1, params_.confirm_hits <= 1, 0, {z.x, z.y}, z.events});
+    slots_[*slot].emplace(Track{next_id_++, KalmanFilter(z.x, z.y, z.t, params_), 1, params_.confirm_hits <= 1, 0, {z.x, z.y}, z.events, z.box()});
     slot_matched[*slot] = true;
     ids[m] = slots_[*slot]->id;
     report(*slots_[*slot], z, updates);

@@ -7,9 +7,14 @@
 //  2. Every (track, measurement) pair whose distance between the measurement and the track's
 //     prediction at the measurement's time is within the gate is a candidate. The gate is
 //     gate_px, or gate_spread times the measurement's spread (the RMS distance of its events
-//     from their centre) when that is larger. Pairs are taken greedily, nearest first (ties:
-//     lower track slot, then lower measurement), each track and each measurement at most once,
-//     so no two clusters share an ID. With size_ratio, a pair whose event counts (the
+//     from their centre) when that is larger. With gate_boxes, a pair beyond the gate is a
+//     candidate too when the track's last measurement lies in the measurement's bounding box or
+//     the measurement in the box of the track's last one, taken only after every pair within
+//     the gate: when an object merges with a neighbour into one cluster, or a cluster splits
+//     into its objects, the centre jumps farther than the gate, and the cluster keeps the ID of
+//     a track it covers instead of starting a new one. Pairs are taken greedily, nearest first
+//     (ties: lower track slot, then lower measurement), each track and each measurement at most
+//     once, so no two clusters share an ID. With size_ratio, a pair whose event counts (the
 //     measurement's and the track's last) differ by more than that factor is taken only after
 //     every pair within it: a faint object's track does not take a bright cluster that passes
 //     over it while the bright cluster's own track wants it, yet an object that grows or shrinks
@@ -28,6 +33,7 @@
 // one), or a new ID. It has no filter: a track's estimate is its cluster's centre.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <span>
@@ -39,12 +45,22 @@
 
 namespace evms::golden {
 
+struct Box {
+  int x_min = 0, y_min = 0, x_max = 0, y_max = 0;  // px, inclusive
+  // Whether the pixel a point falls in (its coordinates' whole parts) is one of the box's.
+  bool holds(double x, double y) const {
+    const double px = std::floor(x), py = std::floor(y);
+    return px >= x_min && px <= x_max && py >= y_min && py <= y_max;
+  }
+};
+
 struct Measurement {
   TimeUs t = 0;         // mean timestamp of the cluster's events
   double x = 0, y = 0;  // centre of mass of the cluster's events, px
   int events = 0;
   double spread = 0;    // RMS distance of the events from (x, y), px
   int x_min = 0, y_min = 0, x_max = 0, y_max = 0;
+  Box box() const { return {x_min, y_min, x_max, y_max}; }
 };
 
 // What every identity rule does with a packet's measurements.
@@ -81,13 +97,16 @@ class MultiTargetTracker final : public Tracker {
     bool confirmed;
     int missed = 0;  // packets in a row without a measurement
     Eigen::Vector2d last_z;  // the last measurement's position
-    int last_events = 0;     // ... and its event count
+    int last_events = 0;     // ... its event count
+    Box last_box;            // ... and its bounding box
   };
 
   double gate(const Measurement& z) const;
   // The variance (px^2 per axis) of measurement z's position (Params::meas_noise_from_spread).
   double measurement_variance(const Measurement& z) const;
   bool sizes_match(int track_events, int measurement_events) const;
+  // gate_boxes: one of the two lies in the other's bounding box.
+  bool boxes_cover(const Track& track, const Measurement& z) const;
   std::optional<size_t> slot_for_new_track(const std::vector<bool>& matched) const;
   void report(const Track& track, const Measurement& z, std::vector<TrackUpdate>& updates) const;
 

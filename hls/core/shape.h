@@ -34,7 +34,7 @@ template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsM
           int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,
           int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4,
           int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0, int HasPolaritySplit = 0,
-          int HasPolarityMidpoint = 0, int HasEdgeJoin = 0, int HasSpreadNoise = 0>
+          int HasPolarityMidpoint = 0, int HasEdgeJoin = 0, int HasSpreadNoise = 0, int HasGateBoxes = 0>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -79,6 +79,11 @@ struct Shape {
   // a build without it gives every cluster r, and the host refuses
   // --meas-noise-from-spread true for it.
   static constexpr int kHasSpreadNoise = HasSpreadNoise;
+  // Whether the build's tracker takes a pair beyond the gate by the boxes (Config::gate_boxes,
+  // hls/track/tracker.h, rtl/track/evms_tracker.sv); a build without it runs the method with
+  // --gate-boxes false (its board ties the register low, and synthesis removes the test), and
+  // the host refuses --gate-boxes true for it.
+  static constexpr int kHasGateBoxes = HasGateBoxes;
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;
@@ -178,7 +183,8 @@ struct Shape {
   X(HasPolaritySplit)                \
   X(HasPolarityMidpoint)             \
   X(HasEdgeJoin)                     \
-  X(HasSpreadNoise)
+  X(HasSpreadNoise)                  \
+  X(HasGateBoxes)
 
 // The default board build: a DAVIS240-class sensor, the defaults of docs/sweep.md, a 16-bit
 // timestamp per pixel in 128 us units (one iCE40 SPRAM word), and eight kernel lanes: 88 of an
@@ -189,10 +195,10 @@ using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // method's default packets (3,000 events), clusters and tracks (128 each), and a pending queue
 // deep enough that noisy recordings (a third noise, say) never close a packet early, as golden
 // never does.
-using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1, 1>;
+using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1, 1, 1>;
 // The RTL's host-simulation build: HostShape's sensor, words and tables with smaller packet,
 // cluster and track sizes, both clustering paths, the polarity split, the edge join and the
 // measurement noise from the spread. For settings within those sizes the two give the same words.
-using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 8, 32, 8, 1, 1, 1, 1, 1, 1>;
+using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 8, 32, 8, 1, 1, 1, 1, 1, 1, 1>;
 
 }  // namespace evms::hls

@@ -8,7 +8,10 @@
 //     is taken, then the nearest among the rest, and so on (ties: lower slot, then lower
 //     measurement), so association is one-to-one; with size_ratio_log2, pairs whose event counts
 //     (the measurement's and the track's last) differ by more than 2^size_ratio_log2 times come
-//     after every other pair (the "far" bit of the pair table, above the distance);
+//     after every other pair (the "far" bit of the pair table, above the distance); with
+//     gate_boxes, a pair beyond the gate is a candidate too when the track's last measurement
+//     lies in the measurement's bounding box or the measurement in the last one's box, and it
+//     comes after every pair within the gate (the "beyond" bit, above "far");
 //  3. matched tracks predict to their measurement's time and update; they report (tentative
 //     ones only with report_tentative);
 //  4. unmatched tentative tracks end; unmatched confirmed ones coast;
@@ -36,6 +39,19 @@ struct TrackerTrace {
   bool rounds_capped = false;  // every round matched, up to kClustersMax
   int births = 0;
   int evict_scans = 0;  // births that found no free slot and looked for one to evict
+};
+
+// A measurement's bounding box, px (inclusive).
+struct Box {
+  std::uint16_t x_min = 0, y_min = 0, x_max = 0, y_max = 0;
+  // Whether the pixel the point (x, y) (kPosFrac fraction bits) falls in, its coordinates'
+  // whole parts, is one of the box's: compares of the whole parts' 16 bits, not of the
+  // fractions. A centre is a mean of 16-bit pixel coordinates, so its whole part is one of them.
+  template <int PosFrac>
+  bool holds(std::int32_t x, std::int32_t y) const {
+    const auto px = static_cast<std::uint16_t>(x >> PosFrac), py = static_cast<std::uint16_t>(y >> PosFrac);
+    return px >= x_min && px <= x_max && py >= y_min && py <= y_max;
+  }
 };
 
 template <class S>
@@ -78,10 +94,12 @@ class Tracker {
     // One memory of {within, d2} words in the RTL (rtl/track/evms_tracker.sv, the pair table):
     // written by the distance pass, read by the scans, never both in one clock.
     std::uint64_t pair_d2[S::kTracksMax][S::kClustersMax];
-    bool pair_within[S::kTracksMax][S::kClustersMax] = {};
+    bool pair_within[S::kTracksMax][S::kClustersMax] = {};  // a candidate
+    bool pair_beyond[S::kTracksMax][S::kClustersMax] = {};  // ... by the boxes, beyond the gate
     bool pair_far[S::kTracksMax][S::kClustersMax] = {};
 #pragma HLS BIND_STORAGE variable = pair_d2 type = ram_s2p
 #pragma HLS BIND_STORAGE variable = pair_within type = ram_s2p
+#pragma HLS BIND_STORAGE variable = pair_beyond type = ram_s2p
 #pragma HLS BIND_STORAGE variable = pair_far type = ram_s2p
   distances:
     for (int s = 0; s < S::kTracksMax; ++s) {
@@ -90,7 +108,8 @@ class Tracker {
         if (k >= m) break;
         ++trace_.distances;
         pair_d2[s][k] = cfg.associate_last ? last_distance2(slot_[s], z[k]) : distance2(slot_[s], z[k]);
-        pair_within[s][k] = pair_d2[s][k] <= gate2[k];
+        pair_beyond[s][k] = pair_d2[s][k] > gate2[k];
+        pair_within[s][k] = !pair_beyond[s][k] || (cfg.gate_boxes && boxes_cover(slot_[s], z[k]));
         pair_far[s][k] = sizes_differ(slot_[s].last_events, z[k].events, cfg.size_ratio_log2);
       }
     }
@@ -100,7 +119,7 @@ class Tracker {
     for (int round = 0; round < S::kClustersMax; ++round) {
       int best_s = -1, best_m = -1;
       std::uint64_t best_d2 = 0;
-      bool best_far = false;
+      int best_rank = 0;  // beyond the gate (2) and sizes far apart (1): lower ranks first
       ++trace_.scans;
     pairs:
       for (int s = 0; s < S::kTracksMax; ++s) {
@@ -110,9 +129,9 @@ class Tracker {
 #pragma HLS PIPELINE II = 1
           if (k >= m) break;
           if (meas_matched[k] || !pair_within[s][k]) continue;
-          const bool far = pair_far[s][k];
-          if (best_s < 0 || (!far && best_far) || (far == best_far && pair_d2[s][k] < best_d2)) {
-            best_s = s, best_m = k, best_d2 = pair_d2[s][k], best_far = far;
+          const int rank = 2 * pair_beyond[s][k] + pair_far[s][k];
+          if (best_s < 0 || rank < best_rank || (rank == best_rank && pair_d2[s][k] < best_d2)) {
+            best_s = s, best_m = k, best_d2 = pair_d2[s][k], best_rank = rank;
           }
         }
       }
@@ -134,6 +153,7 @@ class Tracker {
       t.missed = 0;
       t.zx = z[best_m].x, t.zy = z[best_m].y;
       t.last_events = z[best_m].events;
+      t.last_box = box_of(z[best_m]);
       ids[best_m] = t.id;
       report(t, z[best_m], cfg, updates);
     }
@@ -166,6 +186,7 @@ class Tracker {
       t.t_last = z[k].t;
       t.zx = z[k].x, t.zy = z[k].y;
       t.last_events = z[k].events;
+      t.last_box = box_of(z[k]);
       t.ax = {z[k].x, 0, cfg.p0_pos, 0, cfg.p0_vel};
       t.ay = {z[k].y, 0, cfg.p0_pos, 0, cfg.p0_vel};
       ids[k] = t.id;
@@ -191,9 +212,17 @@ class Tracker {
     std::uint32_t missed = 0;        // packets in a row without a measurement
     std::uint32_t t_last = 0;
     std::int32_t zx = 0, zy = 0;     // the last measurement, kPosFrac
-    std::uint16_t last_events = 0;   // ... and its event count (at most kPacketMax)
+    std::uint16_t last_events = 0;   // ... its event count (at most kPacketMax)
+    Box last_box;                    // ... and its bounding box
     AxisState ax, ay;
   };
+
+  static Box box_of(const Measurement& z) { return {z.x_min, z.y_min, z.x_max, z.y_max}; }
+
+  // gate_boxes' test: the track's last measurement lies in z's box, or z in the last one's box.
+  static bool boxes_cover(const Slot& t, const Measurement& z) {
+    return box_of(z).template holds<S::kPosFrac>(t.zx, t.zy) || t.last_box.template holds<S::kPosFrac>(z.x, z.y);
+  }
 
   // The pair's event counts differ by more than 2^log2 times (never when log2 is 0).
   static bool sizes_differ(std::uint32_t track_events, std::uint32_t measurement_events, std::uint8_t log2) {

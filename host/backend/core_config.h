@@ -40,9 +40,9 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 }
 
 // The method `p` within build S: the packet size, cluster and track counts cut to what S holds,
-// and without the polarity split, the polarity midpoint, the edge join and the measurement noise
-// from the spread where S does not hold them (Shape::kHasPolaritySplit, kHasPolarityMidpoint,
-// kHasEdgeJoin, kHasSpreadNoise: the board builds), each unless `kept(name)` says the command
+// and without the polarity split, the polarity midpoint, the edge join, the measurement noise
+// from the spread and the gate's boxes where S does not hold them (Shape::kHasPolaritySplit,
+// kHasPolarityMidpoint, kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes: the board builds), each unless `kept(name)` says the command
 // line set it, for the backend to refuse what S cannot run.
 template <class S, class Kept>
 Params within_build(Params p, Kept kept) {
@@ -56,6 +56,7 @@ Params within_build(Params p, Kept kept) {
   if (!S::kHasPolarityMidpoint && !kept("measure")) p.measure = Measure::kCentroid;
   if (!S::kHasEdgeJoin && !kept("edge-join")) p.edge_join = 0;
   if (!S::kHasSpreadNoise && !kept("meas-noise-from-spread")) p.meas_noise_from_spread = false;
+  if (!S::kHasGateBoxes && !kept("gate-boxes")) p.gate_boxes = false;
   return p;
 }
 
@@ -127,17 +128,19 @@ inline std::string core_unsupported(const Params& p) {
 // Gaussian mean shift of every event, the seeded climbs, or both: Shape::kHasGaussianPath,
 // kHasSeededPath), the polarity split, the edge join, the polarity midpoint and the measurement
 // noise from the spread where it holds them (kHasPolaritySplit, kHasEdgeJoin,
-// kHasPolarityMidpoint, kHasSpreadNoise) and the tracker's policies but the gate's widening by
+// kHasPolarityMidpoint, kHasSpreadNoise), the gate's boxes where it holds them (kHasGateBoxes)
+// and the tracker's other policies but the gate's widening by
 // the spread and coasting by packets.
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
   bool gaussian_path = false, seeded_path = false, polarity_split = false, edge_join = false, polarity_midpoint = false,
-       spread_noise = false;
+       spread_noise = false, gate_boxes = false;
 #define EVMS_PATHS_OF_BUILD(name, fixed, rtl, width, height, description)                                             \
   if (build == #name) {                                                                                               \
     gaussian_path = hls::rtl::kHasGaussianPath != 0, seeded_path = hls::rtl::kHasSeededPath != 0;                     \
     polarity_split = hls::rtl::kHasPolaritySplit != 0, edge_join = hls::rtl::kHasEdgeJoin != 0;                       \
     polarity_midpoint = hls::rtl::kHasPolarityMidpoint != 0, spread_noise = hls::rtl::kHasSpreadNoise != 0;           \
+    gate_boxes = hls::rtl::kHasGateBoxes != 0;                                                                        \
   }
   EVMS_CORE_BUILDS(EVMS_PATHS_OF_BUILD)
 #undef EVMS_PATHS_OF_BUILD
@@ -163,6 +166,9 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (!spread_noise && p.meas_noise_from_spread) {
     return "the RTL build '" + build + "' does not hold the measurement noise from the spread, not " +
            detail::setting(p, "meas-noise-from-spread") + " (add --meas-noise-from-spread false)";
+  }
+  if (!gate_boxes && p.gate_boxes && p.association != Association::kNearestCentre) {
+    return "the RTL build '" + build + "' does not hold the gate's boxes, not " + detail::setting(p, "gate-boxes") + " (add --gate-boxes false)";
   }
   return {};
 }
@@ -264,6 +270,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.coast_us = static_cast<std::uint32_t>(p.coast_us);
   c.max_tracks = static_cast<std::uint8_t>(p.max_tracks);
   c.associate_last = p.association == Association::kLastMeasurement;
+  c.gate_boxes = p.gate_boxes;
   c.gate_spread2 = static_cast<std::uint32_t>(rnd(p.gate_spread * p.gate_spread * std::ldexp(1.0, hls::kSpreadFrac)));
   c.size_ratio_log2 = static_cast<std::uint8_t>(detail::size_ratio_log2(p));
   c.coast_packets = static_cast<std::uint32_t>(p.coast_packets);

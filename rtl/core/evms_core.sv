@@ -344,6 +344,7 @@ module evms_core #(
   ) u_tracker (
     .clk(clk), .rst_n(rst_n), .cfg_gate2(cfg_gate2), .cfg_confirm_hits(cfg_confirm_hits), .cfg_coast_us(cfg_coast_us),
     .cfg_max_tracks(cfg_max_tracks), .cfg_associate_last(cfg_associate_last), .cfg_evict_stale(cfg_evict_stale),
+    .cfg_gate_boxes(HasGateBoxes != 0 && cfg_gate_boxes),
     .cfg_report_tentative(cfg_report_tentative), .cfg_size_ratio_log2(cfg_size_ratio_log2), .cfg_q_third(cfg_q_third), .cfg_q_half(cfg_q_half), .cfg_q(cfg_q),
     .cfg_p0_pos(cfg_p0_pos), .cfg_p0_vel(cfg_p0_vel), .start(tk_start_q), .packet_time(t_last_q), .m(clusters), .z_c(z_c),
     .z_t(z_t), .z_x(z_x), .z_y(z_y), .z_events(z_events), .z_x_min(z_x_min), .z_y_min(z_y_min), .z_x_max(z_x_max),

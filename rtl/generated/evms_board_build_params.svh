@@ -52,6 +52,7 @@
 .CfgEdgeMinEvents(CfgEdgeMinEvents),
 .CfgMeasFromSpread(CfgMeasFromSpread),
 .CfgMinDensity(CfgMinDensity),
+.CfgGateBoxes(CfgGateBoxes),
 .MaxWidth(MaxWidth),
 .MaxHeight(MaxHeight),
 .TimestampBits(TimestampBits),
@@ -104,4 +105,5 @@
 .HasPolarityMidpoint(HasPolarityMidpoint),
 .HasEdgeJoin(HasEdgeJoin),
 .HasSpreadNoise(HasSpreadNoise),
+.HasGateBoxes(HasGateBoxes),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

@@ -52,3 +52,4 @@
 .cfg_edge_min_events(CfgEdgeMinEvents),
 .cfg_meas_from_spread(CfgMeasFromSpread),
 .cfg_min_density(CfgMinDensity),
+.cfg_gate_boxes(CfgGateBoxes),

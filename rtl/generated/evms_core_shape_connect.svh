@@ -52,4 +52,5 @@
 .HasPolarityMidpoint(HasPolarityMidpoint),
 .HasEdgeJoin(HasEdgeJoin),
 .HasSpreadNoise(HasSpreadNoise),
+.HasGateBoxes(HasGateBoxes),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

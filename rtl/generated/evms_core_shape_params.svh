@@ -52,5 +52,6 @@ parameter int HasPolaritySplit = 0,
 parameter int HasPolarityMidpoint = 0,
 parameter int HasEdgeJoin = 0,
 parameter int HasSpreadNoise = 0,
+parameter int HasGateBoxes = 0,
 parameter ExpTableFile = "../generated/exp_9_16.mem",
 parameter RecipTableFile = "../generated/recip_8_20.mem"

@@ -1,7 +1,9 @@
 // Multi-target tracking, as hls/track/tracker.h and hls/track/kalman_axis.h, one step at a
 // time through the shared 64-bit multiplier and reciprocal unit:
 //   expire -> every (live track, measurement) pair's distance, into the pair table -> rounds
-//   of nearest pairs within the gate, each a scan of the table, a pair a clock, and its match
+//   of nearest pairs within the gate (with cfg_gate_boxes, then of those beyond it whose
+//   track's last measurement lies in the measurement's box or the measurement in the last
+//   one's box), each a scan of the table, a pair a clock, and its match
 //   predicted and updated (x axis, then y) -> tentative tracks without a match end ->
 //   unmatched measurements start tracks in the lowest free slots (with cfg_evict_stale and none
 //   free, in the unmatched slot measured longest ago, found by a scan of the slots).
@@ -47,6 +49,7 @@ module evms_tracker #(
   input  logic [7:0]  cfg_max_tracks,
   input  logic        cfg_associate_last,
   input  logic        cfg_evict_stale,
+  input  logic        cfg_gate_boxes,
   input  logic        cfg_report_tentative,
   input  logic [3:0]  cfg_size_ratio_log2,
   input  logic signed [63:0] cfg_q_third,
@@ -150,6 +153,7 @@ module evms_tracker #(
   // combinational read.
   logic [63:0]              s_z [TracksMax];
   logic [15:0]              s_events [TracksMax];
+  logic [63:0]              s_box [TracksMax];   // and its bounding box {x_min, y_min, x_max, y_max}
   logic signed [31:0]       next_id_q;
 
   assign id_of = ids_valid_q[ClusterIndexBits'(id_c)] ? ids[ClusterIndexBits'(id_c)] : -32'sd1;
@@ -182,15 +186,16 @@ module evms_tracker #(
   logic               evict_scanned_q;
   logic signed [8:0]  evict_slot_q;
   logic [31:0]        evict_t_q;
-  // The pair table: {sizes far apart, within the gate, squared distance} of each (slot,
-  // measurement), written by the distance pass and read by the rounds' scans (registered read:
-  // a pair issued in one clock is compared in the next, scan_pending_q). A pair whose sizes are
-  // far apart ranks after every pair whose sizes are not (best_far_q).
+  // The pair table: {rank, candidate, squared distance} of each (slot, measurement), written by
+  // the distance pass and read by the rounds' scans (registered read: a pair issued in one clock
+  // is compared in the next, scan_pending_q). The rank's high bit is a candidate beyond the
+  // gate (by the boxes), its low bit sizes far apart: a pair ranks after every pair of a lower
+  // rank (best_rank_q), then by distance.
   localparam int PairAddrBits = TrackIndexBits + ClusterIndexBits;
   logic                    pair_we;
   logic [PairAddrBits-1:0] pair_wa, pair_ra;
-  logic [65:0]             pair_wd, pair_rd;
-  logic                    best_far_q;
+  logic [66:0]             pair_wd, pair_rd;
+  logic [1:0]              best_rank_q;
   logic                    scan_pending_q;
   logic [TrackIndexBits-1:0] scan_slot_q;
   logic [7:0]              scan_meas_q;
@@ -343,7 +348,7 @@ module evms_tracker #(
       best_s_q <= '0;
       best_m_q <= '0;
       best_d2_q <= '0;
-      best_far_q <= 1'b0;
+      best_rank_q <= '0;
       {d2_q, dt_q, dt2_q, dt3_q, dpred_q, dx_q} <= '0;
       zp_q[0] <= '0;
       zp_q[1] <= '0;
@@ -367,11 +372,11 @@ module evms_tracker #(
       recip_start <= 1'b0;
       if (upd_valid && upd_ready) upd_valid <= 1'b0;
       if (scan_pending_q && pair_rd[64] &&
-          (best_s_q < 0 || (!pair_rd[65] && best_far_q) || (pair_rd[65] == best_far_q && pair_rd[63:0] < best_d2_q))) begin
+          (best_s_q < 0 || pair_rd[66:65] < best_rank_q || (pair_rd[66:65] == best_rank_q && pair_rd[63:0] < best_d2_q))) begin
         best_s_q <= $signed({1'b0, 8'(scan_slot_q)});
         best_m_q <= scan_meas_q;
         best_d2_q <= pair_rd[63:0];
-        best_far_q <= pair_rd[65];
+        best_rank_q <= pair_rd[66:65];
       end
       case (state_q)
         StIdle: if (start) begin
@@ -447,7 +452,7 @@ module evms_tracker #(
             best_s_q <= -9'sd1;
             best_m_q <= '0;
             best_d2_q <= '0;
-            best_far_q <= 1'b0;
+            best_rank_q <= '0;
             s_q <= '0;
             k_q <= '0;
             state_q <= StScan;
@@ -714,9 +719,28 @@ module evms_tracker #(
   assign events_hi = s_events[si] > z_events ? s_events[si] : z_events;
   assign events_lo = s_events[si] > z_events ? z_events : s_events[si];
   assign pair_far = cfg_size_ratio_log2 != 4'd0 && 32'(events_hi) > (32'(events_lo) << cfg_size_ratio_log2);
-  assign pair_wd = {pair_far, pair_d2_new <= cfg_gate2, pair_d2_new};
+  // cfg_gate_boxes: the slot's last measurement lies in the measurement's box, or the
+  // measurement in the box of the slot's last one: the pixel a centre falls in (the whole part
+  // of each coordinate) is one of the box's. A centre is a mean of 16-bit pixel coordinates, so
+  // each compare is of its whole part's 16 bits, not of the fractions.
+  function automatic logic box_holds(input [63:0] box, input [15:0] wx, input [15:0] wy);
+    begin
+      box_holds = wx >= box[63:48] && wx <= box[31:16] && wy >= box[47:32] && wy <= box[15:0];
+    end
+  endfunction
+  // The box test is registered every clock: a pair's slot and measurement stay addressed from
+  // its first distance state to its write (at least one clock, the multiplier's latency), so the
+  // register holds the pair's own test when the table is written, off the path of the squares'
+  // sum and the gate's compare.
+  logic pair_within, pair_boxes_q;
+  assign pair_within = pair_d2_new <= cfg_gate2;
+  always_ff @(posedge clk) begin
+    pair_boxes_q <= cfg_gate_boxes && (box_holds({z_x_min, z_y_min, z_x_max, z_y_max}, s_z[si][32 + PosFrac +: 16], s_z[si][PosFrac +: 16]) ||
+                                       box_holds(s_box[si], z_x[PosFrac +: 16], z_y[PosFrac +: 16]));
+  end
+  assign pair_wd = {!pair_within, pair_far, pair_within || pair_boxes_q, pair_d2_new};
   assign pair_ra = {si, ClusterIndexBits'(k_q)};
-  evms_ram_1w1r #(.Width(66), .Depth(1 << PairAddrBits)) u_pair_table (
+  evms_ram_1w1r #(.Width(67), .Depth(1 << PairAddrBits)) u_pair_table (
     .clk, .we(pair_we), .wa(pair_wa), .wd(pair_wd), .ra(pair_ra), .rd(pair_rd)
   );
   always_ff @(posedge clk or negedge rst_n) begin
@@ -755,6 +779,7 @@ module evms_tracker #(
     if (birth_now || (state_q == StAxEnd && axis_q)) begin
       s_z[kal_addr] <= {z_x, z_y};
       s_events[kal_addr] <= z_events;
+      s_box[kal_addr] <= {z_x_min, z_y_min, z_x_max, z_y_max};
       s_t[kal_addr] <= z_t;
       ids[ClusterIndexBits'(k_q)] <= birth_now ? next_id_q : s_id[si];
     end

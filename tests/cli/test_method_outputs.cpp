@@ -184,6 +184,13 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
       << spread.err;
   const auto fixed_spread = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --core arty --meas-noise-from-spread true --quiet");
   EXPECT_EQ(fixed_spread.exit_code, 0) << fixed_spread.err;
+  // Nor the gate's boxes, which only the host build's tracker holds.
+  const auto boxes = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --gate-boxes true --quiet");
+  EXPECT_EQ(boxes.exit_code, 1);
+  EXPECT_EQ(std::count(boxes.err.begin(), boxes.err.end(), '\n'), 1) << boxes.err;
+  EXPECT_NE(boxes.err.find("the RTL build 'arty' does not hold the gate's boxes, not --gate-boxes true (add --gate-boxes false)"),
+            std::string::npos)
+      << boxes.err;
   const auto fixed_split = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --split-balance 0.3 --quiet");
   EXPECT_EQ(fixed_split.exit_code, 0) << fixed_split.err;
 }

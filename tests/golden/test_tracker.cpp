@@ -113,6 +113,60 @@ TEST(Tracker, MeasurementsBeyondTheGateStartNewTracks) {
   EXPECT_EQ(ids[0], 1);
 }
 
+// A cluster at (x, y) with the bounding box [x0, x1] x [y0, y1] and `events` events.
+Measurement boxed(TimeUs t, double x, double y, int x0, int y0, int x1, int y1, int events = 100) {
+  Measurement z{t, x, y, events};
+  z.x_min = x0, z.y_min = y0, z.x_max = x1, z.y_max = y1;
+  return z;
+}
+
+// A head and a body 50 px apart, one cluster for a packet, then two again: the merged cluster's
+// centre is 25 px from either (beyond the 10 px gate), and with gate_boxes it takes the ID of a
+// track whose last centre its box holds (the nearer; a tie goes to the lower slot); when it splits,
+// the head's cluster lies in the box of that track's last cluster and takes its ID back, and the
+// body's track, coasting, takes the body. Without the rule the merged cluster starts a third
+// track.
+TEST(Tracker, AClusterThatMergesOrSplitsKeepsTheIdOfATrackItCovers) {
+  for (const bool boxes : {true, false}) {
+    Params p = tracker_params();
+    p.confirm_hits = 1;
+    p.gate_boxes = boxes;
+    MultiTargetTracker tracker(p);
+    std::vector<TrackUpdate> updates;
+    const auto apart = [](TimeUs t) {
+      return std::vector<Measurement>{boxed(t, 50, 30, 40, 20, 60, 40), boxed(t, 50, 80, 30, 60, 70, 100)};
+    };
+    EXPECT_EQ(tracker.step(0, apart(0), updates), (std::vector<std::int32_t>{0, 1}));
+    const auto merged = tracker.step(1000, std::vector<Measurement>{boxed(1000, 50, 55, 30, 20, 70, 100, 200)}, updates);
+    const auto split = tracker.step(2000, apart(2000), updates);
+    if (boxes) {
+      EXPECT_EQ(merged, (std::vector<std::int32_t>{0}));
+      EXPECT_EQ(split, (std::vector<std::int32_t>{0, 1}));
+      EXPECT_EQ(tracker.tracks_started(), 2);
+    } else {
+      EXPECT_EQ(merged, (std::vector<std::int32_t>{2})) << "a third track for the merged cluster";
+      EXPECT_EQ(split, (std::vector<std::int32_t>{0, 1})) << "the coasting tracks take their parts back";
+      EXPECT_EQ(tracker.tracks_started(), 3);
+    }
+  }
+}
+
+// A pair beyond the gate comes after every pair within it, even one whose sizes are far apart:
+// the track takes the bright cluster within its gate, and the faint one its box holds starts a
+// track of its own.
+TEST(Tracker, PairsWithinTheGateComeBeforePairsByTheBoxes) {
+  Params p = tracker_params();
+  p.confirm_hits = 1;
+  p.gate_boxes = true;
+  p.size_ratio = 4;
+  MultiTargetTracker tracker(p);
+  std::vector<TrackUpdate> updates;
+  tracker.step(0, std::vector<Measurement>{boxed(0, 50, 50, 20, 20, 80, 80, 100)}, updates);
+  const auto ids = tracker.step(1000, std::vector<Measurement>{boxed(1000, 70, 50, 65, 45, 75, 55, 100),
+                                                               boxed(1000, 55, 50, 50, 45, 60, 55, 1000)}, updates);
+  EXPECT_EQ(ids, (std::vector<std::int32_t>{1, 0}));
+}
+
 TEST(Tracker, FullSlotsLeaveClustersUnassigned) {
   Params p = tracker_params();
   p.max_tracks = 2;

@@ -7,6 +7,9 @@
 #include <vector>
 
 #include "golden/track/kalman_filter.h"
+#include "golden/track/tracker.h"
+#include "hls/fixed/stream.h"
+#include "hls/track/tracker.h"
 #include "hls/core/shape.h"
 #include "hls/track/kalman_axis.h"
 #include "hls/track/measurement_variance.h"
@@ -205,6 +208,73 @@ TEST(MeasurementVarianceFixed, FollowsTheScatterOfTheCentreOfMassWithinItsBound)
   cfg.meas_from_spread = true;
   z.events = 0;
   EXPECT_EQ(measurement_variance<S>(z, cfg), cfg.r);
+}
+
+// The fixed-point tracker gives every cluster the ID the golden one gives, packet by packet, on
+// objects that wander, merge into one cluster (a box over both) and split into fragments, with
+// gate_boxes on and off: association against the last measurement on whole-pixel centres is
+// exact in both, so the IDs must be equal, not near.
+TEST(TrackerFixed, GivesTheGoldenTrackersIdsThroughMergesAndSplits) {
+  std::int32_t started[2] = {};
+  for (const bool boxes : {false, true}) {
+    Params p;  // the defaults: association to the last measurement, the size ratio, eviction
+    p.gate_boxes = boxes;
+    p.max_tracks = 8;
+    const Config cfg = backend::core_config<S>(p, {240, 180});
+    golden::MultiTargetTracker gold(p);
+    auto fixed = std::make_unique<Tracker<S>>();
+    fixed->reset();
+    gen::Random rng(boxes ? 21 : 22);
+    struct Object { int x, y; };
+    std::vector<Object> objects;
+    for (int k = 0; k < 5; ++k) objects.push_back({20 + static_cast<int>(rng.below(200)), 20 + static_cast<int>(rng.below(140))});
+    std::int64_t compared = 0;
+    for (int packet = 0; packet < 3000; ++packet) {
+      const std::uint32_t t = 1000u * static_cast<std::uint32_t>(packet + 1);
+      std::vector<golden::Measurement> zs;
+      const auto add = [&](int x, int y, int half, int events) {
+        golden::Measurement z{t, double(x), double(y), events};
+        z.x_min = std::max(0, x - half), z.y_min = std::max(0, y - half), z.x_max = x + half, z.y_max = y + half;
+        zs.push_back(z);
+      };
+      for (size_t k = 0; k < objects.size(); ++k) {
+        Object& o = objects[k];
+        o.x = std::clamp(o.x + static_cast<int>(rng.below(7)) - 3, 10, 230);
+        o.y = std::clamp(o.y + static_cast<int>(rng.below(7)) - 3, 10, 170);
+        const int mode = static_cast<int>(rng.below(10));
+        if (mode == 0 && k + 1 < objects.size()) {  // merged with the next object
+          const Object& n = objects[k + 1];
+          add((o.x + n.x) / 2, (o.y + n.y) / 2, std::max(std::abs(o.x - n.x), std::abs(o.y - n.y)) / 2 + 8, 200);
+          ++k;
+        } else if (mode == 1) {  // split into two fragments
+          add(o.x - 12, o.y, 6, 40);
+          add(o.x + 12, o.y, 6, 40);
+        } else if (mode != 2) {  // mode 2: missed
+          add(o.x, o.y, 8, 100);
+        }
+      }
+      if (zs.size() > static_cast<size_t>(S::kClustersMax)) zs.resize(S::kClustersMax);
+      std::vector<TrackUpdate> updates;
+      const std::vector<std::int32_t> want = gold.step(t, zs, updates);
+      Measurement z[S::kClustersMax];
+      for (size_t k = 0; k < zs.size(); ++k) {
+        z[k].t = zs[k].t;
+        z[k].x = static_cast<std::int32_t>(zs[k].x) << S::kPosFrac;
+        z[k].y = static_cast<std::int32_t>(zs[k].y) << S::kPosFrac;
+        z[k].events = static_cast<std::uint32_t>(zs[k].events);
+        z[k].x_min = static_cast<std::uint16_t>(zs[k].x_min), z[k].y_min = static_cast<std::uint16_t>(zs[k].y_min);
+        z[k].x_max = static_cast<std::uint16_t>(zs[k].x_max), z[k].y_max = static_cast<std::uint16_t>(zs[k].y_max);
+      }
+      std::int32_t got[S::kClustersMax];
+      Stream<TrackWord, S::kClustersMax> words;
+      fixed->step(t, z, static_cast<int>(zs.size()), cfg, got, words);
+      for (size_t k = 0; k < zs.size(); ++k, ++compared) ASSERT_EQ(got[k], want[k]) << "packet " << packet << ", cluster " << k;
+    }
+    EXPECT_GT(compared, 10000);
+    EXPECT_EQ(fixed->tracks_started(), gold.tracks_started());
+    started[boxes] = gold.tracks_started();
+  }
+  EXPECT_LT(2 * started[1], started[0]) << "with the boxes, merges and splits keep their IDs";
 }
 
 }  // namespace
