@@ -46,7 +46,7 @@ struct Box {
   std::uint16_t x_min = 0, y_min = 0, x_max = 0, y_max = 0;
   // Whether the pixel the point (x, y) (kPosFrac fraction bits) falls in, its coordinates'
   // whole parts, is one of the box's: compares of the whole parts' 16 bits, not of the
-  // fractions. A centre is a mean of 16-bit pixel coordinates, so its whole part is one of them.
+  // fractions. A centre is a mean of 16-bit pixel coordinates, so its whole part fits 16 bits.
   template <int PosFrac>
   bool holds(std::int32_t x, std::int32_t y) const {
     const auto px = static_cast<std::uint16_t>(x >> PosFrac), py = static_cast<std::uint16_t>(y >> PosFrac);
