@@ -5,6 +5,8 @@
 #include <set>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "host/eval/chunks.h"
 #include "host/eval/evaluation.h"
@@ -425,13 +427,37 @@ TEST(SweepCommand, PinsTheMembersSensorShapesAndNoise) {
   EXPECT_NE(r.out.find("| rotation 1: rotation 200x150,  3 shapes (0 moving), speed"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("noise 0.50 Hz"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| paper-rotation 1: rotation 240x180, poster of 9 shapes"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("| F 0.04 | IDF1 0.04 | track err px 0.04 | centroid err px 0.04 | events' centre's own err px 0.04 | err to events' centre px 0.04 | MOTA 0.04 | "
-                       "false tracks/frame 0.04 |"),
+  EXPECT_NE(r.out.find("| F 0.04 | IDF1 0.04 | track err px 0.04 | estimates 0.04 | within 2.5 px 0.04 | centroid err px 0.04 | events' centre's own err px 0.04 | "
+                       "err to events' centre px 0.04 | MOTA 0.04 | false tracks/frame 0.04 |"),
             std::string::npos)
       << r.out;
+  // Each member's row: its estimates are a count and its share within 2.5 px a fraction.
+  const auto row = r.out.find("| rotation 1: rotation 200x150");
+  ASSERT_NE(row, std::string::npos) << r.out;
+  const std::string line = r.out.substr(row, r.out.find('\n', row) - row);
+  std::vector<std::string> cells;
+  for (size_t at = 1, bar; (bar = line.find('|', at)) != std::string::npos; at = bar + 1) cells.push_back(line.substr(at, bar - at));
+  ASSERT_EQ(cells.size(), 3u + 10u) << line;
+  const long estimates = std::stol(cells[6]);
+  const double within = std::stod(cells[7]);
+  EXPECT_GT(estimates, 0) << line;
+  EXPECT_GE(within, 0.0) << line;
+  EXPECT_LE(within, 1.0) << line;
   const auto bad = test::run_command(test::evms_binary() + " sweep --types rotation --seeds 1 --sensor 200");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("--sensor: expected WxH"), std::string::npos) << bad.err;
+}
+
+// Without --split the presets are compared on both splits; with it, on that split alone.
+TEST(SweepCommand, ComparesThePresetsOnTheSplitGiven) {
+  const auto both = test::run_command(test::evms_binary() + " sweep --types still --seeds 1 --preset evms");
+  ASSERT_EQ(both.exit_code, 0) << both.err;
+  EXPECT_NE(both.out.find("## Tuning split"), std::string::npos) << both.out;
+  EXPECT_NE(both.out.find("## Validation split"), std::string::npos) << both.out;
+  const auto one = test::run_command(test::evms_binary() + " sweep --types still --seeds 1 --preset evms --split validation");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_EQ(one.out.find("## Tuning split"), std::string::npos) << one.out;
+  EXPECT_NE(one.out.find("## Validation split"), std::string::npos) << one.out;
 }
 
 TEST(SweepCommand, UnknownTypesAndParametersAreOneLine) {
