@@ -256,7 +256,7 @@ void register_sweep(CLI::App& app) {
   cmd->add_option("--split", o->split, "the split --vary measures on, and the only split the presets are compared on when given (the search tunes on tuning and checks on validation)")
       ->default_val(o->split)
       ->check(CLI::IsMember({"tuning", "validation"}));
-  cmd->add_flag("--per-scene", o->per_scene, "every member's F, IDF1, tracking errors (the Kalman estimate's and the raw centroid's), MOTA and false tracks a frame too (presets and --vary)");
+  cmd->add_flag("--per-scene", o->per_scene, "every member's F, IDF1, tracking errors (the Kalman estimate's and the raw centroid's), its estimates and their share within 2.5 px, MOTA and false tracks a frame too (presets and --vary)");
   cmd->add_option("--rounds", o->rounds, "passes of --search over the grid")->default_val(o->rounds)->check(CLI::Range(1, 20));
   cmd->add_option("--backend", o->backend, "implementation to measure")->default_val(o->backend);
   cmd->add_option("--sensor", o->pins.width, "the family's members on this sensor instead of the seed's draw: WxH")
