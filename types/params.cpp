@@ -120,6 +120,9 @@ const std::array kTable = {
               "(and min-cluster-size): a sparse part's polarities say little", &Params::split_min_events, 1, 65535},
     ParamInfo{"split-cell", "h", "with --split-balance, a part is 8-connected cells of this many bandwidths a side (at least 2 px)",
               &Params::split_cell, 0.05, 10},
+    ParamInfo{"split-partial", "", "with --split-balance, each large part that holds both polarities becomes a cluster of its "
+              "own even when other large parts hold one polarity, and those stay one cluster (the two edges of one outline); "
+              "false: a cluster splits only when every large part holds both", &Params::split_partial, 0, 1},
     ParamInfo{"edge-join", "h", "with seeded climbs, a cluster of mostly ON events and a cluster of mostly OFF events "
               "whose centres lie within this many bandwidths of the sensor's larger side, each the other's nearest such and neither more than four "
               "times the other's events, become one: the leading and trailing edges of an outline too large for one "
@@ -259,6 +262,7 @@ SplitRule split_rule(const Params& p, SensorSize sensor) {
   rule.balance = std::max<std::uint32_t>(1, fraction(p.split_balance));
   rule.share = fraction(p.split_share);
   rule.min_events = static_cast<std::uint32_t>(std::max(p.split_min_events, p.min_cluster_size));
+  rule.partial = p.split_partial;
   return rule;
 }
 

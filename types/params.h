@@ -93,6 +93,9 @@ struct Params {
   double split_share = 0.1;          // ... counting the parts of at least this share of its events
   int split_min_events = 64;         // ... and of at least this many events
   double split_cell = 0.4;           // ... parts of 8-connected cells this many bandwidths a side
+  bool split_partial = true;         // ... and each part that holds both polarities leaves a cluster whose
+                                     // other large parts hold one, which stay one cluster; false: a cluster
+                                     // splits only when every large part holds both
   double edge_join = 5;              // seeded climbs: a cluster of mostly ON events and one of mostly OFF
                                      // events whose centres lie within this many bandwidths of the larger
                                      // side, each the other's nearest, become one (golden/cluster/edge_join.h); 0 = off
@@ -207,6 +210,7 @@ struct SplitRule {
   std::uint32_t cell_scale_x = 0, cell_scale_y = 0;  // 2^kSplitCellFrac / cell side in px, rounded
   std::uint32_t balance = 0, share = 0;              // split_balance, split_share: kSplitFractionFrac fraction bits
   std::uint32_t min_events = 0;                      // the larger of split_min_events and min_cluster_size
+  bool partial = false;                              // split_partial
 };
 SplitRule split_rule(const Params& p, SensorSize sensor);
 

@@ -75,6 +75,8 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
     }
     const auto size = static_cast<std::int64_t>(in.size());
     large_.clear();
+    group_of_large_.clear();
+    int groups = 0, one_polarity_group = -1;
     bool every_large_part_balanced = true;
     for (const int i : in) {
       Part& q = part_[static_cast<size_t>(i)];
@@ -83,12 +85,20 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
       q.large = static_cast<int>(large_.size());
       large_.push_back(i);
       const std::int64_t imbalance_q = std::int64_t{std::abs(2 * q.on - q.events)} << kSplitFractionFrac;
-      every_large_part_balanced = every_large_part_balanced && imbalance_q < std::int64_t{rule_.balance} * q.events;
+      const bool balanced = imbalance_q < std::int64_t{rule_.balance} * q.events;
+      every_large_part_balanced = every_large_part_balanced && balanced;
+      if (balanced || !rule_.partial) {
+        group_of_large_.push_back(groups++);
+      } else {
+        if (one_polarity_group < 0) one_polarity_group = groups++;
+        group_of_large_.push_back(one_polarity_group);
+      }
     }
-    if (large_.size() >= 2 && every_large_part_balanced) {
-      // Large part k becomes cluster c (k = 0) or a new one; each takes its events' mean as its mode.
-      std::vector<Eigen::Vector4d> sum(large_.size(), Eigen::Vector4d::Zero());
-      std::vector<int> count(large_.size(), 0);
+    if (!rule_.partial && !every_large_part_balanced) groups = 1;
+    if (large_.size() >= 2 && groups >= 2) {
+      // Group k becomes cluster c (k = 0) or a new one; each takes its events' mean as its mode.
+      std::vector<Eigen::Vector4d> sum(static_cast<size_t>(groups), Eigen::Vector4d::Zero());
+      std::vector<int> count(static_cast<size_t>(groups), 0);
       for (const int i : in) {
         Part& q = part_[static_cast<size_t>(part_of_[static_cast<size_t>(i)])];
         if (q.large < 0) {  // a small part, at its first event: to the large part with the nearest centre
@@ -102,13 +112,13 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
           }
           q.large = nearest;
         }
-        const int k = q.large;
+        const int k = group_of_large_[static_cast<size_t>(q.large)];
         cluster_of[static_cast<size_t>(i)] = k == 0 ? static_cast<int>(c) : static_cast<int>(modes.size()) + k - 1;
         sum[static_cast<size_t>(k)] += features.col(i);
         ++count[static_cast<size_t>(k)];
       }
       modes[c] = sum[0] / count[0];
-      for (size_t k = 1; k < large_.size(); ++k) modes.push_back(sum[k] / count[k]);
+      for (int k = 1; k < groups; ++k) modes.push_back(sum[static_cast<size_t>(k)] / count[static_cast<size_t>(k)]);
     }
     for (const int i : in) part_[static_cast<size_t>(i)] = Part{};
   }

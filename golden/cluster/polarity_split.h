@@ -4,19 +4,24 @@
 // split_cell bandwidths a side on the (x, y) features (at least two pixels). A part is large
 // when it holds at least split_share of the cluster's events and at least split_min_events (and
 // min_cluster_size): a part of a few events may look balanced by chance, and a sparse outline,
-// such as a shape spinning slowly near the centre of a rotation, falls into such parts. A
-// cluster with two or more large parts, each of them holding both polarities (|ON - OFF| below
-// split_balance times its events), becomes one cluster per large part, and each small part
-// joins the large part whose centre is nearest (centres in 1/16 px, rounded; ties: the part
-// whose first event came first). The cells and thresholds are integers (SplitRule,
+// such as a shape spinning slowly near the centre of a rotation, falls into such parts. A large
+// part is balanced when it holds both polarities (|ON - OFF| below split_balance times its
+// events). The large parts fall into groups: each balanced part is a group of its own, and
+// every large part that is not balanced is one group together (with split_partial false, a
+// cluster with any such part keeps one group). A cluster of two or more groups becomes one
+// cluster per group, numbered in the order of their first large parts; each small part joins
+// the group of the large part whose centre is nearest (centres in 1/16 px, rounded; ties: the
+// part whose first event came first). The cells and thresholds are integers (SplitRule,
 // types/params.h), so the fixed-point core (hls/cluster/polarity_split.h) finds the same parts.
 //
 // Why polarity: an object moving over its background fires its leading edge in one polarity and
 // its trailing edge in the other, and its edges parallel to the motion do not fire, so a
 // translating outline falls apart into two parts of one polarity each, which the warm ball and
 // the links rightly keep as one cluster. Two objects that the warm ball holds together after
-// they touched are two parts of both polarities each. docs/sweep.md ("Splitting two objects by
-// their polarities") has the measurements.
+// they touched are two parts of both polarities each. A warm ball that holds a translating
+// outline's two edges can hold a small object beside them too: the object, balanced, leaves, and
+// the edges stay together. docs/sweep.md ("Splitting two objects by their polarities") has the
+// measurements.
 #pragma once
 
 #include <span>
@@ -60,6 +65,7 @@ class PolaritySplit {
   std::vector<Part> part_;          // per event: the sums of the part it is the smallest member of
   std::vector<int> start_, members_, fill_;  // each cluster's events, in event order
   std::vector<int> large_;          // the current cluster's large parts (their smallest members)
+  std::vector<int> group_of_large_;  // per large part: its group, the cluster it becomes
 };
 
 }  // namespace evms::golden

@@ -1,7 +1,9 @@
 // Two objects that one cluster holds, told from the two edges of one object by their polarities
-// (golden/cluster/polarity_split.h states the rule and why): a cluster whose events form two or
-// more large parts, 8-connected sets of cells, each part holding both polarities, becomes one
-// cluster per large part; each small part joins the large part whose centre is nearest.
+// (golden/cluster/polarity_split.h states the rule and why): the large parts of a cluster's
+// events, 8-connected sets of cells, fall into groups, each part holding both polarities a group
+// of its own and the others one group together (with split_partial clear, a cluster with any such
+// part keeps one group); a cluster of two or more groups becomes one cluster per group, and each
+// small part joins the group of the large part whose centre is nearest.
 //
 // Integers throughout, the same as golden's (SplitRule in types/params.h):
 //   cell of (x, y)    ((x * split_cell_scale_x) >> kSplitCellFrac, likewise y); a scale is at most
@@ -10,10 +12,11 @@
 //   both polarities   |2 on - events| << kSplitFractionFrac < split_balance * events
 //   part centre       1/16 px, (32 sum + events) / (2 events); nearest by squared distance, ties to
 //                     the part whose first event came first
-//   split mode        the mean of the part's climb features, rounded half up
-// The first large part keeps the cluster's mode, the others open modes after the existing ones in
-// the order of their first events. A cluster whose parts would not fit in the mode table
-// (kModesMax) stays whole, and is counted (golden has no such table: a departure, docs/hls.md).
+//   split mode        the mean of the group's climb features, rounded half up
+// Groups are numbered in the order of their first large parts' first events; the first keeps the
+// cluster's mode, the others open modes after the existing ones. A cluster whose groups (or large
+// parts) would not fit in the mode table (kModesMax) stays whole, and is counted (golden has no
+// such table: a departure, docs/hls.md).
 //
 // In hardware form: the cluster's events, bucketed by mode, each write the first event of its cell
 // into a cell map (or join it); each occupied cell joins its occupied neighbours ahead of it; the
@@ -56,8 +59,8 @@ class PolaritySplit {
       if (size < 2 * cfg.split_min_events) continue;
       find_parts(ev, first, size, cfg);
       const int large = large_parts(ev, first, size, cfg);
-      if (large < 2 || !balanced_) continue;
-      if (modes.count + large - 1 > S::kModesMax) {
+      if (large < 2 || groups_ < 2) continue;
+      if (modes.count + groups_ - 1 > S::kModesMax || large > S::kModesMax) {  // the RTL keeps a centre per large part
         ++left_whole;
         continue;
       }
@@ -138,7 +141,7 @@ class PolaritySplit {
   }
 
   // Sums each part at its root and numbers the large parts (large_of_, in the order of their
-  // roots); sets balanced_ when every large part holds both polarities. Returns their count.
+  // roots) and their groups (group_of_, groups_). Returns the large parts' count.
   int large_parts(const PacketEvents<S>& ev, int first, int size, const Config& cfg) {
   clear:
     for (int k = 0; k < S::kPacketMax; ++k) {
@@ -160,8 +163,9 @@ class PolaritySplit {
       sum_x_[r] += ev.x[j];
       sum_y_[r] += ev.y[j];
     }
-    int large = 0;
-    balanced_ = true;
+    int large = 0, one_polarity_group = -1;
+    bool balanced = true;
+    groups_ = 0;
   large_loop:
     for (int k = 0; k < S::kPacketMax; ++k) {
 #pragma HLS PIPELINE II = 1
@@ -175,18 +179,26 @@ class PolaritySplit {
       large_root_[large++] = static_cast<std::int16_t>(j);
       const std::int64_t imbalance = 2 * on_[j] - events_[j];
       const std::int64_t imbalance_q = (imbalance < 0 ? -imbalance : imbalance) << kSplitFractionFrac;
-      balanced_ = balanced_ && imbalance_q < std::int64_t{cfg.split_balance} * events_[j];
+      const bool both = imbalance_q < std::int64_t{cfg.split_balance} * events_[j];
+      balanced = balanced && both;
+      if (both || !cfg.split_partial) {
+        group_of_[large - 1] = static_cast<std::int16_t>(groups_++);
+      } else {
+        if (one_polarity_group < 0) one_polarity_group = groups_++;
+        group_of_[large - 1] = static_cast<std::int16_t>(one_polarity_group);
+      }
     }
+    if (!cfg.split_partial && !balanced) groups_ = 1;
     return large;
   }
 
-  // Large part k takes mode c (k = 0) or mode modes.count + k - 1; a small part the large part
-  // with the nearest centre. Each large part's mode is its events' mean.
+  // Group g takes mode c (g = 0) or mode modes.count + g - 1; a large part its group's, a small
+  // part the group of the large part with the nearest centre. Each group's mode is its events' mean.
   void reassign(const Features<S>& phi, int first, int size, int large, int c, std::int16_t mode_of[S::kPacketMax],
                 Modes<S>& modes) {
   zero:
     for (int k = 0; k < S::kPacketMax; ++k) {
-      if (k >= large) break;
+      if (k >= groups_) break;
       mean_x_[k] = mean_y_[k] = 0;
       count_[k] = 0;
     }
@@ -209,20 +221,21 @@ class PolaritySplit {
         }
         large_of_[r] = static_cast<std::int16_t>(k);
       }
-      mode_of[j] = static_cast<std::int16_t>(k == 0 ? c : modes.count + k - 1);
-      mean_x_[k] += phi.x[j];
-      mean_y_[k] += phi.y[j];
-      ++count_[k];
+      const int g = group_of_[k];
+      mode_of[j] = static_cast<std::int16_t>(g == 0 ? c : modes.count + g - 1);
+      mean_x_[g] += phi.x[j];
+      mean_y_[g] += phi.y[j];
+      ++count_[g];
     }
   modes_loop:
     for (int k = 0; k < S::kPacketMax; ++k) {
-      if (k >= large) break;
+      if (k >= groups_) break;
       const int m = k == 0 ? c : modes.count + k - 1;
       modes.x[m] = (2 * mean_x_[k] + count_[k]) / (2 * count_[k]);
       modes.y[m] = (2 * mean_y_[k] + count_[k]) / (2 * count_[k]);
       modes.p[m] = modes.t[m] = 0;  // the climbs' features are (x, y) only
     }
-    modes.count += large - 1;
+    modes.count += groups_ - 1;
   }
 
   std::int16_t first_in_cell_[kCellsX * kCellsY];  // the first event of the current cluster in a cell, or -1
@@ -236,9 +249,10 @@ class PolaritySplit {
   std::int16_t part_of_[S::kPacketMax];   // per member: its part's root
   std::int16_t large_of_[S::kPacketMax];  // per root: the large part its events go to (its own index, or the nearest one's), or -1
   std::int16_t large_root_[S::kPacketMax];
-  std::int64_t mean_x_[S::kPacketMax], mean_y_[S::kPacketMax];  // per large part: its features' sums
+  std::int16_t group_of_[S::kPacketMax];   // per large part: its group
+  int groups_ = 0;
+  std::int64_t mean_x_[S::kPacketMax], mean_y_[S::kPacketMax];  // per group: its features' sums
   std::int32_t count_[S::kPacketMax];
-  bool balanced_ = true;
 };
 
 }  // namespace evms::hls

@@ -63,6 +63,7 @@
   X(split_min_events, std::uint16_t, 16, 0, "seeded: a part is large with at least this many events too; a cluster of fewer than twice this is not looked at") \
   X(split_cell_scale_x, std::uint32_t, 32, 0, "seeded: a split cell's column is (x * this) >> kSplitCellFrac (at most 2^15)") \
   X(split_cell_scale_y, std::uint32_t, 32, 0, "seeded: a split cell's row is (y * this) >> kSplitCellFrac (at most 2^15)") \
+  X(split_partial, bool, 1, false, "seeded: each large part that holds both polarities becomes a cluster and the other large parts one more; false: a cluster splits only when every large part holds both") \
   X(midpoint_min, std::uint16_t, 16, 0, "seeded: a cluster whose ON and OFF events number at least this each is measured at the midpoint of their centres of mass; 0: at the centre of mass (the only setting of a build without HasPolarityMidpoint)") \
   X(edge_radius2, std::uint64_t, 64, 0, "seeded: a mostly-ON and a mostly-OFF mode whose centres lie within sqrt(this) / 16 px join (hls/cluster/edge_join.h); 0: off (the only setting of a build without HasEdgeJoin)") \
   X(edge_balance, std::uint16_t, 16, 0, "seeded: a mode is mostly one polarity when |2 ON - events| >= this * events, kSplitFractionFrac bits") \

@@ -285,6 +285,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.split_min_events = static_cast<std::uint16_t>(split.min_events);
   c.split_cell_scale_x = split.cell_scale_x;
   c.split_cell_scale_y = split.cell_scale_y;
+  c.split_partial = split.partial;
   static_assert(hls::kEdgeSizeRatio == kEdgeSizeRatio);
   const EdgeRule edge = seeded ? edge_rule(p, sensor) : EdgeRule{};  // golden joins the seeded path's clusters only
   c.edge_radius2 = edge.radius2;

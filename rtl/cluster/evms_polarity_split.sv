@@ -1,6 +1,8 @@
-// The polarity split, as hls/cluster/polarity_split.h (PolaritySplit::run): a cluster whose
-// events form two or more large parts (8-connected sets of cells), each holding both polarities,
-// becomes one cluster per large part, and each small part joins the large part whose centre is
+// The polarity split, as hls/cluster/polarity_split.h (PolaritySplit::run): the large parts of a
+// cluster's events (8-connected sets of cells) fall into groups, each part holding both
+// polarities a group of its own and the others one group together (with cfg_split_partial low, a
+// cluster with any such part keeps one group); a cluster of two or more groups becomes one
+// cluster per group, and each small part joins the group of the large part whose centre is
 // nearest. golden/cluster/polarity_split.h states the rule and why.
 //
 // The C++ model finds the parts over the cluster's events; this block over the cells they occupy,
@@ -21,21 +23,23 @@
 //          added to its root's;
 //   large  the roots, in order, are the parts: large with cfg_split_min_events events and
 //          cfg_split_share of the cluster (SplitFractionFrac fraction bits), and balanced when
-//          |2 ON - events| << SplitFractionFrac < cfg_split_balance * events;
+//          |2 ON - events| << SplitFractionFrac < cfg_split_balance * events; each large part
+//          takes its group: a new one when balanced (or cfg_split_partial is low), else the one
+//          group of the parts that are not, opened by the first of them;
 //   near   when the cluster splits, every part's centre (1/16 px, rounded half up) is divided
 //          out, and each small part takes the large part with the smallest squared distance
 //          (the first of equals);
-//   move   each of the cluster's events takes its part's mode (the first large part keeps the
+//   move   each of the cluster's events takes its group's mode (the first group keeps the
 //          cluster's, the others open modes after the existing ones) and adds its climb features
 //          to that mode's sums;
 //   modes  each new position is its sums' mean, rounded half up, and the mode is marked moved.
-// A cluster whose large parts would not fit in ModesMax modes stays whole.
+// A cluster whose groups would not fit in ModesMax modes stays whole.
 //
 // Schedule: 1 to start; 2 clocks an event to count; per cluster checked, 2 an event of the packet
 // and 1 more per event of the cluster (cells), 1 + 2 per neighbour within the map per cell
 // (links), 2 per cell (clear), 1 per cell (large); a cluster that splits adds 2 divisions of
 // DivBits + 2 clocks per part and one clock per large part per small part, 2 an event of the
-// packet (move) and the divisions of its new modes.
+// packet (move) and the divisions of its groups' modes.
 // The packet's events (pixel and polarity, linked mode, climb features) are read through ev_j
 // with the registered read of a block RAM; an event is not held: it stays on the read ports
 // while ev_j does. After done, while idle, the result is read with the
@@ -63,6 +67,7 @@ module evms_polarity_split #(
   input  logic [15:0]                 cfg_split_share,
   input  logic [31:0]                 cfg_split_cell_scale_x,
   input  logic [31:0]                 cfg_split_cell_scale_y,
+  input  logic                        cfg_split_partial,
   // The packet's events.
   output logic [15:0]                 ev_j,
   input  logic [15:0]                 ev_x,
@@ -113,6 +118,9 @@ module evms_polarity_split #(
   logic [CntBits-1:0]  cells_q, cells_d;         // the cluster's cells
   logic [CntBits-1:0]  large_q, large_d;         // its large parts
   logic                balanced_q, balanced_d;   // every large part so far holds both polarities
+  logic [CntBits-1:0]  groups_q, groups_d;       // the groups its large parts fall into so far
+  logic                one_pol_q, one_pol_d;     // the group of the parts of one polarity is open ...
+  logic [ModeBits-1:0] one_pol_group_q, one_pol_group_d;   // ... and is this one
   logic [ModeBits:0]   m_q, m_d;                 // a large part
   logic [1:0]          ahead_q, ahead_d;         // the neighbour being read
   logic [CxBits-1:0]   cx_q, cx_d;               // the listed cell being linked
@@ -175,11 +183,12 @@ module evms_polarity_split #(
   logic [SumBits-1:0]   part_x_q [PacketMax];
   logic [SumBits-1:0]   part_y_q [PacketMax];
   logic [PacketMax-1:0] is_large_q;
-  logic [ModeBits-1:0]  target_q [PacketMax];     // per part: the large part its events go to
+  logic [ModeBits-1:0]  target_q [PacketMax];     // per part: the group its events go to
+  logic [ModeBits-1:0]  group_q [ModesMax];       // per large part: its group
   logic [PartBits-1:0]  large_root_q [ModesMax];
   logic [CentreBits-1:0] large_x_q [ModesMax];    // the large parts' centres, 1/16 px
   logic [CentreBits-1:0] large_y_q [ModesMax];
-  logic [MeanBits-1:0]  mean_x_q [ModesMax];      // the large parts' sums of climb features
+  logic [MeanBits-1:0]  mean_x_q [ModesMax];      // the groups' sums of climb features
   logic [MeanBits-1:0]  mean_y_q [ModesMax];
   logic [CntBits-1:0]   mean_n_q [ModesMax];
   always_ff @(posedge clk) rd_moved <= moved_q[ModeBits'(rd_c)];
@@ -221,6 +230,13 @@ module evms_polarity_split #(
   assign k_imbalance = 2 * (CntBits + 1)'(k_on) >= (CntBits + 1)'(k_events) ? 2 * (CntBits + 1)'(k_on) - (CntBits + 1)'(k_events)
                                                                                 : (CntBits + 1)'(k_events) - 2 * (CntBits + 1)'(k_on);
   assign k_is_balanced = (64'(k_imbalance) << SplitFractionFrac) < 64'(cfg_split_balance) * 64'(k_events);
+  // Large part k's group: its own, or the one group of the parts of one polarity.
+  logic                k_own_group;
+  logic [ModeBits-1:0] k_group;
+  assign k_own_group = k_is_balanced || !cfg_split_partial || !one_pol_q;
+  assign k_group = k_own_group ? ModeBits'(groups_q) : one_pol_group_q;
+  logic split_ok;   // the cluster splits, once its parts are numbered
+  assign split_ok = large_q >= 2 && (cfg_split_partial ? groups_q >= 2 : balanced_q) && fits;
   // The squared distance from the small part's centre to large part m's.
   logic [ModeBits-1:0] m_part;
   logic signed [CentreBits:0] dx, dy;
@@ -229,11 +245,11 @@ module evms_polarity_split #(
   assign dx = $signed({1'b0, small_x_q}) - $signed({1'b0, large_x_q[m_part]});
   assign dy = $signed({1'b0, small_y_q}) - $signed({1'b0, large_y_q[m_part]});
   assign distance2 = 64'(dx * dx) + 64'(dy * dy);
-  // The mode large part m takes, and whether the cluster's parts fit in the mode table.
+  // The mode group m takes, and whether the cluster's groups fit in the mode table.
   logic [15:0] m_mode;
   assign m_mode = m_q == 0 ? c_q : count_q + 16'(m_q) - 16'd1;
   logic fits;
-  assign fits = 32'(count_q) + 32'(large_q) - 1 <= ModesMax;
+  assign fits = 32'(count_q) + 32'(groups_q) - 1 <= ModesMax && 32'(large_q) <= ModesMax;
   // The event's part, while moving it.
   logic [ModeBits-1:0] ev_target;
   assign ev_target = target_q[root_q[32'(cell_of_rd) * PartBits +: PartBits]];
@@ -248,6 +264,9 @@ module evms_polarity_split #(
     cells_d = cells_q;
     large_d = large_q;
     balanced_d = balanced_q;
+    groups_d = groups_q;
+    one_pol_d = one_pol_q;
+    one_pol_group_d = one_pol_group_q;
     m_d = m_q;
     ahead_d = ahead_q;
     cx_d = cx_q;
@@ -377,6 +396,8 @@ module evms_polarity_split #(
           k_d = '0;
           large_d = '0;
           balanced_d = 1'b1;
+          groups_d = '0;
+          one_pol_d = 1'b0;
           state_d = StLarge;
         end else begin
           state_d = StClearData;
@@ -394,9 +415,14 @@ module evms_polarity_split #(
           if (k_is_large) begin
             large_d = large_q + 1'b1;
             balanced_d = balanced_q && k_is_balanced;
+            if (k_own_group) groups_d = groups_q + 1'b1;
+            if (!k_is_balanced && cfg_split_partial && !one_pol_q) begin
+              one_pol_d = 1'b1;
+              one_pol_group_d = ModeBits'(groups_q);
+            end
           end
           k_d = k_q + 1'b1;
-        end else if (large_q >= 2 && balanced_q && fits) begin
+        end else if (split_ok) begin
           m_d = '0;
           state_d = StLargeCentre;
         end else begin
@@ -466,10 +492,10 @@ module evms_polarity_split #(
         j_d = j_q + 1'b1;
         state_d = StMoveAddr;
       end
-      // The new modes' positions.
+      // The groups' modes' positions.
       StMean: begin
-        if (32'(m_q) == 32'(large_q)) begin
-          count_d = count_q + 16'(large_q) - 16'd1;
+        if (32'(m_q) == 32'(groups_q)) begin
+          count_d = count_q + 16'(groups_q) - 16'd1;
           c_d = c_q + 1'b1;
           state_d = StCluster;
         end else begin
@@ -542,11 +568,14 @@ module evms_polarity_split #(
     if (state_q == StLarge && k_q != cells_q) begin
       is_large_q[k_part] <= k_is_large;
       if (k_is_large) begin
-        target_q[k_part] <= ModeBits'(large_q);
-        if (32'(large_q) < ModesMax) large_root_q[ModeBits'(large_q)] <= k_part;
+        target_q[k_part] <= k_group;
+        if (32'(large_q) < ModesMax) begin
+          large_root_q[ModeBits'(large_q)] <= k_part;
+          group_q[ModeBits'(large_q)] <= k_group;
+        end
       end
     end
-    if (state_q == StNearest && 32'(m_q) + 1 == 32'(large_q)) target_q[k_part] <= m_q == 0 || distance2 < best_q ? m_part : best_m_q;
+    if (state_q == StNearest && 32'(m_q) + 1 == 32'(large_q)) target_q[k_part] <= group_q[m_q == 0 || distance2 < best_q ? m_part : best_m_q];
     if (state_q == StLargeCentreWait && div_done) begin
       large_x_q[m_part] <= CentreBits'(quotient_x);
       large_y_q[m_part] <= CentreBits'(quotient_y);
@@ -589,6 +618,9 @@ module evms_polarity_split #(
       cells_q <= '0;
       large_q <= '0;
       balanced_q <= 1'b1;
+      groups_q <= '0;
+      one_pol_q <= 1'b0;
+      one_pol_group_q <= '0;
       m_q <= '0;
       ahead_q <= '0;
       cx_q <= '0;
@@ -607,6 +639,9 @@ module evms_polarity_split #(
       cells_q <= cells_d;
       large_q <= large_d;
       balanced_q <= balanced_d;
+      groups_q <= groups_d;
+      one_pol_q <= one_pol_d;
+      one_pol_group_q <= one_pol_group_d;
       m_q <= m_d;
       ahead_q <= ahead_d;
       cx_q <= cx_d;

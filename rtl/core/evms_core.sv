@@ -274,7 +274,8 @@ module evms_core #(
     ) u_split (
       .clk(clk), .rst_n(rst_n), .ready(sp_ready), .start(sp_start_q), .n(16'(n_q)), .mode_count(cl_mode_count),
       .cfg_split_min_events(cfg_split_min_events), .cfg_split_balance(cfg_split_balance), .cfg_split_share(cfg_split_share),
-      .cfg_split_cell_scale_x(cfg_split_cell_scale_x), .cfg_split_cell_scale_y(cfg_split_cell_scale_y), .ev_j(sp_ev_j),
+      .cfg_split_cell_scale_x(cfg_split_cell_scale_x), .cfg_split_cell_scale_y(cfg_split_cell_scale_y),
+      .cfg_split_partial(cfg_split_partial), .ev_j(sp_ev_j),
       .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_p(rd_pk_p), .ev_mode(linked_mode), .ev_fx(cl_rd_x), .ev_fy(cl_rd_y),
       .done(sp_done), .modes_after(sp_mode_count), .rd_j(sp_rd_j), .rd_mode(sp_rd_mode), .rd_c(ws_md_c),
       .rd_moved(sp_rd_moved), .rd_mode_x(sp_rd_mode_x), .rd_mode_y(sp_rd_mode_y));
@@ -283,7 +284,8 @@ module evms_core #(
     assign sp_ready = 1'b1;
     // What only the polarity split reads (waived in core/evms_core.vlt).
     logic unused_split;
-    assign unused_split = ^{sp_start_q, sp_rd_j, cfg_split_share, cfg_split_min_events, cfg_split_cell_scale_x, cfg_split_cell_scale_y};
+    assign unused_split = ^{sp_start_q, sp_rd_j, cfg_split_share, cfg_split_min_events, cfg_split_cell_scale_x, cfg_split_cell_scale_y,
+                           cfg_split_partial};
   end
   if (HasSeededPath != 0 && HasEdgeJoin != 0) begin : g_edge_join
     logic [15:0] joined_unused;

@@ -46,6 +46,7 @@
 .CfgSplitMinEvents(CfgSplitMinEvents),
 .CfgSplitCellScaleX(CfgSplitCellScaleX),
 .CfgSplitCellScaleY(CfgSplitCellScaleY),
+.CfgSplitPartial(CfgSplitPartial),
 .CfgMidpointMin(CfgMidpointMin),
 .CfgEdgeRadius2(CfgEdgeRadius2),
 .CfgEdgeBalance(CfgEdgeBalance),

@@ -46,6 +46,7 @@
 .cfg_split_min_events(CfgSplitMinEvents),
 .cfg_split_cell_scale_x(CfgSplitCellScaleX),
 .cfg_split_cell_scale_y(CfgSplitCellScaleY),
+.cfg_split_partial(CfgSplitPartial),
 .cfg_midpoint_min(CfgMidpointMin),
 .cfg_edge_radius2(CfgEdgeRadius2),
 .cfg_edge_balance(CfgEdgeBalance),

@@ -102,6 +102,7 @@ localparam logic [15:0] CfgSplitShare = 16'd26;
 localparam logic [15:0] CfgSplitMinEvents = 16'd64;
 localparam logic [31:0] CfgSplitCellScaleX = 32'd3200;
 localparam logic [31:0] CfgSplitCellScaleY = 32'd5689;
+localparam logic CfgSplitPartial = 1'd1;
 localparam logic [15:0] CfgMidpointMin = 16'd16;
 localparam logic [63:0] CfgEdgeRadius2 = 64'd16777216;
 localparam logic [15:0] CfgEdgeBalance = 16'd128;

@@ -102,6 +102,7 @@ localparam logic [15:0] CfgSplitShare = 16'd0;
 localparam logic [15:0] CfgSplitMinEvents = 16'd0;
 localparam logic [31:0] CfgSplitCellScaleX = 32'd0;
 localparam logic [31:0] CfgSplitCellScaleY = 32'd0;
+localparam logic CfgSplitPartial = 1'd0;
 localparam logic [15:0] CfgMidpointMin = 16'd0;
 localparam logic [63:0] CfgEdgeRadius2 = 64'd0;
 localparam logic [15:0] CfgEdgeBalance = 16'd0;

@@ -46,6 +46,7 @@ input  logic [15:0] cfg_split_share,  // seeded: a part is large with at least t
 input  logic [15:0] cfg_split_min_events,  // seeded: a part is large with at least this many events too; a cluster of fewer than twice this is not looked at
 input  logic [31:0] cfg_split_cell_scale_x,  // seeded: a split cell's column is (x * this) >> kSplitCellFrac (at most 2^15)
 input  logic [31:0] cfg_split_cell_scale_y,  // seeded: a split cell's row is (y * this) >> kSplitCellFrac (at most 2^15)
+input  logic cfg_split_partial,  // seeded: each large part that holds both polarities becomes a cluster and the other large parts one more; false: a cluster splits only when every large part holds both
 input  logic [15:0] cfg_midpoint_min,  // seeded: a cluster whose ON and OFF events number at least this each is measured at the midpoint of their centres of mass; 0: at the centre of mass (the only setting of a build without HasPolarityMidpoint)
 input  logic [63:0] cfg_edge_radius2,  // seeded: a mostly-ON and a mostly-OFF mode whose centres lie within sqrt(this) / 16 px join (hls/cluster/edge_join.h); 0: off (the only setting of a build without HasEdgeJoin)
 input  logic [15:0] cfg_edge_balance,  // seeded: a mode is mostly one polarity when |2 ON - events| >= this * events, kSplitFractionFrac bits

@@ -68,9 +68,32 @@ TEST(PolaritySplit, TwoEdgesOfOnePolarityEachStayOneCluster) {
   const Split s = split_one_cluster(edges, splitting());
   EXPECT_EQ(s.modes.size(), 1u);
   EXPECT_EQ(std::set<int>(s.cluster_of.begin(), s.cluster_of.end()), std::set<int>{0});
-  // One part of one polarity is enough to keep the cluster whole.
-  const Split mixed = split_one_cluster(concat(square(20, 20, 10, kChecker), square(100, 60, 10, kOff)), splitting());
-  EXPECT_EQ(mixed.modes.size(), 1u);
+}
+
+TEST(PolaritySplit, ABalancedPartLeavesAndTheOnePolarityPartsStayTogether) {
+  // A translating outline's two edges (ON at x 60-61, OFF at x 90-91) and, apart from them, a
+  // small object firing both polarities: the object leaves, and the edges (72 events each, large)
+  // stay one cluster.
+  std::vector<Event> edges;
+  for (int y = 40; y < 76; ++y) {
+    for (int x : {60, 61}) edges.push_back({0, static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), 1});
+    for (int x : {90, 91}) edges.push_back({0, static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), 0});
+  }
+  const auto object = square(20, 20, 10, kChecker);
+  const auto events = concat(object, edges);
+  const Split s = split_one_cluster(events, splitting());
+  ASSERT_EQ(s.modes.size(), 2u);
+  for (size_t i = 0; i < object.size(); ++i) EXPECT_EQ(s.cluster_of[i], 0) << "the first large part's group keeps the cluster";
+  for (size_t i = object.size(); i < events.size(); ++i) EXPECT_EQ(s.cluster_of[i], 1) << "both edges, one cluster";
+  // The edges' mode is the mean of both edges' features: x 75.5 px.
+  EXPECT_NEAR(s.modes[1](0), 75.5 / 240, 1e-12);
+  // With --split-partial false, one part of one polarity keeps the cluster whole.
+  Params whole = splitting();
+  whole.split_partial = false;
+  EXPECT_EQ(split_one_cluster(events, whole).modes.size(), 1u);
+  EXPECT_EQ(split_one_cluster(concat(object, square(100, 60, 10, kOff)), whole).modes.size(), 1u);
+  // Parts of one polarity alone never split, whatever their number.
+  EXPECT_EQ(split_one_cluster(concat(square(20, 20, 10, kOn), square(100, 60, 10, kOff)), splitting()).modes.size(), 1u);
 }
 
 TEST(PolaritySplit, PartsWithinACellOfEachOtherAreOnePart) {

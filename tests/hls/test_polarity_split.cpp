@@ -38,6 +38,7 @@ Case random_case(gen::Random& rng) {
   c.params.bandwidth = std::array{0.02, 0.04, 0.08}[rng.below(3)];
   c.params.min_cluster_size = static_cast<int>(std::array{4, 8, 16}[rng.below(3)]);
   c.params.split_min_events = static_cast<int>(std::array{1, 8, 32, 64, 128}[rng.below(5)]);
+  c.params.split_partial = rng.below(3) != 0;
   c.modes = 1 + static_cast<int>(rng.below(4));
   const int blobs = 2 + static_cast<int>(rng.below(6));
   for (int b = 0; b < blobs; ++b) {
@@ -92,7 +93,7 @@ TEST(PolaritySplitFixed, TheSameClustersAndModesAsGoldenOnRandomPackets) {
   gen::Random rng(11);
   auto split = std::make_unique<PolaritySplit<S>>();
   split->reset();
-  int trials_split = 0, trials_whole = 0;
+  int trials_split = 0, trials_whole = 0, trials_partial = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const Case c = random_case(rng);
     SCOPED_TRACE("trial " + std::to_string(trial));
@@ -117,10 +118,20 @@ TEST(PolaritySplitFixed, TheSameClustersAndModesAsGoldenOnRandomPackets) {
       EXPECT_NEAR(static_cast<double>(k.modes->y[m]), want_modes[m](1) * unit, 1.0) << "mode " << m;
     }
     (want_modes.size() > static_cast<size_t>(c.modes) ? trials_split : trials_whole)++;
+    // A split that only split_partial makes: a large part of one polarity beside balanced ones.
+    if (c.params.split_partial) {
+      Params whole = c.params;
+      whole.split_partial = false;
+      std::vector<Eigen::Vector4d> whole_modes(static_cast<size_t>(c.modes), Eigen::Vector4d::Zero());
+      std::vector<int> whole_of = c.cluster_of;
+      golden::PolaritySplit(whole, c.sensor).split(c.events, f, whole_modes, whole_of);
+      trials_partial += whole_of != want;
+    }
   }
   // Both outcomes, many times: the cases reach the rule's every branch.
   EXPECT_GT(trials_split, 50);
   EXPECT_GT(trials_whole, 50);
+  EXPECT_GT(trials_partial, 10);
 }
 
 TEST(PolaritySplitFixed, AClusterWhosePartsFindNoRoomInTheModeTableStaysWhole) {

@@ -48,6 +48,7 @@ Packet draw_packet(std::mt19937_64& rng) {
   p.cfg.split_cell_scale_x = draw.one_of<std::uint32_t>({32768, 16384, 7000, 3000, 1500});
   p.cfg.split_cell_scale_y = draw.below(3) == 0 ? draw.one_of<std::uint32_t>({32768, 9000, 1500}) : p.cfg.split_cell_scale_x;
   p.cfg.split_min_events = static_cast<std::uint16_t>(draw.one_of<int>({2, 4, 8, 16}));
+  p.cfg.split_partial = draw.below(3) != 0;
   const int modes = draw.below(3) == 0 ? S::kModesMax - draw.below(2) : 1 + draw.below(5);
   const int n = 16 + draw.below(S::kPacketMax - 15), blobs = 2 + draw.below(6);
   struct Blob {
@@ -124,6 +125,7 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
     rtl->cfg_split_share = p.cfg.split_share;
     rtl->cfg_split_cell_scale_x = p.cfg.split_cell_scale_x;
     rtl->cfg_split_cell_scale_y = p.cfg.split_cell_scale_y;
+    rtl->cfg_split_partial = p.cfg.split_partial;
     // The packet's memories answer ev_j the clock after, as a block RAM's registered read does.
     auto tick_with_memories = [&] {
       const int j = rtl->ev_j;
