@@ -33,7 +33,8 @@
 //          cluster's, the others open modes after the existing ones) and adds its climb features
 //          to that mode's sums;
 //   modes  each new position is its sums' mean, rounded half up, and the mode is marked moved.
-// A cluster whose groups would not fit in ModesMax modes stays whole.
+// A cluster whose groups or large parts would not fit in ModesMax modes stays whole (a large
+// part keeps its centre in a ModesMax-entry table).
 //
 // Schedule: 1 to start; 2 clocks an event to count; per cluster checked, 2 an event of the packet
 // and 1 more per event of the cluster (cells), 1 + 2 per neighbour within the map per cell
