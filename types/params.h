@@ -79,7 +79,8 @@ struct Params {
   double bandwidth = 0.04;           // kernel bandwidth h on the normalized feature space
   int max_iterations = 8;            // iteration cap
   double tolerance = 4e-5;           // stop when no coordinate moves more than this (h / 1000)
-  double merge_radius = 0.02;        // modes closer than this are one cluster
+  double merge_radius = 0.04;        // modes closer than this are one cluster: one bandwidth, so a
+                                     // climb that ends inside an earlier mode's ball joins it
   int min_cluster_size = 8;          // smaller clusters become noise
   double min_density = 2;            // seeded climbs: a mode whose ball holds fewer than this many
                                      // times the events a uniform spread would put there is noise
