@@ -427,22 +427,25 @@ TEST(SweepCommand, PinsTheMembersSensorShapesAndNoise) {
   EXPECT_NE(r.out.find("| rotation 1: rotation 200x150,  3 shapes (0 moving), speed"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("noise 0.50 Hz"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| paper-rotation 1: rotation 240x180, poster of 9 shapes"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("| F 0.04 | IDF1 0.04 | track err px 0.04 | estimates 0.04 | within 2.5 px 0.04 | centroid err px 0.04 | events' centre's own err px 0.04 | "
+  EXPECT_NE(r.out.find("| F 0.04 | IDF1 0.04 | track err px 0.04 | estimates 0.04 | beyond 2.5 px 0.04 | within 2.5 px 0.04 | centroid err px 0.04 | events' centre's own err px 0.04 | "
                        "err to events' centre px 0.04 | MOTA 0.04 | false tracks/frame 0.04 |"),
             std::string::npos)
       << r.out;
-  // Each member's row: its estimates are a count and its share within 2.5 px a fraction.
+  // Each member's row: its estimates and those beyond 2.5 px are counts, and its share within
+  // 2.5 px the fraction they leave.
   const auto row = r.out.find("| rotation 1: rotation 200x150");
   ASSERT_NE(row, std::string::npos) << r.out;
   const std::string line = r.out.substr(row, r.out.find('\n', row) - row);
   std::vector<std::string> cells;
   for (size_t at = 1, bar; (bar = line.find('|', at)) != std::string::npos; at = bar + 1) cells.push_back(line.substr(at, bar - at));
-  ASSERT_EQ(cells.size(), 3u + 10u) << line;
+  ASSERT_EQ(cells.size(), 3u + 11u) << line;
   const long estimates = std::stol(cells[6]);
-  const double within = std::stod(cells[7]);
+  const long beyond = std::stol(cells[7]);
+  const double within = std::stod(cells[8]);
   EXPECT_GT(estimates, 0) << line;
-  EXPECT_GE(within, 0.0) << line;
-  EXPECT_LE(within, 1.0) << line;
+  EXPECT_GE(beyond, 0) << line;
+  EXPECT_LE(beyond, estimates) << line;
+  EXPECT_NEAR(within, 1.0 - static_cast<double>(beyond) / static_cast<double>(estimates), 0.005) << line;
   const auto bad = test::run_command(test::evms_binary() + " sweep --types rotation --seeds 1 --sensor 200");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("--sensor: expected WxH"), std::string::npos) << bad.err;
