@@ -73,12 +73,12 @@ TEST(MethodOutputs, TheSingleBlobOfTheGen3RecordingKeepsOneId) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // In every 4 ms of the 50 ms recording the ID most events carry is the same one.
   std::map<std::int64_t, std::map<std::int64_t, std::int64_t>> votes;  // window -> id -> events
-  std::set<std::int64_t> ids;
+  std::set<std::int64_t> ids_seen;
   std::int64_t t0 = -1;
   for (const auto& row : csv_rows(dir.path("o/events.csv"))) {
     const std::int64_t t = std::stoll(row[0]), label = std::stoll(row[4]);
     if (t0 < 0) t0 = t;
-    if (label >= 0) ++votes[(t - t0) / 4000][label], ids.insert(label);
+    if (label >= 0) ++votes[(t - t0) / 4000][label], ids_seen.insert(label);
   }
   std::set<std::int64_t> dominant;
   for (const auto& [window, ids] : votes) {
@@ -88,7 +88,7 @@ TEST(MethodOutputs, TheSingleBlobOfTheGen3RecordingKeepsOneId) {
   EXPECT_EQ(dominant.size(), 1u) << "the blob changed its ID";
   // No event carries another ID: a climb that ends within a bandwidth of the blob's mode, among
   // the blob's trailing events, joins the blob (--merge-radius) instead of starting a track.
-  EXPECT_EQ(ids.size(), 1u) << "events outside the blob's track";
+  EXPECT_EQ(ids_seen.size(), 1u) << "events outside the blob's track";
   // And the blob is the one confirmed track: its scattered events make no track of their own.
   std::set<std::string> confirmed;
   for (const auto& row : csv_rows(dir.path("o/tracks.csv"))) {
