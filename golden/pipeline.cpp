@@ -35,6 +35,9 @@ Pipeline::Pipeline(const Params& params, SensorSize sensor)
       clusterer_(params, sensor),
       tracker_(make_tracker(params, sensor)) {
   packet_.reserve(static_cast<size_t>(params.packet_size));
+  if (params.measure == Measure::kPixelCentre) {
+    pixel_packet_.assign(static_cast<size_t>(sensor.width) * static_cast<size_t>(sensor.height), -1);
+  }
 }
 
 void Pipeline::push(const Event& e, OutputSink& out) {
@@ -112,12 +115,14 @@ void Pipeline::close_packet(OutputSink& out) {
     stats_.cluster_ns += clock.lap();
 
     // A cluster's measurement: the centre of mass of its events (or the midpoint of its two
-    // polarities' centres of mass), timed at their mean timestamp, with their count, spread
-    // (about the centre of mass) and bounding box.
+    // polarities' centres of mass, or the mean of its pixels), timed at their mean timestamp, with
+    // their count, spread (about the centre of mass) and bounding box.
     std::vector<Measurement> measurements(static_cast<size_t>(clusters.count));
     std::vector<double> sum_t(measurements.size(), 0.0), sum_r2(measurements.size(), 0.0);
     std::vector<double> on_x(measurements.size(), 0.0), on_y(measurements.size(), 0.0);
     std::vector<int> on_events(measurements.size(), 0);
+    std::vector<double> pixel_x(measurements.size(), 0.0), pixel_y(measurements.size(), 0.0);
+    std::vector<int> pixels(measurements.size(), 0);
     const TimeUs t0 = packet_.front().t;
     for (size_t i = 0; i < supported.size(); ++i) {
       const int c = clusters.cluster_of[i];
@@ -133,6 +138,13 @@ void Pipeline::close_packet(OutputSink& out) {
       sum_r2[static_cast<size_t>(c)] += static_cast<double>(e.x) * e.x + static_cast<double>(e.y) * e.y;
       sum_t[static_cast<size_t>(c)] += static_cast<double>(e.t - t0);
       ++m.events;
+      if (!pixel_packet_.empty()) {
+        std::int64_t& seen = pixel_packet_[static_cast<size_t>(e.y) * static_cast<size_t>(sensor_.width) + static_cast<size_t>(e.x)];
+        if (seen != stats_.packets) {
+          seen = stats_.packets;
+          pixel_x[static_cast<size_t>(c)] += e.x, pixel_y[static_cast<size_t>(c)] += e.y, ++pixels[static_cast<size_t>(c)];
+        }
+      }
     }
     for (size_t c = 0; c < measurements.size(); ++c) {
       Measurement& m = measurements[c];
@@ -146,6 +158,9 @@ void Pipeline::close_packet(OutputSink& out) {
       m.spread = std::sqrt(std::max(0.0, sum_r2[c] / m.events - m.x * m.x - m.y * m.y));
       if (params_.measure == Measure::kBoxCentre) m.x = (m.x_min + m.x_max) / 2.0, m.y = (m.y_min + m.y_max) / 2.0;
       if (midpoint) m.x = mid_x, m.y = mid_y;
+      // A cluster whose every pixel an earlier cluster's event took (only where clusters share
+      // pixels, as without links) keeps its centre of mass.
+      if (params_.measure == Measure::kPixelCentre && pixels[c] > 0) m.x = pixel_x[c] / pixels[c], m.y = pixel_y[c] / pixels[c];
       m.t = t0 + static_cast<TimeUs>(sum_t[c] / m.events + 0.5);
     }
 

@@ -75,6 +75,8 @@ class Pipeline {
   std::vector<std::int32_t> label_of_packet_event_;
   std::vector<Event> supported_;
   std::vector<int> index_of_;
+  // --measure pixel-centre: per pixel, the last packet whose clustered events fell on it (stats_.packets).
+  std::vector<std::int64_t> pixel_packet_;
   PipelineStats stats_;
 };
 

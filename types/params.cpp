@@ -16,7 +16,7 @@ constexpr std::array<const char*, 3> kKernelNames = {"gaussian", "flat", "epanec
 constexpr std::array<const char*, 3> kSeedingNames = {"every", "events", "grid"};
 constexpr std::array<const char*, 3> kLabellingNames = {"votes", "nearest", "first"};
 constexpr std::array<const char*, 2> kXyScaleNames = {"axes", "isotropic"};
-constexpr std::array<const char*, 3> kMeasureNames = {"centroid", "box-centre", "polarity-midpoint"};
+constexpr std::array<const char*, 4> kMeasureNames = {"centroid", "box-centre", "polarity-midpoint", "pixel-centre"};
 constexpr std::array<const char*, 3> kAssociationNames = {"kalman", "nearest-centre", "last-measurement"};
 
 const std::array kTable = {
@@ -134,9 +134,11 @@ const std::array kTable = {
     ParamInfo{"max-clusters", "clusters",
               "clusters per packet; modes that would open a further one become noise",
               &Params::max_clusters, 1, 256},
-    ParamInfo{"measure", "", "a cluster's position: the centroid of its events, the centre of their bounding box, or "
+    ParamInfo{"measure", "", "a cluster's position: the centroid of its events, the centre of their bounding box, "
               "the midpoint of its ON events' centroid and its OFF events' centroid (an edge that fires more events "
-              "than the opposite edge then pulls no harder)",
+              "than the opposite edge then pulls no harder), or pixel-centre, the mean of the pixels its events fall on, "
+              "each pixel once (an edge that fires more events on each pixel, as one moving across its normal does, "
+              "then pulls no harder than one moving along it)",
               &Params::measure, 0, 0, {kMeasureNames}},
     ParamInfo{"midpoint-min-events", "events", "with --measure polarity-midpoint, the events each polarity needs; "
               "with fewer, the cluster's position is the centroid of its events",

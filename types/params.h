@@ -30,10 +30,11 @@ enum class Labelling : std::uint8_t {
 };
 // How x and y are normalized: x/W and y/H (the paper), or both by the larger side.
 enum class XyScale : std::uint8_t { kAxes, kIsotropic };
-// Where a cluster is: the centre of mass of its events, the centre of their bounding box, or the
+// Where a cluster is: the centre of mass of its events, the centre of their bounding box, the
 // midpoint of its ON events' and its OFF events' centres of mass (the centre of mass where either
-// polarity has fewer than midpoint_min_events).
-enum class Measure : std::uint8_t { kCentroid, kBoxCentre, kPolarityMidpoint };
+// polarity has fewer than midpoint_min_events), or the mean of the pixels its events fall on, each
+// pixel once (a pixel counts for the cluster of the packet's first clustered event on it).
+enum class Measure : std::uint8_t { kCentroid, kBoxCentre, kPolarityMidpoint, kPixelCentre };
 // How clusters get their IDs across packets.
 enum class Association : std::uint8_t {
   kKalman,         // one-to-one, nearest first, against each track's Kalman prediction
@@ -104,7 +105,7 @@ struct Params {
   int edge_min_events = 16;          // ... in a cluster of at least this many events
 
   // --- tracker --------------------------------------------------------------------------
-  Measure measure = Measure::kPolarityMidpoint;
+  Measure measure = Measure::kPixelCentre;
   int midpoint_min_events = 16;      // polarity midpoint: events each polarity needs
   Association association = Association::kLastMeasurement;
   double gate_px = 20.0;             // association gate around the predicted position

@@ -9,6 +9,13 @@
 // exact division rounded half up, as the centre of mass is. An object's leading and trailing
 // edges fire opposite polarities; where one fires more (contrast, speed), the centre of mass
 // leans towards it and the midpoint does not.
+//
+// With `first_on_pixel` (exact division only; it takes the place of the midpoint), a cluster is
+// measured at the mean of its pixels, each pixel once: the sums and the count of its events that
+// are the first of the packet on their pixel (hls/cluster/link.h marks them). An edge moving
+// across its normal fires several events on each pixel it crosses, one moving along it few, and
+// where the outline is is where its pixels are, not where most events fire. A cluster without
+// such an event (none, with the links on) keeps its centre of mass.
 #pragma once
 
 #include <cstdint>
@@ -31,9 +38,11 @@ struct Measurement {
 // table; the seeded path does, the RTL's path (the Gaussian one) does not.
 template <class S>
 void centroids(const PacketEvents<S>& ev, int n, const std::int8_t cluster_of[S::kPacketMax], int clusters,
-               Measurement out[S::kClustersMax], bool exact = false, std::uint16_t midpoint_min = 0) {
+               Measurement out[S::kClustersMax], bool exact = false, std::uint16_t midpoint_min = 0,
+               const bool* first_on_pixel = nullptr) {
   std::uint32_t sx[S::kClustersMax] = {}, sy[S::kClustersMax] = {}, count[S::kClustersMax] = {};
   std::uint32_t sx_on[S::kClustersMax] = {}, sy_on[S::kClustersMax] = {}, count_on[S::kClustersMax] = {};
+  std::uint32_t sx_px[S::kClustersMax] = {}, sy_px[S::kClustersMax] = {}, count_px[S::kClustersMax] = {};
   std::uint64_t st[S::kClustersMax] = {}, s2[S::kClustersMax] = {};
   std::uint16_t x0[S::kClustersMax], y0[S::kClustersMax], x1[S::kClustersMax], y1[S::kClustersMax];
   const std::uint32_t t0 = ev.t[0];
@@ -49,6 +58,7 @@ accumulate:
     sx[c] += ev.x[i];
     sy[c] += ev.y[i];
     if (ev.p[i]) sx_on[c] += ev.x[i], sy_on[c] += ev.y[i], ++count_on[c];
+    if (first_on_pixel != nullptr && first_on_pixel[i]) sx_px[c] += ev.x[i], sy_px[c] += ev.y[i], ++count_px[c];
     s2[c] += std::uint64_t{ev.x[i]} * ev.x[i] + std::uint64_t{ev.y[i]} * ev.y[i];
     st[c] += ev.t[i] - t0;
     ++count[c];
@@ -60,7 +70,9 @@ divide:
       const std::uint64_t n = count[c], n_on = count_on[c], n_off = n - n_on;
       // The x and y quotients' numerators (before the kPosFrac shift) and denominator.
       std::uint64_t num_x = sx[c], num_y = sy[c], den = n;
-      if (midpoint_min > 0 && n_on >= midpoint_min && n_off >= midpoint_min) {
+      if (first_on_pixel != nullptr && count_px[c] > 0) {
+        num_x = sx_px[c], num_y = sy_px[c], den = count_px[c];
+      } else if (midpoint_min > 0 && n_on >= midpoint_min && n_off >= midpoint_min) {
         num_x = std::uint64_t{sx_on[c]} * n_off + std::uint64_t{sx[c] - sx_on[c]} * n_on;
         num_y = std::uint64_t{sy_on[c]} * n_off + std::uint64_t{sy[c] - sy_on[c]} * n_on;
         den = 2 * n_on * n_off;

@@ -11,6 +11,10 @@
 // ahead of the other, and a pixel's later events overwrote its earlier ones only after joining
 // them. Last, the listed pixels are unmarked, so the map is clear for the next packet without a
 // pass over the sensor.
+//
+// The write pass also says which events are the first of the packet on their pixel (among the
+// events with a mode): each pixel once, for the pixel centre (hls/cluster/centroid.h). All the
+// events with a mode on one pixel end in one set, so the pixel counts for that set's cluster.
 #pragma once
 
 #include <cstdint>
@@ -28,12 +32,21 @@ class ModeLinks {
     for (int i = 0; i < S::kMaxHeight * kWordsPerRow; ++i) marked_[i] = 0;
   }
 
-  // Replaces each event's mode (first_mode, -1 for none) by the oldest mode of its set.
-  void run(const PacketEvents<S>& ev, int n, int modes, const Config& cfg, std::int16_t first_mode[S::kPacketMax]) {
+  // Replaces each event's mode (first_mode, -1 for none) by the oldest mode of its set, and sets
+  // first_on_pixel[j] when event j has a mode and no earlier event with a mode fell on its pixel
+  // (with link2 == 0 there is no map: every event with a mode is first).
+  void run(const PacketEvents<S>& ev, int n, int modes, const Config& cfg, std::int16_t first_mode[S::kPacketMax],
+           bool first_on_pixel[S::kPacketMax]) {
   roots:
     for (int c = 0; c < S::kModesMax; ++c) {
       if (c >= modes) break;
       sets_.make_set(c);
+    }
+  firsts:
+    for (int j = 0; j < S::kPacketMax; ++j) {
+#pragma HLS PIPELINE II = 1
+      if (j >= n) break;
+      first_on_pixel[j] = first_mode[j] >= 0;
     }
     if (cfg.link2 != 0) {
       int listed = 0;
@@ -45,6 +58,7 @@ class ModeLinks {
         const int pixel = ev.y[j] * S::kMaxWidth + ev.x[j];
         if (is_marked(ev.x[j], ev.y[j])) {
           sets_.unite(first_mode[j], mode_[pixel]);
+          first_on_pixel[j] = false;
         } else {
           mark(ev.x[j], ev.y[j], true);
           listed_[listed++] = pixel;

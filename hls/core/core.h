@@ -113,13 +113,14 @@ class Core {
     if (n_ > 0) {
       Features<S> phi;
       std::int8_t cluster_of[S::kPacketMax];
+      bool first_on_pixel[S::kPacketMax];  // the seeded path's links set it
       int sweeps = 0, clusters = 0;
       if (cfg_.seeded) {
         climb_features(packet_, n_, cfg_, phi);
         std::int16_t mode_of[S::kPacketMax];
         Modes<S> modes;
         climbs_.run(phi, n_, cfg_, warm_, mode_of, modes, trace.climbs);
-        links_.run(packet_, n_, modes.count, cfg_, mode_of);
+        links_.run(packet_, n_, modes.count, cfg_, mode_of, first_on_pixel);
         trace.splits_left_whole = split_.run(packet_, phi, n_, cfg_, mode_of, modes);
         trace.edges_joined = edges_.run(packet_, n_, cfg_, modes.count, mode_of);
         clusters = keep_clusters<S>(mode_of, n_, modes, cfg_, cluster_of, warm_);
@@ -131,7 +132,8 @@ class Core {
         clusters = merge_modes(phi, n_, cfg_, cluster_of, trace.merge);
       }
       Measurement z[S::kClustersMax];
-      centroids(packet_, n_, cluster_of, clusters, z, cfg_.seeded, cfg_.midpoint_min);
+      centroids(packet_, n_, cluster_of, clusters, z, cfg_.seeded, cfg_.midpoint_min,
+                cfg_.seeded && cfg_.pixel_centre && cfg_.link2 != 0 ? first_on_pixel : nullptr);  // the links mark the pixels
       std::int32_t ids[S::kClustersMax];
       tracker_.step(packet_.t[n_ - 1], z, clusters, cfg_, ids, tracks);
       trace.sweeps = sweeps;

@@ -34,7 +34,8 @@ template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsM
           int TimestampBits = 16, int TimestampShift = 7, int PendingDepth = 4 * PacketMax, int FeatFrac = 11,
           int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4,
           int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0, int HasPolaritySplit = 0,
-          int HasPolarityMidpoint = 0, int HasEdgeJoin = 0, int HasSpreadNoise = 0, int HasGateBoxes = 0>
+          int HasPolarityMidpoint = 0, int HasEdgeJoin = 0, int HasSpreadNoise = 0, int HasGateBoxes = 0,
+          int HasPixelCentre = 0>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -84,6 +85,11 @@ struct Shape {
   // --gate-boxes false (its board ties the register low, and synthesis removes the test), and
   // the host refuses --gate-boxes true for it.
   static constexpr int kHasGateBoxes = HasGateBoxes;
+  // Whether the build can measure a cluster at the mean of its pixels, each pixel once
+  // (Config::pixel_centre, hls/cluster/centroid.h, rtl/cluster/evms_centroid.sv; the pixels are
+  // marked by the links, hls/cluster/link.h); a build without it measures by the centre of mass,
+  // and the host refuses --measure pixel-centre for it.
+  static constexpr int kHasPixelCentre = HasPixelCentre;
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;
@@ -184,7 +190,8 @@ struct Shape {
   X(HasPolarityMidpoint)             \
   X(HasEdgeJoin)                     \
   X(HasSpreadNoise)                  \
-  X(HasGateBoxes)
+  X(HasGateBoxes)                    \
+  X(HasPixelCentre)
 
 // The default board build: a DAVIS240-class sensor, the defaults of docs/sweep.md, a 16-bit
 // timestamp per pixel in 128 us units (one iCE40 SPRAM word), and eight kernel lanes: 88 of an
@@ -195,10 +202,10 @@ using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // method's default packets (3,000 events), clusters and tracks (128 each), and a pending queue
 // deep enough that noisy recordings (a third noise, say) never close a packet early, as golden
 // never does.
-using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1, 1, 1>;
+using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1, 1, 1, 1>;
 // The RTL's host-simulation build: HostShape's sensor, words and tables with smaller packet,
-// cluster and track sizes, both clustering paths, the polarity split, the edge join and the
-// measurement noise from the spread. For settings within those sizes the two give the same words.
-using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 8, 32, 8, 1, 1, 1, 1, 1, 1, 1>;
+// cluster and track sizes, both clustering paths, the polarity split, the edge join, the
+// measurement noise from the spread and the pixel centre. For settings within those sizes the two give the same words.
+using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 8, 32, 8, 1, 1, 1, 1, 1, 1, 1, 1>;
 
 }  // namespace evms::hls

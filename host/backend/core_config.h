@@ -40,9 +40,10 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 }
 
 // The method `p` within build S: the packet size, cluster and track counts cut to what S holds,
-// and without the polarity split, the polarity midpoint, the edge join, the measurement noise
-// from the spread and the gate's boxes where S does not hold them (Shape::kHasPolaritySplit,
-// kHasPolarityMidpoint, kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes: the board builds), each unless `kept(name)` says the command
+// and without the polarity split, the polarity midpoint or the pixel centre, the edge join, the
+// measurement noise from the spread and the gate's boxes where S does not hold them
+// (Shape::kHasPolaritySplit, kHasPolarityMidpoint, kHasPixelCentre, kHasEdgeJoin, kHasSpreadNoise,
+// kHasGateBoxes: the board builds), each unless `kept(name)` says the command
 // line set it, for the backend to refuse what S cannot run.
 template <class S, class Kept>
 Params within_build(Params p, Kept kept) {
@@ -53,7 +54,10 @@ Params within_build(Params p, Kept kept) {
   cut(p.max_clusters, "max-clusters", S::kClustersMax);
   cut(p.max_tracks, "max-tracks", S::kTracksMax);
   if (!S::kHasPolaritySplit && !kept("split-balance")) p.split_balance = 0;
-  if (!S::kHasPolarityMidpoint && !kept("measure")) p.measure = Measure::kCentroid;
+  const bool measure_held = p.measure == Measure::kPolarityMidpoint ? S::kHasPolarityMidpoint != 0
+                            : p.measure == Measure::kPixelCentre    ? S::kHasPixelCentre != 0
+                                                                    : true;
+  if (!measure_held && !kept("measure")) p.measure = Measure::kCentroid;
   if (!S::kHasEdgeJoin && !kept("edge-join")) p.edge_join = 0;
   if (!S::kHasSpreadNoise && !kept("meas-noise-from-spread")) p.meas_noise_from_spread = false;
   if (!S::kHasGateBoxes && !kept("gate-boxes")) p.gate_boxes = false;
@@ -110,7 +114,7 @@ inline std::string core_unsupported(const Params& p) {
     return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
   }
   if (p.measure == Measure::kBoxCentre || (!seeded && p.measure != Measure::kCentroid)) {
-    return "the fixed-point core measures a cluster by its centroid, or with seeded climbs by the polarity midpoint, not " +
+    return "the fixed-point core measures a cluster by its centroid, or with seeded climbs by the polarity midpoint or the pixel centre, not " +
            detail::setting(p, "measure");
   }
   if (p.association == Association::kNearestCentre) return "the fixed-point core does not implement " + detail::setting(p, "association");
@@ -128,19 +132,19 @@ inline std::string core_unsupported(const Params& p) {
 // Gaussian mean shift of every event, the seeded climbs, or both: Shape::kHasGaussianPath,
 // kHasSeededPath), the polarity split, the edge join, the polarity midpoint and the measurement
 // noise from the spread where it holds them (kHasPolaritySplit, kHasEdgeJoin,
-// kHasPolarityMidpoint, kHasSpreadNoise), the gate's boxes where it holds them (kHasGateBoxes)
+// kHasPolarityMidpoint, kHasSpreadNoise), the pixel centre (kHasPixelCentre), the gate's boxes where it holds them (kHasGateBoxes)
 // and the tracker's other policies but the gate's widening by
 // the spread and coasting by packets.
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
   bool gaussian_path = false, seeded_path = false, polarity_split = false, edge_join = false, polarity_midpoint = false,
-       spread_noise = false, gate_boxes = false;
+       spread_noise = false, gate_boxes = false, pixel_centre = false;
 #define EVMS_PATHS_OF_BUILD(name, fixed, rtl, width, height, description)                                             \
   if (build == #name) {                                                                                               \
     gaussian_path = hls::rtl::kHasGaussianPath != 0, seeded_path = hls::rtl::kHasSeededPath != 0;                     \
     polarity_split = hls::rtl::kHasPolaritySplit != 0, edge_join = hls::rtl::kHasEdgeJoin != 0;                       \
     polarity_midpoint = hls::rtl::kHasPolarityMidpoint != 0, spread_noise = hls::rtl::kHasSpreadNoise != 0;           \
-    gate_boxes = hls::rtl::kHasGateBoxes != 0;                                                                        \
+    gate_boxes = hls::rtl::kHasGateBoxes != 0, pixel_centre = hls::rtl::kHasPixelCentre != 0;                         \
   }
   EVMS_CORE_BUILDS(EVMS_PATHS_OF_BUILD)
 #undef EVMS_PATHS_OF_BUILD
@@ -162,6 +166,9 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!polarity_midpoint && p.measure == Measure::kPolarityMidpoint) {
     return "the RTL build '" + build + "' does not hold the polarity midpoint, not " + detail::setting(p, "measure") + " (add --measure centroid)";
+  }
+  if (!pixel_centre && p.measure == Measure::kPixelCentre) {
+    return "the RTL build '" + build + "' does not hold the pixel centre, not " + detail::setting(p, "measure") + " (add --measure centroid)";
   }
   if (!spread_noise && p.meas_noise_from_spread) {
     return "the RTL build '" + build + "' does not hold the measurement noise from the spread, not " +
@@ -213,6 +220,9 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   const double link_px = link_px_at(p, sensor);
   need(link_px < S::kLinkMax + 1, "the core links clusters at most " + std::to_string(S::kLinkMax) +
                                       " px apart (--link-px, scaled on this sensor by --link-px-width)");
+  need(p.measure != Measure::kPixelCentre || link_px >= 1,
+       "the core marks each pixel of a cluster in the links' pixel map, so --measure pixel-centre needs --link-px 1 or more "
+       "(scaled on this sensor by --link-px-width)");
   need(p.seeding == Seeding::kEvery || p.warm_max_bandwidth <= S::kReachMax * p.bandwidth,
        "the core's warm balls reach at most " + std::to_string(S::kReachMax) + " bandwidths (--warm-max-bandwidth)");
   need(p.filter_support <= 8, "--filter-support is at most 8");
@@ -292,6 +302,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.edge_balance = static_cast<std::uint16_t>(edge.balance);
   c.edge_min_events = static_cast<std::uint16_t>(edge.min_events);
   c.midpoint_min = seeded && p.measure == Measure::kPolarityMidpoint ? static_cast<std::uint16_t>(p.midpoint_min_events) : 0;
+  c.pixel_centre = seeded && p.measure == Measure::kPixelCentre;
   c.evict_stale = p.evict_stale;
   c.report_tentative = p.report_tentative;
   const double accel_psd = accel_psd_at(p, sensor);

@@ -14,6 +14,11 @@
 // centres of mass, (Sx_on n_off + Sx_off n_on) / (2 n_on n_off), through the same divider; the
 // ON events' sums are a second memory beside the sums.
 //
+// With HasPixelCentre and cfg_pixel_centre, the exact path measures a cluster at the mean of its
+// pixels, each pixel once: the sums and the count of its events that are the first of the packet
+// on their pixel (ev_first, from cluster/evms_mode_links.sv), a fourth memory beside the sums; a
+// cluster with none keeps its centre of mass. It takes the place of the midpoint.
+//
 // With HasSpreadNoise and cfg_meas_from_spread, each cluster also takes its measurement
 // variance, as hls/track/measurement_variance.h: its spread squared, (n S2 - Sx^2 - Sy^2) / n^2
 // with S2 the sum of x^2 + y^2 (a third memory beside the sums; the three products through the
@@ -35,6 +40,7 @@ module evms_centroid #(
   parameter bit HasExact    = 1'b1,   // 0: no divider; `exact` must stay low
   parameter bit HasPolarityMidpoint = 1'b0,  // 0: cfg_midpoint_min is not read (the centre of mass)
   parameter bit HasSpreadNoise = 1'b0,  // 0: cfg_meas_from_spread is not read (every variance is cfg_r)
+  parameter bit HasPixelCentre = 1'b0,  // 0: cfg_pixel_centre and ev_first are not read
   // The measurement variance's words (hls/core/shape.h).
   parameter int CovLog2      = 35,
   parameter int PerEventFrac = 16,
@@ -50,6 +56,7 @@ module evms_centroid #(
   input  logic [31:0] t0,                  // the packet's first event
   input  logic [15:0] cfg_midpoint_min,    // ON and OFF events a cluster needs for the midpoint; 0: off
   input  logic        cfg_meas_from_spread,  // a cluster's variance from its spread
+  input  logic        cfg_pixel_centre,    // measure at the mean of the cluster's pixels
   input  logic signed [63:0] cfg_r,        // the measurement variance, px^2 (CovFrac fraction bits)
   // Packet and cluster_of reads (1-cycle latency), by rd_i.
   output logic [15:0] rd_i,
@@ -57,6 +64,7 @@ module evms_centroid #(
   input  logic [15:0] ev_y,
   input  logic [31:0] ev_t,
   input  logic        ev_p,
+  input  logic        ev_first,            // the packet's first event with a mode on its pixel
   input  logic signed [7:0] ev_cluster,
   // Shared reciprocal and multiplier.
   output logic        recip_start,
@@ -294,8 +302,8 @@ module evms_centroid #(
   localparam int ExactBits = HasPolarityMidpoint && MidpointBits > CentreBits ? MidpointBits : CentreBits;
   localparam int DenBits = HasPolarityMidpoint && 2 * CountBits > 16 ? 2 * CountBits : 16;
   logic div_done;
-  logic [ExactBits-1:0] div_num, div_quotient, num_x, num_y;
-  logic [DenBits-1:0] den_xy;
+  logic [ExactBits-1:0] div_num, div_quotient, num_x, num_y, mid_num_x, mid_num_y;
+  logic [DenBits-1:0] den_xy, mid_den_xy;   // mid_*: the centre of mass or the midpoint
   logic [ExactBits-1:0] mass_num_x, mass_num_y;  // the centre of mass's numerators
   assign mass_num_x = ExactBits'(sx) << PosFrac;
   assign mass_num_y = ExactBits'(sy) << PosFrac;
@@ -315,17 +323,38 @@ module evms_centroid #(
     logic [31:0] sx_off, sy_off;   // the OFF events' sums, 32-bit as the C++ core's
     assign sx_off = sx - sx_on;
     assign sy_off = sy - sy_on;
-    assign num_x = use_midpoint ? (ExactBits'(sx_on) * ExactBits'(count_off) + ExactBits'(sx_off) * ExactBits'(count_on)) << PosFrac
-                                : mass_num_x;
-    assign num_y = use_midpoint ? (ExactBits'(sy_on) * ExactBits'(count_off) + ExactBits'(sy_off) * ExactBits'(count_on)) << PosFrac
-                                : mass_num_y;
-    assign den_xy = use_midpoint ? (DenBits'(count_on) * DenBits'(count_off)) << 1 : DenBits'(count);
+    assign mid_num_x = use_midpoint ? (ExactBits'(sx_on) * ExactBits'(count_off) + ExactBits'(sx_off) * ExactBits'(count_on)) << PosFrac
+                                    : mass_num_x;
+    assign mid_num_y = use_midpoint ? (ExactBits'(sy_on) * ExactBits'(count_off) + ExactBits'(sy_off) * ExactBits'(count_on)) << PosFrac
+                                    : mass_num_y;
+    assign mid_den_xy = use_midpoint ? (DenBits'(count_on) * DenBits'(count_off)) << 1 : DenBits'(count);
   end else begin : g_centre
-    assign num_x = mass_num_x;
-    assign num_y = mass_num_y;
-    assign den_xy = DenBits'(count);
+    assign mid_num_x = mass_num_x;
+    assign mid_num_y = mass_num_y;
+    assign mid_den_xy = DenBits'(count);
     logic unused_midpoint;   // waived in cluster/evms_cluster.vlt
     assign unused_midpoint = ^{cfg_midpoint_min, ev_p};
+  end
+  if (HasPixelCentre) begin : g_pixel_centre
+    // Per cluster: {sx_px, sy_px, count_px} of its events first on their pixel, valid with the sums.
+    logic [79:0] pixel_sums [ClustersMax];
+    logic [31:0] sx_px, sy_px;
+    logic [15:0] count_px;
+    assign {sx_px, sy_px, count_px} = sums_valid_q[sum_c] ? pixel_sums[sum_c] : 80'd0;
+    always_ff @(posedge clk) begin
+      if (adding) pixel_sums[sum_c] <= ev_first ? {sx_px + 32'(ev_x), sy_px + 32'(ev_y), count_px + 16'd1} : {sx_px, sy_px, count_px};
+    end
+    logic use_pixels;
+    assign use_pixels = cfg_pixel_centre && count_px != 0;
+    assign num_x = use_pixels ? ExactBits'(sx_px) << PosFrac : mid_num_x;
+    assign num_y = use_pixels ? ExactBits'(sy_px) << PosFrac : mid_num_y;
+    assign den_xy = use_pixels ? DenBits'(count_px) : mid_den_xy;
+  end else begin : g_no_pixel_centre
+    assign num_x = mid_num_x;
+    assign num_y = mid_num_y;
+    assign den_xy = mid_den_xy;
+    logic unused_pixel_centre;   // waived in cluster/evms_cluster.vlt
+    assign unused_pixel_centre = ^{cfg_pixel_centre, ev_first};
   end
   assign div_num = state_q == StExactX ? num_x : (state_q == StExactY ? num_y : ExactBits'(st));
   if (HasExact) begin : g_exact

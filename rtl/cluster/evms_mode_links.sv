@@ -12,7 +12,9 @@
 //          2 LinkMax + 1 pixels of a row is two words read in one clock;
 //   write  each event with a mode reads its pixel's word; a marked pixel joins the two modes
 //          (the clock after, while the next event is read); the pixel takes the event's mode,
-//          and a pixel marked now goes on the list with the event's mode;
+//          and a pixel marked now goes on the list with the event's mode. Each event's first_*
+//          write says whether it is the first with a mode on its pixel (the pixel centre,
+//          cluster/evms_centroid.sv);
 //   scan   each listed pixel (its set: the members of its listed mode's set, registered) reads
 //          the rows y0 .. y0 + LinkMax (within the sensor and the link distance), registers the
 //          row's window, and joins its set with every marked pixel within reach ahead of it (the
@@ -50,6 +52,11 @@ module evms_mode_links #(
   input  logic [15:0]                  ev_x,
   input  logic [15:0]                  ev_y,
   input  logic signed [15:0]           ev_mode,
+  // Event first_j is (first_on_pixel) or is not the packet's first event with a mode on its
+  // pixel: written once for every event of the write pass.
+  output logic                         first_we,
+  output logic [15:0]                  first_j,
+  output logic                         first_on_pixel,
   output logic                         done,      // one clock
   // After done, while idle: the representative of mode rd_c (combinational).
   input  logic [$clog2(ModesMax)-1:0]  rd_c,
@@ -261,6 +268,11 @@ module evms_mode_links #(
     list_wa = ListIndexBits'(listed_q);
     list_wd = {mode_q, y_q, x_q};
     list_ra = ListIndexBits'(k_q);
+    // An event without a mode is written in StWriteData (j_q), one with a mode in StWriteMark
+    // (j_q has moved on to the next event).
+    first_we = 1'b0;
+    first_j = j_q - 16'd1;
+    first_on_pixel = !mark_slot[ModeBits];
     done = 1'b0;
     case (state_q)
       // After reset the map is cleared word by word (j counts them): the model's map starts
@@ -292,12 +304,18 @@ module evms_mode_links #(
           mode_d = ModeBits'(ev_mode);
           j_d = j_q + 1'b1;
           state_d = ev_mode < 0 ? StWriteAddr : StWriteMark;
+          if (ev_mode < 0) begin
+            first_we = 1'b1;
+            first_j = j_q;
+            first_on_pixel = 1'b0;
+          end
         end
       end
       // Its word is here (and event j + 1's pixel is being read): a marked pixel's mode is joined
       // the next clock (the map's read and the roots' rewrite are not one path), an unmarked
       // pixel is listed, and the event's mode is written there.
       StWriteMark: begin
+        first_we = 1'b1;
         if (mark_slot[ModeBits]) begin
           join_pending_d = 1'b1;
           outside_d = mark_slot[ModeBits-1:0];

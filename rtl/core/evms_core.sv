@@ -85,6 +85,7 @@ module evms_core #(
   logic [PendingWordBits-1:0] pend_wdata, pend_rdata_q;
   // The open packet, and each of its events' cluster.
   logic [64:0] pk_mem [PacketMax];
+  logic        first_on_pixel_mem [PacketMax];   // per packet event: the first with a mode on its pixel (links)
   logic [64:0] pk_rdata_q;
   logic signed [7:0] cluster_of [PacketMax];
 
@@ -93,6 +94,7 @@ module evms_core #(
   logic [15:0] rd_pk_x, rd_pk_y;
   logic        rd_pk_p;
   logic [31:0] rd_pk_t;
+  logic        rd_pk_first;   // the event read is the first with a mode on its pixel (the links write it)
   logic signed [7:0] co_rdata_q;
 
   // ---- the event being handled --------------------------------------------------------------
@@ -186,6 +188,8 @@ module evms_core #(
   logic lk_ready, lk_start_q, lk_done;
   logic [15:0] lk_ev_j;
   logic [ModeIndexBits-1:0] lk_rd_root;
+  logic lk_first_we, lk_first_on_pixel;  // the links say which events are the first on their pixel
+  logic [15:0] lk_first_j;
   logic ws_start_q, ws_done, ws_co_we, ws_warm_we;
   logic [15:0] ws_ev_j, ws_co_j;
   logic [7:0] ws_md_c, ws_clusters, ws_warm_k;
@@ -243,7 +247,8 @@ module evms_core #(
     ) u_links (
       .clk(clk), .rst_n(rst_n), .ready(lk_ready), .start(lk_start_q), .n(16'(n_q)), .cfg_link2(cfg_link2),
       .cfg_sensor_width(cfg_sensor_width), .cfg_sensor_height(cfg_sensor_height), .ev_j(lk_ev_j), .ev_x(rd_pk_x),
-      .ev_y(rd_pk_y), .ev_mode(cl_rd_mode), .done(lk_done), .rd_c(first_mode), .rd_root(lk_rd_root));
+      .ev_y(rd_pk_y), .ev_mode(cl_rd_mode), .first_we(lk_first_we), .first_j(lk_first_j), .first_on_pixel(lk_first_on_pixel),
+      .done(lk_done), .rd_c(first_mode), .rd_root(lk_rd_root));
     evms_warm_seeds #(
       .PacketMax(PacketMax), .ModesMax(ModesMax), .ClustersMax(ClustersMax), .UnitShift(UnitShift), .SpreadFrac(SpreadFrac),
       .CoordBits(32)
@@ -256,7 +261,7 @@ module evms_core #(
       .done(ws_done), .clusters(ws_clusters));
   end else begin : g_no_seeded
     assign {cl_done, cl_mode_count, cl_steps, cl_rd_mode, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y} = '0;
-    assign {lk_done, lk_ev_j, lk_rd_root} = '0;
+    assign {lk_done, lk_ev_j, lk_rd_root, lk_first_we, lk_first_j, lk_first_on_pixel} = '0;
     assign lk_ready = 1'b1;
     assign {ws_done, ws_co_we, ws_warm_we, ws_ev_j, ws_co_j, ws_md_c, ws_clusters, ws_warm_k, ws_co_value} = '0;
     assign {ws_warm_x, ws_warm_y, ws_warm_ball2} = '0;
@@ -323,11 +328,13 @@ module evms_core #(
   evms_centroid #(
     .ClustersMax(ClustersMax), .PosFrac(PosFrac), .RecipFrac(RecipFrac), .PacketMax(PacketMax), .SpreadFrac(SpreadFrac),
     .HasExact(HasSeededPath != 0), .HasPolarityMidpoint(HasSeededPath != 0 && HasPolarityMidpoint != 0),
-    .HasSpreadNoise(HasSpreadNoise != 0), .CovLog2(CovLog2), .PerEventFrac(PerEventFrac), .PerEventLog2(PerEventLog2),
-    .PixelWidth2(PixelWidth2)
+    .HasSpreadNoise(HasSpreadNoise != 0), .HasPixelCentre(HasSeededPath != 0 && HasPixelCentre != 0), .CovLog2(CovLog2),
+    .PerEventFrac(PerEventFrac), .PerEventLog2(PerEventLog2), .PixelWidth2(PixelWidth2)
   ) u_centroid (
     .clk(clk), .rst_n(rst_n), .start(ct_start_q), .exact(seeded), .n(16'(n_q)), .clusters(clusters), .t0(t_first_q),
-    .cfg_midpoint_min(cfg_midpoint_min), .cfg_meas_from_spread(cfg_meas_from_spread), .cfg_r(cfg_r), .rd_i(ct_rd_i), .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_p(rd_pk_p),
+    .cfg_midpoint_min(cfg_midpoint_min), .cfg_meas_from_spread(cfg_meas_from_spread),
+    .cfg_pixel_centre(cfg_pixel_centre && cfg_link2 != 0),   // the links mark the pixels (hls/core/core.h)
+    .cfg_r(cfg_r), .rd_i(ct_rd_i), .ev_x(rd_pk_x), .ev_y(rd_pk_y), .ev_t(rd_pk_t), .ev_p(rd_pk_p), .ev_first(rd_pk_first),
     .ev_cluster(co_rdata_q), .recip_start(ct_recip_start),
     .recip_x(ct_recip_x), .recip_done(recip_done), .recip_r(recip_r), .recip_m(recip_m), .mul_start(ct_mul_start),
     .mul_a(ct_mul_a), .mul_b(ct_mul_b), .mul_done(mul_done), .mul_p(mul_p), .z_c(z_c), .z_t(z_t), .z_x(z_x), .z_y(z_y),
@@ -388,6 +395,8 @@ module evms_core #(
     pend_rdata_q <= pend_mem[PendingIndexBits'(ri_q)];
     if (state_q == StAppend) pk_mem[PacketIndexBits'(n_q)] <= {e_x_q, e_y_q, e_p_q, e_t_q};
     pk_rdata_q <= pk_mem[PacketIndexBits'(rd_pk_i)];
+    if (lk_first_we) first_on_pixel_mem[PacketIndexBits'(lk_first_j)] <= lk_first_on_pixel;
+    rd_pk_first <= first_on_pixel_mem[PacketIndexBits'(rd_pk_i)];
     if (mg_co_we) cluster_of[PacketIndexBits'(mg_co_i)] <= mg_co_value;
     if (ws_co_we) cluster_of[PacketIndexBits'(ws_co_j)] <= ws_co_value;
     co_rdata_q <= cluster_of[PacketIndexBits'(co_i)];

@@ -54,6 +54,7 @@
 .CfgMeasFromSpread(CfgMeasFromSpread),
 .CfgMinDensity(CfgMinDensity),
 .CfgGateBoxes(CfgGateBoxes),
+.CfgPixelCentre(CfgPixelCentre),
 .MaxWidth(MaxWidth),
 .MaxHeight(MaxHeight),
 .TimestampBits(TimestampBits),
@@ -107,4 +108,5 @@
 .HasEdgeJoin(HasEdgeJoin),
 .HasSpreadNoise(HasSpreadNoise),
 .HasGateBoxes(HasGateBoxes),
+.HasPixelCentre(HasPixelCentre),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

@@ -54,3 +54,4 @@
 .cfg_meas_from_spread(CfgMeasFromSpread),
 .cfg_min_density(CfgMinDensity),
 .cfg_gate_boxes(CfgGateBoxes),
+.cfg_pixel_centre(CfgPixelCentre),

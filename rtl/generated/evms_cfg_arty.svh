@@ -53,6 +53,7 @@ localparam int HasPolarityMidpoint = 0;
 localparam int HasEdgeJoin = 0;
 localparam int HasSpreadNoise = 0;
 localparam int HasGateBoxes = 0;
+localparam int HasPixelCentre = 0;
 localparam ExpTableFile = "../generated/exp_9_16.mem";
 localparam RecipTableFile = "../generated/recip_8_20.mem";
 // Reset registers: the method of --preset evms, within this build's limits, for a 240x180 sensor.
@@ -110,6 +111,7 @@ localparam logic [15:0] CfgEdgeMinEvents = 16'd0;
 localparam logic CfgMeasFromSpread = 1'd0;
 localparam logic [31:0] CfgMinDensity = 32'd168663;
 localparam logic CfgGateBoxes = 1'd0;
+localparam logic CfgPixelCentre = 1'd0;
 // The board: its clock, its UART's clocks a bit, its link queue's depth in events, and whether
 // its core stops at the filter (the host clusters and tracks).
 localparam int BoardClockHz = 100000000, BoardClocksPerBit = 50, BoardLinkFifoDepth = 2048, BoardCoreStopsAtFilter = 0;

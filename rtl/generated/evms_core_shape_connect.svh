@@ -53,4 +53,5 @@
 .HasEdgeJoin(HasEdgeJoin),
 .HasSpreadNoise(HasSpreadNoise),
 .HasGateBoxes(HasGateBoxes),
+.HasPixelCentre(HasPixelCentre),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

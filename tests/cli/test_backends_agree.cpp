@@ -87,7 +87,7 @@ TEST(BackendsAgree, TheSummarySaysWhatACoreBuildChangesOfTheMethod) {
   const std::string ice40 = note("--backend fixed --core ice40");
   EXPECT_EQ(ice40.rfind("the ice40 build runs --packet-size 256 (the method's ", 0), 0u) << ice40;
   for (const char* changed : {"--max-clusters 8 (the method's ", "--max-tracks 8 (the method's ", "--split-balance 0 (the method's ",
-                              "--edge-join 0 (the method's ", "--measure centroid (the method's polarity-midpoint)",
+                              "--edge-join 0 (the method's ", "--measure centroid (the method's pixel-centre)",
                               "--meas-noise-from-spread false (the method's true)", "--gate-boxes false (the method's true)"}) {
     EXPECT_NE(ice40.find(changed), std::string::npos) << changed << " in: " << ice40;
   }

@@ -147,15 +147,25 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   EXPECT_EQ(split.exit_code, 1);
   EXPECT_NE(split.err.find("the RTL build 'arty' does not hold the polarity split, not --split-balance 0.3 (add --split-balance 0)"), std::string::npos)
       << split.err;
-  // Nor the polarity midpoint; and no fixed core measures by the bounding box.
+  // Nor the polarity midpoint.
   const auto midpoint = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --measure polarity-midpoint --quiet");
   EXPECT_EQ(midpoint.exit_code, 1);
   EXPECT_NE(midpoint.err.find("the RTL build 'arty' does not hold the polarity midpoint, not --measure polarity-midpoint (add --measure centroid)"),
             std::string::npos)
       << midpoint.err;
+  // Nor the pixel centre, which the core takes from the links' pixel map.
+  const auto pixels = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core ice40 --measure pixel-centre --quiet");
+  EXPECT_EQ(pixels.exit_code, 1);
+  EXPECT_NE(pixels.err.find("the RTL build 'ice40' does not hold the pixel centre, not --measure pixel-centre (add --measure centroid)"),
+            std::string::npos)
+      << pixels.err;
+  const auto unlinked = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --link-px 0 --quiet");
+  EXPECT_EQ(unlinked.exit_code, 1);
+  EXPECT_EQ(std::count(unlinked.err.begin(), unlinked.err.end(), '\n'), 1) << unlinked.err;
+  EXPECT_NE(unlinked.err.find("--measure pixel-centre needs --link-px 1 or more"), std::string::npos) << unlinked.err;
   const auto box = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --measure box-centre --quiet");
   EXPECT_EQ(box.exit_code, 1);
-  EXPECT_NE(box.err.find("measures a cluster by its centroid, or with seeded climbs by the polarity midpoint, not --measure box-centre"),
+  EXPECT_NE(box.err.find("measures a cluster by its centroid, or with seeded climbs by the polarity midpoint or the pixel centre, not --measure box-centre"),
             std::string::npos)
       << box.err;
   for (const std::string build : {"arty", "ice40"}) {

@@ -1,6 +1,6 @@
 // The core's exact measurements (hls/cluster/centroid.h) against the real numbers they round:
-// the centre of mass, and the polarity midpoint, each within half a unit of kPosFrac (the
-// rounding's bound), on dense random clusters of every polarity balance.
+// the centre of mass, the polarity midpoint and the pixel centre, each within half a unit of
+// kPosFrac (the rounding's bound), on dense random clusters of every polarity balance.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,17 +16,22 @@ namespace {
 
 using WideShape = RtlHostShape;
 
-TEST(Centroids, ExactCentreAndPolarityMidpointWithinHalfAUnitOfTheirRealValues) {
+TEST(Centroids, ExactCentrePolarityMidpointAndPixelCentreWithinHalfAUnitOfTheirRealValues) {
   gen::Random rng(11);
   const double unit = std::ldexp(1.0, -WideShape::kPosFrac);
   auto ev = std::make_unique<PacketEvents<WideShape>>();
   std::int8_t cluster_of[WideShape::kPacketMax];
-  int midpoints = 0, centres = 0;
+  bool first_on_pixel[WideShape::kPacketMax];
+  int midpoints = 0, centres = 0, pixel_centres = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     const int n = 1 + static_cast<int>(rng.below(WideShape::kPacketMax));
     const int clusters = 1 + static_cast<int>(rng.below(n < WideShape::kClustersMax ? n : WideShape::kClustersMax));
     const double on_share = rng.uniform();  // from all OFF to all ON
     const std::uint16_t midpoint_min = static_cast<std::uint16_t>(rng.below(3) == 0 ? 0 : 1 + rng.below(24));
+    // A third of the trials measure by the pixels: the events marked first on their pixel, a
+    // random share of them (a cluster may have none: its centre of mass).
+    const bool by_pixels = rng.below(3) == 0;
+    const double first_share = rng.uniform();
     for (int i = 0; i < n; ++i) {
       // Coordinates up to the host sensor's, so the sums reach their widest.
       ev->x[i] = static_cast<std::uint16_t>(rng.below(1280)), ev->y[i] = static_cast<std::uint16_t>(rng.below(720));
@@ -34,29 +39,34 @@ TEST(Centroids, ExactCentreAndPolarityMidpointWithinHalfAUnitOfTheirRealValues) 
       ev->t[i] = static_cast<std::uint32_t>(1000 + i);
       // The first event of each cluster is its own (the core measures no empty cluster).
       cluster_of[i] = static_cast<std::int8_t>(i < clusters ? i : rng.below(4) == 0 ? -1 : static_cast<int>(rng.below(clusters)));
+      first_on_pixel[i] = rng.uniform() < first_share;
     }
     Measurement out[WideShape::kClustersMax];
-    centroids<WideShape>(*ev, n, cluster_of, clusters, out, true, midpoint_min);
+    centroids<WideShape>(*ev, n, cluster_of, clusters, out, true, midpoint_min, by_pixels ? first_on_pixel : nullptr);
     for (int c = 0; c < clusters; ++c) {
-      double sx[2] = {0, 0}, sy[2] = {0, 0};
-      int count[2] = {0, 0};
+      double sx[2] = {0, 0}, sy[2] = {0, 0}, px = 0, py = 0;
+      int count[2] = {0, 0}, pixels = 0;
       for (int i = 0; i < n; ++i) {
         if (cluster_of[i] != c) continue;
         sx[ev->p[i]] += ev->x[i], sy[ev->p[i]] += ev->y[i], ++count[ev->p[i]];
+        if (first_on_pixel[i]) px += ev->x[i], py += ev->y[i], ++pixels;
       }
       const int events = count[0] + count[1];
       ASSERT_EQ(out[c].events, static_cast<std::uint32_t>(events));
-      const bool midpoint = midpoint_min > 0 && count[0] >= midpoint_min && count[1] >= midpoint_min;
-      const double x = midpoint ? 0.5 * (sx[0] / count[0] + sx[1] / count[1]) : (sx[0] + sx[1]) / events;
-      const double y = midpoint ? 0.5 * (sy[0] / count[0] + sy[1] / count[1]) : (sy[0] + sy[1]) / events;
-      ++(midpoint ? midpoints : centres);
+      const bool pixel_centre = by_pixels && pixels > 0;
+      const bool midpoint = !pixel_centre && midpoint_min > 0 && count[0] >= midpoint_min && count[1] >= midpoint_min;
+      double x = midpoint ? 0.5 * (sx[0] / count[0] + sx[1] / count[1]) : (sx[0] + sx[1]) / events;
+      double y = midpoint ? 0.5 * (sy[0] / count[0] + sy[1] / count[1]) : (sy[0] + sy[1]) / events;
+      if (pixel_centre) x = px / pixels, y = py / pixels;
+      ++(pixel_centre ? pixel_centres : midpoint ? midpoints : centres);
       ASSERT_LE(std::abs(out[c].x * unit - x), 0.5 * unit * (1 + 1e-9)) << "trial " << trial << " cluster " << c;
       ASSERT_LE(std::abs(out[c].y * unit - y), 0.5 * unit * (1 + 1e-9)) << "trial " << trial << " cluster " << c;
     }
   }
-  // Both rules were exercised, many times each.
-  EXPECT_GT(midpoints, 1000);
-  EXPECT_GT(centres, 1000);
+  // Every rule was exercised, many times each.
+  EXPECT_GT(midpoints, 700);
+  EXPECT_GT(centres, 700);
+  EXPECT_GT(pixel_centres, 700);
 }
 
 }  // namespace

@@ -66,7 +66,8 @@ std::vector<int> core_clusters(const std::vector<Event>& events, const Params& p
   std::vector<std::int16_t> mode_of(S::kPacketMax);
   ClimbTrace trace;
   climbs->run(*phi, n, cfg, *warm, mode_of.data(), *modes, trace);
-  links->run(*ev, n, modes->count, cfg, mode_of.data());
+  bool first_on_pixel[S::kPacketMax];
+  links->run(*ev, n, modes->count, cfg, mode_of.data(), first_on_pixel);
   mode_of.resize(events.size());
   std::map<int, int> size;
   for (auto m : mode_of) size[m]++;
@@ -136,7 +137,8 @@ TEST(ModeLinks, ThePixelMapJoinsExactlyTheModesTheAllPairsRuleJoins) {
     }
     std::vector<std::int16_t> want(mode_of.begin(), mode_of.begin() + n);
     for (auto& m : want) m = static_cast<std::int16_t>(m < 0 ? -1 : find(m));
-    links->run(*ev, n, modes, cfg, mode_of.data());
+    bool first_on_pixel[S::kPacketMax];
+    links->run(*ev, n, modes, cfg, mode_of.data(), first_on_pixel);
     ASSERT_EQ(std::vector<std::int16_t>(mode_of.begin(), mode_of.begin() + n), want) << "trial " << trial << ", link2 " << cfg.link2;
   }
 }

@@ -1,6 +1,7 @@
 // Block-level cosimulation of rtl/cluster/evms_mode_links.sv against ModeLinks in
 // hls/cluster/link.h: one instance of each takes a run of packets (the map must be clear again
-// after each), and every event's mode after linking must be equal. The seed is printed
+// after each), and every event's mode after linking, and whether it is the first with a mode on
+// its pixel, must be equal. The seed is printed
 // (EVMS_SEED=N repeats a run); a mismatch repeats the run with an FST trace
 // (sim/verilated_block.h).
 #include <gtest/gtest.h>
@@ -66,7 +67,10 @@ Packet draw_packet(std::mt19937_64& rng) {
   return p;
 }
 
-using Modes = std::vector<std::vector<std::int16_t>>;  // per packet, per event
+// Per packet, per event: its linked mode m (-1: none) and whether it is the first event with a
+// mode on its pixel, as 2 m + first.
+using Modes = std::vector<std::vector<std::int16_t>>;
+std::int16_t mode_and_first(int mode, bool first) { return static_cast<std::int16_t>(2 * mode + (first ? 1 : 0)); }
 
 Modes run_model(const std::vector<Packet>& run) {
   auto links = std::make_unique<hls::ModeLinks<S>>();
@@ -74,10 +78,13 @@ Modes run_model(const std::vector<Packet>& run) {
   Modes out;
   for (const Packet& p : run) {
     std::int16_t mode[S::kPacketMax];
+    bool first[S::kPacketMax];
     std::copy(p.first_mode.begin(), p.first_mode.end(), mode);
     const int n = static_cast<int>(p.first_mode.size());
-    links->run(p.events, n, p.modes, p.cfg, mode);
-    out.emplace_back(mode, mode + n);
+    links->run(p.events, n, p.modes, p.cfg, mode, first);
+    std::vector<std::int16_t> modes;
+    for (int j = 0; j < n; ++j) modes.push_back(mode_and_first(mode[j], first[j]));
+    out.push_back(modes);
   }
   return out;
 }
@@ -94,8 +101,12 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
     rtl->cfg_link2 = p.cfg.link2;
     rtl->cfg_sensor_width = p.cfg.sensor_width;
     rtl->cfg_sensor_height = p.cfg.sensor_height;
-    // The packet's memories answer ev_j the clock after, as a block RAM's registered read does.
+    // The packet's memories answer ev_j the clock after, as a block RAM's registered read does;
+    // the first bits are written where the block says.
+    std::vector<bool> first_bits(static_cast<size_t>(n), false);
     auto tick_with_memories = [&] {
+      rtl->eval();
+      if (rtl->first_we && rtl->first_j < n) first_bits[rtl->first_j] = rtl->first_on_pixel;
       const int j = rtl->ev_j;
       rtl.tick();
       const bool in = j < n;
@@ -104,16 +115,18 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
     };
     const std::uint64_t cycles = rtl.run_until_done(tick_with_memories, 10'000'000);
     r.cycles += cycles, r.events += static_cast<std::uint64_t>(n);
+    // With the links off the block passes the packet by, as the model's write pass does not run.
+    const auto first_of = [&](int j) { return p.cfg.link2 == 0 ? p.first_mode[static_cast<size_t>(j)] >= 0 : bool{first_bits[static_cast<size_t>(j)]}; };
     std::vector<std::int16_t> modes;
     for (int j = 0; j < n; ++j) {
       const int first = p.first_mode[static_cast<size_t>(j)];
       if (first < 0) {
-        modes.push_back(-1);
+        modes.push_back(mode_and_first(-1, first_of(j)));
         continue;
       }
       rtl->rd_c = static_cast<std::uint8_t>(first);
       rtl->eval();
-      modes.push_back(static_cast<std::int16_t>(rtl->rd_root));
+      modes.push_back(mode_and_first(rtl->rd_root, first_of(j)));
     }
     r.results.push_back(modes);
     rtl.tick();
@@ -125,7 +138,10 @@ RtlRun run_rtl(const std::vector<Packet>& run, const std::string& trace_path) {
 std::string describe(const std::vector<std::int16_t>& want, const std::vector<std::int16_t>& got) {
   for (size_t j = 0; j < want.size(); ++j) {
     if (j >= got.size()) return "event " + std::to_string(j) + ": no mode";
-    if (want[j] != got[j]) return "event " + std::to_string(j) + ": mode " + std::to_string(got[j]) + ", want " + std::to_string(want[j]);
+    if (want[j] != got[j]) {
+      const auto text = [](int v) { return "mode " + std::to_string(v >> 1) + (v & 1 ? " (first on its pixel)" : ""); };
+      return "event " + std::to_string(j) + ": " + text(got[j]) + ", want " + text(want[j]);
+    }
   }
   return std::to_string(got.size()) + " modes, want " + std::to_string(want.size());
 }
@@ -141,7 +157,7 @@ TEST(ModeLinksRtl, EveryEventsLinkedModeEqualsTheCppModelOverRunsOfPackets) {
   };
   const auto tally = [&](const std::vector<Packet>& run, const Modes& want) {
     for (size_t k = 0; k < run.size(); ++k) {
-      for (size_t j = 0; j < want[k].size(); ++j) joined += want[k][j] != run[k].first_mode[j];
+      for (size_t j = 0; j < want[k].size(); ++j) joined += (want[k][j] >> 1) != run[k].first_mode[j];
     }
   };
   const sim::RunsCompared compared = sim::compare_runs("mode_links", seed, 12, draw_run, run_model, run_rtl, describe, tally);
