@@ -13,6 +13,7 @@ cluster/evms_mode_links.sv
 cluster/evms_polarity_split.sv
 cluster/evms_edge_join.sv
 cluster/evms_warm_seeds.sv
+cluster/evms_cluster_subset_sums.sv
 cluster/evms_centroid.sv
 track/evms_tracker.sv
 core/evms_intake.sv

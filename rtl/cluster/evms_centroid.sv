@@ -12,11 +12,12 @@
 // With HasPolarityMidpoint and cfg_midpoint_min > 0, the exact path measures a cluster with at
 // least cfg_midpoint_min ON and as many OFF events at the midpoint of the two polarities'
 // centres of mass, (Sx_on n_off + Sx_off n_on) / (2 n_on n_off), through the same divider; the
-// ON events' sums are a second memory beside the sums.
+// ON events' sums are a second memory beside the sums (cluster/evms_cluster_subset_sums.sv).
 //
 // With HasPixelCentre and cfg_pixel_centre, the exact path measures a cluster at the mean of its
 // pixels, each pixel once: the sums and the count of its events that are the first of the packet
-// on their pixel (ev_first, from cluster/evms_mode_links.sv), a fourth memory beside the sums; a
+// on their pixel (ev_first, from cluster/evms_mode_links.sv), a fourth memory beside the sums
+// (cluster/evms_cluster_subset_sums.sv); a
 // cluster with none keeps its centre of mass. It takes the place of the midpoint.
 //
 // With HasSpreadNoise and cfg_meas_from_spread, each cluster also takes its measurement
@@ -308,14 +309,11 @@ module evms_centroid #(
   assign mass_num_x = ExactBits'(sx) << PosFrac;
   assign mass_num_y = ExactBits'(sy) << PosFrac;
   if (HasPolarityMidpoint) begin : g_midpoint
-    // Per cluster: {sx_on, sy_on, count_on}, valid with the sums.
-    logic [79:0] on_sums [ClustersMax];
     logic [31:0] sx_on, sy_on;
     logic [15:0] count_on;
-    assign {sx_on, sy_on, count_on} = sums_valid_q[sum_c] ? on_sums[sum_c] : 80'd0;
-    always_ff @(posedge clk) begin
-      if (adding) on_sums[sum_c] <= ev_p ? {sx_on + 32'(ev_x), sy_on + 32'(ev_y), count_on + 16'd1} : {sx_on, sy_on, count_on};
-    end
+    evms_cluster_subset_sums #(.ClustersMax(ClustersMax)) u_on_sums (
+      .clk, .valid(sums_valid_q), .c(sum_c), .adding, .in_subset(ev_p), .x(ev_x), .y(ev_y), .sx(sx_on), .sy(sy_on),
+      .count(count_on));
     logic [15:0] count_off;
     logic use_midpoint;
     assign count_off = 16'(count) - count_on;
@@ -336,14 +334,11 @@ module evms_centroid #(
     assign unused_midpoint = ^{cfg_midpoint_min, ev_p};
   end
   if (HasPixelCentre) begin : g_pixel_centre
-    // Per cluster: {sx_px, sy_px, count_px} of its events first on their pixel, valid with the sums.
-    logic [79:0] pixel_sums [ClustersMax];
     logic [31:0] sx_px, sy_px;
     logic [15:0] count_px;
-    assign {sx_px, sy_px, count_px} = sums_valid_q[sum_c] ? pixel_sums[sum_c] : 80'd0;
-    always_ff @(posedge clk) begin
-      if (adding) pixel_sums[sum_c] <= ev_first ? {sx_px + 32'(ev_x), sy_px + 32'(ev_y), count_px + 16'd1} : {sx_px, sy_px, count_px};
-    end
+    evms_cluster_subset_sums #(.ClustersMax(ClustersMax)) u_pixel_sums (
+      .clk, .valid(sums_valid_q), .c(sum_c), .adding, .in_subset(ev_first), .x(ev_x), .y(ev_y), .sx(sx_px), .sy(sy_px),
+      .count(count_px));
     logic use_pixels;
     assign use_pixels = cfg_pixel_centre && count_px != 0;
     assign num_x = use_pixels ? ExactBits'(sx_px) << PosFrac : mid_num_x;
