@@ -36,7 +36,7 @@ Pipeline::Pipeline(const Params& params, SensorSize sensor)
       tracker_(make_tracker(params, sensor)) {
   packet_.reserve(static_cast<size_t>(params.packet_size));
   if (params.measure == Measure::kPixelCentre) {
-    pixel_packet_.assign(static_cast<size_t>(sensor.width) * static_cast<size_t>(sensor.height), -1);
+    pixel_taken_.assign((static_cast<size_t>(sensor.width) * static_cast<size_t>(sensor.height) + 63) / 64, 0);
   }
 }
 
@@ -138,12 +138,18 @@ void Pipeline::close_packet(OutputSink& out) {
       sum_r2[static_cast<size_t>(c)] += static_cast<double>(e.x) * e.x + static_cast<double>(e.y) * e.y;
       sum_t[static_cast<size_t>(c)] += static_cast<double>(e.t - t0);
       ++m.events;
-      if (!pixel_packet_.empty()) {
-        std::int64_t& seen = pixel_packet_[static_cast<size_t>(e.y) * static_cast<size_t>(sensor_.width) + static_cast<size_t>(e.x)];
-        if (seen != stats_.packets) {
-          seen = stats_.packets;
+      if (!pixel_taken_.empty()) {
+        const size_t pixel = static_cast<size_t>(e.y) * static_cast<size_t>(sensor_.width) + static_cast<size_t>(e.x);
+        const std::uint64_t bit = std::uint64_t{1} << (pixel % 64);
+        if (!(pixel_taken_[pixel / 64] & bit)) {
+          pixel_taken_[pixel / 64] |= bit;
           pixel_x[static_cast<size_t>(c)] += e.x, pixel_y[static_cast<size_t>(c)] += e.y, ++pixels[static_cast<size_t>(c)];
         }
+      }
+    }
+    if (!pixel_taken_.empty()) {
+      for (size_t i = 0; i < supported.size(); ++i) {
+        pixel_taken_[(static_cast<size_t>(supported[i].y) * static_cast<size_t>(sensor_.width) + supported[i].x) / 64] = 0;
       }
     }
     for (size_t c = 0; c < measurements.size(); ++c) {
