@@ -124,6 +124,7 @@ void Pipeline::close_packet(OutputSink& out) {
     std::vector<double> pixel_x(measurements.size(), 0.0), pixel_y(measurements.size(), 0.0);
     std::vector<int> pixels(measurements.size(), 0);
     const TimeUs t0 = packet_.front().t;
+    const auto pixel_of = [&](const Event& e) { return static_cast<size_t>(e.y) * static_cast<size_t>(sensor_.width) + e.x; };
     for (size_t i = 0; i < supported.size(); ++i) {
       const int c = clusters.cluster_of[i];
       if (c < 0) continue;
@@ -139,7 +140,7 @@ void Pipeline::close_packet(OutputSink& out) {
       sum_t[static_cast<size_t>(c)] += static_cast<double>(e.t - t0);
       ++m.events;
       if (!pixel_taken_.empty()) {
-        const size_t pixel = static_cast<size_t>(e.y) * static_cast<size_t>(sensor_.width) + static_cast<size_t>(e.x);
+        const size_t pixel = pixel_of(e);
         const std::uint64_t bit = std::uint64_t{1} << (pixel % 64);
         if (!(pixel_taken_[pixel / 64] & bit)) {
           pixel_taken_[pixel / 64] |= bit;
@@ -149,7 +150,7 @@ void Pipeline::close_packet(OutputSink& out) {
     }
     if (!pixel_taken_.empty()) {
       for (size_t i = 0; i < supported.size(); ++i) {
-        pixel_taken_[(static_cast<size_t>(supported[i].y) * static_cast<size_t>(sensor_.width) + supported[i].x) / 64] = 0;
+        pixel_taken_[pixel_of(supported[i]) / 64] = 0;
       }
     }
     for (size_t c = 0; c < measurements.size(); ++c) {
