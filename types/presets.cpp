@@ -42,6 +42,7 @@ Params gaussian() {
   p.min_density = 0;
   p.link_px = 0;
   p.join_boxes = false;
+  p.density_after_links = false;
   p.split_balance = 0;
   p.edge_join = 0;
   p.max_clusters = 16;

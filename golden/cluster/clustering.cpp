@@ -61,12 +61,26 @@ PacketClusters PacketClusterer::finish(std::span<const Event> events, const Feat
   PacketClusters result;
   result.iterations = climbs_.iterations();
   result.kernel_evaluations = climbs_.kernel_evaluations();
-  // A mode no denser than a uniform spread of the packet, times min_density, is noise.
+  // A mode no denser than a uniform spread of the packet, times min_density, is noise; with
+  // density_after_links, a set of linked modes none of which is that dense.
   const double least = static_cast<double>(n) * least_support_per_event_;
-  for (int& c : raw) {
-    if (c >= 0 && climbs_.support()[static_cast<size_t>(c)] < least) c = -1;
+  const auto sparse = [&](int mode) { return climbs_.support()[static_cast<size_t>(mode)] < least; };
+  if (params_.density_after_links) {
+    const std::vector<int> mode_of = raw;
+    if (params_.link_px > 0) links_.join(events, link_px_at(params_, sensor_), static_cast<int>(modes.size()), raw);
+    std::vector<char> dense_set(modes.size(), 0);
+    for (size_t j = 0; j < n; ++j) {
+      if (raw[j] >= 0 && !sparse(mode_of[j])) dense_set[static_cast<size_t>(raw[j])] = 1;
+    }
+    for (int& c : raw) {
+      if (c >= 0 && !dense_set[static_cast<size_t>(c)]) c = -1;
+    }
+  } else {
+    for (int& c : raw) {
+      if (c >= 0 && sparse(c)) c = -1;
+    }
+    if (params_.link_px > 0) links_.join(events, link_px_at(params_, sensor_), static_cast<int>(modes.size()), raw);
   }
-  if (params_.link_px > 0) links_.join(events, link_px_at(params_, sensor_), static_cast<int>(modes.size()), raw);
   if (params_.join_boxes) join_overlapping_boxes(events, raw);
   if (params_.split_balance > 0) split_.split(events, features, modes, raw);
   join_edges(events, edge_, static_cast<int>(modes.size()), raw);

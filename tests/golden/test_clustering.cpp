@@ -2,6 +2,7 @@
 // seeds' own bandwidths, each on a packet small enough to work out by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -153,6 +154,42 @@ TEST(SeededClimbs, AWarmSeedClimbsWithItsClustersSize) {
   // Cluster 0 is the warm seed's: its own, larger ball reaches more of the ring first.
   const auto count0 = [](const PacketClusters& c) { return std::count(c.cluster_of.begin(), c.cluster_of.end(), 0); };
   EXPECT_GT(count0(own), 2 * count0(small));
+}
+
+// A dense blob, a sparse arc that touches it, and a sparse arc alone: lines of events 4 px apart
+// (within the link distance), whose climbs hold three events each, against the least density of
+// 816 events (2 x 816 x pi h^2 = 8.2). The arcs come first in the packet, the far end first, so
+// that their climbs open modes of their own before the blob's. Tested on each mode before the
+// links (the default), both arcs are noise; tested on the linked sets, the arc that touches the
+// blob stays in its cluster and the lone arc is still noise.
+TEST(SeededClimbs, ASparseArcTouchingADenseModeStaysWithItWhenTheDensityIsTestedAfterTheLinks) {
+  Params p = seeded();
+  p.min_density = 2;
+  std::vector<Event> e;
+  for (int k = 7; k >= 0; --k) e.push_back({static_cast<TimeUs>(e.size()), 61, static_cast<std::uint16_t>(97 + 4 * k), 1});
+  const size_t alone = e.size();
+  for (int k = 7; k >= 0; --k) e.push_back({static_cast<TimeUs>(e.size()), 200, static_cast<std::uint16_t>(20 + 4 * k), 1});
+  const size_t blob = e.size();
+  for (int i = 0; i < 800; ++i) {
+    e.push_back({static_cast<TimeUs>(e.size()), static_cast<std::uint16_t>(60 + i % 4), static_cast<std::uint16_t>(90 + i / 4 % 4), 1});
+  }
+  const Packet packet(e, p);
+  const auto noise_in = [](const PacketClusters& c, size_t from, size_t to) {
+    return std::count(c.cluster_of.begin() + static_cast<std::ptrdiff_t>(from), c.cluster_of.begin() + static_cast<std::ptrdiff_t>(to), -1);
+  };
+
+  const PacketClusters before = packet.cluster(p);
+  EXPECT_GT(noise_in(before, 0, alone), 0) << "the touching arc's sparse modes are noise";
+  EXPECT_EQ(noise_in(before, alone, blob), 8);
+  EXPECT_EQ(noise_in(before, blob, e.size()), 0);
+
+  p.density_after_links = true;
+  const PacketClusters after = packet.cluster(p);
+  ASSERT_EQ(after.count, 1);
+  EXPECT_EQ(noise_in(after, 0, alone), 0) << "linked to the blob, the touching arc is in its cluster";
+  EXPECT_EQ(noise_in(after, alone, blob), 8) << "a set of sparse modes is noise";
+  EXPECT_EQ(noise_in(after, blob, e.size()), 0);
+  EXPECT_EQ(after.cluster_of.front(), after.cluster_of.back());
 }
 
 TEST(SeededClimbs, ModesTheRunCannotKeepAreNoise) {
