@@ -113,6 +113,9 @@ class ModeLinks {
     }
   }
 
+  // After run: the oldest mode of mode c's set.
+  int root(int c) { return sets_.find(c); }
+
  private:
   static constexpr int kWordsPerRow = (S::kMaxWidth + 63) / 64;
 

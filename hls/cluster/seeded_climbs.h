@@ -14,7 +14,9 @@
 // A mode's support is the number of events in the ball at the last step of the climbs that
 // joined it (the most of them). With min_density, a mode whose support is below
 // n * min_density (golden: the events a uniform spread of the packet's n events over the sensor
-// would put in a ball of radius h, times --min-density) is noise, and so are its events.
+// would put in a ball of radius h, times --min-density) is noise, and so are its events; with
+// density_after_links the climbs leave the test to the core, which makes it on each set of
+// linked modes (hls/core/core.h).
 //
 // Seeds, in order: the previous packet's modes (warm start, each climbing with its own ball,
 // Modes::ball2), then the first event no climb has reached yet, with the ball of radius h, until
@@ -107,15 +109,21 @@ class SeededClimbs {
       if (i >= n) break;
       if (!reached_[i]) climb(cfg, phi.x[i], phi.y[i], kOne, first_mode, modes, trace);
     }
-    if (cfg.min_density == 0) return;
-    const std::uint64_t least = static_cast<std::uint64_t>(n) * cfg.min_density;  // kDensityFrac fraction bits
+    if (cfg.min_density == 0 || cfg.density_after_links) return;
   sparse_modes:
     for (int j = 0; j < S::kPacketMax; ++j) {
 #pragma HLS PIPELINE II = 1
       if (j >= n) break;
       const int c = first_mode[j];
-      if (c >= 0 && (static_cast<std::uint64_t>(support_[c]) << kDensityFrac) < least) first_mode[j] = -1;
+      if (c >= 0 && sparse(c, n, cfg)) first_mode[j] = -1;
     }
+  }
+
+  // Whether mode c of the last run's packet of n events is below the least density
+  // (n * min_density, kDensityFrac fraction bits).
+  bool sparse(int c, int n, const Config& cfg) const {
+    const std::uint64_t least = static_cast<std::uint64_t>(n) * cfg.min_density;
+    return (static_cast<std::uint64_t>(support_[c]) << kDensityFrac) < least;
   }
 
  private:

@@ -22,6 +22,7 @@
 #include "hls/cluster/merge.h"
 #include "hls/cluster/polarity_split.h"
 #include "hls/cluster/seeded_climbs.h"
+#include "hls/cluster/sparse_sets.h"
 #include "hls/cluster/warm_seeds.h"
 #include "hls/core/config.h"
 #include "hls/core/shape.h"
@@ -121,6 +122,7 @@ class Core {
         Modes<S> modes;
         climbs_.run(phi, n_, cfg_, warm_, mode_of, modes, trace.climbs);
         links_.run(packet_, n_, modes.count, cfg_, mode_of, first_on_pixel);
+        if (cfg_.min_density != 0 && cfg_.density_after_links) drop_sparse_sets(climbs_, links_, n_, modes.count, cfg_, mode_of);
         trace.splits_left_whole = split_.run(packet_, phi, n_, cfg_, mode_of, modes);
         trace.edges_joined = edges_.run(packet_, n_, cfg_, modes.count, mode_of);
         clusters = keep_clusters<S>(mode_of, n_, modes, cfg_, cluster_of, warm_);

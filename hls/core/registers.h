@@ -79,4 +79,5 @@
 #define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
   X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
   X(gate_spread2, std::uint32_t, 32, 0, "widening of the gate by the spread of the cluster, squared, kSpreadFrac bits") \
-  X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never")
+  X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never") \
+  X(density_after_links, bool, 1, false, "seeded: min_density is tested on each set of linked modes after the links (noise when none of its modes is dense), not on each mode before them")

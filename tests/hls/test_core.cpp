@@ -248,6 +248,22 @@ TEST(CoreAgreesWithGolden, TheDefaultMethodOnTheRealRecordings) {
   for (const char* f : kRealRecordings) expect_chunk_agreement(real_recording(dir, f, SIZE_MAX), f);
 }
 
+// The least density tested on each set of linked modes (--density-after-links): on the family's
+// types whose tracks it moves most (docs/sweep.md, "A mode's least density") and on the dense
+// recording, whose noise share it changes most.
+TEST(CoreAgreesWithGolden, TheLeastDensityAfterTheLinks) {
+  Params p;
+  p.density_after_links = true;
+  for (const char* type : {"crossing", "zoom", "6dof"}) {
+    gen::SceneConfig c = gen::family_scene(type, gen::split_seed(gen::Split::kValidation, 6));
+    c.duration_s = std::min(c.duration_s, 0.25);
+    expect_chunk_agreement(eval::generate_scene(c), std::string(type) + " " + std::to_string(c.seed), p);
+  }
+  const std::string dir = test::shared_data_dir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/data/real is absent";
+  expect_chunk_agreement(real_recording(dir, "gen41_dense_scene.evt3.raw", SIZE_MAX), "gen41_dense_scene.evt3.raw", p);
+}
+
 // The gaussian preset (every event climbs) costs about 1,800 kernel evaluations an event, so
 // these scenes and recordings are cut short: 0.25 s, and a recording's first 200,000 events.
 TEST(CoreAgreesWithGolden, OnTheLabelledScenes) {
