@@ -71,6 +71,7 @@ constexpr const char* kStageNames[kStageCount] = {"accept",     "filter", "packe
   X(Merge, kMerge)                     \
   X(Climb, kMeanShift)                 \
   X(Link, kMerge)                      \
+  X(Dense, kMerge)                     \
   X(Split, kMerge)                     \
   X(Edge, kMerge)                      \
   X(Warm, kMerge)                      \

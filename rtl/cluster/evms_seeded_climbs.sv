@@ -8,7 +8,9 @@
 // the nearest mode within the merge radius or opens one; the events it reached that have no
 // mode yet take it. A mode's support is the most events a climb that joined it held at its
 // last step; an event of a mode whose support is below n * cfg_min_density reads as noise
-// (the sum is made while the flags clear, the test at each join: no clock more).
+// (the sum is made while the flags clear, the test at each join: no clock more). With
+// cfg_density_after_links the events keep their modes and the core reads each mode's test
+// (rd_c_sparse) to make it on the linked sets instead (hls/cluster/sparse_sets.h).
 //
 // Schedule:
 //   sort    Cells + 1 clearing the cell counts, 3 a event counting, Cells + 2 for the prefix
@@ -60,6 +62,7 @@ module evms_seeded_climbs #(
   input  logic [31:0]          cfg_tolerance,
   input  logic [63:0]          cfg_merge_radius2,
   input  logic [31:0]          cfg_min_density,   // DensityFrac fraction bits; 0: off
+  input  logic                 cfg_density_after_links,   // leave the test to the core (rd_c_sparse)
   output logic                 done,         // one clock
   output logic [15:0]          mode_count,
   output logic [15:0]          climbs,
@@ -72,7 +75,8 @@ module evms_seeded_climbs #(
   output logic [CoordBits-1:0] rd_y,
   input  logic [7:0]           rd_c,
   output logic [CoordBits-1:0] rd_mode_x,
-  output logic [CoordBits-1:0] rd_mode_y
+  output logic [CoordBits-1:0] rd_mode_y,
+  output logic                 rd_c_sparse    // mode rd_c is below the least density (combinational)
 );
   localparam int IdxBits = PacketMax > 1 ? $clog2(PacketMax) : 1;
   localparam int CntBits = $clog2(PacketMax + 1);
@@ -226,8 +230,10 @@ module evms_seeded_climbs #(
     if (flags_clearing || touched_we || (state_q == StLabel && lv_q)) in_climb_mem[in_climb_addr] <= touched_we && !flags_clearing;
     if (flags_clearing || first_mode_we) labelled_mem[labelled_addr] <= !flags_clearing;
   end
-  // An event of a sparse mode reads as noise.
-  assign rd_mode = rd_labelled_q && !sparse_q[first_mode_q] ? 16'(first_mode_q) : -16'sd1;
+  // An event of a sparse mode reads as noise, unless the core tests the density on the linked
+  // sets (rtl/core/evms_core.sv, StDense).
+  assign rd_mode = rd_labelled_q && (cfg_density_after_links || !sparse_q[first_mode_q]) ? 16'(first_mode_q) : -16'sd1;
+  assign rd_c_sparse = sparse_q[ModeBits'(rd_c)];
 
   // A converged climb's support becomes its mode's when the mode opens, or when it is more than the
   // joined mode's (count_q holds the climb's last step's events at the join).

@@ -198,10 +198,21 @@ module evms_core #(
   logic [31:0] ws_warm_x, ws_warm_y;
   logic [63:0] ws_warm_ball2;
   logic [7:0] warm_count_q;   // the seeds the last seeded packet left
-  // The links' representative of an event's first mode.
+  // The least density on the linked sets (cfg_density_after_links, hls/cluster/sparse_sets.h):
+  // the climbs keep every event's mode, and StDense reads each mode's test from the climbs and
+  // its set's representative from the links, a mode a clock, marking the sets that hold a dense
+  // mode; an event of a set without one is noise.
+  logic dense_after_links;
+  assign dense_after_links = cfg_density_after_links && cfg_min_density != 0;
+  logic [ModeIndexBits:0] dense_c_q;          // the mode StDense reads
+  logic [ModesMax-1:0]    dense_set_q;        // the sets that hold a dense mode
+  logic                   cl_rd_c_sparse;
+  logic                   dense_reading;      // in StDense
+  // The links' representative of an event's first mode (of mode dense_c_q in StDense).
   wire [ModeIndexBits-1:0] first_mode = ModeIndexBits'(cl_rd_mode);
+  wire [ModeIndexBits-1:0] links_rd_c = dense_reading ? ModeIndexBits'(dense_c_q) : first_mode;
   logic signed [15:0] linked_mode;
-  assign linked_mode = cl_rd_mode < 0 ? -16'sd1 : 16'(lk_rd_root);
+  assign linked_mode = cl_rd_mode < 0 || (dense_after_links && !dense_set_q[lk_rd_root]) ? -16'sd1 : 16'(lk_rd_root);
   // The polarity split (cluster/evms_polarity_split.sv), in a build that holds it and with
   // cfg_split_balance set, runs between the links and the warm seeds: it reads an event's pixel,
   // linked mode and climb features, and the warm seeds then read each event's mode and the moved
@@ -239,16 +250,16 @@ module evms_core #(
       .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),
       .start(cl_start_q), .n(16'(n_q)), .warm_count(warm_count_q), .cfg_warm_start(cfg_warm_start),
       .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance), .cfg_merge_radius2(cfg_merge_radius2),
-      .cfg_min_density(cfg_min_density), .done(cl_done), .mode_count(cl_mode_count), .climbs(climbs_unused), .steps(cl_steps), .modes_lost(modes_lost_unused),
-      .rd_j(cl_rd_j), .rd_mode(cl_rd_mode), .rd_x(cl_rd_x), .rd_y(cl_rd_y), .rd_c(ws_md_c), .rd_mode_x(cl_rd_mode_x),
-      .rd_mode_y(cl_rd_mode_y));
+      .cfg_min_density(cfg_min_density), .cfg_density_after_links(cfg_density_after_links), .done(cl_done), .mode_count(cl_mode_count), .climbs(climbs_unused), .steps(cl_steps), .modes_lost(modes_lost_unused),
+      .rd_j(cl_rd_j), .rd_mode(cl_rd_mode), .rd_x(cl_rd_x), .rd_y(cl_rd_y), .rd_c(dense_reading ? 8'(dense_c_q) : ws_md_c),
+      .rd_mode_x(cl_rd_mode_x), .rd_mode_y(cl_rd_mode_y), .rd_c_sparse(cl_rd_c_sparse));
     evms_mode_links #(
       .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .PacketMax(PacketMax), .ModesMax(ModesMax), .LinkMax(LinkMax)
     ) u_links (
       .clk(clk), .rst_n(rst_n), .ready(lk_ready), .start(lk_start_q), .n(16'(n_q)), .cfg_link2(cfg_link2),
       .cfg_sensor_width(cfg_sensor_width), .cfg_sensor_height(cfg_sensor_height), .ev_j(lk_ev_j), .ev_x(rd_pk_x),
       .ev_y(rd_pk_y), .ev_mode(cl_rd_mode), .first_we(lk_first_we), .first_j(lk_first_j), .first_on_pixel(lk_first_on_pixel),
-      .done(lk_done), .rd_c(first_mode), .rd_root(lk_rd_root));
+      .done(lk_done), .rd_c(links_rd_c), .rd_root(lk_rd_root));
     evms_warm_seeds #(
       .PacketMax(PacketMax), .ModesMax(ModesMax), .ClustersMax(ClustersMax), .UnitShift(UnitShift), .SpreadFrac(SpreadFrac),
       .CoordBits(32)
@@ -260,14 +271,14 @@ module evms_core #(
       .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),
       .done(ws_done), .clusters(ws_clusters));
   end else begin : g_no_seeded
-    assign {cl_done, cl_mode_count, cl_steps, cl_rd_mode, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y} = '0;
+    assign {cl_done, cl_mode_count, cl_steps, cl_rd_mode, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, cl_rd_c_sparse} = '0;
     assign {lk_done, lk_ev_j, lk_rd_root, lk_first_we, lk_first_j, lk_first_on_pixel} = '0;
     assign lk_ready = 1'b1;
     assign {ws_done, ws_co_we, ws_warm_we, ws_ev_j, ws_co_j, ws_md_c, ws_clusters, ws_warm_k, ws_co_value} = '0;
     assign {ws_warm_x, ws_warm_y, ws_warm_ball2} = '0;
     // What only the seeded path reads (waived in core/evms_core.vlt).
     logic unused_seeded_path;
-    assign unused_seeded_path = ^{cfg_warm_start, cfg_min_density, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we_q, cl_load_i_q, cl_lx_q, cl_ly_q,
+    assign unused_seeded_path = ^{cfg_warm_start, cfg_min_density, cfg_density_after_links, dense_after_links, dense_c_q, dense_set_q, links_rd_c, dense_reading, cl_rd_c_sparse, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we_q, cl_load_i_q, cl_lx_q, cl_ly_q,
                                   cl_start_q, cl_mode_count, cl_rd_j, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, first_mode, lk_start_q,
                                   warm_count_q, ws_ev_mode, ws_md_c, ws_start_q, ws_warm_we, ws_warm_k, ws_warm_x, ws_warm_y,
                                   ws_warm_ball2, linked_mode, ws_mode_count, ws_md_x, ws_md_y};
@@ -381,6 +392,7 @@ module evms_core #(
   `include "evms_core_states.svh"
   `include "evms_core_labels.svh"
   state_e state_q /*verilator public_flat_rd*/;  // read by the cycle profile (sim/rtl_core.h)
+  assign dense_reading = state_q == StDense;
   logic [15:0] fi_q;            // feature index
   logic [PendingCountBits-1:0] ri_q;          // release index
   logic [FeatBits-1:0] phi_x_q, phi_y_q, phi_p_q;
@@ -486,6 +498,8 @@ module evms_core #(
       sp_start_q <= 1'b0;
       ej_start_q <= 1'b0;
       ws_start_q <= 1'b0;
+      dense_c_q <= '0;
+      dense_set_q <= '0;
       warm_count_q <= '0;
       ct_start_q <= 1'b0;
       tk_start_q <= 1'b0;
@@ -603,6 +617,21 @@ module evms_core #(
           state_q <= StLink;
         end
         StLink: if (lk_done) begin
+          dense_c_q <= '0;
+          dense_set_q <= '0;
+          if (dense_after_links) begin
+            state_q <= StDense;
+          end else begin
+            sp_start_q <= split_on;
+            ej_start_q <= !split_on && edge_on;
+            ws_start_q <= !split_on && !edge_on;
+            state_q <= split_on ? StSplit : (edge_on ? StEdge : StWarm);
+          end
+        end
+        StDense: if (16'(dense_c_q) < cl_mode_count) begin
+          if (!cl_rd_c_sparse) dense_set_q[lk_rd_root] <= 1'b1;
+          dense_c_q <= dense_c_q + 1'b1;
+        end else begin
           sp_start_q <= split_on;
           ej_start_q <= !split_on && edge_on;
           ws_start_q <= !split_on && !edge_on;

@@ -53,6 +53,7 @@
 .CfgEdgeMinEvents(CfgEdgeMinEvents),
 .CfgMeasFromSpread(CfgMeasFromSpread),
 .CfgMinDensity(CfgMinDensity),
+.CfgDensityAfterLinks(CfgDensityAfterLinks),
 .CfgGateBoxes(CfgGateBoxes),
 .CfgPixelCentre(CfgPixelCentre),
 .MaxWidth(MaxWidth),

@@ -53,5 +53,6 @@
 .cfg_edge_min_events(CfgEdgeMinEvents),
 .cfg_meas_from_spread(CfgMeasFromSpread),
 .cfg_min_density(CfgMinDensity),
+.cfg_density_after_links(CfgDensityAfterLinks),
 .cfg_gate_boxes(CfgGateBoxes),
 .cfg_pixel_centre(CfgPixelCentre),

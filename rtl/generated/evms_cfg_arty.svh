@@ -110,6 +110,7 @@ localparam logic [15:0] CfgEdgeBalance = 16'd0;
 localparam logic [15:0] CfgEdgeMinEvents = 16'd0;
 localparam logic CfgMeasFromSpread = 1'd0;
 localparam logic [31:0] CfgMinDensity = 32'd168663;
+localparam logic CfgDensityAfterLinks = 1'd0;
 localparam logic CfgGateBoxes = 1'd0;
 localparam logic CfgPixelCentre = 1'd0;
 // The board: its clock, its UART's clocks a bit, its link queue's depth in events, and whether

@@ -110,5 +110,6 @@ localparam logic [15:0] CfgEdgeBalance = 16'd128;
 localparam logic [15:0] CfgEdgeMinEvents = 16'd16;
 localparam logic CfgMeasFromSpread = 1'd1;
 localparam logic [31:0] CfgMinDensity = 32'd168663;
+localparam logic CfgDensityAfterLinks = 1'd0;
 localparam logic CfgGateBoxes = 1'd1;
 localparam logic CfgPixelCentre = 1'd1;

@@ -17,14 +17,15 @@ typedef enum logic [4:0] {
   StMerge,  // 13: merge
   StClimb,  // 14: mean shift
   StLink,  // 15: merge
-  StSplit,  // 16: merge
-  StEdge,  // 17: merge
-  StWarm,  // 18: merge
-  StCentroid,  // 19: centroids
-  StTrack,  // 20: tracking
-  StPacket,  // 21: packet control
-  StReleaseRead,  // 22: release
-  StReleaseWait,  // 23: release
-  StReleaseCluster,  // 24: release
-  StReleaseSend  // 25: release
+  StDense,  // 16: merge
+  StSplit,  // 17: merge
+  StEdge,  // 18: merge
+  StWarm,  // 19: merge
+  StCentroid,  // 20: centroids
+  StTrack,  // 21: tracking
+  StPacket,  // 22: packet control
+  StReleaseRead,  // 23: release
+  StReleaseWait,  // 24: release
+  StReleaseCluster,  // 25: release
+  StReleaseSend  // 26: release
 } state_e;

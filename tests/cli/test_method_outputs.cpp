@@ -187,13 +187,6 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   const auto ahead = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --filter-look-ahead-us 10000 --quiet");
   EXPECT_EQ(ahead.exit_code, 1);
   EXPECT_NE(ahead.err.find("does not implement --filter-look-ahead-us 10000 (only --filter-look-ahead-us 0)"), std::string::npos) << ahead.err;
-  // The least density after the links is the C++ core's only (hls/cluster/sparse_sets.h).
-  const auto after_links = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --density-after-links true --quiet");
-  EXPECT_EQ(after_links.exit_code, 1);
-  EXPECT_NE(after_links.err.find("the RTL core does not implement --density-after-links true (add --density-after-links false)"),
-            std::string::npos)
-      << after_links.err;
-  EXPECT_EQ(run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --density-after-links true --quiet").exit_code, 0);
   // Nor the measurement noise from the clusters' spreads, which the host build and the C++
   // cores hold.
   const auto spread = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --meas-noise-from-spread true --quiet");

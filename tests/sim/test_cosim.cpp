@@ -182,6 +182,13 @@ TEST(Cosim, SeededPathHostBuild) {
   small_parts.split_min_events = 8;
   expect_equal<Vcore_host, hls::RtlHostShape>("seeded_host_small_parts", scene_events(gen::Motion::kTranslation, 0.15, 240, 180, 3),
                                               {240, 180}, 64, 0.8, small_parts);
+  // The least density tested on the linked sets (the controller's StDense), at a density that
+  // makes sparse modes in most packets.
+  Params after_links = seeded_method();
+  after_links.density_after_links = true;
+  after_links.min_density = 6;
+  expect_equal<Vcore_host, hls::RtlHostShape>("seeded_host_density_after_links", scene_events(gen::Motion::kSixDof, 0.15, 240, 180, 3),
+                                              {240, 180}, 65, 0.8, after_links);
   // Fewer slots than objects: births evict the stalest tracks.
   Params evicting = seeded_method();
   evicting.max_tracks = 3;
