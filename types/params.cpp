@@ -101,8 +101,9 @@ const std::array kTable = {
               "0 = off",
               &Params::min_density, 0, 1000},
     ParamInfo{"density-after-links", "", "with seeded climbs and --min-density, test the density on each set of linked "
-              "modes after the links, not on each mode before them: a set is noise when none of its modes is dense, so "
-              "a sparse arc that touches a dense one stays in its cluster",
+              "modes after the links, not on each mode before them: a set is noise when none of its modes is dense or "
+              "when it holds fewer events than a dense mode's ball, so a sparse arc that touches a dense one stays in its "
+              "cluster",
               &Params::density_after_links, 0, 1},
     ParamInfo{"link-px", "px", "with seeded climbs, clusters that have events within this distance of each other "
               "become one (an outline split by a small kernel joins again); 0 = off",

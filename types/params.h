@@ -86,7 +86,8 @@ struct Params {
   double min_density = 2;            // seeded climbs: a mode whose ball holds fewer than this many
                                      // times the events a uniform spread would put there is noise
   bool density_after_links = false;  // ... tested on each set of linked modes after the links (noise
-                                     // when none of its modes is dense), not on each mode before them
+                                     // when none of its modes is dense, or when it holds fewer events
+                                     // than a dense ball), not on each mode before them
   double link_px = 4;                // seeded climbs: clusters with events this close become one, ...
   double link_px_width = 320;        // ... on a sensor up to this wide; on a wider one W px wide,
                                      // link_px min(2, W / this) (link_px_at); 0 = link_px on every sensor

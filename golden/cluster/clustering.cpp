@@ -62,18 +62,22 @@ PacketClusters PacketClusterer::finish(std::span<const Event> events, const Feat
   result.iterations = climbs_.iterations();
   result.kernel_evaluations = climbs_.kernel_evaluations();
   // A mode no denser than a uniform spread of the packet, times min_density, is noise; with
-  // density_after_links, a set of linked modes none of which is that dense.
+  // density_after_links, a set of linked modes none of which is that dense, or that holds fewer
+  // events than such a mode's ball.
   const double least = static_cast<double>(n) * least_support_per_event_;
   const auto sparse = [&](int mode) { return climbs_.support()[static_cast<size_t>(mode)] < least; };
   if (params_.density_after_links) {
     const std::vector<int> mode_of = raw;
     if (params_.link_px > 0) links_.join(events, link_px_at(params_, sensor_), static_cast<int>(modes.size()), raw);
     std::vector<char> dense_set(modes.size(), 0);
+    std::vector<int> set_events(modes.size(), 0);
     for (size_t j = 0; j < n; ++j) {
-      if (raw[j] >= 0 && !sparse(mode_of[j])) dense_set[static_cast<size_t>(raw[j])] = 1;
+      if (raw[j] < 0) continue;
+      if (!sparse(mode_of[j])) dense_set[static_cast<size_t>(raw[j])] = 1;
+      ++set_events[static_cast<size_t>(raw[j])];
     }
     for (int& c : raw) {
-      if (c >= 0 && !dense_set[static_cast<size_t>(c)]) c = -1;
+      if (c >= 0 && !(dense_set[static_cast<size_t>(c)] && set_events[static_cast<size_t>(c)] >= least)) c = -1;
     }
   } else {
     for (int& c : raw) {

@@ -199,16 +199,25 @@ module evms_core #(
   logic [63:0] ws_warm_ball2;
   logic [7:0] warm_count_q;   // the seeds the last seeded packet left
   // The least density on the linked sets (cfg_density_after_links, hls/cluster/sparse_sets.h):
-  // the climbs keep every event's mode, and StDense reads each mode's test from the climbs and
-  // its set's representative from the links, a mode a clock, marking the sets that hold a dense
-  // mode; an event of a set without one is noise.
+  // the climbs keep every event's mode. StDense first counts each set's events, an event a clock
+  // (its mode from the climbs, the mode's set from the links), summing the packet's least
+  // n * cfg_min_density as it goes; then it reads each mode's test from the climbs and its set
+  // from the links, a mode a clock, and marks the sets that hold a dense mode and at least the
+  // least's events. An event of an unmarked set is noise.
   logic dense_after_links;
   assign dense_after_links = cfg_density_after_links && cfg_min_density != 0;
+  logic                   dense_modes_q;      // StDense: counting the events (0), reading the modes (1)
+  logic [15:0]            dense_j_q;          // the event StDense reads
+  logic                   dense_read_q;       // an event's read is in flight
   logic [ModeIndexBits:0] dense_c_q;          // the mode StDense reads
-  logic [ModesMax-1:0]    dense_set_q;        // the sets that hold a dense mode
+  logic [ModesMax-1:0]    dense_set_q;        // the sets kept
+  logic [ModesMax*16-1:0]  set_events_q;       // each set's events, 16 bits a set (Yosys 0.23 takes no 2-D packed array)
+  wire [15:0] root_events = set_events_q[16*32'(lk_rd_root) +: 16];
+  logic [47:0]            dense_least_q;      // n * cfg_min_density, DensityFrac fraction bits
   logic                   cl_rd_c_sparse;
-  logic                   dense_reading;      // in StDense
-  // The links' representative of an event's first mode (of mode dense_c_q in StDense).
+  logic                   dense_reading;      // in StDense, reading the modes
+  // The links' representative of an event's first mode (of mode dense_c_q while StDense reads
+  // the modes).
   wire [ModeIndexBits-1:0] first_mode = ModeIndexBits'(cl_rd_mode);
   wire [ModeIndexBits-1:0] links_rd_c = dense_reading ? ModeIndexBits'(dense_c_q) : first_mode;
   logic signed [15:0] linked_mode;
@@ -278,7 +287,8 @@ module evms_core #(
     assign {ws_warm_x, ws_warm_y, ws_warm_ball2} = '0;
     // What only the seeded path reads (waived in core/evms_core.vlt).
     logic unused_seeded_path;
-    assign unused_seeded_path = ^{cfg_warm_start, cfg_min_density, cfg_density_after_links, dense_after_links, dense_c_q, dense_set_q, links_rd_c, dense_reading, cl_rd_c_sparse, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we_q, cl_load_i_q, cl_lx_q, cl_ly_q,
+    assign unused_seeded_path = ^{cfg_warm_start, cfg_min_density, cfg_density_after_links, dense_after_links, dense_c_q, dense_set_q, links_rd_c, dense_reading, cl_rd_c_sparse,
+                                  dense_modes_q, dense_j_q, dense_read_q, set_events_q, root_events, dense_least_q, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we_q, cl_load_i_q, cl_lx_q, cl_ly_q,
                                   cl_start_q, cl_mode_count, cl_rd_j, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, first_mode, lk_start_q,
                                   warm_count_q, ws_ev_mode, ws_md_c, ws_start_q, ws_warm_we, ws_warm_k, ws_warm_x, ws_warm_y,
                                   ws_warm_ball2, linked_mode, ws_mode_count, ws_md_x, ws_md_y};
@@ -392,7 +402,33 @@ module evms_core #(
   `include "evms_core_states.svh"
   `include "evms_core_labels.svh"
   state_e state_q /*verilator public_flat_rd*/;  // read by the cycle profile (sim/rtl_core.h)
-  assign dense_reading = state_q == StDense;
+  assign dense_reading = state_q == StDense && dense_modes_q;
+  wire links_finished = state_q == StLink ? lk_done && !dense_after_links : dense_modes_q && 16'(dense_c_q) >= cl_mode_count;
+  // StDense's pass. Its registers clear while the links run, and the sets it keeps stay for the
+  // packet's later stages (linked_mode); no reset, as nothing reads them before a pass.
+  always_ff @(posedge clk) begin
+    if (state_q == StLink) begin
+      dense_modes_q <= 1'b0;
+      dense_j_q <= '0;
+      dense_read_q <= 1'b0;
+      dense_c_q <= '0;
+      dense_set_q <= '0;
+      set_events_q <= '0;
+      dense_least_q <= '0;
+    end else if (state_q == StDense && !dense_modes_q) begin
+      // Issue event dense_j_q; its mode and set come a clock later.
+      dense_read_q <= dense_j_q < 16'(n_q);
+      if (dense_j_q < 16'(n_q)) dense_j_q <= dense_j_q + 1'b1;
+      if (dense_read_q) begin
+        dense_least_q <= dense_least_q + 48'(cfg_min_density);
+        if (cl_rd_mode >= 0) set_events_q[16*32'(lk_rd_root) +: 16] <= root_events + 1'b1;
+      end
+      if (dense_j_q >= 16'(n_q) && !dense_read_q) dense_modes_q <= 1'b1;
+    end else if (state_q == StDense && 16'(dense_c_q) < cl_mode_count) begin
+      if (!cl_rd_c_sparse && 48'({root_events, DensityFrac'(0)}) >= dense_least_q) dense_set_q[lk_rd_root] <= 1'b1;
+      dense_c_q <= dense_c_q + 1'b1;
+    end
+  end
   logic [15:0] fi_q;            // feature index
   logic [PendingCountBits-1:0] ri_q;          // release index
   logic [FeatBits-1:0] phi_x_q, phi_y_q, phi_p_q;
@@ -421,7 +457,7 @@ module evms_core #(
   wire [15:0] append_index = 16'(n_q);  // named: Yosys 0.23 sizes a cast inside a concatenation by its operand
   assign pend_wdata = state_q == StAppend ? {e_t_q, e_x_q, e_y_q, e_p_q, append_index} : {q_t, q_x, q_y, q_p, 16'hFFFF};
   assign rd_pk_i = state_q == StCentroid ? ct_rd_i : (state_q == StLink ? lk_ev_j : (state_q == StSplit ? sp_ev_j : (state_q == StEdge ? ej_ev_j : fi_q)));
-  assign cl_rd_j = state_q == StLink ? lk_ev_j : (state_q == StSplit ? sp_ev_j : (state_q == StEdge ? ej_ev_j : ws_ev_j));
+  assign cl_rd_j = state_q == StLink ? lk_ev_j : (state_q == StDense ? dense_j_q : (state_q == StSplit ? sp_ev_j : (state_q == StEdge ? ej_ev_j : ws_ev_j)));
   assign sp_rd_j = state_q == StEdge ? ej_ev_j : ws_ev_j;
   assign co_i = state_q == StMerge ? mg_co_i : (state_q == StCentroid ? ct_rd_i :
                 (state_q == StReleaseWait ? pend_rdata_q[15:0] : 16'(rel_idx_q)));
@@ -498,8 +534,6 @@ module evms_core #(
       sp_start_q <= 1'b0;
       ej_start_q <= 1'b0;
       ws_start_q <= 1'b0;
-      dense_c_q <= '0;
-      dense_set_q <= '0;
       warm_count_q <= '0;
       ct_start_q <= 1'b0;
       tk_start_q <= 1'b0;
@@ -616,26 +650,14 @@ module evms_core #(
           lk_start_q <= 1'b1;
           state_q <= StLink;
         end
-        StLink: if (lk_done) begin
-          dense_c_q <= '0;
-          dense_set_q <= '0;
-          if (dense_after_links) begin
-            state_q <= StDense;
-          end else begin
-            sp_start_q <= split_on;
-            ej_start_q <= !split_on && edge_on;
-            ws_start_q <= !split_on && !edge_on;
-            state_q <= split_on ? StSplit : (edge_on ? StEdge : StWarm);
-          end
-        end
-        StDense: if (16'(dense_c_q) < cl_mode_count) begin
-          if (!cl_rd_c_sparse) dense_set_q[lk_rd_root] <= 1'b1;
-          dense_c_q <= dense_c_q + 1'b1;
-        end else begin
+        // The links, then (with the least density on the linked sets) StDense's pass.
+        StLink, StDense: if (links_finished) begin
           sp_start_q <= split_on;
           ej_start_q <= !split_on && edge_on;
           ws_start_q <= !split_on && !edge_on;
           state_q <= split_on ? StSplit : (edge_on ? StEdge : StWarm);
+        end else if (state_q == StLink && lk_done) begin
+          state_q <= StDense;
         end
         StSplit: if (sp_done) begin
           ej_start_q <= edge_on;
