@@ -15,8 +15,8 @@
 // joined it (the most of them). With min_density, a mode whose support is below
 // n * min_density (golden: the events a uniform spread of the packet's n events over the sensor
 // would put in a ball of radius h, times --min-density) is noise, and so are its events; with
-// density_after_links the climbs leave the test to the core, which makes it on each set of
-// linked modes (hls/core/core.h).
+// density_after_links the climbs leave the test to drop_sparse_sets, which makes it on each set
+// of linked modes after the links (hls/cluster/sparse_sets.h).
 //
 // Seeds, in order: the previous packet's modes (warm start, each climbing with its own ball,
 // Modes::ball2), then the first event no climb has reached yet, with the ball of radius h, until
