@@ -66,9 +66,14 @@ PacketClusters PacketClusterer::finish(std::span<const Event> events, const Feat
   // events than such a mode's ball.
   const double least = static_cast<double>(n) * least_support_per_event_;
   const auto sparse = [&](int mode) { return climbs_.support()[static_cast<size_t>(mode)] < least; };
+  const std::vector<int> mode_of = params_.density_after_links ? raw : std::vector<int>{};
+  if (!params_.density_after_links) {
+    for (int& c : raw) {
+      if (c >= 0 && sparse(c)) c = -1;
+    }
+  }
+  if (params_.link_px > 0) links_.join(events, link_px_at(params_, sensor_), static_cast<int>(modes.size()), raw);
   if (params_.density_after_links) {
-    const std::vector<int> mode_of = raw;
-    if (params_.link_px > 0) links_.join(events, link_px_at(params_, sensor_), static_cast<int>(modes.size()), raw);
     std::vector<char> dense_set(modes.size(), 0);
     std::vector<int> set_events(modes.size(), 0);
     for (size_t j = 0; j < n; ++j) {
@@ -79,11 +84,6 @@ PacketClusters PacketClusterer::finish(std::span<const Event> events, const Feat
     for (int& c : raw) {
       if (c >= 0 && !(dense_set[static_cast<size_t>(c)] && set_events[static_cast<size_t>(c)] >= least)) c = -1;
     }
-  } else {
-    for (int& c : raw) {
-      if (c >= 0 && sparse(c)) c = -1;
-    }
-    if (params_.link_px > 0) links_.join(events, link_px_at(params_, sensor_), static_cast<int>(modes.size()), raw);
   }
   if (params_.join_boxes) join_overlapping_boxes(events, raw);
   if (params_.split_balance > 0) split_.split(events, features, modes, raw);
