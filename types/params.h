@@ -85,7 +85,7 @@ struct Params {
   int min_cluster_size = 8;          // smaller clusters become noise
   double min_density = 2;            // seeded climbs: a mode whose ball holds fewer than this many
                                      // times the events a uniform spread would put there is noise
-  bool density_after_links = false;  // ... tested on each set of linked modes after the links (noise
+  bool density_after_links = true;   // ... tested on each set of linked modes after the links (noise
                                      // when none of its modes is dense, or when it holds fewer events
                                      // than a dense ball), not on each mode before them
   double link_px = 4;                // seeded climbs: clusters with events this close become one, ...

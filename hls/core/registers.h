@@ -70,7 +70,7 @@
   X(edge_min_events, std::uint16_t, 16, 0, "seeded: the edge join looks at modes of at least this many events")        \
   X(meas_from_spread, bool, 1, false, "the measurement variance is r (spread^2 + 1/6 px^2) / events instead of r (hls/track/measurement_variance.h); false: r (the only setting of a build without HasSpreadNoise)") \
   X(min_density, std::uint32_t, 32, 0, "seeded: a mode whose climbs' last balls held fewer than n * this events (n the packet's) is noise, kDensityFrac fraction bits; 0: off") \
-  X(density_after_links, bool, 1, false, "seeded: min_density is tested on each set of linked modes after the links (noise when none of its modes is dense or it holds fewer than n * min_density events), not on each mode before them") \
+  X(density_after_links, bool, 1, false, "seeded: min_density is tested on each set of linked modes after the links (noise when none of its modes is dense or it holds fewer than n * min_density events), not on each mode before them (false: the only setting of a build without HasDensityAfterLinks)") \
   X(gate_boxes, bool, 1, false, "a pair beyond the gate is a candidate after every pair within it when the track's last measurement lies in the measurement's box or the measurement in the last one's") \
   X(pixel_centre, bool, 1, false, "seeded: a cluster is measured at the mean of the pixels its events fall on, each pixel once (marked by the links, so link2 != 0); false: at the centre of mass or midpoint (the only setting of a build without HasPixelCentre)")
 

@@ -35,7 +35,7 @@ template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsM
           int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4,
           int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0, int HasPolaritySplit = 0,
           int HasPolarityMidpoint = 0, int HasEdgeJoin = 0, int HasSpreadNoise = 0, int HasGateBoxes = 0,
-          int HasPixelCentre = 0>
+          int HasPixelCentre = 0, int HasDensityAfterLinks = 0>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -90,6 +90,11 @@ struct Shape {
   // marked by the links, hls/cluster/link.h); a build without it measures by the centre of mass,
   // and the host refuses --measure pixel-centre for it.
   static constexpr int kHasPixelCentre = HasPixelCentre;
+  // Whether the build can test the least density on each set of linked modes after the links
+  // (Config::density_after_links, hls/cluster/sparse_sets.h; the controller's StDense in
+  // rtl/core/evms_core.sv); a build without it tests each mode before the links, and the host
+  // refuses --density-after-links true for it.
+  static constexpr int kHasDensityAfterLinks = HasDensityAfterLinks;
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;
@@ -191,7 +196,8 @@ struct Shape {
   X(HasEdgeJoin)                     \
   X(HasSpreadNoise)                  \
   X(HasGateBoxes)                    \
-  X(HasPixelCentre)
+  X(HasPixelCentre)                  \
+  X(HasDensityAfterLinks)
 
 // The default board build: a DAVIS240-class sensor, the defaults of docs/sweep.md, a 16-bit
 // timestamp per pixel in 128 us units (one iCE40 SPRAM word), and eight kernel lanes: 88 of an
@@ -202,11 +208,11 @@ using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // method's default packets (3,000 events), clusters and tracks (128 each), and a pending queue
 // deep enough that noisy recordings (a third noise, say) never close a packet early, as golden
 // never does.
-using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1, 1, 1, 1>;
+using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1, 1, 1, 1, 1>;
 // The RTL's host-simulation build: HostShape's sensor, words and tables with smaller packet,
 // cluster and track sizes, both clustering paths, the polarity split, the edge join, the
-// measurement noise from the spread and the pixel centre. For settings within those sizes the
+// measurement noise from the spread, the pixel centre and the least density on the linked sets. For settings within those sizes the
 // two give the same words.
-using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 8, 32, 8, 1, 1, 1, 1, 1, 1, 1, 1>;
+using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 8, 32, 8, 1, 1, 1, 1, 1, 1, 1, 1, 1>;
 
 }  // namespace evms::hls

@@ -41,9 +41,9 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 
 // The method `p` within build S: the packet size, cluster and track counts cut to what S holds,
 // and without the polarity split, the polarity midpoint or the pixel centre, the edge join, the
-// measurement noise from the spread and the gate's boxes where S does not hold them
-// (Shape::kHasPolaritySplit, kHasPolarityMidpoint, kHasPixelCentre, kHasEdgeJoin, kHasSpreadNoise,
-// kHasGateBoxes: the board builds), each unless `kept(name)` says the command
+// measurement noise from the spread, the gate's boxes and the least density on the linked sets
+// where S does not hold them (Shape::kHasPolaritySplit, kHasPolarityMidpoint, kHasPixelCentre,
+// kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes, kHasDensityAfterLinks: the board builds), each unless `kept(name)` says the command
 // line set it, for the backend to refuse what S cannot run.
 template <class S, class Kept>
 Params within_build(Params p, Kept kept) {
@@ -61,6 +61,7 @@ Params within_build(Params p, Kept kept) {
   if (!S::kHasEdgeJoin && !kept("edge-join")) p.edge_join = 0;
   if (!S::kHasSpreadNoise && !kept("meas-noise-from-spread")) p.meas_noise_from_spread = false;
   if (!S::kHasGateBoxes && !kept("gate-boxes")) p.gate_boxes = false;
+  if (!S::kHasDensityAfterLinks && !kept("density-after-links")) p.density_after_links = false;
   return p;
 }
 
@@ -132,19 +133,21 @@ inline std::string core_unsupported(const Params& p) {
 // Gaussian mean shift of every event, the seeded climbs, or both: Shape::kHasGaussianPath,
 // kHasSeededPath), the polarity split, the edge join, the polarity midpoint and the measurement
 // noise from the spread where it holds them (kHasPolaritySplit, kHasEdgeJoin,
-// kHasPolarityMidpoint, kHasSpreadNoise), the pixel centre (kHasPixelCentre), the gate's boxes where it holds them (kHasGateBoxes)
+// kHasPolarityMidpoint, kHasSpreadNoise), the pixel centre (kHasPixelCentre), the gate's boxes
+// and the least density on the linked sets where it holds them (kHasGateBoxes, kHasDensityAfterLinks)
 // and the tracker's other policies but the gate's widening by
 // the spread and coasting by packets.
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
   bool gaussian_path = false, seeded_path = false, polarity_split = false, edge_join = false, polarity_midpoint = false,
-       spread_noise = false, gate_boxes = false, pixel_centre = false;
+       spread_noise = false, gate_boxes = false, pixel_centre = false, density_after_links = false;
 #define EVMS_PATHS_OF_BUILD(name, fixed, rtl, width, height, description)                                             \
   if (build == #name) {                                                                                               \
     gaussian_path = hls::rtl::kHasGaussianPath != 0, seeded_path = hls::rtl::kHasSeededPath != 0;                     \
     polarity_split = hls::rtl::kHasPolaritySplit != 0, edge_join = hls::rtl::kHasEdgeJoin != 0;                       \
     polarity_midpoint = hls::rtl::kHasPolarityMidpoint != 0, spread_noise = hls::rtl::kHasSpreadNoise != 0;           \
     gate_boxes = hls::rtl::kHasGateBoxes != 0, pixel_centre = hls::rtl::kHasPixelCentre != 0;                         \
+    density_after_links = hls::rtl::kHasDensityAfterLinks != 0;                                                       \
   }
   EVMS_CORE_BUILDS(EVMS_PATHS_OF_BUILD)
 #undef EVMS_PATHS_OF_BUILD
@@ -176,6 +179,10 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!gate_boxes && p.gate_boxes && p.association != Association::kNearestCentre) {
     return "the RTL build '" + build + "' does not hold the gate's boxes, not " + detail::setting(p, "gate-boxes") + " (add --gate-boxes false)";
+  }
+  if (!density_after_links && seeded && p.min_density != 0 && p.density_after_links) {
+    return "the RTL build '" + build + "' does not hold the least density on the linked sets, not " +
+           detail::setting(p, "density-after-links") + " (add --density-after-links false)";
   }
   return {};
 }

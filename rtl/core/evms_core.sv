@@ -203,16 +203,24 @@ module evms_core #(
   // (its mode from the climbs, the mode's set from the links), summing the packet's least
   // n * cfg_min_density as it goes; then it reads each mode's test from the climbs and its set
   // from the links, a mode a clock, and marks the sets that hold a dense mode and at least the
-  // least's events. An event of an unmarked set is noise.
+  // least's events. An event of an unmarked set is noise. Each read's set is registered
+  // (dense_set_c_q) before it addresses the counts, so that no path runs from the climbs' and
+  // the links' reads through the counts.
   logic dense_after_links;
-  assign dense_after_links = cfg_density_after_links && cfg_min_density != 0;
+  assign dense_after_links = HasDensityAfterLinks != 0 && cfg_density_after_links && cfg_min_density != 0;
   logic                   dense_modes_q;      // StDense: counting the events (0), reading the modes (1)
   logic [15:0]            dense_j_q;          // the event StDense reads
   logic                   dense_read_q;       // an event's read is in flight
+  logic                   dense_held_q;       // dense_set_c_q and dense_counts_q hold a read
+  logic [ModeIndexBits-1:0] dense_set_c_q;    // the read's set
+  logic                   dense_counts_q;     // the read counts: an event with a mode, or a dense mode
   logic [ModeIndexBits:0] dense_c_q;          // the mode StDense reads
   logic [ModesMax-1:0]    dense_set_q;        // the sets kept
-  logic [ModesMax*16-1:0]  set_events_q;       // each set's events, 16 bits a set (Yosys 0.23 takes no 2-D packed array)
-  wire [15:0] root_events = set_events_q[16*32'(lk_rd_root) +: 16];
+  // Each set's events, a memory (distributed RAM on the XC7) that is not cleared: a set's count
+  // is valid once set_counted_q marks it in the packet, and reads as 0 before.
+  logic [15:0]            set_events_q [ModesMax];
+  logic [ModesMax-1:0]    set_counted_q;      // the sets counted in this packet
+  wire [15:0] set_events = set_counted_q[dense_set_c_q] ? set_events_q[dense_set_c_q] : 16'd0;
   logic [47:0]            dense_least_q;      // n * cfg_min_density, DensityFrac fraction bits
   logic                   cl_rd_c_sparse;
   logic                   dense_reading;      // in StDense, reading the modes
@@ -259,7 +267,7 @@ module evms_core #(
       .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),
       .start(cl_start_q), .n(16'(n_q)), .warm_count(warm_count_q), .cfg_warm_start(cfg_warm_start),
       .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance), .cfg_merge_radius2(cfg_merge_radius2),
-      .cfg_min_density(cfg_min_density), .cfg_density_after_links(cfg_density_after_links), .done(cl_done), .mode_count(cl_mode_count), .climbs(climbs_unused), .steps(cl_steps), .modes_lost(modes_lost_unused),
+      .cfg_min_density(cfg_min_density), .cfg_density_after_links(dense_after_links), .done(cl_done), .mode_count(cl_mode_count), .climbs(climbs_unused), .steps(cl_steps), .modes_lost(modes_lost_unused),
       .rd_j(cl_rd_j), .rd_mode(cl_rd_mode), .rd_x(cl_rd_x), .rd_y(cl_rd_y), .rd_c(dense_reading ? 8'(dense_c_q) : ws_md_c),
       .rd_mode_x(cl_rd_mode_x), .rd_mode_y(cl_rd_mode_y), .rd_c_sparse(cl_rd_c_sparse));
     evms_mode_links #(
@@ -288,7 +296,7 @@ module evms_core #(
     // What only the seeded path reads (waived in core/evms_core.vlt).
     logic unused_seeded_path;
     assign unused_seeded_path = ^{cfg_warm_start, cfg_min_density, cfg_density_after_links, dense_after_links, dense_c_q, dense_set_q, links_rd_c, dense_reading, cl_rd_c_sparse,
-                                  dense_modes_q, dense_j_q, dense_read_q, set_events_q, root_events, dense_least_q, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we_q, cl_load_i_q, cl_lx_q, cl_ly_q,
+                                  dense_modes_q, dense_j_q, dense_read_q, dense_held_q, dense_set_c_q, dense_counts_q, set_counted_q, set_events, dense_least_q, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we_q, cl_load_i_q, cl_lx_q, cl_ly_q,
                                   cl_start_q, cl_mode_count, cl_rd_j, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, first_mode, lk_start_q,
                                   warm_count_q, ws_ev_mode, ws_md_c, ws_start_q, ws_warm_we, ws_warm_k, ws_warm_x, ws_warm_y,
                                   ws_warm_ball2, linked_mode, ws_mode_count, ws_md_x, ws_md_y};
@@ -403,7 +411,8 @@ module evms_core #(
   `include "evms_core_labels.svh"
   state_e state_q /*verilator public_flat_rd*/;  // read by the cycle profile (sim/rtl_core.h)
   assign dense_reading = state_q == StDense && dense_modes_q;
-  wire links_finished = state_q == StLink ? lk_done && !dense_after_links : dense_modes_q && 16'(dense_c_q) >= cl_mode_count;
+  wire links_finished = state_q == StLink ? lk_done && !dense_after_links
+                                           : dense_modes_q && 16'(dense_c_q) >= cl_mode_count && !dense_held_q;
   // StDense's pass. Its registers clear while the links run, and the sets it keeps stay for the
   // packet's later stages (linked_mode); no reset, as nothing reads them before a pass.
   always_ff @(posedge clk) begin
@@ -411,22 +420,33 @@ module evms_core #(
       dense_modes_q <= 1'b0;
       dense_j_q <= '0;
       dense_read_q <= 1'b0;
+      dense_held_q <= 1'b0;
       dense_c_q <= '0;
       dense_set_q <= '0;
-      set_events_q <= '0;
+      set_counted_q <= '0;
       dense_least_q <= '0;
     end else if (state_q == StDense && !dense_modes_q) begin
-      // Issue event dense_j_q; its mode and set come a clock later.
+      // Issue event dense_j_q; its mode and set come a clock later, and are counted the next.
       dense_read_q <= dense_j_q < 16'(n_q);
       if (dense_j_q < 16'(n_q)) dense_j_q <= dense_j_q + 1'b1;
-      if (dense_read_q) begin
+      dense_held_q <= dense_read_q;
+      dense_set_c_q <= lk_rd_root;
+      dense_counts_q <= cl_rd_mode >= 0;
+      if (dense_held_q) begin
         dense_least_q <= dense_least_q + 48'(cfg_min_density);
-        if (cl_rd_mode >= 0) set_events_q[16*32'(lk_rd_root) +: 16] <= root_events + 1'b1;
+        if (dense_counts_q) begin
+          set_events_q[dense_set_c_q] <= set_events + 1'b1;
+          set_counted_q[dense_set_c_q] <= 1'b1;
+        end
       end
-      if (dense_j_q >= 16'(n_q) && !dense_read_q) dense_modes_q <= 1'b1;
-    end else if (state_q == StDense && 16'(dense_c_q) < cl_mode_count) begin
-      if (!cl_rd_c_sparse && 48'({root_events, DensityFrac'(0)}) >= dense_least_q) dense_set_q[lk_rd_root] <= 1'b1;
-      dense_c_q <= dense_c_q + 1'b1;
+      if (dense_j_q >= 16'(n_q) && !dense_read_q && !dense_held_q) dense_modes_q <= 1'b1;
+    end else if (state_q == StDense) begin
+      // Read mode dense_c_q's test and set; mark the set the next clock.
+      dense_held_q <= 16'(dense_c_q) < cl_mode_count;
+      if (16'(dense_c_q) < cl_mode_count) dense_c_q <= dense_c_q + 1'b1;
+      dense_set_c_q <= lk_rd_root;
+      dense_counts_q <= !cl_rd_c_sparse;
+      if (dense_held_q && dense_counts_q && 48'({set_events, DensityFrac'(0)}) >= dense_least_q) dense_set_q[dense_set_c_q] <= 1'b1;
     end
   end
   logic [15:0] fi_q;            // feature index

@@ -110,4 +110,5 @@
 .HasSpreadNoise(HasSpreadNoise),
 .HasGateBoxes(HasGateBoxes),
 .HasPixelCentre(HasPixelCentre),
+.HasDensityAfterLinks(HasDensityAfterLinks),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

@@ -54,6 +54,7 @@ localparam int HasEdgeJoin = 0;
 localparam int HasSpreadNoise = 0;
 localparam int HasGateBoxes = 0;
 localparam int HasPixelCentre = 0;
+localparam int HasDensityAfterLinks = 0;
 localparam ExpTableFile = "../generated/exp_9_16.mem";
 localparam RecipTableFile = "../generated/recip_8_20.mem";
 // Reset registers: the method of --preset evms, within this build's limits, for a 240x180 sensor.

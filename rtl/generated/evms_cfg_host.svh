@@ -54,6 +54,7 @@ localparam int HasEdgeJoin = 1;
 localparam int HasSpreadNoise = 1;
 localparam int HasGateBoxes = 1;
 localparam int HasPixelCentre = 1;
+localparam int HasDensityAfterLinks = 1;
 localparam ExpTableFile = "../generated/exp_10_16.mem";
 localparam RecipTableFile = "../generated/recip_8_20.mem";
 // Reset registers: the method of --preset evms, within this build's limits, for a 1280x720 sensor.
@@ -110,6 +111,6 @@ localparam logic [15:0] CfgEdgeBalance = 16'd128;
 localparam logic [15:0] CfgEdgeMinEvents = 16'd16;
 localparam logic CfgMeasFromSpread = 1'd1;
 localparam logic [31:0] CfgMinDensity = 32'd168663;
-localparam logic CfgDensityAfterLinks = 1'd0;
+localparam logic CfgDensityAfterLinks = 1'd1;
 localparam logic CfgGateBoxes = 1'd1;
 localparam logic CfgPixelCentre = 1'd1;

@@ -53,6 +53,6 @@ input  logic [15:0] cfg_edge_balance,  // seeded: a mode is mostly one polarity 
 input  logic [15:0] cfg_edge_min_events,  // seeded: the edge join looks at modes of at least this many events
 input  logic cfg_meas_from_spread,  // the measurement variance is r (spread^2 + 1/6 px^2) / events instead of r (hls/track/measurement_variance.h); false: r (the only setting of a build without HasSpreadNoise)
 input  logic [31:0] cfg_min_density,  // seeded: a mode whose climbs' last balls held fewer than n * this events (n the packet's) is noise, kDensityFrac fraction bits; 0: off
-input  logic cfg_density_after_links,  // seeded: min_density is tested on each set of linked modes after the links (noise when none of its modes is dense or it holds fewer than n * min_density events), not on each mode before them
+input  logic cfg_density_after_links,  // seeded: min_density is tested on each set of linked modes after the links (noise when none of its modes is dense or it holds fewer than n * min_density events), not on each mode before them (false: the only setting of a build without HasDensityAfterLinks)
 input  logic cfg_gate_boxes,  // a pair beyond the gate is a candidate after every pair within it when the track's last measurement lies in the measurement's box or the measurement in the last one's
 input  logic cfg_pixel_centre,  // seeded: a cluster is measured at the mean of the pixels its events fall on, each pixel once (marked by the links, so link2 != 0); false: at the centre of mass or midpoint (the only setting of a build without HasPixelCentre)

@@ -54,4 +54,5 @@
 .HasSpreadNoise(HasSpreadNoise),
 .HasGateBoxes(HasGateBoxes),
 .HasPixelCentre(HasPixelCentre),
+.HasDensityAfterLinks(HasDensityAfterLinks),
 .ExpTableFile(ExpTableFile), .RecipTableFile(RecipTableFile)

@@ -54,5 +54,6 @@ parameter int HasEdgeJoin = 0,
 parameter int HasSpreadNoise = 0,
 parameter int HasGateBoxes = 0,
 parameter int HasPixelCentre = 0,
+parameter int HasDensityAfterLinks = 0,
 parameter ExpTableFile = "../generated/exp_9_16.mem",
 parameter RecipTableFile = "../generated/recip_8_20.mem"

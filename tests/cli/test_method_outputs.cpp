@@ -211,6 +211,15 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   EXPECT_NE(boxes.err.find("the RTL build 'arty' does not hold the gate's boxes, not --gate-boxes true (add --gate-boxes false)"),
             std::string::npos)
       << boxes.err;
+  // Nor the least density on the linked sets, which only the host build's controller holds.
+  const auto after_links =
+      run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --density-after-links true --quiet");
+  EXPECT_EQ(after_links.exit_code, 1);
+  EXPECT_EQ(std::count(after_links.err.begin(), after_links.err.end(), '\n'), 1) << after_links.err;
+  EXPECT_NE(after_links.err.find("the RTL build 'arty' does not hold the least density on the linked sets, not --density-after-links true "
+                                 "(add --density-after-links false)"),
+            std::string::npos)
+      << after_links.err;
   const auto fixed_split = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --split-balance 0.3 --quiet");
   EXPECT_EQ(fixed_split.exit_code, 0) << fixed_split.err;
 }

@@ -160,11 +160,12 @@ TEST(SeededClimbs, AWarmSeedClimbsWithItsClustersSize) {
 // (within the link distance), whose climbs hold three events each, against the least density of
 // 816 events (2 x 816 x pi h^2 = 8.2). The arcs come first in the packet, the far end first, so
 // that their climbs open modes of their own before the blob's. Tested on each mode before the
-// links (the default), both arcs are noise; tested on the linked sets, the arc that touches the
+// links, both arcs are noise; tested on the linked sets (the default), the arc that touches the
 // blob stays in its cluster and the lone arc is still noise.
 TEST(SeededClimbs, ASparseArcTouchingADenseModeStaysWithItWhenTheDensityIsTestedAfterTheLinks) {
   Params p = seeded();
   p.min_density = 2;
+  p.density_after_links = false;
   std::vector<Event> e;
   for (int k = 7; k >= 0; --k) e.push_back({static_cast<TimeUs>(e.size()), 61, static_cast<std::uint16_t>(97 + 4 * k), 1});
   const size_t alone = e.size();

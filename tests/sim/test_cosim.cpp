@@ -182,14 +182,18 @@ TEST(Cosim, SeededPathHostBuild) {
   small_parts.split_min_events = 8;
   expect_equal<Vcore_host, hls::RtlHostShape>("seeded_host_small_parts", scene_events(gen::Motion::kTranslation, 0.15, 240, 180, 3),
                                               {240, 180}, 64, 0.8, small_parts);
-  // The least density tested on the linked sets (the controller's StDense), at a density whose
+  // The least density tested on the linked sets (the controller's StDense) at a density whose
   // least (26 events in this build's packets of 256) exceeds the least cluster size, so that sets
-  // with a dense mode and too few events occur besides sets without a dense mode.
+  // with a dense mode and too few events occur besides sets without a dense mode; and tested on
+  // each mode before the links, in the climbs.
   Params after_links = seeded_method();
-  after_links.density_after_links = true;
   after_links.min_density = 20;
   expect_equal<Vcore_host, hls::RtlHostShape>("seeded_host_density_after_links", scene_events(gen::Motion::kSixDof, 0.15, 240, 180, 3),
                                               {240, 180}, 65, 0.8, after_links);
+  Params before_links = seeded_method();
+  before_links.density_after_links = false;
+  expect_equal<Vcore_host, hls::RtlHostShape>("seeded_host_density_before_links", scene_events(gen::Motion::kSixDof, 0.15, 240, 180, 3),
+                                              {240, 180}, 66, 0.8, before_links);
   // Fewer slots than objects: births evict the stalest tracks.
   Params evicting = seeded_method();
   evicting.max_tracks = 3;
@@ -389,7 +393,6 @@ TEST(CosimRegression, TheLeastDensityAfterTheLinksOnTheDenseRecording) {
   const std::string dir = test::shared_data_dir();
   if (dir.empty()) GTEST_SKIP() << "../shared/data/real is absent";
   Params after_links = seeded_method();
-  after_links.density_after_links = true;
   after_links.min_density = 20;
   const std::string path = dir + "/gen41_dense_scene.evt3.raw";
   expect_equal<Vcore_host, hls::RtlHostShape>("gen41_density_after_links", test::read_all(path), read::open_source(path, {})->info().sensor, 54,
