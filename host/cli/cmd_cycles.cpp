@@ -125,7 +125,7 @@ void cycles(const CyclesOptions& o) {
                 o.build.c_str());
   }
   if (!modelled) {
-    std::printf("\nthe seeded path, measured on the RTL (the cycle model counts the Gaussian path): climbs count in \"mean shift\", links, the polarity split, the edge join and warm seeds in \"merge\"\n");
+    std::printf("\nthe seeded path, measured on the RTL (the cycle model counts the Gaussian path): climbs count in \"mean shift\", links, the least density on the linked sets, the polarity split, the edge join and warm seeds in \"merge\"\n");
     return;
   }
   std::printf("\nmodel, other lane counts:");
