@@ -137,91 +137,61 @@ TEST(MethodOutputs, ATextFileWithoutASizeSaysWhatWasAssumed) {
   EXPECT_NE(bad.err.find("line 1: bad sensor comment"), std::string::npos) << bad.err;
 }
 
+// `evms run` of a short scene with `options` exits with 1 and one line that holds `message`.
+void expect_refused(const std::string& options, const std::string& message) {
+  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 " + options + " --quiet");
+  EXPECT_EQ(r.exit_code, 1) << options;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << options << ": " << r.err;
+  EXPECT_NE(r.err.find(message), std::string::npos) << options << ": " << r.err;
+}
+
+// `evms run` of a short scene with `options` runs.
+void expect_runs(const std::string& options) {
+  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 " + options + " --quiet");
+  EXPECT_EQ(r.exit_code, 0) << options << ": " << r.err;
+}
+
 TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
-  const auto r = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --coast-packets 3 --quiet");
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find("the RTL core does not implement --coast-packets 3 (add --coast-packets 0)"), std::string::npos) << r.err;
+  expect_refused("--backend rtl --coast-packets 3", "the RTL core does not implement --coast-packets 3 (add --coast-packets 0)");
   // The boards' builds do not hold the edge join, which they run without unless told it.
-  const auto board_edges = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --edge-join 5 --quiet");
-  EXPECT_EQ(board_edges.exit_code, 1);
-  EXPECT_EQ(std::count(board_edges.err.begin(), board_edges.err.end(), '\n'), 1) << board_edges.err;
-  EXPECT_NE(board_edges.err.find("the RTL build 'arty' does not hold the edge join, not --edge-join 5 (add --edge-join 0)"), std::string::npos)
-      << board_edges.err;
+  expect_refused("--backend rtl --core arty --edge-join 5", "the RTL build 'arty' does not hold the edge join, not --edge-join 5 (add --edge-join 0)");
   // Nor the polarity split.
-  const auto split = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --split-balance 0.3 --quiet");
-  EXPECT_EQ(split.exit_code, 1);
-  EXPECT_NE(split.err.find("the RTL build 'arty' does not hold the polarity split, not --split-balance 0.3 (add --split-balance 0)"), std::string::npos)
-      << split.err;
+  expect_refused("--backend rtl --core arty --split-balance 0.3",
+                 "the RTL build 'arty' does not hold the polarity split, not --split-balance 0.3 (add --split-balance 0)");
   // Nor the polarity midpoint.
-  const auto midpoint = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --measure polarity-midpoint --quiet");
-  EXPECT_EQ(midpoint.exit_code, 1);
-  EXPECT_NE(midpoint.err.find("the RTL build 'arty' does not hold the polarity midpoint, not --measure polarity-midpoint (add --measure centroid)"),
-            std::string::npos)
-      << midpoint.err;
+  expect_refused("--backend rtl --core arty --measure polarity-midpoint",
+                 "the RTL build 'arty' does not hold the polarity midpoint, not --measure polarity-midpoint (add --measure centroid)");
   // Nor the pixel centre, which the core takes from the links' pixel map.
-  const auto pixels = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core ice40 --measure pixel-centre --quiet");
-  EXPECT_EQ(pixels.exit_code, 1);
-  EXPECT_NE(pixels.err.find("the RTL build 'ice40' does not hold the pixel centre, not --measure pixel-centre (add --measure centroid)"),
-            std::string::npos)
-      << pixels.err;
-  const auto unlinked = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --link-px 0 --quiet");
-  EXPECT_EQ(unlinked.exit_code, 1);
-  EXPECT_EQ(std::count(unlinked.err.begin(), unlinked.err.end(), '\n'), 1) << unlinked.err;
-  EXPECT_NE(unlinked.err.find("--measure pixel-centre needs --link-px 1 or more"), std::string::npos) << unlinked.err;
-  const auto box = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --measure box-centre --quiet");
-  EXPECT_EQ(box.exit_code, 1);
-  EXPECT_NE(box.err.find("measures a cluster by its centroid, or with seeded climbs by the polarity midpoint or the pixel centre, not --measure box-centre"),
-            std::string::npos)
-      << box.err;
+  expect_refused("--backend rtl --core ice40 --measure pixel-centre",
+                 "the RTL build 'ice40' does not hold the pixel centre, not --measure pixel-centre (add --measure centroid)");
+  expect_refused("--backend fixed --link-px 0", "--measure pixel-centre needs --link-px 1 or more");
+  expect_refused("--backend fixed --measure box-centre",
+                 "measures a cluster by its centroid, or with seeded climbs by the polarity midpoint or the pixel centre, not --measure box-centre");
   for (const std::string build : {"arty", "ice40"}) {
-    const auto board = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core " + build + " --preset gaussian --quiet");
-    EXPECT_EQ(board.exit_code, 1);
-    EXPECT_NE(board.err.find("the RTL build '" + build + "' clusters by seeded climbs only, not --seeding every"), std::string::npos) << board.err;
+    expect_refused("--backend rtl --core " + build + " --preset gaussian",
+                   "the RTL build '" + build + "' clusters by seeded climbs only, not --seeding every");
   }
-  const auto fixed = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --kernel epanechnikov --quiet");
-  EXPECT_EQ(fixed.exit_code, 1);
-  EXPECT_NE(fixed.err.find("flat kernel only"), std::string::npos) << fixed.err;
+  expect_refused("--backend fixed --kernel epanechnikov", "flat kernel only");
   // The core compares event counts by a shift: a ratio that is not a power of two is refused.
-  const auto ratio = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --size-ratio 3 --quiet");
-  EXPECT_EQ(ratio.exit_code, 1);
-  EXPECT_NE(ratio.err.find("compares sizes by a power of two from 2 to 32768, not --size-ratio 3"), std::string::npos) << ratio.err;
-  const auto eight = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --size-ratio 8 --quiet");
-  EXPECT_EQ(eight.exit_code, 0) << eight.err;
-  const auto warm = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --filter-warm-up-us 30000 --quiet");
-  EXPECT_EQ(warm.exit_code, 0) << warm.err;  // the core keeps the stream's first events too (hls/filter/ba_filter.h)
-  const auto ahead = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --filter-look-ahead-us 10000 --quiet");
-  EXPECT_EQ(ahead.exit_code, 1);
-  EXPECT_NE(ahead.err.find("does not implement --filter-look-ahead-us 10000 (only --filter-look-ahead-us 0)"), std::string::npos) << ahead.err;
+  expect_refused("--backend fixed --size-ratio 3", "compares sizes by a power of two from 2 to 32768, not --size-ratio 3");
+  expect_runs("--backend fixed --size-ratio 8");
+  expect_runs("--backend fixed --filter-warm-up-us 30000");  // the core keeps the stream's first events too (hls/filter/ba_filter.h)
+  expect_refused("--backend fixed --filter-look-ahead-us 10000", "does not implement --filter-look-ahead-us 10000 (only --filter-look-ahead-us 0)");
   // Nor the measurement noise from the clusters' spreads, which the host build and the C++
   // cores hold.
-  const auto spread = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --meas-noise-from-spread true --quiet");
-  EXPECT_EQ(spread.exit_code, 1);
-  EXPECT_EQ(std::count(spread.err.begin(), spread.err.end(), '\n'), 1) << spread.err;
-  EXPECT_NE(spread.err.find("the RTL build 'arty' does not hold the measurement noise from the spread, not --meas-noise-from-spread true "
-                            "(add --meas-noise-from-spread false)"),
-            std::string::npos)
-      << spread.err;
-  const auto fixed_spread = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --core arty --meas-noise-from-spread true --quiet");
-  EXPECT_EQ(fixed_spread.exit_code, 0) << fixed_spread.err;
+  expect_refused("--backend rtl --core arty --meas-noise-from-spread true",
+                 "the RTL build 'arty' does not hold the measurement noise from the spread, not --meas-noise-from-spread true "
+                 "(add --meas-noise-from-spread false)");
+  expect_runs("--backend fixed --core arty --meas-noise-from-spread true");
   // Nor the gate's boxes, which only the host build's tracker holds.
-  const auto boxes = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --gate-boxes true --quiet");
-  EXPECT_EQ(boxes.exit_code, 1);
-  EXPECT_EQ(std::count(boxes.err.begin(), boxes.err.end(), '\n'), 1) << boxes.err;
-  EXPECT_NE(boxes.err.find("the RTL build 'arty' does not hold the gate's boxes, not --gate-boxes true (add --gate-boxes false)"),
-            std::string::npos)
-      << boxes.err;
+  expect_refused("--backend rtl --core arty --gate-boxes true",
+                 "the RTL build 'arty' does not hold the gate's boxes, not --gate-boxes true (add --gate-boxes false)");
   // Nor the least density on the linked sets, which only the host build's controller holds.
-  const auto after_links =
-      run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend rtl --core arty --density-after-links true --quiet");
-  EXPECT_EQ(after_links.exit_code, 1);
-  EXPECT_EQ(std::count(after_links.err.begin(), after_links.err.end(), '\n'), 1) << after_links.err;
-  EXPECT_NE(after_links.err.find("the RTL build 'arty' does not hold the least density on the linked sets, not --density-after-links true "
-                                 "(add --density-after-links false)"),
-            std::string::npos)
-      << after_links.err;
-  const auto fixed_split = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --split-balance 0.3 --quiet");
-  EXPECT_EQ(fixed_split.exit_code, 0) << fixed_split.err;
+  expect_refused("--backend rtl --core arty --density-after-links true",
+                 "the RTL build 'arty' does not hold the least density on the linked sets, not --density-after-links true "
+                 "(add --density-after-links false)");
+  expect_runs("--backend fixed --core arty --density-after-links true");
+  expect_runs("--backend fixed --split-balance 0.3");
 }
 
 // The host RTL build runs the default method in its sizes, the polarity split, the edge join and
