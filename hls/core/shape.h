@@ -211,8 +211,8 @@ using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1, 1, 1, 1, 1>;
 // The RTL's host-simulation build: HostShape's sensor, words and tables with smaller packet,
 // cluster and track sizes, both clustering paths, the polarity split, the edge join, the
-// measurement noise from the spread, the pixel centre and the least density on the linked sets. For settings within those sizes the
-// two give the same words.
+// measurement noise from the spread, the pixel centre and the least density on the linked sets.
+// For settings within those sizes the two give the same words.
 using RtlHostShape = Shape<1280, 720, 256, 8, 8, 16, 16, 32, 0, 64 * 256, 13, 16, 10, 12, 64, 64, 8, 32, 8, 1, 1, 1, 1, 1, 1, 1, 1, 1>;
 
 }  // namespace evms::hls

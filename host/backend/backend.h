@@ -74,10 +74,11 @@ SensorSize core_build_sensor(const std::string& build);
 // to the build's, unless the command line set it (then the backend refuses it with a one-line
 // error). So `--core ice40` alone runs the iCE40 build's sizes. The board builds (arty, ice40),
 // in every backend, also run without the polarity split (--split-balance 0), the edge join
-// (--edge-join 0), the measurement noise from the spread (--meas-noise-from-spread false) and
-// the gate's boxes (--gate-boxes false), and measure by the centroid (--measure centroid), as
-// they hold none of them (Shape::kHasPolaritySplit, kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes,
-// kHasPolarityMidpoint), unless the command line set them.
+// (--edge-join 0), the measurement noise from the spread (--meas-noise-from-spread false), the
+// gate's boxes (--gate-boxes false) and the least density on the linked sets
+// (--density-after-links false), and measure by the centroid (--measure centroid), as they hold
+// none of them (Shape::kHasPolaritySplit, kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes,
+// kHasDensityAfterLinks, kHasPolarityMidpoint), unless the command line set them.
 Params fit_core_build(const std::string& backend, const std::string& core, Params p, const Method& method);
 // The parameters (types/params.h's table, in its order) whose values differ between a and b.
 std::vector<const ParamInfo*> differing_params(const Params& a, const Params& b);

@@ -43,8 +43,8 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 // and without the polarity split, the polarity midpoint or the pixel centre, the edge join, the
 // measurement noise from the spread, the gate's boxes and the least density on the linked sets
 // where S does not hold them (Shape::kHasPolaritySplit, kHasPolarityMidpoint, kHasPixelCentre,
-// kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes, kHasDensityAfterLinks: the board builds), each unless `kept(name)` says the command
-// line set it, for the backend to refuse what S cannot run.
+// kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes, kHasDensityAfterLinks: the board builds), each
+// unless `kept(name)` says the command line set it, for the backend to refuse what S cannot run.
 template <class S, class Kept>
 Params within_build(Params p, Kept kept) {
   auto cut = [&](int& value, const char* name, int build_max) {
