@@ -119,11 +119,13 @@ class SeededClimbs {
     }
   }
 
-  // Whether mode c of the last run's packet of n events is below the least density
-  // (n * min_density, kDensityFrac fraction bits).
+  // The least events a mode (or, with density_after_links, a set of linked modes) of a packet
+  // of n events holds to be kept: n * min_density, kDensityFrac fraction bits.
+  static std::uint64_t least(int n, const Config& cfg) { return static_cast<std::uint64_t>(n) * cfg.min_density; }
+
+  // Whether mode c of the last run's packet of n events is below the least density.
   bool sparse(int c, int n, const Config& cfg) const {
-    const std::uint64_t least = static_cast<std::uint64_t>(n) * cfg.min_density;
-    return (static_cast<std::uint64_t>(support_[c]) << kDensityFrac) < least;
+    return (static_cast<std::uint64_t>(support_[c]) << kDensityFrac) < least(n, cfg);
   }
 
  private:

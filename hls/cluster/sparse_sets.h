@@ -33,7 +33,7 @@ count:
     if (j >= n) break;
     if (mode_of[j] >= 0) ++set_events[mode_of[j]];
   }
-  const std::uint64_t least = static_cast<std::uint64_t>(n) * cfg.min_density;  // kDensityFrac fraction bits
+  const std::uint64_t least = climbs.least(n, cfg);
 dense_modes:
   for (int c = 0; c < S::kModesMax; ++c) {
 #pragma HLS PIPELINE II = 1

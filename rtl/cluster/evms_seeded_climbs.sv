@@ -68,6 +68,7 @@ module evms_seeded_climbs #(
   output logic [15:0]          climbs,
   output logic [15:0]          steps,
   output logic [15:0]          modes_lost,
+  output logic [47:0]          least,        // n * cfg_min_density (DensityFrac fraction bits), from the sort on
   // After done (one clock of latency): event rd_j's mode (-1: none) and feature, and mode rd_c.
   input  logic [15:0]          rd_j,
   output logic signed [15:0]   rd_mode,
@@ -146,6 +147,7 @@ module evms_seeded_climbs #(
   logic [LeastBits-1:0] least_q;
   logic [CntBits-1:0]   support_q [ModesMax];
   logic                 sparse_q [ModesMax];
+  assign least = 48'(least_q);
 
   // Where a converged climb goes: the scan of the open modes, or straight to opening one.
   state_e join_state;

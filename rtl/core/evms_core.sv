@@ -200,10 +200,9 @@ module evms_core #(
   logic [7:0] warm_count_q;   // the seeds the last seeded packet left
   // The least density on the linked sets (cfg_density_after_links, hls/cluster/sparse_sets.h):
   // the climbs keep every event's mode. StDense first counts each set's events, an event a clock
-  // (its mode from the climbs, the mode's set from the links), summing the packet's least
-  // n * cfg_min_density as it goes; then it reads each mode's test from the climbs and its set
-  // from the links, a mode a clock, and marks the sets that hold a dense mode and at least the
-  // least's events. An event of an unmarked set is noise. Each read's set is registered
+  // (its mode from the climbs, the mode's set from the links); then it reads each mode's test
+  // from the climbs and its set from the links, a mode a clock, and marks the sets that hold a
+  // dense mode and at least the packet's least events (the climbs' least, n * cfg_min_density). An event of an unmarked set is noise. Each read's set is registered
   // (dense_set_c_q) before it addresses the counts, so that no path runs from the climbs' and
   // the links' reads through the counts.
   logic dense_after_links;
@@ -221,7 +220,7 @@ module evms_core #(
   logic [15:0]            set_events_q [ModesMax];
   logic [ModesMax-1:0]    set_counted_q;      // the sets counted in this packet
   wire [15:0] set_events = set_counted_q[dense_set_c_q] ? set_events_q[dense_set_c_q] : 16'd0;
-  logic [47:0]            dense_least_q;      // n * cfg_min_density, DensityFrac fraction bits
+  logic [47:0]            cl_least;           // n * cfg_min_density, DensityFrac fraction bits
   logic                   cl_rd_c_sparse;
   logic                   dense_reading;      // in StDense, reading the modes
   // The links' representative of an event's first mode (of mode dense_c_q while StDense reads
@@ -267,7 +266,7 @@ module evms_core #(
       .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),
       .start(cl_start_q), .n(16'(n_q)), .warm_count(warm_count_q), .cfg_warm_start(cfg_warm_start),
       .cfg_max_iterations(cfg_max_iterations), .cfg_tolerance(cfg_tolerance), .cfg_merge_radius2(cfg_merge_radius2),
-      .cfg_min_density(cfg_min_density), .cfg_density_after_links(dense_after_links), .done(cl_done), .mode_count(cl_mode_count), .climbs(climbs_unused), .steps(cl_steps), .modes_lost(modes_lost_unused),
+      .cfg_min_density(cfg_min_density), .cfg_density_after_links(dense_after_links), .done(cl_done), .mode_count(cl_mode_count), .climbs(climbs_unused), .steps(cl_steps), .modes_lost(modes_lost_unused), .least(cl_least),
       .rd_j(cl_rd_j), .rd_mode(cl_rd_mode), .rd_x(cl_rd_x), .rd_y(cl_rd_y), .rd_c(dense_reading ? 8'(dense_c_q) : ws_md_c),
       .rd_mode_x(cl_rd_mode_x), .rd_mode_y(cl_rd_mode_y), .rd_c_sparse(cl_rd_c_sparse));
     evms_mode_links #(
@@ -288,7 +287,7 @@ module evms_core #(
       .warm_we(ws_warm_we), .warm_k(ws_warm_k), .warm_x(ws_warm_x), .warm_y(ws_warm_y), .warm_ball2(ws_warm_ball2),
       .done(ws_done), .clusters(ws_clusters));
   end else begin : g_no_seeded
-    assign {cl_done, cl_mode_count, cl_steps, cl_rd_mode, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, cl_rd_c_sparse} = '0;
+    assign {cl_done, cl_mode_count, cl_steps, cl_rd_mode, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, cl_rd_c_sparse, cl_least} = '0;
     assign {lk_done, lk_ev_j, lk_rd_root, lk_first_we, lk_first_j, lk_first_on_pixel} = '0;
     assign lk_ready = 1'b1;
     assign {ws_done, ws_co_we, ws_warm_we, ws_ev_j, ws_co_j, ws_md_c, ws_clusters, ws_warm_k, ws_co_value} = '0;
@@ -296,7 +295,7 @@ module evms_core #(
     // What only the seeded path reads (waived in core/evms_core.vlt).
     logic unused_seeded_path;
     assign unused_seeded_path = ^{cfg_warm_start, cfg_min_density, cfg_density_after_links, dense_after_links, dense_c_q, dense_set_q, links_rd_c, dense_reading, cl_rd_c_sparse,
-                                  dense_modes_q, dense_j_q, dense_read_q, dense_held_q, dense_set_c_q, dense_counts_q, set_counted_q, set_events, dense_least_q, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we_q, cl_load_i_q, cl_lx_q, cl_ly_q,
+                                  dense_modes_q, dense_j_q, dense_read_q, dense_held_q, dense_set_c_q, dense_counts_q, set_counted_q, set_events, cl_least, cfg_warm_scale2, cfg_warm_ball2_max, cfg_link2, cl_load_we_q, cl_load_i_q, cl_lx_q, cl_ly_q,
                                   cl_start_q, cl_mode_count, cl_rd_j, cl_rd_x, cl_rd_y, cl_rd_mode_x, cl_rd_mode_y, first_mode, lk_start_q,
                                   warm_count_q, ws_ev_mode, ws_md_c, ws_start_q, ws_warm_we, ws_warm_k, ws_warm_x, ws_warm_y,
                                   ws_warm_ball2, linked_mode, ws_mode_count, ws_md_x, ws_md_y};
@@ -424,7 +423,6 @@ module evms_core #(
       dense_c_q <= '0;
       dense_set_q <= '0;
       set_counted_q <= '0;
-      dense_least_q <= '0;
     end else if (state_q == StDense && !dense_modes_q) begin
       // Issue event dense_j_q; its mode and set come a clock later, and are counted the next.
       dense_read_q <= dense_j_q < 16'(n_q);
@@ -432,12 +430,9 @@ module evms_core #(
       dense_held_q <= dense_read_q;
       dense_set_c_q <= lk_rd_root;
       dense_counts_q <= cl_rd_mode >= 0;
-      if (dense_held_q) begin
-        dense_least_q <= dense_least_q + 48'(cfg_min_density);
-        if (dense_counts_q) begin
-          set_events_q[dense_set_c_q] <= set_events + 1'b1;
-          set_counted_q[dense_set_c_q] <= 1'b1;
-        end
+      if (dense_held_q && dense_counts_q) begin
+        set_events_q[dense_set_c_q] <= set_events + 1'b1;
+        set_counted_q[dense_set_c_q] <= 1'b1;
       end
       if (dense_j_q >= 16'(n_q) && !dense_read_q && !dense_held_q) dense_modes_q <= 1'b1;
     end else if (state_q == StDense) begin
@@ -446,7 +441,7 @@ module evms_core #(
       if (16'(dense_c_q) < cl_mode_count) dense_c_q <= dense_c_q + 1'b1;
       dense_set_c_q <= lk_rd_root;
       dense_counts_q <= !cl_rd_c_sparse;
-      if (dense_held_q && dense_counts_q && 48'({set_events, DensityFrac'(0)}) >= dense_least_q) dense_set_q[dense_set_c_q] <= 1'b1;
+      if (dense_held_q && dense_counts_q && 48'({set_events, DensityFrac'(0)}) >= cl_least) dense_set_q[dense_set_c_q] <= 1'b1;
     end
   end
   logic [15:0] fi_q;            // feature index

@@ -93,6 +93,7 @@ struct Result {
   std::vector<int> first_mode;
   std::vector<std::pair<std::int64_t, std::int64_t>> modes;
   std::vector<bool> sparse;   // each mode below the least density
+  std::uint64_t least = 0;    // the packet's least density, which the core tests the linked sets on
   int climbs = 0, steps = 0, modes_lost = 0;
   std::uint64_t cycles = 0;
 };
@@ -107,6 +108,7 @@ Result run_model(const Case& c) {
   r.first_mode.assign(first_mode, first_mode + c.n);
   for (int k = 0; k < modes.count; ++k) r.modes.push_back({modes.x[k], modes.y[k]});
   for (int k = 0; k < modes.count; ++k) r.sparse.push_back(c.cfg.min_density != 0 && climbs->sparse(k, c.n, c.cfg));
+  r.least = hls::SeededClimbs<S>::least(c.n, c.cfg);
   r.climbs = trace.climbs, r.steps = trace.steps, r.modes_lost = trace.modes_lost;
   return r;
 }
@@ -146,6 +148,7 @@ Result run_rtl(const Case& c, const std::string& trace_path) {
     r.modes.push_back({rtl->rd_mode_x, rtl->rd_mode_y});
     r.sparse.push_back(rtl->rd_c_sparse != 0);
   }
+  r.least = rtl->least;
   r.climbs = rtl->climbs, r.steps = rtl->steps, r.modes_lost = rtl->modes_lost;
   return r;
 }
@@ -171,6 +174,10 @@ std::string difference(const Result& want, const Result& got) {
       o << "mode " << k << (got.sparse[k] ? " sparse" : " dense") << ", want " << (want.sparse[k] ? "sparse" : "dense");
       return o.str();
     }
+  }
+  if (want.least != got.least) {
+    o << "least density " << got.least << ", want " << want.least;
+    return o.str();
   }
   if (want.climbs != got.climbs || want.steps != got.steps || want.modes_lost != got.modes_lost) {
     o << "climbs/steps/lost " << got.climbs << "/" << got.steps << "/" << got.modes_lost << ", want " << want.climbs << "/" << want.steps
