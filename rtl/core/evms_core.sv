@@ -202,9 +202,10 @@ module evms_core #(
   // the climbs keep every event's mode. StDense first counts each set's events, an event a clock
   // (its mode from the climbs, the mode's set from the links); then it reads each mode's test
   // from the climbs and its set from the links, a mode a clock, and marks the sets that hold a
-  // dense mode and at least the packet's least events (the climbs' least, n * cfg_min_density). An event of an unmarked set is noise. Each read's set is registered
-  // (dense_set_c_q) before it addresses the counts, so that no path runs from the climbs' and
-  // the links' reads through the counts.
+  // dense mode and at least the packet's least events (the climbs' least, n * cfg_min_density).
+  // An event of an unmarked set is noise. Each read's set is registered (dense_set_c_q) before
+  // it addresses the counts, so that no path runs from the climbs' and the links' reads through
+  // the counts.
   logic dense_after_links;
   assign dense_after_links = HasDensityAfterLinks != 0 && cfg_density_after_links && cfg_min_density != 0;
   logic                   dense_modes_q;      // StDense: counting the events (0), reading the modes (1)
