@@ -45,11 +45,16 @@ TOUCHING_PX = 2
 KINDS = ["disk", "square", "triangle", "bar", "ring", "cross", "ell", "star", "ellipse"]
 
 
+def box_distance(np, u, v, a, b):
+    """Signed distance (px, negative inside) of a box of half-sides a and b centred at the origin."""
+    qx, qy = np.abs(u) - a, np.abs(v) - b
+    return np.hypot(np.maximum(qx, 0), np.maximum(qy, 0)) + np.minimum(np.maximum(qx, qy), 0)
+
+
 def sdf(np, kind, u, v, s):
     """Signed distance (px, negative inside) of a shape of size s centred at the origin."""
     def box(a, b, shift_u=0.0, shift_v=0.0):
-        qx, qy = np.abs(u + shift_u) - a, np.abs(v + shift_v) - b
-        return np.hypot(np.maximum(qx, 0), np.maximum(qy, 0)) + np.minimum(np.maximum(qx, qy), 0)
+        return box_distance(np, u + shift_u, v + shift_v, a, b)
 
     def triangle(r, turn):
         # An equilateral triangle as the largest of its three edges' signed distances.
@@ -78,6 +83,63 @@ def sdf(np, kind, u, v, s):
     if kind == "ellipse":
         return np.hypot(u / 1.6, v) - s * 0.7
     raise ValueError(kind)
+
+
+def pixel_events(np, rng, width, height, duration_s, frame_s, refractory_s, render, label_of):
+    """The events (t s, x, y, p, label) of a DVS pixel array watching render(t) -> (log intensity,
+    what label_of reads) in frames frame_s apart: a pixel fires when its log intensity has moved
+    its contrast threshold (drawn per pixel and polarity, N(0.2, 0.03)) from the level of its last
+    event, timed where the level was crossed, and not again within refractory_s. An event's label
+    is label_of(the frame before, the frame after, ys, xs) at its pixel."""
+    threshold_on = np.clip(rng.normal(0.2, 0.03, (height, width)), 0.08, None)
+    threshold_off = np.clip(rng.normal(0.2, 0.03, (height, width)), 0.08, None)
+    log0, seen0 = render(0.0)
+    reference = log0.copy()
+    last_event = np.full((height, width), -1.0)
+    events = []
+    for k in range(1, int(duration_s / frame_s) + 1):
+        t1 = k * frame_s
+        log1, seen1 = render(t1)
+        change = log1 - reference
+        threshold = np.where(change > 0, threshold_on, threshold_off)
+        crossings = np.floor(np.abs(change) / threshold).astype(int)
+        ys, xs = np.nonzero(crossings)
+        if len(ys):
+            labels = label_of(seen0, seen1, ys, xs)
+            for y, x, label in zip(ys, xs, labels):
+                sign = 1 if change[y, x] > 0 else -1
+                lo, hi = log0[y, x], log1[y, x]
+                for m in range(1, crossings[y, x] + 1):
+                    level = reference[y, x] + sign * m * threshold[y, x]
+                    fraction = (level - lo) / (hi - lo) if hi != lo else 1.0
+                    t = t1 - frame_s + frame_s * min(max(fraction, 0.0), 1.0)
+                    if t - last_event[y, x] >= refractory_s:
+                        events.append((t, x, y, 1 if sign > 0 else 0, label))
+                        last_event[y, x] = t
+                reference[y, x] += sign * crossings[y, x] * threshold[y, x]
+        log0, seen0 = log1, seen1
+    return events
+
+
+def write_scene(np, rng, out, width, height, duration_s, signal, n_noise):
+    """Adds n_noise events of uniform background activity (label -1) to the rows (t s, x, y, p,
+    label) of signal and writes OUT/labels.csv (# sensor WxH, then t_us,x,y,p,label) and
+    OUT/events.txt (the authors' program's input: t s, x, y, p)."""
+    noise = np.column_stack([rng.uniform(0, duration_s, n_noise), rng.integers(0, width, n_noise),
+                             rng.integers(0, height, n_noise), rng.integers(0, 2, n_noise), np.full(n_noise, -1)])
+    rows = np.vstack([signal, noise])
+    rows = rows[np.argsort(rows[:, 0], kind="stable")]
+    t_us = np.round(rows[:, 0] * 1e6).astype(np.int64)
+    ints = rows.astype(np.int64)
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "events.txt"), "w") as f:
+        for r, t in zip(ints, t_us):
+            f.write(f"{t // 1000000}.{t % 1000000:06d} {r[1]} {r[2]} {r[3]}\n")
+    with open(os.path.join(out, "labels.csv.part"), "w") as f:
+        f.write(f"# sensor {width}x{height}\nt_us,x,y,p,label\n")
+        for r, t in zip(ints, t_us):
+            f.write(f"{t},{r[1]},{r[2]},{r[3]},{r[4]}\n")
+    os.replace(os.path.join(out, "labels.csv.part"), os.path.join(out, "labels.csv"))
 
 
 def simulate(job):
@@ -160,50 +222,10 @@ def simulate(job):
             above = above * (1 - covers[i])
         return np.log(image), visible
 
-    threshold_on = np.clip(rng.normal(0.2, 0.03, (height, width)), 0.08, None)
-    threshold_off = np.clip(rng.normal(0.2, 0.03, (height, width)), 0.08, None)
-    log0, visible0 = render(0.0)
-    reference = log0.copy()
-    last_event = np.full((height, width), -1.0)
-    events = []
-    for k in range(1, int(duration_s / frame_s) + 1):
-        t1 = k * frame_s
-        log1, visible1 = render(t1)
-        change = log1 - reference
-        threshold = np.where(change > 0, threshold_on, threshold_off)
-        crossings = np.floor(np.abs(change) / threshold).astype(int)
-        ys, xs = np.nonzero(crossings)
-        if len(ys):
-            labels = np.argmax(np.abs(visible1[:, ys, xs] - visible0[:, ys, xs]), axis=0)
-            for y, x, label in zip(ys, xs, labels):
-                sign = 1 if change[y, x] > 0 else -1
-                lo, hi = log0[y, x], log1[y, x]
-                for m in range(1, crossings[y, x] + 1):
-                    level = reference[y, x] + sign * m * threshold[y, x]
-                    fraction = (level - lo) / (hi - lo) if hi != lo else 1.0
-                    t = t1 - frame_s + frame_s * min(max(fraction, 0.0), 1.0)
-                    if t - last_event[y, x] >= refractory_s:
-                        events.append((t, x, y, 1 if sign > 0 else 0, label))
-                        last_event[y, x] = t
-                reference[y, x] += sign * crossings[y, x] * threshold[y, x]
-        log0, visible0 = log1, visible1
+    events = pixel_events(np, rng, width, height, duration_s, frame_s, refractory_s, render,
+                          lambda visible0, visible1, ys, xs: np.argmax(np.abs(visible1[:, ys, xs] - visible0[:, ys, xs]), axis=0))
     signal = np.array(events, dtype=np.float64).reshape(-1, 5)
-    n_noise = int(len(signal) * noise_share / (1 - noise_share))
-    noise = np.column_stack([rng.uniform(0, duration_s, n_noise), rng.integers(0, width, n_noise),
-                             rng.integers(0, height, n_noise), rng.integers(0, 2, n_noise), np.full(n_noise, -1)])
-    rows = np.vstack([signal, noise])
-    rows = rows[np.argsort(rows[:, 0], kind="stable")]
-    t_us = np.round(rows[:, 0] * 1e6).astype(np.int64)
-    ints = rows.astype(np.int64)
-    os.makedirs(out, exist_ok=True)
-    with open(os.path.join(out, "events.txt"), "w") as f:
-        for r, t in zip(ints, t_us):
-            f.write(f"{t // 1000000}.{t % 1000000:06d} {r[1]} {r[2]} {r[3]}\n")
-    with open(os.path.join(out, "labels.csv.part"), "w") as f:
-        f.write(f"# sensor {width}x{height}\nt_us,x,y,p,label\n")
-        for r, t in zip(ints, t_us):
-            f.write(f"{t},{r[1]},{r[2]},{r[3]},{r[4]}\n")
-    os.replace(os.path.join(out, "labels.csv.part"), os.path.join(out, "labels.csv"))
+    write_scene(np, rng, out, width, height, duration_s, signal, int(len(signal) * noise_share / (1 - noise_share)))
     return out
 
 
