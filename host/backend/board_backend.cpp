@@ -25,13 +25,13 @@
 // events at all: they enter at the board's AER pins, and the host takes the track updates,
 // packet summaries and progress frames they bring, for as long as the caller listens.
 //
-// A board runs its build's register values, the default method in the build's limits: the iCE40
-// build's (128x128, packets of 256, 8 clusters, 8 tracks) on the iCEBreaker, the Arty build's
-// (240x180, packets of 512, 16 clusters and tracks) on the Arty. Parameters that differ are refused.
+// A board runs its build's register values: on the Arty the default method in the Arty build's
+// limits (240x180, packets of 512, 16 clusters and tracks). Parameters that differ are refused.
 //
 // A board whose core stops at the filter (the iCEBreaker: EVMS_BOARD_BUILDS, hls/core/configs.h)
-// answers each event with its filter's verdict. The host runs the rest of the build's core on
-// the verdicts (hls::Core::process_decided), so the output is the whole core's, word for word.
+// answers each event with its filter's verdict. The host runs the rest of the build's fixed
+// core on the verdicts (hls::Core::process_decided): the whole default method, as the host core
+// runs it (Ice40BoardShape), so the output is `--backend fixed --core ice40`'s, word for word.
 // An event whose verdict the line lost goes on as noise, and its row says lost (-2). Tracks
 // mode needs a whole core on the board, and is refused. Listening to such a board, every event
 // that enters at its AER pins comes back with its verdict, and the host clusters and tracks them
@@ -42,6 +42,7 @@
 #include <deque>
 #include <set>
 #include <stdexcept>
+#include <type_traits>
 
 #include "hls/core/configs.h"
 #include "host/backend/core_backend.h"
@@ -62,18 +63,20 @@ std::uint64_t unwrap(link::Sequence seq, std::uint64_t oldest) {
   return oldest + static_cast<link::Sequence>(seq - static_cast<link::Sequence>(oldest));
 }
 
+// S: the board's RTL Shape. Rest: the C++ core that completes a board whose core stops at the
+// filter (the build's fixed Shape, which holds the whole method), else S.
 // LinkWindow: the events the board's link queue holds (board_of, host/backend/core_config.h);
 // the host keeps at most this many unanswered. It must exceed what the core can hold unlabelled
 // (its pending queue and its intake's packet), or a noisy stretch would leave the host waiting
 // for labels of a packet that only more events can close.
-template <class S, size_t LinkWindow>
+template <class S, class Rest, size_t LinkWindow>
 class BoardBackend final : public Backend {
   static_assert(LinkWindow > static_cast<size_t>(S::kPendingDepth + S::kPacketMax), "the link window must exceed what the core holds unlabelled");
 
  public:
   BoardBackend(const BackendOptions& o, const char* build)
       : port_(check(o, build), o.baud > 0 ? o.baud : static_cast<int>(board_of(build).baud())), mode_(o.board_keeps_labels ? link::LinkMode::kTracks : link::LinkMode::kLabels) {
-    if (board_of(build).core_stops_at_filter) rest_ = std::make_unique<HostCore<S>>(core_config<S>(o.params, o.sensor));
+    if (board_of(build).core_stops_at_filter) rest_ = std::make_unique<HostCore<Rest>>(core_config<Rest>(o.params, o.sensor));
     // Let what the board is still sending from before go by (up to 2 s of it).
     std::uint8_t old[4096];
     for (int i = 0; i < 100 && port_.read_some(old, 20) > 0; ++i) {
@@ -172,8 +175,12 @@ class BoardBackend final : public Backend {
       throw std::invalid_argument(std::string("the ") + build + " board's core stops at the filter and the host clusters its verdicts, so " +
                                   "they must cross the link: --board-link tracks needs a board with the whole core (--core arty)");
     }
-    if (std::string unsupported = rtl_unsupported(o.params, build); !unsupported.empty()) throw std::invalid_argument(unsupported);
-    const Params held = build_default_params<S>();
+    // A board that stops at the filter runs the rest on the host's C++ core, which holds the whole method.
+    const bool rest_on_host = board_of(build).core_stops_at_filter;
+    if (std::string unsupported = rest_on_host ? core_unsupported(o.params) : rtl_unsupported(o.params, build); !unsupported.empty()) {
+      throw std::invalid_argument(unsupported);
+    }
+    const Params held = rest_on_host ? build_default_params<Rest>() : build_default_params<S>();
     const SensorSize board_sensor{S::kMaxWidth, S::kMaxHeight};
     if (!(o.params == held) || !(o.sensor == board_sensor)) {
       // The first difference, named: the source's size, or a setting and the value the board holds.
@@ -185,10 +192,12 @@ class BoardBackend final : public Backend {
         const ParamInfo& info = *differ.front();
         differs = std::string("--") + info.name + " is " + param_text(o.params, info) + ", the board's " + param_text(held, info);
       }
+      const std::string method = rest_on_host ? " and the default method, its filter's registers on the board and the rest on the host"
+                                              : " and the method its registers hold";
       throw std::invalid_argument(std::string("the ") + build + " board runs its build's settings: a " + std::to_string(S::kMaxWidth) + "x" +
-                                  std::to_string(S::kMaxHeight) + " sensor, --packet-size " + std::to_string(S::kPacketMax) +
-                                  " --max-clusters " + std::to_string(S::kClustersMax) + " --max-tracks " + std::to_string(S::kTracksMax) +
-                                  " and the method its registers hold (evms params --core " + build + "), but " + differs);
+                                  std::to_string(S::kMaxHeight) + " sensor, --packet-size " + std::to_string(held.packet_size) +
+                                  " --max-clusters " + std::to_string(held.max_clusters) + " --max-tracks " + std::to_string(held.max_tracks) +
+                                  method + ", but " + differs);
     }
     return o.device.empty() ? link::the_board_uart() : o.device;
   }
@@ -420,11 +429,11 @@ class BoardBackend final : public Backend {
   link::SerialPort port_;
   link::LinkMode mode_;
   link::FrameDecoder decoder_;
-  CoreWordMapper<S> mapper_;
+  CoreWordMapper<Rest> mapper_;  // Rest's formats: a board that stops at the filter sends no track words, and a whole core's has Rest = S
   CoreStats stats_;
   // The rest of the core, when the board's stops at the filter; whether each event it holds
   // lost its verdict on the line.
-  std::unique_ptr<HostCore<S>> rest_;
+  std::unique_ptr<HostCore<Rest>> rest_;
   std::deque<bool> rest_lost_;
   std::deque<hls::EventWord> unanswered_;  // taken, not yet labelled: numbers answered_, answered_ + 1, ...
   size_t unsent_ = 0;                      // the last of them, not yet sent (they wait to fill an events frame)
@@ -441,12 +450,12 @@ class BoardBackend final : public Backend {
   std::set<std::int32_t> listened_ids_;  // the track IDs whose updates came while listening
 };
 
-template <class S, size_t LinkWindow>
+template <class S, class Rest, size_t LinkWindow>
 std::unique_ptr<Backend> board_backend_of(const BackendOptions& o, const char* build) {
   if constexpr (LinkWindow == 0) {
     throw std::invalid_argument(std::string("the board backend runs --core ice40 (the iCEBreaker) or arty (the Arty), not ") + build);
   } else {
-    return std::make_unique<BoardBackend<S, LinkWindow>>(o, build);
+    return std::make_unique<BoardBackend<S, Rest, LinkWindow>>(o, build);
   }
 }
 
@@ -454,8 +463,11 @@ std::unique_ptr<Backend> board_backend_of(const BackendOptions& o, const char* b
 
 std::unique_ptr<Backend> make_board_backend(const BackendOptions& o) {
   const std::string build = board_build(o.core);
-#define EVMS_BOARD_BACKEND_OF(name, fixed, rtl, width, height, description) \
-  if (build == #name) return board_backend_of<hls::rtl, static_cast<size_t>(board_of(#name).link_fifo_depth)>(o, #name);
+#define EVMS_BOARD_BACKEND_OF(name, fixed, rtl, width, height, description)                                                       \
+  if (build == #name) {                                                                                                         \
+    return board_backend_of<hls::rtl, std::conditional_t<board_of(#name).core_stops_at_filter, hls::fixed, hls::rtl>,           \
+                            static_cast<size_t>(board_of(#name).link_fifo_depth)>(o, #name);                                    \
+  }
   EVMS_CORE_BUILDS(EVMS_BOARD_BACKEND_OF)
 #undef EVMS_BOARD_BACKEND_OF
   throw std::invalid_argument("unknown core build '" + build + "'");

@@ -187,7 +187,7 @@ void register_run(CLI::App& app) {
                                          "(events.raw, EVT 3.0) or aedat4 (events.aedat4, AEDAT 4.0); evt3 and aedat4 put the labels in labels.csv, one per event")
       ->default_val(o->format)
       ->check(CLI::IsMember({"csv", "npy", "evt3", "aedat4"}));
-  cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host (1280x720), arty or ice40 (hls/core/shape.h); "
+  cmd->add_option("--core", o->core, "core build of the fixed and rtl backends: host (1280x720), arty or ice40 (hls/core/configs.h); "
                                      "of the board backend: ice40 (the iCEBreaker, also for host) or arty")
       ->default_val(o->core);
   cmd->add_option("--device", o->device, "serial device of the board backend (or the path evms vboard prints); without it, the one board's UART connected (an FT2232H's channel B)");

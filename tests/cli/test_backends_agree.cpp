@@ -46,24 +46,28 @@ TEST(BackendsAgree, RtlEqualsFixedFileForFile) {
   EXPECT_GT(fixed.first.size(), 1000u);
   EXPECT_TRUE(same_text(rtl.first, fixed.first)) << "events.csv";
   EXPECT_TRUE(same_text(rtl.second, fixed.second)) << "tracks.csv";
-  const std::string small = "gen://rotation?duration-s=0.1&seed=9&width=128&height=128";
-  const auto rtl_ice40 = run_backend(dir, "rtl_ice40", small, "--backend rtl --core ice40");
-  const auto fixed_ice40 = run_backend(dir, "fixed_ice40", small, "--backend fixed --core ice40");
-  EXPECT_TRUE(same_text(rtl_ice40.first, fixed_ice40.first)) << "events.csv";
-  EXPECT_TRUE(same_text(rtl_ice40.second, fixed_ice40.second)) << "tracks.csv";
+  // A board build whose fixed core is its RTL's (the Arty's; the ice40 build's fixed core is the
+  // iCEBreaker's whole method, and its RTL core is checked against hls::Core<Ice40Shape> by the
+  // cosimulation, tests/sim/test_cosim.cpp).
+  const std::string arty_scene = "gen://rotation?duration-s=0.1&seed=9";
+  const auto rtl_arty = run_backend(dir, "rtl_arty", arty_scene, "--backend rtl --core arty");
+  const auto fixed_arty = run_backend(dir, "fixed_arty", arty_scene, "--backend fixed --core arty");
+  EXPECT_TRUE(same_text(rtl_arty.first, fixed_arty.first)) << "events.csv";
+  EXPECT_TRUE(same_text(rtl_arty.second, fixed_arty.second)) << "tracks.csv";
 }
 
-// --core ice40 alone runs that build's packet size, cluster and track counts (hls/core/configs.h),
-// and so does evms cycles --build ice40; a size set by hand beyond the build's is refused.
+// --backend rtl --core ice40 alone runs that RTL build's packet size, cluster and track counts
+// (hls/core/configs.h), and so does evms cycles --build ice40; a size set by hand beyond the
+// build's is refused.
 TEST(BackendsAgree, ACoreBuildAppliesItsOwnSizes) {
   TempDir dir;
   const std::string small = "gen://rotation?duration-s=0.1&seed=9&width=128&height=128";
-  const auto by_build = run_backend(dir, "by_build", small, "--backend fixed --core ice40");
+  const auto by_build = run_backend(dir, "by_build", small, "--backend rtl --core ice40");
   const auto by_hand =
-      run_backend(dir, "by_hand", small, "--backend fixed --core ice40 --packet-size 256 --max-clusters 8 --max-tracks 8");
+      run_backend(dir, "by_hand", small, "--backend rtl --core ice40 --packet-size 256 --max-clusters 8 --max-tracks 8");
   EXPECT_GT(by_build.first.size(), 1000u);
   EXPECT_EQ(by_build, by_hand);
-  const auto refused = run_command(evms_binary() + " run \"" + small + "\" --quiet --backend fixed --core ice40 --packet-size 300 --out " +
+  const auto refused = run_command(evms_binary() + " run \"" + small + "\" --quiet --backend rtl --core ice40 --packet-size 300 --out " +
                                    dir.path("refused"));
   EXPECT_NE(refused.exit_code, 0);
   EXPECT_NE(refused.err.find("--packet-size"), std::string::npos) << refused.err;
@@ -84,7 +88,7 @@ TEST(BackendsAgree, TheSummarySaysWhatACoreBuildChangesOfTheMethod) {
     const size_t at = r.out.find("            the ");
     return at == std::string::npos ? std::string() : r.out.substr(at + 12, r.out.find('\n', at) - at - 12);
   };
-  const std::string ice40 = note("--backend fixed --core ice40");
+  const std::string ice40 = note("--backend rtl --core ice40");
   EXPECT_EQ(ice40.rfind("the ice40 build runs --packet-size 256 (the method's ", 0), 0u) << ice40;
   for (const char* changed : {"--max-clusters 8 (the method's ", "--max-tracks 8 (the method's ", "--split-balance 0 (the method's ",
                               "--edge-join 0 (the method's ", "--measure centroid (the method's pixel-centre)",
@@ -92,12 +96,13 @@ TEST(BackendsAgree, TheSummarySaysWhatACoreBuildChangesOfTheMethod) {
                               "--density-after-links false (the method's true)"}) {
     EXPECT_NE(ice40.find(changed), std::string::npos) << changed << " in: " << ice40;
   }
-  const std::string by_hand = note("--backend fixed --core ice40 --packet-size 256 --max-clusters 8 --max-tracks 8 --edge-join 0");
+  const std::string by_hand = note("--backend rtl --core ice40 --packet-size 256 --max-clusters 8 --max-tracks 8 --edge-join 0");
   EXPECT_EQ(by_hand.find("--packet-size"), std::string::npos) << by_hand;
   EXPECT_EQ(by_hand.find("--edge-join"), std::string::npos) << by_hand;
   EXPECT_NE(by_hand.find("--split-balance 0"), std::string::npos) << by_hand;
   EXPECT_EQ(note("--backend golden"), "");
   EXPECT_EQ(note("--backend fixed"), "") << "the host build's C++ core holds the method's sizes";
+  EXPECT_EQ(note("--backend fixed --core ice40"), "") << "the iCEBreaker's fixed core (its filter, then the host core) holds the whole method";
 }
 
 // The Arty build runs the seeded path, which the cycle model does not count: evms cycles measures
@@ -193,14 +198,15 @@ std::vector<std::string> lines_of(const std::string& text) {
 
 // evms vectors (the words of the vector testbench, sim/tb/evms_core_vectors_tb.sv): one register
 // a line, the event words with their count and the closing flush, and output words that are the
-// C++ core's: the labels those `evms run --backend fixed` gives, one a line, in input order.
-TEST(BackendsAgree, VectorsHoldTheCoresWordsAsTheFixedBackendLabelsThem) {
+// C++ core of the build's RTL Shape: the labels `evms run --backend rtl` gives, one a line, in
+// input order.
+TEST(BackendsAgree, VectorsHoldTheCoresWordsAsTheRtlBackendLabelsThem) {
   TempDir dir;
   const std::string scene = "gen://rotation?duration-s=0.05&width=128&height=128&seed=3";
   const auto r = run_command(evms_binary() + " vectors \"" + scene + "\" --core ice40 --out " + dir.path("v"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto fixed = run_backend(dir, "fixed", scene, "--backend fixed --core ice40");
-  const std::vector<std::string> rows = lines_of(fixed.first);  // "# sensor", the header, then t_us,x,y,p,label
+  const auto rtl = run_backend(dir, "rtl", scene, "--backend rtl --core ice40");
+  const std::vector<std::string> rows = lines_of(rtl.first);  // "# sensor", the header, then t_us,x,y,p,label
   ASSERT_GT(rows.size(), 1002u);
   const std::vector<std::string> words = lines_of(read_file(dir.path("v/events.hex")));
   EXPECT_EQ(words.size(), rows.size() - 2 + 1) << "an event word a row, and the flush";
@@ -259,10 +265,11 @@ std::vector<CsvEvent> events_csv_rows(const std::string& text) {
 // A line that flips, drops and repeats bytes both ways (evms vboard --error-rate), to the
 // iCEBreaker's board: the run ends cleanly, every event has one row, and each verdict the line
 // destroyed is reported (-2, counted in the summary). The host clusters such an event as noise,
-// so every other label, and the number of track rows, is what the ice40 core gives with exactly
+// so every other label, and the number of track rows, is what the ice40 build gives with exactly
 // those events' verdicts noise: the line changes nothing it does not report.
 TEST(BackendsAgree, TheBoardOverAnUnreliableLineLosesOnlyWhatItReports) {
-  using S = hls::Ice40Shape;
+  using S = hls::Ice40Shape;          // the board's filter
+  using Rest = hls::Ice40BoardShape;  // the rest, on the host
   const std::string scene = "gen://rotation?duration-s=0.12&seed=5&width=128&height=128";
   TempDir dir;
   const auto fixed = run_backend(dir, "fixed", scene, "--backend fixed --core ice40");
@@ -288,9 +295,10 @@ TEST(BackendsAgree, TheBoardOverAnUnreliableLineLosesOnlyWhatItReports) {
     ASSERT_NE(bad_frames, -1) << r.out;
     EXPECT_GT(bad_frames, 0) << "the line made no errors: " << r.out;
 
-    // The ice40 core with the lost verdicts noise: the board's filter and the rest of the core
-    // on the host, on the words the backend made (its mapper's core times).
+    // The ice40 build with the lost verdicts noise: the board's filter and the rest on the
+    // host, on the words the backend made (its mapper's core times).
     const hls::Config cfg = backend::core_config<S>(backend::build_default_params<S>(), {S::kMaxWidth, S::kMaxHeight});
+    const hls::Config rest_cfg = backend::core_config<Rest>(backend::build_default_params<Rest>(), {S::kMaxWidth, S::kMaxHeight});
     std::vector<hls::EventWord> words;
     backend::CoreWordMapper<S> mapper;
     for (const CsvEvent& e : rows) {
@@ -301,7 +309,7 @@ TEST(BackendsAgree, TheBoardOverAnUnreliableLineLosesOnlyWhatItReports) {
     for (size_t i = 0; i < rows.size(); ++i) {
       if (rows[i].label == "-2") verdicts[i].label = -1;
     }
-    const test::CoreWords completed = test::completed_on_the_host<S>(verdicts, cfg);
+    const test::CoreWords completed = test::completed_on_the_host<Rest>(verdicts, rest_cfg);
     std::vector<std::int32_t> want;
     for (const hls::LabelWord& l : completed.labels) want.push_back(l.label);
     const size_t want_tracks = completed.tracks.size();
@@ -327,7 +335,7 @@ TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {
                                   " run gen://rotation?width=128\\&height=128 --backend board --device /dev/null --packet-size 32 --quiet");
   EXPECT_NE(params.exit_code, 0);
   EXPECT_NE(params.err.find("board runs its build's settings"), std::string::npos) << params.err;
-  EXPECT_NE(params.err.find(", but --packet-size is 32, the board's 256\n"), std::string::npos) << params.err;
+  EXPECT_NE(params.err.find(", but --packet-size is 32, the board's 3000\n"), std::string::npos) << params.err;
   // So is a source of another size, named with the --roi that takes a part of it.
   const auto size = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend board --device /dev/null --quiet");
   EXPECT_NE(size.exit_code, 0);

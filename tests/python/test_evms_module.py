@@ -83,18 +83,19 @@ class ModuleAgainstTheProgram(unittest.TestCase):
         self.assertEqual(evms.parameters()["packet_size"], "3000")
 
     def test_the_fixed_point_core_gives_the_programs_labels(self):
-        # The iCE40 build holds sensors up to 128x128.
-        for core, scene in (("host", SCENE), ("ice40", SCENE + "&width=128&height=128")):
+        # The iCE40 build holds sensors up to 128x128; its fixed core (the iCEBreaker's filter, then
+        # the host core) holds the whole method, and the Arty's holds its board's sizes.
+        for core, scene in (("host", SCENE), ("arty", SCENE), ("ice40", SCENE + "&width=128&height=128")):
             events, sensor = evms.read(scene)
             with warnings.catch_warnings(record=True) as caught_warnings:
                 warnings.simplefilter("always")
                 labels, tracks = evms.run(events, sensor, backend="fixed", core=core)
             # What a build changes of the method is said, as evms run's summary says it.
             said = [str(w.message) for w in caught_warnings if issubclass(w.category, UserWarning)]
-            if core == "ice40":
+            if core == "arty":
                 self.assertEqual(len(said), 1, said)
-                self.assertTrue(said[0].startswith("the ice40 build runs --packet-size 256 (the method's "), said)
-                self.assertIn("--max-tracks 8", said[0])
+                self.assertTrue(said[0].startswith("the arty build runs --packet-size 512 (the method's "), said)
+                self.assertIn("--max-tracks 16", said[0])
             else:
                 self.assertEqual(said, [], core)
             want, want_tracks = program_run(scene, "--backend", "fixed", "--core", core)
