@@ -194,15 +194,16 @@ def run_evms(evms, truth, out, extra):
 
 
 def compare_labels(truth, pred):
-    """(the sparkler's events labelled noise, background events labelled a track, background events):
-    both files hold one row an event in the same order, after their header lines."""
+    """(the scene's own events labelled noise, background events labelled a track, background
+    events): both files hold one row an event in the same order, after their header lines."""
     def labels(path):
         with open(path) as f:
-            for line in f:
-                if line[0].isdigit():
-                    yield int(line.rsplit(",", 1)[1])
+            return [int(line.rsplit(",", 1)[1]) for line in f if line[0].isdigit()]
+    wanted, got_labels = labels(truth), labels(pred)
+    if len(wanted) != len(got_labels):
+        sys.exit(f"recording_like_scenes: {pred} holds {len(got_labels)} events, {truth} {len(wanted)}")
     lost = kept_noise = true_noise = 0
-    for want, got in zip(labels(truth), labels(pred)):
+    for want, got in zip(wanted, got_labels):
         if want < 0:
             true_noise += 1
             kept_noise += got >= 0
