@@ -27,6 +27,8 @@
 //
 // A board runs its build's register values: on the Arty the default method in the Arty build's
 // limits (240x180, packets of 512, 16 clusters and tracks). Parameters that differ are refused.
+// A board that stops at the filter holds only the filter's registers: the host runs any other
+// setting its C++ core implements.
 //
 // A board whose core stops at the filter (the iCEBreaker: EVMS_BOARD_BUILDS, hls/core/configs.h)
 // answers each event with its filter's verdict. The host runs the rest of the build's fixed
@@ -175,29 +177,30 @@ class BoardBackend final : public Backend {
       throw std::invalid_argument(std::string("the ") + build + " board's core stops at the filter and the host clusters its verdicts, so " +
                                   "they must cross the link: --board-link tracks needs a board with the whole core (--core arty)");
     }
-    // A board that stops at the filter runs the rest on the host's C++ core, which holds the whole method.
-    const bool rest_on_host = board_of(build).core_stops_at_filter;
-    if (std::string unsupported = rest_on_host ? core_unsupported(o.params) : rtl_unsupported(o.params, build); !unsupported.empty()) {
-      throw std::invalid_argument(unsupported);
-    }
-    const Params held = rest_on_host ? build_default_params<Rest>() : build_default_params<S>();
     const SensorSize board_sensor{S::kMaxWidth, S::kMaxHeight};
-    if (!(o.params == held) || !(o.sensor == board_sensor)) {
-      // The first difference, named: the source's size, or a setting and the value the board holds.
-      std::string differs = "a setting differs";
-      if (!(o.sensor == board_sensor)) {
-        differs = "the source is " + std::to_string(o.sensor.width) + "x" + std::to_string(o.sensor.height) +
-                  " (--roi X,Y," + std::to_string(board_sensor.width) + "," + std::to_string(board_sensor.height) + " takes a part of it)";
-      } else if (const auto differ = differing_params(o.params, held); !differ.empty()) {
-        const ParamInfo& info = *differ.front();
-        differs = std::string("--") + info.name + " is " + param_text(o.params, info) + ", the board's " + param_text(held, info);
+    const std::string board = std::string("the ") + build + " board";
+    if (!(o.sensor == board_sensor)) {
+      throw std::invalid_argument(board + " is built for a " + std::to_string(S::kMaxWidth) + "x" + std::to_string(S::kMaxHeight) +
+                                  " sensor, but the source is " + std::to_string(o.sensor.width) + "x" + std::to_string(o.sensor.height) +
+                                  " (--roi X,Y," + std::to_string(S::kMaxWidth) + "," + std::to_string(S::kMaxHeight) + " takes a part of it)");
+    }
+    // The board's registers are its build's. A board that stops at the filter holds only the
+    // filter's, and the host's C++ core runs any other setting it implements.
+    const Params held = build_default_params<S>();
+    auto refuse = [&](const ParamInfo& info, const std::string& what) {
+      throw std::invalid_argument(board + " runs its build's " + what + ", but --" + info.name + " is " + param_text(o.params, info) +
+                                  ", the board's " + param_text(held, info));
+    };
+    if (board_of(build).core_stops_at_filter) {
+      if (std::string unsupported = core_unsupported(o.params); !unsupported.empty()) throw std::invalid_argument(unsupported);
+      if (const char* name = first_filter_difference(o.params, held)) refuse(*find_param(name), "filter settings (the host runs any other)");
+    } else {
+      if (std::string unsupported = rtl_unsupported(o.params, build); !unsupported.empty()) throw std::invalid_argument(unsupported);
+      if (const auto differ = differing_params(o.params, held); !differ.empty()) {
+        refuse(*differ.front(), "settings: --packet-size " + std::to_string(S::kPacketMax) + " --max-clusters " +
+                                    std::to_string(S::kClustersMax) + " --max-tracks " + std::to_string(S::kTracksMax) +
+                                    " and the method its registers hold");
       }
-      const std::string method = rest_on_host ? " and the default method, its filter's registers on the board and the rest on the host"
-                                              : " and the method its registers hold";
-      throw std::invalid_argument(std::string("the ") + build + " board runs its build's settings: a " + std::to_string(S::kMaxWidth) + "x" +
-                                  std::to_string(S::kMaxHeight) + " sensor, --packet-size " + std::to_string(held.packet_size) +
-                                  " --max-clusters " + std::to_string(held.max_clusters) + " --max-tracks " + std::to_string(held.max_tracks) +
-                                  method + ", but " + differs);
     }
     return o.device.empty() ? link::the_board_uart() : o.device;
   }

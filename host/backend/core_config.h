@@ -100,6 +100,14 @@ inline int size_ratio_log2(const Params& p) {
 
 }  // namespace detail
 
+// The first of the settings the filter's registers come from (core_config below) on which `p`
+// differs from `board`, or nullptr: with the sensor's size, all that a board whose core stops at
+// the filter holds of the method.
+inline const char* first_filter_difference(const Params& p, const Params& board) {
+  return detail::first_difference(p, board, {"filter-window-us", "filter-support", "filter-warm-up-us", "filter-noise-hz", "filter-noise-pixels",
+                                              "filter-quiet-hz", "filter-quiet-window-us"});
+}
+
 // The first setting of `p` that the C++ core (hls/) does not implement, as the one line a
 // backend built on it refuses it with; empty when it implements every setting. It implements
 // both mean shifts: every event with the Gaussian kernel, and seeded climbs with the flat kernel
@@ -252,6 +260,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   hls::Config c;
   c.sensor_width = static_cast<std::uint16_t>(sensor.width);
   c.sensor_height = static_cast<std::uint16_t>(sensor.height);
+  // The filter's registers, from the settings first_filter_difference names.
   c.filter_enabled = p.filter_window_us > 0;
   c.filter_window = static_cast<std::uint32_t>(p.filter_window_us >> S::kTimestampShift);
   c.filter_support = static_cast<std::uint8_t>(p.filter_support);

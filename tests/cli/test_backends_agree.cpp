@@ -180,6 +180,12 @@ TEST(BackendsAgree, TheBoardThroughTheVirtualBoardEqualsTheFixedCore) {
   const auto said = run_command(evms_binary() + " run \"" + scene + "\" --out " + dir.path("board3") + " --backend board --device " + board.device());
   EXPECT_NE(said.out.find("board       filtered (its core stops at the filter): "), std::string::npos) << said.out;
   EXPECT_NE(said.out.find(" noise; clustered and tracked on the host"), std::string::npos) << said.out;
+  // The host runs any setting of the rest: the iCE40 RTL core's packets and counts, for one.
+  const std::string sizes = "--packet-size 256 --max-clusters 8 --max-tracks 8";
+  const auto fixed_sizes = run_backend(dir, "fixed_sizes", scene, "--backend fixed --core ice40 " + sizes);
+  const auto board_sizes = run_backend(dir, "board_sizes", scene, "--backend board --device " + board.device() + " " + sizes);
+  EXPECT_NE(fixed_sizes.first, fixed.first) << "other packets, other labels";
+  EXPECT_TRUE(same_text(board_sizes.first, fixed_sizes.first)) << "events.csv";
   // A scene that is mostly noise: the filtered events wait in the core with their packet's, and
   // the host's window holds more than the core can, so the run goes through.
   const std::string noisy = "gen://family/still?seed=1005&width=128&height=128&noise-hz=4&duration-s=0.1";
@@ -330,12 +336,20 @@ TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {
   const auto missing = run_command(evms_binary() + " run gen://rotation?width=128\\&height=128 --backend board --device /dev/evms-no-such-tty --quiet");
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_NE(missing.err.find("/dev/evms-no-such-tty: cannot open the serial device"), std::string::npos) << missing.err;
-  // The board's registers are its build's: a packet size set by hand is refused.
+  // The board's registers are its build's: on the Arty every setting's, so a packet size set by
+  // hand is refused; on the iCEBreaker, whose core stops at the filter, the filter's.
   const auto params = run_command(evms_binary() +
-                                  " run gen://rotation?width=128\\&height=128 --backend board --device /dev/null --packet-size 32 --quiet");
+                                  " run gen://rotation --backend board --core arty --device /dev/null --packet-size 32 --quiet");
   EXPECT_NE(params.exit_code, 0);
-  EXPECT_NE(params.err.find("board runs its build's settings"), std::string::npos) << params.err;
-  EXPECT_NE(params.err.find(", but --packet-size is 32, the board's 3000\n"), std::string::npos) << params.err;
+  EXPECT_NE(params.err.find("the arty board runs its build's settings: --packet-size 512 "), std::string::npos) << params.err;
+  EXPECT_NE(params.err.find(", but --packet-size is 32, the board's 512\n"), std::string::npos) << params.err;
+  const auto filter = run_command(evms_binary() +
+                                  " run gen://rotation?width=128\\&height=128 --backend board --device /dev/null --filter-window-us 10000 --quiet");
+  EXPECT_NE(filter.exit_code, 0);
+  EXPECT_NE(filter.err.find("the ice40 board runs its build's filter settings (the host runs any other), but --filter-window-us is "
+                            "10000, the board's 30000\n"),
+            std::string::npos)
+      << filter.err;
   // So is a source of another size, named with the --roi that takes a part of it.
   const auto size = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend board --device /dev/null --quiet");
   EXPECT_NE(size.exit_code, 0);
