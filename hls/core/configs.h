@@ -20,11 +20,12 @@ namespace evms::hls {
 using Ice40Shape = Shape<128, 128, 256, 1, 8, 8, 8, 16, 7, 2 * 256, 10, 15, 8, 12, 4, 64, 4, 32, 8, 0, 1>;
 // The iCEBreaker as it runs: its board's filter (Ice40Shape's: 128x128, 16-bit timestamps of
 // 128 us), then the rest of the core on the host, which holds the whole default method in the
-// host core's sizes and formats (HostShape's). This is the ice40 build's fixed core: `--backend
-// fixed --core ice40` and the board backend's rest of an iCEBreaker (host/backend/board_backend.cpp).
-// On the family's validation members at 128x128 it scores mean F 0.941 and 0.90 px against the
-// ice40 RTL core's method's 0.923 and 2.01 px (docs/rtl.md, "Builds").
-using Ice40BoardShape = Shape<128, 128, 4096, 8, 8, 128, 128, 16, 7, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1, 1, 1, 1, 1>;
+// host core's sizes and formats (HostCoreShape, hls/core/shape.h). This is the ice40 build's
+// fixed core: `--backend fixed --core ice40` and the board backend's rest of an iCEBreaker
+// (host/backend/board_backend.cpp). On the family's validation members at 128x128 it scores
+// mean F 0.941 and 0.90 px against the ice40 RTL core's method's 0.923 and 2.01 px (docs/rtl.md,
+// "Builds").
+using Ice40BoardShape = HostCoreShape<128, 128, 16, 7>;
 // Arty A7-35T beside a DAVIS240: the default board core. It holds the seeded path only (the
 // default method, at about 56 cycles an event); the Gaussian path does not fit beside it.
 // Packets of 512: on the 240x180 scenes with seven shapes they score 0.003-0.011 more F than
@@ -49,9 +50,10 @@ using ArtyShape = Shape<240, 180, 512, 8, 8, 16, 16, 16, 7, 2 * 512, 11, 16, 9, 
 // The whole ice40 core is 5.3 times the UP5K's LUTs (docs/rtl.md, "Area"), so the iCEBreaker's
 // core stops at the filter (rtl/core/evms_filter_core.sv): the board returns each event's
 // verdict and the host runs the rest on them (Core::process_decided) in the build's fixed core,
-// Ice40BoardShape, which gives the words of `--backend fixed --core ice40`. The iCEBreaker's PLL makes 18 MHz of its 12 MHz oscillator
-// (rtl/board/evms_icebreaker_top.sv), so that 3 clocks a bit give the FT2232H's 6 Mbaud (137 k
-// events/s each way, docs/link.md); the build routes above 18 MHz (docs/rtl.md).
+// Ice40BoardShape, which gives the words of `--backend fixed --core ice40`. The iCEBreaker's
+// PLL makes 18 MHz of its 12 MHz oscillator (rtl/board/evms_icebreaker_top.sv), so that 3 clocks
+// a bit give the FT2232H's 6 Mbaud (137 k events/s each way, docs/link.md); the build routes
+// above 18 MHz (docs/rtl.md).
 #define EVMS_BOARD_BUILDS(X)        \
   X(ice40, 18000000, 3, 1024, 1)   \
   X(arty, 100000000, 50, 2048, 0)

@@ -203,12 +203,16 @@ struct Shape {
 // timestamp per pixel in 128 us units (one iCE40 SPRAM word), and eight kernel lanes: 88 of an
 // XC7A35T's 90 DSP48E1 (docs/rtl.md, "Area").
 using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
-// The host's fixed-point backend: room for every recording evms reads (up to 1280x720), exact
-// 32-bit microsecond timestamps per pixel (its filter decides exactly as golden's), the
-// method's default packets (3,000 events), clusters and tracks (128 each), and a pending queue
-// deep enough that noisy recordings (a third noise, say) never close a packet early, as golden
-// never does.
-using HostShape = Shape<1280, 720, 4096, 8, 8, 128, 128, 32, 0, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1, 1, 1, 1, 1>;
+// The host core's sizes and formats on a sensor of at most W x H with the filter's timestamps
+// of TimestampBits bits in 2^TimestampShift us: the method's default packets (3,000 events),
+// clusters and tracks (128 each), a pending queue deep enough that noisy recordings (a third
+// noise, say) never close a packet early, as golden never does, and every step of the method.
+template <int W, int H, int TimestampBits, int TimestampShift>
+using HostCoreShape = Shape<W, H, 4096, 8, 8, 128, 128, TimestampBits, TimestampShift, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1,
+                            1, 1, 1, 1, 1>;
+// The host's fixed-point backend: room for every recording evms reads (up to 1280x720), and
+// exact 32-bit microsecond timestamps per pixel (its filter decides exactly as golden's).
+using HostShape = HostCoreShape<1280, 720, 32, 0>;
 // The RTL's host-simulation build: HostShape's sensor, words and tables with smaller packet,
 // cluster and track sizes, both clustering paths, the polarity split, the edge join, the
 // measurement noise from the spread, the pixel centre and the least density on the linked sets.

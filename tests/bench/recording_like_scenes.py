@@ -217,7 +217,7 @@ def main():
     ap.add_argument("evms")
     ap.add_argument("--seeds", type=int, default=4, help="scenes of each sensor (seeds 1..N)")
     ap.add_argument("--kind", choices=list(KINDS), default="sparkler")
-    ap.add_argument("--sensors", help="WxH,WxH,... (sparkler: 240x180,346x260,640x480; street: 346x260,640x480)")
+    ap.add_argument("--sensors", help="WxH,WxH,... (" + "; ".join(f"{k}: {v}" for k, v in SENSORS.items()) + ")")
     ap.add_argument("--duration-s", type=float, default=0.5, help="length of a scene")
     ap.add_argument("--jobs", type=int, default=2, help="scenes simulated at once")
     ap.add_argument("--keep", help="keep the scenes and outputs in this folder (and reuse its scenes)")
