@@ -123,6 +123,9 @@ class SeededClimbs {
   // of n events holds to be kept: n * min_density, kDensityFrac fraction bits.
   static std::uint64_t least(int n, const Config& cfg) { return static_cast<std::uint64_t>(n) * cfg.min_density; }
 
+  // Mode c's support in the last run: the most events a climb that joined it held at its last step.
+  int support(int c) const { return support_[c]; }
+
   // Whether mode c of the last run's packet of n events is below the least density.
   bool sparse(int c, int n, const Config& cfg) const {
     return (static_cast<std::uint64_t>(support_[c]) << kDensityFrac) < least(n, cfg);

@@ -1,0 +1,401 @@
+// The seeded mean-shift climbs of hls/cluster/seeded_climbs.h (SeededClimbs::run), bit for bit,
+// without warm seeds (cfg.warm_start false) and without the least-density test (cfg.min_density
+// 0, or cfg.density_after_links, where the test follows the links: each mode's support is read
+// out for it), built for a part without distributed RAM such as the iCE40 UP5K:
+//  - every per-event word is in block RAM with a registered read: the features, the flags
+//    (reached, in the current climb), the first mode with its labelled bit, the climb's list of
+//    touched events; so is each mode's position and support;
+//  - a step scans the whole packet, an event a clock, instead of sorting the packet into a grid
+//    of cells as rtl/cluster/evms_seeded_climbs.sv does: the sums are exact integers, so the
+//    events a step visits beyond the ball change nothing but the clocks (n a step);
+//  - the ball is one bandwidth, so only differences below two bandwidths are squared (farther
+//    pairs are outside the ball and the merge radius): two (UnitShift + 1)-bit squares;
+//  - one divider takes x and then y.
+// Schedule: n clocks clearing the flags; per event seed 2 clocks to read its reached flag; per
+// climb step n + 3 clocks through a 4-stage pipeline (read; difference to the climb; squares;
+// test, sums and flags) and, when the ball held events, two divisions of SumBits + 2 clocks;
+// per climb one open mode a clock through the same pipeline and 3 more, 1 to decide, touched
+// events + 3 to label.
+`include "evms_assert.svh"
+
+module evms_serial_climbs #(
+  parameter int PacketMax     = 1024,
+  parameter int ModesMax      = 64,
+  parameter int IterationsMax = 8,
+  parameter int UnitShift     = 14,   // kFeatFrac + kClimbFrac: fraction bits of a climb feature
+  parameter int CoordBits     = 20    // a climb feature's bits: below 2^(CoordBits - UnitShift) bandwidths
+) (
+  input  logic                 clk,
+  input  logic                 rst_n,
+  // The packet's climb features (event i = load_i).
+  input  logic                 load_we,
+  input  logic [15:0]          load_i,
+  input  logic [CoordBits-1:0] load_x,
+  input  logic [CoordBits-1:0] load_y,
+  // Running.
+  input  logic                 start,
+  input  logic [15:0]          n,
+  input  logic [7:0]           cfg_max_iterations,
+  input  logic [31:0]          cfg_tolerance,
+  input  logic [63:0]          cfg_merge_radius2,
+  output logic                 done,         // one clock
+  output logic [15:0]          mode_count,
+  output logic [15:0]          climbs,
+  output logic [15:0]          steps,
+  output logic [15:0]          modes_lost,
+  // After done (one clock of latency): event rd_j's mode (-1: none), and mode rd_c's position
+  // and support (the most events a climb that joined it held at its last step).
+  input  logic [15:0]          rd_j,
+  output logic signed [15:0]   rd_mode,
+  input  logic [7:0]           rd_c,
+  output logic [CoordBits-1:0] rd_mode_x,
+  output logic [CoordBits-1:0] rd_mode_y,
+  output logic [15:0]          rd_support
+);
+  localparam int IdxBits = PacketMax > 1 ? $clog2(PacketMax) : 1;
+  localparam int CntBits = $clog2(PacketMax + 1);
+  localparam int ModeBits = ModesMax > 1 ? $clog2(ModesMax) : 1;
+  localparam int ModeCntBits = $clog2(ModesMax + 1);
+  localparam int SumBits = CoordBits + CntBits;
+  localparam int DistBits = UnitShift + 1;                  // differences below two bandwidths
+  localparam int Dist2Bits = 2 * DistBits + 1;
+  localparam logic [Dist2Bits-1:0] One = Dist2Bits'(1) << (2 * UnitShift);  // h^2
+  `EVMS_ASSERT_INIT("a feature holds more than two bandwidths", CoordBits > DistBits)
+  `EVMS_ASSERT_INIT("the event count must fit the 16-bit index range", CntBits <= 16)
+
+  typedef enum logic [3:0] {
+    StIdle, StClear, StSeedRead, StSeedCheck, StClimbStart, StStepInit, StKernel, StStepEnd, StDivideX, StDivideY,
+    StJoinScan, StJoinDecide, StLabel, StDone
+  } state_e;
+  state_e state_q;
+
+  // ---- registers -------------------------------------------------------------------------
+  logic [15:0]            j_q;               // clearing and event seeds: the event
+  logic [CntBits-1:0]     k_q;               // a step's scan: the next event to read
+  logic [CoordBits-1:0]   mx_q, my_q;        // the climb
+  logic [7:0]             step_q;
+  // The distance pipeline: s1 a point read (an event in the kernel, a mode in the join), s2 its
+  // difference to the climb registered, s3 its squared distance.
+  logic                   s1_valid_q, s2_valid_q, s3_valid_q;
+  logic [IdxBits-1:0]     s1_j_q, s2_j_q, s3_j_q;            // the kernel's event
+  logic                   s2_in_climb_q, s3_in_climb_q;      // ... already in this climb
+  logic [ModeBits-1:0]    s1_c_q, s2_c_q, s3_c_q;            // the join's mode
+  logic [CoordBits-1:0]   s2_x_q, s2_y_q, s3_x_q, s3_y_q;    // the point
+  logic [CntBits-1:0]     s2_support_q, s3_support_q;        // the join's mode's support
+  logic [DistBits-1:0]    diff_x_q, diff_y_q;
+  logic                   diff_far_q, dist2_far_q;
+  logic [Dist2Bits-1:0]   dist2_q;
+  logic [SumBits-1:0]     sum_x_q, sum_y_q;
+  logic [CoordBits-1:0]   new_x_q;           // the step's new x, while y divides
+  logic [CntBits-1:0]     count_q, touched_q;
+  logic [ModeCntBits-1:0] scan_c_q, modes_q;
+  logic                   best_valid_q;
+  logic [ModeBits-1:0]    best_q;
+  logic [Dist2Bits-1:0]   best_d2_q;
+  logic [CoordBits-1:0]   best_x_q, best_y_q;
+  logic [CntBits-1:0]     best_support_q;
+  logic signed [ModeBits:0] mode_q;          // the climb's mode, -1 when the table was full
+  logic [CntBits-1:0]     t_q;               // labelling: the touched entry to read
+  logic                   l1_valid_q, l2_valid_q;
+  logic [IdxBits-1:0]     l2_j_q;
+  logic [15:0]            climbs_q, steps_q, lost_q;
+
+  wire [7:0] iteration_cap = cfg_max_iterations < 8'(IterationsMax) ? cfg_max_iterations : 8'(IterationsMax);
+  state_e join_state;
+  assign join_state = modes_q == '0 ? StJoinDecide : StJoinScan;
+  wire [IdxBits-1:0] j_index = IdxBits'(j_q);
+
+  // ---- memories (common/evms_ram_1w1r) ----------------------------------------------------
+  // The packet's features.
+  logic [CoordBits-1:0] phi_x, phi_y;
+  logic [IdxBits-1:0]   phi_ra;
+  evms_ram_1w1r #(.Width(2 * CoordBits), .Depth(PacketMax)) u_phi (
+    .clk, .we(load_we), .wa(IdxBits'(load_i)), .wd({load_x, load_y}), .ra(phi_ra), .rd({phi_x, phi_y}));
+
+  // Each event's flags: reached by some climb, and in the current climb's list.
+  logic               flag_reached, flag_in_climb, flags_we, flags_wd_in_climb;
+  logic [IdxBits-1:0] flags_ra, flags_wa;
+  evms_ram_1w1r #(.Width(2), .Depth(PacketMax)) u_flags (
+    .clk, .we(flags_we), .wa(flags_wa), .wd({!(state_q == StClear), flags_wd_in_climb}), .ra(flags_ra),
+    .rd({flag_reached, flag_in_climb}));
+
+  // Each event's first mode, valid where labelled.
+  logic                labelled, first_mode_we;
+  logic [ModeBits-1:0] first_mode;
+  logic [IdxBits-1:0]  first_mode_ra, first_mode_wa;
+  evms_ram_1w1r #(.Width(ModeBits + 1), .Depth(PacketMax)) u_first_mode (
+    .clk, .we(first_mode_we), .wa(first_mode_wa), .wd({!(state_q == StClear), ModeBits'(mode_q)}), .ra(first_mode_ra),
+    .rd({labelled, first_mode}));
+
+  // The current climb's events, in the order it reached them.
+  logic [IdxBits-1:0] touched_j;
+  wire kernel_at_s3 = s3_valid_q && state_q != StJoinScan;
+  wire kernel_in = !dist2_far_q && dist2_q < One;
+  wire touched_we = kernel_at_s3 && kernel_in && !s3_in_climb_q;
+  evms_ram_1w1r #(.Width(IdxBits), .Depth(PacketMax)) u_touched (
+    .clk, .we(touched_we), .wa(IdxBits'(touched_q)), .wd(s3_j_q), .ra(IdxBits'(t_q)), .rd(touched_j));
+
+  // The modes: position and support.
+  logic [CoordBits-1:0] mode_x, mode_y;
+  logic [CntBits-1:0]   mode_support;
+  logic                 mode_we;
+  logic [ModeBits-1:0]  mode_ra, mode_wa;
+  logic [2 * CoordBits + CntBits-1:0] mode_wd;
+  evms_ram_1w1r #(.Width(2 * CoordBits + CntBits), .Depth(ModesMax)) u_modes (
+    .clk, .we(mode_we), .wa(mode_wa), .wd(mode_wd), .ra(mode_ra), .rd({mode_x, mode_y, mode_support}));
+  assign rd_mode_x = mode_x;
+  assign rd_mode_y = mode_y;
+  assign rd_support = 16'(mode_support);
+  assign rd_mode = labelled ? 16'(first_mode) : -16'sd1;
+
+  // ---- the divider: x, then y -------------------------------------------------------------
+  logic div_start, div_done;
+  logic [SumBits-1:0] quotient;
+  evms_divide_rounded #(.NumBits(SumBits), .DenBits(CntBits)) u_divide (
+    .clk, .rst_n, .start(div_start), .num(state_q == StDivideX && div_done ? sum_y_q : sum_x_q), .den(count_q),
+    .done(div_done), .quotient(quotient));
+  assign div_start = (state_q == StStepEnd && count_q != '0) || (state_q == StDivideX && div_done);
+
+  // ---- the distance pipeline ----------------------------------------------------------------
+  // The point at s1: the join's mode or the kernel's event.
+  wire [CoordBits-1:0] point_x = state_q == StJoinScan ? mode_x : phi_x;
+  wire [CoordBits-1:0] point_y = state_q == StJoinScan ? mode_y : phi_y;
+  // |a - b| by one subtraction and its sign (not a comparison and two subtractions).
+  function automatic logic [CoordBits-1:0] distance(input logic [CoordBits-1:0] a, input logic [CoordBits-1:0] b);
+    logic [CoordBits:0] delta;
+    begin
+      delta = {1'b0, a} - {1'b0, b};
+      distance = delta[CoordBits] ? CoordBits'(-delta) : CoordBits'(delta);
+    end
+  endfunction
+  // A difference at or beyond two bandwidths (far) is outside both the ball and the merge
+  // radius, so only the low DistBits of the differences are squared.
+  wire [CoordBits-1:0] abs_x = distance(mx_q, point_x);
+  wire [CoordBits-1:0] abs_y = distance(my_q, point_y);
+  wire far_x = |abs_x[CoordBits-1:DistBits];
+  wire far_y = |abs_y[CoordBits-1:DistBits];
+  always_ff @(posedge clk) begin
+    diff_x_q <= DistBits'(abs_x);
+    diff_y_q <= DistBits'(abs_y);
+    diff_far_q <= far_x || far_y;
+    dist2_q <= Dist2Bits'(diff_x_q) * Dist2Bits'(diff_x_q) + Dist2Bits'(diff_y_q) * Dist2Bits'(diff_y_q);
+    dist2_far_q <= diff_far_q;
+  end
+  wire join_near = !dist2_far_q && 64'(dist2_q) <= cfg_merge_radius2;
+
+  wire [CoordBits-1:0] new_y = CoordBits'(quotient), new_x = new_x_q;   // a mean is at most the largest feature
+  wire [CoordBits-1:0] move_x = distance(new_x, mx_q);
+  wire [CoordBits-1:0] move_y = distance(new_y, my_q);
+  wire [CoordBits-1:0] move = move_x > move_y ? move_x : move_y;
+
+  // ---- memory ports by state ----------------------------------------------------------------
+  always_comb begin
+    phi_ra = state_q == StKernel ? IdxBits'(k_q) : j_index;
+    flags_ra = state_q == StKernel ? IdxBits'(k_q) : j_index;
+    flags_we = 1'b0;
+    flags_wa = s3_j_q;
+    flags_wd_in_climb = 1'b0;
+    first_mode_ra = state_q == StLabel ? touched_j : IdxBits'(rd_j);
+    first_mode_we = 1'b0;
+    first_mode_wa = l2_j_q;
+    mode_ra = state_q == StJoinScan ? ModeBits'(scan_c_q) : ModeBits'(rd_c);
+    mode_we = 1'b0;
+    mode_wa = ModeBits'(modes_q);
+    mode_wd = {mx_q, my_q, count_q};
+    unique case (state_q)
+      StClear: begin
+        flags_we = 1'b1;
+        flags_wa = j_index;
+        first_mode_we = 1'b1;
+        first_mode_wa = j_index;
+      end
+      StKernel, StStepEnd: begin   // a step's last events reach s3 in StKernel
+        flags_we = kernel_at_s3 && kernel_in;
+        flags_wd_in_climb = 1'b1;
+      end
+      StJoinDecide: begin
+        // Opening a mode, or a join whose climb held more events than the mode's support.
+        mode_we = best_valid_q ? count_q > best_support_q : modes_q != ModeCntBits'(ModesMax);
+        if (best_valid_q) begin
+          mode_wa = best_q;
+          mode_wd = {best_x_q, best_y_q, count_q};
+        end
+      end
+      StLabel: begin
+        // l1: the touched event leaves the climb (it was reached); l2: it takes the climb's mode
+        // unless it has one.
+        flags_we = l1_valid_q;
+        flags_wa = touched_j;
+        first_mode_we = l2_valid_q && !labelled && mode_q >= 0;
+      end
+      default: ;
+    endcase
+  end
+
+  // ---- the controller and the datapath -----------------------------------------------------
+  always_ff @(posedge clk or negedge rst_n) begin
+    if (!rst_n) begin
+      state_q <= StIdle;
+      done <= 1'b0;
+      {j_q, k_q, mx_q, my_q, step_q} <= '0;
+      {s1_valid_q, s2_valid_q, s3_valid_q, s1_j_q, s2_j_q, s3_j_q, s2_in_climb_q, s3_in_climb_q} <= '0;
+      {s1_c_q, s2_c_q, s3_c_q, s2_x_q, s2_y_q, s3_x_q, s3_y_q, s2_support_q, s3_support_q} <= '0;
+      {sum_x_q, sum_y_q, new_x_q, count_q, touched_q, scan_c_q, modes_q} <= '0;
+      {best_valid_q, best_q, best_d2_q, best_x_q, best_y_q, best_support_q} <= '0;
+      {t_q, l1_valid_q, l2_valid_q, l2_j_q, climbs_q, steps_q, lost_q} <= '0;
+      mode_q <= '0;
+    end else begin
+      done <= 1'b0;
+      // The distance pipeline: only the kernel scan and the join scan issue into s1.
+      s1_valid_q <= 1'b0;
+      s2_valid_q <= s1_valid_q;
+      s3_valid_q <= s2_valid_q;
+      s2_j_q <= s1_j_q;
+      s3_j_q <= s2_j_q;
+      s2_in_climb_q <= flag_in_climb;
+      s3_in_climb_q <= s2_in_climb_q;
+      s2_c_q <= s1_c_q;
+      s3_c_q <= s2_c_q;
+      s2_x_q <= state_q == StJoinScan ? mode_x : phi_x;
+      s2_y_q <= state_q == StJoinScan ? mode_y : phi_y;
+      s3_x_q <= s2_x_q;
+      s3_y_q <= s2_y_q;
+      s2_support_q <= mode_support;
+      s3_support_q <= s2_support_q;
+      if (kernel_at_s3 && kernel_in) begin
+        sum_x_q <= sum_x_q + SumBits'(s3_x_q);
+        sum_y_q <= sum_y_q + SumBits'(s3_y_q);
+        count_q <= count_q + 1'b1;
+      end
+      if (touched_we) touched_q <= touched_q + 1'b1;
+      // The labelling's pipeline: l1 the touched entry read, l2 its first mode read.
+      l1_valid_q <= 1'b0;
+      l2_valid_q <= l1_valid_q;
+      l2_j_q <= touched_j;
+      unique case (state_q)
+        // Idle, or done with the last packet (its results stay readable until the next start).
+        StIdle, StDone: if (start) begin
+          {climbs_q, steps_q, lost_q} <= '0;
+          modes_q <= '0;
+          j_q <= '0;
+          state_q <= n == '0 ? StSeedRead : StClear;
+        end
+        StClear: begin
+          j_q <= j_q + 1'b1;
+          if (j_q + 1'b1 >= n) begin
+            j_q <= '0;
+            state_q <= StSeedRead;
+          end
+        end
+        // The event seeds: the first event no climb has reached yet, until none is left.
+        StSeedRead: begin
+          if (j_q >= n) begin
+            done <= 1'b1;
+            state_q <= StDone;
+          end else begin
+            state_q <= StSeedCheck;   // the flags and features of event j_q read
+          end
+        end
+        StSeedCheck: begin
+          j_q <= j_q + 1'b1;
+          if (flag_reached) begin
+            state_q <= StSeedRead;
+          end else begin
+            mx_q <= phi_x;
+            my_q <= phi_y;
+            state_q <= StClimbStart;
+          end
+        end
+        // One climb.
+        StClimbStart: begin
+          climbs_q <= climbs_q + 1'b1;
+          step_q <= '0;
+          touched_q <= '0;
+          count_q <= '0;
+          scan_c_q <= '0;
+          best_valid_q <= 1'b0;
+          state_q <= iteration_cap == '0 ? join_state : StStepInit;
+        end
+        StStepInit: begin
+          sum_x_q <= '0;
+          sum_y_q <= '0;
+          count_q <= '0;
+          k_q <= '0;
+          state_q <= StKernel;
+        end
+        StKernel: begin
+          // Issue (the memories read k); the difference, its square, the test, the sums and the
+          // flags follow in the pipeline. The step ends when its last event is at s3, whose sum
+          // is taken in the same clock.
+          s1_valid_q <= 16'(k_q) < n;
+          s1_j_q <= IdxBits'(k_q);
+          if (16'(k_q) < n) k_q <= k_q + 1'b1;
+          else if (!s1_valid_q && !s2_valid_q) state_q <= StStepEnd;
+        end
+        StStepEnd: begin
+          steps_q <= steps_q + 1'b1;
+          state_q <= count_q == '0 ? join_state : StDivideX;
+        end
+        StDivideX: if (div_done) begin
+          new_x_q <= CoordBits'(quotient);
+          state_q <= StDivideY;
+        end
+        StDivideY: if (div_done) begin
+          mx_q <= new_x;
+          my_q <= new_y;
+          step_q <= step_q + 1'b1;
+          if (32'(move) <= cfg_tolerance || step_q + 1'b1 >= iteration_cap) state_q <= join_state;
+          else state_q <= StStepInit;
+        end
+        // Join the nearest mode within the merge radius (ties: the older, read first), else open
+        // one.
+        StJoinScan: begin
+          s1_valid_q <= scan_c_q < modes_q;
+          s1_c_q <= ModeBits'(scan_c_q);
+          if (scan_c_q < modes_q) scan_c_q <= scan_c_q + 1'b1;
+          if (s3_valid_q && join_near && (!best_valid_q || dist2_q < best_d2_q)) begin
+            best_valid_q <= 1'b1;
+            best_q <= s3_c_q;
+            best_d2_q <= dist2_q;
+            best_x_q <= s3_x_q;
+            best_y_q <= s3_y_q;
+            best_support_q <= s3_support_q;
+          end
+          if (scan_c_q == modes_q && !s1_valid_q && !s2_valid_q) state_q <= StJoinDecide;   // s3's last test is this clock's
+        end
+        StJoinDecide: begin
+          if (best_valid_q) begin
+            mode_q <= $signed((ModeBits + 1)'(best_q));
+          end else if (modes_q == ModeCntBits'(ModesMax)) begin
+            mode_q <= -1;
+            lost_q <= lost_q + 1'b1;
+          end else begin
+            mode_q <= $signed((ModeBits + 1)'(modes_q));   // below ModesMax here
+            modes_q <= modes_q + 1'b1;
+          end
+          t_q <= '0;
+          state_q <= StLabel;
+        end
+        // The climb's events that have no mode yet take its mode; all leave the climb.
+        StLabel: begin
+          l1_valid_q <= t_q < touched_q;
+          if (t_q < touched_q) t_q <= t_q + 1'b1;
+          else if (!l1_valid_q && !l2_valid_q) state_q <= StSeedRead;
+        end
+        default: state_q <= StIdle;
+      endcase
+    end
+  end
+
+  assign mode_count = 16'(modes_q);
+  assign climbs = climbs_q;
+  assign steps = steps_q;
+  assign modes_lost = lost_q;
+
+  `EVMS_ASSERT("a packet holds at most PacketMax events", !(start && n > 16'(PacketMax)), clk, rst_n)
+  `EVMS_ASSERT("a step's sums are complete when it ends: the distance pipeline has drained",
+               state_q != StStepEnd || !(s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
+  `EVMS_ASSERT("the join's decision follows its last test: the distance pipeline has drained",
+               state_q != StJoinDecide || !(s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
+  `EVMS_ASSERT("the merge radius is below two bandwidths", !start || cfg_merge_radius2 < 64'(4) * 64'(One), clk, rst_n)
+endmodule

@@ -1,0 +1,183 @@
+// Block-level cosimulation of rtl/cluster/evms_serial_climbs.sv against SeededClimbs in
+// hls/cluster/seeded_climbs.h, without warm seeds: the same packet and registers; every event's
+// mode, every mode's position and support, and the climb, step and lost-mode counts must be
+// equal. The seed is drawn anew each run and printed (EVMS_SEED=N repeats one); a mismatch
+// repeats the packet with an FST trace in the temporary directory (sim/verilated_block.h).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "Vserial_climbs.h"
+#include "hls/cluster/seeded_climbs.h"
+#include "hls/core/shape.h"
+#include "sim/verilated_block.h"
+
+namespace evms {
+namespace {
+
+// A DVS128's packets of up to 1,024 events with 6 feature fraction bits (climb features of
+// 14 fraction bits: the squares fit 16x16 multipliers), the sizes sim/CMakeLists.txt builds
+// the engine at. The formats after the seeded path's sizes play no part in the climbs.
+using S = hls::Shape<128, 128, 1024, 1, 8, 8, 8, 16, 7, 2 * 1024, 6, 15, 8, 12, 4, 64, 4, 32, 8, 0, 1>;
+static_assert(EVMS_SERIAL_PacketMax == S::kPacketMax && EVMS_SERIAL_ModesMax == S::kModesMax &&
+                  EVMS_SERIAL_IterationsMax == S::kIterationsMax && EVMS_SERIAL_UnitShift == S::kFeatFrac + hls::kClimbFrac,
+              "sim/CMakeLists.txt builds the engine at this test's sizes");
+
+constexpr int kWidth = 128, kHeight = 128;
+
+struct Case {
+  hls::PacketEvents<S> events{};
+  hls::Features<S> phi{};
+  int n = 0;
+  hls::Config cfg{};
+};
+
+// A packet of blobs (1 to 8, 2 to 25 px across) and uniform noise (a tenth of the events, or
+// all of them in one packet in eight, which opens more modes than the table holds at small
+// bandwidths), under registers drawn from the ranges the method uses: bandwidth 0.03-0.15,
+// tolerance, merge radius up to one bandwidth, iteration cap 0-8. At a bandwidth of 1/16 (8 px)
+// the features are exact, so that events lie on the ball's boundary, which is outside it.
+Case draw_case(std::mt19937_64& rng) {
+  Case c;
+  sim::Draws draw{rng};
+  const double h = draw.one_of<double>({0.03, 0.04, 0.0625, 0.08, 0.15});
+  constexpr double kClimbUnit = 1 << (S::kFeatFrac + hls::kClimbFrac);
+  c.cfg.climb_scale_x = static_cast<std::uint64_t>(std::llround(std::ldexp(1.0 / (kWidth * h), hls::kClimbScaleFrac)));
+  c.cfg.climb_scale_y = static_cast<std::uint64_t>(std::llround(std::ldexp(1.0 / (kHeight * h), hls::kClimbScaleFrac)));
+  c.cfg.max_iterations = static_cast<std::uint8_t>(draw.below(9));
+  c.cfg.tolerance = static_cast<std::uint32_t>(draw.one_of<double>({0, 0.001, 0.01, 0.05}) * kClimbUnit);
+  const double merge = draw.one_of<double>({0.1, 0.5, 1.0}) * kClimbUnit;
+  c.cfg.merge_radius2 = static_cast<std::uint64_t>(merge * merge);
+  c.cfg.warm_start = false;
+
+  c.n = 1 + draw.below(S::kPacketMax);
+  const bool all_noise = draw.below(8) == 0;
+  const int blobs = 1 + draw.below(8);
+  double bx[8], by[8], br[8];
+  for (int b = 0; b < blobs; ++b) bx[b] = draw.uniform(0, kWidth - 1), by[b] = draw.uniform(0, kHeight - 1), br[b] = draw.uniform(1, 12);
+  for (int i = 0; i < c.n; ++i) {
+    double x, y;
+    if (all_noise || draw.below(10) == 0) {
+      x = draw.uniform(0, kWidth - 1), y = draw.uniform(0, kHeight - 1);
+    } else {
+      const int b = draw.below(blobs);
+      x = std::normal_distribution<double>(bx[b], br[b])(rng), y = std::normal_distribution<double>(by[b], br[b])(rng);
+    }
+    c.events.x[i] = static_cast<std::uint16_t>(std::clamp(std::lround(x), 0L, long{kWidth - 1}));
+    c.events.y[i] = static_cast<std::uint16_t>(std::clamp(std::lround(y), 0L, long{kHeight - 1}));
+  }
+  hls::climb_features(c.events, c.n, c.cfg, c.phi);
+  return c;
+}
+
+struct Result {
+  std::vector<int> first_mode;
+  std::vector<std::pair<std::int64_t, std::int64_t>> modes;
+  std::vector<int> supports;
+  int climbs = 0, steps = 0, modes_lost = 0;
+  std::uint64_t cycles = 0;
+};
+
+Result run_model(const Case& c) {
+  auto climbs = std::make_unique<hls::SeededClimbs<S>>();
+  std::int16_t first_mode[S::kPacketMax];
+  hls::Modes<S> modes, no_warm_seeds;
+  hls::ClimbTrace trace;
+  climbs->run(c.phi, c.n, c.cfg, no_warm_seeds, first_mode, modes, trace);
+  Result r;
+  r.first_mode.assign(first_mode, first_mode + c.n);
+  for (int k = 0; k < modes.count; ++k) r.modes.push_back({modes.x[k], modes.y[k]}), r.supports.push_back(climbs->support(k));
+  r.climbs = trace.climbs, r.steps = trace.steps, r.modes_lost = trace.modes_lost;
+  return r;
+}
+
+Result run_rtl(const Case& c, const std::string& trace_path) {
+  sim::VerilatedBlock<Vserial_climbs> rtl(trace_path);
+  for (int i = 0; i < c.n; ++i) {
+    rtl->load_we = 1, rtl->load_i = static_cast<std::uint16_t>(i), rtl->load_x = c.phi.x[i], rtl->load_y = c.phi.y[i];
+    rtl.tick();
+  }
+  rtl->load_we = 0;
+  rtl->n = static_cast<std::uint16_t>(c.n);
+  rtl->cfg_max_iterations = c.cfg.max_iterations;
+  rtl->cfg_tolerance = c.cfg.tolerance;
+  rtl->cfg_merge_radius2 = c.cfg.merge_radius2;
+  Result r;
+  r.cycles = rtl.run_until_done([&] { rtl.tick(); }, 200'000'000);
+  for (int j = 0; j < c.n; ++j) {
+    rtl->rd_j = static_cast<std::uint16_t>(j);
+    rtl.tick();
+    r.first_mode.push_back(static_cast<std::int16_t>(rtl->rd_mode));
+  }
+  for (int k = 0; k < rtl->mode_count; ++k) {
+    rtl->rd_c = static_cast<std::uint8_t>(k);
+    rtl.tick();
+    r.modes.push_back({rtl->rd_mode_x, rtl->rd_mode_y});
+    r.supports.push_back(rtl->rd_support);
+  }
+  r.climbs = rtl->climbs, r.steps = rtl->steps, r.modes_lost = rtl->modes_lost;
+  return r;
+}
+
+std::string difference(const Result& want, const Result& got) {
+  std::ostringstream o;
+  for (size_t j = 0; j < want.first_mode.size(); ++j) {
+    if (want.first_mode[j] != got.first_mode[j]) {
+      o << "event " << j << ": mode " << got.first_mode[j] << ", want " << want.first_mode[j];
+      return o.str();
+    }
+  }
+  if (want.modes.size() != got.modes.size()) {
+    o << got.modes.size() << " modes, want " << want.modes.size();
+    return o.str();
+  }
+  for (size_t k = 0; k < want.modes.size(); ++k) {
+    if (want.modes[k] != got.modes[k] || want.supports[k] != got.supports[k]) {
+      o << "mode " << k << " at " << got.modes[k].first << "," << got.modes[k].second << " holding " << got.supports[k] << ", want "
+        << want.modes[k].first << "," << want.modes[k].second << " holding " << want.supports[k];
+      return o.str();
+    }
+  }
+  if (want.climbs != got.climbs || want.steps != got.steps || want.modes_lost != got.modes_lost) {
+    o << "climbs/steps/lost " << got.climbs << "/" << got.steps << "/" << got.modes_lost << ", want " << want.climbs << "/" << want.steps
+      << "/" << want.modes_lost;
+  }
+  return o.str();
+}
+
+TEST(SerialClimbsRtl, EveryModeSupportAndLabelEqualTheCppModelOnRandomPackets) {
+  const std::uint64_t seed = sim::cosim_seed();
+  std::mt19937_64 rng(seed);
+  std::uint64_t cycles = 0, events = 0, climbs = 0, steps = 0;
+  int packets_with_lost_modes = 0, joins = 0;
+  for (int packet = 0; packet < 120; ++packet) {
+    const Case c = draw_case(rng);
+    const Result want = run_model(c);
+    const Result got = run_rtl(c, "");
+    const std::string verdict = sim::mismatch_traced(
+        "serial_climbs", seed,
+        "packet " + std::to_string(packet) + " (n " + std::to_string(c.n) + ", iterations " + std::to_string(int{c.cfg.max_iterations}) + ")",
+        difference(want, got), [&](const std::string& trace) { run_rtl(c, trace); });
+    ASSERT_TRUE(verdict.empty()) << verdict;
+    cycles += got.cycles, events += static_cast<std::uint64_t>(c.n), climbs += static_cast<std::uint64_t>(got.climbs);
+    steps += static_cast<std::uint64_t>(got.steps);
+    packets_with_lost_modes += want.modes_lost > 0;
+    joins += want.climbs - static_cast<int>(want.modes.size()) - want.modes_lost;
+  }
+  std::printf("%llu events, %llu climbs, %llu steps, %.1f cycles an event\n", static_cast<unsigned long long>(events),
+              static_cast<unsigned long long>(climbs), static_cast<unsigned long long>(steps),
+              static_cast<double>(cycles) / static_cast<double>(events));
+  EXPECT_GT(climbs, 500u);
+  EXPECT_GT(joins, 50) << "climbs that joined an earlier mode";
+  EXPECT_GT(packets_with_lost_modes, 2) << "packets whose modes overflowed the table";
+}
+
+}  // namespace
+}  // namespace evms
