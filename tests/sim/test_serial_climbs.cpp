@@ -18,6 +18,7 @@
 #include "hls/cluster/seeded_climbs.h"
 #include "hls/core/shape.h"
 #include "sim/verilated_block.h"
+#include "tests/sim/climbs_readout.h"
 
 namespace evms {
 namespace {
@@ -77,12 +78,8 @@ Case draw_case(std::mt19937_64& rng) {
   return c;
 }
 
-struct Result {
-  std::vector<int> first_mode;
-  std::vector<std::pair<std::int64_t, std::int64_t>> modes;
+struct Result : sim::ClimbsReadout {
   std::vector<int> supports;
-  int climbs = 0, steps = 0, modes_lost = 0;
-  std::uint64_t cycles = 0;
 };
 
 Result run_model(const Case& c) {
@@ -92,9 +89,8 @@ Result run_model(const Case& c) {
   hls::ClimbTrace trace;
   climbs->run(c.phi, c.n, c.cfg, no_warm_seeds, first_mode, modes, trace);
   Result r;
-  r.first_mode.assign(first_mode, first_mode + c.n);
-  for (int k = 0; k < modes.count; ++k) r.modes.push_back({modes.x[k], modes.y[k]}), r.supports.push_back(climbs->support(k));
-  r.climbs = trace.climbs, r.steps = trace.steps, r.modes_lost = trace.modes_lost;
+  static_cast<sim::ClimbsReadout&>(r) = sim::model_readout(first_mode, c.n, modes, trace);
+  for (int k = 0; k < modes.count; ++k) r.supports.push_back(climbs->support(k));
   return r;
 }
 
@@ -109,45 +105,22 @@ Result run_rtl(const Case& c, const std::string& trace_path) {
   rtl->cfg_max_iterations = c.cfg.max_iterations;
   rtl->cfg_tolerance = c.cfg.tolerance;
   rtl->cfg_merge_radius2 = c.cfg.merge_radius2;
+  std::vector<int> supports;
   Result r;
-  r.cycles = rtl.run_until_done([&] { rtl.tick(); }, 200'000'000);
-  for (int j = 0; j < c.n; ++j) {
-    rtl->rd_j = static_cast<std::uint16_t>(j);
-    rtl.tick();
-    r.first_mode.push_back(static_cast<std::int16_t>(rtl->rd_mode));
-  }
-  for (int k = 0; k < rtl->mode_count; ++k) {
-    rtl->rd_c = static_cast<std::uint8_t>(k);
-    rtl.tick();
-    r.modes.push_back({rtl->rd_mode_x, rtl->rd_mode_y});
-    r.supports.push_back(rtl->rd_support);
-  }
-  r.climbs = rtl->climbs, r.steps = rtl->steps, r.modes_lost = rtl->modes_lost;
+  static_cast<sim::ClimbsReadout&>(r) = sim::rtl_readout(rtl, c.n, 200'000'000, [&](int) { supports.push_back(rtl->rd_support); });
+  r.supports = supports;
   return r;
 }
 
 std::string difference(const Result& want, const Result& got) {
+  const std::string readout = sim::readout_difference(want, got);
+  if (!readout.empty()) return readout;
   std::ostringstream o;
-  for (size_t j = 0; j < want.first_mode.size(); ++j) {
-    if (want.first_mode[j] != got.first_mode[j]) {
-      o << "event " << j << ": mode " << got.first_mode[j] << ", want " << want.first_mode[j];
+  for (size_t k = 0; k < want.supports.size(); ++k) {
+    if (want.supports[k] != got.supports[k]) {
+      o << "mode " << k << " holding " << got.supports[k] << ", want " << want.supports[k];
       return o.str();
     }
-  }
-  if (want.modes.size() != got.modes.size()) {
-    o << got.modes.size() << " modes, want " << want.modes.size();
-    return o.str();
-  }
-  for (size_t k = 0; k < want.modes.size(); ++k) {
-    if (want.modes[k] != got.modes[k] || want.supports[k] != got.supports[k]) {
-      o << "mode " << k << " at " << got.modes[k].first << "," << got.modes[k].second << " holding " << got.supports[k] << ", want "
-        << want.modes[k].first << "," << want.modes[k].second << " holding " << want.supports[k];
-      return o.str();
-    }
-  }
-  if (want.climbs != got.climbs || want.steps != got.steps || want.modes_lost != got.modes_lost) {
-    o << "climbs/steps/lost " << got.climbs << "/" << got.steps << "/" << got.modes_lost << ", want " << want.climbs << "/" << want.steps
-      << "/" << want.modes_lost;
   }
   return o.str();
 }
