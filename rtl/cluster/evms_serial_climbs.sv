@@ -2,20 +2,26 @@
 // without warm seeds (cfg.warm_start false) and without the least-density test (cfg.min_density
 // 0, or cfg.density_after_links, where the test follows the links: each mode's support is read
 // out for it), built for a part without distributed RAM such as the iCE40 UP5K:
-//  - every per-event word is in block RAM with a registered read: the features, the flags
-//    (reached, in the current climb), the first mode with its labelled bit, the climb's list of
-//    touched events; so is each mode's position and support;
-//  - a step scans the whole packet, an event a clock, instead of sorting the packet into a grid
-//    of cells as rtl/cluster/evms_seeded_climbs.sv does: the sums are exact integers, so the
-//    events a step visits beyond the ball change nothing but the clocks (n a step);
+//  - every per-event word is in block RAM with a registered read: the features (in packet order
+//    and in row order with each event's index), the flags (reached, in the current climb), the
+//    first mode with its labelled bit, the climb's list of touched events; so are each mode's
+//    position and support and the rows' starts;
+//  - the packet is sorted into Bands rows of one bandwidth (by y; the last row takes every
+//    event beyond it) by a counting sort, and a step scans the three rows its ball can reach,
+//    one contiguous run of the sorted events, an event a clock: not the 2-D grid of cells of
+//    rtl/cluster/evms_seeded_climbs.sv, whose tables and row-by-row runs would take more logic
+//    than the columns save. The sums are exact integers, so the events a step visits beyond the
+//    ball change nothing but the clocks;
 //  - the ball is one bandwidth, so only differences below two bandwidths are squared (farther
 //    pairs are outside the ball and the merge radius): two (UnitShift + 1)-bit squares;
 //  - one divider takes x and then y.
-// Schedule: n clocks clearing the flags; per event seed 2 clocks to read its reached flag; per
-// climb step n + 3 clocks through a 4-stage pipeline (read; difference to the climb; squares;
-// test, sums and flags) and, when the ball held events, two divisions of SumBits + 2 clocks;
-// per climb one open mode a clock through the same pipeline and 3 more, 1 to decide, touched
-// events + 3 to label.
+// Schedule: Bands + 1 clocks clearing the row counts; 3 an event counting (and clearing its
+// flags); Bands + 3 for the prefix sums; 3 an event placing; per event seed 2 clocks to read
+// its reached flag; per climb step 3 to find its rows' run, the run's events + 4 through a
+// 5-stage pipeline (the sorted event read; its flags read and its difference to the climb; its
+// squared distance; the test, sums and flags) and, when the ball held events, two divisions of
+// SumBits + 2 clocks; per climb one open mode a clock through the same pipeline and 4 more, 1 to
+// decide, touched events + 3 to label.
 `include "evms_assert.svh"
 
 module evms_serial_climbs #(
@@ -23,7 +29,8 @@ module evms_serial_climbs #(
   parameter int ModesMax      = 64,
   parameter int IterationsMax = 8,
   parameter int UnitShift     = 14,   // kFeatFrac + kClimbFrac: fraction bits of a climb feature
-  parameter int CoordBits     = 20    // a climb feature's bits: below 2^(CoordBits - UnitShift) bandwidths
+  parameter int CoordBits     = 20,   // a climb feature's bits: below 2^(CoordBits - UnitShift) bandwidths
+  parameter int Bands         = 32    // rows of one bandwidth the packet is sorted into (kGridSide)
 ) (
   input  logic                 clk,
   input  logic                 rst_n,
@@ -60,27 +67,36 @@ module evms_serial_climbs #(
   localparam int DistBits = UnitShift + 1;                  // differences below two bandwidths
   localparam int Dist2Bits = 2 * DistBits + 1;
   localparam logic [Dist2Bits-1:0] One = Dist2Bits'(1) << (2 * UnitShift);  // h^2
+  localparam int BandBits = $clog2(Bands + 1);             // a row, or the end of the last
   `EVMS_ASSERT_INIT("a feature holds more than two bandwidths", CoordBits > DistBits)
   `EVMS_ASSERT_INIT("the event count must fit the 16-bit index range", CntBits <= 16)
+  `EVMS_ASSERT_INIT("the rows must fit the features", Bands <= (1 << (CoordBits - UnitShift)))
 
-  typedef enum logic [3:0] {
-    StIdle, StClear, StSeedRead, StSeedCheck, StClimbStart, StStepInit, StKernel, StStepEnd, StDivideX, StDivideY,
-    StJoinScan, StJoinDecide, StLabel, StDone
+  typedef enum logic [4:0] {
+    StIdle, StClear, StCountRead, StCountBand, StCountWrite, StPrefix, StPlaceRead, StPlaceNext, StPlaceWrite,
+    StSeedRead, StSeedCheck, StClimbStart, StStepInit, StRunLow, StRunHigh, StRunEnd, StKernel, StStepEnd,
+    StDivideX, StDivideY, StJoinScan, StJoinDecide, StLabel, StDone
   } state_e;
   state_e state_q;
 
   // ---- registers -------------------------------------------------------------------------
   logic [15:0]            j_q;               // clearing and event seeds: the event
-  logic [CntBits-1:0]     k_q;               // a step's scan: the next event to read
+  logic [CntBits-1:0]     k_q, k_end_q;      // a step's scan: the next sorted event to read, and its run's end
+  logic [BandBits-1:0]    b_q, pb_q;         // clearing and prefix sums: the row read, the row written
+  logic                   pv_q;              // prefix sums: a read is in flight
+  logic [CntBits-1:0]     acc_q;             // prefix sum
   logic [CoordBits-1:0]   mx_q, my_q;        // the climb
   logic [7:0]             step_q;
-  // The distance pipeline: s1 a point read (an event in the kernel, a mode in the join), s2 its
-  // difference to the climb registered, s3 its squared distance.
-  logic                   s1_valid_q, s2_valid_q, s3_valid_q;
-  logic [IdxBits-1:0]     s1_j_q, s2_j_q, s3_j_q;            // the kernel's event
+  // The distance pipeline: s1 a point read (a sorted event in the kernel, whose flags are read
+  // then, or a mode in the join), s2 its difference to the climb registered, s3 its squared
+  // distance. The kernel's events are read a stage ahead (s0), as their flags are addressed by
+  // the event's index in the packet, which the sorted memory gives.
+  logic                   s0_valid_q, s1_valid_q, s2_valid_q, s3_valid_q;   // s0: the sorted event read
+  logic [IdxBits-1:0]     s2_j_q, s3_j_q;                    // the kernel's event
   logic                   s2_in_climb_q, s3_in_climb_q;      // ... already in this climb
   logic [ModeBits-1:0]    s1_c_q, s2_c_q, s3_c_q;            // the join's mode
-  logic [CoordBits-1:0]   s2_x_q, s2_y_q, s3_x_q, s3_y_q;    // the point
+  logic [CoordBits-1:0]   s1_x_q, s1_y_q, s2_x_q, s2_y_q, s3_x_q, s3_y_q;   // the point
+  logic [IdxBits-1:0]     s1_j_q;
   logic [CntBits-1:0]     s2_support_q, s3_support_q;        // the join's mode's support
   logic [DistBits-1:0]    diff_x_q, diff_y_q;
   logic                   diff_far_q, dist2_far_q;
@@ -100,23 +116,49 @@ module evms_serial_climbs #(
   logic [IdxBits-1:0]     l2_j_q;
   logic [15:0]            climbs_q, steps_q, lost_q;
 
+  // The row of a feature: its integer part in bandwidths, the last row beyond.
+  function automatic logic [BandBits-1:0] band_of(input logic [CoordBits-1:0] v);
+    logic [CoordBits-1:0] b;
+    begin
+      b = v >> UnitShift;
+      band_of = b >= CoordBits'(Bands) ? BandBits'(Bands - 1) : BandBits'(b);
+    end
+  endfunction
+
   wire [7:0] iteration_cap = cfg_max_iterations < 8'(IterationsMax) ? cfg_max_iterations : 8'(IterationsMax);
   state_e join_state;
   assign join_state = modes_q == '0 ? StJoinDecide : StJoinScan;
   wire [IdxBits-1:0] j_index = IdxBits'(j_q);
 
   // ---- memories (common/evms_ram_1w1r) ----------------------------------------------------
-  // The packet's features.
+  // The packet's features, in packet order (the sort and the event seeds read them).
   logic [CoordBits-1:0] phi_x, phi_y;
-  logic [IdxBits-1:0]   phi_ra;
   evms_ram_1w1r #(.Width(2 * CoordBits), .Depth(PacketMax)) u_phi (
-    .clk, .we(load_we), .wa(IdxBits'(load_i)), .wd({load_x, load_y}), .ra(phi_ra), .rd({phi_x, phi_y}));
+    .clk, .we(load_we), .wa(IdxBits'(load_i)), .wd({load_x, load_y}), .ra(j_index), .rd({phi_x, phi_y}));
+  wire [BandBits-1:0] phi_band = band_of(phi_y);
+
+  // start[b]: where row b's run of sorted events begins (counts, then their prefix sums), and
+  // next[b]: where its next event goes while placing.
+  logic [CntBits-1:0]  row_start, start_wd, row_next, next_wd;
+  logic [BandBits-1:0] start_ra, start_wa, next_ra, next_wa;
+  logic                start_we, next_we;
+  evms_ram_1w1r #(.Width(CntBits), .Depth(Bands + 1)) u_start (
+    .clk, .we(start_we), .wa(start_wa), .wd(start_wd), .ra(start_ra), .rd(row_start));
+  evms_ram_1w1r #(.Width(CntBits), .Depth(Bands + 1)) u_next (
+    .clk, .we(next_we), .wa(next_wa), .wd(next_wd), .ra(next_ra), .rd(row_next));
+
+  // The events in row order, with their index in the packet.
+  logic [CoordBits-1:0] sorted_x, sorted_y;
+  logic [IdxBits-1:0]   sorted_j;
+  evms_ram_1w1r #(.Width(2 * CoordBits + IdxBits), .Depth(PacketMax)) u_sorted (
+    .clk, .we(state_q == StPlaceWrite), .wa(IdxBits'(row_next)), .wd({phi_x, phi_y, j_index}), .ra(IdxBits'(k_q)),
+    .rd({sorted_x, sorted_y, sorted_j}));
 
   // Each event's flags: reached by some climb, and in the current climb's list.
   logic               flag_reached, flag_in_climb, flags_we, flags_wd_in_climb;
   logic [IdxBits-1:0] flags_ra, flags_wa;
   evms_ram_1w1r #(.Width(2), .Depth(PacketMax)) u_flags (
-    .clk, .we(flags_we), .wa(flags_wa), .wd({!(state_q == StClear), flags_wd_in_climb}), .ra(flags_ra),
+    .clk, .we(flags_we), .wa(flags_wa), .wd({!(state_q == StCountRead), flags_wd_in_climb}), .ra(flags_ra),
     .rd({flag_reached, flag_in_climb}));
 
   // Each event's first mode, valid where labelled.
@@ -124,7 +166,7 @@ module evms_serial_climbs #(
   logic [ModeBits-1:0] first_mode;
   logic [IdxBits-1:0]  first_mode_ra, first_mode_wa;
   evms_ram_1w1r #(.Width(ModeBits + 1), .Depth(PacketMax)) u_first_mode (
-    .clk, .we(first_mode_we), .wa(first_mode_wa), .wd({!(state_q == StClear), ModeBits'(mode_q)}), .ra(first_mode_ra),
+    .clk, .we(first_mode_we), .wa(first_mode_wa), .wd({!(state_q == StCountRead), ModeBits'(mode_q)}), .ra(first_mode_ra),
     .rd({labelled, first_mode}));
 
   // The current climb's events, in the order it reached them.
@@ -158,8 +200,8 @@ module evms_serial_climbs #(
 
   // ---- the distance pipeline ----------------------------------------------------------------
   // The point at s1: the join's mode or the kernel's event.
-  wire [CoordBits-1:0] point_x = state_q == StJoinScan ? mode_x : phi_x;
-  wire [CoordBits-1:0] point_y = state_q == StJoinScan ? mode_y : phi_y;
+  wire [CoordBits-1:0] point_x = state_q == StJoinScan ? mode_x : s1_x_q;
+  wire [CoordBits-1:0] point_y = state_q == StJoinScan ? mode_y : s1_y_q;
   // |a - b| by one subtraction and its sign (not a comparison and two subtractions).
   function automatic logic [CoordBits-1:0] distance(input logic [CoordBits-1:0] a, input logic [CoordBits-1:0] b);
     logic [CoordBits:0] delta;
@@ -189,9 +231,17 @@ module evms_serial_climbs #(
   wire [CoordBits-1:0] move = move_x > move_y ? move_x : move_y;
 
   // ---- memory ports by state ----------------------------------------------------------------
+  wire [BandBits-1:0] climb_band = band_of(my_q);
   always_comb begin
-    phi_ra = state_q == StKernel ? IdxBits'(k_q) : j_index;
-    flags_ra = state_q == StKernel ? IdxBits'(k_q) : j_index;
+    flags_ra = state_q == StKernel || state_q == StStepEnd ? sorted_j : j_index;   // s0's event, or the seed
+    start_ra = '0;
+    start_we = 1'b0;
+    start_wa = '0;
+    start_wd = '0;
+    next_ra = phi_band;
+    next_we = 1'b0;
+    next_wa = '0;
+    next_wd = '0;
     flags_we = 1'b0;
     flags_wa = s3_j_q;
     flags_wd_in_climb = 1'b0;
@@ -204,12 +254,40 @@ module evms_serial_climbs #(
     mode_wd = {mx_q, my_q, count_q};
     unique case (state_q)
       StClear: begin
+        start_we = 1'b1;
+        start_wa = b_q;
+      end
+      StCountRead: begin   // the event's flags clear while its row is counted
         flags_we = 1'b1;
         flags_wa = j_index;
         first_mode_we = 1'b1;
         first_mode_wa = j_index;
       end
-      StKernel, StStepEnd: begin   // a step's last events reach s3 in StKernel
+      StCountBand: start_ra = phi_band + 1'b1;
+      StCountWrite: begin
+        start_we = 1'b1;
+        start_wa = phi_band + 1'b1;
+        start_wd = row_start + 1'b1;
+      end
+      StPrefix: begin
+        start_ra = b_q;
+        start_we = pv_q;
+        start_wa = pb_q;
+        start_wd = acc_q + row_start;
+        next_we = pv_q;
+        next_wa = pb_q;
+        next_wd = acc_q + row_start;
+      end
+      StPlaceWrite: begin
+        next_we = 1'b1;
+        next_wa = phi_band;
+        next_wd = row_next + 1'b1;
+      end
+      // A step's run: from the start of the row below the climb's to the start of the row
+      // above it plus one (the rows clamped to the packet's).
+      StRunLow: start_ra = climb_band == '0 ? '0 : climb_band - 1'b1;
+      StRunHigh: start_ra = climb_band + 1'b1 >= BandBits'(Bands) ? BandBits'(Bands) : climb_band + BandBits'(2);
+      StKernel: begin   // a step's last events reach s3 in StKernel
         flags_we = kernel_at_s3 && kernel_in;
         flags_wd_in_climb = 1'b1;
       end
@@ -238,7 +316,8 @@ module evms_serial_climbs #(
       state_q <= StIdle;
       done <= 1'b0;
       {j_q, k_q, mx_q, my_q, step_q} <= '0;
-      {s1_valid_q, s2_valid_q, s3_valid_q, s1_j_q, s2_j_q, s3_j_q, s2_in_climb_q, s3_in_climb_q} <= '0;
+      {s0_valid_q, s1_valid_q, s2_valid_q, s3_valid_q, s1_j_q, s2_j_q, s3_j_q, s2_in_climb_q, s3_in_climb_q} <= '0;
+      {s1_x_q, s1_y_q, k_end_q, b_q, pb_q, pv_q, acc_q} <= '0;
       {s1_c_q, s2_c_q, s3_c_q, s2_x_q, s2_y_q, s3_x_q, s3_y_q, s2_support_q, s3_support_q} <= '0;
       {sum_x_q, sum_y_q, new_x_q, count_q, touched_q, scan_c_q, modes_q} <= '0;
       {best_valid_q, best_q, best_d2_q, best_x_q, best_y_q, best_support_q} <= '0;
@@ -247,7 +326,11 @@ module evms_serial_climbs #(
     end else begin
       done <= 1'b0;
       // The distance pipeline: only the kernel scan and the join scan issue into s1.
-      s1_valid_q <= 1'b0;
+      s0_valid_q <= 1'b0;
+      s1_valid_q <= s0_valid_q;
+      s1_x_q <= sorted_x;
+      s1_y_q <= sorted_y;
+      s1_j_q <= sorted_j;
       s2_valid_q <= s1_valid_q;
       s3_valid_q <= s2_valid_q;
       s2_j_q <= s1_j_q;
@@ -256,8 +339,8 @@ module evms_serial_climbs #(
       s3_in_climb_q <= s2_in_climb_q;
       s2_c_q <= s1_c_q;
       s3_c_q <= s2_c_q;
-      s2_x_q <= state_q == StJoinScan ? mode_x : phi_x;
-      s2_y_q <= state_q == StJoinScan ? mode_y : phi_y;
+      s2_x_q <= point_x;
+      s2_y_q <= point_y;
       s3_x_q <= s2_x_q;
       s3_y_q <= s2_y_q;
       s2_support_q <= mode_support;
@@ -278,13 +361,46 @@ module evms_serial_climbs #(
           {climbs_q, steps_q, lost_q} <= '0;
           modes_q <= '0;
           j_q <= '0;
-          state_q <= n == '0 ? StSeedRead : StClear;
+          b_q <= '0;
+          state_q <= StClear;
         end
+        // Sorting into rows: clear the counts, count, prefix sums, place.
         StClear: begin
+          b_q <= b_q + 1'b1;
+          if (b_q == BandBits'(Bands)) state_q <= n == '0 ? StSeedRead : StCountRead;
+        end
+        StCountRead: state_q <= StCountBand;
+        StCountBand: state_q <= StCountWrite;
+        StCountWrite: begin
           j_q <= j_q + 1'b1;
-          if (j_q + 1'b1 >= n) begin
+          if (j_q + 1'b1 == n) begin
+            b_q <= '0;
+            pv_q <= 1'b0;
+            acc_q <= '0;
+            state_q <= StPrefix;
+          end else begin
+            state_q <= StCountRead;
+          end
+        end
+        StPrefix: begin
+          if (pv_q) acc_q <= acc_q + row_start;
+          pv_q <= b_q <= BandBits'(Bands);
+          pb_q <= b_q;
+          if (b_q <= BandBits'(Bands)) b_q <= b_q + 1'b1;
+          else if (!pv_q) begin
+            j_q <= '0;
+            state_q <= StPlaceRead;
+          end
+        end
+        StPlaceRead: state_q <= StPlaceNext;
+        StPlaceNext: state_q <= StPlaceWrite;
+        StPlaceWrite: begin
+          j_q <= j_q + 1'b1;
+          if (j_q + 1'b1 == n) begin
             j_q <= '0;
             state_q <= StSeedRead;
+          end else begin
+            state_q <= StPlaceRead;
           end
         end
         // The event seeds: the first event no climb has reached yet, until none is left.
@@ -320,17 +436,24 @@ module evms_serial_climbs #(
           sum_x_q <= '0;
           sum_y_q <= '0;
           count_q <= '0;
-          k_q <= '0;
+          state_q <= StRunLow;
+        end
+        StRunLow: state_q <= StRunHigh;
+        StRunHigh: begin
+          k_q <= row_start;
+          state_q <= StRunEnd;
+        end
+        StRunEnd: begin
+          k_end_q <= row_start;
           state_q <= StKernel;
         end
         StKernel: begin
-          // Issue (the memories read k); the difference, its square, the test, the sums and the
-          // flags follow in the pipeline. The step ends when its last event is at s3, whose sum
-          // is taken in the same clock.
-          s1_valid_q <= 16'(k_q) < n;
-          s1_j_q <= IdxBits'(k_q);
-          if (16'(k_q) < n) k_q <= k_q + 1'b1;
-          else if (!s1_valid_q && !s2_valid_q) state_q <= StStepEnd;
+          // Issue (the sorted memory reads k); the flags' read, the difference, its square, the
+          // test, the sums and the flags' write follow in the pipeline. The step ends when its
+          // last event is at s3, whose sum is taken in the same clock.
+          s0_valid_q <= k_q < k_end_q;
+          if (k_q < k_end_q) k_q <= k_q + 1'b1;
+          else if (!s0_valid_q && !s1_valid_q && !s2_valid_q) state_q <= StStepEnd;
         end
         StStepEnd: begin
           steps_q <= steps_q + 1'b1;
@@ -394,7 +517,7 @@ module evms_serial_climbs #(
 
   `EVMS_ASSERT("a packet holds at most PacketMax events", !(start && n > 16'(PacketMax)), clk, rst_n)
   `EVMS_ASSERT("a step's sums are complete when it ends: the distance pipeline has drained",
-               state_q != StStepEnd || !(s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
+               state_q != StStepEnd || !(s0_valid_q || s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
   `EVMS_ASSERT("the join's decision follows its last test: the distance pipeline has drained",
                state_q != StJoinDecide || !(s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
   `EVMS_ASSERT("the merge radius is below two bandwidths", !start || cfg_merge_radius2 < 64'(4) * 64'(One), clk, rst_n)

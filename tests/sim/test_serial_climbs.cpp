@@ -17,6 +17,10 @@
 #include "Vserial_climbs.h"
 #include "hls/cluster/seeded_climbs.h"
 #include "hls/core/shape.h"
+#include "hls/filter/ba_filter.h"
+#include "host/backend/core_config.h"
+#include "host/eval/scene_run.h"
+#include "host/gen/family.h"
 #include "sim/verilated_block.h"
 #include "tests/sim/climbs_readout.h"
 
@@ -28,7 +32,8 @@ namespace {
 // the engine at. The formats after the seeded path's sizes play no part in the climbs.
 using S = hls::Shape<128, 128, 1024, 1, 8, 8, 8, 16, 7, 2 * 1024, 6, 15, 8, 12, 4, 64, 4, 32, 8, 0, 1>;
 static_assert(EVMS_SERIAL_PacketMax == S::kPacketMax && EVMS_SERIAL_ModesMax == S::kModesMax &&
-                  EVMS_SERIAL_IterationsMax == S::kIterationsMax && EVMS_SERIAL_UnitShift == S::kFeatFrac + hls::kClimbFrac,
+                  EVMS_SERIAL_IterationsMax == S::kIterationsMax && EVMS_SERIAL_UnitShift == S::kFeatFrac + hls::kClimbFrac &&
+                  EVMS_SERIAL_Bands == S::kGridSide,
               "sim/CMakeLists.txt builds the engine at this test's sizes");
 
 constexpr int kWidth = 128, kHeight = 128;
@@ -150,6 +155,56 @@ TEST(SerialClimbsRtl, EveryModeSupportAndLabelEqualTheCppModelOnRandomPackets) {
   EXPECT_GT(climbs, 500u);
   EXPECT_GT(joins, 50) << "climbs that joined an earlier mode";
   EXPECT_GT(packets_with_lost_modes, 2) << "packets whose modes overflowed the table";
+}
+
+// The packets the core would give the climbs on the family's scenes at 128x128: each type's first
+// validation member (its first 0.25 s) through the core's filter, in packets of 1,024 kept
+// events (the last closed by the stream's end), the default method's registers without warm seeds. The clocks an event are printed for
+// docs/rtl.md; the climbs must agree on every packet.
+TEST(SerialClimbsRtl, EveryModeSupportAndLabelEqualTheCppModelOnTheFamilysPackets) {
+  Params p = backend::build_default_params<S>();
+  p.packet_size = S::kPacketMax, p.warm_start = false, p.density_after_links = true;
+  p.max_clusters = S::kClustersMax, p.max_tracks = S::kTracksMax;
+  const hls::Config cfg = backend::core_config<S>(p, {kWidth, kHeight});
+  gen::FamilyPins pins;
+  pins.width = kWidth, pins.height = kHeight;
+  std::uint64_t cycles = 0, events = 0;
+  int packets = 0;
+  for (const char* type : gen::family_types()) {
+    gen::SceneConfig config = gen::family_scene(type, gen::split_seed(gen::Split::kValidation, 0), pins);
+    config.duration_s = std::min(config.duration_s, 0.25);
+    const eval::Scene scene = eval::generate_scene(config);
+    auto filter = std::make_unique<hls::BackgroundActivityFilter<S>>();
+    filter->reset();
+    Case c;
+    c.cfg = cfg;
+    std::uint64_t type_cycles = 0, type_events = 0;
+    auto close_packet = [&] {
+      hls::climb_features(c.events, c.n, c.cfg, c.phi);
+      const Result want = run_model(c);
+      const Result got = run_rtl(c, "");
+      const std::string verdict = sim::mismatch_traced("serial_climbs", 0, std::string(type) + " packet " + std::to_string(packets),
+                                                       difference(want, got), [&](const std::string& trace) { run_rtl(c, trace); });
+      ASSERT_TRUE(verdict.empty()) << verdict;
+      type_cycles += got.cycles, type_events += static_cast<std::uint64_t>(c.n);
+      ++packets;
+      c.n = 0;
+    };
+    for (const Event& e : scene.events) {
+      const hls::EventWord word{static_cast<std::uint32_t>(e.t + 1), e.x, e.y, e.p, false};
+      if (!filter->accept(word, cfg)) continue;
+      c.events.x[c.n] = e.x, c.events.y[c.n] = e.y, ++c.n;
+      if (c.n == S::kPacketMax) close_packet();
+      if (HasFatalFailure()) return;
+    }
+    if (c.n > 0) close_packet();   // the stream's last packet, closed by its end
+    if (HasFatalFailure()) return;
+    std::printf("%s: %llu events in packets, %.1f clocks an event\n", type, static_cast<unsigned long long>(type_events),
+                static_cast<double>(type_cycles) / static_cast<double>(type_events));
+    cycles += type_cycles, events += type_events;
+  }
+  std::printf("%d packets, %.1f clocks an event\n", packets, static_cast<double>(cycles) / static_cast<double>(events));
+  EXPECT_GT(packets, 20);
 }
 
 }  // namespace
