@@ -8,6 +8,7 @@ math/evms_divide_rounded.sv
 filter/evms_ba_filter.sv
 cluster/evms_mean_shift.sv
 cluster/evms_merge.sv
+cluster/evms_counting_sort.sv
 cluster/evms_seeded_climbs.sv
 cluster/evms_mode_links.sv
 cluster/evms_polarity_split.sv

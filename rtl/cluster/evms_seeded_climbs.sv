@@ -13,8 +13,8 @@
 // (rd_c_sparse) to make it on the linked sets instead (hls/cluster/sparse_sets.h).
 //
 // Schedule:
-//   sort    Cells + 1 clearing the cell counts, 3 a event counting, Cells + 2 for the prefix
-//           sums, 3 a event placing;
+//   sort    rtl/cluster/evms_counting_sort.sv: Cells + 1 clearing the cell counts, 3 an event
+//           counting, Cells + 3 for the prefix sums, 3 an event placing;
 //   climbs  per step: per row of cells 3 to read its run, one event a clock and 1 more, through
 //           a 4-stage pipeline (read; difference to the climb; squares; test and accumulate)
 //           that drains while the next row's run is read, 2 to drain after the last row, and
@@ -95,8 +95,7 @@ module evms_seeded_climbs #(
   `EVMS_ASSERT_INIT("the grid's clearing must reach every event's flags", Cells + 1 >= PacketMax)
 
   typedef enum logic [4:0] {
-    StIdle, StClear, StCountRead, StCountCell, StCountWrite, StPrefix, StPlaceRead, StPlaceNext, StPlaceWrite,
-    StSeedWarm, StSeedWarmLoad, StSeedEvent, StSeedEventLoad, StClimbStart, StStepInit, StRowLow, StRowHigh,
+    StIdle, StSort, StSeedWarm, StSeedWarmLoad, StSeedEvent, StSeedEventLoad, StClimbStart, StStepInit, StRowLow, StRowHigh,
     StRowRange, StKernel, StStepEnd, StDivide, StJoinScan, StJoinDecide, StLabel, StDone
   } state_e;
   state_e state_q;
@@ -112,9 +111,6 @@ module evms_seeded_climbs #(
 
   // ---- registers -------------------------------------------------------------------------
   logic [15:0]          j_q;                 // event index of the sort passes and the event seeds
-  logic [CellBits-1:0]  c_q, pc_q;           // prefix pass: cell read, cell written
-  logic                 pv_q;                // prefix pass: a read is in flight
-  logic [CntBits-1:0]   acc_q;               // prefix sum
   logic [7:0]           seed_k_q;            // warm seed index
   logic                 seeding_warm_q;
   logic [CoordBits-1:0] mx_q, my_q;
@@ -167,38 +163,29 @@ module evms_seeded_climbs #(
   assign rd_x = phi_x_q;
   assign rd_y = phi_y_q;
 
-  // Each event's cell, from counting to placing.
-  logic [CellBits-1:0] cell_q, cell_wd;
-  logic                cell_we;
-  evms_ram_1w1r #(.Width(CellBits), .Depth(PacketMax)) u_cell (
-    .clk, .we(cell_we), .wa(j_index), .wd(cell_wd), .ra(j_index), .rd(cell_q));
-
-  // start[c]: where cell c's run of sorted events begins (counts, then their prefix sums).
-  logic [CntBits-1:0]  start_q, start_wd;
-  logic [CellBits-1:0] start_ra, start_wa;
-  logic                start_we;
-  evms_ram_1w1r #(.Width(CntBits), .Depth(Cells + 1)) u_start (
-    .clk, .we(start_we), .wa(start_wa), .wd(start_wd), .ra(start_ra), .rd(start_q));
-
-  // next[c]: where cell c's next event goes while placing.
-  localparam int CellIdxBits = $clog2(Cells);
-  logic [CntBits-1:0]  next_q, next_wd;
-  logic [CellBits-1:0] next_ra, next_wa;           // below Cells
-  logic                next_we;
-  evms_ram_1w1r #(.Width(CntBits), .Depth(Cells)) u_next (
-    .clk, .we(next_we), .wa(CellIdxBits'(next_wa)), .wd(next_wd), .ra(CellIdxBits'(next_ra)), .rd(next_q));
+  // The sort into cells (common to evms_serial_climbs' rows), and the start of each cell's run of
+  // sorted events. The clearing of its counts clears the per-event flags (Cells + 1 >= PacketMax)
+  // and sums the packet's least density.
+  logic                sort_clearing, sort_place_we, sort_done, unused_count_read;   // the flags clear with the counts
+  logic [CellBits-1:0] sort_clear_index, start_ra;
+  logic [IdxBits-1:0]  sort_j;
+  logic [IdxBits-1:0]  sort_place_k;
+  logic [CntBits-1:0]  start_q;
+  evms_counting_sort #(.PacketMax(PacketMax), .Keys(Cells)) u_sort (
+    .clk, .rst_n, .start(start && (state_q == StIdle || state_q == StDone)), .n, .clearing(sort_clearing),
+    .clear_index(sort_clear_index), .count_read(unused_count_read), .j(sort_j), .key(count_cell), .place_we(sort_place_we),
+    .place_k(sort_place_k), .done(sort_done), .run_ra(start_ra), .run_start(start_q));
 
   // The events in cell order, with their packet index.
   logic [CoordBits-1:0] sorted_x_q, sorted_y_q;
   logic [IdxBits-1:0]   event_q;
-  logic                 sorted_we;
   evms_ram_1w1r #(.Width(2 * CoordBits + IdxBits), .Depth(PacketMax)) u_sorted (
-    .clk, .we(sorted_we), .wa(IdxBits'(next_q)), .wd({phi_x_q, phi_y_q, j_index}), .ra(IdxBits'(k_q)),
+    .clk, .we(sort_place_we), .wa(sort_place_k), .wd({phi_x_q, phi_y_q, sort_j}), .ra(IdxBits'(k_q)),
     .rd({sorted_x_q, sorted_y_q, event_q}));
 
   // The per-event flags. Each has one address a state chooses; StClear writes zeros.
-  wire               flags_clearing = state_q == StClear && 32'(c_q) < PacketMax;
-  wire [IdxBits-1:0] clear_index = IdxBits'(c_q);
+  wire               flags_clearing = sort_clearing && 32'(sort_clear_index) < PacketMax;
+  wire [IdxBits-1:0] clear_index = IdxBits'(sort_clear_index);
   logic [IdxBits-1:0] touched_rd_q;
   logic reached_mem [PacketMax], in_climb_mem [PacketMax], labelled_mem [PacketMax];
   // A kernel event at s3: the pipeline's last stage outside the join scan (a row's last events
@@ -332,52 +319,9 @@ module evms_seeded_climbs #(
   wire [CellBits-1:0] count_cell = CellBits'(cell_of(phi_y_q)) * CellBits'(GridSide) + CellBits'(cell_of(phi_x_q));
 
   always_comb begin
-    phi_ra = state_q == StIdle || state_q == StDone ? IdxBits'(rd_j) : j_index;
-    start_ra = '0;
-    start_we = 1'b0;
-    start_wa = '0;
-    start_wd = '0;
-    next_ra = cell_q;
-    next_we = 1'b0;
-    next_wa = '0;
-    next_wd = '0;
-    cell_we = 1'b0;
-    cell_wd = count_cell;
-    sorted_we = 1'b0;
+    phi_ra = state_q == StIdle || state_q == StDone ? IdxBits'(rd_j) : state_q == StSort ? sort_j : j_index;
     mode_ra = state_q == StJoinScan ? ModeBits'(scan_c_q) : ModeBits'(rd_c);
-    unique case (state_q)
-      StClear: begin
-        start_we = 1'b1;
-        start_wa = c_q;
-      end
-      StCountCell: begin
-        cell_we = 1'b1;
-        start_ra = count_cell + 1'b1;
-      end
-      StCountWrite: begin
-        start_we = 1'b1;
-        start_wa = count_cell + 1'b1;           // phi still holds event j_q
-        start_wd = start_q + 1'b1;
-      end
-      StPrefix: begin
-        start_ra = c_q;
-        start_we = pv_q;
-        start_wa = pc_q;
-        start_wd = acc_q + start_q;
-        next_we = pv_q && pc_q != CellBits'(Cells);
-        next_wa = pc_q;
-        next_wd = acc_q + start_q;
-      end
-      StPlaceWrite: begin
-        sorted_we = 1'b1;
-        next_we = 1'b1;
-        next_wa = cell_q;
-        next_wd = next_q + 1'b1;
-      end
-      StRowLow: start_ra = row_base + CellBits'(x0_q);
-      StRowHigh: start_ra = row_base + CellBits'(x1_q) + 1'b1;
-      default: ;
-    endcase
+    start_ra = state_q == StRowLow ? row_base + CellBits'(x0_q) : row_base + CellBits'(x1_q) + 1'b1;   // StRowHigh
   end
 
   // ---- the controller and the datapath -----------------------------------------------------
@@ -385,7 +329,7 @@ module evms_seeded_climbs #(
     if (!rst_n) begin
       state_q <= StIdle;
       done <= 1'b0;
-      {j_q, c_q, pc_q, pv_q, acc_q, seed_k_q, seeding_warm_q} <= '0;
+      {j_q, seed_k_q, seeding_warm_q} <= '0;
       {mx_q, my_q, ball2_q, reach_q, step_q, row_q, row_last_q, x0_q, x1_q, k_q, k_end_q} <= '0;
       {s1_valid_q, s2_valid_q, s3_valid_q, s2_x_q, s2_y_q, s3_x_q, s3_y_q, s2_j_q, s3_j_q, s1_c_q, s2_c_q, s3_c_q} <= '0;
       {sum_x_q, sum_y_q, count_q, touched_q, scan_c_q, best_valid_q, best_q, best_d2_q} <= '0;
@@ -417,54 +361,17 @@ module evms_seeded_climbs #(
         StIdle, StDone: if (start) begin
           {climbs_q, steps_q, lost_q} <= '0;
           modes_q <= '0;
-          c_q <= '0;
           least_q <= '0;
-          state_q <= StClear;
+          state_q <= StSort;
         end
-        // Sorting into cells: count, prefix sums, place.
-        StClear: begin
-          c_q <= c_q + 1'b1;
-          if (16'(c_q) < n) least_q <= least_q + LeastBits'(cfg_min_density);
-          if (c_q == CellBits'(Cells)) begin
+        // Sorting into cells (u_sort); its clearing sums the least density.
+        StSort: begin
+          if (sort_clearing && 16'(sort_clear_index) < n) least_q <= least_q + LeastBits'(cfg_min_density);
+          if (sort_done) begin
             j_q <= '0;
-            state_q <= n == '0 ? StSeedWarm : StCountRead;
-            seed_k_q <= '0;
-            seeding_warm_q <= 1'b1;
-          end
-        end
-        StCountRead: state_q <= StCountCell;
-        StCountCell: state_q <= StCountWrite;
-        StCountWrite: begin
-          j_q <= j_q + 1'b1;
-          if (j_q + 1'b1 == n) begin
-            c_q <= '0;
-            pv_q <= 1'b0;
-            acc_q <= '0;
-            state_q <= StPrefix;
-          end else begin
-            state_q <= StCountRead;
-          end
-        end
-        StPrefix: begin
-          if (pv_q) acc_q <= acc_q + start_q;
-          pv_q <= c_q <= CellBits'(Cells);
-          pc_q <= c_q;
-          if (c_q <= CellBits'(Cells)) c_q <= c_q + 1'b1;
-          if (c_q > CellBits'(Cells) && !pv_q) begin
-            j_q <= '0;
-            state_q <= StPlaceRead;
-          end
-        end
-        StPlaceRead: state_q <= StPlaceNext;
-        StPlaceNext: state_q <= StPlaceWrite;
-        StPlaceWrite: begin
-          j_q <= j_q + 1'b1;
-          if (j_q + 1'b1 == n) begin
             seed_k_q <= '0;
             seeding_warm_q <= 1'b1;
             state_q <= StSeedWarm;
-          end else begin
-            state_q <= StPlaceRead;
           end
         end
         // Seeds: the warm ones, then every event not reached yet.

@@ -15,8 +15,9 @@
 //  - the ball is one bandwidth, so only differences below two bandwidths are squared (farther
 //    pairs are outside the ball and the merge radius): two (UnitShift + 1)-bit squares;
 //  - one divider takes x and then y.
-// Schedule: Bands + 1 clocks clearing the row counts; 3 an event counting (and clearing its
-// flags); Bands + 3 for the prefix sums; 3 an event placing; per event seed 2 clocks to read
+// Schedule: the sort (rtl/cluster/evms_counting_sort.sv: Bands + 1 clocks clearing the row counts;
+// 3 an event counting, which clears its flags; Bands + 3 for the prefix sums; 3 an event
+// placing); per event seed 2 clocks to read
 // its reached flag; per climb step 3 to find its rows' run, the run's events + 4 through a
 // 5-stage pipeline (the sorted event read; its flags read and its difference to the climb; its
 // squared distance; the test, sums and flags) and, when the ball held events, two divisions of
@@ -73,8 +74,7 @@ module evms_serial_climbs #(
   `EVMS_ASSERT_INIT("the rows must fit the features", Bands <= (1 << (CoordBits - UnitShift)))
 
   typedef enum logic [4:0] {
-    StIdle, StClear, StCountRead, StCountBand, StCountWrite, StPrefix, StPlaceRead, StPlaceNext, StPlaceWrite,
-    StSeedRead, StSeedCheck, StClimbStart, StStepInit, StRunLow, StRunHigh, StRunEnd, StKernel, StStepEnd,
+    StIdle, StSort, StSeedRead, StSeedCheck, StClimbStart, StStepInit, StRunLow, StRunHigh, StRunEnd, StKernel, StStepEnd,
     StDivideX, StDivideY, StJoinScan, StJoinDecide, StLabel, StDone
   } state_e;
   state_e state_q;
@@ -82,9 +82,6 @@ module evms_serial_climbs #(
   // ---- registers -------------------------------------------------------------------------
   logic [15:0]            j_q;               // clearing and event seeds: the event
   logic [CntBits-1:0]     k_q, k_end_q;      // a step's scan: the next sorted event to read, and its run's end
-  logic [BandBits-1:0]    b_q, pb_q;         // clearing and prefix sums: the row read, the row written
-  logic                   pv_q;              // prefix sums: a read is in flight
-  logic [CntBits-1:0]     acc_q;             // prefix sum
   logic [CoordBits-1:0]   mx_q, my_q;        // the climb
   logic [7:0]             step_q;
   // The distance pipeline: s1 a point read (a sorted event in the kernel, whose flags are read
@@ -133,32 +130,34 @@ module evms_serial_climbs #(
   // ---- memories (common/evms_ram_1w1r) ----------------------------------------------------
   // The packet's features, in packet order (the sort and the event seeds read them).
   logic [CoordBits-1:0] phi_x, phi_y;
+  logic [IdxBits-1:0]   sort_j;
   evms_ram_1w1r #(.Width(2 * CoordBits), .Depth(PacketMax)) u_phi (
-    .clk, .we(load_we), .wa(IdxBits'(load_i)), .wd({load_x, load_y}), .ra(j_index), .rd({phi_x, phi_y}));
-  wire [BandBits-1:0] phi_band = band_of(phi_y);
+    .clk, .we(load_we), .wa(IdxBits'(load_i)), .wd({load_x, load_y}), .ra(state_q == StSort ? sort_j : j_index),
+    .rd({phi_x, phi_y}));
 
-  // start[b]: where row b's run of sorted events begins (counts, then their prefix sums), and
-  // next[b]: where its next event goes while placing.
-  logic [CntBits-1:0]  row_start, start_wd, row_next, next_wd;
-  logic [BandBits-1:0] start_ra, start_wa, next_ra, next_wa;
-  logic                start_we, next_we;
-  evms_ram_1w1r #(.Width(CntBits), .Depth(Bands + 1)) u_start (
-    .clk, .we(start_we), .wa(start_wa), .wd(start_wd), .ra(start_ra), .rd(row_start));
-  evms_ram_1w1r #(.Width(CntBits), .Depth(Bands + 1)) u_next (
-    .clk, .we(next_we), .wa(next_wa), .wd(next_wd), .ra(next_ra), .rd(row_next));
+  // The sort into rows, and the start of each row's run of sorted events.
+  logic                sort_count_read, sort_place_we, sort_done, unused_clearing;   // the flags clear with the count
+  logic [BandBits-1:0] unused_clear_index;
+  logic [IdxBits-1:0]  sort_place_k;
+  logic [CntBits-1:0]  row_start;
+  logic [BandBits-1:0] run_ra;
+  evms_counting_sort #(.PacketMax(PacketMax), .Keys(Bands)) u_sort (
+    .clk, .rst_n, .start(start && (state_q == StIdle || state_q == StDone)), .n, .clearing(unused_clearing), .clear_index(unused_clear_index),
+    .count_read(sort_count_read), .j(sort_j), .key(band_of(phi_y)), .place_we(sort_place_we), .place_k(sort_place_k),
+    .done(sort_done), .run_ra, .run_start(row_start));
 
   // The events in row order, with their index in the packet.
   logic [CoordBits-1:0] sorted_x, sorted_y;
   logic [IdxBits-1:0]   sorted_j;
   evms_ram_1w1r #(.Width(2 * CoordBits + IdxBits), .Depth(PacketMax)) u_sorted (
-    .clk, .we(state_q == StPlaceWrite), .wa(IdxBits'(row_next)), .wd({phi_x, phi_y, j_index}), .ra(IdxBits'(k_q)),
+    .clk, .we(sort_place_we), .wa(sort_place_k), .wd({phi_x, phi_y, sort_j}), .ra(IdxBits'(k_q)),
     .rd({sorted_x, sorted_y, sorted_j}));
 
   // Each event's flags: reached by some climb, and in the current climb's list.
   logic               flag_reached, flag_in_climb, flags_we, flags_wd_in_climb;
   logic [IdxBits-1:0] flags_ra, flags_wa;
   evms_ram_1w1r #(.Width(2), .Depth(PacketMax)) u_flags (
-    .clk, .we(flags_we), .wa(flags_wa), .wd({!(state_q == StCountRead), flags_wd_in_climb}), .ra(flags_ra),
+    .clk, .we(flags_we), .wa(flags_wa), .wd({!sort_count_read, flags_wd_in_climb}), .ra(flags_ra),
     .rd({flag_reached, flag_in_climb}));
 
   // Each event's first mode, valid where labelled.
@@ -166,7 +165,7 @@ module evms_serial_climbs #(
   logic [ModeBits-1:0] first_mode;
   logic [IdxBits-1:0]  first_mode_ra, first_mode_wa;
   evms_ram_1w1r #(.Width(ModeBits + 1), .Depth(PacketMax)) u_first_mode (
-    .clk, .we(first_mode_we), .wa(first_mode_wa), .wd({!(state_q == StCountRead), ModeBits'(mode_q)}), .ra(first_mode_ra),
+    .clk, .we(first_mode_we), .wa(first_mode_wa), .wd({!sort_count_read, ModeBits'(mode_q)}), .ra(first_mode_ra),
     .rd({labelled, first_mode}));
 
   // The current climb's events, in the order it reached them.
@@ -234,14 +233,10 @@ module evms_serial_climbs #(
   wire [BandBits-1:0] climb_band = band_of(my_q);
   always_comb begin
     flags_ra = state_q == StKernel || state_q == StStepEnd ? sorted_j : j_index;   // s0's event, or the seed
-    start_ra = '0;
-    start_we = 1'b0;
-    start_wa = '0;
-    start_wd = '0;
-    next_ra = phi_band;
-    next_we = 1'b0;
-    next_wa = '0;
-    next_wd = '0;
+    // A step's run: from the start of the row below the climb's to the start of the row above it
+    // plus one (the rows clamped to the packet's).
+    run_ra = state_q == StRunLow ? (climb_band == '0 ? '0 : climb_band - 1'b1)
+                                 : (climb_band + 1'b1 >= BandBits'(Bands) ? BandBits'(Bands) : climb_band + BandBits'(2));
     flags_we = 1'b0;
     flags_wa = s3_j_q;
     flags_wd_in_climb = 1'b0;
@@ -253,40 +248,12 @@ module evms_serial_climbs #(
     mode_wa = ModeBits'(modes_q);
     mode_wd = {mx_q, my_q, count_q};
     unique case (state_q)
-      StClear: begin
-        start_we = 1'b1;
-        start_wa = b_q;
+      StSort: begin   // each event's flags clear while its row is counted
+        flags_we = sort_count_read;
+        flags_wa = sort_j;
+        first_mode_we = sort_count_read;
+        first_mode_wa = sort_j;
       end
-      StCountRead: begin   // the event's flags clear while its row is counted
-        flags_we = 1'b1;
-        flags_wa = j_index;
-        first_mode_we = 1'b1;
-        first_mode_wa = j_index;
-      end
-      StCountBand: start_ra = phi_band + 1'b1;
-      StCountWrite: begin
-        start_we = 1'b1;
-        start_wa = phi_band + 1'b1;
-        start_wd = row_start + 1'b1;
-      end
-      StPrefix: begin
-        start_ra = b_q;
-        start_we = pv_q;
-        start_wa = pb_q;
-        start_wd = acc_q + row_start;
-        next_we = pv_q;
-        next_wa = pb_q;
-        next_wd = acc_q + row_start;
-      end
-      StPlaceWrite: begin
-        next_we = 1'b1;
-        next_wa = phi_band;
-        next_wd = row_next + 1'b1;
-      end
-      // A step's run: from the start of the row below the climb's to the start of the row
-      // above it plus one (the rows clamped to the packet's).
-      StRunLow: start_ra = climb_band == '0 ? '0 : climb_band - 1'b1;
-      StRunHigh: start_ra = climb_band + 1'b1 >= BandBits'(Bands) ? BandBits'(Bands) : climb_band + BandBits'(2);
       StKernel: begin   // a step's last events reach s3 in StKernel
         flags_we = kernel_at_s3 && kernel_in;
         flags_wd_in_climb = 1'b1;
@@ -317,7 +284,7 @@ module evms_serial_climbs #(
       done <= 1'b0;
       {j_q, k_q, mx_q, my_q, step_q} <= '0;
       {s0_valid_q, s1_valid_q, s2_valid_q, s3_valid_q, s1_j_q, s2_j_q, s3_j_q, s2_in_climb_q, s3_in_climb_q} <= '0;
-      {s1_x_q, s1_y_q, k_end_q, b_q, pb_q, pv_q, acc_q} <= '0;
+      {s1_x_q, s1_y_q, k_end_q} <= '0;
       {s1_c_q, s2_c_q, s3_c_q, s2_x_q, s2_y_q, s3_x_q, s3_y_q, s2_support_q, s3_support_q} <= '0;
       {sum_x_q, sum_y_q, new_x_q, count_q, touched_q, scan_c_q, modes_q} <= '0;
       {best_valid_q, best_q, best_d2_q, best_x_q, best_y_q, best_support_q} <= '0;
@@ -360,48 +327,11 @@ module evms_serial_climbs #(
         StIdle, StDone: if (start) begin
           {climbs_q, steps_q, lost_q} <= '0;
           modes_q <= '0;
+          state_q <= StSort;
+        end
+        StSort: if (sort_done) begin
           j_q <= '0;
-          b_q <= '0;
-          state_q <= StClear;
-        end
-        // Sorting into rows: clear the counts, count, prefix sums, place.
-        StClear: begin
-          b_q <= b_q + 1'b1;
-          if (b_q == BandBits'(Bands)) state_q <= n == '0 ? StSeedRead : StCountRead;
-        end
-        StCountRead: state_q <= StCountBand;
-        StCountBand: state_q <= StCountWrite;
-        StCountWrite: begin
-          j_q <= j_q + 1'b1;
-          if (j_q + 1'b1 == n) begin
-            b_q <= '0;
-            pv_q <= 1'b0;
-            acc_q <= '0;
-            state_q <= StPrefix;
-          end else begin
-            state_q <= StCountRead;
-          end
-        end
-        StPrefix: begin
-          if (pv_q) acc_q <= acc_q + row_start;
-          pv_q <= b_q <= BandBits'(Bands);
-          pb_q <= b_q;
-          if (b_q <= BandBits'(Bands)) b_q <= b_q + 1'b1;
-          else if (!pv_q) begin
-            j_q <= '0;
-            state_q <= StPlaceRead;
-          end
-        end
-        StPlaceRead: state_q <= StPlaceNext;
-        StPlaceNext: state_q <= StPlaceWrite;
-        StPlaceWrite: begin
-          j_q <= j_q + 1'b1;
-          if (j_q + 1'b1 == n) begin
-            j_q <= '0;
-            state_q <= StSeedRead;
-          end else begin
-            state_q <= StPlaceRead;
-          end
+          state_q <= StSeedRead;
         end
         // The event seeds: the first event no climb has reached yet, until none is left.
         StSeedRead: begin
