@@ -17,8 +17,7 @@
 //  - one divider takes x and then y.
 // Schedule: the sort (rtl/cluster/evms_counting_sort.sv: Bands + 1 clocks clearing the row counts;
 // 3 an event counting, which clears its flags; Bands + 3 for the prefix sums; 3 an event
-// placing); per event seed 2 clocks to read
-// its reached flag; per climb step 3 to find its rows' run, the run's events + 4 through a
+// placing); per event seed 2 clocks to read its reached flag; per climb step 3 to find its rows' run, the run's events + 4 through a
 // 5-stage pipeline (the sorted event read; its flags read and its difference to the climb; its
 // squared distance; the test, sums and flags) and, when the ball held events, two divisions of
 // SumBits + 2 clocks; per climb one open mode a clock through the same pipeline and 4 more, 1 to
@@ -80,7 +79,7 @@ module evms_serial_climbs #(
   state_e state_q;
 
   // ---- registers -------------------------------------------------------------------------
-  logic [15:0]            j_q;               // clearing and event seeds: the event
+  logic [15:0]            j_q;               // the event seeds: the event
   logic [CntBits-1:0]     k_q, k_end_q;      // a step's scan: the next sorted event to read, and its run's end
   logic [CoordBits-1:0]   mx_q, my_q;        // the climb
   logic [7:0]             step_q;
