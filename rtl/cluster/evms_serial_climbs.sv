@@ -231,7 +231,7 @@ module evms_serial_climbs #(
   // ---- memory ports by state ----------------------------------------------------------------
   wire [BandBits-1:0] climb_band = band_of(my_q);
   always_comb begin
-    flags_ra = state_q == StKernel || state_q == StStepEnd ? sorted_j : j_index;   // s0's event, or the seed
+    flags_ra = state_q == StKernel ? sorted_j : j_index;   // s0's event, or the seed
     // A step's run: from the start of the row below the climb's to the start of the row above it
     // plus one (the rows clamped to the packet's).
     run_ra = state_q == StRunLow ? (climb_band == '0 ? '0 : climb_band - 1'b1)

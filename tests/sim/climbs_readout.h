@@ -1,7 +1,8 @@
-// What the climbs' block tests (test_seeded_climbs.cpp, test_serial_climbs.cpp) read back from
-// the C++ climbs and from the RTL, and the first difference between the two: every event's mode,
-// every mode's position, and the climb, step and lost-mode counts. Each test compares what its
-// block adds (the sparse modes, the supports) on its own.
+// What the climbs' block tests (test_seeded_climbs.cpp, test_serial_climbs.cpp) load into both
+// climbs' RTL (the packet's features and the registers they share), what they read back from the
+// C++ climbs and from the RTL, and the first difference between the two: every event's mode,
+// every mode's position, and the climb, step and lost-mode counts. Each test loads and compares
+// what its block adds (warm seeds and the least density; the supports) on its own.
 #pragma once
 
 #include <algorithm>
@@ -15,6 +16,21 @@
 #include "sim/verilated_block.h"
 
 namespace evms::sim {
+
+// Writes the packet's n features into the block, one a clock, and sets the registers both
+// climbs take.
+template <class Model, class Phi>
+void load_packet(VerilatedBlock<Model>& rtl, const Phi& phi, int n, const hls::Config& cfg) {
+  for (int i = 0; i < n; ++i) {
+    rtl->load_we = 1, rtl->load_i = static_cast<std::uint16_t>(i), rtl->load_x = phi.x[i], rtl->load_y = phi.y[i];
+    rtl.tick();
+  }
+  rtl->load_we = 0;
+  rtl->n = static_cast<std::uint16_t>(n);
+  rtl->cfg_max_iterations = cfg.max_iterations;
+  rtl->cfg_tolerance = cfg.tolerance;
+  rtl->cfg_merge_radius2 = cfg.merge_radius2;
+}
 
 struct ClimbsReadout {
   std::vector<int> first_mode;

@@ -110,11 +110,7 @@ Result run_model(const Case& c) {
 
 Result run_rtl(const Case& c, const std::string& trace_path) {
   sim::VerilatedBlock<Vseeded_climbs> rtl(trace_path);
-  for (int i = 0; i < c.n; ++i) {
-    rtl->load_we = 1, rtl->load_i = static_cast<std::uint16_t>(i), rtl->load_x = c.phi.x[i], rtl->load_y = c.phi.y[i];
-    rtl.tick();
-  }
-  rtl->load_we = 0;
+  sim::load_packet(rtl, c.phi, c.n, c.cfg);
   for (int k = 0; k < c.warm.count; ++k) {
     rtl->warm_we = 1, rtl->warm_k = static_cast<std::uint8_t>(k);
     rtl->warm_x = static_cast<std::uint32_t>(c.warm.x[k]), rtl->warm_y = static_cast<std::uint32_t>(c.warm.y[k]);
@@ -122,12 +118,8 @@ Result run_rtl(const Case& c, const std::string& trace_path) {
     rtl.tick();
   }
   rtl->warm_we = 0;
-  rtl->n = static_cast<std::uint16_t>(c.n);
   rtl->warm_count = static_cast<std::uint8_t>(c.warm.count);
   rtl->cfg_warm_start = c.cfg.warm_start;
-  rtl->cfg_max_iterations = c.cfg.max_iterations;
-  rtl->cfg_tolerance = c.cfg.tolerance;
-  rtl->cfg_merge_radius2 = c.cfg.merge_radius2;
   rtl->cfg_min_density = c.cfg.min_density;
   rtl->cfg_density_after_links = c.cfg.density_after_links;
   std::vector<bool> sparse;

@@ -101,15 +101,7 @@ Result run_model(const Case& c) {
 
 Result run_rtl(const Case& c, const std::string& trace_path) {
   sim::VerilatedBlock<Vserial_climbs> rtl(trace_path);
-  for (int i = 0; i < c.n; ++i) {
-    rtl->load_we = 1, rtl->load_i = static_cast<std::uint16_t>(i), rtl->load_x = c.phi.x[i], rtl->load_y = c.phi.y[i];
-    rtl.tick();
-  }
-  rtl->load_we = 0;
-  rtl->n = static_cast<std::uint16_t>(c.n);
-  rtl->cfg_max_iterations = c.cfg.max_iterations;
-  rtl->cfg_tolerance = c.cfg.tolerance;
-  rtl->cfg_merge_radius2 = c.cfg.merge_radius2;
+  sim::load_packet(rtl, c.phi, c.n, c.cfg);
   std::vector<int> supports;
   Result r;
   static_cast<sim::ClimbsReadout&>(r) = sim::rtl_readout(rtl, c.n, 200'000'000, [&](int) { supports.push_back(rtl->rd_support); });
