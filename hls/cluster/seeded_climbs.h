@@ -70,6 +70,20 @@ struct ClimbTrace {
   int modes_lost = 0;         // climbs that found the mode table full
 };
 
+// What one packet's climbs give the rest of the core: every event's mode and every mode's
+// position and support, with the counts. A board whose core stops at the climbs
+// (rtl/core/evms_climbs_core.sv) returns one a packet, and Core::process_climbed completes the
+// packet from it (hls/core/core.h).
+template <class S>
+struct ClimbsFrame {
+  int n = 0;                                  // events in the packet
+  int mode_count = 0;
+  std::uint32_t x[S::kModesMax], y[S::kModesMax];
+  std::uint16_t support[S::kModesMax];
+  std::int16_t first_mode[S::kPacketMax];     // -1: no mode
+  ClimbTrace trace;
+};
+
 namespace detail {
 
 // round(num / den) for num >= 0, den > 0, half up.
@@ -125,6 +139,38 @@ class SeededClimbs {
 
   // Mode c's support in the last run: the most events a climb that joined it held at its last step.
   int support(int c) const { return support_[c]; }
+
+  // The last run's result, as a board whose core stops at the climbs returns it.
+  void frame(const std::int16_t first_mode[S::kPacketMax], int n, const Modes<S>& modes, const ClimbTrace& trace, ClimbsFrame<S>& out) const {
+    out.n = n, out.mode_count = modes.count, out.trace = trace;
+  modes_out:
+    for (int c = 0; c < S::kModesMax; ++c) {
+      if (c >= modes.count) break;
+      out.x[c] = static_cast<std::uint32_t>(modes.x[c]), out.y[c] = static_cast<std::uint32_t>(modes.y[c]), out.support[c] = support_[c];
+    }
+  events_out:
+    for (int j = 0; j < S::kPacketMax; ++j) {
+      if (j >= n) break;
+      out.first_mode[j] = first_mode[j];
+    }
+  }
+
+  // Takes a run's result from elsewhere (a board's climbs, of a run without warm seeds) as if
+  // this had run it: run()'s outputs, and the supports support() and sparse() read.
+  void assume(const ClimbsFrame<S>& in, std::int16_t first_mode[S::kPacketMax], Modes<S>& modes, ClimbTrace& trace) {
+    modes.count = in.mode_count, trace = in.trace;
+  modes_in:
+    for (int c = 0; c < S::kModesMax; ++c) {
+      if (c >= in.mode_count) break;
+      modes.x[c] = in.x[c], modes.y[c] = in.y[c], modes.p[c] = 0, modes.t[c] = 0, modes.ball2[c] = 0;
+      support_[c] = in.support[c];
+    }
+  events_in:
+    for (int j = 0; j < S::kPacketMax; ++j) {
+      if (j >= in.n) break;
+      first_mode[j] = in.first_mode[j];
+    }
+  }
 
   // Whether mode c of the last run's packet of n events is below the least density.
   bool sparse(int c, int n, const Config& cfg) const {

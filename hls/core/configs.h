@@ -31,6 +31,10 @@ using Ice40BoardShape = HostCoreShape<128, 128, 16, 7>;
 // Packets of 512: on the 240x180 scenes with seven shapes they score 0.003-0.011 more F than
 // 256, and 1,024 would take 59 of the XC7A35T's 50 block RAMs (docs/rtl.md, "Builds"). The
 // pending queue holds two packets, so that the link window (2,048) exceeds it and the intake's packet.
+// The core a UP5K board that stops at the climbs (rtl/core/evms_climbs_core.sv) completes on the
+// host: the board's packets (1,024 events), climb features (kFeatFrac 6) and mode table (64), and
+// every step after the climbs, as the host core holds them.
+using Ice40ClimbsShape = Shape<128, 128, 1024, 1, 8, 128, 128, 16, 7, 4 * 1024, 6, 15, 8, 12, 64, 64, 4, 32, 8, 0, 1, 1, 1, 1, 1, 1, 1, 1>;
 using ArtyShape = Shape<240, 180, 512, 8, 8, 16, 16, 16, 7, 2 * 512, 11, 16, 9, 12, 64, 64, 4, 32, 8, 0, 1>;
 
 // X(name, FixedShape, RtlShape, sensor width, sensor height, description): the fixed backend's

@@ -72,41 +72,77 @@ class Core {
     pending_n_ = 0;
   }
 
+  using ClimbsStream = Stream<ClimbsFrame<S>, 2>;
+
   // Consumes one input word. The output streams must have room for what a packet releases
   // (the host drains them after every word; the RTL holds them in FIFOs of the same depth).
   void process(const EventWord& in, LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
-    process_decided(in, !in.flush && filter_.accept(in, cfg_), labels, tracks, packets);
+    process_word(in, !in.flush && filter_.accept(in, cfg_), labels, tracks, packets, nullptr, nullptr);
   }
 
   // The same, with the filter's answer for `in` decided elsewhere: by a board whose core stops
   // at the filter (rtl/core/evms_filter_core.sv), whose verdicts the host completes with this.
   // Given the verdicts of this core's filter, the words out are process()'s.
   void process_decided(const EventWord& in, bool kept, LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
-    if (in.flush) {
-      observer_.on_word(in, false);
-      close_packet(labels, tracks, packets);
-      return;
-    }
-    observer_.on_word(in, kept);
-    if (!kept) {
-      pending_[pending_n_++] = {in, -1};
-      if (n_ == 0 || pending_n_ == S::kPendingDepth) close_packet(labels, tracks, packets);
-      return;
-    }
-    if (n_ > 0 && cfg_.packet_max_span_us != 0 && in.t - packet_.t[0] > cfg_.packet_max_span_us) {
-      close_packet(labels, tracks, packets);
-    }
-    pending_[pending_n_++] = {in, static_cast<std::int16_t>(n_)};
-    packet_.x[n_] = in.x, packet_.y[n_] = in.y, packet_.p[n_] = in.p, packet_.t[n_] = in.t;
-    ++n_;
-    if (n_ >= cfg_.packet_size || n_ >= S::kPacketMax || pending_n_ == S::kPendingDepth) close_packet(labels, tracks, packets);
+    process_word(in, kept, labels, tracks, packets, nullptr, nullptr);
+  }
+
+  // The core cut after its climbs, as a board whose core stops there runs it
+  // (rtl/core/evms_climbs_core.sv): process(), which also writes each packet's climbs to
+  // `frames` (climbs_needed(in, kept) of them for this word).
+  void process_to_climbs(const EventWord& in, LabelStream& labels, TrackStream& tracks, PacketStream& packets, ClimbsStream& frames) {
+    process_word(in, !in.flush && filter_.accept(in, cfg_), labels, tracks, packets, nullptr, &frames);
+  }
+
+  // process_decided() with each packet's climbs taken from `frames` (climbs_needed(in, kept) of
+  // them) instead of run here: how the host completes a board whose core stops at the climbs.
+  // Given that board's verdicts and frames, the words out are process()'s when warm_start is
+  // off and the least density, if any, follows the links (the climbs there test neither).
+  void process_climbed(const EventWord& in, bool kept, ClimbsStream& frames, LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
+    process_word(in, kept, labels, tracks, packets, &frames, nullptr);
+  }
+
+  // How many packets with events the word closes (0-2; each takes one climbs frame).
+  int climbs_needed(const EventWord& in, bool kept) const {
+    const WordPlan plan = plan_word(in, kept);
+    return (plan.close_before && n_ > 0 ? 1 : 0) + (plan.close_after && (plan.into_packet || n_ > 0) ? 1 : 0);
   }
 
   const Tracker<S>& tracker() const { return tracker_; }
   Observer& observer() { return observer_; }
 
  private:
-  void close_packet(LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
+  // What a word does: close the open packet before it (a flush word; a kept event beyond the
+  // packet's span), join the pending queue and the packet, close the packet after it.
+  struct WordPlan {
+    bool close_before, pending, into_packet, close_after;
+  };
+  WordPlan plan_word(const EventWord& in, bool kept) const {
+    if (in.flush) return {true, false, false, false};
+    if (!kept) return {false, true, false, n_ == 0 || pending_n_ + 1 == S::kPendingDepth};
+    const bool span = n_ > 0 && cfg_.packet_max_span_us != 0 && in.t - packet_.t[0] > cfg_.packet_max_span_us;
+    const int n_after = (span ? 0 : n_) + 1, pending_after = (span ? 0 : pending_n_) + 1;
+    return {span, true, true, n_after >= cfg_.packet_size || n_after >= S::kPacketMax || pending_after == S::kPendingDepth};
+  }
+
+  void process_word(const EventWord& in, bool kept, LabelStream& labels, TrackStream& tracks, PacketStream& packets, ClimbsStream* given,
+                    ClimbsStream* record) {
+    const WordPlan plan = plan_word(in, kept);
+    observer_.on_word(in, plan.into_packet);
+    if (plan.close_before) close_packet(labels, tracks, packets, given, record);
+    if (plan.pending) {
+      pending_[pending_n_++] = {in, static_cast<std::int16_t>(plan.into_packet ? n_ : -1)};
+    }
+    if (plan.into_packet) {
+      packet_.x[n_] = in.x, packet_.y[n_] = in.y, packet_.p[n_] = in.p, packet_.t[n_] = in.t;
+      ++n_;
+    }
+    if (plan.close_after) close_packet(labels, tracks, packets, given, record);
+  }
+
+  // Clusters and tracks the open packet, by its own climbs or by the next of `given`, and
+  // writes its climbs to `record` (when not null).
+  void close_packet(LabelStream& labels, TrackStream& tracks, PacketStream& packets, ClimbsStream* given, ClimbsStream* record) {
     std::int32_t label_of[S::kPacketMax];
     PacketTrace trace;
     trace.events = pending_n_;
@@ -120,7 +156,18 @@ class Core {
         climb_features(packet_, n_, cfg_, phi);
         std::int16_t mode_of[S::kPacketMax];
         Modes<S> modes;
-        climbs_.run(phi, n_, cfg_, warm_, mode_of, modes, trace.climbs);
+        if (given != nullptr) {
+          ClimbsFrame<S> frame;
+          given->read(frame);
+          climbs_.assume(frame, mode_of, modes, trace.climbs);
+        } else {
+          climbs_.run(phi, n_, cfg_, warm_, mode_of, modes, trace.climbs);
+        }
+        if (record != nullptr) {
+          ClimbsFrame<S> frame;
+          climbs_.frame(mode_of, n_, modes, trace.climbs, frame);
+          record->write(frame);
+        }
         links_.run(packet_, n_, modes.count, cfg_, mode_of, first_on_pixel);
         if (cfg_.min_density != 0 && cfg_.density_after_links) drop_sparse_sets(climbs_, links_, n_, modes.count, cfg_, mode_of);
         trace.splits_left_whole = split_.run(packet_, phi, n_, cfg_, mode_of, modes);

@@ -19,6 +19,16 @@ class HostCore {
   void process_decided(const hls::EventWord& w, bool kept) {
     state_->core.process_decided(w, kept, state_->labels, state_->tracks, state_->packets);
   }
+  // The core cut after its climbs (hls::Core::process_to_climbs), keeping each packet's climbs
+  // for next_climbs(); and the rest of the core on a board's verdicts and climbs
+  // (process_climbed, which takes climbs_needed() frames given by give_climbs()).
+  void process_to_climbs(const hls::EventWord& w) { state_->core.process_to_climbs(w, state_->labels, state_->tracks, state_->packets, state_->climbs); }
+  bool next_climbs(hls::ClimbsFrame<S>& f) { return state_->climbs.read(f); }
+  int climbs_needed(const hls::EventWord& w, bool kept) const { return state_->core.climbs_needed(w, kept); }
+  void give_climbs(const hls::ClimbsFrame<S>& f) { state_->climbs.write(f); }
+  void process_climbed(const hls::EventWord& w, bool kept) {
+    state_->core.process_climbed(w, kept, state_->climbs, state_->labels, state_->tracks, state_->packets);
+  }
   void flush() {
     hls::EventWord w;
     w.flush = true;
@@ -46,7 +56,9 @@ class HostCore {
           });
   }
   // A write into a full stream (the host drains after every word, so never).
-  bool overflowed() const { return state_->labels.overflowed() || state_->tracks.overflowed() || state_->packets.overflowed(); }
+  bool overflowed() const {
+    return state_->labels.overflowed() || state_->tracks.overflowed() || state_->packets.overflowed() || state_->climbs.overflowed();
+  }
   void add_tracker_stats(BackendStats& s) const {
     s.tracks_started = state_->core.tracker().tracks_started();
     s.unassigned_clusters = state_->core.tracker().unassigned_clusters();
@@ -59,6 +71,7 @@ class HostCore {
     typename hls::Core<S>::LabelStream labels;
     typename hls::Core<S>::TrackStream tracks;
     typename hls::Core<S>::PacketStream packets;
+    typename hls::Core<S>::ClimbsStream climbs;
   };
   std::unique_ptr<State> state_;
 };

@@ -93,6 +93,9 @@ TEST(Core, SixteenBitTimestampsScrubStaleEntries) {
   EXPECT_EQ(r.labels.back().label, -1) << "a stale time aliased into the window";
 }
 
+// Every label, track update and packet summary of `completed` equal to `whole`'s.
+void expect_same_words(const test::CoreWords& completed, const test::CoreWords& whole);
+
 // A board whose core stops at the filter returns FilterCore's verdicts; the host runs the rest
 // with process_decided. Together they are the whole core, word for word, on a noisy scene
 // whose filtered events fill the pending queue between packets (the ice40 build's 512).
@@ -118,6 +121,49 @@ TEST(Core, TheFilterCoresVerdictsCompletedOnTheHostAreTheWholeCore) {
   const test::CoreWords completed = test::completed_on_the_host<Board>(verdicts, cfg);
   EXPECT_GT(passed, events / 10);
   EXPECT_LT(passed, events * 9 / 10) << "a noisy scene";
+  expect_same_words(completed, whole);
+  EXPECT_GT(whole.tracks.size(), 10u);
+}
+
+// A board whose core stops at the climbs returns the filter's verdicts and each packet's climbs;
+// the host runs the rest with process_climbed. Together they are the whole core, word for word,
+// on scenes of every type whose packets close on their size, on their span, on a full pending
+// queue and on a flush, with the default method but warm seeds (the board's climbs have none).
+TEST(Core, TheClimbsCoresFramesCompletedOnTheHostAreTheWholeCore) {
+  using Board = hls::Ice40ClimbsShape;
+  Params p = backend::build_default_params<Board>();
+  p.warm_start = false;
+  const hls::Config cfg = backend::core_config<Board>(p, {128, 128});
+  ASSERT_TRUE(cfg.density_after_links || cfg.min_density == 0) << "the board's climbs leave the least density to the links";
+  std::vector<std::pair<std::string, std::vector<Event>>> scenes;
+  for (const char* type : {"still", "crossing", "translation"}) {
+    gen::FamilyPins pins;
+    pins.width = pins.height = 128, pins.noise_hz = 4.0;
+    gen::SceneConfig scene = gen::family_scene(type, 1005, pins);
+    scene.duration_s = 0.25;
+    scenes.emplace_back(type, eval::generate_scene(scene).events);
+  }
+  // A blob, then isolated noise the filter drops: the pending queue (4,096 words) fills first.
+  std::vector<Event> blob = test::blob_events({{60, 60}}, 40000, 0, 2000, {128, 128}, 2);
+  for (int i = 0; i < 6000; ++i) {
+    blob.push_back({2000 + i * 50, static_cast<std::uint16_t>(i % 64 * 2), static_cast<std::uint16_t>(i / 64 % 64 * 2), 1});  // no neighbour
+  }
+  scenes.emplace_back("pending queue", blob);
+  for (const auto& [name, events] : scenes) {
+    SCOPED_TRACE(name);
+    std::vector<hls::EventWord> words = words_of(events);
+    if (name != "pending queue") words.insert(words.begin() + static_cast<std::ptrdiff_t>(words.size() / 2), words.back());  // a flush mid-stream
+    const CoreRun whole = run_core<Board>(words, cfg);
+    const auto frames = test::climbs_core_frames<Board>(words, cfg);
+    ASSERT_EQ(frames.size(), whole.packets.size()) << "one climbs frame a packet with events";
+    for (size_t i = 0; i < frames.size(); ++i) ASSERT_EQ(frames[i].n, whole.packets[i].events) << i;
+    const test::CoreWords completed = test::completed_from_climbs<Board>(words, test::filter_core_verdicts<Board>(words, cfg), frames, cfg);
+    expect_same_words(completed, whole);
+    EXPECT_GE(whole.packets.size(), name == "pending queue" ? 1u : 4u);
+  }
+}
+
+void expect_same_words(const test::CoreWords& completed, const test::CoreWords& whole) {
   ASSERT_EQ(completed.labels.size(), whole.labels.size());
   for (size_t i = 0; i < whole.labels.size(); ++i) ASSERT_EQ(completed.labels[i].label, whole.labels[i].label) << i;
   ASSERT_EQ(completed.tracks.size(), whole.tracks.size());
@@ -126,8 +172,10 @@ TEST(Core, TheFilterCoresVerdictsCompletedOnTheHostAreTheWholeCore) {
     ASSERT_EQ(std::tie(a.t, a.id, a.x, a.y, a.vx, a.vy), std::tie(b.t, b.id, b.x, b.y, b.vx, b.vy)) << i;
   }
   ASSERT_EQ(completed.packets.size(), whole.packets.size());
-  for (size_t i = 0; i < whole.packets.size(); ++i) ASSERT_EQ(completed.packets[i].events, whole.packets[i].events) << i;
-  EXPECT_GT(whole.tracks.size(), 10u);
+  for (size_t i = 0; i < whole.packets.size(); ++i) {
+    const hls::PacketWord &a = completed.packets[i], &b = whole.packets[i];
+    ASSERT_EQ(std::tie(a.t_first, a.t_last, a.events, a.clusters, a.iterations), std::tie(b.t_first, b.t_last, b.events, b.clusters, b.iterations)) << i;
+  }
 }
 
 // The fixed core's track updates against golden's: the median within 0.25 px, and more than

@@ -1,7 +1,10 @@
 // The C++ core driven word by word with its output words collected in vectors, for the tests
-// that compare its words (tests/hls, tests/sim, tests/cli); and the core cut at its filter: the
+// that compare its words (tests/hls, tests/sim, tests/cli); the core cut at its filter: the
 // verdicts a board that stops there returns (hls::FilterCore) and the rest of the core run on
-// them (hls::Core::process_decided), as the board backend runs it.
+// them (hls::Core::process_decided), as the board backend runs it; and the core cut at its
+// climbs: the frames a board that stops there returns with those verdicts
+// (hls::Core::process_to_climbs) and the rest of the core run on both
+// (hls::Core::process_climbed).
 #pragma once
 
 #include <memory>
@@ -29,6 +32,12 @@ class CoreDriver {
   }
   void process_decided(const hls::EventWord& w, bool kept) {
     core_.process_decided(w, kept);
+    take();
+  }
+  // The word with its packets' climbs from `frames` (climbs_needed of them, from `next` on).
+  void process_climbed(const hls::EventWord& w, bool kept, const std::vector<hls::ClimbsFrame<S>>& frames, size_t& next) {
+    for (int k = core_.climbs_needed(w, kept); k > 0; --k) core_.give_climbs(frames.at(next++));
+    core_.process_climbed(w, kept);
     take();
   }
   void flush() {
@@ -69,6 +78,35 @@ CoreWords completed_on_the_host(const std::vector<hls::LabelWord>& verdicts, con
   CoreDriver<S> core(cfg);
   for (const hls::LabelWord& v : verdicts) core.process_decided({v.t, v.x, v.y, v.p, false}, v.label == hls::kLabelPassedFilter);
   core.flush();
+  return core.out();
+}
+
+// Each packet's climbs, in packet order: what a board whose core stops at the climbs returns
+// besides its filter's verdicts (filter_core_verdicts).
+template <class S>
+std::vector<hls::ClimbsFrame<S>> climbs_core_frames(const std::vector<hls::EventWord>& words, const hls::Config& cfg) {
+  backend::HostCore<S> core(cfg);
+  std::vector<hls::ClimbsFrame<S>> frames;
+  auto frame = std::make_unique<hls::ClimbsFrame<S>>();
+  for (const hls::EventWord& w : words) {
+    core.process_to_climbs(w);
+    core.drain([](const hls::LabelWord&) {}, [](const hls::TrackWord&) {}, [](const hls::PacketWord&) {});
+    while (core.next_climbs(*frame)) frames.push_back(*frame);
+  }
+  return frames;
+}
+
+// The rest of the core on every word (events and flush words) with the board's verdicts (one an
+// event) and climbs frames: what the host makes of them.
+template <class S>
+CoreWords completed_from_climbs(const std::vector<hls::EventWord>& words, const std::vector<hls::LabelWord>& verdicts,
+                                const std::vector<hls::ClimbsFrame<S>>& frames, const hls::Config& cfg) {
+  CoreDriver<S> core(cfg);
+  size_t verdict = 0, frame = 0;
+  for (const hls::EventWord& w : words) {
+    const bool kept = !w.flush && verdicts.at(verdict++).label == hls::kLabelPassedFilter;
+    core.process_climbed(w, kept, frames, frame);
+  }
   return core.out();
 }
 
