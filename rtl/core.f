@@ -9,6 +9,7 @@ filter/evms_ba_filter.sv
 cluster/evms_mean_shift.sv
 cluster/evms_merge.sv
 cluster/evms_counting_sort.sv
+cluster/evms_serial_climbs.sv
 cluster/evms_seeded_climbs.sv
 cluster/evms_mode_links.sv
 cluster/evms_polarity_split.sv
@@ -19,4 +20,5 @@ cluster/evms_centroid.sv
 track/evms_tracker.sv
 core/evms_intake.sv
 core/evms_filter_core.sv
+core/evms_climbs_core.sv
 core/evms_core.sv

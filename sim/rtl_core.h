@@ -16,6 +16,7 @@
 
 #include "hls/core/config.h"
 #include "hls/core/words.h"
+#include "sim/cfg_ports.h"
 #include "sim/rtl_profile.h"
 
 namespace evms::sim {
@@ -89,11 +90,7 @@ class RtlCore {
   static constexpr std::uint64_t kStallLimit = 200000000;
 
   // Every register of the RTL core (hls/core/registers.h) to its cfg_ port.
-  void configure(const hls::Config& c) {
-#define EVMS_SET_CFG_PORT(name, type, bits, reset, description) top_->cfg_##name = static_cast<std::uint64_t>(c.name);
-    EVMS_CORE_RTL_REGISTERS(EVMS_SET_CFG_PORT)
-#undef EVMS_SET_CFG_PORT
-  }
+  void configure(const hls::Config& c) { set_cfg_ports(*top_, c); }
 
   bool ready_draw() {
     if (ready_p_ >= 1.0) return true;

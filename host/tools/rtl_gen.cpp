@@ -6,11 +6,14 @@
 //   evms_core_cfg_ports.svh      the cfg_* input ports of evms_core
 //   evms_filter_cfg_ports.svh    the filter's cfg_* input ports (evms_intake, evms_filter_core)
 //   evms_filter_cfg_connect.svh  those ports passed down, core -> intake
+//   evms_climbs_cfg_{ports,connect}.svh  the same of a core cut after its climbs
+//                                (evms_climbs_core)
 //   evms_core_states.svh         the controller's state_e
 //   evms_core_labels.svh         the labels that are not a track's ID (hls/core/words.h)
 //   evms_board_cfg_params.svh    the Cfg* reset-value parameters of evms_board
 //   evms_board_cfg_connect.svh   those parameters on the core's cfg_* ports
 //   evms_board_filter_cfg_connect.svh  the filter's of them on evms_filter_core's ports
+//   evms_board_climbs_cfg_connect.svh  the climbs core's of them on evms_climbs_core's ports
 //   evms_board_build_params.svh  a board top's build passed to evms_board
 //   evms_builds.cmake            the build names, for sim/CMakeLists.txt
 //   evms_cfg_registers.h         every build's reset registers, for C++17 testbenches
@@ -87,6 +90,14 @@ std::string board_parameter(const Register& r) { return "Cfg" + upper_camel(r.na
 bool read_by_filter(const Register& r) {
   const std::string name = r.name;
   return name.rfind("sensor_", 0) == 0 || name.rfind("filter_", 0) == 0;
+}
+
+// The registers a core cut after its seeded climbs reads (rtl/core/evms_climbs_core.sv): the
+// filter's, the packets' and the climbs' own.
+bool read_by_climbs(const Register& r) {
+  const std::string name = r.name;
+  return read_by_filter(r) || name == "packet_size" || name == "packet_max_span_us" || name == "max_iterations" || name == "tolerance" ||
+         name == "merge_radius2" || name == "climb_scale_x" || name == "climb_scale_y";
 }
 
 // The RTL registers' values in `c`, as their bits.
@@ -182,19 +193,25 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
   write(dir + "/evms_board_cfg_params.svh", board_params.str());
   write(dir + "/evms_board_cfg_connect.svh", board_connect.str());
 
-  std::ostringstream filter_ports, filter_connect, board_filter_connect;
-  filter_ports << "// " << kGeneratedBy << "\n// The registers the background-activity filter reads (hls/core/registers.h) as inputs.\n";
-  filter_connect << "// " << kGeneratedBy << "\n// The filter's registers passed to an instance of evms_intake.\n";
-  board_filter_connect << "// " << kGeneratedBy << "\n// The board's filter register values on evms_filter_core's cfg_* ports.\n";
-  for (const Register& r : kRtlRegisters) {
-    if (!read_by_filter(r)) continue;
-    filter_ports << "input  " << sv_type(r.bits) << " cfg_" << r.name << ",  // " << r.description << "\n";
-    filter_connect << ".cfg_" << r.name << "(cfg_" << r.name << "),\n";
-    board_filter_connect << ".cfg_" << r.name << "(" << board_parameter(r) << "),\n";
-  }
-  write(dir + "/evms_filter_cfg_ports.svh", filter_ports.str());
-  write(dir + "/evms_filter_cfg_connect.svh", filter_connect.str());
-  write(dir + "/evms_board_filter_cfg_connect.svh", board_filter_connect.str());
+  // A cut core's registers: its cfg_* ports, those ports passed to an instance, and the board's
+  // values on them.
+  const auto write_subset = [&](const char* cut, const char* what, const char* instance, const char* module, bool (*reads)(const Register&)) {
+    std::ostringstream subset_ports, subset_connect, board_subset_connect;
+    subset_ports << "// " << kGeneratedBy << "\n// The registers " << what << " reads (hls/core/registers.h) as inputs.\n";
+    subset_connect << "// " << kGeneratedBy << "\n// The registers " << what << " reads passed to an instance of " << instance << ".\n";
+    board_subset_connect << "// " << kGeneratedBy << "\n// The board's values of the registers " << what << " reads on " << module << "'s cfg_* ports.\n";
+    for (const Register& r : kRtlRegisters) {
+      if (!reads(r)) continue;
+      subset_ports << "input  " << sv_type(r.bits) << " cfg_" << r.name << ",  // " << r.description << "\n";
+      subset_connect << ".cfg_" << r.name << "(cfg_" << r.name << "),\n";
+      board_subset_connect << ".cfg_" << r.name << "(" << board_parameter(r) << "),\n";
+    }
+    write(dir + "/evms_" + cut + "_cfg_ports.svh", subset_ports.str());
+    write(dir + "/evms_" + cut + "_cfg_connect.svh", subset_connect.str());
+    write(dir + "/evms_board_" + cut + "_cfg_connect.svh", board_subset_connect.str());
+  };
+  write_subset("filter", "the background-activity filter", "evms_intake", "evms_filter_core", read_by_filter);
+  write_subset("climbs", "a core cut after its climbs", "evms_climbs_core", "evms_climbs_core", read_by_climbs);
 
   // A board top includes evms_cfg_<build>.svh, then passes all of it on; the synthesis flow's
   // lane sweep (constraints/flow/synth.sh) may replace the build's lane count.
