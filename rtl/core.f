@@ -1,6 +1,7 @@
 common/evms_mul.sv
 common/evms_fifo.sv
 common/evms_ram_1w1r.sv
+common/evms_ram_1rw.sv
 math/evms_round_pkg.sv
 math/evms_exp_lut.sv
 math/evms_recip.sv

@@ -30,7 +30,8 @@ module evms_serial_climbs #(
   parameter int IterationsMax = 8,
   parameter int UnitShift     = 14,   // kFeatFrac + kClimbFrac: fraction bits of a climb feature
   parameter int CoordBits     = 20,   // a climb feature's bits: below 2^(CoordBits - UnitShift) bandwidths
-  parameter int Bands         = 32    // rows of one bandwidth the packet is sorted into (kGridSide)
+  parameter int Bands         = 32,   // rows of one bandwidth the packet is sorted into (kGridSide)
+  parameter int FeaturesInSpram = 1   // the features' memory asks Yosys for SPRAMs (common/evms_ram_1rw.sv)
 ) (
   input  logic                 clk,
   input  logic                 rst_n,
@@ -126,31 +127,39 @@ module evms_serial_climbs #(
   assign join_state = modes_q == '0 ? StJoinDecide : StJoinScan;
   wire [IdxBits-1:0] j_index = IdxBits'(j_q);
 
-  // ---- memories (common/evms_ram_1w1r) ----------------------------------------------------
-  // The packet's features, in packet order (the sort and the event seeds read them).
-  logic [CoordBits-1:0] phi_x, phi_y;
-  logic [IdxBits-1:0]   sort_j;
-  evms_ram_1w1r #(.Width(2 * CoordBits), .Depth(PacketMax)) u_phi (
-    .clk, .we(load_we), .wa(IdxBits'(load_i)), .wd({load_x, load_y}), .ra(state_q == StSort ? sort_j : j_index),
-    .rd({phi_x, phi_y}));
+  // ---- memories (common/evms_ram_1w1r; the events' features in common/evms_ram_1rw) --------
+  // The packet's features in packet order (the first PacketMax words: the sort and the event
+  // seeds read them) and in row order with each event's index in the packet (the next PacketMax:
+  // the steps read them), in one single-ported memory (SPRAMs on a UP5K, FeaturesInSpram). No
+  // clock both writes and reads it: the load writes while the climbs are idle; the sort reads an
+  // event in one clock and writes it to its place two clocks later, while the read data holds;
+  // the steps read it in StKernel and the seeds in StSeedRead, and neither writes.
+  logic [CoordBits-1:0] phi_x, phi_y, sorted_x, sorted_y;
+  logic [IdxBits-1:0]   sorted_j, unused_phi_j, sort_j;
+  logic                 sort_place_we;
+  logic [IdxBits-1:0]   sort_place_k;
+  logic [IdxBits:0]     events_addr;
+  always_comb begin
+    if (load_we) events_addr = {1'b0, IdxBits'(load_i)};
+    else if (sort_place_we) events_addr = {1'b1, sort_place_k};
+    else if (state_q == StKernel) events_addr = {1'b1, IdxBits'(k_q)};
+    else if (state_q == StSort) events_addr = {1'b0, sort_j};
+    else events_addr = {1'b0, j_index};
+  end
+  evms_ram_1rw #(.Width(2 * CoordBits + IdxBits), .Depth(2 * PacketMax), .Huge(FeaturesInSpram)) u_events (
+    .clk, .we(load_we || sort_place_we), .addr(events_addr),
+    .wd(load_we ? {load_x, load_y, IdxBits'(load_i)} : {phi_x, phi_y, sort_j}), .rd({sorted_x, sorted_y, sorted_j}));
+  assign {phi_x, phi_y, unused_phi_j} = {sorted_x, sorted_y, sorted_j};
 
   // The sort into rows, and the start of each row's run of sorted events.
-  logic                sort_count_read, sort_place_we, sort_done, unused_clearing;   // the flags clear with the count
+  logic                sort_count_read, sort_done, unused_clearing;   // the flags clear with the count
   logic [BandBits-1:0] unused_clear_index;
-  logic [IdxBits-1:0]  sort_place_k;
   logic [CntBits-1:0]  row_start;
   logic [BandBits-1:0] run_ra;
   evms_counting_sort #(.PacketMax(PacketMax), .Keys(Bands)) u_sort (
     .clk, .rst_n, .start(start && (state_q == StIdle || state_q == StDone)), .n, .clearing(unused_clearing), .clear_index(unused_clear_index),
     .count_read(sort_count_read), .j(sort_j), .key(band_of(phi_y)), .place_we(sort_place_we), .place_k(sort_place_k),
     .done(sort_done), .run_ra, .run_start(row_start));
-
-  // The events in row order, with their index in the packet.
-  logic [CoordBits-1:0] sorted_x, sorted_y;
-  logic [IdxBits-1:0]   sorted_j;
-  evms_ram_1w1r #(.Width(2 * CoordBits + IdxBits), .Depth(PacketMax)) u_sorted (
-    .clk, .we(sort_place_we), .wa(sort_place_k), .wd({phi_x, phi_y, sort_j}), .ra(IdxBits'(k_q)),
-    .rd({sorted_x, sorted_y, sorted_j}));
 
   // Each event's flags: reached by some climb, and in the current climb's list.
   logic               flag_reached, flag_in_climb, flags_we, flags_wd_in_climb;

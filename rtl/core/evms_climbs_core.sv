@@ -25,7 +25,7 @@ module evms_climbs_core #(
   parameter int ModesMax       = 64,
   parameter int IterationsMax  = 8,
   parameter int UnitShift      = 14,    // kFeatFrac + kClimbFrac
-  parameter int CoordBits      = 20,    // a climb feature's bits
+  parameter int CoordBits      = 19,    // a climb feature's bits: below 2^(CoordBits - UnitShift) bandwidths
   parameter int Bands          = 32     // kGridSide
 ) (
   input  logic        clk,

@@ -47,13 +47,13 @@ struct Case {
 
 // A packet of blobs (1 to 8, 2 to 25 px across) and uniform noise (a tenth of the events, or
 // all of them in one packet in eight, which opens more modes than the table holds at small
-// bandwidths), under registers drawn from the ranges the method uses: bandwidth 0.03-0.15,
+// bandwidths), under registers drawn from the ranges the method uses: bandwidth 0.035-0.15 (the features below 32 bandwidths: CoordBits 19),
 // tolerance, merge radius up to one bandwidth, iteration cap 0-8. At a bandwidth of 1/16 (8 px)
 // the features are exact, so that events lie on the ball's boundary, which is outside it.
 Case draw_case(std::mt19937_64& rng) {
   Case c;
   sim::Draws draw{rng};
-  const double h = draw.one_of<double>({0.03, 0.04, 0.0625, 0.08, 0.15});
+  const double h = draw.one_of<double>({0.035, 0.04, 0.0625, 0.08, 0.15});
   constexpr double kClimbUnit = 1 << (S::kFeatFrac + hls::kClimbFrac);
   c.cfg.climb_scale_x = static_cast<std::uint64_t>(std::llround(std::ldexp(1.0 / (kWidth * h), hls::kClimbScaleFrac)));
   c.cfg.climb_scale_y = static_cast<std::uint64_t>(std::llround(std::ldexp(1.0 / (kHeight * h), hls::kClimbScaleFrac)));
