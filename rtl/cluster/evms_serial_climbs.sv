@@ -2,8 +2,9 @@
 // without warm seeds (cfg.warm_start false) and without the least-density test (cfg.min_density
 // 0, or cfg.density_after_links, where the test follows the links: each mode's support is read
 // out for it), built for a part without distributed RAM such as the iCE40 UP5K:
-//  - every per-event word is in block RAM with a registered read: the features (in packet order
-//    and in row order with each event's index), the flags (reached, in the current climb), the
+//  - the features, in packet order and in row order with each event's index, are one
+//    single-ported memory (common/evms_ram_1rw.sv: the UP5K's SPRAMs); every other per-event
+//    word is in block RAM with a registered read: the flags (reached, in the current climb), the
 //    first mode with its labelled bit, the climb's list of touched events; so are each mode's
 //    position and support and the rows' starts;
 //  - the packet is sorted into Bands rows of one bandwidth (by y; the last row takes every
@@ -29,7 +30,7 @@ module evms_serial_climbs #(
   parameter int ModesMax      = 64,
   parameter int IterationsMax = 8,
   parameter int UnitShift     = 14,   // kFeatFrac + kClimbFrac: fraction bits of a climb feature
-  parameter int CoordBits     = 20,   // a climb feature's bits: below 2^(CoordBits - UnitShift) bandwidths
+  parameter int CoordBits     = 19,   // a climb feature's bits: below 2^(CoordBits - UnitShift) bandwidths
   parameter int Bands         = 32,   // rows of one bandwidth the packet is sorted into (kGridSide)
   parameter int FeaturesInSpram = 1   // the features' memory asks Yosys for SPRAMs (common/evms_ram_1rw.sv)
 ) (
