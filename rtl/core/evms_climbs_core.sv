@@ -167,30 +167,20 @@ module evms_climbs_core #(
           state_d = mode_count != '0 ? StModes : StEvents;
         end
       end
-      // Each word is read from the climbs the clock its index is set (read_ok_q the clock after).
-      StModes: begin
+      // Each word is read from the climbs the clock its index is set (read_ok_q the clock after):
+      // the modes' words, then the events'.
+      StModes, StEvents: begin
         read_ok_d = 1'b1;
         clm_valid = read_ok_q;
-        clm_kind = ClimbsMode;
-        clm_data = {32'(rd_mode_x), 32'(rd_mode_y), rd_support};
+        clm_kind = state_q == StModes ? ClimbsMode : ClimbsEvent;
+        clm_data = state_q == StModes ? {32'(rd_mode_x), 32'(rd_mode_y), rd_support} : {rd_mode, 64'd0};
         if (read_ok_q && clm_ready) begin
           read_ok_d = 1'b0;
           index_d = index_q + 1'b1;
-          if (index_q + 1'b1 == mode_count) begin
+          if (state_q == StModes && index_q + 1'b1 == mode_count) begin
             index_d = '0;
             state_d = StEvents;
-          end
-        end
-      end
-      StEvents: begin
-        read_ok_d = 1'b1;
-        clm_valid = read_ok_q;
-        clm_kind = ClimbsEvent;
-        clm_data = {rd_mode, 64'd0};
-        if (read_ok_q && clm_ready) begin
-          read_ok_d = 1'b0;
-          index_d = index_q + 1'b1;
-          if (32'(index_q) + 1 == 32'(n_q)) begin
+          end else if (state_q == StEvents && 32'(index_q) + 1 == 32'(n_q)) begin
             // The packet is closed: the taken word joins the next one (a span's close), or not.
             n_d = '0;
             pending_d = '0;

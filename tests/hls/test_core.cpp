@@ -38,14 +38,7 @@ CoreRun run_core(const std::vector<hls::EventWord>& words, const hls::Config& cf
   return {core.out(), packet_after_word};
 }
 
-std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {
-  std::vector<hls::EventWord> w;
-  for (const Event& e : events) w.push_back({static_cast<std::uint32_t>(e.t + 1), e.x, e.y, e.p, false});
-  hls::EventWord flush;
-  flush.flush = true;
-  w.push_back(flush);
-  return w;
-}
+using test::words_of;
 
 TEST(Core, OneLabelPerEventInInputOrderAndAFlushEmptiesIt) {
   const auto events = test::blob_events({{60, 90}, {180, 90}}, 40000, 0, 60000, {240, 180}, 1);
@@ -151,8 +144,7 @@ TEST(Core, TheClimbsCoresFramesCompletedOnTheHostAreTheWholeCore) {
   scenes.emplace_back("pending queue", blob);
   for (const auto& [name, events] : scenes) {
     SCOPED_TRACE(name);
-    std::vector<hls::EventWord> words = words_of(events);
-    if (name != "pending queue") words.insert(words.begin() + static_cast<std::ptrdiff_t>(words.size() / 2), words.back());  // a flush mid-stream
+    const std::vector<hls::EventWord> words = name == "pending queue" ? words_of(events) : test::with_flush_midway(words_of(events));
     const CoreRun whole = run_core<Board>(words, cfg);
     const auto frames = test::climbs_core_frames<Board>(words, cfg);
     ASSERT_EQ(frames.size(), whole.packets.size()) << "one climbs frame a packet with events";

@@ -110,15 +110,8 @@ std::string difference(const std::vector<Word>& want, const std::vector<Word>& g
   return got.size() > want.size() ? std::string(stream) + ": " + std::to_string(got.size() - want.size()) + " words more than the model's" : "";
 }
 
-std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {
-  std::vector<hls::EventWord> w;
-  for (const Event& e : events) w.push_back({static_cast<std::uint32_t>(e.t + 1), e.x, e.y, e.p, false});
-  hls::EventWord flush;
-  flush.flush = true;
-  w.insert(w.begin() + static_cast<std::ptrdiff_t>(w.size() / 2), flush);  // a flush mid-stream, and one at the end
-  w.push_back(flush);
-  return w;
-}
+// The events' words with a flush mid-stream, and one at the end.
+std::vector<hls::EventWord> words_of(const std::vector<Event>& events) { return test::with_flush_midway(test::words_of(events)); }
 
 struct Scene {
   std::string name;

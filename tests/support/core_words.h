@@ -1,19 +1,39 @@
-// The C++ core driven word by word with its output words collected in vectors, for the tests
-// that compare its words (tests/hls, tests/sim, tests/cli); the core cut at its filter: the
-// verdicts a board that stops there returns (hls::FilterCore) and the rest of the core run on
-// them (hls::Core::process_decided), as the board backend runs it; and the core cut at its
-// climbs: the frames a board that stops there returns with those verdicts
-// (hls::Core::process_to_climbs) and the rest of the core run on both
+// The events as the core's input words; the C++ core driven word by word with its output words
+// collected in vectors, for the tests that compare its words (tests/hls, tests/sim, tests/cli);
+// the core cut at its filter: the verdicts a board that stops there returns (hls::FilterCore)
+// and the rest of the core run on them (hls::Core::process_decided), as the board backend runs
+// it; and the core cut at its climbs: the frames a board that stops there returns with those
+// verdicts (hls::Core::process_to_climbs) and the rest of the core run on both
 // (hls::Core::process_climbed).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
 #include "hls/core/filter_core.h"
+#include "types/event.h"
 #include "host/backend/fixed_backend.h"
 
 namespace evms::test {
+
+// The events as the core's input words (each time one microsecond later, so that none is 0),
+// then a flush.
+inline std::vector<hls::EventWord> words_of(const std::vector<Event>& events) {
+  std::vector<hls::EventWord> w;
+  for (const Event& e : events) w.push_back({static_cast<std::uint32_t>(e.t + 1), e.x, e.y, e.p, false});
+  hls::EventWord flush;
+  flush.flush = true;
+  w.push_back(flush);
+  return w;
+}
+
+// `words` (ending in a flush) with another flush halfway.
+inline std::vector<hls::EventWord> with_flush_midway(std::vector<hls::EventWord> words) {
+  words.insert(words.begin() + static_cast<std::ptrdiff_t>(words.size() / 2), words.back());
+  return words;
+}
 
 struct CoreWords {
   std::vector<hls::LabelWord> labels;
