@@ -235,13 +235,16 @@ module evms_board #(
   // ---- progress ----------------------------------------------------------------------------------------
   // In both modes, so that a board busy with a packet is never silent (the host resends what
   // is unanswered after a silence); in tracks mode it also acknowledges the link's events.
-  logic [95:0] progress_sent_q;
+  // Whether the counts changed since a progress frame last took them: set by each count, cleared
+  // as a frame takes them (a count in that same clock sets it again). A flag, where comparing
+  // with the counts sent would keep 96 more flip-flops.
   wire [95:0] progress_now = {noise_q, labelled_q, link_taken_q};
-  logic pg_valid, pg_ready;
-  assign pg_valid = progress_now != progress_sent_q;
+  logic pg_valid, pg_ready, progress_changed_q;
+  assign pg_valid = progress_changed_q;
   always_ff @(posedge clk or negedge run_rst_n) begin
-    if (!run_rst_n) progress_sent_q <= '0;
-    else if (pg_valid && pg_ready) progress_sent_q <= progress_now;
+    if (!run_rst_n) progress_changed_q <= 1'b0;
+    else if ((lab_valid && lab_ready) || (lk_valid && lk_ready && !lk_flush)) progress_changed_q <= 1'b1;
+    else if (pg_ready) progress_changed_q <= 1'b0;
   end
 
   // ---- status after a flush ---------------------------------------------------------------------
