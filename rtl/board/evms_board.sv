@@ -226,7 +226,8 @@ module evms_board #(
     end
   end
 
-  evms_fifo #(.Width(FrameWordBits), .Depth(FrameQueueDepth)) u_frame_queue (
+  // No output buffer: the link's ready is a short path, and the buffer would be 530 flip-flops.
+  evms_fifo #(.Width(FrameWordBits), .Depth(FrameQueueDepth), .OutputBuffer(0)) u_frame_queue (
     .clk(clk), .rst_n(run_rst_n), .in_valid(q_in_valid), .in_ready(q_in_ready), .in_data(word), .in_commit(1'b0), .in_rollback(1'b0),
     .out_valid(q_out_valid), .out_ready(q_out_ready), .out_data({q_out_is_packet, q_out_payload}));
   logic tx_trk_ready, tx_pkt_ready;

@@ -104,11 +104,12 @@ module evms_link_rx #(
   assign is_reset = crc_ok && ftype_q == FrameResetType && flen_q == FrameResetLen;
   assign flush_ahead = header_q[15:0] - expected_seq_q;
 
-  // FIFO of {flush, p, y, x, t}, in block RAM; events frames' words held until their check.
+  // FIFO of {flush, p, y, x, t}, in block RAM; events frames' words held until their check. No
+  // output buffer: the core's ready is a short path, and the buffer would be 132 flip-flops.
   localparam int WordBits = 1 + 1 + 16 + 16 + 32;
   logic push_q, push_d, commit_q, commit_d, rollback_q, rollback_d, fifo_ready;
   logic [WordBits-1:0] push_word_q, push_word_d;
-  evms_fifo #(.Width(WordBits), .Depth(FifoDepth), .Tentative(1'b1)) u_fifo (
+  evms_fifo #(.Width(WordBits), .Depth(FifoDepth), .Tentative(1), .OutputBuffer(0)) u_fifo (
     .clk(clk), .rst_n(rst_n && !soft_reset_q), .in_valid(push_q), .in_ready(fifo_ready), .in_data(push_word_q), .in_commit(commit_q),
     .in_rollback(rollback_q), .out_valid(ev_valid), .out_ready(ev_ready), .out_data({ev_flush, ev_p, ev_y, ev_x, ev_t}));
 

@@ -1,8 +1,9 @@
 // Lockstep test of rtl/common/evms_fifo.sv, the queue of the intake, the pending labels, the
 // link and the board's frames, against a queue model: every word that comes out is the next word
 // released, none comes out before its release, none is lost, and a stream passes one word a
-// clock. Both of its forms are built (sim/CMakeLists.txt): over a memory, eight words deep with
-// tentative writes (EVMS_FIFO_SHAPE), and in registers, four deep (EVMS_FIFO_REGISTERS_SHAPE).
+// clock. Each of its forms is built (sim/CMakeLists.txt): over a memory, eight words deep with
+// tentative writes, with its output buffer (EVMS_FIFO_SHAPE) and without
+// (EVMS_FIFO_UNBUFFERED_SHAPE), and in registers, four deep (EVMS_FIFO_REGISTERS_SHAPE).
 // The seed is printed (EVMS_SEED=N repeats a run); a mismatch repeats the run with an FST trace
 // (sim/verilated_block.h).
 #include <gtest/gtest.h>
@@ -16,12 +17,15 @@
 
 #include "Vfifo.h"
 #include "Vfifo_registers.h"
+#include "Vfifo_unbuffered.h"
 #include "sim/verilated_block.h"
 
 namespace evms {
 namespace {
 
 static_assert(EVMS_FIFO_Tentative == 1 && EVMS_FIFO_Width == 16, "sim/CMakeLists.txt builds the queue with tentative writes of 16 bits");
+static_assert(EVMS_FIFO_UNBUFFERED_Tentative == 1 && EVMS_FIFO_UNBUFFERED_Width == 16 && EVMS_FIFO_UNBUFFERED_OutputBuffer == 0,
+              "sim/CMakeLists.txt builds the queue without its output buffer, with tentative writes of 16 bits");
 static_assert(EVMS_FIFO_REGISTERS_Tentative == 0 && EVMS_FIFO_REGISTERS_Width == 16 &&
                   EVMS_FIFO_REGISTERS_Depth <= EVMS_FIFO_REGISTERS_RegistersDepthMax,
               "sim/CMakeLists.txt builds the queue in registers, of 16-bit words");
@@ -34,6 +38,13 @@ struct OverMemory {
   static constexpr bool kTentative = true;
   static constexpr int kHeld = kDepth + 2;   // the memory's and the output buffer's
   static constexpr int kFirstOut = 3;        // the write, the memory's read, the buffer
+};
+struct OverMemoryUnbuffered {
+  using Model = Vfifo_unbuffered;
+  static constexpr int kDepth = EVMS_FIFO_UNBUFFERED_Depth;
+  static constexpr bool kTentative = true;
+  static constexpr int kHeld = kDepth + 1;   // the memory's and its read register's
+  static constexpr int kFirstOut = 2;        // the write, the memory's read
 };
 struct InRegisters {
   using Model = Vfifo_registers;
@@ -146,11 +157,12 @@ std::string random_run(std::uint64_t seed, int run, const std::string& trace, st
 
 template <class Form>
 class Fifo : public ::testing::Test {};
-using Forms = ::testing::Types<OverMemory, InRegisters>;
+using Forms = ::testing::Types<OverMemory, OverMemoryUnbuffered, InRegisters>;
 struct FormName {
   template <class Form>
   static std::string GetName(int) {
-    return std::is_same_v<Form, OverMemory> ? "OverMemory" : "InRegisters";
+    if (std::is_same_v<Form, OverMemory>) return "OverMemory";
+    return std::is_same_v<Form, OverMemoryUnbuffered> ? "OverMemoryUnbuffered" : "InRegisters";
   }
 };
 TYPED_TEST_SUITE(Fifo, Forms, FormName);
@@ -158,7 +170,7 @@ TYPED_TEST_SUITE(Fifo, Forms, FormName);
 TYPED_TEST(Fifo, EveryReleasedWordComesOutOnceInOrderUnderRandomTraffic) {
   const std::uint64_t seed = sim::cosim_seed();
   std::uint64_t words = 0;
-  const std::string block = TypeParam::kTentative ? "fifo" : "fifo_registers";
+  const std::string block = FormName::GetName<TypeParam>(0);
   for (int run = 0; run < 40; ++run) {
     const std::string difference = random_run<TypeParam>(seed, run, "", words);
     std::uint64_t again = 0;
@@ -189,7 +201,8 @@ TYPED_TEST(Fifo, AStreamPassesOneWordAClock) {
 }
 
 // With no reader, the queue takes the words it holds (over a memory, its Depth and the two of its
-// output buffer; in registers, its Depth), then no more; the reader then gets all of them in order.
+// output buffer, or the one of its read register without; in registers, its Depth), then no
+// more; the reader then gets all of them in order.
 TYPED_TEST(Fifo, HoldsWhatItsFormHoldsThenGivesThemBackInOrder) {
   Lockstep<TypeParam> q("");
   for (int k = 0; k < 4 * TypeParam::kDepth; ++k) q.clock(Inputs{.write = true, .commit = true, .data = static_cast<std::uint16_t>(k)});
