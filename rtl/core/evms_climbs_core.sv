@@ -67,9 +67,11 @@ module evms_climbs_core #(
     .q_flush(q_flush), .q_kept(q_kept), .q_climb_x(q_climb_x), .q_climb_y(q_climb_y), .empty(intake_empty));
 
   // ---- the controller ---------------------------------------------------------------------------
-  // StTake: the head word leaves the intake (an event with its verdict) and is planned; a packet
-  // closes before it (StStart ...) or it joins the pending count and the packet (StAdd) and the
-  // packet closes after it. Closing: StStart, StRun (the climbs), StHead, StModes, StEvents.
+  // StTake: the head word's verdict goes out and the word is planned; a packet closes before it
+  // (StStart ...) or it joins the pending count and the packet (StAdd) and the packet closes
+  // after it. Closing: StStart, StRun (the climbs), StHead, StModes, StEvents. An event word
+  // leaves the intake's queue in StAdd, not before: until then its time and features are read at
+  // the queue's head, with no copy here. A flush word leaves as it is taken.
   typedef enum logic [2:0] {StTake, StAdd, StStart, StRun, StHead, StModes, StEvents} state_e;
   state_e state_d, state_q;
 
@@ -77,9 +79,8 @@ module evms_climbs_core #(
   logic [PendBits-1:0] pending_d, pending_q;     // words since the last close (the host holds them)
   logic [31:0]         t_first_d, t_first_q;     // the open packet's first event's time
   // The taken word (every word but a flush joins the pending count): whether it joins the
-  // packet, and whether the packet closes after it; its time and features.
+  // packet, and whether the packet closes after it.
   logic                into_packet_d, into_packet_q, close_after_d, close_after_q;
-  logic [31:0]         word_t_d, word_t_q, word_climb_x_d, word_climb_x_q, word_climb_y_d, word_climb_y_q;
   logic                resume_add_d, resume_add_q;   // after the close: add the taken word
   logic [15:0]         index_d, index_q;         // the mode or event being sent
   logic                read_ok_d, read_ok_q;     // the climbs' readout holds index_q's word
@@ -91,7 +92,7 @@ module evms_climbs_core #(
   logic [CoordBits-1:0] rd_mode_x, rd_mode_y;
   evms_serial_climbs #(.PacketMax(PacketMax), .ModesMax(ModesMax), .IterationsMax(IterationsMax), .UnitShift(UnitShift),
                        .CoordBits(CoordBits), .Bands(Bands)) u_climbs (
-    .clk, .rst_n, .load_we, .load_i(16'(n_q)), .load_x(word_climb_x_q[CoordBits-1:0]), .load_y(word_climb_y_q[CoordBits-1:0]),
+    .clk, .rst_n, .load_we, .load_i(16'(n_q)), .load_x(q_climb_x[CoordBits-1:0]), .load_y(q_climb_y[CoordBits-1:0]),
     .start(climbs_start), .n(16'(n_q)), .cfg_max_iterations, .cfg_tolerance, .cfg_merge_radius2, .done(climbs_done),
     .mode_count, .climbs, .steps, .modes_lost, .rd_j(index_q), .rd_mode, .rd_c(8'(index_q)), .rd_mode_x, .rd_mode_y, .rd_support);
 
@@ -107,7 +108,7 @@ module evms_climbs_core #(
   wire close_after_kept = 32'(n_after) >= 32'(cfg_packet_size) || 32'(n_after) >= PacketMax || 32'(pending_after) == PendingDepth;
   wire close_after_noise = n_q == '0 || 32'(pending_after) == PendingDepth;
 
-  assign q_pop = take;
+  assign q_pop = (take && q_flush) || state_q == StAdd;
   assign lab_valid = state_q == StTake && q_valid && !q_flush;
   assign {lab_t, lab_x, lab_y, lab_p} = {q_t, q_x, q_y, q_p};
   assign lab_label = q_kept ? LabelPassedFilter : LabelNoise;
@@ -122,9 +123,6 @@ module evms_climbs_core #(
     t_first_d = t_first_q;
     into_packet_d = into_packet_q;
     close_after_d = close_after_q;
-    word_t_d = word_t_q;
-    word_climb_x_d = word_climb_x_q;
-    word_climb_y_d = word_climb_y_q;
     resume_add_d = resume_add_q;
     index_d = index_q;
     read_ok_d = 1'b0;
@@ -135,7 +133,6 @@ module evms_climbs_core #(
       StTake: if (take) begin
         into_packet_d = q_kept && !q_flush;
         close_after_d = q_flush ? 1'b0 : (q_kept ? close_after_kept : close_after_noise);
-        {word_t_d, word_climb_x_d, word_climb_y_d} = {q_t, q_climb_x, q_climb_y};
         resume_add_d = !q_flush;
         if (close_before && n_q != '0) state_d = StStart;
         else if (q_flush) pending_d = '0;
@@ -145,7 +142,7 @@ module evms_climbs_core #(
       // this clock); the packet closes after it, or the next word is taken.
       StAdd: begin
         if (into_packet_q) begin
-          if (n_q == '0) t_first_d = word_t_q;
+          if (n_q == '0) t_first_d = q_t;
           n_d = n_q + 1'b1;
         end
         pending_d = pending_q + 1'b1;
@@ -199,7 +196,6 @@ module evms_climbs_core #(
       pending_q <= '0;
       t_first_q <= '0;
       {into_packet_q, close_after_q, resume_add_q, read_ok_q} <= '0;
-      {word_t_q, word_climb_x_q, word_climb_y_q} <= '0;
       index_q <= '0;
     end else begin
       state_q <= state_d;
@@ -207,7 +203,6 @@ module evms_climbs_core #(
       pending_q <= pending_d;
       t_first_q <= t_first_d;
       {into_packet_q, close_after_q, resume_add_q, read_ok_q} <= {into_packet_d, close_after_d, resume_add_d, read_ok_d};
-      {word_t_q, word_climb_x_q, word_climb_y_q} <= {word_t_d, word_climb_x_d, word_climb_y_d};
       index_q <= index_d;
     end
   end
@@ -215,6 +210,6 @@ module evms_climbs_core #(
   assign idle = intake_empty && in_ready && state_q == StTake;
 
   `EVMS_ASSERT("a kept event's climb features fit CoordBits",
-               !(load_we && ((word_climb_x_q >> CoordBits) != '0 || (word_climb_y_q >> CoordBits) != '0)), clk, rst_n)
+               !(load_we && ((q_climb_x >> CoordBits) != '0 || (q_climb_y >> CoordBits) != '0)), clk, rst_n)
   `EVMS_ASSERT("a closed packet holds events", !(climbs_start && n_q == '0), clk, rst_n)
 endmodule
