@@ -154,17 +154,20 @@ module evms_board #(
   assign tx_lab_valid = lab_valid && !keep_labels;
   assign lab_ready = keep_labels || tx_lab_ready;
   logic [31:0] labelled_q, noise_q, link_taken_q;  // since the run's reset
+  // What the counts count: a label leaving the core, an event taken from the link.
+  wire label_taken = lab_valid && lab_ready;
+  wire link_event_taken = lk_valid && lk_ready && !lk_flush;
   always_ff @(posedge clk or negedge run_rst_n) begin
     if (!run_rst_n) begin
       labelled_q <= '0;
       noise_q <= '0;
       link_taken_q <= '0;
     end else begin
-      if (lab_valid && lab_ready) begin
+      if (label_taken) begin
         if (lab_label == LabelNoise) noise_q <= noise_q + 1'b1;
         else labelled_q <= labelled_q + 1'b1;
       end
-      if (lk_valid && lk_ready && !lk_flush) link_taken_q <= link_taken_q + 1'b1;
+      if (link_event_taken) link_taken_q <= link_taken_q + 1'b1;
     end
   end
 
@@ -244,7 +247,7 @@ module evms_board #(
   assign pg_valid = progress_changed_q;
   always_ff @(posedge clk or negedge run_rst_n) begin
     if (!run_rst_n) progress_changed_q <= 1'b0;
-    else if ((lab_valid && lab_ready) || (lk_valid && lk_ready && !lk_flush)) progress_changed_q <= 1'b1;
+    else if (label_taken || link_event_taken) progress_changed_q <= 1'b1;
     else if (pg_ready) progress_changed_q <= 1'b0;
   end
 
