@@ -18,11 +18,11 @@
 //  - one divider takes x and then y.
 // Schedule: the sort (rtl/cluster/evms_counting_sort.sv: Bands + 1 clocks clearing the row counts;
 // 3 an event counting, which clears its flags; Bands + 3 for the prefix sums; 3 an event
-// placing); per event seed 2 clocks to read its reached flag; per climb step 3 to find its rows' run, the run's events + 4 through a
-// 5-stage pipeline (the sorted event read; its flags read and its difference to the climb; its
-// squared distance; the test, sums and flags) and, when the ball held events, two divisions of
-// SumBits + 2 clocks; per climb one open mode a clock through the same pipeline and 4 more, 1 to
-// decide, touched events + 3 to label.
+// placing); per event seed 2 clocks to read its reached flag; per climb step 3 to find its rows' run, the run's events + 3 through a
+// 4-stage pipeline (the sorted event read; its difference to the climb, as its flags are read;
+// its squared distance; the test, sums and flags) and, when the ball held events, two divisions
+// of SumBits + 2 clocks; per climb one open mode a clock through the same pipeline and 4 more, 1
+// to read the nearest mode's support, 1 to decide, touched events + 3 to label.
 `include "evms_assert.svh"
 
 module evms_serial_climbs #(
@@ -76,7 +76,7 @@ module evms_serial_climbs #(
 
   typedef enum logic [4:0] {
     StIdle, StSort, StSeedRead, StSeedCheck, StClimbStart, StStepInit, StRunLow, StRunHigh, StRunEnd, StKernel, StStepEnd,
-    StDivideX, StDivideY, StJoinScan, StJoinDecide, StLabel, StDone
+    StDivideX, StDivideY, StJoinScan, StJoinRead, StJoinDecide, StLabel, StDone
   } state_e;
   state_e state_q;
 
@@ -85,17 +85,16 @@ module evms_serial_climbs #(
   logic [CntBits-1:0]     k_q, k_end_q;      // a step's scan: the next sorted event to read, and its run's end
   logic [CoordBits-1:0]   mx_q, my_q;        // the climb
   logic [7:0]             step_q;
-  // The distance pipeline: s1 a point read (a sorted event in the kernel, whose flags are read
-  // then, or a mode in the join), s2 its difference to the climb registered, s3 its squared
-  // distance. The kernel's events are read a stage ahead (s0), as their flags are addressed by
-  // the event's index in the packet, which the sorted memory gives.
-  logic                   s0_valid_q, s1_valid_q, s2_valid_q, s3_valid_q;   // s0: the sorted event read
+  // The distance pipeline: s1 a point at its memory's output (a sorted event in the kernel, whose
+  // flags are read then by its index in the packet, which the sorted memory gives; or a mode in
+  // the join) and its difference to the climb, s2 the difference registered (and the kernel's
+  // flags read), s3 its squared distance. The points are not registered at s1: a copy there
+  // would cost a logic cell a bit on a UP5K.
+  logic                   s1_valid_q, s2_valid_q, s3_valid_q;
   logic [IdxBits-1:0]     s2_j_q, s3_j_q;                    // the kernel's event
-  logic                   s2_in_climb_q, s3_in_climb_q;      // ... already in this climb
+  logic                   s3_in_climb_q;                     // ... already in this climb
   logic [ModeBits-1:0]    s1_c_q, s2_c_q, s3_c_q;            // the join's mode
-  logic [CoordBits-1:0]   s1_x_q, s1_y_q, s2_x_q, s2_y_q, s3_x_q, s3_y_q;   // the point
-  logic [IdxBits-1:0]     s1_j_q;
-  logic [CntBits-1:0]     s2_support_q, s3_support_q;        // the join's mode's support
+  logic [CoordBits-1:0]   s2_x_q, s2_y_q, s3_x_q, s3_y_q;    // the point
   logic [DistBits-1:0]    diff_x_q, diff_y_q;
   logic                   diff_far_q, dist2_far_q;
   logic [Dist2Bits-1:0]   dist2_q;
@@ -106,8 +105,6 @@ module evms_serial_climbs #(
   logic                   best_valid_q;
   logic [ModeBits-1:0]    best_q;
   logic [Dist2Bits-1:0]   best_d2_q;
-  logic [CoordBits-1:0]   best_x_q, best_y_q;
-  logic [CntBits-1:0]     best_support_q;
   logic signed [ModeBits:0] mode_q;          // the climb's mode, -1 when the table was full
   logic [CntBits-1:0]     t_q;               // labelling: the touched entry to read
   logic                   l1_valid_q, l2_valid_q;
@@ -185,14 +182,16 @@ module evms_serial_climbs #(
   evms_ram_1w1r #(.Width(IdxBits), .Depth(PacketMax)) u_touched (
     .clk, .we(touched_we), .wa(IdxBits'(touched_q)), .wd(s3_j_q), .ra(IdxBits'(t_q)), .rd(touched_j));
 
-  // The modes: position and support.
+  // The modes: position (written as a mode opens) and support (as it opens, and raised by a
+  // join), apart, so that a join writes the support alone and keeps no copy of the position.
   logic [CoordBits-1:0] mode_x, mode_y;
   logic [CntBits-1:0]   mode_support;
-  logic                 mode_we;
-  logic [ModeBits-1:0]  mode_ra, mode_wa;
-  logic [2 * CoordBits + CntBits-1:0] mode_wd;
-  evms_ram_1w1r #(.Width(2 * CoordBits + CntBits), .Depth(ModesMax)) u_modes (
-    .clk, .we(mode_we), .wa(mode_wa), .wd(mode_wd), .ra(mode_ra), .rd({mode_x, mode_y, mode_support}));
+  logic                 mode_opens, support_we;
+  logic [ModeBits-1:0]  mode_ra, support_wa;
+  evms_ram_1w1r #(.Width(2 * CoordBits), .Depth(ModesMax)) u_mode_positions (
+    .clk, .we(mode_opens), .wa(ModeBits'(modes_q)), .wd({mx_q, my_q}), .ra(mode_ra), .rd({mode_x, mode_y}));
+  evms_ram_1w1r #(.Width(CntBits), .Depth(ModesMax)) u_mode_supports (
+    .clk, .we(support_we), .wa(support_wa), .wd(count_q), .ra(mode_ra), .rd(mode_support));
   assign rd_mode_x = mode_x;
   assign rd_mode_y = mode_y;
   assign rd_support = 16'(mode_support);
@@ -207,9 +206,9 @@ module evms_serial_climbs #(
   assign div_start = (state_q == StStepEnd && count_q != '0) || (state_q == StDivideX && div_done);
 
   // ---- the distance pipeline ----------------------------------------------------------------
-  // The point at s1: the join's mode or the kernel's event.
-  wire [CoordBits-1:0] point_x = state_q == StJoinScan ? mode_x : s1_x_q;
-  wire [CoordBits-1:0] point_y = state_q == StJoinScan ? mode_y : s1_y_q;
+  // The point at s1: the join's mode or the kernel's event, as their memories give them.
+  wire [CoordBits-1:0] point_x = state_q == StJoinScan ? mode_x : sorted_x;
+  wire [CoordBits-1:0] point_y = state_q == StJoinScan ? mode_y : sorted_y;
   // |a - b| by one subtraction and its sign (not a comparison and two subtractions).
   function automatic logic [CoordBits-1:0] distance(input logic [CoordBits-1:0] a, input logic [CoordBits-1:0] b);
     logic [CoordBits:0] delta;
@@ -241,7 +240,7 @@ module evms_serial_climbs #(
   // ---- memory ports by state ----------------------------------------------------------------
   wire [BandBits-1:0] climb_band = band_of(my_q);
   always_comb begin
-    flags_ra = state_q == StKernel ? sorted_j : j_index;   // s0's event, or the seed
+    flags_ra = state_q == StKernel ? sorted_j : j_index;   // s1's event, or the seed
     // A step's run: from the start of the row below the climb's to the start of the row above it
     // plus one (the rows clamped to the packet's).
     run_ra = state_q == StRunLow ? (climb_band == '0 ? '0 : climb_band - 1'b1)
@@ -252,10 +251,10 @@ module evms_serial_climbs #(
     first_mode_ra = state_q == StLabel ? touched_j : IdxBits'(rd_j);
     first_mode_we = 1'b0;
     first_mode_wa = l2_j_q;
-    mode_ra = state_q == StJoinScan ? ModeBits'(scan_c_q) : ModeBits'(rd_c);
-    mode_we = 1'b0;
-    mode_wa = ModeBits'(modes_q);
-    mode_wd = {mx_q, my_q, count_q};
+    mode_ra = state_q == StJoinScan ? ModeBits'(scan_c_q) : (state_q == StJoinRead ? best_q : ModeBits'(rd_c));
+    mode_opens = 1'b0;
+    support_we = 1'b0;
+    support_wa = best_valid_q ? best_q : ModeBits'(modes_q);
     unique case (state_q)
       StSort: begin   // each event's flags clear while its row is counted
         flags_we = sort_count_read;
@@ -268,12 +267,10 @@ module evms_serial_climbs #(
         flags_wd_in_climb = 1'b1;
       end
       StJoinDecide: begin
-        // Opening a mode, or a join whose climb held more events than the mode's support.
-        mode_we = best_valid_q ? count_q > best_support_q : modes_q != ModeCntBits'(ModesMax);
-        if (best_valid_q) begin
-          mode_wa = best_q;
-          mode_wd = {best_x_q, best_y_q, count_q};
-        end
+        // Opening a mode, or a join whose climb held more events than the mode's support (read
+        // in StJoinRead).
+        mode_opens = !best_valid_q && modes_q != ModeCntBits'(ModesMax);
+        support_we = best_valid_q ? count_q > mode_support : mode_opens;
       end
       StLabel: begin
         // l1: the touched event leaves the climb (it was reached); l2: it takes the climb's mode
@@ -292,35 +289,27 @@ module evms_serial_climbs #(
       state_q <= StIdle;
       done <= 1'b0;
       {j_q, k_q, mx_q, my_q, step_q} <= '0;
-      {s0_valid_q, s1_valid_q, s2_valid_q, s3_valid_q, s1_j_q, s2_j_q, s3_j_q, s2_in_climb_q, s3_in_climb_q} <= '0;
-      {s1_x_q, s1_y_q, k_end_q} <= '0;
-      {s1_c_q, s2_c_q, s3_c_q, s2_x_q, s2_y_q, s3_x_q, s3_y_q, s2_support_q, s3_support_q} <= '0;
+      {s1_valid_q, s2_valid_q, s3_valid_q, s2_j_q, s3_j_q, s3_in_climb_q, k_end_q} <= '0;
+      {s1_c_q, s2_c_q, s3_c_q, s2_x_q, s2_y_q, s3_x_q, s3_y_q} <= '0;
       {sum_x_q, sum_y_q, new_x_q, count_q, touched_q, scan_c_q, modes_q} <= '0;
-      {best_valid_q, best_q, best_d2_q, best_x_q, best_y_q, best_support_q} <= '0;
+      {best_valid_q, best_q, best_d2_q} <= '0;
       {t_q, l1_valid_q, l2_valid_q, l2_j_q, climbs_q, steps_q, lost_q} <= '0;
       mode_q <= '0;
     end else begin
       done <= 1'b0;
       // The distance pipeline: only the kernel scan and the join scan issue into s1.
-      s0_valid_q <= 1'b0;
-      s1_valid_q <= s0_valid_q;
-      s1_x_q <= sorted_x;
-      s1_y_q <= sorted_y;
-      s1_j_q <= sorted_j;
+      s1_valid_q <= 1'b0;
       s2_valid_q <= s1_valid_q;
       s3_valid_q <= s2_valid_q;
-      s2_j_q <= s1_j_q;
+      s2_j_q <= sorted_j;
       s3_j_q <= s2_j_q;
-      s2_in_climb_q <= flag_in_climb;
-      s3_in_climb_q <= s2_in_climb_q;
+      s3_in_climb_q <= flag_in_climb;   // read at s1 by the event's index
       s2_c_q <= s1_c_q;
       s3_c_q <= s2_c_q;
       s2_x_q <= point_x;
       s2_y_q <= point_y;
       s3_x_q <= s2_x_q;
       s3_y_q <= s2_y_q;
-      s2_support_q <= mode_support;
-      s3_support_q <= s2_support_q;
       if (kernel_at_s3 && kernel_in) begin
         sum_x_q <= sum_x_q + SumBits'(s3_x_q);
         sum_y_q <= sum_y_q + SumBits'(s3_y_q);
@@ -390,9 +379,9 @@ module evms_serial_climbs #(
           // Issue (the sorted memory reads k); the flags' read, the difference, its square, the
           // test, the sums and the flags' write follow in the pipeline. The step ends when its
           // last event is at s3, whose sum is taken in the same clock.
-          s0_valid_q <= k_q < k_end_q;
+          s1_valid_q <= k_q < k_end_q;
           if (k_q < k_end_q) k_q <= k_q + 1'b1;
-          else if (!s0_valid_q && !s1_valid_q && !s2_valid_q) state_q <= StStepEnd;
+          else if (!s1_valid_q && !s2_valid_q) state_q <= StStepEnd;
         end
         StStepEnd: begin
           steps_q <= steps_q + 1'b1;
@@ -419,12 +408,10 @@ module evms_serial_climbs #(
             best_valid_q <= 1'b1;
             best_q <= s3_c_q;
             best_d2_q <= dist2_q;
-            best_x_q <= s3_x_q;
-            best_y_q <= s3_y_q;
-            best_support_q <= s3_support_q;
           end
-          if (scan_c_q == modes_q && !s1_valid_q && !s2_valid_q) state_q <= StJoinDecide;   // s3's last test is this clock's
+          if (scan_c_q == modes_q && !s1_valid_q && !s2_valid_q) state_q <= StJoinRead;   // s3's last test is this clock's
         end
+        StJoinRead: state_q <= StJoinDecide;   // the nearest mode's support read
         StJoinDecide: begin
           if (best_valid_q) begin
             mode_q <= $signed((ModeBits + 1)'(best_q));
@@ -456,7 +443,7 @@ module evms_serial_climbs #(
 
   `EVMS_ASSERT("a packet holds at most PacketMax events", !(start && n > 16'(PacketMax)), clk, rst_n)
   `EVMS_ASSERT("a step's sums are complete when it ends: the distance pipeline has drained",
-               state_q != StStepEnd || !(s0_valid_q || s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
+               state_q != StStepEnd || !(s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
   `EVMS_ASSERT("the join's decision follows its last test: the distance pipeline has drained",
                state_q != StJoinDecide || !(s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
   `EVMS_ASSERT("the merge radius is below two bandwidths", !start || cfg_merge_radius2 < 64'(4) * 64'(One), clk, rst_n)
