@@ -8,7 +8,7 @@
 // A packet opens, fills and closes by hls::Core's rules (its size, its span, a full pending queue
 // of PendingDepth words, a flush word); the pending words are the host's to keep, so only their
 // count is here. Closing runs cluster/evms_serial_climbs.sv on the packet's features and sends
-// the frame; words wait in the intake's queue meanwhile. The host completes each packet from its
+// the frame; the next word waits in the intake meanwhile, decided. The host completes each packet from its
 // frame (hls::Core::process_climbed), which gives the whole core's words when warm seeds are off
 // and the least density follows the links, as the serial climbs have neither.
 `include "evms_assert.svh"
@@ -19,7 +19,7 @@ module evms_climbs_core #(
   parameter int TimestampBits  = 16,
   parameter int TimestampShift = 7,
   parameter int NoiseIntervalLog2 = 15,
-  parameter int QueueDepth     = 2,     // decided words that wait while a packet is closed
+  parameter int QueueDepth     = 1,     // decided words that wait while a packet is closed (core/evms_intake.sv)
   parameter int PacketMax      = 1024,  // kPacketMax
   parameter int PendingDepth   = 4096,  // kPendingDepth: words, kept or not, that close a packet
   parameter int ModesMax       = 64,
@@ -70,8 +70,8 @@ module evms_climbs_core #(
   // StTake: the head word's verdict goes out and the word is planned; a packet closes before it
   // (StStart ...) or it joins the pending count and the packet (StAdd) and the packet closes
   // after it. Closing: StStart, StRun (the climbs), StHead, StModes, StEvents. An event word
-  // leaves the intake's queue in StAdd, not before: until then its time and features are read at
-  // the queue's head, with no copy here. A flush word leaves as it is taken.
+  // leaves the intake in StAdd, not before: until then its time and features are read at
+  // the intake's head, with no copy here. A flush word leaves as it is taken.
   typedef enum logic [2:0] {StTake, StAdd, StStart, StRun, StHead, StModes, StEvents} state_e;
   state_e state_d, state_q;
 

@@ -9,6 +9,11 @@
 // word, the filter off or an event outside the sensor), and reaches the head of an empty
 // queue three clocks later. The next word is taken no sooner than the clock after the push,
 // and only while fewer than QueueDepth words are taken and not yet popped.
+//
+// With QueueDepth 1 there is no queue: the word being decided is the head from its push clock
+// until it is popped, and the next word is taken the clock after. A core that waits long for
+// each word anyway (core/evms_climbs_core.sv) keeps no second copy of it that way: on a UP5K a
+// flip-flop that copies a word costs a logic cell a bit.
 `include "evms_assert.svh"
 
 module evms_intake #(
@@ -17,7 +22,7 @@ module evms_intake #(
   parameter int TimestampBits  = 16,
   parameter int TimestampShift = 7,
   parameter int NoiseIntervalLog2 = 15,
-  parameter int QueueDepth     = 256,
+  parameter int QueueDepth     = 256,   // 1, or a power of two (common/evms_fifo.sv)
   parameter int HasClimbScale  = 1,   // compute the climb features (a build with the seeded path)
   parameter int ClimbShift     = 21   // kClimbScaleFrac - kFeatFrac - kClimbFrac
 ) (
@@ -47,7 +52,7 @@ module evms_intake #(
   localparam int WordBits = 32 + 16 + 16 + 1 + 1 + 1 + ClimbBits;
 
   // ---- the word being decided -----------------------------------------------------------------
-  logic        busy_q;                 // a word is taken and not yet pushed
+  logic        busy_q;                 // a word is taken and not yet released
   logic [1:0]  age_q;                  // clocks since it was taken, less one, saturating at 2
   logic        decided_q, kept_q;      // the filter has answered (a flush word needs no answer)
   logic [31:0] t_q;
@@ -68,6 +73,8 @@ module evms_intake #(
   wire decided = flush_q || decided_q || f_done;
   wire kept = !flush_q && (decided_q ? kept_q : f_kept);
   wire push = busy_q && age_q == 2'd2 && decided;
+  // The word being decided leaves the intake: pushed into the queue, or popped from the head.
+  wire release_word;
 
   // ---- climb features: one product a clock, x at A + 1 and y at A + 2 ---------------------------
   // The queue's word: the event, whether it is a flush word or kept, and its climb features.
@@ -118,19 +125,27 @@ module evms_intake #(
           decided_q <= 1'b1;
           kept_q <= f_kept;
         end
-        if (push) busy_q <= 1'b0;
+        if (release_word) busy_q <= 1'b0;
       end
       taken_q <= taken_q + CountBits'(take) - CountBits'(q_valid && q_pop);
     end
   end
 
   // ---- the queue ----------------------------------------------------------------------------------
-  // Never full: words are taken only while fewer than QueueDepth wait.
-  logic fifo_in_ready;
-  evms_fifo #(.Width(WordBits), .Depth(QueueDepth)) u_queue (
-    .clk(clk), .rst_n(rst_n), .in_valid(push), .in_ready(fifo_in_ready), .in_data(push_word), .in_commit(1'b0), .in_rollback(1'b0), .out_valid(q_valid),
-    .out_ready(q_pop), .out_data(head_word));
-  `EVMS_ASSERT("the intake never pushes into a full queue", !push || fifo_in_ready, clk, rst_n)
+  if (QueueDepth == 1) begin : g_head_in_registers
+    // The decided word waits where it was decided.
+    assign q_valid = push;
+    assign head_word = push_word;
+    assign release_word = push && q_pop;
+  end else begin : g_queue
+    // Never full: words are taken only while fewer than QueueDepth wait.
+    logic fifo_in_ready;
+    evms_fifo #(.Width(WordBits), .Depth(QueueDepth)) u_queue (
+      .clk(clk), .rst_n(rst_n), .in_valid(push), .in_ready(fifo_in_ready), .in_data(push_word), .in_commit(1'b0), .in_rollback(1'b0),
+      .out_valid(q_valid), .out_ready(q_pop), .out_data(head_word));
+    assign release_word = push;
+    `EVMS_ASSERT("the intake never pushes into a full queue", !push || fifo_in_ready, clk, rst_n)
+  end
 
   assign empty = taken_q == '0;
 endmodule
