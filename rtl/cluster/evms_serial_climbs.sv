@@ -99,7 +99,7 @@ module evms_serial_climbs #(
   logic                   diff_far_q, dist2_far_q;
   logic [Dist2Bits-1:0]   dist2_q;
   logic [SumBits-1:0]     sum_x_q, sum_y_q;
-  logic [CoordBits-1:0]   new_x_q;           // the step's new x, while y divides
+  logic                   x_settled_q;       // the step moved x by at most the tolerance (while y divides)
   logic [CntBits-1:0]     count_q, touched_q;
   logic [ModeCntBits-1:0] scan_c_q, modes_q;
   logic                   best_valid_q;
@@ -232,10 +232,11 @@ module evms_serial_climbs #(
   end
   wire join_near = !dist2_far_q && 64'(dist2_q) <= cfg_merge_radius2;
 
-  wire [CoordBits-1:0] new_y = CoordBits'(quotient), new_x = new_x_q;   // a mean is at most the largest feature
-  wire [CoordBits-1:0] move_x = distance(new_x, mx_q);
-  wire [CoordBits-1:0] move_y = distance(new_y, my_q);
-  wire [CoordBits-1:0] move = move_x > move_y ? move_x : move_y;
+  // A step's move on each axis as its mean comes, x's before y's, so that mx_q takes the new x at
+  // once with no copy kept: the larger move is within the tolerance when both are.
+  wire [CoordBits-1:0] new_mean = CoordBits'(quotient);   // a mean is at most the largest feature
+  wire [CoordBits-1:0] move = distance(new_mean, state_q == StDivideX ? mx_q : my_q);
+  wire settled = 32'(move) <= cfg_tolerance;
 
   // ---- memory ports by state ----------------------------------------------------------------
   wire [BandBits-1:0] climb_band = band_of(my_q);
@@ -291,7 +292,7 @@ module evms_serial_climbs #(
       {j_q, k_q, mx_q, my_q, step_q} <= '0;
       {s1_valid_q, s2_valid_q, s3_valid_q, s2_j_q, s3_j_q, s3_in_climb_q, k_end_q} <= '0;
       {s1_c_q, s2_c_q, s3_c_q, s2_x_q, s2_y_q, s3_x_q, s3_y_q} <= '0;
-      {sum_x_q, sum_y_q, new_x_q, count_q, touched_q, scan_c_q, modes_q} <= '0;
+      {sum_x_q, sum_y_q, x_settled_q, count_q, touched_q, scan_c_q, modes_q} <= '0;
       {best_valid_q, best_q, best_d2_q} <= '0;
       {t_q, l1_valid_q, l2_valid_q, l2_j_q, climbs_q, steps_q, lost_q} <= '0;
       mode_q <= '0;
@@ -388,14 +389,14 @@ module evms_serial_climbs #(
           state_q <= count_q == '0 ? join_state : StDivideX;
         end
         StDivideX: if (div_done) begin
-          new_x_q <= CoordBits'(quotient);
+          mx_q <= new_mean;
+          x_settled_q <= settled;
           state_q <= StDivideY;
         end
         StDivideY: if (div_done) begin
-          mx_q <= new_x;
-          my_q <= new_y;
+          my_q <= new_mean;
           step_q <= step_q + 1'b1;
-          if (32'(move) <= cfg_tolerance || step_q + 1'b1 >= iteration_cap) state_q <= join_state;
+          if ((x_settled_q && settled) || step_q + 1'b1 >= iteration_cap) state_q <= join_state;
           else state_q <= StStepInit;
         end
         // Join the nearest mode within the merge radius (ties: the older, read first), else open
