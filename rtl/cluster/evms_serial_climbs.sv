@@ -18,10 +18,10 @@
 //  - one divider takes x and then y.
 // Schedule: the sort (rtl/cluster/evms_counting_sort.sv: Bands + 1 clocks clearing the row counts;
 // 3 an event counting, which clears its flags; Bands + 3 for the prefix sums; 3 an event
-// placing); per event seed 2 clocks to read its reached flag; per climb step 3 to find its rows' run, the run's events + 3 through a
-// 4-stage pipeline (the sorted event read; its difference to the climb, as its flags are read;
-// its squared distance; the test, sums and flags) and, when the ball held events, two divisions
-// of SumBits + 2 clocks; per climb one open mode a clock through the same pipeline and 4 more, 1
+// placing); per event seed 2 clocks to read its reached flag; per climb step 3 to find its rows' run, the run's events + 2 through a
+// 3-stage pipeline (the sorted event read; its difference to the climb, as its flags are read;
+// its squared distance, the test, sums and flags) and, when the ball held events, two divisions
+// of SumBits + 2 clocks; per climb one open mode a clock through the same pipeline and 3 more, 1
 // to read the nearest mode's support, 1 to decide, touched events + 3 to label.
 `include "evms_assert.svh"
 
@@ -87,17 +87,15 @@ module evms_serial_climbs #(
   logic [7:0]             step_q;
   // The distance pipeline: s1 a point at its memory's output (a sorted event in the kernel, whose
   // flags are read then by its index in the packet, which the sorted memory gives; or a mode in
-  // the join) and its difference to the climb, s2 the difference registered (and the kernel's
-  // flags read), s3 its squared distance. The points are not registered at s1: a copy there
-  // would cost a logic cell a bit on a UP5K.
-  logic                   s1_valid_q, s2_valid_q, s3_valid_q;
-  logic [IdxBits-1:0]     s2_j_q, s3_j_q;                    // the kernel's event
-  logic                   s3_in_climb_q;                     // ... already in this climb
-  logic [ModeBits-1:0]    s1_c_q, s2_c_q, s3_c_q;            // the join's mode
-  logic [CoordBits-1:0]   s2_x_q, s2_y_q, s3_x_q, s3_y_q;    // the point
+  // the join) and its difference to the climb; s2 the difference registered, its square, and the
+  // test (with the kernel's flags). No stage copies a word it does not change: on a UP5K a
+  // flip-flop that copies costs a logic cell a bit, and the squares fit in a clock at its pace.
+  logic                   s1_valid_q, s2_valid_q;
+  logic [IdxBits-1:0]     s2_j_q;                            // the kernel's event
+  logic [ModeBits-1:0]    s1_c_q, s2_c_q;                    // the join's mode
+  logic [CoordBits-1:0]   s2_x_q, s2_y_q;                    // the point
   logic [DistBits-1:0]    diff_x_q, diff_y_q;
-  logic                   diff_far_q, dist2_far_q;
-  logic [Dist2Bits-1:0]   dist2_q;
+  logic                   diff_far_q;
   logic [SumBits-1:0]     sum_x_q, sum_y_q;
   logic                   x_settled_q;       // the step moved x by at most the tolerance (while y divides)
   logic [CntBits-1:0]     count_q, touched_q;
@@ -176,11 +174,12 @@ module evms_serial_climbs #(
 
   // The current climb's events, in the order it reached them.
   logic [IdxBits-1:0] touched_j;
-  wire kernel_at_s3 = s3_valid_q && state_q != StJoinScan;
-  wire kernel_in = !dist2_far_q && dist2_q < One;
-  wire touched_we = kernel_at_s3 && kernel_in && !s3_in_climb_q;
+  logic [Dist2Bits-1:0] dist2;
+  wire kernel_at_s2 = s2_valid_q && state_q != StJoinScan;
+  wire kernel_in = !diff_far_q && dist2 < One;
+  wire touched_we = kernel_at_s2 && kernel_in && !flag_in_climb;   // the flags of s2's event
   evms_ram_1w1r #(.Width(IdxBits), .Depth(PacketMax)) u_touched (
-    .clk, .we(touched_we), .wa(IdxBits'(touched_q)), .wd(s3_j_q), .ra(IdxBits'(t_q)), .rd(touched_j));
+    .clk, .we(touched_we), .wa(IdxBits'(touched_q)), .wd(s2_j_q), .ra(IdxBits'(t_q)), .rd(touched_j));
 
   // The modes: position (written as a mode opens) and support (as it opens, and raised by a
   // join), apart, so that a join writes the support alone and keeps no copy of the position.
@@ -227,10 +226,9 @@ module evms_serial_climbs #(
     diff_x_q <= DistBits'(abs_x);
     diff_y_q <= DistBits'(abs_y);
     diff_far_q <= far_x || far_y;
-    dist2_q <= Dist2Bits'(diff_x_q) * Dist2Bits'(diff_x_q) + Dist2Bits'(diff_y_q) * Dist2Bits'(diff_y_q);
-    dist2_far_q <= diff_far_q;
   end
-  wire join_near = !dist2_far_q && 64'(dist2_q) <= cfg_merge_radius2;
+  assign dist2 = Dist2Bits'(diff_x_q) * Dist2Bits'(diff_x_q) + Dist2Bits'(diff_y_q) * Dist2Bits'(diff_y_q);
+  wire join_near = !diff_far_q && 64'(dist2) <= cfg_merge_radius2;
 
   // A step's move on each axis as its mean comes, x's before y's, so that mx_q takes the new x at
   // once with no copy kept: the larger move is within the tolerance when both are.
@@ -247,7 +245,7 @@ module evms_serial_climbs #(
     run_ra = state_q == StRunLow ? (climb_band == '0 ? '0 : climb_band - 1'b1)
                                  : (climb_band + 1'b1 >= BandBits'(Bands) ? BandBits'(Bands) : climb_band + BandBits'(2));
     flags_we = 1'b0;
-    flags_wa = s3_j_q;
+    flags_wa = s2_j_q;
     flags_wd_in_climb = 1'b0;
     first_mode_ra = state_q == StLabel ? touched_j : IdxBits'(rd_j);
     first_mode_we = 1'b0;
@@ -263,8 +261,8 @@ module evms_serial_climbs #(
         first_mode_we = sort_count_read;
         first_mode_wa = sort_j;
       end
-      StKernel: begin   // a step's last events reach s3 in StKernel
-        flags_we = kernel_at_s3 && kernel_in;
+      StKernel: begin   // a step's last events reach s2 in StKernel
+        flags_we = kernel_at_s2 && kernel_in;
         flags_wd_in_climb = 1'b1;
       end
       StJoinDecide: begin
@@ -290,8 +288,8 @@ module evms_serial_climbs #(
       state_q <= StIdle;
       done <= 1'b0;
       {j_q, k_q, mx_q, my_q, step_q} <= '0;
-      {s1_valid_q, s2_valid_q, s3_valid_q, s2_j_q, s3_j_q, s3_in_climb_q, k_end_q} <= '0;
-      {s1_c_q, s2_c_q, s3_c_q, s2_x_q, s2_y_q, s3_x_q, s3_y_q} <= '0;
+      {s1_valid_q, s2_valid_q, s2_j_q, k_end_q} <= '0;
+      {s1_c_q, s2_c_q, s2_x_q, s2_y_q} <= '0;
       {sum_x_q, sum_y_q, x_settled_q, count_q, touched_q, scan_c_q, modes_q} <= '0;
       {best_valid_q, best_q, best_d2_q} <= '0;
       {t_q, l1_valid_q, l2_valid_q, l2_j_q, climbs_q, steps_q, lost_q} <= '0;
@@ -301,19 +299,13 @@ module evms_serial_climbs #(
       // The distance pipeline: only the kernel scan and the join scan issue into s1.
       s1_valid_q <= 1'b0;
       s2_valid_q <= s1_valid_q;
-      s3_valid_q <= s2_valid_q;
       s2_j_q <= sorted_j;
-      s3_j_q <= s2_j_q;
-      s3_in_climb_q <= flag_in_climb;   // read at s1 by the event's index
       s2_c_q <= s1_c_q;
-      s3_c_q <= s2_c_q;
       s2_x_q <= point_x;
       s2_y_q <= point_y;
-      s3_x_q <= s2_x_q;
-      s3_y_q <= s2_y_q;
-      if (kernel_at_s3 && kernel_in) begin
-        sum_x_q <= sum_x_q + SumBits'(s3_x_q);
-        sum_y_q <= sum_y_q + SumBits'(s3_y_q);
+      if (kernel_at_s2 && kernel_in) begin
+        sum_x_q <= sum_x_q + SumBits'(s2_x_q);
+        sum_y_q <= sum_y_q + SumBits'(s2_y_q);
         count_q <= count_q + 1'b1;
       end
       if (touched_we) touched_q <= touched_q + 1'b1;
@@ -379,10 +371,10 @@ module evms_serial_climbs #(
         StKernel: begin
           // Issue (the sorted memory reads k); the flags' read, the difference, its square, the
           // test, the sums and the flags' write follow in the pipeline. The step ends when its
-          // last event is at s3, whose sum is taken in the same clock.
+          // last event is at s2, whose sum is taken in the same clock.
           s1_valid_q <= k_q < k_end_q;
           if (k_q < k_end_q) k_q <= k_q + 1'b1;
-          else if (!s1_valid_q && !s2_valid_q) state_q <= StStepEnd;
+          else if (!s1_valid_q) state_q <= StStepEnd;
         end
         StStepEnd: begin
           steps_q <= steps_q + 1'b1;
@@ -405,12 +397,12 @@ module evms_serial_climbs #(
           s1_valid_q <= scan_c_q < modes_q;
           s1_c_q <= ModeBits'(scan_c_q);
           if (scan_c_q < modes_q) scan_c_q <= scan_c_q + 1'b1;
-          if (s3_valid_q && join_near && (!best_valid_q || dist2_q < best_d2_q)) begin
+          if (s2_valid_q && join_near && (!best_valid_q || dist2 < best_d2_q)) begin
             best_valid_q <= 1'b1;
-            best_q <= s3_c_q;
-            best_d2_q <= dist2_q;
+            best_q <= s2_c_q;
+            best_d2_q <= dist2;
           end
-          if (scan_c_q == modes_q && !s1_valid_q && !s2_valid_q) state_q <= StJoinRead;   // s3's last test is this clock's
+          if (scan_c_q == modes_q && !s1_valid_q) state_q <= StJoinRead;   // s2's last test is this clock's
         end
         StJoinRead: state_q <= StJoinDecide;   // the nearest mode's support read
         StJoinDecide: begin
@@ -444,8 +436,8 @@ module evms_serial_climbs #(
 
   `EVMS_ASSERT("a packet holds at most PacketMax events", !(start && n > 16'(PacketMax)), clk, rst_n)
   `EVMS_ASSERT("a step's sums are complete when it ends: the distance pipeline has drained",
-               state_q != StStepEnd || !(s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
+               state_q != StStepEnd || !(s1_valid_q || s2_valid_q), clk, rst_n)
   `EVMS_ASSERT("the join's decision follows its last test: the distance pipeline has drained",
-               state_q != StJoinDecide || !(s1_valid_q || s2_valid_q || s3_valid_q), clk, rst_n)
+               state_q != StJoinDecide || !(s1_valid_q || s2_valid_q), clk, rst_n)
   `EVMS_ASSERT("the merge radius is below two bandwidths", !start || cfg_merge_radius2 < 64'(4) * 64'(One), clk, rst_n)
 endmodule
