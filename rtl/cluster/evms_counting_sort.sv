@@ -46,9 +46,9 @@ module evms_counting_sort #(
   logic [KeyBits-1:0] start_ra, start_wa;
   logic [NextBits-1:0] next_wa;
   logic               start_we, next_we;
-  evms_ram_1w1r #(.Width(CntBits), .Depth(Keys + 1)) u_start (
+  evms_ram_1w1r #(.Width(CntBits), .Depth(Keys + 1), .CollisionUnused(1)) u_start (
     .clk, .we(start_we), .wa(start_wa), .wd(start_wd), .ra(start_ra), .rd(start_rd));
-  evms_ram_1w1r #(.Width(CntBits), .Depth(Keys)) u_next (
+  evms_ram_1w1r #(.Width(CntBits), .Depth(Keys), .CollisionUnused(1)) u_next (
     .clk, .we(next_we), .wa(next_wa), .wd(next_wd), .ra(NextBits'(key)), .rd(next_rd));
   assign run_start = start_rd;
 

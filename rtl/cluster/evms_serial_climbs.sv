@@ -160,7 +160,7 @@ module evms_serial_climbs #(
   // Each event's flags: reached by some climb, and in the current climb's list.
   logic               flag_reached, flag_in_climb, flags_we, flags_wd_in_climb;
   logic [IdxBits-1:0] flags_ra, flags_wa;
-  evms_ram_1w1r #(.Width(2), .Depth(PacketMax)) u_flags (
+  evms_ram_1w1r #(.Width(2), .Depth(PacketMax), .CollisionUnused(1)) u_flags (
     .clk, .we(flags_we), .wa(flags_wa), .wd({!sort_count_read, flags_wd_in_climb}), .ra(flags_ra),
     .rd({flag_reached, flag_in_climb}));
 
@@ -168,7 +168,7 @@ module evms_serial_climbs #(
   logic                labelled, first_mode_we;
   logic [ModeBits-1:0] first_mode;
   logic [IdxBits-1:0]  first_mode_ra, first_mode_wa;
-  evms_ram_1w1r #(.Width(ModeBits + 1), .Depth(PacketMax)) u_first_mode (
+  evms_ram_1w1r #(.Width(ModeBits + 1), .Depth(PacketMax), .CollisionUnused(1)) u_first_mode (
     .clk, .we(first_mode_we), .wa(first_mode_wa), .wd({!sort_count_read, ModeBits'(mode_q)}), .ra(first_mode_ra),
     .rd({labelled, first_mode}));
 
@@ -178,7 +178,7 @@ module evms_serial_climbs #(
   wire kernel_at_s2 = s2_valid_q && state_q != StJoinScan;
   wire kernel_in = !diff_far_q && dist2 < One;
   wire touched_we = kernel_at_s2 && kernel_in && !flag_in_climb;   // the flags of s2's event
-  evms_ram_1w1r #(.Width(IdxBits), .Depth(PacketMax)) u_touched (
+  evms_ram_1w1r #(.Width(IdxBits), .Depth(PacketMax), .CollisionUnused(1)) u_touched (
     .clk, .we(touched_we), .wa(IdxBits'(touched_q)), .wd(s2_j_q), .ra(IdxBits'(t_q)), .rd(touched_j));
 
   // The modes: position (written as a mode opens) and support (as it opens, and raised by a
@@ -187,9 +187,9 @@ module evms_serial_climbs #(
   logic [CntBits-1:0]   mode_support;
   logic                 mode_opens, support_we;
   logic [ModeBits-1:0]  mode_ra, support_wa;
-  evms_ram_1w1r #(.Width(2 * CoordBits), .Depth(ModesMax)) u_mode_positions (
+  evms_ram_1w1r #(.Width(2 * CoordBits), .Depth(ModesMax), .CollisionUnused(1)) u_mode_positions (
     .clk, .we(mode_opens), .wa(ModeBits'(modes_q)), .wd({mx_q, my_q}), .ra(mode_ra), .rd({mode_x, mode_y}));
-  evms_ram_1w1r #(.Width(CntBits), .Depth(ModesMax)) u_mode_supports (
+  evms_ram_1w1r #(.Width(CntBits), .Depth(ModesMax), .CollisionUnused(1)) u_mode_supports (
     .clk, .we(support_we), .wa(support_wa), .wd(count_q), .ra(mode_ra), .rd(mode_support));
   assign rd_mode_x = mode_x;
   assign rd_mode_y = mode_y;
