@@ -98,7 +98,24 @@ module evms_climbs_core #(
 
   // The word at the intake's head, planned as hls::Core::plan_word.
   wire take = state_q == StTake && q_valid && (q_flush || lab_ready);
-  wire span_exceeded = n_q != '0 && cfg_packet_max_span_us != '0 && q_t - t_first_q > cfg_packet_max_span_us;
+  wire span_exceeded_now = n_q != '0 && cfg_packet_max_span_us != '0 && q_t - t_first_q > cfg_packet_max_span_us;
+  logic span_exceeded;
+  if (QueueDepth == 1) begin : g_span_registered
+    // The head word's time is loaded at least two clocks before the word is valid (core/
+    // evms_intake.sv). The open packet's count changes as a word joins it or the packet closes,
+    // and its first time as its first event joins, clocks before the next head is valid. So the
+    // test of the next count (n_d) and this first time, a clock ahead, is the head's whenever the
+    // head is valid, and the plan's path starts at a register, not at a subtraction.
+    logic span_exceeded_q;
+    always_ff @(posedge clk or negedge rst_n) begin
+      if (!rst_n) span_exceeded_q <= 1'b0;
+      else span_exceeded_q <= n_d != '0 && cfg_packet_max_span_us != '0 && q_t - t_first_q > cfg_packet_max_span_us;
+    end
+    assign span_exceeded = span_exceeded_q;
+    `EVMS_ASSERT("the registered span test is the head word's", !q_valid || span_exceeded_q == span_exceeded_now, clk, rst_n)
+  end else begin : g_span_now
+    assign span_exceeded = span_exceeded_now;
+  end
   wire close_before = q_flush || (q_kept && span_exceeded);
   // Counts after the close before the word, if any.
   wire [CntBits-1:0]  n_base = close_before ? '0 : n_q;
