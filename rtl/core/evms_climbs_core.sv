@@ -98,7 +98,11 @@ module evms_climbs_core #(
 
   // The word at the intake's head, planned as hls::Core::plan_word.
   wire take = state_q == StTake && q_valid && (q_flush || lab_ready);
-  wire span_exceeded_now = n_q != '0 && cfg_packet_max_span_us != '0 && q_t - t_first_q > cfg_packet_max_span_us;
+  // The head word lies beyond the span of a packet of n events that began at t_first_q.
+  function automatic logic beyond_span(input logic [CntBits-1:0] n);
+    beyond_span = n != '0 && cfg_packet_max_span_us != '0 && q_t - t_first_q > cfg_packet_max_span_us;
+  endfunction
+  wire span_exceeded_now = beyond_span(n_q);
   logic span_exceeded;
   if (QueueDepth == 1) begin : g_span_registered
     // The head word's time is loaded at least two clocks before the word is valid (core/
@@ -109,7 +113,7 @@ module evms_climbs_core #(
     logic span_exceeded_q;
     always_ff @(posedge clk or negedge rst_n) begin
       if (!rst_n) span_exceeded_q <= 1'b0;
-      else span_exceeded_q <= n_d != '0 && cfg_packet_max_span_us != '0 && q_t - t_first_q > cfg_packet_max_span_us;
+      else span_exceeded_q <= beyond_span(n_d);
     end
     assign span_exceeded = span_exceeded_q;
     `EVMS_ASSERT("the registered span test is the head word's", !q_valid || span_exceeded_q == span_exceeded_now, clk, rst_n)
