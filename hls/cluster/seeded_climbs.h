@@ -100,8 +100,10 @@ class SeededClimbs {
 
   // Writes each event's mode (or -1) to first_mode and the modes to `modes`. Warm balls must be
   // at most kReachMax bandwidths (the backends refuse larger, host/backend/core_config.h).
+  // Without `drop_sparse`, the modes below the least density keep their events (the caller
+  // drops them later with drop_sparse_modes, as the core does to record the climbs first).
   void run(const Features<S>& phi, int n, const Config& cfg, const Modes<S>& warm, std::int16_t first_mode[S::kPacketMax], Modes<S>& modes,
-           ClimbTrace& trace) {
+           ClimbTrace& trace, bool drop_sparse = true) {
     trace = {};
     modes.count = 0;
     sort_into_cells(phi, n);
@@ -123,6 +125,12 @@ class SeededClimbs {
       if (i >= n) break;
       if (!reached_[i]) climb(cfg, phi.x[i], phi.y[i], kOne, first_mode, modes, trace);
     }
+    if (drop_sparse) drop_sparse_modes(first_mode, n, cfg);
+  }
+
+  // Without density_after_links, the events of a mode below the least density go without one
+  // (run() does it; a run taken from elsewhere by assume() needs it done).
+  void drop_sparse_modes(std::int16_t first_mode[S::kPacketMax], int n, const Config& cfg) const {
     if (cfg.min_density == 0 || cfg.density_after_links) return;
   sparse_modes:
     for (int j = 0; j < S::kPacketMax; ++j) {

@@ -97,7 +97,7 @@ class Core {
   // process_decided() with each packet's climbs taken from `frames` (climbs_needed(in, kept) of
   // them) instead of run here: how the host completes a board whose core stops at the climbs.
   // Given that board's verdicts and frames, the words out are process()'s when warm_start is
-  // off and the least density, if any, follows the links (the climbs there test neither).
+  // off (the board's climbs have no warm seeds).
   void process_climbed(const EventWord& in, bool kept, ClimbsStream& frames, LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
     process_word(in, kept, labels, tracks, packets, &frames, nullptr);
   }
@@ -161,13 +161,16 @@ class Core {
           given->read(frame);
           climbs_.assume(frame, mode_of, modes, trace.climbs);
         } else {
-          climbs_.run(phi, n_, cfg_, warm_, mode_of, modes, trace.climbs);
+          climbs_.run(phi, n_, cfg_, warm_, mode_of, modes, trace.climbs, false);
         }
         if (record != nullptr) {
           ClimbsFrame<S> frame;
           climbs_.frame(mode_of, n_, modes, trace.climbs, frame);
           record->write(frame);
         }
+        // The least density on each mode, unless the links' sets take it: after the climbs, which
+        // a board's core cut after them does not test (rtl/core/evms_climbs_core.sv).
+        climbs_.drop_sparse_modes(mode_of, n_, cfg_);
         links_.run(packet_, n_, modes.count, cfg_, mode_of, first_on_pixel);
         if (cfg_.min_density != 0 && cfg_.density_after_links) drop_sparse_sets(climbs_, links_, n_, modes.count, cfg_, mode_of);
         trace.splits_left_whole = split_.run(packet_, phi, n_, cfg_, mode_of, modes);
