@@ -102,7 +102,7 @@ void FrameDecoder::push(std::span<const std::uint8_t> bytes) {
       buf_.pop_front();
       continue;
     }
-    frames_.push_back({static_cast<FrameType>(type), std::vector<std::uint8_t>(body.begin() + 2, body.end())});
+    frames_.push_back({static_cast<FrameType>(type), std::vector<std::uint8_t>(body.begin() + 2, body.end()), bad_});
     buf_.erase(buf_.begin(), buf_.begin() + 6 + len);
   }
 }
@@ -165,6 +165,15 @@ Status decode_status(const Frame& f) {
   if (f.type != kStatus) throw std::logic_error("not a status frame");
   auto u = [&](size_t i) { return get(f.payload, 4 * i, 4); };
   return {u(0), u(1), u(2), u(3), u(4), u(5), u(6), u(7), u(8), u(9), u(10)};
+}
+
+hls::ClimbsWord decode_climbs(const Frame& f) {
+  if (f.type != kClimbsHead && f.type != kClimbsMode && f.type != kClimbsEvent) throw std::logic_error("not a climbs frame");
+  const hls::ClimbsWordKind kind = f.type == kClimbsHead ? hls::ClimbsWordKind::kHead
+                                   : f.type == kClimbsMode ? hls::ClimbsWordKind::kMode
+                                                           : hls::ClimbsWordKind::kEvent;
+  const std::uint64_t low = f.type == kClimbsEvent ? 0 : std::uint64_t{get(f.payload, 2, 4)} | std::uint64_t{get(f.payload, 6, 4)} << 32;
+  return {kind, static_cast<std::uint16_t>(get(f.payload, 0, 2)), low};
 }
 
 Progress decode_progress(const Frame& f) {

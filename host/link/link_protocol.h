@@ -10,7 +10,8 @@
 //   board -> host: 0x81 labelled event (with the label's seq u16), 0x82 track update,
 //                  0x83 packet summary, 0x84 status, 0x85 resend (seq u16 the board expects),
 //                  0x86 progress (the board's counts, when the line is free), 0x87 verdicts (up
-//                  to 32 events with their verdicts, from a board whose core stops at the filter)
+//                  to 32 events with their verdicts, from a board whose core is cut), 0x88-0x8A
+//                  a climbs frame's words (head, mode, event: a core cut after its climbs)
 #pragma once
 
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include <span>
 #include <vector>
 
+#include "hls/cluster/climbs_words.h"
 #include "hls/core/words.h"
 #include "host/link/link_frames.h"
 
@@ -75,6 +77,7 @@ struct Progress {
 struct Frame {
   FrameType type;
   std::vector<std::uint8_t> payload;
+  std::uint64_t bad_before = 0;  // the decoder's bad frames before this frame: one that grew lost something in between
 };
 
 // Finds frames in a byte stream, checking length and CRC; bad frames are counted and skipped.
@@ -95,7 +98,7 @@ struct NumberedLabel {
   Sequence seq;
   hls::LabelWord label;
 };
-// A label frame's label, or a verdict frame's verdicts (a board whose core stops at the filter:
+// A label frame's label, or a verdict frame's verdicts (a board whose core is cut:
 // label -1 or hls::kLabelPassedFilter), in order. Empty for a verdict frame that breaks its
 // layout (none present, a present entry after an absent one): a corruption the CRC missed.
 std::vector<NumberedLabel> decode_labels(const Frame& f);
@@ -104,5 +107,8 @@ hls::TrackWord decode_track(const Frame& f);
 hls::PacketWord decode_packet(const Frame& f);
 Status decode_status(const Frame& f);
 Progress decode_progress(const Frame& f);
+// A climbs frame's word (frames 0x88-0x8A: its bits 79-64, then 63-0; an event frame the first
+// part alone), as the board's core sent it (hls/cluster/climbs_words.h).
+hls::ClimbsWord decode_climbs(const Frame& f);
 
 }  // namespace evms::link

@@ -12,7 +12,10 @@ localparam logic [7:0] FramePacketType = 8'h83, FramePacketLen = 8'd12;  // boar
 localparam logic [7:0] FrameStatusType = 8'h84, FrameStatusLen = 8'd44;  // board to host: the board's counters
 localparam logic [7:0] FrameResendType = 8'h85, FrameResendLen = 8'd2;  // board to host: the number of the event the board expects
 localparam logic [7:0] FrameProgressType = 8'h86, FrameProgressLen = 8'd12;  // board to host: the link's events the core took, events labelled, noise
-localparam logic [7:0] FrameVerdictType = 8'h87, FrameVerdictLen = 8'd134;  // board to host: up to 32 events with the filter's verdicts, and the first one's label number (a core that stops at the filter)
+localparam logic [7:0] FrameVerdictType = 8'h87, FrameVerdictLen = 8'd134;  // board to host: up to 32 events with the filter's verdicts, and the first one's label number (a cut core)
+localparam logic [7:0] FrameClimbsHeadType = 8'h88, FrameClimbsHeadLen = 8'd10;  // board to host: a packet's climbs frame opens: its events, modes, steps, climbs and modes lost (a core cut after its climbs)
+localparam logic [7:0] FrameClimbsModeType = 8'h89, FrameClimbsModeLen = 8'd10;  // board to host: a mode of the packet's climbs frame: its x, y and support
+localparam logic [7:0] FrameClimbsEventType = 8'h8A, FrameClimbsEventLen = 8'd2;  // board to host: an event of the packet's climbs frame: its mode (-1: none)
 // The events and verdict frames' layout (host/link/link_frames.h).
 localparam int BatchEntries = 32;
 localparam int BatchHeaderBytes = 6;

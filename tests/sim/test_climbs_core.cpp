@@ -19,8 +19,7 @@
 #include "host/backend/core_config.h"
 #include "host/eval/scene_run.h"
 #include "host/gen/family.h"
-#include "sim/cfg_ports.h"
-#include "sim/verilated_block.h"
+#include "sim/climbs_core_run.h"
 #include "tests/support/core_words.h"
 
 namespace evms {
@@ -38,6 +37,13 @@ static_assert(EVMS_CLIMBS_CORE_MaxWidth == S::kMaxWidth && EVMS_CLIMBS_CORE_MaxH
 // {n, modes, steps, climbs, lost}, 1 a mode {x, y, support}, 2 an event {mode}).
 using Word = std::array<std::int64_t, 6>;
 constexpr std::int64_t kVerdict = -1;
+
+Word verdict_word(const hls::LabelWord& v) { return {kVerdict, v.label, v.t, v.x, v.y, v.p}; }
+Word frame_word(const hls::ClimbsWord& w) {
+  std::int64_t f[5];
+  hls::climbs_word_fields(w, f);
+  return {static_cast<std::int64_t>(w.kind), f[0], f[1], f[2], f[3], f[4]};
+}
 
 std::vector<Word> frame_words(const hls::ClimbsFrame<S>& f) {
   std::vector<Word> w{{0, f.n, f.mode_count, f.trace.steps, f.trace.climbs, f.trace.modes_lost}};
@@ -57,47 +63,14 @@ struct Outputs {
   std::uint64_t clocks = 0;
 };
 
-// The RTL on `words`, with each output ready with probability `ready_p`, until every verdict and
-// the frames' `frame_words` words are out.
-Outputs run_rtl(const std::vector<hls::EventWord>& words, const hls::Config& cfg, std::uint64_t seed, double ready_p, size_t verdicts,
-                size_t frame_words, const std::string& trace) {
-  sim::VerilatedBlock<Vclimbs_core> rtl(trace);
-  sim::set_cfg_ports(*rtl.operator->(), cfg);
-  std::mt19937_64 rng(seed);
-  std::bernoulli_distribution ready(ready_p);
+// The RTL on `words`, with each output ready with probability `ready_p`, until it is idle after
+// the last word (sim/climbs_core_run.h).
+Outputs run_rtl(const std::vector<hls::EventWord>& words, const hls::Config& cfg, std::uint64_t seed, double ready_p, const std::string& trace) {
+  const sim::ClimbsCoreOutputs run = sim::run_climbs_core<Vclimbs_core>(words, cfg, seed, ready_p, trace);
   Outputs out;
-  size_t next = 0;
-  const std::uint64_t limit = 400 * words.size() + 2'000'000;
-  while (next < words.size() || out.verdicts.size() < verdicts || out.frames.size() < frame_words) {
-    if (++out.clocks > limit) break;
-    if (next < words.size()) {
-      const hls::EventWord& w = words[next];
-      rtl->in_valid = 1, rtl->in_t = w.t, rtl->in_x = w.x, rtl->in_y = w.y, rtl->in_p = w.p, rtl->in_flush = w.flush;
-    } else {
-      rtl->in_valid = 0;
-    }
-    rtl->lab_ready = ready(rng), rtl->clm_ready = ready(rng);
-    rtl->eval();
-    if (rtl->in_valid && rtl->in_ready) ++next;
-    if (rtl->lab_valid && rtl->lab_ready) {
-      out.verdicts.push_back({kVerdict, static_cast<std::int32_t>(rtl->lab_label), rtl->lab_t, rtl->lab_x, rtl->lab_y, rtl->lab_p});
-    }
-    if (rtl->clm_valid && rtl->clm_ready) {
-      const auto& d = rtl->clm_data;  // 80 bits: d[2] holds bits 79-64
-      const std::uint64_t low = (static_cast<std::uint64_t>(d[1]) << 32) | d[0];
-      const std::uint32_t top = d[2] & 0xFFFF;
-      switch (rtl->clm_kind) {
-        case 0: out.frames.push_back({0, top, static_cast<std::int64_t>(low >> 48), static_cast<std::int64_t>((low >> 32) & 0xFFFF),
-                                      static_cast<std::int64_t>((low >> 16) & 0xFFFF), static_cast<std::int64_t>(low & 0xFFFF)});
-          break;
-        case 1: out.frames.push_back({1, (static_cast<std::int64_t>(top) << 16) | static_cast<std::int64_t>(low >> 48),
-                                      static_cast<std::int64_t>((low >> 16) & 0xFFFFFFFF), static_cast<std::int64_t>(low & 0xFFFF), 0, 0});
-          break;
-        default: out.frames.push_back({2, static_cast<std::int16_t>(top), 0, 0, 0, 0});
-      }
-    }
-    rtl.tick();
-  }
+  for (const hls::LabelWord& v : run.verdicts) out.verdicts.push_back(verdict_word(v));
+  for (const hls::ClimbsWord& w : run.frame_words) out.frames.push_back(frame_word(w));
+  out.clocks = run.clocks;
   return out;
 }
 
@@ -163,17 +136,17 @@ TEST(ClimbsCoreRtl, EveryVerdictAndClimbsFrameEqualTheCppCoreCutAtTheClimbs) {
     const std::vector<hls::EventWord>& words = scene.words;
     const hls::Config& cfg = scene.cfg;
     std::vector<Word> verdicts, frames;
-    for (const hls::LabelWord& v : test::filter_core_verdicts<S>(words, cfg)) verdicts.push_back({kVerdict, v.label, v.t, v.x, v.y, v.p});
+    for (const hls::LabelWord& v : test::filter_core_verdicts<S>(words, cfg)) verdicts.push_back(verdict_word(v));
     const auto model_frames = test::climbs_core_frames<S>(words, cfg);
     for (const auto& f : model_frames) {
       const auto w = frame_words(f);
       frames.insert(frames.end(), w.begin(), w.end());
     }
-    const Outputs got = run_rtl(words, cfg, seed, 0.5, verdicts.size(), frames.size(), "");
+    const Outputs got = run_rtl(words, cfg, seed, 0.5, "");
     std::string diff = difference(verdicts, got.verdicts, "verdict");
     if (diff.empty()) diff = difference(frames, got.frames, "climbs frame");
     const std::string verdict = sim::mismatch_traced("climbs_core", seed, scene.name, diff, [&](const std::string& trace) {
-      run_rtl(words, cfg, seed, 0.5, verdicts.size(), frames.size(), trace);
+      run_rtl(words, cfg, seed, 0.5, trace);
     });
     ASSERT_TRUE(verdict.empty()) << verdict;
     std::printf("%s: %zu words, %zu packets, %.1f clocks a word\n", scene.name.c_str(), words.size(), model_frames.size(),
