@@ -11,10 +11,10 @@
 # clock period and 1000 / logic_ns an upper bound on Fmax; it also names the path's blocks and
 # source lines).
 # Both board builds hold the seeded path only, which has no lanes (the lane count is the
-# Gaussian path's), so ice40_p1 is the iCEBreaker build (its core cut at the filter,
-# BoardCoreStopsAtFilter) and xc7_p8 the Arty build; the other lane counts build the same
-# cores. ice40core_p1 is the iCEBreaker top with the whole ice40 core, which does not fit the
-# UP5K: its figures say how far the core is from it.
+# Gaussian path's), so ice40_p1 is the iCEBreaker build (its core cut after the climbs,
+# BoardCoreCut) and xc7_p8 the Arty build; the other lane counts build the same cores.
+# ice40core_p1 is the iCEBreaker top with the whole ice40 core, which does not fit the UP5K: its
+# figures say how far the core is from it.
 #
 #   constraints/flow/synth.sh [-j JOBS] [-s SEEDS] [-o REPORT.json] [-b] [CONFIG ...]
 #
@@ -97,7 +97,7 @@ run_config() {
   rm -f "$dir/stat.json" "$dir/sta.txt" "$dir/entry.json" "$dir"/*.asc "$dir"/*.bin   # a failed run must not leave an earlier run's figures
   if [ "$family" = ice40core ]; then
     family=ice40
-    cut="-chparam CoreStopsAtFilterOverride 0"
+    cut="-chparam CoreCutOverride 0"
   fi
   if [ "$family" = ice40 ]; then
     top=evms_icebreaker_top

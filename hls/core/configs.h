@@ -18,23 +18,20 @@ namespace evms::hls {
 // (docs/rtl.md, "Builds"). The lane count and the feature, weight and table formats are the
 // Gaussian path's, which this build does not hold.
 using Ice40Shape = Shape<128, 128, 256, 1, 8, 8, 8, 16, 7, 2 * 256, 10, 15, 8, 12, 4, 64, 4, 32, 8, 0, 1>;
-// The iCEBreaker as it runs: its board's filter (Ice40Shape's: 128x128, 16-bit timestamps of
-// 128 us), then the rest of the core on the host, which holds the whole default method in the
-// host core's sizes and formats (HostCoreShape, hls/core/shape.h). This is the ice40 build's
-// fixed core: `--backend fixed --core ice40` and the board backend's rest of an iCEBreaker
-// (host/backend/board_backend.cpp). On the family's validation members at 128x128 it scores
-// mean F 0.941 and 0.90 px against the ice40 RTL core's method's 0.923 and 2.01 px (docs/rtl.md,
-// "Builds").
-using Ice40BoardShape = HostCoreShape<128, 128, 16, 7>;
 // Arty A7-35T beside a DAVIS240: the default board core. It holds the seeded path only (the
 // default method, at about 56 cycles an event); the Gaussian path does not fit beside it.
 // Packets of 512: on the 240x180 scenes with seven shapes they score 0.003-0.011 more F than
 // 256, and 1,024 would take 59 of the XC7A35T's 50 block RAMs (docs/rtl.md, "Builds"). The
 // pending queue holds two packets, so that the link window (2,048) exceeds it and the intake's packet.
-// The core a UP5K board that stops at the climbs (rtl/core/evms_climbs_core.sv) completes on the
-// host: the board's packets (1,024 events), climb features (kFeatFrac 6) and mode table (64), and
-// every step after the climbs, as the host core holds them.
-using Ice40ClimbsShape = Shape<128, 128, 1024, 1, 8, 128, 128, 16, 7, 4 * 1024, 6, 15, 8, 12, 64, 64, 4, 32, 8, 0, 1, 1, 1, 1, 1, 1, 1, 1>;
+// The iCEBreaker as it runs: its board's core cut after the climbs (rtl/core/evms_climbs_core.sv:
+// Ice40Shape's filter, 128x128 with 16-bit timestamps of 128 us; packets of 1,024 events, climb
+// features of kFeatFrac 6, a mode table of 64, no warm seeds), then every step after the climbs
+// on the host, as the host core holds them. This is the ice40 build's fixed core:
+// `--backend fixed --core ice40`, and the board backend's rest of an iCEBreaker
+// (host/backend/board_backend.cpp), which gives the same words. On the family's validation
+// members at 128x128 its method scores mean F 0.933 and 1.67 px against the whole method's 0.941
+// and 0.90 px and the ice40 RTL core's method's 0.923 and 2.01 px (docs/rtl.md, "Builds").
+using Ice40ClimbsShape = Shape<128, 128, 1024, 1, 8, 128, 128, 16, 7, 4 * 1024, 6, 15, 8, 12, 64, 64, 4, 32, 8, 0, 1, 1, 1, 1, 1, 1, 1, 1, 0>;
 using ArtyShape = Shape<240, 180, 512, 8, 8, 16, 16, 16, 7, 2 * 512, 11, 16, 9, 12, 64, 64, 4, 32, 8, 0, 1>;
 
 // X(name, FixedShape, RtlShape, sensor width, sensor height, description): the fixed backend's
@@ -43,24 +40,31 @@ using ArtyShape = Shape<240, 180, 512, 8, 8, 16, 16, 16, 7, 2 * 512, 11, 16, 9, 
 #define EVMS_CORE_BUILDS(X)                                                                             \
   X(host, HostShape, RtlHostShape, 1280, 720, "the host core: every recording evms reads")              \
   X(arty, ArtyShape, ArtyShape, 240, 180, "Arty A7-35T beside a DAVIS240 (rtl/board/evms_arty_top.sv)") \
-  X(ice40, Ice40BoardShape, Ice40Shape, 128, 128, "iCEBreaker (UP5K) beside a DVS128 (rtl/board/evms_icebreaker_top.sv)")
+  X(ice40, Ice40ClimbsShape, Ice40Shape, 128, 128, "iCEBreaker (UP5K) beside a DVS128 (rtl/board/evms_icebreaker_top.sv)")
 
-// X(name, clock Hz, UART clocks a bit, link queue depth, core stops at the filter): the board
-// each board build is for (rtl/board/evms_icebreaker_top.sv, evms_arty_top.sv). rtl_gen writes
+// Where a board's core stops (EVMS_BOARD_BUILDS): the whole core, or cut after the filter or
+// after the climbs, with the host running the rest (host/backend/board_backend.cpp).
+enum class CoreCut : int { kWhole = 0, kFilter = 1, kClimbs = 2 };
+
+// X(name, clock Hz, UART clocks a bit, link queue depth, core cut, cut shape): the board each
+// board build is for (rtl/board/evms_icebreaker_top.sv, evms_arty_top.sv). rtl_gen writes
 // them as the build's Board* localparams and CMake values (the virtual boards), and the host's
 // board backend keeps at most the link queue's depth of events unanswered. The queue must be
 // deeper than what the core can hold unlabelled, its pending queue and its intake's packet
 // (checked by rtl/board/evms_board.sv and host/backend/board_backend.cpp).
+// The cut shape is the core a cut core's registers are the values of (the CutCfg* of
+// rtl/generated/evms_cfg_<build>.svh): a core cut after its climbs
+// (rtl/core/evms_climbs_core.sv) reads them in that shape's formats, and the host completes its
+// packets in that shape.
 // The whole ice40 core is 5.3 times the UP5K's LUTs (docs/rtl.md, "Area"), so the iCEBreaker's
-// core stops at the filter (rtl/core/evms_filter_core.sv): the board returns each event's
-// verdict and the host runs the rest on them (Core::process_decided) in the build's fixed core,
-// Ice40BoardShape, which gives the words of `--backend fixed --core ice40`. The iCEBreaker's
+// core stops after its climbs: the board returns each event's verdict and each packet's climbs
+// frame, and the host runs the rest on them (Core::process_climbed) in the build's fixed core,
+// Ice40ClimbsShape, which gives the words of `--backend fixed --core ice40`. The iCEBreaker's
 // PLL makes 18 MHz of its 12 MHz oscillator (rtl/board/evms_icebreaker_top.sv), so that 3 clocks
-// a bit give the FT2232H's 6 Mbaud (137 k events/s each way, docs/link.md); the build routes
-// above 18 MHz (docs/rtl.md).
-#define EVMS_BOARD_BUILDS(X)        \
-  X(ice40, 18000000, 3, 1024, 1)   \
-  X(arty, 100000000, 50, 2048, 0)
+// a bit give the FT2232H's 6 Mbaud (docs/link.md); the build routes at 18 MHz (docs/rtl.md).
+#define EVMS_BOARD_BUILDS(X)                         \
+  X(ice40, 18000000, 3, 1024, 2, Ice40ClimbsShape)   \
+  X(arty, 100000000, 50, 2048, 0, ArtyShape)
 
 #define EVMS_CORE_BUILD_NAME(name, fixed, rtl, width, height, description) #name,
 inline constexpr const char* kCoreBuildNames[] = {EVMS_CORE_BUILDS(EVMS_CORE_BUILD_NAME)};

@@ -1,6 +1,6 @@
 // The core cut after its filter: every event labelled kLabelNoise or kLabelPassedFilter, in
-// input order, with no packets and no tracks. It is what a board whose core stops at the
-// filter returns (EVMS_BOARD_BUILDS in hls/core/configs.h; rtl/core/evms_filter_core.sv), and
+// input order, with no packets and no tracks. It is what a board whose core is cut returns
+// first (EVMS_BOARD_BUILDS in hls/core/configs.h; rtl/core/evms_filter_core.sv), and
 // Core::process_decided completes it: fed these verdicts, Core<S> gives the words of the
 // whole core.
 #pragma once

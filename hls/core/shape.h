@@ -35,7 +35,7 @@ template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsM
           int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4,
           int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0, int HasPolaritySplit = 0,
           int HasPolarityMidpoint = 0, int HasEdgeJoin = 0, int HasSpreadNoise = 0, int HasGateBoxes = 0,
-          int HasPixelCentre = 0, int HasDensityAfterLinks = 0>
+          int HasPixelCentre = 0, int HasDensityAfterLinks = 0, int HasWarmSeeds = 1>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -95,6 +95,11 @@ struct Shape {
   // rtl/core/evms_core.sv); a build without it tests each mode before the links, and the host
   // refuses --density-after-links true for it.
   static constexpr int kHasDensityAfterLinks = HasDensityAfterLinks;
+  // Whether the build's method starts with warm seeds (Config::warm_start): a build completed
+  // from a board whose core stops after its climbs (rtl/core/evms_climbs_core.sv, which has none)
+  // starts without them, so that its words are the board's. Not an RTL parameter: every RTL
+  // core holds them.
+  static constexpr int kHasWarmSeeds = HasWarmSeeds;
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;

@@ -6,9 +6,9 @@
 
 namespace evms::hls {
 
-// The labels that are not a track's ID: noise, and what a board whose core stops at the filter
-// (EVMS_BOARD_BUILDS, hls/core/configs.h) gives an event that passed it, whose cluster the host
-// finds (Core::process_decided). host/tools/rtl_gen writes both for the RTL
+// The labels that are not a track's ID: noise, and what a board whose core is cut
+// (EVMS_BOARD_BUILDS, hls/core/configs.h) gives an event that passed its filter, whose cluster
+// the host finds (Core::process_decided, process_climbed). host/tools/rtl_gen writes both for the RTL
 // (rtl/generated/evms_core_labels.svh).
 inline constexpr std::int32_t kLabelNoise = -1;
 inline constexpr std::int32_t kLabelPassedFilter = -3;

@@ -36,9 +36,11 @@ struct BackendStats {
   std::int64_t labels_kept_on_board = 0;
   std::int64_t board_labelled = 0, board_noise = 0;
   std::int64_t link_packets_skipped = 0;
-  // A board whose core stops at the filter: the verdicts it returned (passed, noise), which the
-  // host clustered and tracked.
+  // A board whose core is cut: the verdicts it returned (passed, noise), which the host
+  // completed. Cut after its climbs: the packets whose climbs the board returned, and those the
+  // host climbed itself (the line lost a verdict or a climbs word before them).
   std::int64_t board_passed = 0, board_filtered = 0;
+  std::int64_t board_climbed_packets = 0, host_climbed_packets = 0;
 };
 
 struct BackendOptions {
@@ -97,7 +99,7 @@ class Backend {
   // Takes, for up to `wait_ms`, what the backend produced from input of its own, without any
   // pushed: a board in tracks mode whose events enter at its AER pins (listening, docs/link.md).
   // With `limit` (0: none) it takes at most that many events in all, where the events come
-  // back one by one (a board that stops at the filter), and returns once it has them; a board
+  // back one by one (a board whose core is cut), and returns once it has them; a board
   // that keeps its labels counts them, and it returns once the count reached `limit`. Backends
   // that have no input of their own refuse.
   virtual void listen(OutputSink& /*out*/, int /*wait_ms*/, std::int64_t /*limit*/ = 0) {

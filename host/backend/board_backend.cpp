@@ -27,17 +27,22 @@
 //
 // A board runs its build's register values: on the Arty the default method in the Arty build's
 // limits (240x180, packets of 512, 16 clusters and tracks). Parameters that differ are refused.
-// A board that stops at the filter holds only the filter's registers: the host runs any other
-// setting its C++ core implements.
+// A board whose core is cut holds only its cut's registers: the host runs any other setting of
+// the rest that its C++ core implements.
 //
-// A board whose core stops at the filter (the iCEBreaker: EVMS_BOARD_BUILDS, hls/core/configs.h)
-// answers each event with its filter's verdict. The host runs the rest of the build's fixed
-// core on the verdicts (hls::Core::process_decided): the whole default method, as the host core
-// runs it (Ice40BoardShape), so the output is `--backend fixed --core ice40`'s, word for word.
-// An event whose verdict the line lost goes on as noise, and its row says lost (-2). Tracks
-// mode needs a whole core on the board, and is refused. Listening to such a board, every event
-// that enters at its AER pins comes back with its verdict, and the host clusters and tracks them
-// as they come, at the line's rate.
+// A board whose core is cut (EVMS_BOARD_BUILDS, hls/core/configs.h) answers each event with its
+// filter's verdict, and the host runs the rest of the build's fixed core on the verdicts, so the
+// output is `--backend fixed --core <build>`'s, word for word. Cut after the filter, the host
+// clusters and tracks (hls::Core::process_decided). Cut after the climbs (the iCEBreaker,
+// Ice40ClimbsShape), the board also returns each packet's climbs frame, and the host completes
+// the packet from it (process_climbed): an event waits on the host until the frames of the
+// packets it closes have come. An event whose verdict the line lost goes on as noise, and its
+// row says lost (-2). From the first loss on (a verdict, or a frame the check failed), the
+// host's packets may no longer be the board's, so it climbs every packet whose frame it does
+// not hold yet itself, as process_decided does: the same words the board's frames would give
+// where the packets are the same. Tracks mode needs a whole core on the board, and is refused.
+// Listening to a cut board, every event that enters at its AER pins comes back with its
+// verdict, and the host completes them as they come, at the line's rate.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -65,8 +70,8 @@ std::uint64_t unwrap(link::Sequence seq, std::uint64_t oldest) {
   return oldest + static_cast<link::Sequence>(seq - static_cast<link::Sequence>(oldest));
 }
 
-// S: the board's RTL Shape. Rest: the C++ core that completes a board whose core stops at the
-// filter (the build's fixed Shape, which holds the whole method), else S.
+// S: the board's RTL Shape. Rest: the C++ core that completes a board whose core is cut (the
+// build's fixed Shape, which holds the whole method), else S.
 // LinkWindow: the events the board's link queue holds (board_of, host/backend/core_config.h);
 // the host keeps at most this many unanswered. It must exceed what the core can hold unlabelled
 // (its pending queue and its intake's packet), or a noisy stretch would leave the host waiting
@@ -77,8 +82,10 @@ class BoardBackend final : public Backend {
 
  public:
   BoardBackend(const BackendOptions& o, const char* build)
-      : port_(check(o, build), o.baud > 0 ? o.baud : static_cast<int>(board_of(build).baud())), mode_(o.board_keeps_labels ? link::LinkMode::kTracks : link::LinkMode::kLabels) {
-    if (board_of(build).core_stops_at_filter) rest_ = std::make_unique<HostCore<Rest>>(core_config<Rest>(o.params, o.sensor));
+      : port_(check(o, build), o.baud > 0 ? o.baud : static_cast<int>(board_of(build).baud())),
+        mode_(o.board_keeps_labels ? link::LinkMode::kTracks : link::LinkMode::kLabels),
+        climbs_on_board_(board_of(build).core_cut == hls::CoreCut::kClimbs) {
+    if (board_of(build).cut()) rest_ = std::make_unique<HostCore<Rest>>(core_config<Rest>(o.params, o.sensor));
     // Let what the board is still sending from before go by (up to 2 s of it).
     std::uint8_t old[4096];
     for (int i = 0; i < 100 && port_.read_some(old, 20) > 0; ++i) {
@@ -110,6 +117,8 @@ class BoardBackend final : public Backend {
     // of the core on the host closes its open packet on the events that came.
     if (listening_) {
       if (rest_) {
+        climbs_lost_ = true;  // the board closes no packet for the host's flush
+        advance(out);
         rest_->flush();
         drain_rest(out);
       }
@@ -122,8 +131,12 @@ class BoardBackend final : public Backend {
     // tracks mode, the core took every event, and their labels stayed on the board).
     while (!unanswered_.empty()) mode_ == link::LinkMode::kTracks ? take_oldest() : lose_oldest(out);
     if (rest_) {
-      rest_->flush();
-      drain_rest(out);
+      // The board's core closed its packet on the flush, and sent every frame before the status.
+      hls::EventWord flush;
+      flush.flush = true;
+      complete(flush, false, false, out);
+      climbs_lost_ = true;  // a frame still missing was lost
+      advance(out);
     }
   }
 
@@ -173,8 +186,8 @@ class BoardBackend final : public Backend {
   // The device to open, once the settings are ones the board runs: --device, or the one board's
   // UART connected (host/link/find_bridge.h).
   static std::string check(const BackendOptions& o, const char* build) {
-    if (board_of(build).core_stops_at_filter && o.board_keeps_labels) {
-      throw std::invalid_argument(std::string("the ") + build + " board's core stops at the filter and the host clusters its verdicts, so " +
+    if (board_of(build).cut() && o.board_keeps_labels) {
+      throw std::invalid_argument(std::string("the ") + build + " board's core is cut and the host completes its verdicts, so " +
                                   "they must cross the link: --board-link tracks needs a board with the whole core (--core arty)");
     }
     const SensorSize board_sensor{S::kMaxWidth, S::kMaxHeight};
@@ -184,16 +197,22 @@ class BoardBackend final : public Backend {
                                   " sensor, but the source is " + std::to_string(o.sensor.width) + "x" + std::to_string(o.sensor.height) +
                                   " (--roi X,Y," + std::to_string(S::kMaxWidth) + "," + std::to_string(S::kMaxHeight) + " takes a part of it)");
     }
-    // The board's registers are its build's. A board that stops at the filter holds only the
-    // filter's, and the host's C++ core runs any other setting it implements.
-    const Params held = build_default_params<S>();
+    // The board's registers are its build's. A cut core holds only its cut's (the values of the
+    // build's fixed core, which completes it), and the host's C++ core runs any other setting
+    // it implements.
+    const hls::CoreCut cut = board_of(build).core_cut;
+    const Params held = cut != hls::CoreCut::kWhole ? build_default_params<Rest>() : build_default_params<S>();
     auto refuse = [&](const ParamInfo& info, const std::string& what) {
       throw std::invalid_argument(board + " runs its build's " + what + ", but --" + info.name + " is " + param_text(o.params, info) +
                                   ", the board's " + param_text(held, info));
     };
-    if (board_of(build).core_stops_at_filter) {
+    if (cut != hls::CoreCut::kWhole) {
       if (std::string unsupported = core_unsupported(o.params); !unsupported.empty()) throw std::invalid_argument(unsupported);
-      if (const char* name = first_filter_difference(o.params, held)) refuse(*find_param(name), "filter settings (the host runs any other)");
+      if (cut == hls::CoreCut::kFilter) {
+        if (const char* name = first_filter_difference(o.params, held)) refuse(*find_param(name), "filter settings (the host runs any other)");
+      } else if (const char* name = first_climbs_difference(o.params, held)) {
+        refuse(*find_param(name), "filter, packet and climbs settings, without warm seeds (the host runs any other)");
+      }
     } else {
       if (std::string unsupported = rtl_unsupported(o.params, build); !unsupported.empty()) throw std::invalid_argument(unsupported);
       if (const auto differ = differing_params(o.params, held); !differ.empty()) {
@@ -262,13 +281,51 @@ class BoardBackend final : public Backend {
     unanswered_.pop_front();
     ++answered_, ++lost_;
   }
-  // A core that stops at the filter: the rest of the core on the host takes the event with its
-  // verdict (a lost one as noise, its row marked lost), and releases what it can.
+  // A cut core: the rest of the core on the host takes the event (or the closing flush word)
+  // with its verdict (a lost one as noise, its row marked lost), and releases what it can.
   void complete(const hls::EventWord& event, bool kept, bool lost, OutputSink& out) {
-    if (!lost) ++(kept ? stats_.s.board_passed : stats_.s.board_filtered);
-    rest_lost_.push_back(lost);
-    rest_->process_decided(event, kept);
-    drain_rest(out);
+    if (!event.flush) {
+      if (!lost) ++(kept ? stats_.s.board_passed : stats_.s.board_filtered);
+      rest_lost_.push_back(lost);
+    }
+    if (lost) climbs_lost_ = true;  // the board's packets may hold it: the host's no longer
+    decided_.push_back({event, kept});
+    advance(out);
+  }
+  // The decided words, in order, into the rest of the core: each as soon as it can go. A board
+  // cut after its climbs sends the frame of each packet the word closes after the word's
+  // verdict, so the word waits for them; once the line has lost something, the host climbs
+  // every packet whose frame it does not hold itself.
+  void advance(OutputSink& out) {
+    while (!decided_.empty()) {
+      const Decided d = decided_.front();
+      const int needed = climbs_on_board_ ? rest_->climbs_needed(d.event, d.kept) : 0;
+      if (needed > static_cast<int>(frames_.size())) {
+        if (!climbs_lost_) return;
+        frames_.clear();  // a word that closes two packets, one frame here: the host climbs both
+      }
+      if (needed > 0 && !frames_.empty()) {
+        for (int k = 0; k < needed; ++k) {
+          rest_->give_climbs(frames_.front());
+          frames_.pop_front();
+        }
+        rest_->process_climbed(d.event, d.kept);
+        stats_.s.board_climbed_packets += needed;
+      } else {
+        if (climbs_on_board_) stats_.s.host_climbed_packets += rest_->climbs_needed(d.event, d.kept);
+        rest_->process_decided(d.event, d.kept);
+      }
+      decided_.pop_front();
+      drain_rest(out);
+    }
+  }
+  // A climbs frame's word: a whole frame waits for the words that close its packet. A word the
+  // assembler cannot place means the line lost some.
+  void take_climbs(const link::Frame& f, OutputSink& out) {
+    const long broken = assembler_.broken();
+    if (assembler_.take(link::decode_climbs(f)) && !climbs_lost_) frames_.push_back(assembler_.frame());
+    if (assembler_.broken() != broken) climbs_lost_ = true;
+    advance(out);
   }
   void drain_rest(OutputSink& out) {
     rest_->drain(out, mapper_, stats_, [this](const hls::LabelWord& l) {
@@ -278,7 +335,7 @@ class BoardBackend final : public Backend {
     });
   }
 
-  // Listening to a board that stops at the filter: each verdict frame brings an event the board
+  // Listening to a board whose core is cut: each verdict frame brings an event the board
   // took at its AER pins, with its verdict, and the rest of the core on the host takes it. A gap
   // in the numbers is events the line destroyed; no one has them to send again, so they are
   // counted as labels lost, and their rows are missing.
@@ -290,6 +347,7 @@ class BoardBackend final : public Backend {
     // events the board labelled before it said it was ready went by as stale.
     if (!stamped_any_) answered_ = number, stamped_any_ = true;
     lost_ += static_cast<std::int64_t>(number - answered_);
+    if (number != answered_) climbs_lost_ = true;
     answered_ = number + 1;
     ++stats_.s.events_in;
     const hls::EventWord event{label.t, label.x, label.y, label.p, false};
@@ -349,15 +407,18 @@ class BoardBackend final : public Backend {
     while (decoder_.next(f)) {
       any = true;
       silent_ms_ = 0;
+      // Frames the check failed before this one: what they carried is lost.
+      if (f.bad_before > bad_seen_) bad_seen_ = f.bad_before, climbs_lost_ = climbs_lost_ || started_;
       if (!started_ && f.type != link::kStatus) continue;  // output of an earlier run, before the reset's status frame
-      if (rest_ && (f.type == link::kTrack || f.type == link::kPacket)) {  // a board that stops at the filter sends none:
-        ++unbelieved_;                                                     // a corruption the check missed
-        continue;
+      const bool climbs_word = f.type == link::kClimbsHead || f.type == link::kClimbsMode || f.type == link::kClimbsEvent;
+      if ((rest_ && (f.type == link::kTrack || f.type == link::kPacket)) || (climbs_word && !climbs_on_board_)) {
+        ++unbelieved_;  // a cut core sends no track or packet frames, and only one cut after its climbs climbs words:
+        continue;       // a corruption the check missed
       }
       switch (f.type) {
         case link::kLabel:
         case link::kVerdict: {
-          // A board that stops at the filter sends verdicts (noise or passed, nothing else), a whole
+          // A cut core sends verdicts (noise or passed, nothing else), a whole
           // core labels: the other is a corruption the check missed.
           if ((f.type == link::kVerdict) != (rest_ != nullptr)) {
             ++unbelieved_;
@@ -409,6 +470,9 @@ class BoardBackend final : public Backend {
           out.on_packet(mapper_.packet(p));
           break;
         }
+        case link::kClimbsHead:
+        case link::kClimbsMode:
+        case link::kClimbsEvent: take_climbs(f, out); break;
         case link::kStatus: {
           const link::Status status = link::decode_status(f);
           if (!started_) {
@@ -432,12 +496,24 @@ class BoardBackend final : public Backend {
   link::SerialPort port_;
   link::LinkMode mode_;
   link::FrameDecoder decoder_;
-  CoreWordMapper<Rest> mapper_;  // Rest's formats: a board that stops at the filter sends no track words, and a whole core's has Rest = S
+  CoreWordMapper<Rest> mapper_;  // Rest's formats: a cut core sends no track words, and a whole core's has Rest = S
   CoreStats stats_;
-  // The rest of the core, when the board's stops at the filter; whether each event it holds
-  // lost its verdict on the line.
+  // The rest of the core, when the board's is cut; whether each event it holds lost its verdict
+  // on the line.
   std::unique_ptr<HostCore<Rest>> rest_;
   std::deque<bool> rest_lost_;
+  // Cut after its climbs: the decided words waiting for their packets' frames, the whole frames
+  // waiting for their words, and whether the line lost something since the run's start.
+  struct Decided {
+    hls::EventWord event;
+    bool kept;
+  };
+  const bool climbs_on_board_;
+  std::deque<Decided> decided_;
+  std::deque<hls::ClimbsFrame<Rest>> frames_;
+  hls::ClimbsFrameAssembler<Rest> assembler_;
+  bool climbs_lost_ = false;
+  std::uint64_t bad_seen_ = 0;  // the decoder's bad frames as the last frame taken found them
   std::deque<hls::EventWord> unanswered_;  // taken, not yet labelled: numbers answered_, answered_ + 1, ...
   size_t unsent_ = 0;                      // the last of them, not yet sent (they wait to fill an events frame)
   std::uint64_t answered_ = 0;             // events labelled, or whose label was lost
@@ -448,7 +524,7 @@ class BoardBackend final : public Backend {
   std::uint64_t bad_at_start_ = 0;
   bool started_ = false, flushing_ = false;
   bool listening_ = false;             // listen() was called: the events enter at the board's AER pins
-  bool stamped_any_ = false;           // listening to a board that stops at the filter: an event came
+  bool stamped_any_ = false;           // listening to a cut core: an event came
   std::int64_t listen_limit_ = 0;      // listening: the most events to take (0: no limit)
   std::set<std::int32_t> listened_ids_;  // the track IDs whose updates came while listening
 };
@@ -468,7 +544,7 @@ std::unique_ptr<Backend> make_board_backend(const BackendOptions& o) {
   const std::string build = board_build(o.core);
 #define EVMS_BOARD_BACKEND_OF(name, fixed, rtl, width, height, description)                                                       \
   if (build == #name) {                                                                                                         \
-    return board_backend_of<hls::rtl, std::conditional_t<board_of(#name).core_stops_at_filter, hls::fixed, hls::rtl>,           \
+    return board_backend_of<hls::rtl, std::conditional_t<board_of(#name).cut(), hls::fixed, hls::rtl>,           \
                             static_cast<size_t>(board_of(#name).link_fifo_depth)>(o, #name);                                    \
   }
   EVMS_CORE_BUILDS(EVMS_BOARD_BACKEND_OF)

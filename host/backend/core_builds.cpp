@@ -35,8 +35,8 @@ Params fit_core_build(const std::string& backend, const std::string& core, Param
   check_core_build(core);
   if (backend == "golden") return p;
   const std::string build = backend == "board" ? board_build(core) : core;
-  // A board whose core stops at the filter runs the rest on the host, in the build's fixed core.
-  const bool fixed = backend == "fixed" || (backend == "board" && board_of(build).core_stops_at_filter);
+  // A board whose core is cut runs the rest on the host, in the build's fixed core.
+  const bool fixed = backend == "fixed" || (backend == "board" && board_of(build).cut());
 #define EVMS_FIT_BUILD(name, fixed_shape, rtl_shape, width, height, description) \
   if (build == #name) return fixed ? fit_sizes<hls::fixed_shape>(p, method) : fit_sizes<hls::rtl_shape>(p, method);
   EVMS_CORE_BUILDS(EVMS_FIT_BUILD)

@@ -26,14 +26,17 @@ namespace evms::backend {
 // clocks a bit and its link queue's depth in events; all 0 for a build without a board.
 struct BoardOfBuild {
   long long clock_hz = 0, clocks_per_bit = 0, link_fifo_depth = 0;
-  bool core_stops_at_filter = false;  // the board returns verdicts; the host clusters and tracks
+  // Where the board's core stops; a cut core returns verdicts (and its climbs), and the host
+  // runs the rest.
+  hls::CoreCut core_cut = hls::CoreCut::kWhole;
+  constexpr bool cut() const { return core_cut != hls::CoreCut::kWhole; }
   // Its UART's line rate, which the host's serial port must match: 6 Mbaud on the iCEBreaker,
   // 2 Mbaud on the Arty.
   constexpr long long baud() const { return clocks_per_bit > 0 ? clock_hz / clocks_per_bit : 0; }
 };
 constexpr BoardOfBuild board_of(std::string_view build) {
-#define EVMS_BOARD_OF(name, clock_hz, clocks_per_bit, link_fifo_depth, stops_at_filter) \
-  if (build == #name) return {clock_hz, clocks_per_bit, link_fifo_depth, stops_at_filter != 0};
+#define EVMS_BOARD_OF(name, clock_hz, clocks_per_bit, link_fifo_depth, cut, cut_shape) \
+  if (build == #name) return {clock_hz, clocks_per_bit, link_fifo_depth, static_cast<hls::CoreCut>(cut)};
   EVMS_BOARD_BUILDS(EVMS_BOARD_OF)
 #undef EVMS_BOARD_OF
   return {};
@@ -43,7 +46,8 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 // and without the polarity split, the polarity midpoint or the pixel centre, the edge join, the
 // measurement noise from the spread, the gate's boxes and the least density on the linked sets
 // where S does not hold them (Shape::kHasPolaritySplit, kHasPolarityMidpoint, kHasPixelCentre,
-// kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes, kHasDensityAfterLinks: the board builds), each
+// kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes, kHasDensityAfterLinks: the board builds), and
+// without warm seeds where S starts without them (kHasWarmSeeds), each
 // unless `kept(name)` says the command line set it, for the backend to refuse what S cannot run.
 template <class S, class Kept>
 Params within_build(Params p, Kept kept) {
@@ -62,6 +66,7 @@ Params within_build(Params p, Kept kept) {
   if (!S::kHasSpreadNoise && !kept("meas-noise-from-spread")) p.meas_noise_from_spread = false;
   if (!S::kHasGateBoxes && !kept("gate-boxes")) p.gate_boxes = false;
   if (!S::kHasDensityAfterLinks && !kept("density-after-links")) p.density_after_links = false;
+  if (!S::kHasWarmSeeds && !kept("warm-start")) p.warm_start = false;
   return p;
 }
 
@@ -106,6 +111,15 @@ inline int size_ratio_log2(const Params& p) {
 inline const char* first_filter_difference(const Params& p, const Params& board) {
   return detail::first_difference(p, board, {"filter-window-us", "filter-support", "filter-warm-up-us", "filter-noise-hz", "filter-noise-pixels",
                                               "filter-quiet-hz", "filter-quiet-window-us"});
+}
+
+// The same for a board whose core stops after its climbs (rtl/core/evms_climbs_core.sv): the
+// filter's settings, then those its packets and climbs' registers come from, and the warm seeds
+// its climbs do not have.
+inline const char* first_climbs_difference(const Params& p, const Params& board) {
+  if (const char* name = first_filter_difference(p, board)) return name;
+  return detail::first_difference(p, board, {"packet-size", "packet-max-span-us", "bandwidth", "scale-xy", "max-iterations", "tolerance",
+                                              "merge-radius", "warm-start"});
 }
 
 // The first setting of `p` that the C++ core (hls/) does not implement, as the one line a

@@ -10,7 +10,7 @@
 namespace evms::backend {
 
 // The C++ core on the host with its output streams: the fixed backend's, and the rest of the
-// core of a board that stops at the filter (host/backend/board_backend.cpp).
+// core of a board whose core is cut (host/backend/board_backend.cpp).
 template <class S>
 class HostCore {
  public:

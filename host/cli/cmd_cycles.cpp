@@ -2,9 +2,11 @@
 // build, stage by stage, from the cycle model (hls/core/schedule.h) fed by the C++ core, and,
 // with --rtl, measured on the Verilated RTL beside it. The model counts the Gaussian path (the
 // host build's --preset gaussian); the seeded path (the default method, every build's reset
-// method) is measured on the RTL whether or not --rtl is given.
+// method) is measured on the RTL whether or not --rtl is given. For a build whose board runs its
+// core cut after the climbs (the iCEBreaker), the board's core is measured too, on the RTL.
 #include <cstdio>
 
+#include "Vclimbs_core.h"
 #include "Vcore_arty.h"
 #include "Vcore_arty___024root.h"
 #include "Vcore_host.h"
@@ -16,6 +18,7 @@
 #include "host/backend/core_backend.h"
 #include "host/cli/commands.h"
 #include "host/cli/common.h"
+#include "sim/climbs_core_run.h"
 #include "sim/schedule_runs.h"
 
 namespace evms::cli {
@@ -39,6 +42,27 @@ hls::StageCycles rtl_run(const std::vector<hls::EventWord>& words, const hls::Co
   });
   progress.done();
   return cycles;
+}
+
+// The clocks an event of the core cut after its climbs (rtl/core/evms_climbs_core.sv, Verilated
+// at the iCEBreaker's cut shape, hls::Ice40ClimbsShape) with its board's registers, each output
+// always ready, and what that sustains at the board's clock.
+void board_climbs_cycles(const std::vector<Event>& events, SensorSize sensor, const std::string& build, const backend::BoardOfBuild& board) {
+  using Cut = hls::Ice40ClimbsShape;
+  std::vector<hls::EventWord> words = backend::core_words_of<Cut>(events);
+  hls::EventWord flush;
+  flush.flush = true;
+  words.push_back(flush);
+  const hls::Config cfg = backend::core_config<Cut>(backend::build_default_params<Cut>(), sensor);
+  const sim::ClimbsCoreOutputs run = sim::run_climbs_core<Vclimbs_core>(words, cfg, 1, 1.0, "");
+  if (!run.finished) throw std::runtime_error("the board's climbs core did not finish the events");
+  const double per_event = static_cast<double>(run.clocks) / static_cast<double>(events.size());
+  const double rate = static_cast<double>(board.clock_hz) / per_event;
+  std::printf("\nthe %s board's core, cut after its climbs (rtl/core/evms_climbs_core.sv, its registers: packets of %d, no warm seeds), "
+              "on the same events:\n", build.c_str(), cfg.packet_size);
+  std::printf("board core       %.2f clocks/event (the RTL's), %.0f k events/s at the build's %.0f MHz clock\n", per_event, rate / 1e3,
+              static_cast<double>(board.clock_hz) / 1e6);
+  std::printf("the host runs the rest of the core on its verdicts and climbs frames: docs/rtl.md, \"Builds\"\n");
 }
 
 template <class V, class S>
@@ -119,11 +143,12 @@ void cycles(const CyclesOptions& o) {
                 rate >= 1e6 ? rate / 1e6 : rate / 1e3, rate >= 1e6 ? "M" : "k", static_cast<double>(board.clock_hz) / 1e6,
                 measure_rtl ? "the RTL's" : "the model's");
   }
-  if (board.core_stops_at_filter) {
-    std::printf("\nthese are the whole %s core's cycles; its board runs it cut after the filter (the whole core does not fit the "
-                "device) and the host runs the rest: docs/rtl.md, \"Builds\"\n",
-                o.build.c_str());
+  if (board.cut()) {
+    std::printf("\nthese are the whole %s core's cycles; its board runs it cut after the %s (the whole core does not fit the "
+                "device)\n",
+                o.build.c_str(), board.core_cut == hls::CoreCut::kClimbs ? "climbs" : "filter");
   }
+  if (board.core_cut == hls::CoreCut::kClimbs) board_climbs_cycles(events, sensor, o.build, board);
   if (!modelled) {
     std::printf("\nthe seeded path, measured on the RTL (the cycle model counts the Gaussian path): climbs count in \"mean shift\", links, the least density on the linked sets, the polarity split, the edge join and warm seeds in \"merge\"\n");
     return;

@@ -124,7 +124,15 @@ void run(const RunOptions& o) {
     std::fprintf(summary, "link        %s frames failed their check, %s events sent again, %s labels lost (%s)\n",
                  grouped(s.link_bad_frames).c_str(), grouped(s.link_events_resent).c_str(), grouped(s.link_labels_lost).c_str(),
                  lost_rows.c_str());
-    if (s.board_passed + s.board_filtered > 0) {
+    if (s.board_climbed_packets + s.host_climbed_packets > 0) {
+      std::fprintf(summary, "board       filtered and climbed (its core stops after the climbs): %s events passed, %s noise, %s packets "
+                   "climbed; linked, measured and tracked on the host",
+                   grouped(s.board_passed).c_str(), grouped(s.board_filtered).c_str(), grouped(s.board_climbed_packets).c_str());
+      if (s.host_climbed_packets > 0) {
+        std::fprintf(summary, ", %s packets climbed on the host (the line lost words before them)", grouped(s.host_climbed_packets).c_str());
+      }
+      std::fprintf(summary, "\n");
+    } else if (s.board_passed + s.board_filtered > 0) {
       std::fprintf(summary, "board       filtered (its core stops at the filter): %s events passed, %s noise; clustered and tracked on the host\n",
                    grouped(s.board_passed).c_str(), grouped(s.board_filtered).c_str());
     }
@@ -192,7 +200,7 @@ void register_run(CLI::App& app) {
       ->default_val(o->core);
   cmd->add_option("--device", o->device, "serial device of the board backend (or the path evms vboard prints); without it, the one board's UART connected (an FT2232H's channel B)");
   std::string board_rates;  // each board's own line rate, from EVMS_BOARD_BUILDS (hls/core/configs.h)
-#define EVMS_BOARD_RATE(name, clock_hz, clocks_per_bit, link_fifo_depth, stops_at_filter) \
+#define EVMS_BOARD_RATE(name, clock_hz, clocks_per_bit, link_fifo_depth, cut, cut_shape) \
   board_rates += std::string(board_rates.empty() ? "" : ", ") + std::to_string(backend::board_of(#name).baud()) + " on " #name;
   EVMS_BOARD_BUILDS(EVMS_BOARD_RATE)
 #undef EVMS_BOARD_RATE

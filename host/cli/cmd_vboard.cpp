@@ -5,8 +5,9 @@
 //   evms run SCENE --backend board --device /dev/pts/3
 //   evms vboard --build arty &         # the Arty's board: evms run ... --core arty
 //
-// The iCEBreaker's board (ice40) is its bitstream's design: its core stops at the filter and the
-// host clusters and tracks its verdicts. The Arty's holds the whole core, and tracks mode.
+// The iCEBreaker's board (ice40) is its bitstream's design: its core stops after the climbs and
+// the host completes its verdicts and climbs frames. The Arty's holds the whole core, and tracks
+// mode.
 //
 // Bytes written to the terminal go into the board's receive line at the board's clocks a bit
 // (3 on the iCEBreaker's 18 MHz, 50 on the Arty's 100 MHz); bytes the board transmits come out
@@ -15,7 +16,8 @@
 // --aer SOURCE plays a recording into the board's AER pins as a DVS128 would, from the moment
 // the host first writes to the terminal (its reset frame): each event in the board's
 // microsecond its own time falls in, after the first. With `evms run --listen --backend board
-// --core arty --board-link tracks` (or `--core ice40`, whose board sends each event's verdict),
+// --core arty --board-link tracks` (or `--core ice40`, whose board sends each event's verdict
+// and each packet's climbs),
 // that is the live demo without a sensor. --aer-stamped FILE then writes the events as the board
 // stamped them (events.txt format, at the board's sensor size), for `evms run --backend fixed
 // --core arty` (or ice40) to compare with.
@@ -219,8 +221,8 @@ void serve(const VboardOptions& o, const backend::BoardOfBuild& of_build) {
 void register_vboard(CLI::App& app) {
   auto o = std::make_shared<VboardOptions>();
   CLI::App* cmd = app.add_subcommand("vboard", "the virtual board: the simulated board top behind a pseudo-terminal, for --backend board");
-  cmd->add_option("--build", o->build, "the board's core build: ice40 (the iCEBreaker, 18 MHz; its core stops at the filter, "
-                                       "the host clusters and tracks) or arty (the Arty, 100 MHz, the whole core); evms run --core names the same")
+  cmd->add_option("--build", o->build, "the board's core build: ice40 (the iCEBreaker, 18 MHz; its core stops after the climbs, "
+                                       "the host completes the clusters and tracks) or arty (the Arty, 100 MHz, the whole core); evms run --core names the same")
       ->default_val(o->build)
       ->check(CLI::IsMember({"ice40", "arty"}));
   cmd->add_option("--path-file", o->path_file, "also write the terminal's path to this file");

@@ -73,14 +73,14 @@ bool interrupted() { return g_interrupted != 0; }
 void add_listen_option(CLI::App& cmd, bool& listen) {
   cmd.add_flag("--listen", listen, "no SOURCE: the events enter at the board's AER pins (a DVS128 wired to the board) and the host sends "
                                    "none; it takes the board's tracks until Ctrl-C, or until the board has labelled --limit events "
-                                   "(--backend board: --board-link tracks with --core arty; with --core ice40 the board's filter "
-                                   "verdicts come, and the host clusters and tracks them)");
+                                   "(--backend board: --board-link tracks with --core arty; with --core ice40 the board's verdicts and "
+                                   "climbs come, and the host completes the clusters and tracks them)");
 }
 
 read::SourceInfo listening_input(const std::string& backend, const std::string& core, bool keeps_labels, bool source_given,
                                  const read::SourceOptions& input) {
-  const bool filter_on_board = backend == "board" && backend::board_of(backend::board_build(core)).core_stops_at_filter;
-  if (backend != "board" || (!keeps_labels && !filter_on_board)) {
+  const bool cut_on_board = backend == "board" && backend::board_of(backend::board_build(core)).cut();
+  if (backend != "board" || (!keeps_labels && !cut_on_board)) {
     throw std::invalid_argument("--listen takes the board's own input: add --backend board, and --board-link tracks for a board with the whole "
                                 "core (--core arty), whose labels stay on it");
   }

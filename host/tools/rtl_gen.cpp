@@ -10,10 +10,11 @@
 //                                (evms_climbs_core)
 //   evms_core_states.svh         the controller's state_e
 //   evms_core_labels.svh         the labels that are not a track's ID (hls/core/words.h)
-//   evms_board_cfg_params.svh    the Cfg* reset-value parameters of evms_board
-//   evms_board_cfg_connect.svh   those parameters on the core's cfg_* ports
-//   evms_board_filter_cfg_connect.svh  the filter's of them on evms_filter_core's ports
-//   evms_board_climbs_cfg_connect.svh  the climbs core's of them on evms_climbs_core's ports
+//   evms_board_cfg_params.svh    the Cfg* reset-value parameters of evms_board, and the CutCfg*
+//                                of a cut core (its build's cut shape's values)
+//   evms_board_cfg_connect.svh   the Cfg* parameters on the core's cfg_* ports
+//   evms_board_filter_cfg_connect.svh  the filter's CutCfg* on evms_filter_core's ports
+//   evms_board_climbs_cfg_connect.svh  the climbs core's CutCfg* on evms_climbs_core's ports
 //   evms_board_build_params.svh  a board top's build passed to evms_board
 //   evms_builds.cmake            the build names, for sim/CMakeLists.txt
 //   evms_cfg_registers.h         every build's reset registers, for C++17 testbenches
@@ -25,7 +26,8 @@
 //                                stream (lab_*), and the ports of a module that drives it
 //   evms_core_vectors_tb.svh     the vector testbench's registers, event word and output
 //                                words (sim/tb/evms_core_vectors_tb.sv)
-// and per build: evms_cfg_<build>.svh (its Shape and reset registers as localparams),
+// and per build: evms_cfg_<build>.svh (its Shape and reset registers as localparams, and its
+// cut core's),
 // evms_cfg_<build>.cmake (the same as Verilator -G overrides; with a board build's board, from
 // EVMS_BOARD_BUILDS, in both), and its exp and reciprocal ROM
 // tables. Into
@@ -84,6 +86,9 @@ const std::vector<Register> kHlsRegisters = {EVMS_CORE_HLS_REGISTERS(EVMS_REGIST
 
 // The board's parameter that holds a register's value: "merge_radius2" -> "CfgMergeRadius2".
 std::string board_parameter(const Register& r) { return "Cfg" + upper_camel(r.name); }
+// A cut core's registers (read_by_climbs, a superset of the filter's) on a board: the values of
+// its build's cut shape (EVMS_BOARD_BUILDS, hls/core/configs.h).
+std::string cut_parameter(const Register& r) { return "CutCfg" + upper_camel(r.name); }
 
 // The registers the background-activity filter reads (hls/filter/ba_filter.h): the sensor_*
 // and filter_* ones, the only inputs of a core cut after its filter.
@@ -147,6 +152,7 @@ struct BuildFiles {
   std::string name;
   std::vector<long long> shape;
   std::vector<std::uint64_t> registers;
+  std::vector<std::uint64_t> cut_registers;  // a cut core's values (the cut shape's), where read_by_climbs
   std::string exp_file, recip_file;
   int width, height;
   std::string description;
@@ -155,7 +161,7 @@ struct BuildFiles {
 template <class S>
 BuildFiles build_files(const char* name, int width, int height, const char* description) {
   const hls::Config c = backend::core_config<S>(backend::build_default_params<S>(), {width, height});
-  return {name,   shape_values<S>(), rtl_register_values(c), exp_table_file<S>(), recip_table_file<S>(), width, height, description};
+  return {name, shape_values<S>(), rtl_register_values(c), rtl_register_values(c), exp_table_file<S>(), recip_table_file<S>(), width, height, description};
 }
 
 void write(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
@@ -189,6 +195,12 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
     board_connect << ".cfg_" << r.name << "(" << param << "),\n";
     build << "." << param << "(" << param << "),\n";
   }
+  for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
+    const Register& r = kRtlRegisters[i];
+    if (!read_by_climbs(r)) continue;
+    board_params << "parameter " << sv_type(r.bits) << " " << cut_parameter(r) << " = " << sv_literal(r.bits, defaults.cut_registers[i]) << ",\n";
+    build << "." << cut_parameter(r) << "(" << cut_parameter(r) << "),\n";
+  }
   write(dir + "/evms_core_cfg_ports.svh", ports.str());
   write(dir + "/evms_board_cfg_params.svh", board_params.str());
   write(dir + "/evms_board_cfg_connect.svh", board_connect.str());
@@ -199,12 +211,13 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
     std::ostringstream subset_ports, subset_connect, board_subset_connect;
     subset_ports << "// " << kGeneratedBy << "\n// The registers " << what << " reads (hls/core/registers.h) as inputs.\n";
     subset_connect << "// " << kGeneratedBy << "\n// The registers " << what << " reads passed to an instance of " << instance << ".\n";
-    board_subset_connect << "// " << kGeneratedBy << "\n// The board's values of the registers " << what << " reads on " << module << "'s cfg_* ports.\n";
+    board_subset_connect << "// " << kGeneratedBy << "\n// The board's values of the registers " << what << " reads (its cut shape's) on " << module
+                         << "'s cfg_* ports.\n";
     for (const Register& r : kRtlRegisters) {
       if (!reads(r)) continue;
       subset_ports << "input  " << sv_type(r.bits) << " cfg_" << r.name << ",  // " << r.description << "\n";
       subset_connect << ".cfg_" << r.name << "(cfg_" << r.name << "),\n";
-      board_subset_connect << ".cfg_" << r.name << "(" << board_parameter(r) << "),\n";
+      board_subset_connect << ".cfg_" << r.name << "(" << cut_parameter(r) << "),\n";
     }
     write(dir + "/evms_" + cut + "_cfg_ports.svh", subset_ports.str());
     write(dir + "/evms_" + cut + "_cfg_connect.svh", subset_connect.str());
@@ -375,12 +388,16 @@ void write_build(const std::string& dir, const BuildFiles& b) {
     const Register& r = kRtlRegisters[i];
     o << "localparam " << sv_type(r.bits) << " " << board_parameter(r) << " = " << sv_literal(r.bits, b.registers[i]) << ";\n";
   }
+  o << "// A cut core's registers on the board: the values of the build's cut shape (EVMS_BOARD_BUILDS, hls/core/configs.h).\n";
+  for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
+    const Register& r = kRtlRegisters[i];
+    if (read_by_climbs(r)) o << "localparam " << sv_type(r.bits) << " " << cut_parameter(r) << " = " << sv_literal(r.bits, b.cut_registers[i]) << ";\n";
+  }
   if (board.clock_hz) {
-    o << "// The board: its clock, its UART's clocks a bit, its link queue's depth in events, and whether\n"
-      << "// its core stops at the filter (the host clusters and tracks).\n"
+    o << "// The board: its clock, its UART's clocks a bit, its link queue's depth in events, and where its\n"
+      << "// core stops (0 whole, 1 after the filter, 2 after the climbs; the host runs the rest).\n"
       << "localparam int BoardClockHz = " << board.clock_hz << ", BoardClocksPerBit = " << board.clocks_per_bit
-      << ", BoardLinkFifoDepth = " << board.link_fifo_depth << ", BoardCoreStopsAtFilter = " << int{board.core_stops_at_filter}
-      << ";\n";
+      << ", BoardLinkFifoDepth = " << board.link_fifo_depth << ", BoardCoreCut = " << static_cast<int>(board.core_cut) << ";\n";
   }
   write(dir + "/evms_cfg_" + b.name + ".svh", o.str());
 
@@ -393,11 +410,14 @@ void write_build(const std::string& dir, const BuildFiles& b) {
   for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
     v << " -G" << board_parameter(kRtlRegisters[i]) << "=" << sv_literal(kRtlRegisters[i].bits, b.registers[i]);
   }
+  for (size_t i = 0; i < kRtlRegisters.size(); ++i) {
+    if (read_by_climbs(kRtlRegisters[i])) v << " -G" << cut_parameter(kRtlRegisters[i]) << "=" << sv_literal(kRtlRegisters[i].bits, b.cut_registers[i]);
+  }
   v << ")\nset(EVMS_RTL_EXP_MEM_" << b.name << " " << b.exp_file << ")\n";
   v << "set(EVMS_RTL_RECIP_MEM_" << b.name << " " << b.recip_file << ")\n";
   if (board.clock_hz) {
     v << "set(EVMS_BOARD_" << b.name << " " << board.clock_hz << " " << board.clocks_per_bit << " " << board.link_fifo_depth << " "
-      << int{board.core_stops_at_filter} << ")\n";
+      << static_cast<int>(board.core_cut) << ")\n";
   }
   write(dir + "/evms_cfg_" + b.name + ".cmake", v.str());
 
@@ -470,6 +490,16 @@ int main(int argc, char** argv) {
 #undef EVMS_WRITE_BUILD
   cmake << ")\n";
   write(dir + "/evms_builds.cmake", cmake.str());
+  // A board's cut core reads its registers in the build's cut shape.
+  for (BuildFiles& b : builds) {
+#define EVMS_CUT_REGISTERS(board_name, clock_hz, clocks_per_bit, link_fifo_depth, cut, cut_shape)                                     \
+  if (b.name == #board_name) {                                                                                               \
+    b.cut_registers = rtl_register_values(backend::core_config<hls::cut_shape>(backend::build_default_params<hls::cut_shape>(), \
+                                                                              {b.width, b.height}));                         \
+  }
+    EVMS_BOARD_BUILDS(EVMS_CUT_REGISTERS)
+#undef EVMS_CUT_REGISTERS
+  }
   for (const BuildFiles& b : builds) write_build(dir, b);
   // The reset registers for C++17 testbenches that cannot use the host's conversion.
   std::ostringstream h;

@@ -23,8 +23,9 @@
 //   link, so it runs at the sensor's rate. A packet's track updates and its summary go out
 //   together, as a batch, when the queue is empty as the batch begins; otherwise the whole
 //   batch is skipped (and counted), so what reaches the host is always whole packets.
-// A board whose core stops at the filter (CoreStopsAtFilter) returns every event's verdict as
-// a verdict frame (0x87) in both modes, and no track or packet frames.
+// A board whose core is cut (CoreCut) returns every event's verdict in verdict frames (0x87)
+// in both modes, and no track or packet frames; a core cut after its climbs also returns each
+// packet's climbs frame, a link frame a word (0x88 head, 0x89 mode, 0x8A event).
 // In both modes, when the line is free and the counts have changed, a progress frame (link
 // events the core took, events labelled with a track, events labelled noise) tells the host
 // that the board is working; in tracks mode it acknowledges the host's events in place of
@@ -35,10 +36,12 @@ module evms_board #(
   parameter int ClkHz          = 12000000,
   parameter int ClksPerBit     = 4,
   parameter int LinkFifoDepth  = 2048,
-  // 1: the core stops at its filter (core/evms_filter_core.sv) and the host clusters and
-  // tracks the verdicts (a build too large for its device: EVMS_BOARD_BUILDS in
-  // hls/core/configs.h); 0: the whole core.
-  parameter int CoreStopsAtFilter = 0,
+  // Where the core stops, for a build too large for its device (EVMS_BOARD_BUILDS in
+  // hls/core/configs.h): 0 the whole core; 1 after its filter (core/evms_filter_core.sv), the
+  // host clustering and tracking the verdicts; 2 after its climbs (core/evms_climbs_core.sv),
+  // the host completing each packet from its climbs frame. A cut core reads the CutCfg*
+  // registers, its build's cut shape's values.
+  parameter int CoreCut = 0,
   // The registers' reset values and the core build (rtl/generated/evms_cfg_<build>.svh).
   `include "evms_board_cfg_params.svh"
   `include "evms_core_shape_params.svh"
@@ -59,8 +62,11 @@ module evms_board #(
   // The host keeps LinkFifoDepth events in flight and waits for their labels; the core holds up
   // to PendingDepth of them unlabelled until their packet closes (which only more events do, or
   // a full pending queue), and its intake up to a packet's more.
-  `EVMS_ASSERT_INIT("the link queue must be deeper than the core's pending and intake queues", LinkFifoDepth > PendingDepth + PacketMax)
-  `EVMS_ASSERT_INIT("a verdict frame holds x and y in a byte each", CoreStopsAtFilter == 0 || (MaxWidth <= 256 && MaxHeight <= 256))
+  // A cut core answers each event with its verdict at once.
+  localparam int CutFilter = 1, CutClimbs = 2;
+  `EVMS_ASSERT_INIT("the link queue must be deeper than the core's pending and intake queues", CoreCut != 0 || LinkFifoDepth > PendingDepth + PacketMax)
+  `EVMS_ASSERT_INIT("a verdict frame holds x and y in a byte each", CoreCut == 0 || (MaxWidth <= 256 && MaxHeight <= 256))
+  `EVMS_ASSERT_INIT("the core stops after its filter, after its climbs or nowhere", CoreCut >= 0 && CoreCut <= CutClimbs)
 
   // ---- sources ------------------------------------------------------------------------------
   logic aer_valid, aer_ready, aer_p;
@@ -111,8 +117,34 @@ module evms_board #(
   wire [7:0] pkt_iterations_sent = pkt_iterations > 16'd255 ? 8'd255 : 8'(pkt_iterations);
   wire [95:0] pkt_payload_sent = {pkt_iterations_sent, pkt_clusters, pkt_events, pkt_t_last, pkt_t_first};
   logic [31:0] tracks_started, unassigned;
-  if (CoreStopsAtFilter != 0) begin : g_filter_core
-    // Every event comes back as a label frame (noise or passed); no track or packet words.
+  // A core cut after its climbs: its climbs frames' words, to the link in place of packet summaries.
+  logic clm_valid, clm_ready;
+  logic [1:0] clm_kind;
+  logic [79:0] clm_data;
+  if (CoreCut == CutClimbs) begin : g_climbs_core
+    // Every event comes back as a verdict, each packet as its climbs frame; no track or packet
+    // words. Its packet, pending and mode sizes are its own defaults, the cut shape's
+    // (hls::Ice40ClimbsShape), not this board's whole core's.
+    evms_climbs_core #(
+      .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift),
+      .NoiseIntervalLog2(NoiseIntervalLog2)
+    ) u_core (
+      .clk(clk), .rst_n(run_rst_n),
+      `include "evms_board_climbs_cfg_connect.svh"
+      `include "evms_stream_in_connect.svh"
+      `include "evms_stream_lab_connect.svh"
+      .clm_valid(clm_valid), .clm_ready(clm_ready), .clm_kind(clm_kind), .clm_data(clm_data),
+      .idle(core_idle));
+    assign {trk_valid, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy, trk_confirmed} = '0;
+    assign {pkt_valid, pkt_t_first, pkt_t_last, pkt_events, pkt_clusters, pkt_iterations} = '0;
+    assign {tracks_started, unassigned} = '0;
+    logic unused_ready;  // nothing waits on the frame queue's ready
+    assign unused_ready = ^{trk_ready, pkt_ready};
+  end else if (CoreCut == CutFilter) begin : g_filter_core
+    // Every event comes back as a verdict (noise or passed); no track or packet words.
+    assign {clm_valid, clm_kind, clm_data} = '0;
+    logic unused_clm_ready;
+    assign unused_clm_ready = clm_ready;
     evms_filter_core #(
       .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift),
       .NoiseIntervalLog2(NoiseIntervalLog2)
@@ -144,13 +176,16 @@ module evms_board #(
       .pkt_ready(pkt_ready), .pkt_t_first(pkt_t_first), .pkt_t_last(pkt_t_last), .pkt_events(pkt_events),
       .pkt_clusters(pkt_clusters), .pkt_iterations(pkt_iterations), .idle(core_idle),
       .stat_tracks_started(tracks_started), .stat_unassigned(unassigned));
+    assign {clm_valid, clm_kind, clm_data} = '0;
+    logic unused_clm_ready;
+    assign unused_clm_ready = clm_ready;
   end
 
   // ---- labels: to the link, or counted on the board ------------------------------------------------
   `include "evms_core_labels.svh"
-  // A core that stops at the filter sends its verdicts in either mode: the host needs them.
+  // A cut core sends its verdicts in either mode: the host needs them.
   logic keep_labels, tx_lab_valid, tx_lab_ready;
-  assign keep_labels = labels_on_board && CoreStopsAtFilter == 0;
+  assign keep_labels = labels_on_board && CoreCut == 0;
   assign tx_lab_valid = lab_valid && !keep_labels;
   assign lab_ready = keep_labels || tx_lab_ready;
   logic [31:0] labelled_q, noise_q, link_taken_q;  // since the run's reset
@@ -275,11 +310,17 @@ module evms_board #(
   // ---- link back to the host ----------------------------------------------------------------------
   logic tx_valid, tx_ready;
   logic [7:0] tx_data;
-  evms_link_tx #(.LabelsAreVerdicts(CoreStopsAtFilter)) u_link_tx (
+  // A core cut after its climbs has no packet summaries: its climbs words take their port.
+  logic tx_pkt_valid;
+  logic [95:0] tx_pkt_payload;
+  assign tx_pkt_valid = CoreCut == CutClimbs ? clm_valid : q_out_valid && q_out_is_packet;
+  assign tx_pkt_payload = CoreCut == CutClimbs ? {14'd0, clm_kind, clm_data} : q_out_payload[95:0];
+  assign clm_ready = tx_pkt_ready;
+  evms_link_tx #(.LabelsAreVerdicts(CoreCut != 0 ? 1 : 0), .PacketsAreClimbs(CoreCut == CutClimbs ? 1 : 0)) u_link_tx (
     .clk(clk), .rst_n(run_rst_n), .lab_valid(tx_lab_valid), .lab_ready(tx_lab_ready), .lab_t(lab_t), .lab_x(lab_x),
     .lab_y(lab_y), .lab_p(lab_p), .lab_label(lab_label), .trk_valid(q_out_valid && !q_out_is_packet), .trk_ready(tx_trk_ready),
-    .trk_payload(q_out_payload), .pkt_valid(q_out_valid && q_out_is_packet), .pkt_ready(tx_pkt_ready),
-    .pkt_payload(q_out_payload[95:0]), .st_valid(st_valid_q), .st_ready(st_ready), .rs_valid(rs_valid), .rs_ready(rs_ready),
+    .trk_payload(q_out_payload), .pkt_valid(tx_pkt_valid), .pkt_ready(tx_pkt_ready),
+    .pkt_payload(tx_pkt_payload), .st_valid(st_valid_q), .st_ready(st_ready), .rs_valid(rs_valid), .rs_ready(rs_ready),
     .rs_seq(rs_seq),
     .st_payload({batches_skipped_q, noise_q, labelled_q, unassigned, tracks_started, external_events, overruns, framing_errors,
                  crc_errors, events_received, timestamp}),

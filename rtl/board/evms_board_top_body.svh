@@ -2,8 +2,8 @@
 // and its clock is made (board_clk, and board_clk_locked once it is steady): a power-on reset
 // and the board (rtl/board/evms_board.sv) at the build's shape, whose busy and error the top
 // drives its LEDs with, at its board's polarity. The top's
-// LanesOverride and CoreStopsAtFilterOverride let the synthesis flow (constraints/flow/synth.sh)
-// sweep the lanes and measure the whole core where the build cuts it.
+// LanesOverride and CoreCutOverride let the synthesis flow (constraints/flow/synth.sh)
+// sweep the lanes and measure the core cut elsewhere than the build cuts it.
 
   // The design is in reset from power-up until the clock is steady and 18 clocks after, and while
   // the button is pressed; it leaves the reset on a clock edge (rtl/board/evms_reset_gen.sv).
@@ -13,7 +13,7 @@
   logic busy, error;
   evms_board #(
     .ClkHz(BoardClockHz), .ClksPerBit(BoardClocksPerBit), .LinkFifoDepth(BoardLinkFifoDepth),
-    .CoreStopsAtFilter(CoreStopsAtFilterOverride >= 0 ? CoreStopsAtFilterOverride : BoardCoreStopsAtFilter),
+    .CoreCut(CoreCutOverride >= 0 ? CoreCutOverride : BoardCoreCut),
     `include "evms_board_build_params.svh"
   ) u_board (
     .clk(board_clk), .rst_n(rst_n), .aer_req_n(AER_REQ_N), .aer_ack_n(AER_ACK_N), .aer_addr(AER_ADDR), .uart_rx(RX),

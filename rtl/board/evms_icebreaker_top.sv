@@ -3,16 +3,18 @@
 // (BoardClockHz, 18 MHz) of the board's 12 MHz oscillator, so that 3 clocks a bit give 6 Mbaud,
 // a rate the FT2232H makes exactly (120 MHz / 20); the design is held in reset until it locks.
 // Simulation and lint (no SYNTHESIS) take the oscillator's pin as the clock. The core stops
-// at its filter (BoardCoreStopsAtFilter, rtl/generated/evms_cfg_ice40.svh): the board returns
-// each event's verdict and the host clusters and tracks (host/backend/board_backend.cpp).
+// after its climbs (BoardCoreCut, rtl/generated/evms_cfg_ice40.svh): the board returns each
+// event's verdict and each packet's climbs, and the host completes the clusters and tracks them
+// (host/backend/board_backend.cpp).
 // Pins: constraints/icebreaker.pcf.
 `include "evms_assert.svh"
 module evms_icebreaker_top #(
   // The synthesis flow's lane sweep (constraints/flow/synth.sh); 0 keeps the build's Lanes.
   parameter int LanesOverride = 0,
-  // The flow's measure of the whole core on the UP5K (synth.sh's ice40core configurations): 0
-  // puts it in; -1 keeps the build's BoardCoreStopsAtFilter.
-  parameter int CoreStopsAtFilterOverride = -1
+  // The core cut elsewhere (evms_board's CoreCut): 0 the whole core, as the flow measures it on
+  // the UP5K (synth.sh's ice40core configurations), 1 after the filter; -1 keeps the build's
+  // BoardCoreCut.
+  parameter int CoreCutOverride = -1
 ) (
   // The red and the green LED beside the button, lit by a low level.
   output logic LEDR_N,

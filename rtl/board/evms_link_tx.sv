@@ -1,6 +1,7 @@
 // Board-to-host half of the serial link (docs/link.md): labelled events (0x81, or with
 // LabelsAreVerdicts up to BatchEntries filter's verdicts in one 0x87), track updates (0x82), packet
-// summaries (0x83), status (0x84), resend requests (0x85) and progress (0x86) as frames
+// summaries (0x83, or with PacketsAreClimbs the words of climbs frames: 0x88 head, 0x89 mode,
+// 0x8A event), status (0x84), resend requests (0x85) and progress (0x86) as frames
 //   0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 // (CRC-16/CCITT-FALSE over TYPE, LEN and PAYLOAD; little-endian fields). Streams are served
 // one frame at a time, status first, then resend requests, packet summaries, track updates,
@@ -17,7 +18,11 @@
 module evms_link_tx #(
   // 1: the labels are a filter's verdicts (-1 noise, anything else passed) on a sensor of
   // 256x256 at most, sent in verdict frames (4 bytes a verdict) instead of 21-byte label frames.
-  parameter int LabelsAreVerdicts = 0
+  parameter int LabelsAreVerdicts = 0,
+  // 1: the packet port carries a core cut after its climbs' words (core/evms_climbs_core.sv):
+  // {kind (2 bits), word (80)} in its low bits, each sent as the kind's frame, the word's bits
+  // 79-64 then 63-0 (an event frame: 79-64 alone, the event's mode).
+  parameter int PacketsAreClimbs = 0
 ) (
   input  logic        clk,
   input  logic        rst_n,
@@ -30,7 +35,7 @@ module evms_link_tx #(
   // Packet summaries.
   input  logic        pkt_valid,
   output logic        pkt_ready,
-  input  logic [95:0] pkt_payload,    // t_first, t_last, events (16), clusters (8), iterations (8)
+  input  logic [95:0] pkt_payload,    // t_first, t_last, events (16), clusters (8), iterations (8); or a climbs word
   // Status.
   input  logic        st_valid,
   output logic        st_ready,
@@ -84,6 +89,15 @@ module evms_link_tx #(
   logic [31-BatchGapBits:0] verdict_fields;
   assign verdict_fields = {1'b1, lab_label != 32'hFFFF_FFFF, lab_p, lab_y[7:0], lab_x[7:0]};
 
+  // A climbs word's frame type and length, by its kind (0 head, 1 mode, 2 event).
+  function automatic logic [15:0] climbs_frame(input logic [1:0] kind);
+    case (kind)
+      2'd0: climbs_frame = {FrameClimbsHeadType, FrameClimbsHeadLen};
+      2'd1: climbs_frame = {FrameClimbsModeType, FrameClimbsModeLen};
+      default: climbs_frame = {FrameClimbsEventType, FrameClimbsEventLen};
+    endcase
+  endfunction
+
   always_comb begin
     lab_ready = 1'b0;
     trk_ready = 1'b0;
@@ -130,7 +144,12 @@ module evms_link_tx #(
           {ftype_d, flen_d, payload_d} = {FrameResendType, FrameResendLen, 336'd0, rs_seq};
           state_d = StSync1;
         end else if (pkt_valid) begin
-          {ftype_d, flen_d, payload_d} = {FramePacketType, FramePacketLen, 256'd0, pkt_payload};
+          if (PacketsAreClimbs != 0) begin
+            {ftype_d, flen_d} = climbs_frame(pkt_payload[81:80]);
+            payload_d = {272'd0, pkt_payload[63:0], pkt_payload[79:64]};
+          end else begin
+            {ftype_d, flen_d, payload_d} = {FramePacketType, FramePacketLen, 256'd0, pkt_payload};
+          end
           state_d = StSync1;
         end else if (trk_valid) begin
           {ftype_d, flen_d, payload_d} = {FrameTrackType, FrameTrackLen, 88'd0, trk_payload};

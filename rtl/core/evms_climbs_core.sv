@@ -9,8 +9,9 @@
 // of PendingDepth words, a flush word); the pending words are the host's to keep, so only their
 // count is here. Closing runs cluster/evms_serial_climbs.sv on the packet's features and sends
 // the frame; the next word waits in the intake meanwhile, decided. The host completes each packet from its
-// frame (hls::Core::process_climbed), which gives the whole core's words when warm seeds are off
-// and the least density follows the links, as the serial climbs have neither.
+// frame (hls::Core::process_climbed), which gives the whole core's words when warm seeds are off,
+// as the serial climbs have none (the host tests the least density on the frame's supports).
+// The iCEBreaker's board runs it (CoreCut 2 in rtl/board/evms_board.sv).
 `include "evms_assert.svh"
 
 module evms_climbs_core #(

@@ -1,6 +1,6 @@
 // The core cut after its filter (hls/core/filter_core.h): every event leaves labelled noise
 // (-1) or passed (hls::kLabelPassedFilter, -3), in input order, and nothing else does. A board
-// whose core does not fit its device runs this in evms_core's place (CoreStopsAtFilter in
+// whose core does not fit its device can run this in evms_core's place (CoreCut 1 in
 // rtl/board/evms_board.sv); the host clusters and tracks the verdicts it returns
 // (host/backend/board_backend.cpp). It is the intake of evms_core (core/evms_intake.sv)
 // without the climb features, so its verdicts are the whole core's.

@@ -114,6 +114,22 @@ localparam logic [31:0] CfgMinDensity = 32'd168663;
 localparam logic CfgDensityAfterLinks = 1'd0;
 localparam logic CfgGateBoxes = 1'd0;
 localparam logic CfgPixelCentre = 1'd0;
-// The board: its clock, its UART's clocks a bit, its link queue's depth in events, and whether
-// its core stops at the filter (the host clusters and tracks).
-localparam int BoardClockHz = 100000000, BoardClocksPerBit = 50, BoardLinkFifoDepth = 2048, BoardCoreStopsAtFilter = 0;
+// A cut core's registers on the board: the values of the build's cut shape (EVMS_BOARD_BUILDS, hls/core/configs.h).
+localparam logic [15:0] CutCfgSensorWidth = 16'd240;
+localparam logic [15:0] CutCfgSensorHeight = 16'd180;
+localparam logic CutCfgFilterEnabled = 1'd1;
+localparam logic [31:0] CutCfgFilterWindow = 32'd234;
+localparam logic [23:0] CutCfgFilterNoiseCount = 24'd990;
+localparam logic [23:0] CutCfgFilterQuietCount = 24'd353;
+localparam logic [31:0] CutCfgFilterQuietWindow = 32'd781;
+localparam logic [31:0] CutCfgFilterWarmUp = 32'd10000;
+localparam logic [15:0] CutCfgPacketSize = 16'd512;
+localparam logic [31:0] CutCfgPacketMaxSpanUs = 32'd33333;
+localparam logic [7:0] CutCfgMaxIterations = 8'd8;
+localparam logic [31:0] CutCfgTolerance = 32'd524;
+localparam logic [63:0] CutCfgMergeRadius2 = 64'd274877906944;
+localparam logic [63:0] CutCfgClimbScaleX = 64'd114532461227;
+localparam logic [63:0] CutCfgClimbScaleY = 64'd152709948302;
+// The board: its clock, its UART's clocks a bit, its link queue's depth in events, and where its
+// core stops (0 whole, 1 after the filter, 2 after the climbs; the host runs the rest).
+localparam int BoardClockHz = 100000000, BoardClocksPerBit = 50, BoardLinkFifoDepth = 2048, BoardCoreCut = 0;

@@ -1,8 +1,8 @@
 // The backends behind the CLI produce the same files: the Verilated RTL equals the fixed-point
 // core of its build, and the board backend, through the virtual board's pseudo-terminal and
 // the framed UART link, equals the fixed-point core of the board's build (tracks.csv in the
-// columns the RTL's track words carry): the iCEBreaker's, whose core stops at the filter and
-// whose verdicts the host completes, and the Arty's, which holds the whole core.
+// columns the RTL's track words carry): the iCEBreaker's, whose core stops after the climbs and
+// whose verdicts and climbs the host completes, and the Arty's, which holds the whole core.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -161,8 +161,8 @@ TEST(BackendsAgree, ACoreBuildRefusesParametersBeyondItsLimits) {
   EXPECT_NE(bad.err.find("unknown core build 'zynq'"), std::string::npos) << bad.err;
 }
 
-// The iCEBreaker's board (the ice40 build, its core cut at the filter) with the rest of the core
-// on the host.
+// The iCEBreaker's board (the ice40 build, its core cut after the climbs) with the rest of the
+// core on the host.
 TEST(BackendsAgree, TheBoardThroughTheVirtualBoardEqualsTheFixedCore) {
   TempDir dir;
   VirtualBoardProcess board(dir);
@@ -178,14 +178,24 @@ TEST(BackendsAgree, TheBoardThroughTheVirtualBoardEqualsTheFixedCore) {
   const auto again = run_backend(dir, "board2", scene, "--backend board --device " + board.device());
   EXPECT_EQ(again, on_board);
   const auto said = run_command(evms_binary() + " run \"" + scene + "\" --out " + dir.path("board3") + " --backend board --device " + board.device());
-  EXPECT_NE(said.out.find("board       filtered (its core stops at the filter): "), std::string::npos) << said.out;
-  EXPECT_NE(said.out.find(" noise; clustered and tracked on the host"), std::string::npos) << said.out;
-  // The host runs any setting of the rest: the iCE40 RTL core's packets and counts, for one.
-  const std::string sizes = "--packet-size 256 --max-clusters 8 --max-tracks 8";
-  const auto fixed_sizes = run_backend(dir, "fixed_sizes", scene, "--backend fixed --core ice40 " + sizes);
-  const auto board_sizes = run_backend(dir, "board_sizes", scene, "--backend board --device " + board.device() + " " + sizes);
-  EXPECT_NE(fixed_sizes.first, fixed.first) << "other packets, other labels";
-  EXPECT_TRUE(same_text(board_sizes.first, fixed_sizes.first)) << "events.csv";
+  EXPECT_NE(said.out.find("board       filtered and climbed (its core stops after the climbs): "), std::string::npos) << said.out;
+  EXPECT_NE(said.out.find(" packets climbed; linked, measured and tracked on the host\n"), std::string::npos)
+      << "every packet's climbs from the board: " << said.out;
+  // The host runs any setting of the rest: fewer tracks, and the least density on each mode
+  // (tested on the board's climbs), for some.
+  const std::string rest = "--max-tracks 2 --density-after-links false";
+  const auto fixed_rest = run_backend(dir, "fixed_rest", scene, "--backend fixed --core ice40 " + rest);
+  const auto board_rest = run_backend(dir, "board_rest", scene, "--backend board --device " + board.device() + " " + rest);
+  EXPECT_NE(fixed_rest.first, fixed.first) << "other clusters, other labels";
+  EXPECT_TRUE(same_text(board_rest.first, fixed_rest.first)) << "events.csv";
+  // What its registers hold is the board's: other packets are refused.
+  const auto other_packets = run_command(evms_binary() + " run \"" + scene + "\" --quiet --out " + dir.path("board4") +
+                                         " --backend board --packet-size 256 --device " + board.device());
+  EXPECT_NE(other_packets.exit_code, 0);
+  EXPECT_NE(other_packets.err.find("runs its build's filter, packet and climbs settings, without warm seeds (the host runs any other), "
+                                   "but --packet-size is 256, the board's 1024"),
+            std::string::npos)
+      << other_packets.err;
   // A scene that is mostly noise: the filtered events wait in the core with their packet's, and
   // the host's window holds more than the core can, so the run goes through.
   const std::string noisy = "gen://family/still?seed=1005&width=128&height=128&noise-hz=4&duration-s=0.1";
@@ -270,12 +280,13 @@ std::vector<CsvEvent> events_csv_rows(const std::string& text) {
 
 // A line that flips, drops and repeats bytes both ways (evms vboard --error-rate), to the
 // iCEBreaker's board: the run ends cleanly, every event has one row, and each verdict the line
-// destroyed is reported (-2, counted in the summary). The host clusters such an event as noise,
-// so every other label, and the number of track rows, is what the ice40 build gives with exactly
-// those events' verdicts noise: the line changes nothing it does not report.
+// destroyed is reported (-2, counted in the summary). The host clusters such an event as noise
+// (and climbs the packets after a loss itself), so every other label, and the number of track
+// rows, is what the ice40 build gives with exactly those events' verdicts noise: the line changes
+// nothing it does not report.
 TEST(BackendsAgree, TheBoardOverAnUnreliableLineLosesOnlyWhatItReports) {
   using S = hls::Ice40Shape;          // the board's filter
-  using Rest = hls::Ice40BoardShape;  // the rest, on the host
+  using Rest = hls::Ice40ClimbsShape;  // the rest, on the host
   const std::string scene = "gen://rotation?duration-s=0.12&seed=5&width=128&height=128";
   TempDir dir;
   const auto fixed = run_backend(dir, "fixed", scene, "--backend fixed --core ice40");
@@ -337,7 +348,8 @@ TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_NE(missing.err.find("/dev/evms-no-such-tty: cannot open the serial device"), std::string::npos) << missing.err;
   // The board's registers are its build's: on the Arty every setting's, so a packet size set by
-  // hand is refused; on the iCEBreaker, whose core stops at the filter, the filter's.
+  // hand is refused; on the iCEBreaker, whose core stops after the climbs, the filter's, the
+  // packets' and the climbs'.
   const auto params = run_command(evms_binary() +
                                   " run gen://rotation --backend board --core arty --device /dev/null --packet-size 32 --quiet");
   EXPECT_NE(params.exit_code, 0);
@@ -346,8 +358,8 @@ TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {
   const auto filter = run_command(evms_binary() +
                                   " run gen://rotation?width=128\\&height=128 --backend board --device /dev/null --filter-window-us 10000 --quiet");
   EXPECT_NE(filter.exit_code, 0);
-  EXPECT_NE(filter.err.find("the ice40 board runs its build's filter settings (the host runs any other), but --filter-window-us is "
-                            "10000, the board's 30000\n"),
+  EXPECT_NE(filter.err.find("the ice40 board runs its build's filter, packet and climbs settings, without warm seeds (the host runs "
+                            "any other), but --filter-window-us is 10000, the board's 30000\n"),
             std::string::npos)
       << filter.err;
   // So is a source of another size, named with the --roi that takes a part of it.
@@ -358,11 +370,11 @@ TEST(BackendsAgree, TheBoardBackendNamesWhatIsWrong) {
   const auto link_mode = run_command(evms_binary() + " run gen://rotation?duration-s=0.05 --backend fixed --board-link tracks --quiet");
   EXPECT_NE(link_mode.exit_code, 0);
   EXPECT_NE(link_mode.err.find("--board-link tracks is the board backend's"), std::string::npos) << link_mode.err;
-  // The iCEBreaker's core stops at the filter: its verdicts must cross the link.
+  // The iCEBreaker's core is cut: its verdicts must cross the link.
   const auto cut = run_command(evms_binary() +
                                " run gen://rotation?width=128\\&height=128 --backend board --board-link tracks --device /dev/null --quiet");
   EXPECT_NE(cut.exit_code, 0);
-  EXPECT_NE(cut.err.find("the ice40 board's core stops at the filter"), std::string::npos) << cut.err;
+  EXPECT_NE(cut.err.find("the ice40 board's core is cut and the host completes its verdicts"), std::string::npos) << cut.err;
 }
 
 // Without --device the board backend takes the one board's UART connected: an FT2232H's channel
@@ -533,10 +545,10 @@ TEST(BackendsAgree, ListeningToTheBoardsAerPinsGivesTheFixedCoresTracks) {
       << too_large.err;
 }
 
-// Listening to the iCEBreaker's board, whose core stops at the filter: every event that enters
-// at its AER pins comes back with its verdict (the sensor waits for the line), and the host
-// clusters and tracks them, so the rows of both files are the fixed ice40 core's on the events as
-// the board stamped them, byte for byte.
+// Listening to the iCEBreaker's board, whose core stops after the climbs: every event that
+// enters at its AER pins comes back with its verdict (the sensor waits for the line), each packet
+// with its climbs, and the host completes them, so the rows of both files are the fixed ice40
+// core's on the events as the board stamped them, byte for byte.
 TEST(BackendsAgree, ListeningToTheIcebreakersAerPinsGivesTheFixedCoresLabels) {
   TempDir dir;
   const std::string scene = "gen://translation?duration-s=0.1&seed=3&width=128&height=128";
@@ -555,7 +567,7 @@ TEST(BackendsAgree, ListeningToTheIcebreakersAerPinsGivesTheFixedCoresLabels) {
   ASSERT_EQ(listened.exit_code, 0) << listened.err;
   EXPECT_EQ(events_in_summary(listened.out), recording_events) << listened.out;
   EXPECT_NE(listened.out.find("0 labels lost"), std::string::npos) << listened.out;
-  EXPECT_NE(listened.out.find("clustered and tracked on the host"), std::string::npos) << listened.out;
+  EXPECT_NE(listened.out.find("packets climbed; linked, measured and tracked on the host"), std::string::npos) << listened.out;
 
   for (int i = 0; i < 1200 && !std::filesystem::exists(stamped); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_TRUE(std::filesystem::exists(stamped)) << "the virtual board did not finish playing the recording";

@@ -89,7 +89,7 @@ TEST(Core, SixteenBitTimestampsScrubStaleEntries) {
 // Every label, track update and packet summary of `completed` equal to `whole`'s.
 void expect_same_words(const test::CoreWords& completed, const test::CoreWords& whole);
 
-// A board whose core stops at the filter returns FilterCore's verdicts; the host runs the rest
+// A board whose core is cut after the filter returns FilterCore's verdicts; the host runs the rest
 // with process_decided. Together they are the whole core, word for word, on a noisy scene
 // whose filtered events fill the pending queue between packets (the ice40 build's 512).
 TEST(Core, TheFilterCoresVerdictsCompletedOnTheHostAreTheWholeCore) {
@@ -121,13 +121,14 @@ TEST(Core, TheFilterCoresVerdictsCompletedOnTheHostAreTheWholeCore) {
 // A board whose core stops at the climbs returns the filter's verdicts and each packet's climbs;
 // the host runs the rest with process_climbed. Together they are the whole core, word for word,
 // on scenes of every type whose packets close on their size, on their span, on a full pending
-// queue and on a flush, with the default method but warm seeds (the board's climbs have none).
+// queue and on a flush, with the build's method (no warm seeds: the board's climbs have none),
+// and with the least density tested on each mode before the links (by the host, on the board's
+// supports) instead of on the linked sets.
 TEST(Core, TheClimbsCoresFramesCompletedOnTheHostAreTheWholeCore) {
   using Board = hls::Ice40ClimbsShape;
-  Params p = backend::build_default_params<Board>();
-  p.warm_start = false;
-  const hls::Config cfg = backend::core_config<Board>(p, {128, 128});
-  ASSERT_TRUE(cfg.density_after_links || cfg.min_density == 0) << "the board's climbs leave the least density to the links";
+  const Params p = backend::build_default_params<Board>();
+  ASSERT_FALSE(p.warm_start) << "the build starts without warm seeds (Shape::kHasWarmSeeds)";
+  ASSERT_TRUE(p.density_after_links);
   std::vector<std::pair<std::string, std::vector<Event>>> scenes;
   for (const char* type : {"still", "crossing", "translation"}) {
     gen::FamilyPins pins;
@@ -142,16 +143,22 @@ TEST(Core, TheClimbsCoresFramesCompletedOnTheHostAreTheWholeCore) {
     blob.push_back({2000 + i * 50, static_cast<std::uint16_t>(i % 64 * 2), static_cast<std::uint16_t>(i / 64 % 64 * 2), 1});  // no neighbour
   }
   scenes.emplace_back("pending queue", blob);
-  for (const auto& [name, events] : scenes) {
-    SCOPED_TRACE(name);
-    const std::vector<hls::EventWord> words = name == "pending queue" ? words_of(events) : test::with_flush_midway(words_of(events));
-    const CoreRun whole = run_core<Board>(words, cfg);
-    const auto frames = test::climbs_core_frames<Board>(words, cfg);
-    ASSERT_EQ(frames.size(), whole.packets.size()) << "one climbs frame a packet with events";
-    for (size_t i = 0; i < frames.size(); ++i) ASSERT_EQ(frames[i].n, whole.packets[i].events) << i;
-    const test::CoreWords completed = test::completed_from_climbs<Board>(words, test::filter_core_verdicts<Board>(words, cfg), frames, cfg);
-    expect_same_words(completed, whole);
-    EXPECT_GE(whole.packets.size(), name == "pending queue" ? 1u : 4u);
+  for (const bool after_links : {true, false}) {
+    Params method = p;
+    method.density_after_links = after_links;
+    const hls::Config cfg = backend::core_config<Board>(method, {128, 128});
+    ASSERT_NE(cfg.min_density, 0u);
+    for (const auto& [name, events] : scenes) {
+      SCOPED_TRACE(name + (after_links ? ", density after the links" : ", density before the links"));
+      const std::vector<hls::EventWord> words = name == "pending queue" ? words_of(events) : test::with_flush_midway(words_of(events));
+      const CoreRun whole = run_core<Board>(words, cfg);
+      const auto frames = test::climbs_core_frames<Board>(words, cfg);
+      ASSERT_EQ(frames.size(), whole.packets.size()) << "one climbs frame a packet with events";
+      for (size_t i = 0; i < frames.size(); ++i) ASSERT_EQ(frames[i].n, whole.packets[i].events) << i;
+      const test::CoreWords completed = test::completed_from_climbs<Board>(words, test::filter_core_verdicts<Board>(words, cfg), frames, cfg);
+      expect_same_words(completed, whole);
+      EXPECT_GE(whole.packets.size(), name == "pending queue" ? 1u : 4u);
+    }
   }
 }
 

@@ -83,8 +83,9 @@ class ModuleAgainstTheProgram(unittest.TestCase):
         self.assertEqual(evms.parameters()["packet_size"], "3000")
 
     def test_the_fixed_point_core_gives_the_programs_labels(self):
-        # The iCE40 build holds sensors up to 128x128; its fixed core (the iCEBreaker's filter, then
-        # the host core) holds the whole method, and the Arty's holds its board's sizes.
+        # The iCE40 build holds sensors up to 128x128; its fixed core (the iCEBreaker's board, cut
+        # after its climbs, then the host core) holds the whole method in the board's packets and
+        # without warm seeds, and the Arty's holds its board's sizes.
         for core, scene in (("host", SCENE), ("arty", SCENE), ("ice40", SCENE + "&width=128&height=128")):
             events, sensor = evms.read(scene)
             with warnings.catch_warnings(record=True) as caught_warnings:
@@ -96,6 +97,8 @@ class ModuleAgainstTheProgram(unittest.TestCase):
                 self.assertEqual(len(said), 1, said)
                 self.assertTrue(said[0].startswith("the arty build runs --packet-size 512 (the method's "), said)
                 self.assertIn("--max-tracks 16", said[0])
+            elif core == "ice40":
+                self.assertEqual(said, ["the ice40 build runs --packet-size 1024 (the method's 3000), --warm-start false (the method's true)"])
             else:
                 self.assertEqual(said, [], core)
             want, want_tracks = program_run(scene, "--backend", "fixed", "--core", core)

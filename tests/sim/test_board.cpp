@@ -1,7 +1,8 @@
 // The board top: events over the UART link in, labels, tracks and packet summaries out,
 // framed and checked; the AER receiver's four-phase handshake; tracks mode at a sensor's rate.
-// Compared with the C++ core of the same build: the iCEBreaker's board stops at the filter
-// (hls::FilterCore<Ice40Shape>, completed on the host by hls::Core<Ice40Shape>), the Arty's
+// Compared with the C++ core of the same build: the iCEBreaker's board stops after the climbs
+// (its verdicts are hls::FilterCore<Ice40Shape>'s, its climbs frames
+// hls::Core<Ice40ClimbsShape>::process_to_climbs's, completed by process_climbed); the Arty's
 // holds the whole core (hls::Core<ArtyShape>).
 #include <gtest/gtest.h>
 
@@ -10,6 +11,7 @@
 
 #include "Vboard_arty.h"
 #include "Vboard_ice40.h"
+#include "hls/cluster/climbs_words.h"
 #include "hls/core/configs.h"
 #include "hls/core/core.h"
 #include "host/backend/core_config.h"
@@ -42,9 +44,9 @@ Expected cxx_core(const std::vector<hls::EventWord>& words, std::vector<size_t>*
   return core.out();
 }
 
-// The iCEBreaker board's words: the C++ core of its build cut at the filter.
+// The iCEBreaker board's verdicts: the C++ core of its build cut at the filter.
 hls::Config board_config() {
-  static_assert(kIce40.core_stops_at_filter, "the iCEBreaker's board stops at the filter");
+  static_assert(kIce40.cut(), "the iCEBreaker's board returns its filter's verdicts");
   return backend::core_config<S>(backend::build_default_params<S>(), {S::kMaxWidth, S::kMaxHeight});
 }
 Expected cxx_filter_core(const std::vector<hls::EventWord>& words) {
@@ -62,6 +64,7 @@ struct Received {
   std::vector<link::Sequence> resends;  // the numbers the board asked for again
   std::vector<link::Status> status;
   std::vector<link::Progress> progress;
+  std::vector<hls::ClimbsWord> climbs;  // a core cut after its climbs: its climbs frames' words
   std::vector<size_t> batch_ends;  // for each packet summary, the track updates received before it
   std::uint64_t bad_frames = 0;
   size_t corrupted_from = SIZE_MAX;  // run_link: the first event of the frame it corrupted
@@ -95,6 +98,9 @@ void collect(sim::VirtualBoard<V>& board, link::FrameDecoder& decoder, Received&
       case link::kStatus: r.status.push_back(link::decode_status(f)); break;
       case link::kResend: r.resends.push_back(link::decode_resend(f)); break;
       case link::kProgress: r.progress.push_back(link::decode_progress(f)); break;
+      case link::kClimbsHead:
+      case link::kClimbsMode:
+      case link::kClimbsEvent: r.climbs.push_back(link::decode_climbs(f)); break;
       default: break;
     }
   }
@@ -127,8 +133,9 @@ std::vector<std::uint8_t> events_frames(const std::vector<hls::EventWord>& words
 // bit flipped on the line; r.corrupted_from is its first event. The first frames of the first
 // `corrupt_resends` resends are flipped too. A board that says nothing for the host's silence
 // timer (500 ms) while events are unanswered fails the run: the host would have had to wait.
+template <class V = Vboard_ice40>
 Received run_link(const std::vector<hls::EventWord>& words, size_t corrupt = SIZE_MAX, size_t corrupt_resends = 0) {
-  sim::VirtualBoard<Vboard_ice40> board(kCpb);
+  sim::VirtualBoard<V> board(kCpb);
   link::FrameDecoder decoder;
   Received r;
   await_ready(board, decoder, r);
@@ -241,6 +248,75 @@ TEST(BoardLink, EventsInLabelsOutEqualToTheCppCore) {
   EXPECT_EQ(r.verdicts, r.words.labels.size());
   EXPECT_LT(r.verdict_frames * 4, r.verdicts) << "more than four verdicts a frame on average";
   for (size_t i = 0; i < r.label_seqs.size(); ++i) ASSERT_EQ(r.label_seqs[i], static_cast<link::Sequence>(i)) << i;
+}
+
+// The iCEBreaker's board cuts its core after the climbs (CoreCut 2): its registers are the cut
+// shape's (CutCfg*, hls::Ice40ClimbsShape, whose method has no warm seeds, as the board's
+// climbs have none).
+using Cut = hls::Ice40ClimbsShape;
+hls::Config cut_config() {
+  static_assert(kIce40.core_cut == hls::CoreCut::kClimbs, "the iCEBreaker's board stops after the climbs");
+  return backend::core_config<Cut>(backend::build_default_params<Cut>(), {Cut::kMaxWidth, Cut::kMaxHeight});
+}
+
+// The climbs frames that `r`'s climbs words make; none may be broken or left open.
+std::vector<hls::ClimbsFrame<Cut>> assembled_frames(const Received& r) {
+  hls::ClimbsFrameAssembler<Cut> assembler;
+  std::vector<hls::ClimbsFrame<Cut>> frames;
+  for (const hls::ClimbsWord& w : r.climbs) {
+    if (assembler.take(w)) frames.push_back(assembler.frame());
+  }
+  EXPECT_EQ(assembler.broken(), 0) << "climbs frames broken on a clean line";
+  EXPECT_FALSE(assembler.open()) << "a climbs frame left open after the flush's status";
+  return frames;
+}
+
+void expect_same_frames(const std::vector<hls::ClimbsFrame<Cut>>& got, const std::vector<hls::ClimbsFrame<Cut>>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t k = 0; k < want.size(); ++k) {
+    const auto &g = got[k], &w = want[k];
+    ASSERT_EQ(g.n, w.n) << "frame " << k;
+    ASSERT_EQ(g.mode_count, w.mode_count) << "frame " << k;
+    ASSERT_EQ(g.trace.steps, w.trace.steps) << "frame " << k;
+    ASSERT_EQ(g.trace.climbs, w.trace.climbs) << "frame " << k;
+    ASSERT_EQ(g.trace.modes_lost, w.trace.modes_lost) << "frame " << k;
+    for (int c = 0; c < w.mode_count; ++c) {
+      ASSERT_EQ(g.x[c], w.x[c]) << "frame " << k << " mode " << c;
+      ASSERT_EQ(g.y[c], w.y[c]) << "frame " << k << " mode " << c;
+      ASSERT_EQ(g.support[c], w.support[c]) << "frame " << k << " mode " << c;
+    }
+    for (int j = 0; j < w.n; ++j) ASSERT_EQ(g.first_mode[j], w.first_mode[j]) << "frame " << k << " event " << j;
+  }
+}
+
+// Over the link, every verdict and every packet's climbs frame equal the C++ core cut at the
+// same place, on a clean line and on one that destroys an events frame (the board asks for it
+// again); and the rest of the core on the host, given them, gives the whole core's words.
+TEST(BoardLinkClimbs, VerdictsAndClimbsFramesEqualTheCppCoreCutAtTheClimbs) {
+  std::vector<hls::EventWord> words = scene_words(0.3);
+  const hls::Config cfg = cut_config();
+  for (const size_t corrupt : {SIZE_MAX, words.size() / 3}) {
+    SCOPED_TRACE(corrupt == SIZE_MAX ? "a clean line" : "an events frame destroyed");
+    const Received r = run_link(words, corrupt);
+    std::vector<hls::EventWord> stream = words;
+    hls::EventWord flush;
+    flush.flush = true;
+    stream.push_back(flush);
+    Expected verdicts;
+    verdicts.labels = test::filter_core_verdicts<Cut>(stream, cfg);
+    ASSERT_NO_FATAL_FAILURE(expect_same(r.words, verdicts));
+    const std::vector<hls::ClimbsFrame<Cut>> frames = assembled_frames(r);
+    const std::vector<hls::ClimbsFrame<Cut>> want = test::climbs_core_frames<Cut>(stream, cfg);
+    ASSERT_GE(want.size(), 8u) << "the scene closes several packets";
+    ASSERT_NO_FATAL_FAILURE(expect_same_frames(frames, want));
+    test::CoreDriver<Cut> whole(cfg);
+    for (const hls::EventWord& w : stream) whole.process(w);
+    ASSERT_NO_FATAL_FAILURE(expect_same(test::completed_from_climbs<Cut>(stream, r.words.labels, frames, cfg), whole.out()));
+    ASSERT_EQ(r.status.size(), 1u);
+    EXPECT_EQ(r.status[0].crc_errors, corrupt == SIZE_MAX ? 0u : 1u);
+    EXPECT_EQ(r.status[0].events_received, words.size());
+    EXPECT_EQ(r.bad_frames, 0u);
+  }
 }
 
 // A quiet DVS128: noise at 300 events a second, too few for the scrub of two entries an event to
@@ -449,7 +525,7 @@ namespace {
 // stamped them; the packets it skipped while the line was busy are counted.
 TEST(BoardTracksMode, AerAtThreeHundredThousandEventsASecondKeepsUp) {
   using A = hls::ArtyShape;
-  static_assert(!kArty.core_stops_at_filter, "the Arty's board holds the whole core");
+  static_assert(!kArty.cut(), "the Arty's board holds the whole core");
   constexpr int kArtyCpb = static_cast<int>(kArty.clocks_per_bit), kTicksPerUs = static_cast<int>(kArty.clock_hz / 1000000);
   constexpr double kRate = 300e3;  // events/s
   gen::SceneConfig c;

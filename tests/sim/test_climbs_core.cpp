@@ -128,8 +128,7 @@ std::vector<Scene> scenes(const hls::Config& cfg) {
 // Backpressure: each output ready half the time. The clocks a word are printed for docs/rtl.md.
 TEST(ClimbsCoreRtl, EveryVerdictAndClimbsFrameEqualTheCppCoreCutAtTheClimbs) {
   const std::uint64_t seed = sim::cosim_seed();
-  Params p = backend::build_default_params<S>();
-  p.warm_start = false;
+  const Params p = backend::build_default_params<S>();  // no warm seeds (Shape::kHasWarmSeeds)
   std::uint64_t clocks = 0, events = 0;
   size_t packets = 0;
   for (const Scene& scene : scenes(backend::core_config<S>(p, {128, 128}))) {
