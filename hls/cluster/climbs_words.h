@@ -40,11 +40,11 @@ inline void climbs_word_fields(const ClimbsWord& w, std::int64_t fields[5]) {
   }
 }
 
-// Builds climbs frames from their words. A word out of place (a mode or an event before a head,
-// a head before the frame it ends is whole, more modes or events than its head gave, a head
-// beyond the shape's packet or mode table, an event's mode beyond the frame's modes) breaks the
-// frame: it is dropped, and the words up to the next head with it. A host that lost words on the
-// line sees it here.
+// Builds climbs frames from their words. A word out of place (a mode or an event with no frame
+// open, a head before the frame it ends is whole, more modes or events than its head gave, a
+// head beyond the shape's packet or mode table, an event's mode beyond the frame's modes) breaks
+// the frame: it is dropped, and the words up to the next head with it, and it counts once. A
+// host that lost words on the line sees it here.
 template <class S>
 class ClimbsFrameAssembler {
  public:
@@ -54,25 +54,21 @@ class ClimbsFrameAssembler {
     climbs_word_fields(w, f);
     if (w.kind == ClimbsWordKind::kHead) {
       if (open_) ++broken_;
+      skipping_ = false;
       open_ = f[0] >= 1 && f[0] <= S::kPacketMax && f[1] <= S::kModesMax;
-      if (!open_) {
-        ++broken_;
-        return false;
-      }
+      if (!open_) return breaks();
       frame_.n = static_cast<int>(f[0]), frame_.mode_count = static_cast<int>(f[1]);
       frame_.trace.steps = static_cast<int>(f[2]), frame_.trace.climbs = static_cast<int>(f[3]), frame_.trace.modes_lost = static_cast<int>(f[4]);
       modes_ = events_ = 0;
     } else if (!open_) {
-      return false;  // the rest of a broken frame
+      return breaks();
     } else if (w.kind == ClimbsWordKind::kMode && modes_ < frame_.mode_count && events_ == 0) {
       frame_.x[modes_] = static_cast<std::uint32_t>(f[0]), frame_.y[modes_] = static_cast<std::uint32_t>(f[1]);
       frame_.support[modes_++] = static_cast<std::uint16_t>(f[2]);
     } else if (w.kind == ClimbsWordKind::kEvent && modes_ == frame_.mode_count && f[0] >= -1 && f[0] < frame_.mode_count) {
       frame_.first_mode[events_++] = static_cast<std::int16_t>(f[0]);
     } else {
-      open_ = false;
-      ++broken_;
-      return false;
+      return breaks();
     }
     if (modes_ < frame_.mode_count || events_ < frame_.n) return false;
     open_ = false;
@@ -84,9 +80,16 @@ class ClimbsFrameAssembler {
   bool open() const { return open_; }
 
  private:
+  // A word out of place: the open frame, if any, is dropped; counted once until the next head.
+  bool breaks() {
+    if (!skipping_) ++broken_;
+    open_ = false, skipping_ = true;
+    return false;
+  }
+
   ClimbsFrame<S> frame_;
   int modes_ = 0, events_ = 0;
-  bool open_ = false;
+  bool open_ = false, skipping_ = false;
   long broken_ = 0;
 };
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <tuple>
 
+#include "hls/cluster/climbs_words.h"
 #include "hls/core/core.h"
 #include "host/backend/core_config.h"
 #include "host/eval/agreement.h"
@@ -160,6 +161,93 @@ TEST(Core, TheClimbsCoresFramesCompletedOnTheHostAreTheWholeCore) {
       EXPECT_GE(whole.packets.size(), name == "pending queue" ? 1u : 4u);
     }
   }
+}
+
+// A climbs frame's words as the climbs core sends them (hls/cluster/climbs_words.h's layout,
+// written out here to check it independently).
+std::vector<hls::ClimbsWord> words_of_frame(const hls::ClimbsFrame<hls::Ice40ClimbsShape>& f) {
+  using K = hls::ClimbsWordKind;
+  auto u16 = [](long long v) { return static_cast<std::uint64_t>(v) & 0xFFFF; };
+  std::vector<hls::ClimbsWord> w{{K::kHead, static_cast<std::uint16_t>(f.n),
+                                  u16(f.mode_count) << 48 | u16(f.trace.steps) << 32 | u16(f.trace.climbs) << 16 | u16(f.trace.modes_lost)}};
+  for (int c = 0; c < f.mode_count; ++c) {
+    w.push_back({K::kMode, static_cast<std::uint16_t>(f.x[c] >> 16),
+                 u16(f.x[c]) << 48 | std::uint64_t{f.y[c]} << 16 | std::uint64_t{f.support[c]}});
+  }
+  for (int j = 0; j < f.n; ++j) w.push_back({K::kEvent, static_cast<std::uint16_t>(f.first_mode[j]), 0});
+  return w;
+}
+
+bool same_frame(const hls::ClimbsFrame<hls::Ice40ClimbsShape>& a, const hls::ClimbsFrame<hls::Ice40ClimbsShape>& b) {
+  if (std::tie(a.n, a.mode_count, a.trace.steps, a.trace.climbs, a.trace.modes_lost) !=
+      std::tie(b.n, b.mode_count, b.trace.steps, b.trace.climbs, b.trace.modes_lost)) {
+    return false;
+  }
+  for (int c = 0; c < a.mode_count; ++c) {
+    if (std::tie(a.x[c], a.y[c], a.support[c]) != std::tie(b.x[c], b.y[c], b.support[c])) return false;
+  }
+  return std::equal(a.first_mode, a.first_mode + a.n, b.first_mode);
+}
+
+// The assembler makes each frame of its words again, and a word out of place (one lost, a
+// stray word, an event's mode beyond the frame's modes, a head beyond the packet) breaks its
+// frame, counted once, while the next head starts a whole one: what the board backend trusts
+// the board's climbs by (host/backend/board_backend.cpp).
+TEST(ClimbsWords, TheAssemblerRebuildsEachFrameAndCountsABrokenOne) {
+  using Board = hls::Ice40ClimbsShape;
+  const hls::Config cfg = backend::core_config<Board>(backend::build_default_params<Board>(), {128, 128});
+  gen::FamilyPins pins;
+  pins.width = pins.height = 128;
+  gen::SceneConfig scene = gen::family_scene("crossing", 1005, pins);
+  scene.duration_s = 0.2;
+  const auto frames = test::climbs_core_frames<Board>(test::with_flush_midway(words_of(eval::generate_scene(scene).events)), cfg);
+  ASSERT_GE(frames.size(), 4u);
+  auto assembled = [&](const std::vector<hls::ClimbsWord>& words, std::vector<size_t>& whole) {
+    auto assembler = std::make_unique<hls::ClimbsFrameAssembler<Board>>();
+    whole.clear();
+    for (const hls::ClimbsWord& w : words) {
+      if (!assembler->take(w)) continue;
+      size_t k = 0;
+      while (k < frames.size() && !same_frame(assembler->frame(), frames[k])) ++k;
+      whole.push_back(k);  // frames.size(): a frame that is none of them
+    }
+    return assembler->broken();
+  };
+  std::vector<hls::ClimbsWord> words;
+  std::vector<size_t> starts;
+  for (const auto& f : frames) {
+    starts.push_back(words.size());
+    const auto w = words_of_frame(f);
+    words.insert(words.end(), w.begin(), w.end());
+  }
+  std::vector<size_t> whole, all(frames.size());
+  for (size_t k = 0; k < frames.size(); ++k) all[k] = k;
+  EXPECT_EQ(assembled(words, whole), 0);
+  EXPECT_EQ(whole, all);
+
+  auto without = [&](size_t k) {
+    std::vector<size_t> v;
+    for (size_t i = 0; i < frames.size(); ++i) {
+      if (i != k) v.push_back(i);
+    }
+    return v;
+  };
+  std::vector<hls::ClimbsWord> lost = words;
+  lost.erase(lost.begin() + static_cast<std::ptrdiff_t>(starts[2] - 1));  // frame 1's last event
+  EXPECT_EQ(assembled(lost, whole), 1) << "frame 1 ends at frame 2's head";
+  EXPECT_EQ(whole, without(1));
+  lost = words;
+  lost.erase(lost.begin() + static_cast<std::ptrdiff_t>(starts[1]));  // frame 1's head
+  EXPECT_EQ(assembled(lost, whole), 1) << "frame 1's words stray, counted once";
+  EXPECT_EQ(whole, without(1));
+  std::vector<hls::ClimbsWord> beyond = words;
+  beyond[starts[2] - 1].top = static_cast<std::uint16_t>(frames[1].mode_count);  // a mode the frame does not have
+  EXPECT_EQ(assembled(beyond, whole), 1);
+  EXPECT_EQ(whole, without(1));
+  beyond = words;
+  beyond[starts[1]].top = static_cast<std::uint16_t>(Board::kPacketMax + 1);  // a head beyond the packet
+  EXPECT_EQ(assembled(beyond, whole), 1);
+  EXPECT_EQ(whole, without(1));
 }
 
 void expect_same_words(const test::CoreWords& completed, const test::CoreWords& whole) {
