@@ -20,6 +20,5 @@ cluster/evms_cluster_subset_sums.sv
 cluster/evms_centroid.sv
 track/evms_tracker.sv
 core/evms_intake.sv
-core/evms_filter_core.sv
 core/evms_climbs_core.sv
 core/evms_core.sv

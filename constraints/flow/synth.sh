@@ -21,7 +21,7 @@
 # CONFIG is ice40_p1 .. ice40_p8, ice40core_p1 .. ice40core_p8 or xc7_p1 .. xc7_p8 (default:
 # ice40_p1, ice40core_p1 and xc7_p8).
 # -b also synthesizes each configuration with the core's blocks kept apart (keep_hierarchy on
-# the filter, intake, filter core, mean shift, merge, seeded climbs, mode links, warm seeds, centroids,
+# the filter, intake, climbs core, serial climbs, mean shift, merge, seeded climbs, mode links, warm seeds, centroids,
 # tracker, multiplier and reciprocal, those the build holds; the rest of the
 # core and of the board top counted as theirs) and writes their resources to
 # <work>/<config>/blocks.txt. Keeping them apart stops optimization across their ports, so
@@ -126,7 +126,7 @@ run_config() {
   read -r lut ff dsp bram spram < <(resources "$family" "$dir/stat.json" design)
   if $blocks; then
     # Every kept module has one instance in the tops, so a module's stat is its block's.
-    yosys_on blocks "setattr -mod -set keep_hierarchy 1 *evms_ba_filter *evms_intake *evms_filter_core *evms_mean_shift *evms_merge *evms_seeded_climbs \
+    yosys_on blocks "setattr -mod -set keep_hierarchy 1 *evms_ba_filter *evms_intake *evms_climbs_core *evms_serial_climbs *evms_mean_shift *evms_merge *evms_seeded_climbs \
         *evms_mode_links *evms_warm_seeds *evms_centroid *evms_tracker *evms_mul* *evms_recip *evms_core *evms_board; $synth; tee -q -o $dir/blocks_stat.json stat -json" || return 1
     {
       printf '%-11s %7s %7s %5s %5s %5s\n' block LUT FF DSP BRAM SPRAM

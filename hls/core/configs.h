@@ -42,9 +42,9 @@ using ArtyShape = Shape<240, 180, 512, 8, 8, 16, 16, 16, 7, 2 * 512, 11, 16, 9, 
   X(arty, ArtyShape, ArtyShape, 240, 180, "Arty A7-35T beside a DAVIS240 (rtl/board/evms_arty_top.sv)") \
   X(ice40, Ice40ClimbsShape, Ice40Shape, 128, 128, "iCEBreaker (UP5K) beside a DVS128 (rtl/board/evms_icebreaker_top.sv)")
 
-// Where a board's core stops (EVMS_BOARD_BUILDS): the whole core, or cut after the filter or
-// after the climbs, with the host running the rest (host/backend/board_backend.cpp).
-enum class CoreCut : int { kWhole = 0, kFilter = 1, kClimbs = 2 };
+// Where a board's core stops (EVMS_BOARD_BUILDS): the whole core, or cut after the climbs, with
+// the host running the rest (host/backend/board_backend.cpp).
+enum class CoreCut : int { kWhole = 0, kClimbs = 1 };
 
 // X(name, clock Hz, UART clocks a bit, link queue depth, core cut, cut shape): the board each
 // board build is for (rtl/board/evms_icebreaker_top.sv, evms_arty_top.sv). rtl_gen writes
@@ -63,7 +63,7 @@ enum class CoreCut : int { kWhole = 0, kFilter = 1, kClimbs = 2 };
 // PLL makes 18 MHz of its 12 MHz oscillator (rtl/board/evms_icebreaker_top.sv), so that 3 clocks
 // a bit give the FT2232H's 6 Mbaud (docs/link.md); the build routes at 18 MHz (docs/rtl.md).
 #define EVMS_BOARD_BUILDS(X)                         \
-  X(ice40, 18000000, 3, 1024, 2, Ice40ClimbsShape)   \
+  X(ice40, 18000000, 3, 1024, 1, Ice40ClimbsShape)   \
   X(arty, 100000000, 50, 2048, 0, ArtyShape)
 
 #define EVMS_CORE_BUILD_NAME(name, fixed, rtl, width, height, description) #name,

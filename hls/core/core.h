@@ -80,9 +80,10 @@ class Core {
     process_word(in, !in.flush && filter_.accept(in, cfg_), labels, tracks, packets, nullptr, nullptr);
   }
 
-  // The same, with the filter's answer for `in` decided elsewhere: by a board whose core stops
-  // at the filter (rtl/core/evms_filter_core.sv), whose verdicts the host completes with this.
-  // Given the verdicts of this core's filter, the words out are process()'s.
+  // The same, with the filter's answer for `in` decided elsewhere: by a cut board
+  // (rtl/core/evms_climbs_core.sv), whose packets the host climbs itself with this where it holds
+  // no frame of the board's climbs. Given the verdicts of this core's filter, the words out are
+  // process()'s.
   void process_decided(const EventWord& in, bool kept, LabelStream& labels, TrackStream& tracks, PacketStream& packets) {
     process_word(in, kept, labels, tracks, packets, nullptr, nullptr);
   }

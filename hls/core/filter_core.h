@@ -1,8 +1,7 @@
 // The core cut after its filter: every event labelled kLabelNoise or kLabelPassedFilter, in
-// input order, with no packets and no tracks. It is what a board whose core is cut returns
-// first (EVMS_BOARD_BUILDS in hls/core/configs.h; rtl/core/evms_filter_core.sv), and
-// Core::process_decided completes it: fed these verdicts, Core<S> gives the words of the
-// whole core.
+// input order, with no packets and no tracks: the verdicts a cut board returns first
+// (EVMS_BOARD_BUILDS in hls/core/configs.h; rtl/core/evms_climbs_core.sv). Core::process_decided
+// completes it: fed these verdicts, Core<S> gives the words of the whole core.
 #pragma once
 
 #include "hls/core/config.h"

@@ -30,13 +30,12 @@
 // A board whose core is cut holds only its cut's registers: the host runs any other setting of
 // the rest that its C++ core implements.
 //
-// A board whose core is cut (EVMS_BOARD_BUILDS, hls/core/configs.h) answers each event with its
-// filter's verdict, and the host runs the rest of the build's fixed core on the verdicts, so the
-// output is `--backend fixed --core <build>`'s, word for word. Cut after the filter, the host
-// clusters and tracks (hls::Core::process_decided). Cut after the climbs (the iCEBreaker,
-// Ice40ClimbsShape), the board also returns each packet's climbs frame, and the host completes
-// the packet from it (process_climbed): an event waits on the host until the frames of the
-// packets it closes have come. An event whose verdict the line lost goes on as noise, and its
+// A board whose core is cut after its climbs (the iCEBreaker: EVMS_BOARD_BUILDS,
+// hls/core/configs.h) answers each event with its filter's verdict and each packet with its
+// climbs frame, and the host runs the rest of the build's fixed core (Ice40ClimbsShape) on them,
+// so the output is `--backend fixed --core <build>`'s, word for word: it completes each packet
+// from its frame (hls::Core::process_climbed), and an event waits on the host until the frames
+// of the packets it closes have come. An event whose verdict the line lost goes on as noise, and its
 // row says lost (-2). From the first loss on (a verdict, or a frame the check failed), the
 // host's packets may no longer be the board's, so it climbs every packet whose frame it does
 // not hold yet itself, as process_decided does: the same words the board's frames would give
@@ -83,8 +82,7 @@ class BoardBackend final : public Backend {
  public:
   BoardBackend(const BackendOptions& o, const char* build)
       : port_(check(o, build), o.baud > 0 ? o.baud : static_cast<int>(board_of(build).baud())),
-        mode_(o.board_keeps_labels ? link::LinkMode::kTracks : link::LinkMode::kLabels),
-        climbs_on_board_(board_of(build).core_cut == hls::CoreCut::kClimbs) {
+        mode_(o.board_keeps_labels ? link::LinkMode::kTracks : link::LinkMode::kLabels) {
     if (board_of(build).cut()) rest_ = std::make_unique<HostCore<Rest>>(core_config<Rest>(o.params, o.sensor));
     // Let what the board is still sending from before go by (up to 2 s of it).
     std::uint8_t old[4096];
@@ -200,17 +198,15 @@ class BoardBackend final : public Backend {
     // The board's registers are its build's. A cut core holds only its cut's (the values of the
     // build's fixed core, which completes it), and the host's C++ core runs any other setting
     // it implements.
-    const hls::CoreCut cut = board_of(build).core_cut;
-    const Params held = cut != hls::CoreCut::kWhole ? build_default_params<Rest>() : build_default_params<S>();
+    const bool cut = board_of(build).cut();
+    const Params held = cut ? build_default_params<Rest>() : build_default_params<S>();
     auto refuse = [&](const ParamInfo& info, const std::string& what) {
       throw std::invalid_argument(board + " runs its build's " + what + ", but --" + info.name + " is " + param_text(o.params, info) +
                                   ", the board's " + param_text(held, info));
     };
-    if (cut != hls::CoreCut::kWhole) {
+    if (cut) {
       if (std::string unsupported = core_unsupported(o.params); !unsupported.empty()) throw std::invalid_argument(unsupported);
-      if (cut == hls::CoreCut::kFilter) {
-        if (const char* name = first_filter_difference(o.params, held)) refuse(*find_param(name), "filter settings (the host runs any other)");
-      } else if (const char* name = first_climbs_difference(o.params, held)) {
+      if (const char* name = first_climbs_difference(o.params, held)) {
         refuse(*find_param(name), "filter, packet and climbs settings, without warm seeds (the host runs any other)");
       }
     } else {
@@ -292,14 +288,14 @@ class BoardBackend final : public Backend {
     decided_.push_back({event, kept});
     advance(out);
   }
-  // The decided words, in order, into the rest of the core: each as soon as it can go. A board
-  // cut after its climbs sends the frame of each packet the word closes after the word's
-  // verdict, so the word waits for them; once the line has lost something, the host climbs
-  // every packet whose frame it does not hold itself.
+  // The decided words, in order, into the rest of the core: each as soon as it can go. The board
+  // sends the frame of each packet the word closes after the word's verdict, so the word waits
+  // for them; once the line has lost something, the host climbs every packet whose frame it
+  // does not hold itself.
   void advance(OutputSink& out) {
     while (!decided_.empty()) {
       const Decided d = decided_.front();
-      const int needed = climbs_on_board_ ? rest_->climbs_needed(d.event, d.kept) : 0;
+      const int needed = rest_->climbs_needed(d.event, d.kept);
       if (needed > static_cast<int>(frames_.size())) {
         if (!climbs_lost_) return;
         frames_.clear();  // a word that closes two packets, one frame here: the host climbs both
@@ -312,7 +308,7 @@ class BoardBackend final : public Backend {
         rest_->process_climbed(d.event, d.kept);
         stats_.s.board_climbed_packets += needed;
       } else {
-        if (climbs_on_board_) stats_.s.host_climbed_packets += rest_->climbs_needed(d.event, d.kept);
+        stats_.s.host_climbed_packets += needed;
         rest_->process_decided(d.event, d.kept);
       }
       decided_.pop_front();
@@ -411,8 +407,8 @@ class BoardBackend final : public Backend {
       if (f.bad_before > bad_seen_) bad_seen_ = f.bad_before, climbs_lost_ = climbs_lost_ || started_;
       if (!started_ && f.type != link::kStatus) continue;  // output of an earlier run, before the reset's status frame
       const bool climbs_word = f.type == link::kClimbsHead || f.type == link::kClimbsMode || f.type == link::kClimbsEvent;
-      if ((rest_ && (f.type == link::kTrack || f.type == link::kPacket)) || (climbs_word && !climbs_on_board_)) {
-        ++unbelieved_;  // a cut core sends no track or packet frames, and only one cut after its climbs climbs words:
+      if ((rest_ && (f.type == link::kTrack || f.type == link::kPacket)) || (climbs_word && !rest_)) {
+        ++unbelieved_;  // a cut core sends no track or packet frames, and a whole core no climbs words:
         continue;       // a corruption the check missed
       }
       switch (f.type) {
@@ -502,13 +498,12 @@ class BoardBackend final : public Backend {
   // on the line.
   std::unique_ptr<HostCore<Rest>> rest_;
   std::deque<bool> rest_lost_;
-  // Cut after its climbs: the decided words waiting for their packets' frames, the whole frames
-  // waiting for their words, and whether the line lost something since the run's start.
+  // The decided words waiting for their packets' frames, the whole frames waiting for their
+  // words, and whether the line lost something since the run's start.
   struct Decided {
     hls::EventWord event;
     bool kept;
   };
-  const bool climbs_on_board_;
   std::deque<Decided> decided_;
   std::deque<hls::ClimbsFrame<Rest>> frames_;
   hls::ClimbsFrameAssembler<Rest> assembler_;

@@ -144,11 +144,11 @@ void cycles(const CyclesOptions& o) {
                 measure_rtl ? "the RTL's" : "the model's");
   }
   if (board.cut()) {
-    std::printf("\nthese are the whole %s core's cycles; its board runs it cut after the %s (the whole core does not fit the "
+    std::printf("\nthese are the whole %s core's cycles; its board runs it cut after the climbs (the whole core does not fit the "
                 "device)\n",
-                o.build.c_str(), board.core_cut == hls::CoreCut::kClimbs ? "climbs" : "filter");
+                o.build.c_str());
+    board_climbs_cycles(events, sensor, o.build, board);
   }
-  if (board.core_cut == hls::CoreCut::kClimbs) board_climbs_cycles(events, sensor, o.build, board);
   if (!modelled) {
     std::printf("\nthe seeded path, measured on the RTL (the cycle model counts the Gaussian path): climbs count in \"mean shift\", links, the least density on the linked sets, the polarity split, the edge join and warm seeds in \"merge\"\n");
     return;

@@ -4,7 +4,7 @@
 //   evms_core_shape_params.svh   the Shape parameter list of evms_core and evms_board
 //   evms_core_shape_connect.svh  those parameters passed down, board -> core
 //   evms_core_cfg_ports.svh      the cfg_* input ports of evms_core
-//   evms_filter_cfg_ports.svh    the filter's cfg_* input ports (evms_intake, evms_filter_core)
+//   evms_filter_cfg_ports.svh    the filter's cfg_* input ports (evms_intake)
 //   evms_filter_cfg_connect.svh  those ports passed down, core -> intake
 //   evms_climbs_cfg_{ports,connect}.svh  the same of a core cut after its climbs
 //                                (evms_climbs_core)
@@ -13,7 +13,6 @@
 //   evms_board_cfg_params.svh    the Cfg* reset-value parameters of evms_board, and the CutCfg*
 //                                of a cut core (its build's cut shape's values)
 //   evms_board_cfg_connect.svh   the Cfg* parameters on the core's cfg_* ports
-//   evms_board_filter_cfg_connect.svh  the filter's CutCfg* on evms_filter_core's ports
 //   evms_board_climbs_cfg_connect.svh  the climbs core's CutCfg* on evms_climbs_core's ports
 //   evms_board_build_params.svh  a board top's build passed to evms_board
 //   evms_builds.cmake            the build names, for sim/CMakeLists.txt
@@ -207,7 +206,8 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
 
   // A cut core's registers: its cfg_* ports, those ports passed to an instance, and the board's
   // values on them.
-  const auto write_subset = [&](const char* cut, const char* what, const char* instance, const char* module, bool (*reads)(const Register&)) {
+  const auto write_subset = [&](const char* cut, const char* what, const char* instance, const char* module, bool (*reads)(const Register&),
+                                bool on_board) {
     std::ostringstream subset_ports, subset_connect, board_subset_connect;
     subset_ports << "// " << kGeneratedBy << "\n// The registers " << what << " reads (hls/core/registers.h) as inputs.\n";
     subset_connect << "// " << kGeneratedBy << "\n// The registers " << what << " reads passed to an instance of " << instance << ".\n";
@@ -221,10 +221,10 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
     }
     write(dir + "/evms_" + cut + "_cfg_ports.svh", subset_ports.str());
     write(dir + "/evms_" + cut + "_cfg_connect.svh", subset_connect.str());
-    write(dir + "/evms_board_" + cut + "_cfg_connect.svh", board_subset_connect.str());
+    if (on_board) write(dir + "/evms_board_" + cut + "_cfg_connect.svh", board_subset_connect.str());
   };
-  write_subset("filter", "the background-activity filter", "evms_intake", "evms_filter_core", read_by_filter);
-  write_subset("climbs", "a core cut after its climbs", "evms_climbs_core", "evms_climbs_core", read_by_climbs);
+  write_subset("filter", "the background-activity filter", "evms_intake", "", read_by_filter, false);
+  write_subset("climbs", "a core cut after its climbs", "evms_climbs_core", "evms_climbs_core", read_by_climbs, true);
 
   // A board top includes evms_cfg_<build>.svh, then passes all of it on; the synthesis flow's
   // lane sweep (constraints/flow/synth.sh) may replace the build's lane count.
@@ -395,7 +395,7 @@ void write_build(const std::string& dir, const BuildFiles& b) {
   }
   if (board.clock_hz) {
     o << "// The board: its clock, its UART's clocks a bit, its link queue's depth in events, and where its\n"
-      << "// core stops (0 whole, 1 after the filter, 2 after the climbs; the host runs the rest).\n"
+      << "// core stops (0 whole, 1 after the climbs; the host runs the rest).\n"
       << "localparam int BoardClockHz = " << board.clock_hz << ", BoardClocksPerBit = " << board.clocks_per_bit
       << ", BoardLinkFifoDepth = " << board.link_fifo_depth << ", BoardCoreCut = " << static_cast<int>(board.core_cut) << ";\n";
   }

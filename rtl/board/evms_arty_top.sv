@@ -5,7 +5,7 @@
 module evms_arty_top #(
   // The synthesis flow's lane sweep (constraints/flow/synth.sh); 0 keeps the build's Lanes.
   parameter int LanesOverride = 0,
-  // 0, 1 or 2 overrides the build's BoardCoreCut (evms_board's CoreCut); -1 keeps it.
+  // 0 or 1 overrides the build's BoardCoreCut (evms_board's CoreCut); -1 keeps it.
   parameter int CoreCutOverride = -1
 ) (
   // LD4 and LD5, lit by a high level (the board's LEDs are anode-connected to the pins).

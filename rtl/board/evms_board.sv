@@ -37,10 +37,9 @@ module evms_board #(
   parameter int ClksPerBit     = 4,
   parameter int LinkFifoDepth  = 2048,
   // Where the core stops, for a build too large for its device (EVMS_BOARD_BUILDS in
-  // hls/core/configs.h): 0 the whole core; 1 after its filter (core/evms_filter_core.sv), the
-  // host clustering and tracking the verdicts; 2 after its climbs (core/evms_climbs_core.sv),
-  // the host completing each packet from its climbs frame. A cut core reads the CutCfg*
-  // registers, its build's cut shape's values.
+  // hls/core/configs.h): 0 the whole core; 1 after its climbs (core/evms_climbs_core.sv), the
+  // host completing each packet from its climbs frame. A cut core reads the CutCfg* registers,
+  // its build's cut shape's values.
   parameter int CoreCut = 0,
   // The registers' reset values and the core build (rtl/generated/evms_cfg_<build>.svh).
   `include "evms_board_cfg_params.svh"
@@ -63,10 +62,10 @@ module evms_board #(
   // to PendingDepth of them unlabelled until their packet closes (which only more events do, or
   // a full pending queue), and its intake up to a packet's more.
   // A cut core answers each event with its verdict at once.
-  localparam int CutFilter = 1, CutClimbs = 2;
+  localparam int CutClimbs = 1;
   `EVMS_ASSERT_INIT("the link queue must be deeper than the core's pending and intake queues", CoreCut != 0 || LinkFifoDepth > PendingDepth + PacketMax)
   `EVMS_ASSERT_INIT("a verdict frame holds x and y in a byte each", CoreCut == 0 || (MaxWidth <= 256 && MaxHeight <= 256))
-  `EVMS_ASSERT_INIT("the core stops after its filter, after its climbs or nowhere", CoreCut >= 0 && CoreCut <= CutClimbs)
+  `EVMS_ASSERT_INIT("the core stops after its climbs or nowhere", CoreCut == 0 || CoreCut == CutClimbs)
 
   // ---- sources ------------------------------------------------------------------------------
   logic aer_valid, aer_ready, aer_p;
@@ -134,25 +133,6 @@ module evms_board #(
       `include "evms_stream_in_connect.svh"
       `include "evms_stream_lab_connect.svh"
       .clm_valid(clm_valid), .clm_ready(clm_ready), .clm_kind(clm_kind), .clm_data(clm_data),
-      .idle(core_idle));
-    assign {trk_valid, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy, trk_confirmed} = '0;
-    assign {pkt_valid, pkt_t_first, pkt_t_last, pkt_events, pkt_clusters, pkt_iterations} = '0;
-    assign {tracks_started, unassigned} = '0;
-    logic unused_ready;  // nothing waits on the frame queue's ready
-    assign unused_ready = ^{trk_ready, pkt_ready};
-  end else if (CoreCut == CutFilter) begin : g_filter_core
-    // Every event comes back as a verdict (noise or passed); no track or packet words.
-    assign {clm_valid, clm_kind, clm_data} = '0;
-    logic unused_clm_ready;
-    assign unused_clm_ready = clm_ready;
-    evms_filter_core #(
-      .MaxWidth(MaxWidth), .MaxHeight(MaxHeight), .TimestampBits(TimestampBits), .TimestampShift(TimestampShift),
-      .NoiseIntervalLog2(NoiseIntervalLog2)
-    ) u_core (
-      .clk(clk), .rst_n(run_rst_n),
-      `include "evms_board_filter_cfg_connect.svh"
-      `include "evms_stream_in_connect.svh"
-      `include "evms_stream_lab_connect.svh"
       .idle(core_idle));
     assign {trk_valid, trk_t, trk_id, trk_x, trk_y, trk_vx, trk_vy, trk_zx, trk_zy, trk_confirmed} = '0;
     assign {pkt_valid, pkt_t_first, pkt_t_last, pkt_events, pkt_clusters, pkt_iterations} = '0;
@@ -316,7 +296,7 @@ module evms_board #(
   assign tx_pkt_valid = CoreCut == CutClimbs ? clm_valid : q_out_valid && q_out_is_packet;
   assign tx_pkt_payload = CoreCut == CutClimbs ? {14'd0, clm_kind, clm_data} : q_out_payload[95:0];
   assign clm_ready = tx_pkt_ready;
-  evms_link_tx #(.LabelsAreVerdicts(CoreCut != 0 ? 1 : 0), .PacketsAreClimbs(CoreCut == CutClimbs ? 1 : 0)) u_link_tx (
+  evms_link_tx #(.LabelsAreVerdicts(CoreCut == CutClimbs ? 1 : 0), .PacketsAreClimbs(CoreCut == CutClimbs ? 1 : 0)) u_link_tx (
     .clk(clk), .rst_n(run_rst_n), .lab_valid(tx_lab_valid), .lab_ready(tx_lab_ready), .lab_t(lab_t), .lab_x(lab_x),
     .lab_y(lab_y), .lab_p(lab_p), .lab_label(lab_label), .trk_valid(q_out_valid && !q_out_is_packet), .trk_ready(tx_trk_ready),
     .trk_payload(q_out_payload), .pkt_valid(tx_pkt_valid), .pkt_ready(tx_pkt_ready),

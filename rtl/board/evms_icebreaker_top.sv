@@ -11,9 +11,8 @@
 module evms_icebreaker_top #(
   // The synthesis flow's lane sweep (constraints/flow/synth.sh); 0 keeps the build's Lanes.
   parameter int LanesOverride = 0,
-  // The core cut elsewhere (evms_board's CoreCut): 0 the whole core, as the flow measures it on
-  // the UP5K (synth.sh's ice40core configurations), 1 after the filter; -1 keeps the build's
-  // BoardCoreCut.
+  // 0 puts the whole core in (evms_board's CoreCut), as the flow measures it on the UP5K
+  // (synth.sh's ice40core configurations); -1 keeps the build's BoardCoreCut.
   parameter int CoreCutOverride = -1
 ) (
   // The red and the green LED beside the button, lit by a low level.

@@ -1,8 +1,8 @@
 // The core cut after its seeded climbs (hls::Core::process_to_climbs, hls/core/core.h), for a
 // part that holds the filter and the mean shift but not the rest of the core, such as the iCE40
 // UP5K. It returns two streams, each in order:
-//  - every event's verdict as evms_filter_core gives it (noise, -1, or passed the filter, -3), at
-//    once: it is the same intake (core/evms_intake.sv), here with the climb features;
+//  - every event's verdict (noise, -1, or passed the filter, -3: hls/core/filter_core.h), at
+//    once, from the intake (core/evms_intake.sv) with the climb features;
 //  - for each packet that holds events, its climbs frame (hls::ClimbsFrame): a head word, a word
 //    a mode, a word an event of the packet.
 // A packet opens, fills and closes by hls::Core's rules (its size, its span, a full pending queue
@@ -11,7 +11,7 @@
 // the frame; the next word waits in the intake meanwhile, decided. The host completes each packet from its
 // frame (hls::Core::process_climbed), which gives the whole core's words when warm seeds are off,
 // as the serial climbs have none (the host tests the least density on the frame's supports).
-// The iCEBreaker's board runs it (CoreCut 2 in rtl/board/evms_board.sv).
+// The iCEBreaker's board runs it (CoreCut 1 in rtl/board/evms_board.sv).
 `include "evms_assert.svh"
 
 module evms_climbs_core #(

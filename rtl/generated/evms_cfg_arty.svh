@@ -131,5 +131,5 @@ localparam logic [63:0] CutCfgMergeRadius2 = 64'd274877906944;
 localparam logic [63:0] CutCfgClimbScaleX = 64'd114532461227;
 localparam logic [63:0] CutCfgClimbScaleY = 64'd152709948302;
 // The board: its clock, its UART's clocks a bit, its link queue's depth in events, and where its
-// core stops (0 whole, 1 after the filter, 2 after the climbs; the host runs the rest).
+// core stops (0 whole, 1 after the climbs; the host runs the rest).
 localparam int BoardClockHz = 100000000, BoardClocksPerBit = 50, BoardLinkFifoDepth = 2048, BoardCoreCut = 0;

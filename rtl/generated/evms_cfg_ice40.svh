@@ -131,5 +131,5 @@ localparam logic [63:0] CutCfgMergeRadius2 = 64'd268435456;
 localparam logic [63:0] CutCfgClimbScaleX = 64'd214748364800;
 localparam logic [63:0] CutCfgClimbScaleY = 64'd214748364800;
 // The board: its clock, its UART's clocks a bit, its link queue's depth in events, and where its
-// core stops (0 whole, 1 after the filter, 2 after the climbs; the host runs the rest).
-localparam int BoardClockHz = 18000000, BoardClocksPerBit = 3, BoardLinkFifoDepth = 1024, BoardCoreCut = 2;
+// core stops (0 whole, 1 after the climbs; the host runs the rest).
+localparam int BoardClockHz = 18000000, BoardClocksPerBit = 3, BoardLinkFifoDepth = 1024, BoardCoreCut = 1;

@@ -57,8 +57,8 @@ TEST(BackendsAgree, RtlEqualsFixedFileForFile) {
 }
 
 // --backend rtl --core ice40 alone runs that RTL build's packet size, cluster and track counts
-// (hls/core/configs.h), and so does evms cycles --build ice40; a size set by hand beyond the
-// build's is refused.
+// (hls/core/configs.h), and so does evms cycles --build ice40, which also counts its board's core;
+// a size set by hand beyond the build's is refused.
 TEST(BackendsAgree, ACoreBuildAppliesItsOwnSizes) {
   TempDir dir;
   const std::string small = "gen://rotation?duration-s=0.1&seed=9&width=128&height=128";
@@ -74,6 +74,15 @@ TEST(BackendsAgree, ACoreBuildAppliesItsOwnSizes) {
   const auto cycles = run_command(evms_binary() + " cycles \"" + small + "\" --build ice40");
   ASSERT_EQ(cycles.exit_code, 0) << cycles.err;
   EXPECT_NE(cycles.out.find("packets of 256, 8 clusters, 8 tracks"), std::string::npos) << cycles.out;
+  // Below the whole core's cycles, the board's core cut after its climbs, on the same events,
+  // with the board's registers: within the 180 clocks an event (100 k events/s at the
+  // board's 18 MHz).
+  EXPECT_NE(cycles.out.find("its registers: packets of 1024, no warm seeds"), std::string::npos) << cycles.out;
+  const size_t at = cycles.out.find("board core       ");
+  ASSERT_NE(at, std::string::npos) << cycles.out;
+  const double clocks = std::stod(cycles.out.substr(at + 17));
+  EXPECT_GT(clocks, 10.0) << cycles.out;
+  EXPECT_LT(clocks, 180.0) << cycles.out;
 }
 
 // A build that runs the method otherwise than golden does says so in the summary, naming each
@@ -102,7 +111,8 @@ TEST(BackendsAgree, TheSummarySaysWhatACoreBuildChangesOfTheMethod) {
   EXPECT_NE(by_hand.find("--split-balance 0"), std::string::npos) << by_hand;
   EXPECT_EQ(note("--backend golden"), "");
   EXPECT_EQ(note("--backend fixed"), "") << "the host build's C++ core holds the method's sizes";
-  EXPECT_EQ(note("--backend fixed --core ice40"), "") << "the iCEBreaker's fixed core (its filter, then the host core) holds the whole method";
+  EXPECT_EQ(note("--backend fixed --core ice40"), "the ice40 build runs --packet-size 1024 (the method's 3000), --warm-start false (the method's true)")
+      << "the iCEBreaker's fixed core (its board's filter and climbs, then the host core) holds every step after the climbs";
 }
 
 // The Arty build runs the seeded path, which the cycle model does not count: evms cycles measures

@@ -250,7 +250,7 @@ TEST(BoardLink, EventsInLabelsOutEqualToTheCppCore) {
   for (size_t i = 0; i < r.label_seqs.size(); ++i) ASSERT_EQ(r.label_seqs[i], static_cast<link::Sequence>(i)) << i;
 }
 
-// The iCEBreaker's board cuts its core after the climbs (CoreCut 2): its registers are the cut
+// The iCEBreaker's board cuts its core after the climbs (CoreCut 1): its registers are the cut
 // shape's (CutCfg*, hls::Ice40ClimbsShape, whose method has no warm seeds, as the board's
 // climbs have none).
 using Cut = hls::Ice40ClimbsShape;

@@ -1,8 +1,8 @@
 // The events as the core's input words; the C++ core driven word by word with its output words
 // collected in vectors, for the tests that compare its words (tests/hls, tests/sim, tests/cli);
-// the core cut at its filter: the verdicts a board that stops there returns (hls::FilterCore)
-// and the rest of the core run on them (hls::Core::process_decided), as the board backend runs
-// it; and the core cut at its climbs: the frames a board that stops there returns with those
+// the core cut at its filter: the verdicts a cut board returns (hls::FilterCore) and the rest of
+// the core run on them (hls::Core::process_decided), as the board backend runs it where it climbs
+// a packet itself; and the core cut at its climbs: the frames a board that stops there returns with those
 // verdicts (hls::Core::process_to_climbs) and the rest of the core run on both
 // (hls::Core::process_climbed).
 #pragma once
