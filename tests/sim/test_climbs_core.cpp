@@ -21,6 +21,7 @@
 #include "host/gen/family.h"
 #include "sim/climbs_core_run.h"
 #include "tests/support/core_words.h"
+#include "tests/support/read_all.h"
 
 namespace evms {
 namespace {
@@ -54,7 +55,7 @@ std::vector<Word> frame_words(const hls::ClimbsFrame<S>& f) {
 
 std::string describe(const Word& w) {
   std::string s = w[0] == kVerdict ? "verdict" : w[0] == 0 ? "head" : w[0] == 1 ? "mode" : "event";
-  for (size_t k = 1; k < w.size(); ++k) s += " " + std::to_string(w[k]);
+  for (size_t k = 1; k < w.size(); ++k) s.append(" ").append(std::to_string(w[k]));
   return s;
 }
 
@@ -98,7 +99,7 @@ struct Scene {
 // pixels fire in turn every 10 us under a span of 1,000 us, so that a kept event lands exactly on
 // the span (which it does not exceed); and, without a span or the filter's warm-up, 3,000 isolated events the filter
 // drops (each leaves at once: no packet is open), then a blob's pixel every 20th word among them,
-// which fill the pending queue (4,096 words) before the packet fills.
+// which fill the pending queue (4,096 words) before the packet fills. And two real recordings.
 std::vector<Scene> scenes(const hls::Config& cfg) {
   std::vector<Scene> out;
   gen::FamilyPins pins;
@@ -122,6 +123,22 @@ std::vector<Scene> scenes(const hls::Config& cfg) {
   Scene pending{"pending queue", words_of(sparse), cfg};
   pending.cfg.packet_max_span_us = 0, pending.cfg.filter_warm_up = 0;
   out.push_back(pending);
+  // Real recordings at the board's 128x128 (the first 20,000 events there), when
+  // ../shared/data/real is present: the middle of the DVXplorer's 640x480, and the corner of the
+  // ATIS sample, whose car lies within x 0-53, y 1-60.
+  if (const std::string dir = test::shared_data_dir(); !dir.empty()) {
+    for (const bool middle : {true, false}) {
+      const char* f = middle ? "dvxplorer_indoor.aedat4" : "atis_ncars_sample.dat";
+      const std::string path = dir + "/" + f;
+      const SensorSize sensor = read::open_source(path, {})->info().sensor;
+      read::SourceOptions o;
+      o.window.roi = middle ? read::Roi{(sensor.width - 128) / 2, (sensor.height - 128) / 2, 128, 128} : read::Roi{0, 0, 128, 128};
+      o.window.limit = 20000;
+      out.push_back({f, words_of(test::read_all(path, o)), cfg});
+    }
+  } else {
+    std::printf("../shared/data/real is absent: no real recordings\n");
+  }
   return out;
 }
 
