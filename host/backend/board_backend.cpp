@@ -78,6 +78,7 @@ std::uint64_t unwrap(link::Sequence seq, std::uint64_t oldest) {
 template <class S, class Rest, size_t LinkWindow>
 class BoardBackend final : public Backend {
   static_assert(LinkWindow > static_cast<size_t>(S::kPendingDepth + S::kPacketMax), "the link window must exceed what the core holds unlabelled");
+  static_assert(Rest::kModesMax <= 127, "a climbs event frame carries its mode in a byte (host/link/link_frames.h)");
 
  public:
   BoardBackend(const BackendOptions& o, const char* build)

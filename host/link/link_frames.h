@@ -20,7 +20,7 @@
   X(Verdict, 0x87, 134, "board to host: up to 32 events with the filter's verdicts, and the first one's label number (a cut core)") \
   X(ClimbsHead, 0x88, 10, "board to host: a packet's climbs frame opens: its events, modes, steps, climbs and modes lost (a core cut after its climbs)") \
   X(ClimbsMode, 0x89, 10, "board to host: a mode of the packet's climbs frame: its x, y and support")                               \
-  X(ClimbsEvent, 0x8A, 2, "board to host: an event of the packet's climbs frame: its mode (-1: none)")
+  X(ClimbsEvent, 0x8A, 1, "board to host: an event of the packet's climbs frame: its mode, a byte (-1: none)")
 
 // The events frame and the verdict frame carry a batch of events (docs/link.md): the first
 // event's time (u32) and number (u16), then an entry of a u32 for each event: x in bits 0-7, y in

@@ -172,7 +172,10 @@ hls::ClimbsWord decode_climbs(const Frame& f) {
   const hls::ClimbsWordKind kind = f.type == kClimbsHead ? hls::ClimbsWordKind::kHead
                                    : f.type == kClimbsMode ? hls::ClimbsWordKind::kMode
                                                            : hls::ClimbsWordKind::kEvent;
-  const std::uint64_t low = f.type == kClimbsEvent ? 0 : std::uint64_t{get(f.payload, 2, 4)} | std::uint64_t{get(f.payload, 6, 4)} << 32;
+  if (f.type == kClimbsEvent) {  // the mode's low byte, which holds it (-1 to 126)
+    return {kind, static_cast<std::uint16_t>(static_cast<std::int16_t>(static_cast<std::int8_t>(get(f.payload, 0, 1)))), 0};
+  }
+  const std::uint64_t low = std::uint64_t{get(f.payload, 2, 4)} | std::uint64_t{get(f.payload, 6, 4)} << 32;
   return {kind, static_cast<std::uint16_t>(get(f.payload, 0, 2)), low};
 }
 

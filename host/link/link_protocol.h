@@ -107,8 +107,9 @@ hls::TrackWord decode_track(const Frame& f);
 hls::PacketWord decode_packet(const Frame& f);
 Status decode_status(const Frame& f);
 Progress decode_progress(const Frame& f);
-// A climbs frame's word (frames 0x88-0x8A: its bits 79-64, then 63-0; an event frame the first
-// part alone), as the board's core sent it (hls/cluster/climbs_words.h).
+// A climbs frame's word (frames 0x88-0x8A: its bits 79-64, then 63-0; an event frame bits 71-64
+// alone, the low byte of its mode, which holds it: a board's climbs open fewer than 127 modes),
+// as the board's core sent it (hls/cluster/climbs_words.h).
 hls::ClimbsWord decode_climbs(const Frame& f);
 
 }  // namespace evms::link

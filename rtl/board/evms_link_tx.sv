@@ -21,7 +21,8 @@ module evms_link_tx #(
   parameter int LabelsAreVerdicts = 0,
   // 1: the packet port carries a core cut after its climbs' words (core/evms_climbs_core.sv):
   // {kind (2 bits), word (80)} in its low bits, each sent as the kind's frame, the word's bits
-  // 79-64 then 63-0 (an event frame: 79-64 alone, the event's mode).
+  // 79-64 then 63-0 (an event frame: 71-64 alone, the low byte of the event's mode, which holds
+  // it while the climbs open fewer than 127 modes).
   parameter int PacketsAreClimbs = 0
 ) (
   input  logic        clk,
