@@ -124,7 +124,7 @@ void run(const RunOptions& o) {
     std::fprintf(summary, "link        %s frames failed their check, %s events sent again, %s labels lost (%s)\n",
                  grouped(s.link_bad_frames).c_str(), grouped(s.link_events_resent).c_str(), grouped(s.link_labels_lost).c_str(),
                  lost_rows.c_str());
-    if (s.board_climbed_packets + s.host_climbed_packets > 0) {
+    if (s.board_passed + s.board_filtered > 0) {
       std::fprintf(summary, "board       filtered and climbed (its core stops after the climbs): %s events passed, %s noise, %s packets "
                    "climbed; linked, measured and tracked on the host",
                    grouped(s.board_passed).c_str(), grouped(s.board_filtered).c_str(), grouped(s.board_climbed_packets).c_str());
@@ -132,9 +132,6 @@ void run(const RunOptions& o) {
         std::fprintf(summary, ", %s packets climbed on the host (the line lost words before them)", grouped(s.host_climbed_packets).c_str());
       }
       std::fprintf(summary, "\n");
-    } else if (s.board_passed + s.board_filtered > 0) {
-      std::fprintf(summary, "board       filtered (its core stops at the filter): %s events passed, %s noise; clustered and tracked on the host\n",
-                   grouped(s.board_passed).c_str(), grouped(s.board_filtered).c_str());
     }
     if (s.labels_kept_on_board && o.listen) {
       std::fprintf(summary, "board       kept the labels (tracks mode): %s events from its AER pins labelled with a track, %s noise, "

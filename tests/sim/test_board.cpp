@@ -44,7 +44,7 @@ Expected cxx_core(const std::vector<hls::EventWord>& words, std::vector<size_t>*
   return core.out();
 }
 
-// The iCEBreaker board's verdicts: the C++ core of its build cut at the filter.
+// The iCEBreaker board's verdicts: the C++ core of its build cut at the filter (its climbs come after).
 hls::Config board_config() {
   static_assert(kIce40.cut(), "the iCEBreaker's board returns its filter's verdicts");
   return backend::core_config<S>(backend::build_default_params<S>(), {S::kMaxWidth, S::kMaxHeight});
