@@ -90,7 +90,7 @@ std::string board_parameter(const Register& r) { return "Cfg" + upper_camel(r.na
 std::string cut_parameter(const Register& r) { return "CutCfg" + upper_camel(r.name); }
 
 // The registers the background-activity filter reads (hls/filter/ba_filter.h): the sensor_*
-// and filter_* ones, the only inputs of a core cut after its filter.
+// and filter_* ones (the intake's, core/evms_intake.sv).
 bool read_by_filter(const Register& r) {
   const std::string name = r.name;
   return name.rfind("sensor_", 0) == 0 || name.rfind("filter_", 0) == 0;
@@ -206,12 +206,11 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
 
   // A cut core's registers: its cfg_* ports, those ports passed to an instance, and the board's
   // values on them.
-  const auto write_subset = [&](const char* cut, const char* what, const char* instance, const char* module, bool (*reads)(const Register&),
-                                bool on_board) {
+  const auto write_subset = [&](const char* cut, const char* what, const char* instance, bool (*reads)(const Register&), bool on_board) {
     std::ostringstream subset_ports, subset_connect, board_subset_connect;
     subset_ports << "// " << kGeneratedBy << "\n// The registers " << what << " reads (hls/core/registers.h) as inputs.\n";
     subset_connect << "// " << kGeneratedBy << "\n// The registers " << what << " reads passed to an instance of " << instance << ".\n";
-    board_subset_connect << "// " << kGeneratedBy << "\n// The board's values of the registers " << what << " reads (its cut shape's) on " << module
+    board_subset_connect << "// " << kGeneratedBy << "\n// The board's values of the registers " << what << " reads (its cut shape's) on " << instance
                          << "'s cfg_* ports.\n";
     for (const Register& r : kRtlRegisters) {
       if (!reads(r)) continue;
@@ -223,8 +222,8 @@ void write_interface(const std::string& dir, const BuildFiles& defaults) {
     write(dir + "/evms_" + cut + "_cfg_connect.svh", subset_connect.str());
     if (on_board) write(dir + "/evms_board_" + cut + "_cfg_connect.svh", board_subset_connect.str());
   };
-  write_subset("filter", "the background-activity filter", "evms_intake", "", read_by_filter, false);
-  write_subset("climbs", "a core cut after its climbs", "evms_climbs_core", "evms_climbs_core", read_by_climbs, true);
+  write_subset("filter", "the background-activity filter", "evms_intake", read_by_filter, false);
+  write_subset("climbs", "a core cut after its climbs", "evms_climbs_core", read_by_climbs, true);
 
   // A board top includes evms_cfg_<build>.svh, then passes all of it on; the synthesis flow's
   // lane sweep (constraints/flow/synth.sh) may replace the build's lane count.

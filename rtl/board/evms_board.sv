@@ -61,7 +61,7 @@ module evms_board #(
   // The host keeps LinkFifoDepth events in flight and waits for their labels; the core holds up
   // to PendingDepth of them unlabelled until their packet closes (which only more events do, or
   // a full pending queue), and its intake up to a packet's more.
-  // A cut core answers each event with its verdict at once.
+  // A cut core answers each event with its verdict at once, so its queues hold none unanswered.
   localparam int CutClimbs = 1;
   `EVMS_ASSERT_INIT("the link queue must be deeper than the core's pending and intake queues", CoreCut != 0 || LinkFifoDepth > PendingDepth + PacketMax)
   `EVMS_ASSERT_INIT("a verdict frame holds x and y in a byte each", CoreCut == 0 || (MaxWidth <= 256 && MaxHeight <= 256))
