@@ -81,6 +81,10 @@ const std::array kTable = {
               "cluster's spread), so that a tracked object keeps a kernel its size; 0 = h", &Params::warm_scale, 0, 100},
     ParamInfo{"warm-max-bandwidth", "1", "the largest bandwidth --warm-scale gives a previous mode",
               &Params::warm_max_bandwidth, 0, 10},
+    ParamInfo{"warm-reach", "1", "with --warm-start, the events a previous mode's climb reaches (and labels) are "
+              "those within max(h, this times its cluster's spread) of it, at most its ball: the ball finds the centre "
+              "of a large outline and its margin takes no neighbour's events; 0 = the whole ball (golden only)",
+              &Params::warm_reach, 0, 100},
     ParamInfo{"label-reach", "h", "with labelling nearest, events farther than this many bandwidths from every mode "
               "are noise", &Params::label_reach, 0.1, 100},
     ParamInfo{"warm-start", "", "with seeded climbs, the previous packet's modes seed the first climbs",

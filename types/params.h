@@ -76,6 +76,7 @@ struct Params {
   bool warm_start = true;            // the previous packet's modes seed the first climbs
   double warm_scale = 2;             // ... each with bandwidth max(h, this times its cluster's spread)
   double warm_max_bandwidth = 0.14;  // ... but at most this
+  double warm_reach = 0;             // ... taking the events within max(h, this times the spread); 0 = the ball
   double label_reach = 1.0;          // labelling nearest: events this many h from every mode are noise
   double bandwidth = 0.04;           // kernel bandwidth h on the normalized feature space
   int max_iterations = 8;            // iteration cap

@@ -43,8 +43,11 @@ PacketClusters PacketClusterer::cluster(std::span<const Event> events, const Fea
   if (params_.warm_start) {
     const double most = std::max(params_.bandwidth, params_.warm_max_bandwidth);
     for (size_t k = 0; k < warm_modes.size(); ++k) {
-      const double own = k < warm_spreads.size() ? params_.warm_scale * warm_spreads[k] : 0.0;
-      climbs_.climb(warm_modes[k], std::clamp(own, params_.bandwidth, most));
+      const double spread = k < warm_spreads.size() ? warm_spreads[k] : 0.0;
+      // The ball finds the centre of a large outline; the events the climb takes are those
+      // within its reach, so that the ball's margin does not take a neighbour's (0: the ball).
+      const double reach = params_.warm_reach > 0 ? std::max(params_.bandwidth, params_.warm_reach * spread) : 0.0;
+      climbs_.climb(warm_modes[k], std::clamp(params_.warm_scale * spread, params_.bandwidth, most), reach);
     }
   }
   if (params_.seeding == Seeding::kGrid) {

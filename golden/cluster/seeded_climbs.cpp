@@ -28,10 +28,10 @@ void SeededClimbs::start(const PacketGrid& grid, const Params& params, SensorSiz
   kernel_evaluations_ = 0;
 }
 
-// One step of a climb at m: the sums over the members in the ball, which are marked reached by
-// this climb (and, for votes, counted).
+// One step of a climb at m: the sums over the members in the ball; those within its reach (u below
+// reach2_per_h2) are marked reached by this climb (and, for votes, counted).
 template <bool kFlat2d, bool kCountSteps>
-void SeededClimbs::step(const Eigen::Vector4d& m, double h, int climb, Sums& s) {
+void SeededClimbs::step(const Eigen::Vector4d& m, double h, double reach2_per_h2, int climb, Sums& s) {
   const PacketGrid& g = *grid_;
   const Kernel kernel = p_->kernel;
   const double inv_h2 = 1.0 / (h * h);
@@ -49,8 +49,9 @@ void SeededClimbs::step(const Eigen::Vector4d& m, double h, int climb, Sums& s) 
       std::int64_t count = 0, sx = 0, sy = 0;
       for (int k = begin; k < end; ++k) {
         const double dx = fx[k] - mx, dy = fy[k] - my;
-        const bool in = (dx * dx + dy * dy) * inv_h2 < 1.0;
-        inside[k] = in;
+        const double u = (dx * dx + dy * dy) * inv_h2;
+        const bool in = u < 1.0;
+        inside[k] = u < reach2_per_h2;
         count += in;
         sx += in ? px[k] : 0;
         sy += in ? py[k] : 0;
@@ -62,7 +63,7 @@ void SeededClimbs::step(const Eigen::Vector4d& m, double h, int climb, Sums& s) 
         const Eigen::Vector4d f(g.fx[j], g.fy[j], g.fp[j], g.ft[j]);
         const double u = (f - m).squaredNorm() * inv_h2;
         const bool in = u < 1.0;
-        inside_[j] = in;
+        inside_[j] = u < reach2_per_h2;
         const double w = kernel_profile(kernel, u);
         s.w += w;
         s.f += w * f;
@@ -92,17 +93,18 @@ Eigen::Vector4d SeededClimbs::mean_of(const Sums& s) const {
           s.f(2) / n, s.f(3) / n};
 }
 
-void SeededClimbs::climb(const Eigen::Vector4d& seed, double h) {
+void SeededClimbs::climb(const Eigen::Vector4d& seed, double h, double reach) {
   const int id = static_cast<int>(climb_mode_.size());
+  const double reach2_per_h2 = reach > 0 && reach < h ? (reach / h) * (reach / h) : 1.0;
   const bool votes = p_->labelling == Labelling::kVotes;
   Eigen::Vector4d m = seed;
   int inside = 0;  // events in the ball at the climb's last step
   for (int k = 0; k < p_->max_iterations; ++k) {
     Sums s;
-    if (flat2d_ && !votes) step<true, false>(m, h, id, s);
-    else if (flat2d_) step<true, true>(m, h, id, s);
-    else if (!votes) step<false, false>(m, h, id, s);
-    else step<false, true>(m, h, id, s);
+    if (flat2d_ && !votes) step<true, false>(m, h, reach2_per_h2, id, s);
+    else if (flat2d_) step<true, true>(m, h, reach2_per_h2, id, s);
+    else if (!votes) step<false, false>(m, h, reach2_per_h2, id, s);
+    else step<false, true>(m, h, reach2_per_h2, id, s);
     if (p_->kernel == Kernel::kFlat) {
       // Only the exact sums were kept on the fast path; the flat kernel's weight is the count.
       s.w = static_cast<double>(s.count);

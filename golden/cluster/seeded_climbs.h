@@ -31,8 +31,9 @@ class SeededClimbs {
   // Starts a packet's climbs over `grid` (built on the packet's features).
   void start(const PacketGrid& grid, const Params& params, SensorSize sensor);
 
-  // Climbs from `seed` with bandwidth h (at least params.bandwidth: the grid's cell).
-  void climb(const Eigen::Vector4d& seed, double h);
+  // Climbs from `seed` with bandwidth h (at least params.bandwidth: the grid's cell). The events
+  // it reaches are those within `reach` (at most h; 0: h) of it at a step.
+  void climb(const Eigen::Vector4d& seed, double h, double reach = 0);
   // Climbs from the oldest event no climb has reached yet, until every event was reached.
   void seed_from_events();
   // Climbs from each cell's centroid (`cells`: the packet's grid with cell h), most populated
@@ -55,7 +56,7 @@ class SeededClimbs {
     Eigen::Vector4d f = Eigen::Vector4d::Zero();
   };
   template <bool kFlat2d, bool kCountSteps>
-  void step(const Eigen::Vector4d& m, double h, int climb, Sums& s);
+  void step(const Eigen::Vector4d& m, double h, double reach2_per_h2, int climb, Sums& s);
   Eigen::Vector4d mean_of(const Sums& s) const;
   int join_or_open(const Eigen::Vector4d& m, int inside);
 
@@ -64,7 +65,7 @@ class SeededClimbs {
   double scale_x_ = 0, scale_y_ = 0;        // feature = scale_xy * pixel / these
   bool flat2d_ = false;                      // flat kernel on (x, y) alone: the fast path
   std::vector<int> first_climb_;             // per member (cell order): the first climb that reached it, -1
-  std::vector<std::uint8_t> inside_;         // per member: in the ball at the current step
+  std::vector<std::uint8_t> inside_;         // per member: within the climb's reach at the current step
   std::vector<int> climb_mode_;              // per climb: the mode it joined
   // labelling votes: the current climb's steps with each member inside, and the votes cast
   std::vector<int> steps_inside_;

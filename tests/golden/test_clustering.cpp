@@ -156,6 +156,40 @@ TEST(SeededClimbs, AWarmSeedClimbsWithItsClustersSize) {
   EXPECT_GT(count0(own), 2 * count0(small));
 }
 
+TEST(SeededClimbs, AWarmSeedsReachLeavesANeighbourInItsBallsMarginToItsOwnCluster) {
+  // A ring of radius 20 px (spread 20 px) and, 16 px outside it, a small square of events. The
+  // warm seed at the ring's centre climbs with a ball of 2 spreads (40 px), which holds the
+  // square (and moves 4 px towards it); with a reach of 1.5 spreads (30 px) the ring is taken and
+  // the square is not.
+  Params p = seeded();
+  p.link_px = 0;
+  p.warm_start = true;
+  p.min_cluster_size = 1;
+  p.warm_max_bandwidth = 0.2;
+  std::vector<Event> e = ring(120, 90, 20, 3);
+  const size_t square = e.size();
+  for (int i = 0; i < 16; ++i) {
+    e.push_back({static_cast<TimeUs>(e.size()), static_cast<std::uint16_t>(156 + i % 4), static_cast<std::uint16_t>(88 + i / 4), 1});
+  }
+  const Packet packet(e, p);
+  const Eigen::Vector4d seed(120.0 / 240, 90.0 / 180, 0, 0);
+  const std::vector<double> spread{20.0 / 240};
+  const auto square_in_ring_cluster = [&](const PacketClusters& c) {
+    return std::count(c.cluster_of.begin() + static_cast<std::ptrdiff_t>(square), c.cluster_of.end(), c.cluster_of.front());
+  };
+
+  p.warm_reach = 0;
+  const PacketClusters ball = packet.cluster(p, {seed}, spread);
+  EXPECT_EQ(square_in_ring_cluster(ball), 16) << "the whole ball takes the square with the ring";
+
+  p.warm_reach = 1.5;
+  const PacketClusters reach = packet.cluster(p, {seed}, spread);
+  EXPECT_EQ(square_in_ring_cluster(reach), 0) << "beyond the reach, the square climbs on its own";
+  EXPECT_TRUE(std::all_of(reach.cluster_of.begin(), reach.cluster_of.begin() + static_cast<std::ptrdiff_t>(square),
+                          [&](int c) { return c == reach.cluster_of.front() && c >= 0; }))
+      << "the ring stays one cluster";
+}
+
 // A dense blob, a sparse arc that touches it, and a sparse arc alone: lines of events 4 px apart
 // (within the link distance), whose climbs hold three events each, against the least density of
 // 816 events (2 x 816 x pi h^2 = 8.2). The arcs come first in the packet, the far end first, so
