@@ -2,9 +2,10 @@
 // by plain mean shift against the packet's events,
 //     m <- sum_j k(|m - f_j|^2 / h^2) f_j / sum_j k(...),
 // until it moves no more than the tolerance (or max_iterations). Every event inside the ball of
-// radius h around the climb, at any of its steps, is "reached". A converged climb joins the
-// nearest earlier mode within the merge radius (its support raised to the climb's) or opens a
-// new mode. Seeds, in order: the previous packet's modes (warm_start, each with its own ball);
+// radius h around the climb, at any of its steps, is "reached" (with a reach below h, every event
+// within the reach). A converged climb joins the nearest earlier mode within the merge radius (its
+// support raised to the climb's) or opens a new mode. Seeds, in order: the previous packet's modes
+// (warm_start, each with its own ball, and its reach with warm_reach);
 // then, for "grid", the centroid of each h x h cell's events, most populated cell first,
 // skipping cells whose events were all reached; then the oldest event no climb has reached yet,
 // until every event was reached.
