@@ -1,7 +1,8 @@
 // The words a core cut after its climbs sends each packet's climbs frame (ClimbsFrame,
 // hls/cluster/seeded_climbs.h) in: rtl/core/evms_climbs_core.sv's clm_kind and clm_data, which
-// a board carries in the link's frames 0x88-0x8A (docs/link.md). A head, then a word a mode,
-// then a word an event of the packet, in packet order. Fields from the word's top bit (80 bits:
+// a board carries in the link's frames 0x88-0x8A (docs/link.md: a frame for the head and for each
+// mode, and the events' words up to 32 a frame). A head, then a word a mode, then a word an
+// event of the packet, in packet order. Fields from the word's top bit (80 bits:
 // `top` holds bits 79-64, `low` bits 63-0):
 //   head   n (16), modes (16), steps (16), climbs (16), modes lost (16)
 //   mode   x (32), y (32), support (16)

@@ -78,7 +78,7 @@ std::uint64_t unwrap(link::Sequence seq, std::uint64_t oldest) {
 template <class S, class Rest, size_t LinkWindow>
 class BoardBackend final : public Backend {
   static_assert(LinkWindow > static_cast<size_t>(S::kPendingDepth + S::kPacketMax), "the link window must exceed what the core holds unlabelled");
-  static_assert(Rest::kModesMax <= 127, "a climbs event frame carries its mode in a byte (host/link/link_frames.h)");
+  static_assert(Rest::kModesMax <= 64, "a climbs events frame carries an event's mode in 7 bits (host/link/link_frames.h)");
 
  public:
   BoardBackend(const BackendOptions& o, const char* build)
@@ -316,11 +316,16 @@ class BoardBackend final : public Backend {
       drain_rest(out);
     }
   }
-  // A climbs frame's word: a whole frame waits for the words that close its packet. A word the
-  // assembler cannot place means the line lost some.
+  // A climbs frame's words: a whole frame waits for the words that close its packet. A word the
+  // assembler cannot place, or an events frame that breaks its layout (a corruption the check
+  // missed), means the line lost some.
   void take_climbs(const link::Frame& f, OutputSink& out) {
+    const std::vector<hls::ClimbsWord> words = link::decode_climbs(f);
+    if (words.empty()) ++unbelieved_, climbs_lost_ = true;
     const long broken = assembler_.broken();
-    if (assembler_.take(link::decode_climbs(f)) && !climbs_lost_) frames_.push_back(assembler_.frame());
+    for (const hls::ClimbsWord& w : words) {
+      if (assembler_.take(w) && !climbs_lost_) frames_.push_back(assembler_.frame());
+    }
     if (assembler_.broken() != broken) climbs_lost_ = true;
     advance(out);
   }
@@ -407,7 +412,7 @@ class BoardBackend final : public Backend {
       // Frames the check failed before this one: what they carried is lost.
       if (f.bad_before > bad_seen_) bad_seen_ = f.bad_before, climbs_lost_ = climbs_lost_ || started_;
       if (!started_ && f.type != link::kStatus) continue;  // output of an earlier run, before the reset's status frame
-      const bool climbs_word = f.type == link::kClimbsHead || f.type == link::kClimbsMode || f.type == link::kClimbsEvent;
+      const bool climbs_word = f.type == link::kClimbsHead || f.type == link::kClimbsMode || f.type == link::kClimbsEvents;
       if ((rest_ && (f.type == link::kTrack || f.type == link::kPacket)) || (climbs_word && !rest_)) {
         ++unbelieved_;  // a cut core sends no track or packet frames, and a whole core no climbs words:
         continue;       // a corruption the check missed
@@ -469,7 +474,7 @@ class BoardBackend final : public Backend {
         }
         case link::kClimbsHead:
         case link::kClimbsMode:
-        case link::kClimbsEvent: take_climbs(f, out); break;
+        case link::kClimbsEvents: take_climbs(f, out); break;
         case link::kStatus: {
           const link::Status status = link::decode_status(f);
           if (!started_) {

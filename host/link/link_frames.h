@@ -20,7 +20,7 @@
   X(Verdict, 0x87, 134, "board to host: up to 32 events with the filter's verdicts, and the first one's label number (a cut core)") \
   X(ClimbsHead, 0x88, 10, "board to host: a packet's climbs frame opens: its events, modes, steps, climbs and modes lost (a core cut after its climbs)") \
   X(ClimbsMode, 0x89, 10, "board to host: a mode of the packet's climbs frame: its x, y and support")                               \
-  X(ClimbsEvent, 0x8A, 1, "board to host: an event of the packet's climbs frame: its mode, a byte (-1: none)")
+  X(ClimbsEvents, 0x8A, 32, "board to host: up to 32 events of the packet's climbs frame, in packet order: each its mode in a byte (bit 7 present, bits 6-0 the mode, -1: none)")
 
 // The events frame and the verdict frame carry a batch of events (docs/link.md): the first
 // event's time (u32) and number (u16), then an entry of a u32 for each event: x in bits 0-7, y in
@@ -42,4 +42,8 @@ EVMS_LINK_BATCH_LAYOUT(EVMS_LINK_BATCH_CONSTANT)
 #undef EVMS_LINK_BATCH_CONSTANT
 inline constexpr std::uint32_t kBatchGapMax = (std::uint32_t{1} << kBatchGapBits) - 1;
 static_assert(kBatchHeaderBytes + kBatchEntries * kBatchEntryBytes <= 255, "a frame's length is a byte");
+// A climbs events frame (0x8A) holds kBatchEntries entries of a byte, one for each event of the
+// packet in packet order: bit 7 present, bits 6-0 the event's mode in two's complement (-1: none;
+// a board's climbs open at most 64 modes); the present entries first, the others zeros.
+inline constexpr std::uint8_t kClimbsEntryPresent = 0x80;
 }  // namespace evms::link

@@ -167,16 +167,27 @@ Status decode_status(const Frame& f) {
   return {u(0), u(1), u(2), u(3), u(4), u(5), u(6), u(7), u(8), u(9), u(10)};
 }
 
-hls::ClimbsWord decode_climbs(const Frame& f) {
-  if (f.type != kClimbsHead && f.type != kClimbsMode && f.type != kClimbsEvent) throw std::logic_error("not a climbs frame");
-  const hls::ClimbsWordKind kind = f.type == kClimbsHead ? hls::ClimbsWordKind::kHead
-                                   : f.type == kClimbsMode ? hls::ClimbsWordKind::kMode
-                                                           : hls::ClimbsWordKind::kEvent;
-  if (f.type == kClimbsEvent) {  // the mode's low byte, which holds it (-1 to 126)
-    return {kind, static_cast<std::uint16_t>(static_cast<std::int16_t>(static_cast<std::int8_t>(get(f.payload, 0, 1)))), 0};
+std::vector<hls::ClimbsWord> decode_climbs(const Frame& f) {
+  if (f.type != kClimbsHead && f.type != kClimbsMode && f.type != kClimbsEvents) throw std::logic_error("not a climbs frame");
+  if (f.type == kClimbsEvents) {
+    static_assert(expected_length(kClimbsEvents) == kBatchEntries, "host/link/link_frames.h: a climbs events frame holds a batch");
+    std::vector<hls::ClimbsWord> out;
+    for (int k = 0; k < kBatchEntries; ++k) {
+      const auto entry = static_cast<std::uint8_t>(get(f.payload, static_cast<size_t>(k), 1));
+      if ((entry & kClimbsEntryPresent) == 0) {
+        if (entry != 0) return {};  // an absent entry is all zeros
+        continue;
+      }
+      if (static_cast<int>(out.size()) != k) return {};  // the present entries come first
+      // Bits 6-0 in two's complement: the mode, -64 to 63, in the word's 16 bits.
+      const auto mode = static_cast<std::int16_t>(static_cast<std::int8_t>(static_cast<std::uint8_t>(entry << 1)) >> 1);
+      out.push_back({hls::ClimbsWordKind::kEvent, static_cast<std::uint16_t>(mode), 0});
+    }
+    return out;
   }
+  const hls::ClimbsWordKind kind = f.type == kClimbsHead ? hls::ClimbsWordKind::kHead : hls::ClimbsWordKind::kMode;
   const std::uint64_t low = std::uint64_t{get(f.payload, 2, 4)} | std::uint64_t{get(f.payload, 6, 4)} << 32;
-  return {kind, static_cast<std::uint16_t>(get(f.payload, 0, 2)), low};
+  return {{kind, static_cast<std::uint16_t>(get(f.payload, 0, 2)), low}};
 }
 
 Progress decode_progress(const Frame& f) {

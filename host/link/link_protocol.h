@@ -11,7 +11,8 @@
 //                  0x83 packet summary, 0x84 status, 0x85 resend (seq u16 the board expects),
 //                  0x86 progress (the board's counts, when the line is free), 0x87 verdicts (up
 //                  to 32 events with their verdicts, from a board whose core is cut), 0x88-0x8A
-//                  a climbs frame's words (head, mode, event: a core cut after its climbs)
+//                  a climbs frame's words (a head, a mode, up to 32 events' modes: a core cut
+//                  after its climbs)
 #pragma once
 
 #include <cstdint>
@@ -107,9 +108,11 @@ hls::TrackWord decode_track(const Frame& f);
 hls::PacketWord decode_packet(const Frame& f);
 Status decode_status(const Frame& f);
 Progress decode_progress(const Frame& f);
-// A climbs frame's word (frames 0x88-0x8A: its bits 79-64, then 63-0; an event frame bits 71-64
-// alone, the low byte of its mode, which holds it: a board's climbs open fewer than 127 modes),
-// as the board's core sent it (hls/cluster/climbs_words.h).
-hls::ClimbsWord decode_climbs(const Frame& f);
+// A climbs frame's words as the board's core sent them (hls/cluster/climbs_words.h): a head's or
+// a mode's (frames 0x88 and 0x89: the word's bits 79-64, then 63-0), or the events' of a climbs
+// events frame (0x8A: each event's mode in 7 bits, which hold it, as a board's climbs open at
+// most 64 modes). Empty for an events frame that breaks its layout (an absent entry that is not
+// zero, a present one after an absent one): a corruption the CRC missed.
+std::vector<hls::ClimbsWord> decode_climbs(const Frame& f);
 
 }  // namespace evms::link

@@ -25,7 +25,8 @@
 //   batch is skipped (and counted), so what reaches the host is always whole packets.
 // A board whose core is cut (CoreCut) returns every event's verdict in verdict frames (0x87)
 // in both modes, and no track or packet frames; a core cut after its climbs also returns each
-// packet's climbs frame, a link frame a word (0x88 head, 0x89 mode, 0x8A event).
+// packet's climbs frame: a link frame for its head (0x88) and each mode (0x89), and its events'
+// modes up to 32 a frame (0x8A).
 // In both modes, when the line is free and the counts have changed, a progress frame (link
 // events the core took, events labelled with a track, events labelled noise) tells the host
 // that the board is working; in tracks mode it acknowledges the host's events in place of

@@ -1,7 +1,7 @@
 // Board-to-host half of the serial link (docs/link.md): labelled events (0x81, or with
 // LabelsAreVerdicts up to BatchEntries filter's verdicts in one 0x87), track updates (0x82), packet
 // summaries (0x83, or with PacketsAreClimbs the words of climbs frames: 0x88 head, 0x89 mode,
-// 0x8A event), status (0x84), resend requests (0x85) and progress (0x86) as frames
+// 0x8A up to BatchEntries events' modes), status (0x84), resend requests (0x85) and progress (0x86) as frames
 //   0xA5 0x5A TYPE LEN PAYLOAD[LEN] CRC16_LO CRC16_HI
 // (CRC-16/CCITT-FALSE over TYPE, LEN and PAYLOAD; little-endian fields). Streams are served
 // one frame at a time, status first, then resend requests, packet summaries, track updates,
@@ -12,7 +12,8 @@
 // byte of an entry, the next entry is the verdict then waiting, if one is and it is at most
 // 2^BatchGapBits - 1 us after the previous one. Once none is, the frame's other entries go
 // out absent (zeros). So a busy line carries BatchEntries verdicts a frame, and a verdict
-// never waits for a frame to fill.
+// never waits for a frame to fill. A climbs events frame is streamed alike, an entry a byte: as
+// the UART takes each byte, the next entry is the climbs event word then waiting, if one is.
 `include "evms_assert.svh"
 
 module evms_link_tx #(
@@ -20,9 +21,10 @@ module evms_link_tx #(
   // 256x256 at most, sent in verdict frames (4 bytes a verdict) instead of 21-byte label frames.
   parameter int LabelsAreVerdicts = 0,
   // 1: the packet port carries a core cut after its climbs' words (core/evms_climbs_core.sv):
-  // {kind (2 bits), word (80)} in its low bits, each sent as the kind's frame, the word's bits
-  // 79-64 then 63-0 (an event frame: 71-64 alone, the low byte of the event's mode, which holds
-  // it while the climbs open fewer than 127 modes).
+  // {kind (2 bits), word (80)} in its low bits, a head or a mode sent as the kind's frame, the
+  // word's bits 79-64 then 63-0, and the events' words streamed into climbs events frames, an
+  // entry a byte: present (bit 7) and the event's mode in bits 6-0 (bits 70-64 of its word, which
+  // hold it while the climbs open at most 64 modes).
   parameter int PacketsAreClimbs = 0
 ) (
   input  logic        clk,
@@ -89,13 +91,20 @@ module evms_link_tx #(
   // An entry's fields below its gap: present, passed, polarity, y, x.
   logic [31-BatchGapBits:0] verdict_fields;
   assign verdict_fields = {1'b1, lab_label != 32'hFFFF_FFFF, lab_p, lab_y[7:0], lab_x[7:0]};
+  // A climbs events frame: still taking entries. The word waiting is an event's, and its entry.
+  logic climbs_open_q, climbs_open_d;
+  logic climbs_event_waiting, take_climbs_event;
+  logic [7:0] climbs_entry;
+  assign climbs_event_waiting = PacketsAreClimbs != 0 && pkt_valid && pkt_payload[81:80] == 2'd2;
+  assign climbs_entry = {1'b1, pkt_payload[70:64]};
+  assign take_climbs_event = state_q == StPayload && climbs_open_q && byte_ready && climbs_event_waiting && next_pos < flen_q;
 
   // A climbs word's frame type and length, by its kind (0 head, 1 mode, 2 event).
   function automatic logic [15:0] climbs_frame(input logic [1:0] kind);
     case (kind)
       2'd0: climbs_frame = {FrameClimbsHeadType, FrameClimbsHeadLen};
       2'd1: climbs_frame = {FrameClimbsModeType, FrameClimbsModeLen};
-      default: climbs_frame = {FrameClimbsEventType, FrameClimbsEventLen};
+      default: climbs_frame = {FrameClimbsEventsType, FrameClimbsEventsLen};
     endcase
   endfunction
 
@@ -115,6 +124,7 @@ module evms_link_tx #(
       else if (pg_valid) pg_ready = 1'b1;
     end
     if (take_verdict) lab_ready = 1'b1;
+    if (take_climbs_event) pkt_ready = 1'b1;
   end
 
   always_comb begin
@@ -134,10 +144,11 @@ module evms_link_tx #(
 
   always_comb begin
     {state_d, payload_d, ftype_d, flen_d, pos_d, crc_d} = {state_q, payload_q, ftype_q, flen_q, pos_q, crc_q};
-    {label_seq_d, verdicts_open_d, verdict_t_d} = {label_seq_q, verdicts_open_q, verdict_t_q};
+    {label_seq_d, verdicts_open_d, verdict_t_d, climbs_open_d} = {label_seq_q, verdicts_open_q, verdict_t_q, climbs_open_q};
     case (state_q)
       StIdle: begin
         verdicts_open_d = 1'b0;  // open only in a verdict frame, from its start
+        climbs_open_d = 1'b0;    // ... and in a climbs events frame
         if (st_valid) begin
           {ftype_d, flen_d, payload_d} = {FrameStatusType, FrameStatusLen, st_payload};
           state_d = StSync1;
@@ -148,6 +159,10 @@ module evms_link_tx #(
           if (PacketsAreClimbs != 0) begin
             {ftype_d, flen_d} = climbs_frame(pkt_payload[81:80]);
             payload_d = {272'd0, pkt_payload[63:0], pkt_payload[79:64]};
+            if (climbs_event_waiting) begin
+              payload_d = {344'd0, climbs_entry};
+              climbs_open_d = 1'b1;
+            end
           end else begin
             {ftype_d, flen_d, payload_d} = {FramePacketType, FramePacketLen, 256'd0, pkt_payload};
           end
@@ -188,7 +203,9 @@ module evms_link_tx #(
             crc_d = evms_crc16_pkg::crc16_byte(crc_q, payload_q[7:0]);
             // Past the header and the first entry the register holds zeros: an entry taken
             // goes into its lowest bytes, and once none is taken the frame stays closed.
-            payload_d = (payload_q >> 8) | {320'd0, take_verdict ? {verdict_gap[BatchGapBits-1:0], verdict_fields} : 32'd0};
+            payload_d = (payload_q >> 8) | {320'd0, take_verdict ? {verdict_gap[BatchGapBits-1:0], verdict_fields} : 32'd0} |
+                        {344'd0, take_climbs_event ? climbs_entry : 8'd0};
+            if (!take_climbs_event) climbs_open_d = 1'b0;
             if (take_verdict) begin
               verdict_t_d = lab_t;
               label_seq_d = label_seq_q + 1'b1;
@@ -210,11 +227,11 @@ module evms_link_tx #(
     if (!rst_n) begin
       {state_q, payload_q, ftype_q, flen_q, pos_q} <= '0;
       crc_q <= 16'hFFFF;
-      {label_seq_q, verdicts_open_q, verdict_t_q} <= '0;
+      {label_seq_q, verdicts_open_q, verdict_t_q, climbs_open_q} <= '0;
       {gap_fits_q, gap_known_q, next_is_entry_q} <= '0;
     end else begin
       {state_q, payload_q, ftype_q, flen_q, pos_q, crc_q} <= {state_d, payload_d, ftype_d, flen_d, pos_d, crc_d};
-      {label_seq_q, verdicts_open_q, verdict_t_q} <= {label_seq_d, verdicts_open_d, verdict_t_d};
+      {label_seq_q, verdicts_open_q, verdict_t_q, climbs_open_q} <= {label_seq_d, verdicts_open_d, verdict_t_d, climbs_open_d};
       next_is_entry_q <= next_is_entry;
       gap_fits_q <= verdict_gap[31:BatchGapBits] == '0;
       gap_known_q <= lab_valid && !lab_ready;

@@ -15,7 +15,7 @@ localparam logic [7:0] FrameProgressType = 8'h86, FrameProgressLen = 8'd12;  // 
 localparam logic [7:0] FrameVerdictType = 8'h87, FrameVerdictLen = 8'd134;  // board to host: up to 32 events with the filter's verdicts, and the first one's label number (a cut core)
 localparam logic [7:0] FrameClimbsHeadType = 8'h88, FrameClimbsHeadLen = 8'd10;  // board to host: a packet's climbs frame opens: its events, modes, steps, climbs and modes lost (a core cut after its climbs)
 localparam logic [7:0] FrameClimbsModeType = 8'h89, FrameClimbsModeLen = 8'd10;  // board to host: a mode of the packet's climbs frame: its x, y and support
-localparam logic [7:0] FrameClimbsEventType = 8'h8A, FrameClimbsEventLen = 8'd1;  // board to host: an event of the packet's climbs frame: its mode, a byte (-1: none)
+localparam logic [7:0] FrameClimbsEventsType = 8'h8A, FrameClimbsEventsLen = 8'd32;  // board to host: up to 32 events of the packet's climbs frame, in packet order: each its mode in a byte (bit 7 present, bits 6-0 the mode, -1: none)
 // The events and verdict frames' layout (host/link/link_frames.h).
 localparam int BatchEntries = 32;
 localparam int BatchHeaderBytes = 6;

@@ -65,6 +65,7 @@ struct Received {
   std::vector<link::Status> status;
   std::vector<link::Progress> progress;
   std::vector<hls::ClimbsWord> climbs;  // a core cut after its climbs: its climbs frames' words
+  size_t climbs_events_frames = 0;      // ... of which the events' come in these frames
   std::vector<size_t> batch_ends;  // for each packet summary, the track updates received before it
   std::uint64_t bad_frames = 0;
   size_t corrupted_from = SIZE_MAX;  // run_link: the first event of the frame it corrupted
@@ -100,7 +101,12 @@ void collect(sim::VirtualBoard<V>& board, link::FrameDecoder& decoder, Received&
       case link::kProgress: r.progress.push_back(link::decode_progress(f)); break;
       case link::kClimbsHead:
       case link::kClimbsMode:
-      case link::kClimbsEvent: r.climbs.push_back(link::decode_climbs(f)); break;
+      case link::kClimbsEvents: {
+        const std::vector<hls::ClimbsWord> words = link::decode_climbs(f);
+        r.climbs.insert(r.climbs.end(), words.begin(), words.end());
+        r.climbs_events_frames += f.type == link::kClimbsEvents;
+        break;
+      }
       default: break;
     }
   }
@@ -309,6 +315,11 @@ TEST(BoardLinkClimbs, VerdictsAndClimbsFramesEqualTheCppCoreCutAtTheClimbs) {
     const std::vector<hls::ClimbsFrame<Cut>> want = test::climbs_core_frames<Cut>(stream, cfg);
     ASSERT_GE(want.size(), 8u) << "the scene closes several packets";
     ASSERT_NO_FATAL_FAILURE(expect_same_frames(frames, want));
+    // The events' modes stream into frames of kBatchEntries, as the core gives a word a few
+    // clocks after the last and the UART takes a byte in 30: only each packet's last is part full.
+    size_t climbed_events = 0;
+    for (const auto& frame : want) climbed_events += static_cast<size_t>(frame.n);
+    EXPECT_LE(r.climbs_events_frames, climbed_events / link::kBatchEntries + want.size()) << climbed_events << " events' modes in " << want.size() << " packets";
     test::CoreDriver<Cut> whole(cfg);
     for (const hls::EventWord& w : stream) whole.process(w);
     ASSERT_NO_FATAL_FAILURE(expect_same(test::completed_from_climbs<Cut>(stream, r.words.labels, frames, cfg), whole.out()));
@@ -393,6 +404,30 @@ TEST(BoardLink, AVerdictFrameOutOfItsLayoutIsNotBelieved) {
   EXPECT_TRUE(link::decode_labels(frame_of({0, entry(1, 1, false, true, 0)})).empty()) << "a present entry after an absent one";
   EXPECT_TRUE(link::decode_labels(frame_of({entry(1, 1, false, true, 5)})).empty()) << "the first entry away from the frame's time";
   EXPECT_TRUE(link::decode_labels(frame_of({entry(1, 1, false, true, 0), 7})).empty()) << "an absent entry that is not zeros";
+}
+
+// The host believes a climbs events frame only in its layout: present entries first, absent
+// entries all zeros; a present entry's 7 bits are its mode in two's complement.
+TEST(BoardLink, AClimbsEventsFrameOutOfItsLayoutIsNotBelieved) {
+  const auto frame_of = [](const std::vector<std::uint8_t>& entries) {
+    link::Frame f{link::kClimbsEvents, std::vector<std::uint8_t>(static_cast<size_t>(link::kBatchEntries), 0)};
+    std::copy(entries.begin(), entries.end(), f.payload.begin());
+    return f;
+  };
+  const std::uint8_t present = link::kClimbsEntryPresent;
+  const auto modes = link::decode_climbs(frame_of({present | 0x7F, present | 0, present | 63, present | 0x40}));
+  ASSERT_EQ(modes.size(), 4u);
+  const int want[] = {-1, 0, 63, -64};
+  for (size_t k = 0; k < modes.size(); ++k) {
+    EXPECT_EQ(modes[k].kind, hls::ClimbsWordKind::kEvent);
+    EXPECT_EQ(static_cast<std::int16_t>(modes[k].top), want[k]) << k;
+    EXPECT_EQ(modes[k].low, 0u);
+  }
+  std::vector<std::uint8_t> full(static_cast<size_t>(link::kBatchEntries), present | 5);
+  EXPECT_EQ(link::decode_climbs(frame_of(full)).size(), static_cast<size_t>(link::kBatchEntries));
+  EXPECT_TRUE(link::decode_climbs(frame_of({})).empty()) << "no event present";
+  EXPECT_TRUE(link::decode_climbs(frame_of({0, present | 1})).empty()) << "a present entry after an absent one";
+  EXPECT_TRUE(link::decode_climbs(frame_of({present | 1, 0x05})).empty()) << "an absent entry that is not zeros";
 }
 
 // A frame the line corrupts is counted and dropped, the frames after it are refused until the
