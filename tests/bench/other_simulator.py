@@ -3,12 +3,14 @@
 host/gen, beside `evms run --preset paper` and the authors' own program:
 
     tests/bench/other_simulator.py build/bin/evms [--seeds 6] [--sensor 240x180] [--jobs 2] [--evms-args "..."]
+        [--noise-share 0.05] [--speed 1] [--threshold 0.2]
 
 Every default of evms was chosen on host/gen's scene family, so a score on that family can
 carry what that generator does and a real sensor does not. This simulator renders shapes as
 signed-distance fields with a one-pixel soft edge over a uniform background, and makes events
 the way a DVS pixel does: each pixel fires when its log intensity has moved a contrast threshold
-away from the level of its last event (thresholds drawn per pixel and per polarity, N(0.2, 0.03)),
+away from the level of its last event (thresholds drawn per pixel and per polarity, N(0.2, 0.03)
+by default),
 at the time the level was crossed (interpolated between frames 0.4 ms apart), and not again
 within a 0.5 ms refractory period. An event's label is the shape whose visible coverage of that
 pixel changed most over the frame; then uniform background activity is added as 5 % of the
@@ -19,6 +21,9 @@ contrast) and four motions of one second:
   spin   the camera rolls about the sensor's centre, up to 1.6 rad either way;
   zoom6  scale 0.7-1.3x with roll and translation (6-DoF);
   cross  a still camera and shapes in pairs on straight paths that meet, one shape still.
+--noise-share, --speed (every motion sped up or slowed down) and --threshold (the contrast
+thresholds' mean; a lower one makes more events an edge) vary the scenes away from the settings
+the tables in docs/sweep.md were measured at, to see whether a lead holds beyond them.
 
 Each scene is scored as `evms metrics --chunk-us 10000` scores (F over 10 ms chunks, noise as
 singletons). The authors' program is built from ../shared/peer (g++ and Debian's
@@ -85,14 +90,17 @@ def sdf(np, kind, u, v, s):
     raise ValueError(kind)
 
 
-def pixel_events(np, rng, width, height, duration_s, frame_s, refractory_s, render, label_of):
+def pixel_events(np, rng, width, height, duration_s, frame_s, refractory_s, render, label_of, threshold_mean=0.2):
     """The events (t s, x, y, p, label) of a DVS pixel array watching render(t) -> (log intensity,
     what label_of reads) in frames frame_s apart: a pixel fires when its log intensity has moved
-    its contrast threshold (drawn per pixel and polarity, N(0.2, 0.03)) from the level of its last
-    event, timed where the level was crossed, and not again within refractory_s. An event's label
-    is label_of(the frame before, the frame after, ys, xs) at its pixel."""
-    threshold_on = np.clip(rng.normal(0.2, 0.03, (height, width)), 0.08, None)
-    threshold_off = np.clip(rng.normal(0.2, 0.03, (height, width)), 0.08, None)
+    its contrast threshold (drawn per pixel and polarity, N(threshold_mean, 0.15 threshold_mean))
+    from the level of its last event, timed where the level was crossed, and not again within
+    refractory_s. An event's label is label_of(the frame before, the frame after, ys, xs) at its
+    pixel."""
+    # Drawn at the mean 0.2 and scaled, so that the mean 0.2 gives the scenes docs/sweep.md measures.
+    scale = threshold_mean / 0.2
+    threshold_on = np.clip(rng.normal(0.2, 0.03, (height, width)), 0.08, None) * scale
+    threshold_off = np.clip(rng.normal(0.2, 0.03, (height, width)), 0.08, None) * scale
     log0, seen0 = render(0.0)
     reference = log0.copy()
     last_event = np.full((height, width), -1.0)
@@ -145,11 +153,12 @@ def write_scene(np, rng, out, width, height, duration_s, signal, n_noise):
 def simulate(job):
     """Writes DIR/labels.csv (# sensor WxH, then t_us,x,y,p,label) and DIR/events.txt."""
     import numpy as np
-    motion, seed, width, height, out = job
+    motion, seed, width, height, variant, out = job
     if os.path.isfile(os.path.join(out, "labels.csv")):
         return out
     rng = np.random.default_rng(seed * 7919 + TYPES.index(motion))
-    duration_s, frame_s, refractory_s, noise_share = 1.0, 0.0004, 0.0005, 0.05
+    duration_s, frame_s, refractory_s = 1.0, 0.0004, 0.0005
+    noise_share, motion_speed, threshold_mean = variant
     scale = width / 240.0
     cx, cy = width / 2, height / 2
     shapes, placed = [], []
@@ -186,7 +195,7 @@ def simulate(job):
     ph1, ph2 = rng.uniform(0, 2 * np.pi, 2)
     amp = rng.uniform(14, 26) * scale
 
-    def camera(t):  # zoom, roll, shift x, shift y
+    def camera(t):  # zoom, roll, shift x, shift y (t in the motion's time: seconds times speed)
         if motion == "pan":
             return 1.0, 0.0, amp * np.sin(2 * np.pi * f1 * t + ph1), 0.7 * amp * np.sin(2 * np.pi * f2 * t + ph2)
         if motion == "spin":
@@ -200,6 +209,7 @@ def simulate(job):
 
     def render(t):
         """Log intensity, and each shape's visible coverage of every pixel (later shapes on top)."""
+        t = t * motion_speed
         zoom, roll, dx, dy = camera(t)
         c, s = np.cos(roll), np.sin(roll)
         image = np.full((height, width), 0.5)
@@ -223,7 +233,8 @@ def simulate(job):
         return np.log(image), visible
 
     events = pixel_events(np, rng, width, height, duration_s, frame_s, refractory_s, render,
-                          lambda visible0, visible1, ys, xs: np.argmax(np.abs(visible1[:, ys, xs] - visible0[:, ys, xs]), axis=0))
+                          lambda visible0, visible1, ys, xs: np.argmax(np.abs(visible1[:, ys, xs] - visible0[:, ys, xs]), axis=0),
+                          threshold_mean)
     signal = np.array(events, dtype=np.float64).reshape(-1, 5)
     write_scene(np, rng, out, width, height, duration_s, signal, int(len(signal) * noise_share / (1 - noise_share)))
     return out
@@ -238,7 +249,12 @@ def main():
     ap.add_argument("--peer", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../../shared/peer"))
     ap.add_argument("--keep", help="keep the scenes and outputs in this folder (and reuse its scenes)")
     ap.add_argument("--evms-args", default="", help="options added to the defaults' run, such as '--bandwidth 0.03'")
+    ap.add_argument("--noise-share", type=float, default=0.05, help="background activity's share of the events")
+    ap.add_argument("--speed", type=float, default=1.0, help="every motion's speed, times the default")
+    ap.add_argument("--threshold", type=float, default=0.2, help="the contrast thresholds' mean (log intensity)")
     a = ap.parse_args()
+    if not 0 <= a.noise_share < 1 or a.speed <= 0 or a.threshold <= 0:
+        sys.exit("other_simulator: --noise-share must lie in [0, 1), --speed and --threshold above 0")
     try:
         import numpy  # noqa: F401
     except ImportError:
@@ -253,16 +269,23 @@ def main():
     else:
         print(f"other_simulator: {os.path.normpath(a.peer)} holds no authors_clustering.cpp: the authors' column is left out")
 
-    jobs = [(m, s, width, height, os.path.join(work, f"{m}-{s}-{a.sensor}")) for m in TYPES for s in range(1, a.seeds + 1)]
+    variant = (a.noise_share, a.speed, a.threshold)
+    # Only scenes away from the defaults carry their settings in the folder's name.
+    tag = "" if variant == (0.05, 1.0, 0.2) else f"-n{a.noise_share:g}-v{a.speed:g}-c{a.threshold:g}"
+    jobs = [(m, s, width, height, variant, os.path.join(work, f"{m}-{s}-{a.sensor}{tag}"))
+            for m in TYPES for s in range(1, a.seeds + 1)]
     with Pool(a.jobs) as pool:
         pool.map(simulate, jobs)
 
     extra = f" --evms-args='{a.evms_args}'" if a.evms_args else ""
+    extra += "".join(f" --{name} {value:g}" for name, value, default in
+                     (("noise-share", a.noise_share, 0.05), ("speed", a.speed, 1.0), ("threshold", a.threshold, 0.2))
+                     if value != default)
     print(f"<!-- tests/bench/other_simulator.py {a.evms} --seeds {a.seeds} --sensor {a.sensor}{extra} -->")
     print("| scene | events | F authors | F --preset paper | F evms | evms P | evms R | F touching merged |")
     print("|---|---|---|---|---|---|---|---|")
     rows = []
-    for motion, seed, _, _, d in jobs:
+    for motion, seed, _, _, _, d in jobs:
         truth = os.path.join(d, "labels.csv")
         with open(truth) as f:
             events = sum(1 for line in f) - 2
