@@ -42,6 +42,7 @@ Pipeline::Pipeline(const Params& params, SensorSize sensor)
 
 void Pipeline::push(const Event& e, OutputSink& out) {
   ++stats_.events_in;
+  if (params_.packet_span_edge_px > 0) record_edge_slope(e);
   if (!filter_.accept(e)) {
     pending_.push_back({e, -1, filter_.support_asked()});
     if (packet_.empty()) flush_settled_noise(e.t, out);  // no packet to wait for
@@ -49,7 +50,7 @@ void Pipeline::push(const Event& e, OutputSink& out) {
   }
   ++stats_.events_kept;
   if (!packet_.empty() && params_.packet_max_span_us > 0 &&
-      e.t - packet_.front().t > params_.packet_max_span_us) {
+      e.t - packet_.front().t > std::max(params_.packet_max_span_us, stretched_span_us_)) {
     close_packet(out);
   }
   pending_.push_back({e, static_cast<int>(packet_.size()), 0});
@@ -58,6 +59,46 @@ void Pipeline::push(const Event& e, OutputSink& out) {
 }
 
 void Pipeline::finish(OutputSink& out) { close_packet(out); }
+
+void Pipeline::record_edge_slope(const Event& e) {
+  // A neighbour's time counts when it fired within this long before e; an edge slower than a
+  // pixel in this long gives no slope.
+  constexpr TimeUs kSlopeWindowUs = 50000;
+  auto recent = [&](int x, int y) {
+    const TimeUs t = filter_.latest(x, y);
+    return e.t - t <= kSlopeWindowUs ? t : TimeUs{-1};
+  };
+  // The slope along one axis: the central difference where both neighbours fired, else the time
+  // since the one that did (the pixel ahead of a moving edge has not fired yet).
+  auto axis_slope = [&](TimeUs before, TimeUs after, double& slope) {
+    if (before >= 0 && after >= 0) slope = static_cast<double>(after - before) / 2.0;
+    else if (before >= 0 || after >= 0) slope = static_cast<double>(e.t - std::max(before, after));
+    else return false;
+    return true;
+  };
+  double gx = 0, gy = 0;
+  if (axis_slope(recent(e.x - 1, e.y), recent(e.x + 1, e.y), gx) && axis_slope(recent(e.x, e.y - 1), recent(e.x, e.y + 1), gy)) {
+    const double slope = std::hypot(gx, gy);
+    if (slope > 0) edge_slopes_.push_back(slope);
+  }
+}
+
+void Pipeline::stretch_span() {
+  // Fewer slopes than this say little about the scene's edges: the packet keeps its usual span.
+  constexpr size_t kLeastSlopes = 64;
+  constexpr double kSpeedQuantile = 0.9, kMostStretch = 4.0;
+  stretched_span_us_ = 0;
+  if (edge_slopes_.size() >= kLeastSlopes) {
+    // The edge at the 90th percentile of the speeds is the one at the 10th of the slopes.
+    const size_t n = edge_slopes_.size();
+    const size_t fast = n - 1 - std::min(n - 1, static_cast<size_t>(kSpeedQuantile * static_cast<double>(n)));
+    std::nth_element(edge_slopes_.begin(), edge_slopes_.begin() + static_cast<std::ptrdiff_t>(fast), edge_slopes_.end());
+    const double base = static_cast<double>(params_.packet_max_span_us);
+    const double px = params_.packet_span_edge_px * sensor_.width / 240.0;
+    stretched_span_us_ = static_cast<TimeUs>(std::clamp(px * edge_slopes_[fast], base, kMostStretch * base));
+  }
+  edge_slopes_.clear();
+}
 
 void Pipeline::flush_settled_noise(TimeUs now, OutputSink& out) {
   // Without the look-ahead a dropped event is settled at once; with it, once its neighbours' time is up.
@@ -173,6 +214,7 @@ void Pipeline::close_packet(OutputSink& out) {
 
     updates_.clear();
     const std::vector<std::int32_t> ids = tracker_->step(packet_.back().t, measurements, updates_);
+    if (params_.packet_span_edge_px > 0) stretch_span();
     for (size_t i = 0; i < supported.size(); ++i) {
       const int c = clusters.cluster_of[i];
       if (c >= 0) label_of_packet_event[packet_index(i)] = ids[static_cast<size_t>(c)];

@@ -6,6 +6,14 @@
 // end of the stream) is clustered and its clusters are tracked; then every event that came
 // in since the previous packet closed, filtered or not, leaves in input order with its
 // label.
+//
+// With packet_span_edge_px the span limit stretches while the edges move slowly: each event's
+// normal speed is the inverse of the slope of the filter's time map at it (its four neighbours'
+// latest times), and the next packet may span as long as an edge at the 90th percentile of the
+// last packet's speeds takes to move packet_span_edge_px (scaled by the sensor's width over 240),
+// up to 4 times packet_max_span_us. A slow edge fires its pixels far apart in time, and a packet
+// of the usual span holds too few of them to keep a large outline in one cluster
+// (docs/sweep.md, "Away from the simulator's settings").
 #pragma once
 
 #include <memory>
@@ -46,6 +54,10 @@ class Pipeline {
 
  private:
   void close_packet(OutputSink& out);
+  // --packet-span-edge-px: records the slope of the filter's time map at e, before e is recorded.
+  void record_edge_slope(const Event& e);
+  // ... and at a packet's close, the span the next packet may reach.
+  void stretch_span();
   // With --filter-look-ahead-us: puts back into the packet, in input order, the pending events
   // the filter dropped whose neighbours have fired since.
   void look_ahead();
@@ -63,6 +75,10 @@ class Pipeline {
   std::vector<Eigen::Vector4d> modes_;   // the previous packet's, for warm starts
   std::vector<double> spreads_;          // ... and their clusters' spreads
   std::vector<Event> packet_;
+  // --packet-span-edge-px: the slopes (us/px) of the time map at the events since the last packet
+  // closed, and the span the next packet may reach (0: packet_max_span_us).
+  std::vector<double> edge_slopes_;
+  TimeUs stretched_span_us_ = 0;
   struct Pending {
     Event event;
     int packet_index;  // index into packet_, or -1 when filtered

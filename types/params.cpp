@@ -57,6 +57,11 @@ const std::array kTable = {
               "close a packet early when the next event is this much newer than its first; "
               "0 = only close full packets",
               &Params::packet_max_span_us, 0, 1e12},
+    ParamInfo{"packet-span-edge-px", "px",
+              "with --packet-max-span-us, a packet may span up to 4 times it: as long as an edge at the 90th percentile of the "
+              "previous packet's normal speeds (from the filter's time map) takes to move this many px on a 240 px wide sensor, "
+              "in proportion on others, so that slow edges gather enough events; 0 = off (golden only)",
+              &Params::packet_span_edge_px, 0, 1000},
     ParamInfo{"xy-scale", "", "position features: x/W and y/H (axes), or both over the larger side (isotropic)",
               &Params::xy_scale, 0, 0, {kXyScaleNames}},
     ParamInfo{"scale-xy", "1", "weight of the position dimensions",

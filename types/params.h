@@ -61,6 +61,8 @@ struct Params {
   // --- packets --------------------------------------------------------------------------
   int packet_size = 3000;            // events (that passed the filter) per mean-shift packet
   TimeUs packet_max_span_us = 33333; // close a packet early once it spans this long; 0 = never
+  double packet_span_edge_px = 0;    // lengthen that span while the edges move slowly: the time
+                                     // the edges take to move this many px (golden only); 0 = off
 
   // --- features [x/W, y/H, p, exp(-dt/tau)], each scaled --------------------------------
   XyScale xy_scale = XyScale::kAxes;

@@ -56,6 +56,9 @@ class BackgroundActivityFilter {
   int neighbours_fired_after(int x, int y, TimeUs after, TimeUs until) const;
   // The supporting neighbours the last event accept() judged was asked for.
   int support_asked() const { return support_ + (noisy_ ? 1 : 0); }
+  // The latest event time recorded at (x, y); far in the past for a pixel that never fired and
+  // for the pixels just outside the sensor (x or y of -1, or the width or height).
+  TimeUs latest(int x, int y) const { return last_fired(x, y); }
 
  private:
   // Longer ago than any window: a time difference to it cannot overflow, as times are at most

@@ -274,5 +274,48 @@ TEST(Pipeline, PacketSpanLimitClosesPacketsEarly) {
   EXPECT_GE(out.packets.size(), 19u);
 }
 
+// A vertical bar, rows 20 to 160, whose edge crosses a column every `us_per_px` from x = 20 to
+// x = 200: each pixel fires once as the edge reaches it, its column's pixels in order at once.
+std::vector<Event> moving_bar(TimeUs us_per_px) {
+  std::vector<Event> events;
+  for (int x = 20; x <= 200; ++x) {
+    for (int y = 20; y <= 160; ++y) {
+      events.push_back({static_cast<TimeUs>(x - 20) * us_per_px, static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), 1});
+    }
+  }
+  return events;
+}
+
+TimeUs longest_span(const CollectingSink& out) {
+  TimeUs longest = 0;
+  for (const PacketSummary& s : out.packets) longest = std::max(longest, s.t_last - s.t_first);
+  return longest;
+}
+
+TEST(Pipeline, ASlowEdgeStretchesThePacketSpanAndAFastOneDoesNot) {
+  Params p;
+  p.packet_max_span_us = 33333;
+  // 40 px/s: 141 events every 25 ms, whose time map slopes 25 ms a pixel across the bar.
+  const auto slow = moving_bar(25000);
+  EXPECT_LE(longest_span(run(slow, p)), 33333);
+  p.packet_span_edge_px = 5;
+  // The span to move 5 px at 40 px/s is 125 ms, within 4 times 33,333 us; the packet closes
+  // when the next event would reach past it, so its last event lies a column (25 ms) earlier.
+  const CollectingSink stretched = run(slow, p);
+  EXPECT_GE(longest_span(stretched), 100000);
+  EXPECT_LE(longest_span(stretched), 125000);
+  // To move 10 px the span would be 250 ms: it stops at 4 times 33,333 us.
+  p.packet_span_edge_px = 10;
+  const CollectingSink capped = run(slow, p);
+  EXPECT_GE(longest_span(capped), 100000);
+  EXPECT_LE(longest_span(capped), 4 * 33333);
+  // 1,000 px/s: 10 px take 10 ms, and packets keep the usual span. The packets are large enough
+  // that only the span closes them (the bar's 25,521 events take 180 ms).
+  p.packet_size = 30000;
+  const CollectingSink fast = run(moving_bar(1000), p);
+  EXPECT_LE(longest_span(fast), 33333);
+  EXPECT_GE(fast.packets.size(), 5u);
+}
+
 }  // namespace
 }  // namespace evms::golden
