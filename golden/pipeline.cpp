@@ -76,6 +76,10 @@ void Pipeline::record_edge_slope(const Event& e) {
     else return false;
     return true;
   };
+  // Events the filter drops open no packet, so a long stretch of them would grow the slopes
+  // without bound; the first this many since the last packet are plenty for a quantile.
+  constexpr size_t kMostSlopes = size_t{1} << 16;
+  if (edge_slopes_.size() >= kMostSlopes) return;
   double gx = 0, gy = 0;
   if (axis_slope(recent(e.x - 1, e.y), recent(e.x + 1, e.y), gx) && axis_slope(recent(e.x, e.y - 1), recent(e.x, e.y + 1), gy)) {
     const double slope = std::hypot(gx, gy);
