@@ -48,6 +48,8 @@ TYPES = ["pan", "spin", "zoom6", "cross"]
 # that holds touching shapes together scores at best.
 TOUCHING_PX = 2
 KINDS = ["disk", "square", "triangle", "bar", "ring", "cross", "ell", "star", "ellipse"]
+# The settings --noise-share, --speed and --threshold move the scenes away from, in that order.
+DEFAULT_VARIANT = {"noise-share": 0.05, "speed": 1.0, "threshold": 0.2}
 
 
 def box_distance(np, u, v, a, b):
@@ -90,7 +92,8 @@ def sdf(np, kind, u, v, s):
     raise ValueError(kind)
 
 
-def pixel_events(np, rng, width, height, duration_s, frame_s, refractory_s, render, label_of, threshold_mean=0.2):
+def pixel_events(np, rng, width, height, duration_s, frame_s, refractory_s, render, label_of,
+                 threshold_mean=DEFAULT_VARIANT["threshold"]):
     """The events (t s, x, y, p, label) of a DVS pixel array watching render(t) -> (log intensity,
     what label_of reads) in frames frame_s apart: a pixel fires when its log intensity has moved
     its contrast threshold (drawn per pixel and polarity, N(threshold_mean, 0.15 threshold_mean))
@@ -249,9 +252,9 @@ def main():
     ap.add_argument("--peer", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../../shared/peer"))
     ap.add_argument("--keep", help="keep the scenes and outputs in this folder (and reuse its scenes)")
     ap.add_argument("--evms-args", default="", help="options added to the defaults' run, such as '--bandwidth 0.03'")
-    ap.add_argument("--noise-share", type=float, default=0.05, help="background activity's share of the events")
-    ap.add_argument("--speed", type=float, default=1.0, help="every motion's speed, times the default")
-    ap.add_argument("--threshold", type=float, default=0.2, help="the contrast thresholds' mean (log intensity)")
+    ap.add_argument("--noise-share", type=float, default=DEFAULT_VARIANT["noise-share"], help="background activity's share of the events")
+    ap.add_argument("--speed", type=float, default=DEFAULT_VARIANT["speed"], help="every motion's speed, times the default")
+    ap.add_argument("--threshold", type=float, default=DEFAULT_VARIANT["threshold"], help="the contrast thresholds' mean (log intensity)")
     a = ap.parse_args()
     if not 0 <= a.noise_share < 1 or a.speed <= 0 or a.threshold <= 0:
         sys.exit("other_simulator: --noise-share must lie in [0, 1), --speed and --threshold above 0")
@@ -270,17 +273,16 @@ def main():
         print(f"other_simulator: {os.path.normpath(a.peer)} holds no authors_clustering.cpp: the authors' column is left out")
 
     variant = (a.noise_share, a.speed, a.threshold)
+    moved = {name: value for name, value in zip(DEFAULT_VARIANT, variant) if value != DEFAULT_VARIANT[name]}
     # Only scenes away from the defaults carry their settings in the folder's name.
-    tag = "" if variant == (0.05, 1.0, 0.2) else f"-n{a.noise_share:g}-v{a.speed:g}-c{a.threshold:g}"
+    tag = f"-n{a.noise_share:g}-v{a.speed:g}-c{a.threshold:g}" if moved else ""
     jobs = [(m, s, width, height, variant, os.path.join(work, f"{m}-{s}-{a.sensor}{tag}"))
             for m in TYPES for s in range(1, a.seeds + 1)]
     with Pool(a.jobs) as pool:
         pool.map(simulate, jobs)
 
     extra = f" --evms-args='{a.evms_args}'" if a.evms_args else ""
-    extra += "".join(f" --{name} {value:g}" for name, value, default in
-                     (("noise-share", a.noise_share, 0.05), ("speed", a.speed, 1.0), ("threshold", a.threshold, 0.2))
-                     if value != default)
+    extra += "".join(f" --{name} {value:g}" for name, value in moved.items())
     print(f"<!-- tests/bench/other_simulator.py {a.evms} --seeds {a.seeds} --sensor {a.sensor}{extra} -->")
     print("| scene | events | F authors | F --preset paper | F evms | evms P | evms R | F touching merged |")
     print("|---|---|---|---|---|---|---|---|")
