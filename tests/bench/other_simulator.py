@@ -3,7 +3,8 @@
 host/gen, beside `evms run --preset paper` and the authors' own program:
 
     tests/bench/other_simulator.py build/bin/evms [--seeds 6] [--sensor 240x180] [--jobs 2] [--evms-args "..."]
-        [--noise-share 0.05] [--speed 1] [--threshold 0.2]
+        [--noise-share 0.05] [--speed 1] [--threshold 0.2] [--shapes 7] [--size 1] [--duration-s 1]
+        [--without-authors] [--min-lead L]
 
 Every default of evms was chosen on host/gen's scene family, so a score on that family can
 carry what that generator does and a real sensor does not. This simulator renders shapes as
@@ -21,9 +22,12 @@ contrast) and four motions of one second:
   spin   the camera rolls about the sensor's centre, up to 1.6 rad either way;
   zoom6  scale 0.7-1.3x with roll and translation (6-DoF);
   cross  a still camera and shapes in pairs on straight paths that meet, one shape still.
---noise-share, --speed (every motion sped up or slowed down) and --threshold (the contrast
-thresholds' mean; a lower one makes more events an edge) vary the scenes away from the settings
-the tables in docs/sweep.md were measured at, to see whether a lead holds beyond them.
+--noise-share, --speed (every motion sped up or slowed down), --threshold (the contrast
+thresholds' mean; a lower one makes more events an edge), --shapes (how many) and --size (the
+shapes' sizes, all but the smallest seventh, times the default) vary the scenes away from the
+settings the tables in docs/sweep.md were measured at, to see whether a lead holds beyond them.
+--min-lead L exits with status 1, naming the motion, when evms's mean F on a motion is not at
+least L above `--preset paper`'s (and the authors' program's, when it runs).
 
 Each scene is scored as `evms metrics --chunk-us 10000` scores (F over 10 ms chunks, noise as
 singletons). The authors' program is built from ../shared/peer (g++ and Debian's
@@ -48,8 +52,10 @@ TYPES = ["pan", "spin", "zoom6", "cross"]
 # that holds touching shapes together scores at best.
 TOUCHING_PX = 2
 KINDS = ["disk", "square", "triangle", "bar", "ring", "cross", "ell", "star", "ellipse"]
-# The settings --noise-share, --speed and --threshold move the scenes away from, in that order.
-DEFAULT_VARIANT = {"noise-share": 0.05, "speed": 1.0, "threshold": 0.2}
+# The settings --noise-share, --speed, --threshold, --shapes, --size and --duration-s move the scenes away
+# from, in that order, with the letter each puts in a moved scene's folder name.
+DEFAULT_VARIANT = {"noise-share": 0.05, "speed": 1.0, "threshold": 0.2, "shapes": 7, "size": 1.0, "duration-s": 1.0}
+VARIANT_LETTER = {"noise-share": "n", "speed": "v", "threshold": "c", "shapes": "o", "size": "s", "duration-s": "d"}
 
 
 def box_distance(np, u, v, a, b):
@@ -160,14 +166,14 @@ def simulate(job):
     if os.path.isfile(os.path.join(out, "labels.csv")):
         return out
     rng = np.random.default_rng(seed * 7919 + TYPES.index(motion))
-    duration_s, frame_s, refractory_s = 1.0, 0.0004, 0.0005
-    noise_share, motion_speed, threshold_mean = variant
+    frame_s, refractory_s = 0.0004, 0.0005
+    noise_share, motion_speed, threshold_mean, shape_count, size_scale, duration_s = variant
     scale = width / 240.0
     cx, cy = width / 2, height / 2
     shapes, placed = [], []
-    for _ in range(7):
+    for _ in range(shape_count):
         kind = KINDS[rng.integers(len(KINDS))]
-        size = rng.uniform(2.5, 4) * scale if rng.random() < 0.15 else rng.uniform(5, 22) * scale
+        size = rng.uniform(2.5, 4) * scale if rng.random() < 0.15 else rng.uniform(5, 22) * scale * size_scale
         for attempt in range(400):  # apart from the shapes already placed: smaller until it fits
             px, py = rng.uniform(0.15 * width, 0.85 * width), rng.uniform(0.15 * height, 0.85 * height)
             if all(np.hypot(px - qx, py - qy) > (size + qs) * 1.3 + 4 for qx, qy, qs in placed):
@@ -255,9 +261,15 @@ def main():
     ap.add_argument("--noise-share", type=float, default=DEFAULT_VARIANT["noise-share"], help="background activity's share of the events")
     ap.add_argument("--speed", type=float, default=DEFAULT_VARIANT["speed"], help="every motion's speed, times the default")
     ap.add_argument("--threshold", type=float, default=DEFAULT_VARIANT["threshold"], help="the contrast thresholds' mean (log intensity)")
+    ap.add_argument("--shapes", type=int, default=DEFAULT_VARIANT["shapes"], help="shapes in each scene")
+    ap.add_argument("--size", type=float, default=DEFAULT_VARIANT["size"], help="the shapes' sizes (all but the smallest), times the default")
+    ap.add_argument("--duration-s", type=float, default=DEFAULT_VARIANT["duration-s"], help="each scene's length (s)")
+    ap.add_argument("--without-authors", action="store_true", help="leave the authors' program out")
+    ap.add_argument("--min-lead", type=float, help="fail unless evms's mean F on every motion is this much above the others'")
     a = ap.parse_args()
-    if not 0 <= a.noise_share < 1 or a.speed <= 0 or a.threshold <= 0:
-        sys.exit("other_simulator: --noise-share must lie in [0, 1), --speed and --threshold above 0")
+    if not 0 <= a.noise_share < 1 or min(a.speed, a.threshold, a.size, a.duration_s) <= 0 or a.shapes < 2:
+        sys.exit("other_simulator: --noise-share must lie in [0, 1), --speed, --threshold, --size and --duration-s above 0, "
+                 "--shapes 2 or more")
     try:
         import numpy  # noqa: F401
     except ImportError:
@@ -267,15 +279,17 @@ def main():
     work = a.keep or tempfile.mkdtemp(prefix="evms_other_sim_")
     os.makedirs(work, exist_ok=True)
     peer = None
-    if os.path.isfile(os.path.join(a.peer, "authors_clustering.cpp")):
+    if a.without_authors:
+        print("other_simulator: --without-authors: the authors' column is left out")
+    elif os.path.isfile(os.path.join(a.peer, "authors_clustering.cpp")):
         peer = build_peer(a.peer, work)
     else:
         print(f"other_simulator: {os.path.normpath(a.peer)} holds no authors_clustering.cpp: the authors' column is left out")
 
-    variant = (a.noise_share, a.speed, a.threshold)
+    variant = (a.noise_share, a.speed, a.threshold, a.shapes, a.size, a.duration_s)
     moved = {name: value for name, value in zip(DEFAULT_VARIANT, variant) if value != DEFAULT_VARIANT[name]}
     # Only scenes away from the defaults carry their settings in the folder's name.
-    tag = f"-n{a.noise_share:g}-v{a.speed:g}-c{a.threshold:g}" if moved else ""
+    tag = "".join(f"-{VARIANT_LETTER[name]}{value:g}" for name, value in zip(DEFAULT_VARIANT, variant)) if moved else ""
     jobs = [(m, s, width, height, variant, os.path.join(work, f"{m}-{s}-{a.sensor}{tag}"))
             for m in TYPES for s in range(1, a.seeds + 1)]
     with Pool(a.jobs) as pool:
@@ -314,6 +328,7 @@ def main():
     print()
     print("| motion | F authors | F --preset paper | F evms | evms ahead of the authors | F touching merged |")
     print("|---|---|---|---|---|---|")
+    short = []
     for motion in TYPES:
         mine = [r for r in rows if r[0] == motion]
         mean = lambda i: statistics.mean(r[i] for r in mine)  # noqa: E731
@@ -321,8 +336,14 @@ def main():
             print(f"| {motion} | {mean(1):.3f} | {mean(2):.3f} | {mean(3):.3f} | {sum(r[3] > r[1] for r in mine)} of {len(mine)} | {mean(4):.3f} |")
         else:
             print(f"| {motion} | - | {mean(2):.3f} | {mean(3):.3f} | - | {mean(4):.3f} |")
+        others = [("--preset paper", mean(2))] + ([("the authors' program", mean(1))] if peer else [])
+        short += [f"on {motion} evms scores F {mean(3):.3f}, less than {a.min_lead:g} above {name}'s {f:.3f}"
+                  for name, f in others if a.min_lead is not None and mean(3) < f + a.min_lead]
     if not a.keep:
         shutil.rmtree(work)
+    for line in short:
+        print(f"other_simulator: {line}", file=sys.stderr)
+    sys.exit(1 if short else 0)
 
 
 if __name__ == "__main__":
