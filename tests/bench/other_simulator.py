@@ -52,8 +52,8 @@ TYPES = ["pan", "spin", "zoom6", "cross"]
 # that holds touching shapes together scores at best.
 TOUCHING_PX = 2
 KINDS = ["disk", "square", "triangle", "bar", "ring", "cross", "ell", "star", "ellipse"]
-# The settings --noise-share, --speed, --threshold, --shapes, --size and --duration-s move the scenes away
-# from, in that order, with the letter each puts in a moved scene's folder name.
+# The settings --noise-share, --speed, --threshold, --shapes, --size and --duration-s move the
+# scenes away from, in that order, with the letter each puts in a moved scene's folder name.
 DEFAULT_VARIANT = {"noise-share": 0.05, "speed": 1.0, "threshold": 0.2, "shapes": 7, "size": 1.0, "duration-s": 1.0}
 VARIANT_LETTER = {"noise-share": "n", "speed": "v", "threshold": "c", "shapes": "o", "size": "s", "duration-s": "d"}
 
