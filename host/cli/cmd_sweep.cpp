@@ -142,7 +142,45 @@ std::string current_value(const Method& m, const std::string& name) {
   return param_text(m.resolve({240, 180}), *info);
 }
 
-// Every member's F under each method.
+// The members of each sensor together: their mean F, and their estimates pooled, as the split's
+// share within 2.5 px pools them (a finer sensor's pixel is a smaller angle, docs/sweep.md).
+void print_sensors(const std::vector<eval::FamilyScene>& family, const std::vector<Method>& methods,
+                   const std::vector<eval::FamilyResult>& results) {
+  std::vector<std::pair<int, int>> sensors;
+  for (const auto& s : family) sensors.emplace_back(s.scene.config.width, s.scene.config.height);
+  std::sort(sensors.begin(), sensors.end(), [](const auto& a, const auto& b) { return std::make_pair(a.first * a.second, a) < std::make_pair(b.first * b.second, b); });
+  sensors.erase(std::unique(sensors.begin(), sensors.end()), sensors.end());
+  std::printf("\n| sensor | members |");
+  for (const Method& m : methods) {
+    const char* name = m.settings.empty() ? m.preset.c_str() : m.settings.back().second.c_str();
+    std::printf(" mean F %s | estimates %s | beyond 2.5 px %s | within 2.5 px %s |", name, name, name, name);
+  }
+  std::printf("\n|---|---|");
+  for (size_t m = 0; m < methods.size(); ++m) std::printf("---|---|---|---|");
+  std::printf("\n");
+  for (const auto& [width, height] : sensors) {
+    std::vector<size_t> members;
+    for (size_t i = 0; i < family.size(); ++i) {
+      if (family[i].scene.config.width == width && family[i].scene.config.height == height) members.push_back(i);
+    }
+    std::printf("| %dx%d | %zu |", width, height, members.size());
+    for (const auto& r : results) {
+      double f = 0;
+      long long estimates = 0, beyond = 0;
+      for (size_t i : members) {
+        const eval::TrackingReport& t = r.scenes[i].tracking;
+        f += r.scenes[i].scores.f;
+        estimates += static_cast<long long>(t.all_kalman.samples);
+        beyond += std::llround(static_cast<double>(t.all_kalman.samples) * (1.0 - t.all_kalman.within));
+      }
+      std::printf(" %.3f | %lld | %lld | %.3f |", f / static_cast<double>(members.size()), estimates, beyond,
+                  estimates > 0 ? 1.0 - static_cast<double>(beyond) / static_cast<double>(estimates) : 0.0);
+    }
+    std::printf("\n");
+  }
+}
+
+// Every member's F under each method, then each sensor's members together.
 void print_scenes(const std::vector<eval::FamilyScene>& family, const std::vector<Method>& methods,
                   const std::vector<eval::FamilyResult>& results) {
   std::printf("\n| scene | events | noise |");
@@ -172,6 +210,7 @@ void print_scenes(const std::vector<eval::FamilyScene>& family, const std::vecto
     }
     std::printf("\n");
   }
+  print_sensors(family, methods, results);
 }
 
 gen::Split split_of(const SweepOptions& o) { return o.split == "validation" ? gen::Split::kValidation : gen::Split::kTuning; }
@@ -272,7 +311,7 @@ void register_sweep(CLI::App& app) {
   cmd->add_option("--split", o->split, "the split --vary measures on, and the only split the presets are compared on when given (the search tunes on tuning and checks on validation)")
       ->default_val(o->split)
       ->check(CLI::IsMember({"tuning", "validation"}));
-  cmd->add_flag("--per-scene", o->per_scene, "every member's F, IDF1, tracking errors (the Kalman estimate's and the raw centroid's), its estimates and their share within 2.5 px, MOTA and false tracks a frame too (presets and --vary)");
+  cmd->add_flag("--per-scene", o->per_scene, "every member's F, IDF1, tracking errors (the Kalman estimate's and the raw centroid's), its estimates and their share within 2.5 px, MOTA and false tracks a frame too, then each sensor's members together: their mean F and their estimates pooled (presets and --vary)");
   cmd->add_option("--rounds", o->rounds, "passes of --search over the grid")->default_val(o->rounds)->check(CLI::Range(1, 20));
   cmd->add_option("--backend", o->backend, "implementation to measure")->default_val(o->backend);
   cmd->add_option("--sensor", o->pins.width, "the family's members on this sensor instead of the seed's draw: WxH")

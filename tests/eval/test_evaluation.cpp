@@ -451,6 +451,41 @@ TEST(SweepCommand, PinsTheMembersSensorShapesAndNoise) {
   EXPECT_NE(bad.err.find("--sensor: expected WxH"), std::string::npos) << bad.err;
 }
 
+// --per-scene ends with each sensor's members together: their count, mean F and pooled
+// estimates, the sums of the members' own rows.
+TEST(SweepCommand, PoolsEachSensorsMembers) {
+  const auto r = test::run_command(test::evms_binary() + " sweep --types rotation,still,paper-rotation --seeds 1 --per-scene --sensor 200x150 "
+                                   "--preset evms --split tuning");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto cells_of = [&](const std::string& start) {
+    const auto at = r.out.find(start);
+    std::vector<std::string> cells;
+    if (at == std::string::npos) return cells;
+    const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
+    for (size_t from = 1, bar; (bar = line.find('|', from)) != std::string::npos; from = bar + 1) cells.push_back(line.substr(from, bar - from));
+    return cells;
+  };
+  const auto rotation = cells_of("| rotation 1: "), still = cells_of("| still 1: "), poster = cells_of("| paper-rotation 1: ");
+  ASSERT_EQ(rotation.size(), 14u) << r.out;
+  ASSERT_EQ(still.size(), 14u) << r.out;
+  ASSERT_EQ(poster.size(), 14u) << r.out;
+  const auto small = cells_of("| 200x150 |"), paper = cells_of("| 240x180 |");
+  ASSERT_EQ(small.size(), 6u) << r.out;
+  ASSERT_EQ(paper.size(), 6u) << r.out;
+  EXPECT_LT(r.out.find("| 200x150 |"), r.out.find("| 240x180 |")) << "the smaller sensor first";
+  EXPECT_EQ(std::stoi(small[1]), 2);
+  EXPECT_EQ(std::stoi(paper[1]), 1);
+  EXPECT_NEAR(std::stod(small[2]), (std::stod(rotation[3]) + std::stod(still[3])) / 2, 0.0015);
+  EXPECT_NEAR(std::stod(paper[2]), std::stod(poster[3]), 0.0005);
+  const long estimates = std::stol(rotation[6]) + std::stol(still[6]), beyond = std::stol(rotation[7]) + std::stol(still[7]);
+  EXPECT_EQ(std::stol(small[3]), estimates);
+  EXPECT_EQ(std::stol(small[4]), beyond);
+  ASSERT_GT(estimates, 0);
+  EXPECT_NEAR(std::stod(small[5]), 1.0 - static_cast<double>(beyond) / static_cast<double>(estimates), 0.0005);
+  EXPECT_EQ(std::stol(paper[3]), std::stol(poster[6]));
+  EXPECT_EQ(std::stol(paper[4]), std::stol(poster[7]));
+}
+
 // Without --split the presets are compared on both splits; with it, on that split alone.
 TEST(SweepCommand, ComparesThePresetsOnTheSplitGiven) {
   const auto both = test::run_command(test::evms_binary() + " sweep --types still --seeds 1 --preset evms");
