@@ -142,6 +142,13 @@ std::string current_value(const Method& m, const std::string& name) {
   return param_text(m.resolve({240, 180}), *info);
 }
 
+// A member's estimates beyond 2.5 px, a count (from its share within), so that a type's, a
+// sensor's or the split's sum is exact: the split's pooled share weighs each member by its
+// estimates, so a long, busy member can set it.
+long long estimates_beyond(const eval::TrackingReport& t) {
+  return std::llround(static_cast<double>(t.all_kalman.samples) * (1.0 - t.all_kalman.within));
+}
+
 // The members of each sensor together: their mean F, and their estimates pooled, as the split's
 // share within 2.5 px pools them (a finer sensor's pixel is a smaller angle, docs/sweep.md).
 void print_sensors(const std::vector<eval::FamilyScene>& family, const std::vector<Method>& methods,
@@ -171,7 +178,7 @@ void print_sensors(const std::vector<eval::FamilyScene>& family, const std::vect
         const eval::TrackingReport& t = r.scenes[i].tracking;
         f += r.scenes[i].scores.f;
         estimates += static_cast<long long>(t.all_kalman.samples);
-        beyond += std::llround(static_cast<double>(t.all_kalman.samples) * (1.0 - t.all_kalman.within));
+        beyond += estimates_beyond(t);
       }
       std::printf(" %.3f | %lld | %lld | %.3f |", f / static_cast<double>(members.size()), estimates, beyond,
                   estimates > 0 ? 1.0 - static_cast<double>(beyond) / static_cast<double>(estimates) : 0.0);
@@ -199,11 +206,8 @@ void print_scenes(const std::vector<eval::FamilyScene>& family, const std::vecto
                 gen::describe(s.scene.config).c_str(), s.scene.events.size(), 100.0 * truth_noise / std::max<size_t>(1, s.scene.events.size()));
     for (const auto& r : results) {
       const eval::TrackingReport& t = r.scenes[i].tracking;
-      // The estimates, those beyond 2.5 px (a count, so that a type's or the split's sum is exact)
-      // and their share within: the split's pooled share weighs each member by its estimates, so
-      // a long, busy member can set it.
       const auto estimates = t.all_kalman.samples;
-      const auto beyond = std::llround(static_cast<double>(estimates) * (1.0 - t.all_kalman.within));
+      const auto beyond = estimates_beyond(t);
       std::printf(" %.3f | %.3f | %.2f | %lld | %lld | %.2f | %.2f | %.2f | %.2f | %.3f | %.2f |", r.scenes[i].scores.f, r.scenes[i].identity.idf1,
                   t.all_kalman.mean, static_cast<long long>(estimates), static_cast<long long>(beyond), t.all_kalman.within, t.all_raw.mean,
                   t.all_events_centre.mean, t.all_kalman_events.mean, t.mot.mota(), t.mot.false_positives_per_frame());

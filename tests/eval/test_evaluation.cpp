@@ -419,6 +419,16 @@ TEST(SweepCommand, PrintsATablePerParameter) {
   EXPECT_NE(r.out.find("| within 2.5 px | MOTA | MOTP px | MOTP to events' centre px | within 2.5 px |"), std::string::npos) << r.out;
 }
 
+// The cells of the Markdown row of `out` that starts with `start` (none when there is no such row).
+std::vector<std::string> row_cells(const std::string& out, const std::string& start) {
+  std::vector<std::string> cells;
+  const auto at = out.find(start);
+  if (at == std::string::npos) return cells;
+  const std::string line = out.substr(at, out.find('\n', at) - at);
+  for (size_t from = 1, bar; (bar = line.find('|', from)) != std::string::npos; from = bar + 1) cells.push_back(line.substr(from, bar - from));
+  return cells;
+}
+
 // --sensor, --objects and --noise-hz pin the family's members (not the paper's scenes).
 TEST(SweepCommand, PinsTheMembersSensorShapesAndNoise) {
   const auto r = test::run_command(test::evms_binary() + " sweep --types rotation,paper-rotation --seeds 1 --per-scene --sensor 200x150 "
@@ -433,12 +443,11 @@ TEST(SweepCommand, PinsTheMembersSensorShapesAndNoise) {
       << r.out;
   // Each member's row: its estimates and those beyond 2.5 px are counts, and its share within
   // 2.5 px the fraction they leave.
-  const auto row = r.out.find("| rotation 1: rotation 200x150");
-  ASSERT_NE(row, std::string::npos) << r.out;
-  const std::string line = r.out.substr(row, r.out.find('\n', row) - row);
-  std::vector<std::string> cells;
-  for (size_t at = 1, bar; (bar = line.find('|', at)) != std::string::npos; at = bar + 1) cells.push_back(line.substr(at, bar - at));
-  ASSERT_EQ(cells.size(), 3u + 11u) << line;
+  const std::string start = "| rotation 1: rotation 200x150";
+  const auto cells = row_cells(r.out, start);
+  ASSERT_EQ(cells.size(), 3u + 11u) << r.out;
+  const auto at = r.out.find(start);
+  const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
   const long estimates = std::stol(cells[6]);
   const long beyond = std::stol(cells[7]);
   const double within = std::stod(cells[8]);
@@ -457,14 +466,7 @@ TEST(SweepCommand, PoolsEachSensorsMembers) {
   const auto r = test::run_command(test::evms_binary() + " sweep --types rotation,still,paper-rotation --seeds 1 --per-scene --sensor 200x150 "
                                    "--preset evms --split tuning");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto cells_of = [&](const std::string& start) {
-    const auto at = r.out.find(start);
-    std::vector<std::string> cells;
-    if (at == std::string::npos) return cells;
-    const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
-    for (size_t from = 1, bar; (bar = line.find('|', from)) != std::string::npos; from = bar + 1) cells.push_back(line.substr(from, bar - from));
-    return cells;
-  };
+  const auto cells_of = [&](const std::string& start) { return row_cells(r.out, start); };
   const auto rotation = cells_of("| rotation 1: "), still = cells_of("| still 1: "), poster = cells_of("| paper-rotation 1: ");
   ASSERT_EQ(rotation.size(), 14u) << r.out;
   ASSERT_EQ(still.size(), 14u) << r.out;
