@@ -142,6 +142,9 @@ std::string current_value(const Method& m, const std::string& name) {
   return param_text(m.resolve({240, 180}), *info);
 }
 
+// A method's name in the per-member and per-sensor columns: its preset, or the value --vary gave it.
+const char* column_name(const Method& m) { return m.settings.empty() ? m.preset.c_str() : m.settings.back().second.c_str(); }
+
 // A member's estimates beyond 2.5 px, a count (from its share within), so that a type's, a
 // sensor's or the split's sum is exact: the split's pooled share weighs each member by its
 // estimates, so a long, busy member can set it.
@@ -159,7 +162,7 @@ void print_sensors(const std::vector<eval::FamilyScene>& family, const std::vect
   sensors.erase(std::unique(sensors.begin(), sensors.end()), sensors.end());
   std::printf("\n| sensor | members |");
   for (const Method& m : methods) {
-    const char* name = m.settings.empty() ? m.preset.c_str() : m.settings.back().second.c_str();
+    const char* name = column_name(m);
     std::printf(" mean F %s | estimates %s | beyond 2.5 px %s | within 2.5 px %s |", name, name, name, name);
   }
   std::printf("\n|---|---|");
@@ -192,7 +195,7 @@ void print_scenes(const std::vector<eval::FamilyScene>& family, const std::vecto
                   const std::vector<eval::FamilyResult>& results) {
   std::printf("\n| scene | events | noise |");
   for (const Method& m : methods) {
-    const char* name = m.settings.empty() ? m.preset.c_str() : m.settings.back().second.c_str();
+    const char* name = column_name(m);
     std::printf(" F %s | IDF1 %s | track err px %s | estimates %s | beyond 2.5 px %s | within 2.5 px %s | centroid err px %s | events' centre's own err px %s | err to events' centre px %s | MOTA %s | false tracks/frame %s |",
                 name, name, name, name, name, name, name, name, name, name, name);
   }

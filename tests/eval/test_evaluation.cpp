@@ -419,12 +419,16 @@ TEST(SweepCommand, PrintsATablePerParameter) {
   EXPECT_NE(r.out.find("| within 2.5 px | MOTA | MOTP px | MOTP to events' centre px | within 2.5 px |"), std::string::npos) << r.out;
 }
 
-// The cells of the Markdown row of `out` that starts with `start` (none when there is no such row).
+// The line of `out` that starts with `start` (empty when there is none).
+std::string row_line(const std::string& out, const std::string& start) {
+  const auto at = out.find(start);
+  return at == std::string::npos ? std::string() : out.substr(at, out.find('\n', at) - at);
+}
+
+// The cells of that line, a Markdown table's row.
 std::vector<std::string> row_cells(const std::string& out, const std::string& start) {
   std::vector<std::string> cells;
-  const auto at = out.find(start);
-  if (at == std::string::npos) return cells;
-  const std::string line = out.substr(at, out.find('\n', at) - at);
+  const std::string line = row_line(out, start);
   for (size_t from = 1, bar; (bar = line.find('|', from)) != std::string::npos; from = bar + 1) cells.push_back(line.substr(from, bar - from));
   return cells;
 }
@@ -446,8 +450,7 @@ TEST(SweepCommand, PinsTheMembersSensorShapesAndNoise) {
   const std::string start = "| rotation 1: rotation 200x150";
   const auto cells = row_cells(r.out, start);
   ASSERT_EQ(cells.size(), 3u + 11u) << r.out;
-  const auto at = r.out.find(start);
-  const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
+  const std::string line = row_line(r.out, start);
   const long estimates = std::stol(cells[6]);
   const long beyond = std::stol(cells[7]);
   const double within = std::stod(cells[8]);
@@ -466,12 +469,11 @@ TEST(SweepCommand, PoolsEachSensorsMembers) {
   const auto r = test::run_command(test::evms_binary() + " sweep --types rotation,still,paper-rotation --seeds 1 --per-scene --sensor 200x150 "
                                    "--preset evms --split tuning");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto cells_of = [&](const std::string& start) { return row_cells(r.out, start); };
-  const auto rotation = cells_of("| rotation 1: "), still = cells_of("| still 1: "), poster = cells_of("| paper-rotation 1: ");
+  const auto rotation = row_cells(r.out, "| rotation 1: "), still = row_cells(r.out, "| still 1: "), poster = row_cells(r.out, "| paper-rotation 1: ");
   ASSERT_EQ(rotation.size(), 14u) << r.out;
   ASSERT_EQ(still.size(), 14u) << r.out;
   ASSERT_EQ(poster.size(), 14u) << r.out;
-  const auto small = cells_of("| 200x150 |"), paper = cells_of("| 240x180 |");
+  const auto small = row_cells(r.out, "| 200x150 |"), paper = row_cells(r.out, "| 240x180 |");
   ASSERT_EQ(small.size(), 6u) << r.out;
   ASSERT_EQ(paper.size(), 6u) << r.out;
   EXPECT_LT(r.out.find("| 200x150 |"), r.out.find("| 240x180 |")) << "the smaller sensor first";
