@@ -98,7 +98,7 @@ struct Params {
   int max_clusters = 128;            // modes beyond this many clusters become noise
   double split_balance = 0.3;        // seeded climbs: a cluster of two or more separate parts that each
                                      // hold both polarities is split (golden/cluster/polarity_split.h); 0 = off
-  double split_share = 0.1;          // ... counting the parts of at least this share of its events
+  double split_share = 0.05;         // ... counting the parts of at least this share of its events
   int split_min_events = 64;         // ... and of at least this many events
   double split_cell = 0.4;           // ... parts of 8-connected cells this many bandwidths a side
   bool split_partial = true;         // ... and each part that holds both polarities leaves a cluster whose
