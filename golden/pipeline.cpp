@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "golden/cluster/clustering.h"
 #include "golden/cluster/features.h"
@@ -121,6 +122,36 @@ void Pipeline::hand_out_as_noise(size_t count, OutputSink& out) {
   pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(count));
 }
 
+// A sparse object fires too few events for the filter's window: its neighbours' events came
+// longer ago than the window, or come after it. Those events have no history to be judged by,
+// but the packet they waited in holds their object's labelled events beside them (docs/sweep.md,
+// "An event the filter dropped, labelled by its neighbours").
+void Pipeline::rescue_dropped() {
+  const size_t width = static_cast<size_t>(sensor_.width);
+  if (label_at_pixel_.empty()) label_at_pixel_.assign(width * static_cast<size_t>(sensor_.height), kNoiseLabel);
+  const auto pixel_of = [&](const Event& e) { return static_cast<size_t>(e.y) * width + e.x; };
+  for (size_t k = 0; k < pending_.size(); ++k) {
+    if (pending_[k].packet_index >= 0 && labelled_[k].label >= 0) label_at_pixel_[pixel_of(labelled_[k].event)] = labelled_[k].label;
+  }
+  const int reach = params_.rescue_px;
+  for (size_t k = 0; k < pending_.size(); ++k) {
+    if (pending_[k].packet_index >= 0) continue;
+    const Event& e = pending_[k].event;
+    int nearest = std::numeric_limits<int>::max();
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const int x = e.x + dx, y = e.y + dy;
+        if (x < 0 || y < 0 || x >= sensor_.width || y >= sensor_.height || dx * dx + dy * dy >= nearest) continue;
+        const std::int32_t label = label_at_pixel_[static_cast<size_t>(y) * width + static_cast<size_t>(x)];
+        if (label >= 0) nearest = dx * dx + dy * dy, labelled_[k].label = label;
+      }
+    }
+  }
+  for (size_t k = 0; k < pending_.size(); ++k) {
+    if (pending_[k].packet_index >= 0) label_at_pixel_[pixel_of(pending_[k].event)] = kNoiseLabel;
+  }
+}
+
 void Pipeline::look_ahead() {
   packet_.clear();
   for (Pending& p : pending_) {
@@ -235,6 +266,7 @@ void Pipeline::close_packet(OutputSink& out) {
       labelled_[k].event = p.event;
       labelled_[k].label = p.packet_index < 0 ? kNoiseLabel : label_of_packet_event[static_cast<size_t>(p.packet_index)];
     }
+    if (params_.rescue_px > 0) rescue_dropped();
     out.on_events(labelled_);
     for (const TrackUpdate& u : updates_) out.on_track(u);
     out.on_packet({packet_.front().t, packet_.back().t, static_cast<int>(packet_.size()),

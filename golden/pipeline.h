@@ -66,6 +66,9 @@ class Pipeline {
   void flush_settled_noise(TimeUs now, OutputSink& out);
   // Hands out the first `count` pending events as noise.
   void hand_out_as_noise(size_t count, OutputSink& out);
+  // With --rescue-px: gives each pending event the filter dropped the label of the nearest of
+  // the packet's labelled events within rescue_px (labelled_ holds the pending events' labels).
+  void rescue_dropped();
 
   Params params_;
   SensorSize sensor_;
@@ -94,6 +97,9 @@ class Pipeline {
   // --measure pixel-centre: one bit a pixel, set where the packet's clustered events fell and
   // cleared again after the packet, so the map stays small enough for the cache (115 kB at 1280x720).
   std::vector<std::uint64_t> pixel_taken_;
+  // --rescue-px: the label of the packet's last labelled event on each pixel, or kNoiseLabel;
+  // cleared again after the packet.
+  std::vector<std::int32_t> label_at_pixel_;
   PipelineStats stats_;
 };
 

@@ -204,6 +204,11 @@ const std::array kTable = {
     ParamInfo{"init-sigma-vel", "px/s", "initial standard deviation of a new track's velocity",
               &Params::init_sigma_vel, 1e-6, 1e9},
     ParamInfo{"max-tracks", "tracks", "tracks held at once", &Params::max_tracks, 1, 256},
+    ParamInfo{"rescue-px", "px", "an event the filter dropped takes the label of the nearest labelled event of the packet "
+              "it waited in, on its own pixel or within this many px (the nearest by distance, ties in row order): an object "
+              "that fires too sparsely for the filter's window keeps its events, which neither join its cluster nor move its "
+              "track; 0 = off (golden and fixed)",
+              &Params::rescue_px, 0, 2},
 };
 
 template <class T>

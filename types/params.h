@@ -138,6 +138,10 @@ struct Params {
   double init_sigma_vel = 200.0;     // initial velocity uncertainty (P0), px/s
   int max_tracks = 128;              // tracks held at once
 
+  // --- labels -----------------------------------------------------------------------------
+  int rescue_px = 1;                 // an event the filter dropped takes the label of the nearest
+                                     // labelled event of its packet within this many px; 0 = off
+
   friend bool operator==(const Params&, const Params&) = default;
 };
 

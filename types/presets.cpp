@@ -20,6 +20,7 @@ Params gaussian() {
   p.filter_quiet_hz = 0;
   p.filter_warm_up_us = 0;
   p.packet_support = 0;
+  p.rescue_px = 0;
   p.packet_size = 256;
   p.packet_max_span_us = 0;
   p.xy_scale = XyScale::kAxes;

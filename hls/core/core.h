@@ -8,8 +8,10 @@
 // when it holds packet_size events, when the next kept event is more than packet_max_span_us
 // newer than its first, when the pending queue is full (a hardware bound golden does not
 // have: kPendingDepth = 4 N), or on a flush word. Closing clusters and tracks the packet and
-// then releases every pending event with its label. A noise event that arrives while no packet
-// is open leaves at once.
+// then releases every pending event with its label; in a build with HasRescue, an event the
+// filter dropped takes the label of the nearest labelled event of the packet within rescue_reach
+// px (golden/pipeline.cpp, rescue_dropped). A noise event that arrives while no packet is open
+// leaves at once.
 #pragma once
 
 #include <cstdint>
@@ -70,6 +72,10 @@ class Core {
     warm_.count = 0;
     n_ = 0;
     pending_n_ = 0;
+    if (S::kHasRescue) {
+    unlabel:
+      for (int i = 0; i < kRescueMapSize; ++i) label_at_pixel_[i] = -1;
+    }
   }
 
   using ClimbsStream = Stream<ClimbsFrame<S>, 2>;
@@ -200,15 +206,58 @@ class Core {
                      static_cast<std::uint16_t>(sweeps < 0xFFFF ? sweeps : 0xFFFF)});
     }
     observer_.on_close(trace);
+    const bool rescue = S::kHasRescue && cfg_.rescue_reach > 0 && n_ > 0;
+    if (rescue) {
+      // The label of the packet's last labelled event on each pixel.
+    label_pixels:
+      for (int k = 0; k < S::kPendingDepth; ++k) {
+#pragma HLS PIPELINE II = 1
+        if (k >= pending_n_) break;
+        const Pending& p = pending_[k];
+        if (p.index >= 0 && label_of[p.index] >= 0) label_at_pixel_[pixel_of(p.e)] = static_cast<std::int16_t>(label_of[p.index]);
+      }
+    }
   release:
     for (int k = 0; k < S::kPendingDepth; ++k) {
 #pragma HLS PIPELINE II = 1
       if (k >= pending_n_) break;
       const Pending& p = pending_[k];
-      labels.write({p.e.t, p.e.x, p.e.y, p.e.p, p.index < 0 ? kLabelNoise : label_of[p.index]});
+      const std::int32_t label = p.index >= 0 ? label_of[p.index] : rescue ? nearest_label(p.e) : kLabelNoise;
+      labels.write({p.e.t, p.e.x, p.e.y, p.e.p, label});
+    }
+    if (rescue) {
+    unlabel_pixels:
+      for (int k = 0; k < S::kPendingDepth; ++k) {
+#pragma HLS PIPELINE II = 1
+        if (k >= pending_n_) break;
+        if (pending_[k].index >= 0) label_at_pixel_[pixel_of(pending_[k].e)] = -1;
+      }
     }
     n_ = 0;
     pending_n_ = 0;
+  }
+
+  static int pixel_of(const EventWord& e) { return (S::kHasRescue ? e.y * S::kMaxWidth + e.x : 0); }
+
+  // The label nearest to e's pixel within rescue_reach px on label_at_pixel_ (squared distance,
+  // ties to the first in row order), or kLabelNoise.
+  std::int32_t nearest_label(const EventWord& e) const {
+    std::int32_t label = kLabelNoise;
+    int nearest = 2 * (S::kRescueMax + 1) * (S::kRescueMax + 1);
+    const int reach = cfg_.rescue_reach;
+  rows:
+    for (int dy = -S::kRescueMax; dy <= S::kRescueMax; ++dy) {
+    columns:
+      for (int dx = -S::kRescueMax; dx <= S::kRescueMax; ++dx) {
+#pragma HLS PIPELINE II = 1
+        const int x = e.x + dx, y = e.y + dy;
+        if (dx < -reach || dx > reach || dy < -reach || dy > reach) continue;
+        if (x < 0 || y < 0 || x >= cfg_.sensor_width || y >= cfg_.sensor_height || dx * dx + dy * dy >= nearest) continue;
+        const std::int16_t l = label_at_pixel_[S::kHasRescue ? y * S::kMaxWidth + x : 0];
+        if (l >= 0) nearest = dx * dx + dy * dy, label = l;
+      }
+    }
+    return label;
   }
 
   struct Pending {
@@ -228,6 +277,8 @@ class Core {
   int n_ = 0;
   Pending pending_[S::kPendingDepth];
   int pending_n_ = 0;
+  static constexpr int kRescueMapSize = S::kHasRescue ? S::kMaxWidth * S::kMaxHeight : 1;
+  std::int16_t label_at_pixel_[kRescueMapSize];  // HasRescue: the packet's labels by pixel, -1 elsewhere
   Observer observer_;
 };
 

@@ -35,7 +35,7 @@ template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsM
           int WeightFrac = 16, int ExpTableLog2 = 9, int PosFrac = 12, int MulDigitBits = 64, int ModesMax = 64, int LinkMax = 4,
           int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0, int HasPolaritySplit = 0,
           int HasPolarityMidpoint = 0, int HasEdgeJoin = 0, int HasSpreadNoise = 0, int HasGateBoxes = 0,
-          int HasPixelCentre = 0, int HasDensityAfterLinks = 0, int HasWarmSeeds = 1>
+          int HasPixelCentre = 0, int HasDensityAfterLinks = 0, int HasWarmSeeds = 1, int HasRescue = 0>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -100,6 +100,13 @@ struct Shape {
   // starts without them, so that its words are the board's. Not an RTL parameter: every RTL
   // core holds them.
   static constexpr int kHasWarmSeeds = HasWarmSeeds;
+  // Whether the build gives each event the filter dropped the label of the nearest labelled event
+  // of its packet within Config::rescue_reach px (hls/core/core.h, a label a pixel of the sensor);
+  // a build without it releases them as noise, and the host refuses --rescue-px for it. Not an RTL
+  // parameter: no RTL core holds it, but a core cut after its climbs leaves the labels to the host,
+  // whose completion of its packets does hold it (Ice40ClimbsShape).
+  static constexpr int kHasRescue = HasRescue;
+  static constexpr int kRescueMax = 2;  // the largest Config::rescue_reach, px
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;
@@ -214,7 +221,7 @@ using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // noise, say) never close a packet early, as golden never does, and every step of the method.
 template <int W, int H, int TimestampBits, int TimestampShift>
 using HostCoreShape = Shape<W, H, 4096, 8, 8, 128, 128, TimestampBits, TimestampShift, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1,
-                            1, 1, 1, 1, 1>;
+                            1, 1, 1, 1, 1, 1, 1>;
 // The host's fixed-point backend: room for every recording evms reads (up to 1280x720), and
 // exact 32-bit microsecond timestamps per pixel (its filter decides exactly as golden's).
 using HostShape = HostCoreShape<1280, 720, 32, 0>;

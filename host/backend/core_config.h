@@ -46,7 +46,8 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 // and without the polarity split, the polarity midpoint or the pixel centre, the edge join, the
 // measurement noise from the spread, the gate's boxes and the least density on the linked sets
 // where S does not hold them (Shape::kHasPolaritySplit, kHasPolarityMidpoint, kHasPixelCentre,
-// kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes, kHasDensityAfterLinks: the board builds), and
+// kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes, kHasDensityAfterLinks: the board builds),
+// without the dropped events' labels where S does not hold them (kHasRescue: every RTL build), and
 // without warm seeds where S starts without them (kHasWarmSeeds), each
 // unless `kept(name)` says the command line set it, for the backend to refuse what S cannot run.
 template <class S, class Kept>
@@ -67,6 +68,7 @@ Params within_build(Params p, Kept kept) {
   if (!S::kHasGateBoxes && !kept("gate-boxes")) p.gate_boxes = false;
   if (!S::kHasDensityAfterLinks && !kept("density-after-links")) p.density_after_links = false;
   if (!S::kHasWarmSeeds && !kept("warm-start")) p.warm_start = false;
+  if (!S::kHasRescue && !kept("rescue-px")) p.rescue_px = 0;
   return p;
 }
 
@@ -159,7 +161,7 @@ inline std::string core_unsupported(const Params& p) {
 // kHasPolarityMidpoint, kHasSpreadNoise), the pixel centre (kHasPixelCentre), the gate's boxes
 // and the least density on the linked sets where it holds them (kHasGateBoxes, kHasDensityAfterLinks)
 // and the tracker's other policies but the gate's widening by
-// the spread and coasting by packets.
+// the spread and coasting by packets. No build labels the events the filter dropped (--rescue-px).
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
   bool gaussian_path = false, seeded_path = false, polarity_split = false, edge_join = false, polarity_midpoint = false,
@@ -181,7 +183,7 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   }
   if (!seeded && !gaussian_path) return "the RTL build '" + build + "' clusters by seeded climbs only, not " + detail::setting(p, "seeding");
   const Params rtl = preset("gaussian");
-  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets"})) {
+  if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets", "rescue-px"})) {
     return "the RTL core does not implement " + detail::setting(p, name) + " (add --" + name + " " + param_text(rtl, *find_param(name)) + ")";
   }
   if (!polarity_split && seeded && p.split_balance != 0) {
@@ -256,6 +258,8 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   need(p.seeding == Seeding::kEvery || p.warm_max_bandwidth <= S::kReachMax * p.bandwidth,
        "the core's warm balls reach at most " + std::to_string(S::kReachMax) + " bandwidths (--warm-max-bandwidth)");
   need(p.filter_support <= 8, "--filter-support is at most 8");
+  need(p.rescue_px == 0 || S::kHasRescue, "this build's core does not label the events its filter dropped, not " + detail::setting(p, "rescue-px") + " (add --rescue-px 0)");
+  need(p.rescue_px <= S::kRescueMax, "the core labels dropped events from at most " + std::to_string(S::kRescueMax) + " px away (--rescue-px)");
   need(filter_noise_count(p, sensor) < (std::int64_t{1} << 24), "--filter-noise-hz is too large for the core's 24-bit count");
   need(filter_quiet_count(p, sensor) < (std::int64_t{1} << 24), "--filter-quiet-hz is too large for the core's 24-bit count");
   // hls/filter/ba_filter.h clears every pixel's time after a gap of a quarter of the timestamps'
@@ -315,6 +319,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.gate_spread2 = static_cast<std::uint32_t>(rnd(p.gate_spread * p.gate_spread * std::ldexp(1.0, hls::kSpreadFrac)));
   c.size_ratio_log2 = static_cast<std::uint8_t>(detail::size_ratio_log2(p));
   c.coast_packets = static_cast<std::uint32_t>(p.coast_packets);
+  c.rescue_reach = static_cast<std::uint8_t>(p.rescue_px);
   const double least_per_event = least_support_per_event(p, sensor);
   need(!seeded || least_per_event < 256, "--min-density is too large for the core's 32-bit density");
   c.min_density = seeded ? static_cast<std::uint32_t>(rnd(least_per_event * std::ldexp(1.0, hls::kDensityFrac))) : 0;

@@ -102,7 +102,7 @@ TEST(BackendsAgree, TheSummarySaysWhatACoreBuildChangesOfTheMethod) {
   for (const char* changed : {"--max-clusters 8 (the method's ", "--max-tracks 8 (the method's ", "--split-balance 0 (the method's ",
                               "--edge-join 0 (the method's ", "--measure centroid (the method's pixel-centre)",
                               "--meas-noise-from-spread false (the method's true)", "--gate-boxes false (the method's true)",
-                              "--density-after-links false (the method's true)"}) {
+                              "--density-after-links false (the method's true)", "--rescue-px 0 (the method's 1)"}) {
     EXPECT_NE(ice40.find(changed), std::string::npos) << changed << " in: " << ice40;
   }
   const std::string by_hand = note("--backend rtl --core ice40 --packet-size 256 --max-clusters 8 --max-tracks 8 --edge-join 0");

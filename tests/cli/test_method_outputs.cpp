@@ -153,6 +153,11 @@ void expect_runs(const std::string& options) {
 
 TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   expect_refused("--backend rtl --coast-packets 3", "the RTL core does not implement --coast-packets 3 (add --coast-packets 0)");
+  // No RTL build labels the events its filter dropped, which they run without unless told it;
+  // nor does the fixed core of a board's build.
+  expect_refused("--backend rtl --rescue-px 1", "the RTL core does not implement --rescue-px 1 (add --rescue-px 0)");
+  expect_refused("--backend fixed --core arty --rescue-px 1",
+                 "this build's core does not label the events its filter dropped, not --rescue-px 1 (add --rescue-px 0)");
   // The boards' builds do not hold the edge join, which they run without unless told it.
   expect_refused("--backend rtl --core arty --edge-join 5", "the RTL build 'arty' does not hold the edge join, not --edge-join 5 (add --edge-join 0)");
   // Nor the polarity split.
@@ -211,7 +216,10 @@ TEST(MethodOutputs, TheRtlRunsTheDefaultMethodAsTheFixedCore) {
     EXPECT_EQ(r.exit_code, 0) << backend << extra << ": " << r.err;
     return out;
   };
-  const std::string rtl = run("rtl", "rtl", ""), fixed = run("fixed", "fixed", ""), unsplit = run("unsplit", "rtl", " --split-balance 0");
+  // No RTL build labels the events its filter dropped (--rescue-px), which the RTL backend leaves
+  // out of its default method.
+  const std::string rtl = run("rtl", "rtl", ""), fixed = run("fixed", "fixed", " --rescue-px 0");
+  const std::string unsplit = run("unsplit", "rtl", " --split-balance 0");
   const std::string unjoined = run("unjoined", "rtl", " --edge-join 0");
   const std::string one_noise = run("one_noise", "rtl", " --meas-noise-from-spread false");
   EXPECT_GT(csv_rows(rtl + "/tracks.csv").size(), 10u);

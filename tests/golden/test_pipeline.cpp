@@ -216,6 +216,55 @@ TEST(Pipeline, LookAheadKeepsAnEdgesFirstEventAndStillDropsALoneOne) {
   EXPECT_EQ(ahead.events[9].label, kNoiseLabel);
 }
 
+// An event the filter dropped while a packet was open takes the label of the packet's labelled
+// event beside it (--rescue-px): the first event of an edge, whose neighbours fire after it, and
+// one two pixels off the edge with a reach of two; a lone event stays noise, and the labels
+// still leave in input order.
+TEST(Pipeline, ADroppedEventTakesTheLabelOfItsPacketsEventBesideIt) {
+  std::vector<Event> events;
+  TimeUs t = 0;
+  const auto block = [&](std::uint16_t x, std::uint16_t y) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) events.push_back({t++, static_cast<std::uint16_t>(x + dx), static_cast<std::uint16_t>(y + dy), 1});
+    }
+  };
+  block(30, 30);  // opens the packet
+  const size_t edge_first = events.size();
+  for (int round = 0; round < 3; ++round) block(100, 50);
+  events.push_back({t++, 200, 150, 1});  // alone
+  const size_t lone = events.size() - 1;
+  events.push_back({t++, 103, 50, 1});   // two pixels right of the edge's last column
+  const size_t two_off = events.size() - 1;
+  for (int round = 0; round < 2; ++round) block(30, 30);
+  const auto labels = [&](int rescue_px) {
+    Params p;
+    p.filter_warm_up_us = 0;  // the stream's first events are judged too
+    p.rescue_px = rescue_px;
+    const CollectingSink out = run(events, p);
+    EXPECT_EQ(out.events.size(), events.size());
+    std::vector<std::int32_t> l;
+    for (size_t i = 0; i < out.events.size(); ++i) {
+      EXPECT_EQ(out.events[i].event.t, events[i].t);
+      l.push_back(out.events[i].label);
+    }
+    return l;
+  };
+  const std::vector<std::int32_t> off = labels(0), one = labels(1), two = labels(2);
+  ASSERT_NE(one[edge_first + 1], kNoiseLabel);
+  EXPECT_EQ(off[edge_first], kNoiseLabel);  // no history: dropped
+  EXPECT_EQ(one[edge_first], one[edge_first + 1]);
+  EXPECT_EQ(off[two_off], kNoiseLabel);
+  EXPECT_EQ(one[two_off], kNoiseLabel);
+  EXPECT_EQ(two[two_off], two[edge_first + 1]);
+  for (const auto& l : {off, one, two}) EXPECT_EQ(l[lone], kNoiseLabel);
+  // Nothing else moves: the rescued events join no cluster.
+  for (size_t i = 0; i < events.size(); ++i) {
+    if (i != edge_first && i != two_off) {
+      EXPECT_EQ(one[i], off[i]) << i;
+    }
+  }
+}
+
 // While no packet is open, a dropped event waits out its look-ahead before it leaves as noise.
 TEST(Pipeline, LookAheadHoldsADroppedEventOnlyForItsLookAhead) {
   Params look;
