@@ -185,7 +185,9 @@ void Pipeline::close_packet(OutputSink& out) {
     }
     const auto packet_index = [&](size_t i) { return index_of_.empty() ? i : static_cast<size_t>(index_of_[i]); };
     const FeatureMatrix features = packet_features(supported, sensor_, params_);
-    const PacketClusters clusters = clusterer_.cluster(supported, features, modes_, spreads_);
+    const std::vector<Eigen::Vector2d> meeting_points =
+        params_.motion_split > 0 && !supported.empty() ? tracker_->confirmed_predictions(supported[supported.size() / 2].t) : std::vector<Eigen::Vector2d>{};
+    const PacketClusters clusters = clusterer_.cluster(supported, features, modes_, spreads_, meeting_points);
     modes_ = clusters.modes;
     spreads_ = clusters.spreads;
     stats_.cluster_ns += clock.lap();

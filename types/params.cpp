@@ -137,6 +137,10 @@ const std::array kTable = {
     ParamInfo{"split-partial", "", "with --split-balance, each large part that holds both polarities becomes a cluster of its "
               "own even when other large parts hold one polarity, and those stay one cluster (the two edges of one outline); "
               "false: a cluster splits only when every large part holds both", &Params::split_partial, 0, 1},
+    ParamInfo{"motion-split", "1", "with seeded climbs, a cluster of 200 events or more whose bounding box holds the "
+              "predictions of two confirmed tracks is split in two by its events' motion (the slopes of their local time "
+              "surfaces) when two velocities explain them with at most this share of the residual one velocity leaves: a "
+              "fast object crossing a slow one (golden only); 0 = off", &Params::motion_split, 0, 1},
     ParamInfo{"edge-join", "h", "with seeded climbs, a cluster of mostly ON events and a cluster of mostly OFF events "
               "whose centres lie within this many bandwidths of the sensor's larger side, each the other's nearest such and neither more than four "
               "times the other's events, become one: the leading and trailing edges of an outline too large for one "

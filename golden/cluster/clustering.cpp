@@ -31,10 +31,11 @@ PacketClusters every_event(const FeatureMatrix& features, const Params& params) 
 }  // namespace
 
 PacketClusterer::PacketClusterer(const Params& params, SensorSize sensor)
-    : params_(params), sensor_(sensor), least_support_per_event_(least_support_per_event(params, sensor)), links_(sensor), split_(params, sensor), edge_(edge_rule(params, sensor)) {}
+    : params_(params), sensor_(sensor), least_support_per_event_(least_support_per_event(params, sensor)), links_(sensor), split_(params, sensor), motion_split_(params, sensor), edge_(edge_rule(params, sensor)) {}
 
 PacketClusters PacketClusterer::cluster(std::span<const Event> events, const FeatureMatrix& features,
-                                        const std::vector<Eigen::Vector4d>& warm_modes, const std::vector<double>& warm_spreads) {
+                                        const std::vector<Eigen::Vector4d>& warm_modes, const std::vector<double>& warm_spreads,
+                                        std::span<const Eigen::Vector2d> meeting_points) {
   if (params_.seeding == Seeding::kEvery) return every_event(features, params_);
   const bool finite = kernel_is_finite(params_.kernel);
   // Cells of half a bandwidth: a climb's ball then visits little more than its own area.
@@ -55,10 +56,11 @@ PacketClusters PacketClusterer::cluster(std::span<const Event> events, const Fea
     climbs_.seed_from_grid(cells_);
   }
   climbs_.seed_from_events();  // after grid seeds: only events no climb reached, if any
-  return finish(events, features, climbs_.labels());
+  return finish(events, features, meeting_points, climbs_.labels());
 }
 
-PacketClusters PacketClusterer::finish(std::span<const Event> events, const FeatureMatrix& features, std::vector<int> raw) {
+PacketClusters PacketClusterer::finish(std::span<const Event> events, const FeatureMatrix& features, std::span<const Eigen::Vector2d> meeting_points,
+                                       std::vector<int> raw) {
   std::vector<Eigen::Vector4d> modes = climbs_.modes();
   const auto n = raw.size();
   PacketClusters result;
@@ -90,6 +92,7 @@ PacketClusters PacketClusterer::finish(std::span<const Event> events, const Feat
   }
   if (params_.join_boxes) join_overlapping_boxes(events, raw);
   if (params_.split_balance > 0) split_.split(events, features, modes, raw);
+  if (params_.motion_split > 0) motion_split_.split(events, features, meeting_points, modes, raw);
   join_edges(events, edge_, static_cast<int>(modes.size()), raw);
   std::vector<int> size(modes.size(), 0);
   for (int c : raw) {

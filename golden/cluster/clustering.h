@@ -12,7 +12,8 @@
 // uniform spread of the packet over the sensor would put in a ball of radius h is noise, and so
 // are the events it would label: a cluster of background activity is no denser than that.
 // With split_balance, a cluster that holds two objects apart from each other is then split in
-// two (polarity_split.h).
+// two (polarity_split.h), and with motion_split, one where two tracks meet that holds two
+// motions (motion_split.h).
 // Either way, clusters with fewer than min_cluster_size events become noise, and of the rest
 // the first max_clusters in the order they opened are kept (the others become noise). The
 // survivors are numbered 0.. in that order. There is no randomness.
@@ -23,6 +24,7 @@
 
 #include "golden/cluster/features.h"
 #include "golden/cluster/mode_links.h"
+#include "golden/cluster/motion_split.h"
 #include "golden/cluster/packet_grid.h"
 #include "golden/cluster/polarity_split.h"
 #include "golden/cluster/seeded_climbs.h"
@@ -45,12 +47,14 @@ class PacketClusterer {
   PacketClusterer(const Params& params, SensorSize sensor);
 
   // `warm_modes` and `warm_spreads`: the previous packet's modes and clusters' spreads, used
-  // when params.warm_start is set.
+  // when params.warm_start is set; `meeting_points`: the confirmed tracks' predictions, used
+  // when params.motion_split is set (motion_split.h).
   PacketClusters cluster(std::span<const Event> events, const FeatureMatrix& features, const std::vector<Eigen::Vector4d>& warm_modes,
-                         const std::vector<double>& warm_spreads);
+                         const std::vector<double>& warm_spreads, std::span<const Eigen::Vector2d> meeting_points = {});
 
  private:
-  PacketClusters finish(std::span<const Event> events, const FeatureMatrix& features, std::vector<int> mode_of);
+  PacketClusters finish(std::span<const Event> events, const FeatureMatrix& features, std::span<const Eigen::Vector2d> meeting_points,
+                        std::vector<int> mode_of);
   void join_overlapping_boxes(std::span<const Event> events, std::vector<int>& raw) const;
 
   Params params_;
@@ -61,6 +65,7 @@ class PacketClusterer {
   SeededClimbs climbs_;
   ModeLinks links_;
   PolaritySplit split_;
+  MotionSplit motion_split_;
   EdgeRule edge_;  // the edge join's (golden/cluster/edge_join.h)
 };
 

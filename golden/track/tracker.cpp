@@ -23,6 +23,14 @@ int MultiTargetTracker::live_tracks() const {
                                         [](const auto& s) { return s.has_value(); }));
 }
 
+std::vector<Eigen::Vector2d> MultiTargetTracker::confirmed_predictions(TimeUs t) const {
+  std::vector<Eigen::Vector2d> at;
+  for (const auto& s : slots_) {
+    if (s && s->confirmed && s->missed == 0) at.push_back(s->filter.predicted_position(t));
+  }
+  return at;
+}
+
 double MultiTargetTracker::gate(const Measurement& z) const {
   return std::max(params_.gate_px, params_.gate_spread * z.spread);
 }

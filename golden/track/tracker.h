@@ -73,6 +73,9 @@ class Tracker {
                                          std::vector<TrackUpdate>& updates) = 0;
   virtual std::int32_t tracks_started() const = 0;
   virtual std::int64_t unassigned_clusters() const { return 0; }
+  // The positions at t of the confirmed tracks measured in the last packet (the points where
+  // Params::motion_split looks for two tracks meeting); none for a rule without a filter.
+  virtual std::vector<Eigen::Vector2d> confirmed_predictions(TimeUs /*t*/) const { return {}; }
 };
 
 // The tracker `params` choose, its filters' process noise that of `sensor` (accel_psd_at).
@@ -86,6 +89,7 @@ class MultiTargetTracker final : public Tracker {
                                  std::vector<TrackUpdate>& updates) override;
 
   int live_tracks() const;
+  std::vector<Eigen::Vector2d> confirmed_predictions(TimeUs t) const override;
   std::int64_t unassigned_clusters() const override { return unassigned_clusters_; }
   std::int32_t tracks_started() const override { return next_id_; }
 

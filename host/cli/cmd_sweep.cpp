@@ -52,6 +52,7 @@ const std::vector<std::string> kSearchGrid = {
     "split-balance=0,0.2,0.3,0.4",
     "split-partial=false,true",
     "split-cell=0.3,0.4,0.5",
+    "motion-split=0,0.4,0.6,0.8",
     "edge-join=0,3,5,8",
     "measure=centroid,box-centre,polarity-midpoint,pixel-centre",
     "min-cluster-size=4,8,16",

@@ -184,6 +184,8 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   expect_refused("--backend fixed --filter-look-ahead-us 10000", "does not implement --filter-look-ahead-us 10000 (only --filter-look-ahead-us 0)");
   expect_refused("--backend rtl --warm-reach 1.5", "does not implement --warm-reach 1.5 (only --warm-reach 0)");
   expect_refused("--backend fixed --packet-span-edge-px 5", "does not implement --packet-span-edge-px 5 (only --packet-span-edge-px 0)");
+  expect_refused("--backend fixed --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
+  expect_refused("--backend rtl --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
   // Nor the measurement noise from the clusters' spreads, which the host build and the C++
   // cores hold.
   expect_refused("--backend rtl --core arty --meas-noise-from-spread true",

@@ -13,6 +13,7 @@
 #include "host/eval/family_eval.h"
 #include "host/eval/kmeans.h"
 #include "host/eval/tracking_metrics.h"
+#include "host/gen/family.h"
 #include "tests/support/command.h"
 #include "tests/support/encoders.h"
 #include "tests/support/scenes.h"
@@ -333,6 +334,19 @@ TEST(TrackingMetrics, ClearMotIgnoresATrackOnAnObjectWithoutATrueCentre) {
   const ClearMot by_position = tracking_report(updates, centres, 2, 2.5).mot;
   EXPECT_EQ(by_position.ignored, 0);
   EXPECT_EQ(by_position.false_positives, 22);  // without labels nothing says what track 2 measured
+}
+
+TEST(Evaluation, TheMotionSplitPartsFastShapesFromTheSlowOnesTheyCross) {
+  // A tuning member where two fast shapes cross slow ones (128x128, 46 k events): where two
+  // tracks meet, the split by motion gives each its own events back (golden/cluster/motion_split.h).
+  const Scene scene = generate_scene(gen::family_scene("crossing", 3));
+  Params split = preset("evms");
+  split.motion_split = 0.6;
+  const Chunking ten_ms{Chunking::Kind::kTime, 10000};
+  const Evaluation whole = evaluate(scene, preset("evms"), "golden", ten_ms);
+  const Evaluation parted = evaluate(scene, split, "golden", ten_ms);
+  EXPECT_GT(parted.scores.f, whole.scores.f + 0.01);
+  EXPECT_LT(parted.tracking.all_kalman.mean, whole.tracking.all_kalman.mean);
 }
 
 TEST(Evaluation, OcclusionChunksAreRecognised) {

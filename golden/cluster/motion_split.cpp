@@ -1,0 +1,185 @@
+#include "golden/cluster/motion_split.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+namespace evms::golden {
+namespace {
+
+constexpr int kNeighbourPx = 2;            // the slope's plane: 5x5 pixels
+constexpr TimeUs kNeighbourWindowUs = 30000;
+constexpr int kLeastNeighbours = 6;        // events on the plane, the event's own among them
+constexpr int kLeastClusterEvents = 200;
+constexpr int kBoxMarginPx = 2;
+constexpr int kMeetingPoints = 2;
+constexpr double kDistanceWeight = 0.5;    // per RMS radius, against a velocity's residual of at most 1
+constexpr double kNoSlopeResidual = 0.5;
+constexpr int kRounds = 8;
+constexpr int kLeastPartEvents = 64;
+constexpr double kLeastVelocityDifference = 0.3;  // times the faster part's speed
+
+// How well velocity v (px/s) explains an event of slope g (s/px).
+double residual(const Eigen::Vector2d& g, const Eigen::Vector2d& v) { return std::min(1.0, std::abs(g.dot(v) - 1.0)); }
+
+// The velocity that explains the slopes of `sloped` best: least squares on slope · v = 1. Slopes
+// that all point one way (a straight edge) fix only the velocity along them: the least-norm
+// solution.
+Eigen::Vector2d fit_velocity(std::span<const Eigen::Vector2d> slope, std::span<const int> sloped) {
+  Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
+  for (int i : sloped) normal += slope[i] * slope[i].transpose(), rhs += slope[i];
+  if (std::abs(normal.determinant()) < 1e-30) return normal.completeOrthogonalDecomposition().solve(rhs);
+  return normal.ldlt().solve(rhs);
+}
+
+}  // namespace
+
+MotionSplit::MotionSplit(const Params& params, SensorSize sensor)
+    : gain_(params.motion_split), width_(sensor.width), height_(sensor.height),
+      newest_on_pixel_(static_cast<size_t>(sensor.width) * sensor.height, -1) {}
+
+bool MotionSplit::slope_of(std::span<const Event> events, size_t i, Eigen::Vector2d& slope) const {
+  const Event& e = events[i];
+  double sx = 0, sy = 0, st = 0, sxx = 0, syy = 0, sxy = 0, sxt = 0, syt = 0;
+  int m = 0;
+  for (int dy = -kNeighbourPx; dy <= kNeighbourPx; ++dy) {
+    for (int dx = -kNeighbourPx; dx <= kNeighbourPx; ++dx) {
+      const int x = e.x + dx, y = e.y + dy;
+      if (x < 0 || y < 0 || x >= width_ || y >= height_) continue;
+      for (int j = newest_on_pixel_[static_cast<size_t>(y) * width_ + x]; j >= 0; j = previous_on_pixel_[static_cast<size_t>(j)]) {
+        const Event& f = events[static_cast<size_t>(j)];
+        if (f.p != e.p || std::abs(f.t - e.t) > kNeighbourWindowUs) continue;
+        const double t = static_cast<double>(f.t - e.t) * 1e-6;
+        sx += dx, sy += dy, st += t, sxx += dx * dx, syy += dy * dy, sxy += dx * dy, sxt += dx * t, syt += dy * t;
+        ++m;
+      }
+    }
+  }
+  if (m < kLeastNeighbours) return false;
+  const double cxx = sxx - sx * sx / m, cyy = syy - sy * sy / m, cxy = sxy - sx * sy / m;
+  const double cxt = sxt - sx * st / m, cyt = syt - sy * st / m;
+  const double det = cxx * cyy - cxy * cxy;
+  // Neighbours along one line leave the slope across it unknown.
+  if (det <= 0 || det < 1e-6 * (cxx + cyy) * (cxx + cyy)) return false;
+  slope = {(cyy * cxt - cxy * cyt) / det, (cxx * cyt - cxy * cxt) / det};
+  return slope.squaredNorm() >= 1e-14;
+}
+
+bool MotionSplit::parts_of(std::span<const Event> events, std::span<const int> members, std::vector<int>& part) const {
+  std::vector<int> sloped;
+  double mx = 0, my = 0;
+  for (int i : members) {
+    if (has_slope_[i]) sloped.push_back(i);
+    mx += events[i].x, my += events[i].y;
+  }
+  if (sloped.size() * 3 < members.size()) return false;
+  mx /= static_cast<double>(members.size()), my /= static_cast<double>(members.size());
+  const Eigen::Vector2d one = fit_velocity(slope_, sloped);
+  double one_residual = 0;
+  for (int i : sloped) one_residual += residual(slope_[i], one);
+
+  // The first cut: across the principal axis of the events' pixels.
+  double sxx = 0, syy = 0, sxy = 0;
+  for (int i : members) {
+    const double dx = events[i].x - mx, dy = events[i].y - my;
+    sxx += dx * dx, syy += dy * dy, sxy += dx * dy;
+  }
+  const double radius = std::sqrt((sxx + syy) / static_cast<double>(members.size())) + 1e-9;
+  const double angle = 0.5 * std::atan2(2 * sxy, sxx - syy);
+  const double ax = std::cos(angle), ay = std::sin(angle);
+  part.resize(members.size());
+  for (size_t k = 0; k < members.size(); ++k) part[k] = ((events[members[k]].x - mx) * ax + (events[members[k]].y - my) * ay) > 0;
+
+  Eigen::Vector2d velocity[2], centre[2];
+  double two_residual = 0;
+  int sloped_in[2] = {0, 0};
+  std::vector<int> sloped_of[2];
+  for (int round = 0; round < kRounds; ++round) {
+    sloped_of[0].clear(), sloped_of[1].clear();
+    centre[0] = centre[1] = Eigen::Vector2d::Zero();
+    int count[2] = {0, 0};
+    for (size_t k = 0; k < members.size(); ++k) {
+      const int i = members[k];
+      centre[part[k]] += Eigen::Vector2d(events[i].x, events[i].y), ++count[part[k]];
+      if (has_slope_[i]) sloped_of[part[k]].push_back(i);
+    }
+    if (count[0] == 0 || count[1] == 0 || sloped_of[0].size() < 3 || sloped_of[1].size() < 3) return false;
+    centre[0] /= count[0], centre[1] /= count[1];
+    velocity[0] = fit_velocity(slope_, sloped_of[0]), velocity[1] = fit_velocity(slope_, sloped_of[1]);
+    two_residual = 0;
+    sloped_in[0] = sloped_in[1] = 0;
+    for (size_t k = 0; k < members.size(); ++k) {
+      const int i = members[k];
+      const Eigen::Vector2d at(events[i].x, events[i].y);
+      double best = 1e300;
+      for (int q = 0; q < 2; ++q) {
+        const double cost = (has_slope_[i] ? residual(slope_[i], velocity[q]) : kNoSlopeResidual) + kDistanceWeight * (at - centre[q]).norm() / radius;
+        if (cost < best) best = cost, part[k] = q;
+      }
+      if (has_slope_[i]) two_residual += residual(slope_[i], velocity[part[k]]), ++sloped_in[part[k]];
+    }
+  }
+  const double faster = std::max(velocity[0].norm(), velocity[1].norm());
+  if (two_residual > gain_ * one_residual) return false;
+  if (static_cast<size_t>(std::min(sloped_in[0], sloped_in[1])) * 5 < sloped.size()) return false;
+  if ((velocity[0] - velocity[1]).norm() < kLeastVelocityDifference * faster) return false;
+  const auto in_second = static_cast<int>(std::count(part.begin(), part.end(), 1));
+  return std::min<int>(in_second, static_cast<int>(members.size()) - in_second) >= kLeastPartEvents;
+}
+
+void MotionSplit::split(std::span<const Event> events, const FeatureMatrix& features, std::span<const Eigen::Vector2d> meeting_points,
+                        std::vector<Eigen::Vector4d>& modes, std::vector<int>& cluster_of) {
+  if (meeting_points.size() < static_cast<size_t>(kMeetingPoints)) return;
+  const size_t n = events.size();
+  const size_t clusters = modes.size();
+  std::vector<std::vector<int>> members(clusters);
+  for (size_t i = 0; i < n; ++i) {
+    if (cluster_of[i] >= 0) members[static_cast<size_t>(cluster_of[i])].push_back(static_cast<int>(i));
+  }
+  // The clusters where two tracks meet.
+  std::vector<size_t> looked_at;
+  for (size_t c = 0; c < clusters; ++c) {
+    if (members[c].size() < static_cast<size_t>(kLeastClusterEvents)) continue;
+    int x0 = width_, y0 = height_, x1 = -1, y1 = -1;
+    for (int i : members[c]) {
+      x0 = std::min<int>(x0, events[i].x), x1 = std::max<int>(x1, events[i].x);
+      y0 = std::min<int>(y0, events[i].y), y1 = std::max<int>(y1, events[i].y);
+    }
+    const auto held = std::count_if(meeting_points.begin(), meeting_points.end(), [&](const Eigen::Vector2d& q) {
+      return q.x() >= x0 - kBoxMarginPx && q.x() <= x1 + kBoxMarginPx && q.y() >= y0 - kBoxMarginPx && q.y() <= y1 + kBoxMarginPx;
+    });
+    if (held >= kMeetingPoints) looked_at.push_back(c);
+  }
+  if (looked_at.empty()) return;
+
+  previous_on_pixel_.assign(n, -1);
+  for (size_t i = 0; i < n; ++i) {
+    int& newest = newest_on_pixel_[static_cast<size_t>(events[i].y) * width_ + events[i].x];
+    previous_on_pixel_[i] = newest;
+    newest = static_cast<int>(i);
+  }
+  slope_.resize(n);
+  has_slope_.assign(n, 0);
+  for (size_t c : looked_at) {
+    for (int i : members[c]) has_slope_[i] = slope_of(events, static_cast<size_t>(i), slope_[i]);
+  }
+  std::vector<int> part;
+  for (size_t c : looked_at) {
+    if (!parts_of(events, members[c], part)) continue;
+    Eigen::Vector4d sum[2] = {Eigen::Vector4d::Zero(), Eigen::Vector4d::Zero()};
+    int count[2] = {0, 0};
+    const int second = static_cast<int>(modes.size());
+    for (size_t k = 0; k < members[c].size(); ++k) {
+      const int i = members[c][k];
+      sum[part[k]] += features.col(i), ++count[part[k]];
+      if (part[k] == 1) cluster_of[i] = second;
+    }
+    modes[c] = sum[0] / count[0];
+    modes.push_back(sum[1] / count[1]);
+  }
+  for (const Event& e : events) newest_on_pixel_[static_cast<size_t>(e.y) * width_ + e.x] = -1;
+}
+
+}  // namespace evms::golden

@@ -1,0 +1,65 @@
+// Two objects that one cluster holds where their tracks meet, told apart by their motions.
+//
+// An event's slope is the gradient (s/px) of the plane fitted by least squares to the times of
+// its packet's events of the same polarity on the 5x5 pixels around it, within 30 ms of it (at
+// least 6 of them, the fit not degenerate). An edge moving at velocity v fires so that slope · v
+// = 1, so a velocity explains an event by |slope · v - 1| (capped at 1), and the velocity that
+// explains a set of events best is the least-squares solution of slope · v = 1 over them.
+//
+// A cluster is looked at when it holds at least 200 events, at least a third of them with a
+// slope, and its bounding box grown by 2 px holds two or more of the positions the caller passes
+// (the tracker's predictions of its confirmed tracks matched in the packet before, at the
+// packet's middle event): the only place where two objects can share a cluster and be tracked
+// apart. Its events are cut in two across the principal axis of their pixels, then each event
+// goes to the part whose velocity explains it better, plus 0.5 times its distance from the
+// part's centre over the cluster's RMS radius (an event without a slope counts 0.5 for the
+// velocity); 8 such rounds, each part's velocity and centre fitted anew. The cluster splits when
+// the two velocities explain its sloped events with at most motion_split times the residual of
+// one velocity fitted to them all, the velocities differ by at least 0.3 times the faster one's
+// speed, each part holds a fifth of the sloped events and 64 events. The second part becomes a
+// new cluster, appended to the modes; each part takes the mean of its events' features as its
+// mode.
+//
+// Why: a fast object crossing a slow one joins it in one cluster for as long as their outlines
+// touch, and no rule on positions alone (polarity_split.h, the links' distance) can part them.
+// docs/sweep.md ("Splitting a cluster by its events' motion") has the measurements. Golden
+// only: the fixed-point core refuses it (host/backend/core_config.h).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "golden/cluster/features.h"
+#include "types/event.h"
+#include "types/params.h"
+
+namespace evms::golden {
+
+class MotionSplit {
+ public:
+  MotionSplit(const Params& params, SensorSize sensor);
+
+  // `cluster_of`: per event, a cluster in 0 .. modes.size() - 1, or -1. `meeting_points`: the
+  // positions (px) of which a cluster's box must hold two. Each split appends a cluster to
+  // `modes` and relabels the events of its second part.
+  void split(std::span<const Event> events, const FeatureMatrix& features, std::span<const Eigen::Vector2d> meeting_points,
+             std::vector<Eigen::Vector4d>& modes, std::vector<int>& cluster_of);
+
+ private:
+  // Event i's slope, when its neighbours give one (newest_on_pixel_ and previous_on_pixel_ hold
+  // the packet's events).
+  bool slope_of(std::span<const Event> events, size_t i, Eigen::Vector2d& slope) const;
+  // The part (0 or 1) of each of `members`, or false when the cluster stays whole.
+  bool parts_of(std::span<const Event> events, std::span<const int> members, std::vector<int>& part) const;
+
+  double gain_;
+  int width_, height_;
+  std::vector<int> newest_on_pixel_;  // per pixel: the packet's last event on it, or -1
+  std::vector<int> previous_on_pixel_;  // per event: the packet's previous event on its pixel, or -1
+  std::vector<Eigen::Vector2d> slope_;  // per event of the clusters looked at
+  std::vector<char> has_slope_;
+};
+
+}  // namespace evms::golden
