@@ -30,7 +30,11 @@ Eigen::Vector2d fit_velocity(std::span<const Eigen::Vector2d> slope, std::span<c
   Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
   Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
   for (int i : sloped) normal += slope[i] * slope[i].transpose(), rhs += slope[i];
-  if (std::abs(normal.determinant()) < 1e-30) return normal.completeOrthogonalDecomposition().solve(rhs);
+  if (std::abs(normal.determinant()) < 1e-30) {
+    // Rank one, normal = s u u^T with s its trace: its pseudo-inverse is normal / s^2.
+    const double trace = normal.trace();
+    return trace > 0 ? Eigen::Vector2d(normal * rhs / (trace * trace)) : Eigen::Vector2d::Zero();
+  }
   return normal.ldlt().solve(rhs);
 }
 
@@ -38,28 +42,36 @@ Eigen::Vector2d fit_velocity(std::span<const Eigen::Vector2d> slope, std::span<c
 
 MotionSplit::MotionSplit(const Params& params, SensorSize sensor)
     : gain_(params.motion_split), width_(sensor.width), height_(sensor.height),
-      newest_on_pixel_(static_cast<size_t>(sensor.width) * sensor.height, -1) {}
+      on_pixel_(2 * static_cast<size_t>(sensor.width) * sensor.height) {}
 
-bool MotionSplit::slope_of(std::span<const Event> events, size_t i, Eigen::Vector2d& slope) const {
+bool MotionSplit::slope_of(std::span<const Event> events, size_t i, bool whole_packet, Eigen::Vector2d& slope) const {
   const Event& e = events[i];
-  double sx = 0, sy = 0, st = 0, sxx = 0, syy = 0, sxy = 0, sxt = 0, syt = 0;
-  int m = 0;
+  // Sums over the neighbours of their offsets (px) and times after e (us), exact in integers.
+  std::int64_t m = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, st = 0, sxt = 0, syt = 0;
   for (int dy = -kNeighbourPx; dy <= kNeighbourPx; ++dy) {
     for (int dx = -kNeighbourPx; dx <= kNeighbourPx; ++dx) {
       const int x = e.x + dx, y = e.y + dy;
       if (x < 0 || y < 0 || x >= width_ || y >= height_) continue;
-      for (int j = newest_on_pixel_[static_cast<size_t>(y) * width_ + x]; j >= 0; j = previous_on_pixel_[static_cast<size_t>(j)]) {
-        const Event& f = events[static_cast<size_t>(j)];
-        if (f.p != e.p || std::abs(f.t - e.t) > kNeighbourWindowUs) continue;
-        const double t = static_cast<double>(f.t - e.t) * 1e-6;
-        sx += dx, sy += dy, st += t, sxx += dx * dx, syy += dy * dy, sxy += dx * dy, sxt += dx * t, syt += dy * t;
-        ++m;
+      const PixelEvents& pixel = on_pixel_[pixel_list(e.p, x, y)];
+      std::int64_t count = 0, after = 0;
+      if (whole_packet) {
+        count = pixel.count, after = pixel.time_sum - count * e.t;
+      } else {
+        for (int j = pixel.newest; j >= 0; j = previous_on_pixel_[static_cast<size_t>(j)]) {
+          const TimeUs dt = events[static_cast<size_t>(j)].t - e.t;
+          if (std::abs(dt) <= kNeighbourWindowUs) ++count, after += dt;
+        }
       }
+      m += count, sx += dx * count, sy += dy * count, sxx += dx * dx * count, syy += dy * dy * count, sxy += dx * dy * count;
+      st += after, sxt += dx * after, syt += dy * after;
     }
   }
   if (m < kLeastNeighbours) return false;
-  const double cxx = sxx - sx * sx / m, cyy = syy - sy * sy / m, cxy = sxy - sx * sy / m;
-  const double cxt = sxt - sx * st / m, cyt = syt - sy * st / m;
+  const double n = static_cast<double>(m);
+  const double cxx = static_cast<double>(sxx) - static_cast<double>(sx * sx) / n, cyy = static_cast<double>(syy) - static_cast<double>(sy * sy) / n;
+  const double cxy = static_cast<double>(sxy) - static_cast<double>(sx * sy) / n;
+  const double cxt = (static_cast<double>(sxt) - static_cast<double>(sx) * static_cast<double>(st) / n) * 1e-6;
+  const double cyt = (static_cast<double>(syt) - static_cast<double>(sy) * static_cast<double>(st) / n) * 1e-6;
   const double det = cxx * cyy - cxy * cxy;
   // Neighbours along one line leave the slope across it unknown.
   if (det <= 0 || det < 1e-6 * (cxx + cyy) * (cxx + cyy)) return false;
@@ -110,16 +122,21 @@ bool MotionSplit::parts_of(std::span<const Event> events, std::span<const int> m
     velocity[0] = fit_velocity(slope_, sloped_of[0]), velocity[1] = fit_velocity(slope_, sloped_of[1]);
     two_residual = 0;
     sloped_in[0] = sloped_in[1] = 0;
+    bool moved = false;
     for (size_t k = 0; k < members.size(); ++k) {
       const int i = members[k];
       const Eigen::Vector2d at(events[i].x, events[i].y);
       double best = 1e300;
+      int best_part = 0;
       for (int q = 0; q < 2; ++q) {
         const double cost = (has_slope_[i] ? residual(slope_[i], velocity[q]) : kNoSlopeResidual) + kDistanceWeight * (at - centre[q]).norm() / radius;
-        if (cost < best) best = cost, part[k] = q;
+        if (cost < best) best = cost, best_part = q;
       }
+      moved = moved || best_part != part[k];
+      part[k] = best_part;
       if (has_slope_[i]) two_residual += residual(slope_[i], velocity[part[k]]), ++sloped_in[part[k]];
     }
+    if (!moved) break;  // the next round would fit the same parts again
   }
   const double faster = std::max(velocity[0].norm(), velocity[1].norm());
   if (two_residual > gain_ * one_residual) return false;
@@ -154,16 +171,19 @@ void MotionSplit::split(std::span<const Event> events, const FeatureMatrix& feat
   }
   if (looked_at.empty()) return;
 
+  // Each pixel's events of each polarity: a list, and their count and summed times for a packet
+  // short enough that every two of its events lie within the neighbours' window.
+  const bool whole_packet = events.back().t - events.front().t <= kNeighbourWindowUs;
   previous_on_pixel_.assign(n, -1);
   for (size_t i = 0; i < n; ++i) {
-    int& newest = newest_on_pixel_[static_cast<size_t>(events[i].y) * width_ + events[i].x];
-    previous_on_pixel_[i] = newest;
-    newest = static_cast<int>(i);
+    PixelEvents& pixel = on_pixel_[pixel_list(events[i].p, events[i].x, events[i].y)];
+    previous_on_pixel_[i] = pixel.newest;
+    pixel.newest = static_cast<int>(i), ++pixel.count, pixel.time_sum += events[i].t;
   }
   slope_.resize(n);
   has_slope_.assign(n, 0);
   for (size_t c : looked_at) {
-    for (int i : members[c]) has_slope_[i] = slope_of(events, static_cast<size_t>(i), slope_[i]);
+    for (int i : members[c]) has_slope_[i] = slope_of(events, static_cast<size_t>(i), whole_packet, slope_[i]);
   }
   std::vector<int> part;
   for (size_t c : looked_at) {
@@ -179,7 +199,7 @@ void MotionSplit::split(std::span<const Event> events, const FeatureMatrix& feat
     modes[c] = sum[0] / count[0];
     modes.push_back(sum[1] / count[1]);
   }
-  for (const Event& e : events) newest_on_pixel_[static_cast<size_t>(e.y) * width_ + e.x] = -1;
+  for (const Event& e : events) on_pixel_[pixel_list(e.p, e.x, e.y)] = {};
 }
 
 }  // namespace evms::golden

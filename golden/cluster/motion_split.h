@@ -26,6 +26,7 @@
 // only: the fixed-point core refuses it (host/backend/core_config.h).
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -48,16 +49,24 @@ class MotionSplit {
              std::vector<Eigen::Vector4d>& modes, std::vector<int>& cluster_of);
 
  private:
-  // Event i's slope, when its neighbours give one (newest_on_pixel_ and previous_on_pixel_ hold
-  // the packet's events).
-  bool slope_of(std::span<const Event> events, size_t i, Eigen::Vector2d& slope) const;
+  // Event i's slope, when its neighbours give one (the pixel lists below hold the packet's
+  // events; `whole_packet`: every two of them lie within the neighbours' window).
+  bool slope_of(std::span<const Event> events, size_t i, bool whole_packet, Eigen::Vector2d& slope) const;
   // The part (0 or 1) of each of `members`, or false when the cluster stays whole.
   bool parts_of(std::span<const Event> events, std::span<const int> members, std::vector<int>& part) const;
 
   double gain_;
   int width_, height_;
-  std::vector<int> newest_on_pixel_;  // per pixel: the packet's last event on it, or -1
-  std::vector<int> previous_on_pixel_;  // per event: the packet's previous event on its pixel, or -1
+  size_t pixel_list(std::uint8_t polarity, int x, int y) const { return (static_cast<size_t>(polarity != 0) * height_ + y) * width_ + x; }
+  // Per polarity and pixel, the packet's events of it there: the last one (or -1), how many, and
+  // their times summed.
+  struct PixelEvents {
+    int newest = -1;
+    int count = 0;
+    std::int64_t time_sum = 0;
+  };
+  std::vector<PixelEvents> on_pixel_;
+  std::vector<int> previous_on_pixel_;  // per event: the packet's previous event of its polarity on its pixel, or -1
   std::vector<Eigen::Vector2d> slope_;  // per event of the clusters looked at
   std::vector<char> has_slope_;
 };
