@@ -9,7 +9,6 @@ namespace evms::golden {
 namespace {
 
 constexpr int kNeighbourPx = 2;            // the slope's plane: 5x5 pixels
-constexpr TimeUs kNeighbourWindowUs = 30000;
 constexpr int kLeastNeighbours = 6;        // events on the plane, the event's own among them
 constexpr int kLeastClusterEvents = 200;
 constexpr int kBoxMarginPx = 2;
@@ -42,26 +41,18 @@ Eigen::Vector2d fit_velocity(std::span<const Eigen::Vector2d> slope, std::span<c
 
 MotionSplit::MotionSplit(const Params& params, SensorSize sensor)
     : gain_(params.motion_split), width_(sensor.width), height_(sensor.height),
-      on_pixel_(2 * static_cast<size_t>(sensor.width) * sensor.height) {}
+      on_pixel_(params.motion_split > 0 ? 2 * static_cast<size_t>(sensor.width) * sensor.height : 0) {}
 
-bool MotionSplit::slope_of(std::span<const Event> events, size_t i, bool whole_packet, Eigen::Vector2d& slope) const {
-  const Event& e = events[i];
-  // Sums over the neighbours of their offsets (px) and times after e (us), exact in integers.
+bool MotionSplit::slope_at(std::uint8_t polarity, int x0, int y0, Eigen::Vector2d& slope) const {
+  // Sums over the neighbours of their offsets (px) and times after the packet's first event (us),
+  // exact in integers.
   std::int64_t m = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, st = 0, sxt = 0, syt = 0;
   for (int dy = -kNeighbourPx; dy <= kNeighbourPx; ++dy) {
     for (int dx = -kNeighbourPx; dx <= kNeighbourPx; ++dx) {
-      const int x = e.x + dx, y = e.y + dy;
+      const int x = x0 + dx, y = y0 + dy;
       if (x < 0 || y < 0 || x >= width_ || y >= height_) continue;
-      const PixelEvents& pixel = on_pixel_[pixel_list(e.p, x, y)];
-      std::int64_t count = 0, after = 0;
-      if (whole_packet) {
-        count = pixel.count, after = pixel.time_sum - count * e.t;
-      } else {
-        for (int j = pixel.newest; j >= 0; j = previous_on_pixel_[static_cast<size_t>(j)]) {
-          const TimeUs dt = events[static_cast<size_t>(j)].t - e.t;
-          if (std::abs(dt) <= kNeighbourWindowUs) ++count, after += dt;
-        }
-      }
+      const PixelEvents& pixel = on_pixel_[pixel_index(polarity, x, y)];
+      const std::int64_t count = pixel.count, after = pixel.time_sum;
       m += count, sx += dx * count, sy += dy * count, sxx += dx * dx * count, syy += dy * dy * count, sxy += dx * dy * count;
       st += after, sxt += dx * after, syt += dy * after;
     }
@@ -171,19 +162,24 @@ void MotionSplit::split(std::span<const Event> events, const FeatureMatrix& feat
   }
   if (looked_at.empty()) return;
 
-  // Each pixel's events of each polarity: a list, and their count and summed times for a packet
-  // short enough that every two of its events lie within the neighbours' window.
-  const bool whole_packet = events.back().t - events.front().t <= kNeighbourWindowUs;
-  previous_on_pixel_.assign(n, -1);
-  for (size_t i = 0; i < n; ++i) {
-    PixelEvents& pixel = on_pixel_[pixel_list(events[i].p, events[i].x, events[i].y)];
-    previous_on_pixel_[i] = pixel.newest;
-    pixel.newest = static_cast<int>(i), ++pixel.count, pixel.time_sum += events[i].t;
+  for (const Event& e : events) {
+    PixelEvents& pixel = on_pixel_[pixel_index(e.p, e.x, e.y)];
+    ++pixel.count, pixel.time_sum += e.t - events.front().t;
   }
+  slopes_.clear();
   slope_.resize(n);
   has_slope_.assign(n, 0);
   for (size_t c : looked_at) {
-    for (int i : members[c]) has_slope_[i] = slope_of(events, static_cast<size_t>(i), whole_packet, slope_[i]);
+    for (int i : members[c]) {
+      PixelEvents& pixel = on_pixel_[pixel_index(events[i].p, events[i].x, events[i].y)];
+      if (pixel.slope == kSlopeUnknown) {
+        Eigen::Vector2d slope;
+        pixel.slope = slope_at(events[i].p, events[i].x, events[i].y, slope) ? static_cast<int>(slopes_.size()) : kNoSlope;
+        if (pixel.slope >= 0) slopes_.push_back(slope);
+      }
+      has_slope_[i] = pixel.slope >= 0;
+      if (has_slope_[i]) slope_[i] = slopes_[static_cast<size_t>(pixel.slope)];
+    }
   }
   std::vector<int> part;
   for (size_t c : looked_at) {
@@ -199,7 +195,7 @@ void MotionSplit::split(std::span<const Event> events, const FeatureMatrix& feat
     modes[c] = sum[0] / count[0];
     modes.push_back(sum[1] / count[1]);
   }
-  for (const Event& e : events) on_pixel_[pixel_list(e.p, e.x, e.y)] = {};
+  for (const Event& e : events) on_pixel_[pixel_index(e.p, e.x, e.y)] = {};
 }
 
 }  // namespace evms::golden

@@ -1,8 +1,10 @@
 // Two objects that one cluster holds where their tracks meet, told apart by their motions.
 //
 // An event's slope is the gradient (s/px) of the plane fitted by least squares to the times of
-// its packet's events of the same polarity on the 5x5 pixels around it, within 30 ms of it (at
-// least 6 of them, the fit not degenerate). An edge moving at velocity v fires so that slope · v
+// its packet's events of the same polarity on the 5x5 pixels around it (at least 6 of them, the
+// fit not degenerate): sums of each pixel's count and summed times, exact in integers. The plane's
+// gradient does not depend on where its time starts, so the events of one pixel and polarity share
+// one slope. An edge moving at velocity v fires so that slope · v
 // = 1, so a velocity explains an event by |slope · v - 1| (capped at 1), and the velocity that
 // explains a set of events best is the least-squares solution of slope · v = 1 over them.
 //
@@ -49,24 +51,25 @@ class MotionSplit {
              std::vector<Eigen::Vector4d>& modes, std::vector<int>& cluster_of);
 
  private:
-  // Event i's slope, when its neighbours give one (the pixel lists below hold the packet's
-  // events; `whole_packet`: every two of them lie within the neighbours' window).
-  bool slope_of(std::span<const Event> events, size_t i, bool whole_packet, Eigen::Vector2d& slope) const;
+  // The slope of the events of `polarity` on pixel (x, y), when its neighbours give one (on_pixel_
+  // holds the packet's events).
+  bool slope_at(std::uint8_t polarity, int x, int y, Eigen::Vector2d& slope) const;
   // The part (0 or 1) of each of `members`, or false when the cluster stays whole.
   bool parts_of(std::span<const Event> events, std::span<const int> members, std::vector<int>& part) const;
 
   double gain_;
   int width_, height_;
-  size_t pixel_list(std::uint8_t polarity, int x, int y) const { return (static_cast<size_t>(polarity != 0) * height_ + y) * width_ + x; }
-  // Per polarity and pixel, the packet's events of it there: the last one (or -1), how many, and
-  // their times summed.
+  size_t pixel_index(std::uint8_t polarity, int x, int y) const { return (static_cast<size_t>(polarity != 0) * height_ + y) * width_ + x; }
+  // Per polarity and pixel, the packet's events of it there: how many, their times after the
+  // packet's first event summed, and their slope once known (an index into slopes_).
+  static constexpr int kSlopeUnknown = -1, kNoSlope = -2;
   struct PixelEvents {
-    int newest = -1;
     int count = 0;
+    int slope = kSlopeUnknown;
     std::int64_t time_sum = 0;
   };
-  std::vector<PixelEvents> on_pixel_;
-  std::vector<int> previous_on_pixel_;  // per event: the packet's previous event of its polarity on its pixel, or -1
+  std::vector<PixelEvents> on_pixel_;  // empty with the split off
+  std::vector<Eigen::Vector2d> slopes_;
   std::vector<Eigen::Vector2d> slope_;  // per event of the clusters looked at
   std::vector<char> has_slope_;
 };
