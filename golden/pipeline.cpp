@@ -38,6 +38,7 @@ Pipeline::Pipeline(const Params& params, SensorSize sensor)
   packet_.reserve(static_cast<size_t>(params.packet_size));
   if (params.measure == Measure::kPixelCentre) {
     pixel_taken_.assign((static_cast<size_t>(sensor.width) * static_cast<size_t>(sensor.height) + 63) / 64, 0);
+    if (params.motion_measure > 0) motion_measure_.emplace(params, sensor);
   }
 }
 
@@ -185,8 +186,13 @@ void Pipeline::close_packet(OutputSink& out) {
     }
     const auto packet_index = [&](size_t i) { return index_of_.empty() ? i : static_cast<size_t>(index_of_[i]); };
     const FeatureMatrix features = packet_features(supported, sensor_, params_);
-    const std::vector<Eigen::Vector2d> meeting_points =
-        params_.motion_split > 0 && !supported.empty() ? tracker_->confirmed_predictions(supported[supported.size() / 2].t) : std::vector<Eigen::Vector2d>{};
+    // The tracks as they stand before this packet, at its middle event: where the splits and
+    // measurements by motion look for them.
+    const std::vector<TrackPrediction> tracks = (params_.motion_split > 0 || motion_measure_) && !supported.empty()
+                                                    ? tracker_->confirmed_predictions(supported[supported.size() / 2].t)
+                                                    : std::vector<TrackPrediction>{};
+    std::vector<Eigen::Vector2d> meeting_points;
+    for (const TrackPrediction& track : tracks) meeting_points.push_back(track.position);
     const PacketClusters clusters = clusterer_.cluster(supported, features, modes_, spreads_, meeting_points);
     modes_ = clusters.modes;
     spreads_ = clusters.spreads;
@@ -248,6 +254,8 @@ void Pipeline::close_packet(OutputSink& out) {
       if (params_.measure == Measure::kPixelCentre && pixels[c] > 0) m.x = pixel_x[c] / pixels[c], m.y = pixel_y[c] / pixels[c];
       m.t = t0 + static_cast<TimeUs>(sum_t[c] / m.events + 0.5);
     }
+
+    if (motion_measure_) motion_measure_->measure(supported, clusters.cluster_of, tracks, measurements);
 
     updates_.clear();
     const std::vector<std::int32_t> ids = tracker_->step(packet_.back().t, measurements, updates_);

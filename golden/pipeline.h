@@ -17,6 +17,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -26,6 +27,7 @@
 #include "golden/filter/background_activity_filter.h"
 #include "types/output.h"
 #include "types/params.h"
+#include "golden/track/motion_measure.h"
 #include "golden/track/tracker.h"
 
 namespace evms::golden {
@@ -97,6 +99,7 @@ class Pipeline {
   // --measure pixel-centre: one bit a pixel, set where the packet's clustered events fell and
   // cleared again after the packet, so the map stays small enough for the cache (115 kB at 1280x720).
   std::vector<std::uint64_t> pixel_taken_;
+  std::optional<MotionMeasure> motion_measure_;  // with params.motion_measure and the pixel centre
   // --rescue-px: the label of the packet's last labelled event on each pixel, or kNoiseLabel;
   // cleared again after the packet.
   std::vector<std::int32_t> label_at_pixel_;

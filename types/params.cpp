@@ -165,6 +165,10 @@ const std::array kTable = {
               "Kalman prediction), last-measurement (one-to-one against each track's last cluster centre) or "
               "nearest-centre (the previous packet's nearest cluster, as the authors' code)",
               &Params::association, 0, 0, {kAssociationNames}},
+    ParamInfo{"motion-measure", "px/s", "with --measure pixel-centre, a cluster whose box holds the prediction of a "
+              "confirmed track moving at least this fast is measured from the pixels of its events whose time-surface slopes "
+              "that track's velocity explains, when they are half its pixels or more: a fast object without the slow shapes "
+              "it passes over (golden only); 0 = off", &Params::motion_measure, 0, 1e6},
     ParamInfo{"gate-px", "px", "association gate around a track's predicted position",
               &Params::gate_px, 0, 1e6},
     ParamInfo{"gate-spread", "1", "the gate widens to this many times the cluster's spread (RMS radius of "
@@ -387,6 +391,7 @@ std::string validate(const Params& p) {
       return os.str();
     }
   }
+  if (p.motion_measure > 0 && p.measure != Measure::kPixelCentre) return "motion-measure keeps some of a cluster's pixels: it needs --measure pixel-centre";
   return {};
 }
 

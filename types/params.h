@@ -142,6 +142,11 @@ struct Params {
   double init_sigma_vel = 200.0;     // initial velocity uncertainty (P0), px/s
   int max_tracks = 128;              // tracks held at once
 
+  double motion_measure = 0;         // with the pixel centre: a cluster that holds a confirmed track at
+                                     // least this fast (px/s) is measured from the pixels whose slopes
+                                     // its velocity explains (golden/track/motion_measure.h, golden
+                                     // only); 0 = off
+
   // --- labels -----------------------------------------------------------------------------
   int rescue_px = 1;                 // an event the filter dropped takes the label of the nearest
                                      // labelled event of its packet within this many px; 0 = off

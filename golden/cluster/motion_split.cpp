@@ -8,8 +8,6 @@
 namespace evms::golden {
 namespace {
 
-constexpr int kNeighbourPx = 2;            // the slope's plane: 5x5 pixels
-constexpr int kLeastNeighbours = 6;        // events on the plane, the event's own among them
 constexpr int kLeastClusterEvents = 200;
 constexpr int kBoxMarginPx = 2;
 constexpr int kMeetingPoints = 2;
@@ -19,8 +17,8 @@ constexpr int kRounds = 8;
 constexpr int kLeastPartEvents = 64;
 constexpr double kLeastVelocityDifference = 0.3;  // times the faster part's speed
 
-// How well velocity v (px/s) explains an event of slope g (s/px).
-double residual(const Eigen::Vector2d& g, const Eigen::Vector2d& v) { return std::min(1.0, std::abs(g.dot(v) - 1.0)); }
+// How well velocity v (px/s) explains an event of slope g (s/px), capped.
+double residual(const Eigen::Vector2d& g, const Eigen::Vector2d& v) { return std::min(1.0, misfit(g, v)); }
 
 // The velocity that explains the slopes of `sloped` best: least squares on slope · v = 1. Slopes
 // that all point one way (a straight edge) fix only the velocity along them: the least-norm
@@ -41,34 +39,7 @@ Eigen::Vector2d fit_velocity(std::span<const Eigen::Vector2d> slope, std::span<c
 
 MotionSplit::MotionSplit(const Params& params, SensorSize sensor)
     : gain_(params.motion_split), width_(sensor.width), height_(sensor.height),
-      on_pixel_(params.motion_split > 0 ? 2 * static_cast<size_t>(sensor.width) * sensor.height : 0) {}
-
-bool MotionSplit::slope_at(std::uint8_t polarity, int x0, int y0, Eigen::Vector2d& slope) const {
-  // Sums over the neighbours of their offsets (px) and times after the packet's first event (us),
-  // exact in integers.
-  std::int64_t m = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, st = 0, sxt = 0, syt = 0;
-  for (int dy = -kNeighbourPx; dy <= kNeighbourPx; ++dy) {
-    for (int dx = -kNeighbourPx; dx <= kNeighbourPx; ++dx) {
-      const int x = x0 + dx, y = y0 + dy;
-      if (x < 0 || y < 0 || x >= width_ || y >= height_) continue;
-      const PixelEvents& pixel = on_pixel_[pixel_index(polarity, x, y)];
-      const std::int64_t count = pixel.count, after = pixel.time_sum;
-      m += count, sx += dx * count, sy += dy * count, sxx += dx * dx * count, syy += dy * dy * count, sxy += dx * dy * count;
-      st += after, sxt += dx * after, syt += dy * after;
-    }
-  }
-  if (m < kLeastNeighbours) return false;
-  const double n = static_cast<double>(m);
-  const double cxx = static_cast<double>(sxx) - static_cast<double>(sx * sx) / n, cyy = static_cast<double>(syy) - static_cast<double>(sy * sy) / n;
-  const double cxy = static_cast<double>(sxy) - static_cast<double>(sx * sy) / n;
-  const double cxt = (static_cast<double>(sxt) - static_cast<double>(sx) * static_cast<double>(st) / n) * 1e-6;
-  const double cyt = (static_cast<double>(syt) - static_cast<double>(sy) * static_cast<double>(st) / n) * 1e-6;
-  const double det = cxx * cyy - cxy * cxy;
-  // Neighbours along one line leave the slope across it unknown.
-  if (det <= 0 || det < 1e-6 * (cxx + cyy) * (cxx + cyy)) return false;
-  slope = {(cyy * cxt - cxy * cyt) / det, (cxx * cyt - cxy * cxt) / det};
-  return slope.squaredNorm() >= 1e-14;
-}
+      slopes_(params.motion_split > 0 ? std::optional<TimeSurfaceSlopes>(sensor) : std::nullopt) {}
 
 bool MotionSplit::parts_of(std::span<const Event> events, std::span<const int> members, std::vector<int>& part) const {
   std::vector<int> sloped;
@@ -162,23 +133,14 @@ void MotionSplit::split(std::span<const Event> events, const FeatureMatrix& feat
   }
   if (looked_at.empty()) return;
 
-  for (const Event& e : events) {
-    PixelEvents& pixel = on_pixel_[pixel_index(e.p, e.x, e.y)];
-    ++pixel.count, pixel.time_sum += e.t - events.front().t;
-  }
-  slopes_.clear();
+  slopes_->add(events);
   slope_.resize(n);
   has_slope_.assign(n, 0);
   for (size_t c : looked_at) {
     for (int i : members[c]) {
-      PixelEvents& pixel = on_pixel_[pixel_index(events[i].p, events[i].x, events[i].y)];
-      if (pixel.slope == kSlopeUnknown) {
-        Eigen::Vector2d slope;
-        pixel.slope = slope_at(events[i].p, events[i].x, events[i].y, slope) ? static_cast<int>(slopes_.size()) : kNoSlope;
-        if (pixel.slope >= 0) slopes_.push_back(slope);
-      }
-      has_slope_[i] = pixel.slope >= 0;
-      if (has_slope_[i]) slope_[i] = slopes_[static_cast<size_t>(pixel.slope)];
+      const std::optional<Eigen::Vector2d> slope = slopes_->at(events[i]);
+      has_slope_[i] = slope.has_value();
+      if (slope) slope_[i] = *slope;
     }
   }
   std::vector<int> part;
@@ -195,7 +157,7 @@ void MotionSplit::split(std::span<const Event> events, const FeatureMatrix& feat
     modes[c] = sum[0] / count[0];
     modes.push_back(sum[1] / count[1]);
   }
-  for (const Event& e : events) on_pixel_[pixel_index(e.p, e.x, e.y)] = {};
+  slopes_->clear(events);
 }
 
 }  // namespace evms::golden

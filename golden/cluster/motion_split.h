@@ -1,12 +1,9 @@
 // Two objects that one cluster holds where their tracks meet, told apart by their motions.
 //
-// An event's slope is the gradient (s/px) of the plane fitted by least squares to the times of
-// its packet's events of the same polarity on the 5x5 pixels around it (at least 6 of them, the
-// fit not degenerate): sums of each pixel's count and summed times, exact in integers. The plane's
-// gradient does not depend on where its time starts, so the events of one pixel and polarity share
-// one slope. An edge moving at velocity v fires so that slope · v
-// = 1, so a velocity explains an event by |slope · v - 1| (capped at 1), and the velocity that
-// explains a set of events best is the least-squares solution of slope · v = 1 over them.
+// An edge moving at velocity v fires so that the slope of the time surface under its events
+// (time_surface_slopes.h) satisfies slope · v = 1, so a velocity explains an event by
+// |slope · v - 1| (capped at 1), and the velocity that explains a set of events best is the
+// least-squares solution of slope · v = 1 over them.
 //
 // A cluster is looked at when it holds at least 200 events, at least a third of them with a
 // slope, and its bounding box grown by 2 px holds two or more of the positions the caller passes
@@ -28,13 +25,14 @@
 // only: the fixed-point core refuses it (host/backend/core_config.h).
 #pragma once
 
-#include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "golden/cluster/features.h"
+#include "golden/cluster/time_surface_slopes.h"
 #include "types/event.h"
 #include "types/params.h"
 
@@ -51,25 +49,12 @@ class MotionSplit {
              std::vector<Eigen::Vector4d>& modes, std::vector<int>& cluster_of);
 
  private:
-  // The slope of the events of `polarity` on pixel (x, y), when its neighbours give one (on_pixel_
-  // holds the packet's events).
-  bool slope_at(std::uint8_t polarity, int x, int y, Eigen::Vector2d& slope) const;
   // The part (0 or 1) of each of `members`, or false when the cluster stays whole.
   bool parts_of(std::span<const Event> events, std::span<const int> members, std::vector<int>& part) const;
 
   double gain_;
   int width_, height_;
-  size_t pixel_index(std::uint8_t polarity, int x, int y) const { return (static_cast<size_t>(polarity != 0) * height_ + y) * width_ + x; }
-  // Per polarity and pixel, the packet's events of it there: how many, their times after the
-  // packet's first event summed, and their slope once known (an index into slopes_).
-  static constexpr int kSlopeUnknown = -1, kNoSlope = -2;
-  struct PixelEvents {
-    int count = 0;
-    int slope = kSlopeUnknown;
-    std::int64_t time_sum = 0;
-  };
-  std::vector<PixelEvents> on_pixel_;  // empty with the split off
-  std::vector<Eigen::Vector2d> slopes_;
+  std::optional<TimeSurfaceSlopes> slopes_;  // none with the split off
   std::vector<Eigen::Vector2d> slope_;  // per event of the clusters looked at
   std::vector<char> has_slope_;
 };

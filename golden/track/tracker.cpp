@@ -23,10 +23,10 @@ int MultiTargetTracker::live_tracks() const {
                                         [](const auto& s) { return s.has_value(); }));
 }
 
-std::vector<Eigen::Vector2d> MultiTargetTracker::confirmed_predictions(TimeUs t) const {
-  std::vector<Eigen::Vector2d> at;
+std::vector<TrackPrediction> MultiTargetTracker::confirmed_predictions(TimeUs t) const {
+  std::vector<TrackPrediction> at;
   for (const auto& s : slots_) {
-    if (s && s->confirmed && s->missed == 0) at.push_back(s->filter.predicted_position(t));
+    if (s && s->confirmed && s->missed == 0) at.push_back({s->filter.predicted_position(t), s->filter.state().tail<2>()});
   }
   return at;
 }

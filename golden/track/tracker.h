@@ -63,6 +63,11 @@ struct Measurement {
   Box box() const { return {x_min, y_min, x_max, y_max}; }
 };
 
+// A track's predicted position (px) and its velocity (px/s).
+struct TrackPrediction {
+  Eigen::Vector2d position, velocity;
+};
+
 // What every identity rule does with a packet's measurements.
 class Tracker {
  public:
@@ -73,9 +78,10 @@ class Tracker {
                                          std::vector<TrackUpdate>& updates) = 0;
   virtual std::int32_t tracks_started() const = 0;
   virtual std::int64_t unassigned_clusters() const { return 0; }
-  // The positions at t of the confirmed tracks measured in the last packet (the points where
-  // Params::motion_split looks for two tracks meeting); none for a rule without a filter.
-  virtual std::vector<Eigen::Vector2d> confirmed_predictions(TimeUs /*t*/) const { return {}; }
+  // The confirmed tracks measured in the last packet, predicted to t (where Params::motion_split
+  // looks for two tracks meeting, and Params::motion_measure for a fast one); none for a rule
+  // without a filter.
+  virtual std::vector<TrackPrediction> confirmed_predictions(TimeUs /*t*/) const { return {}; }
 };
 
 // The tracker `params` choose, its filters' process noise that of `sensor` (accel_psd_at).
@@ -89,7 +95,7 @@ class MultiTargetTracker final : public Tracker {
                                  std::vector<TrackUpdate>& updates) override;
 
   int live_tracks() const;
-  std::vector<Eigen::Vector2d> confirmed_predictions(TimeUs t) const override;
+  std::vector<TrackPrediction> confirmed_predictions(TimeUs t) const override;
   std::int64_t unassigned_clusters() const override { return unassigned_clusters_; }
   std::int32_t tracks_started() const override { return next_id_; }
 

@@ -75,6 +75,7 @@ const std::vector<std::string> kSearchGrid = {
     "evict-stale=false,true",
     "accel-psd=1000,10000,100000",
     "meas-sigma-px=0.5,1,2",
+    "motion-measure=0,600,1000,1500",
     "meas-noise-from-spread=false,true",
 };
 

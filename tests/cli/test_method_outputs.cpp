@@ -186,6 +186,7 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   expect_refused("--backend fixed --packet-span-edge-px 5", "does not implement --packet-span-edge-px 5 (only --packet-span-edge-px 0)");
   expect_refused("--backend fixed --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
   expect_refused("--backend rtl --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
+  expect_refused("--backend fixed --motion-measure 1000", "does not implement --motion-measure 1000 (only --motion-measure 0)");
   // Nor the measurement noise from the clusters' spreads, which the host build and the C++
   // cores hold.
   expect_refused("--backend rtl --core arty --meas-noise-from-spread true",

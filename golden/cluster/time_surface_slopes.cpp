@@ -1,0 +1,67 @@
+#include "golden/cluster/time_surface_slopes.h"
+
+namespace evms::golden {
+namespace {
+
+constexpr int kNeighbourPx = 2;      // the plane: 5x5 pixels
+constexpr int kLeastNeighbours = 6;  // events on the plane, the event's own among them
+
+}  // namespace
+
+TimeSurfaceSlopes::TimeSurfaceSlopes(SensorSize sensor)
+    : width_(sensor.width), height_(sensor.height), on_pixel_(2 * static_cast<size_t>(sensor.width) * sensor.height) {}
+
+void TimeSurfaceSlopes::add(std::span<const Event> events) {
+  if (events.empty()) return;
+  first_t_ = events.front().t;
+  for (const Event& e : events) {
+    PixelEvents& pixel = on_pixel_[pixel_index(e.p, e.x, e.y)];
+    ++pixel.count, pixel.time_sum += e.t - first_t_;
+  }
+}
+
+void TimeSurfaceSlopes::clear(std::span<const Event> events) {
+  for (const Event& e : events) on_pixel_[pixel_index(e.p, e.x, e.y)] = {};
+  slopes_.clear();
+}
+
+std::optional<Eigen::Vector2d> TimeSurfaceSlopes::at(const Event& e) {
+  PixelEvents& pixel = on_pixel_[pixel_index(e.p, e.x, e.y)];
+  if (pixel.slope == kSlopeUnknown) {
+    const std::optional<Eigen::Vector2d> slope = fit(e.p, e.x, e.y);
+    pixel.slope = slope ? static_cast<int>(slopes_.size()) : kNoSlope;
+    if (slope) slopes_.push_back(*slope);
+  }
+  if (pixel.slope < 0) return std::nullopt;
+  return slopes_[static_cast<size_t>(pixel.slope)];
+}
+
+std::optional<Eigen::Vector2d> TimeSurfaceSlopes::fit(std::uint8_t polarity, int x0, int y0) const {
+  // Sums over the neighbours of their offsets (px) and times after the packet's first event (us),
+  // exact in integers.
+  std::int64_t m = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, st = 0, sxt = 0, syt = 0;
+  for (int dy = -kNeighbourPx; dy <= kNeighbourPx; ++dy) {
+    for (int dx = -kNeighbourPx; dx <= kNeighbourPx; ++dx) {
+      const int x = x0 + dx, y = y0 + dy;
+      if (x < 0 || y < 0 || x >= width_ || y >= height_) continue;
+      const PixelEvents& pixel = on_pixel_[pixel_index(polarity, x, y)];
+      const std::int64_t count = pixel.count, times = pixel.time_sum;
+      m += count, sx += dx * count, sy += dy * count, sxx += dx * dx * count, syy += dy * dy * count, sxy += dx * dy * count;
+      st += times, sxt += dx * times, syt += dy * times;
+    }
+  }
+  if (m < kLeastNeighbours) return std::nullopt;
+  const double n = static_cast<double>(m);
+  const double cxx = static_cast<double>(sxx) - static_cast<double>(sx * sx) / n, cyy = static_cast<double>(syy) - static_cast<double>(sy * sy) / n;
+  const double cxy = static_cast<double>(sxy) - static_cast<double>(sx * sy) / n;
+  const double cxt = (static_cast<double>(sxt) - static_cast<double>(sx) * static_cast<double>(st) / n) * 1e-6;
+  const double cyt = (static_cast<double>(syt) - static_cast<double>(sy) * static_cast<double>(st) / n) * 1e-6;
+  const double det = cxx * cyy - cxy * cxy;
+  // Neighbours along one line leave the slope across it unknown.
+  if (det <= 0 || det < 1e-6 * (cxx + cyy) * (cxx + cyy)) return std::nullopt;
+  const Eigen::Vector2d slope((cyy * cxt - cxy * cyt) / det, (cxx * cyt - cxy * cxt) / det);
+  if (slope.squaredNorm() < 1e-14) return std::nullopt;
+  return slope;
+}
+
+}  // namespace evms::golden
