@@ -12,10 +12,11 @@
 // apart. Its events are cut in two across the principal axis of their pixels, then each event
 // goes to the part whose velocity explains it better, plus 0.5 times its distance from the
 // part's centre over the cluster's RMS radius (an event without a slope counts 0.5 for the
-// velocity); 8 such rounds, each part's velocity and centre fitted anew. The cluster splits when
-// the two velocities explain its sloped events with at most motion_split times the residual of
-// one velocity fitted to them all, the velocities differ by at least 0.3 times the faster one's
-// speed, each part holds a fifth of the sloped events and 64 events. The second part becomes a
+// velocity); up to 8 such rounds, each part's velocity and centre fitted anew, until no event
+// changes part. The cluster splits when the two velocities explain its sloped events with at
+// most motion_split times the residual of one velocity fitted to them all, the velocities differ
+// by at least 0.3 times the faster one's speed, and each part holds a fifth of the sloped events
+// and 64 events. The second part becomes a
 // new cluster, appended to the modes; each part takes the mean of its events' features as its
 // mode.
 //
