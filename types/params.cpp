@@ -168,7 +168,7 @@ const std::array kTable = {
     ParamInfo{"motion-measure", "px/s", "with --measure pixel-centre, a cluster whose box holds the prediction of a "
               "confirmed track moving at least this fast is measured from the pixels of its events whose time-surface slopes "
               "that track's velocity explains, when they are half its pixels or more: a fast object without the slow shapes "
-              "it passes over (golden only); 0 = off", &Params::motion_measure, 0, 1e6},
+              "it passes over (golden and the fixed-point core; other measures leave it off); 0 = off", &Params::motion_measure, 0, 1e6},
     ParamInfo{"gate-px", "px", "association gate around a track's predicted position",
               &Params::gate_px, 0, 1e6},
     ParamInfo{"gate-spread", "1", "the gate widens to this many times the cluster's spread (RMS radius of "
@@ -391,7 +391,6 @@ std::string validate(const Params& p) {
       return os.str();
     }
   }
-  if (p.motion_measure > 0 && p.measure != Measure::kPixelCentre) return "motion-measure keeps some of a cluster's pixels: it needs --measure pixel-centre";
   return {};
 }
 

@@ -144,8 +144,8 @@ struct Params {
 
   double motion_measure = 0;         // with the pixel centre: a cluster that holds a confirmed track at
                                      // least this fast (px/s) is measured from the pixels whose slopes
-                                     // its velocity explains (golden/track/motion_measure.h, golden
-                                     // only); 0 = off
+                                     // its velocity explains (golden/track/motion_measure.h); other
+                                     // measures leave it off; 0 = off
 
   // --- labels -----------------------------------------------------------------------------
   int rescue_px = 1;                 // an event the filter dropped takes the label of the nearest

@@ -12,7 +12,7 @@
 // with slopes the fast velocity does not explain. Only fast tracks: a slow track's velocity is
 // small beside the spread of the velocities along a turning or growing outline, whose own edges
 // it would then leave out. docs/sweep.md ("A fast track measured from its own motion") has the
-// measurements. Golden only: the fixed-point core refuses it (host/backend/core_config.h).
+// measurements. The fixed-point core holds it (hls/track/motion_measure.h); no RTL build does.
 #pragma once
 
 #include <span>

@@ -1,5 +1,6 @@
 // The evms core: filter -> packets -> features -> hybrid mean shift -> mode merging (or seeded
-// climbs -> links -> polarity split -> edge join) -> centroids -> tracking -> labels,
+// climbs -> links -> polarity split -> edge join) -> centroids (a fast track's by its motion) ->
+// tracking -> labels,
 // bit-accurate, for one Shape. rtl/ implements all of it, and sim/ checks every output word
 // against it.
 //
@@ -31,6 +32,7 @@
 #include "hls/core/words.h"
 #include "hls/filter/ba_filter.h"
 #include "hls/fixed/stream.h"
+#include "hls/track/motion_measure.h"
 #include "hls/track/tracker.h"
 
 namespace evms::hls {
@@ -69,6 +71,7 @@ class Core {
     tracker_.reset();
     links_.reset();
     split_.reset();
+    if (S::kHasMotionMeasure) motion_.reset();
     warm_.count = 0;
     n_ = 0;
     pending_n_ = 0;
@@ -193,6 +196,7 @@ class Core {
       Measurement z[S::kClustersMax];
       centroids(packet_, n_, cluster_of, clusters, z, cfg_.seeded, cfg_.midpoint_min,
                 cfg_.seeded && cfg_.pixel_centre && cfg_.link2 != 0 ? first_on_pixel : nullptr);  // the links mark the pixels
+      if (S::kHasMotionMeasure && cfg_.motion_speed != 0) motion_.measure(packet_, n_, cluster_of, clusters, tracker_, cfg_, z);
       std::int32_t ids[S::kClustersMax];
       tracker_.step(packet_.t[n_ - 1], z, clusters, cfg_, ids, tracks);
       trace.sweeps = sweeps;
@@ -272,6 +276,7 @@ class Core {
   ModeLinks<S> links_;
   PolaritySplit<S> split_;
   EdgeJoin<S> edges_;
+  MotionMeasure<S> motion_;
   Modes<S> warm_;                // the previous packet's cluster modes
   PacketEvents<S> packet_;
   int n_ = 0;

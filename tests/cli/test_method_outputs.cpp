@@ -186,7 +186,11 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   expect_refused("--backend fixed --packet-span-edge-px 5", "does not implement --packet-span-edge-px 5 (only --packet-span-edge-px 0)");
   expect_refused("--backend fixed --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
   expect_refused("--backend rtl --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
-  expect_refused("--backend fixed --motion-measure 1000", "does not implement --motion-measure 1000 (only --motion-measure 0)");
+  // The fixed-point core holds the motion measure; no RTL build and no board's core does.
+  expect_runs("--backend fixed --motion-measure 1000");
+  expect_refused("--backend rtl --motion-measure 1000", "does not implement --motion-measure 1000 (add --motion-measure 0)");
+  expect_refused("--backend fixed --core arty --motion-measure 1000",
+                 "this build's core does not measure a fast track's cluster by its motion, not --motion-measure 1000 (add --motion-measure 0)");
   // Nor the measurement noise from the clusters' spreads, which the host build and the C++
   // cores hold.
   expect_refused("--backend rtl --core arty --meas-noise-from-spread true",

@@ -391,6 +391,32 @@ TEST(CoreAgreesWithGolden, TheDroppedEventsTakeGoldensLabels) {
   expect_runs_agree(scene, golden, fixed);
 }
 
+// A fast track's cluster measured by its motion (--motion-measure), as golden measures it: a
+// tuning member (640x480, 219 k events) where a fast shape passes slow ones, and the rule moves
+// its track's measurements.
+TEST(CoreAgreesWithGolden, TheFastTracksMeasuredByTheirMotion) {
+  Params p;
+  p.motion_measure = 1000;
+  Params off = p;
+  off.motion_measure = 0;
+  const eval::Scene scene = eval::generate_scene(gen::family_scene("crossing", 6));
+  const auto golden = eval::run_backend("golden", p, scene.sensor, scene.events);
+  const auto golden_off = eval::run_backend("golden", off, scene.sensor, scene.events);
+  const auto fixed = eval::run_backend("fixed", p, scene.sensor, scene.events);
+  const auto fixed_off = eval::run_backend("fixed", off, scene.sensor, scene.events);
+  // The rule acts here: it moves some of golden's and of the fixed core's measurements.
+  auto measurements_moved = [](const eval::RunResult& with, const eval::RunResult& without) {
+    int moved = 0;
+    for (size_t k = 0; k < std::min(with.tracks.size(), without.tracks.size()); ++k) {
+      moved += with.tracks[k].zx != without.tracks[k].zx || with.tracks[k].zy != without.tracks[k].zy;
+    }
+    return moved;
+  };
+  EXPECT_GE(measurements_moved(golden, golden_off), 20);
+  EXPECT_GE(measurements_moved(fixed, fixed_off), 20);
+  expect_runs_agree(scene, golden, fixed);
+}
+
 constexpr const char* kRealRecordings[] = {"dvxplorer_indoor.aedat4", "gen3_moving_blob.evt2.raw", "gen41_dense_scene.evt3.raw",
                                            "atis_ncars_sample.dat"};
 

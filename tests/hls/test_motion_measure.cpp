@@ -1,0 +1,138 @@
+// The motion measure in fixed point (hls/cluster/time_surface_slopes.h, hls/track/motion_measure.h)
+// against golden's (golden/cluster/time_surface_slopes.h, golden/track/motion_measure.h): the
+// slope verdict dense over edges, directions, speeds and jittered times, and the fast tracks the
+// tracker gives it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "golden/cluster/time_surface_slopes.h"
+#include "hls/cluster/time_surface_slopes.h"
+#include "hls/core/configs.h"
+#include "host/backend/core_config.h"
+
+namespace evms {
+namespace {
+
+using hls::HostShape;
+constexpr SensorSize kSlopeSensor{64, 48};
+
+// px/s of a tracker velocity word (kPosFrac fraction bits, px per tick).
+double speed_of_word(std::int32_t word) {
+  return word / (std::ldexp(1.0, HostShape::kPosFrac) * std::ldexp(1.0, HostShape::kTickLog2) * 1e-6);
+}
+
+// A packet of an edge swept over a 12x12 patch at (vx, vy) px/s, each pixel firing one to three
+// times with jitter, among scattered events of either polarity.
+std::vector<Event> jittered_edge(std::mt19937& rng, double vx, double vy) {
+  std::uniform_int_distribution<int> fires(1, 3), jitter(-400, 400), coordinate(0, 47), polarity(0, 1);
+  std::vector<Event> events;
+  const double speed2 = vx * vx + vy * vy;
+  for (int y = 18; y < 30; ++y) {
+    for (int x = 24; x < 36; ++x) {
+      const double s = ((x - 24) * vx + (y - 18) * vy) / speed2;
+      for (int k = fires(rng); k > 0; --k) {
+        events.push_back({100000 + std::lround(s * 1e6) + jitter(rng), static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), 1});
+      }
+    }
+  }
+  for (int k = 0; k < 60; ++k) {
+    events.push_back({100000 + jitter(rng) * 20, static_cast<std::uint16_t>(coordinate(rng)), static_cast<std::uint16_t>(coordinate(rng)),
+                      static_cast<std::uint8_t>(polarity(rng))});
+  }
+  std::sort(events.begin(), events.end(), [](const Event& a, const Event& b) { return a.t < b.t; });
+  // A packet starts at its first event: the times after it are what the sums hold.
+  return events;
+}
+
+TEST(TimeSurfaceSlopesInFixedPoint, TheVerdictIsGoldensWhereverGoldensMisfitIsNotWithinRoundingOfTheBound) {
+  // Bound: the verdicts are equal wherever golden has a slope whose misfit is more than 1e-9 from
+  // 1/2, and wherever golden has none (the fixed verdict is then false).
+  std::mt19937 rng(20261206);
+  std::uniform_real_distribution<double> unit(0, 1);
+  auto slopes = std::make_unique<hls::TimeSurfaceSlopes<HostShape>>();
+  slopes->reset();
+  hls::Config cfg;
+  cfg.sensor_width = kSlopeSensor.width, cfg.sensor_height = kSlopeSensor.height;
+  golden::TimeSurfaceSlopes reference(kSlopeSensor);
+  int explained = 0, unexplained = 0, compared = 0;
+  for (int packet = 0; packet < 60; ++packet) {
+    const double angle = 2 * M_PI * unit(rng), speed = 100 * std::pow(60.0, unit(rng));  // 100-6,000 px/s
+    const std::vector<Event> events = jittered_edge(rng, speed * std::cos(angle), speed * std::sin(angle));
+    auto ev = std::make_unique<hls::PacketEvents<HostShape>>();
+    for (size_t i = 0; i < events.size(); ++i) {
+      ev->x[i] = events[i].x, ev->y[i] = events[i].y, ev->p[i] = events[i].p, ev->t[i] = static_cast<std::uint32_t>(events[i].t);
+    }
+    const int n = static_cast<int>(events.size());
+    slopes->add(*ev, n);
+    reference.add(events);
+    for (const Event& e : events) {
+      const std::optional<Eigen::Vector2d> g = reference.at(e);
+      // Velocities about the edge's own, and about where its misfit crosses 1/2.
+      for (double factor : {0.5, 0.66, 0.67, 0.9, 1.0, 1.1, 1.49, 1.5, 1.51, 2.0}) {
+        for (double turn : {0.0, 0.3, -0.6}) {
+          const double vx = factor * speed * std::cos(angle + turn), vy = factor * speed * std::sin(angle + turn);
+          const std::int32_t wx = static_cast<std::int32_t>(std::lround(vx / speed_of_word(1)));
+          const std::int32_t wy = static_cast<std::int32_t>(std::lround(vy / speed_of_word(1)));
+          const bool fixed = slopes->explains(e.p, e.x, e.y, wx, wy, cfg);
+          if (!g) {
+            EXPECT_FALSE(fixed) << "no slope under (" << e.x << ", " << e.y << ")";
+            continue;
+          }
+          const double misfit = golden::misfit(*g, Eigen::Vector2d(speed_of_word(wx), speed_of_word(wy)));
+          if (std::abs(misfit - 0.5) <= 1e-9) continue;
+          ++compared;
+          EXPECT_EQ(fixed, misfit <= 0.5) << "misfit " << misfit << " at (" << e.x << ", " << e.y << ")";
+          (fixed ? explained : unexplained) += 1;
+        }
+      }
+    }
+    slopes->clear(*ev, n);
+    reference.clear(events);
+  }
+  // Both verdicts, many times: the test sees the bound from both sides.
+  EXPECT_GE(explained, 20000);
+  EXPECT_GE(unexplained, 20000);
+  EXPECT_GE(compared, 100000);
+}
+
+TEST(TimeSurfaceSlopesInFixedPoint, ClearLeavesEveryPixelAsResetDid) {
+  std::mt19937 rng(7);
+  auto slopes = std::make_unique<hls::TimeSurfaceSlopes<HostShape>>();
+  slopes->reset();
+  hls::Config cfg;
+  cfg.sensor_width = kSlopeSensor.width, cfg.sensor_height = kSlopeSensor.height;
+  const std::vector<Event> events = jittered_edge(rng, 800, 300);
+  auto ev = std::make_unique<hls::PacketEvents<HostShape>>();
+  for (size_t i = 0; i < events.size(); ++i) {
+    ev->x[i] = events[i].x, ev->y[i] = events[i].y, ev->p[i] = events[i].p, ev->t[i] = static_cast<std::uint32_t>(events[i].t);
+  }
+  const std::int32_t wx = static_cast<std::int32_t>(std::lround(800 / speed_of_word(1)));
+  const std::int32_t wy = static_cast<std::int32_t>(std::lround(300 / speed_of_word(1)));
+  slopes->add(*ev, static_cast<int>(events.size()));
+  EXPECT_TRUE(slopes->explains(1, 30, 24, wx, wy, cfg)) << "the edge's own velocity explains its slope";
+  slopes->clear(*ev, static_cast<int>(events.size()));
+  for (int y = 0; y < kSlopeSensor.height; ++y) {
+    for (int x = 0; x < kSlopeSensor.width; ++x) {
+      ASSERT_FALSE(slopes->explains(1, x, y, wx, wy, cfg) || slopes->explains(0, x, y, wx, wy, cfg)) << x << ", " << y;
+    }
+  }
+}
+
+TEST(MotionMeasureInFixedPoint, TheSpeedRegisterIsTheTrackersVelocityWord) {
+  // --motion-measure V px/s is the tracker's velocity word of V, rounded, and at least 1 when on.
+  Params p;
+  p.motion_measure = 1000;
+  const hls::Config c = backend::core_config<HostShape>(p, {640, 480});
+  EXPECT_NEAR(speed_of_word(static_cast<std::int32_t>(c.motion_speed)), 1000.0, speed_of_word(1));
+  p.motion_measure = 1e-3;
+  EXPECT_EQ(backend::core_config<HostShape>(p, {640, 480}).motion_speed, 1u);
+  p.motion_measure = 0;
+  EXPECT_EQ(backend::core_config<HostShape>(p, {640, 480}).motion_speed, 0u);
+}
+
+}  // namespace
+}  // namespace evms
