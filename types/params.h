@@ -142,7 +142,7 @@ struct Params {
   double init_sigma_vel = 200.0;     // initial velocity uncertainty (P0), px/s
   int max_tracks = 128;              // tracks held at once
 
-  double motion_measure = 0;         // with the pixel centre: a cluster that holds a confirmed track at
+  double motion_measure = 1000;      // with the pixel centre: a cluster that holds a confirmed track at
                                      // least this fast (px/s) is measured from the pixels whose slopes
                                      // its velocity explains (golden/track/motion_measure.h); other
                                      // measures leave it off; 0 = off

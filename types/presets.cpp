@@ -65,6 +65,8 @@ Params gaussian() {
   p.init_sigma_px = 2.0;
   p.init_sigma_vel = 200.0;
   p.max_tracks = 16;
+  p.motion_split = 0;
+  p.motion_measure = 0;
   return p;
 }
 

@@ -336,24 +336,25 @@ TEST(TrackingMetrics, ClearMotIgnoresATrackOnAnObjectWithoutATrueCentre) {
   EXPECT_EQ(by_position.false_positives, 22);  // without labels nothing says what track 2 measured
 }
 
-// A crossing member of the family scored in 10 ms chunks by golden, with the defaults and with
-// one rule by motion on.
-struct DefaultsAndRule {
-  Evaluation defaults, rule;
+// A crossing member of the family scored in 10 ms chunks by golden, at the defaults with one rule
+// by motion off and on.
+struct RuleOffAndOn {
+  Evaluation off, on;
 };
-template <class TurnOn>
-DefaultsAndRule crossing_member_with(std::uint64_t seed, TurnOn turn_on) {
+template <class SetOff, class SetOn>
+RuleOffAndOn crossing_member_with(std::uint64_t seed, SetOff rule_off, SetOn rule_on) {
   const Scene scene = generate_scene(gen::family_scene("crossing", seed));
-  Params rule = preset("evms");
-  turn_on(rule);
+  Params off = preset("evms"), on = preset("evms");
+  rule_off(off);
+  rule_on(on);
   const Chunking ten_ms{Chunking::Kind::kTime, 10000};
-  return {evaluate(scene, preset("evms"), "golden", ten_ms), evaluate(scene, rule, "golden", ten_ms)};
+  return {evaluate(scene, off, "golden", ten_ms), evaluate(scene, on, "golden", ten_ms)};
 }
 
 TEST(Evaluation, TheMotionSplitPartsFastShapesFromTheSlowOnesTheyCross) {
   // A tuning member where two fast shapes cross slow ones (128x128, 46 k events): where two
   // tracks meet, the split by motion gives each its own events back (golden/cluster/motion_split.h).
-  const auto [whole, parted] = crossing_member_with(3, [](Params& p) { p.motion_split = 0.6; });
+  const auto [whole, parted] = crossing_member_with(3, [](Params& p) { p.motion_split = 0; }, [](Params& p) { p.motion_split = 0.6; });
   EXPECT_GT(parted.scores.f, whole.scores.f + 0.01);
   EXPECT_LT(parted.tracking.all_kalman.mean, whole.tracking.all_kalman.mean);
 }
@@ -361,7 +362,7 @@ TEST(Evaluation, TheMotionSplitPartsFastShapesFromTheSlowOnesTheyCross) {
 TEST(Evaluation, TheMotionMeasureTracksAFastShapeWithoutTheSlowOnesItPasses) {
   // A tuning member (640x480, 219 k events) where a fast shape passes slow ones: measured from the
   // pixels its own motion explains, its track stays nearer its centre (golden/track/motion_measure.h).
-  const auto [pixel_centre, by_motion] = crossing_member_with(6, [](Params& p) { p.motion_measure = 1000; });
+  const auto [pixel_centre, by_motion] = crossing_member_with(6, [](Params& p) { p.motion_measure = 0; }, [](Params& p) { p.motion_measure = 1000; });
   EXPECT_LT(by_motion.tracking.all_kalman.mean, pixel_centre.tracking.all_kalman.mean - 0.2);
   EXPECT_GT(by_motion.tracking.all_kalman.within, pixel_centre.tracking.all_kalman.within);
   EXPECT_EQ(by_motion.run.labels, pixel_centre.run.labels);  // the clusters are the same
