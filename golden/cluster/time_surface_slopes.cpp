@@ -1,5 +1,7 @@
 #include "golden/cluster/time_surface_slopes.h"
 
+#include <algorithm>
+
 namespace evms::golden {
 namespace {
 
@@ -40,11 +42,13 @@ std::optional<Eigen::Vector2d> TimeSurfaceSlopes::fit(std::uint8_t polarity, int
   // Sums over the neighbours of their offsets (px) and times after the packet's first event (us),
   // exact in integers.
   std::int64_t m = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, st = 0, sxt = 0, syt = 0;
-  for (int dy = -kNeighbourPx; dy <= kNeighbourPx; ++dy) {
-    for (int dx = -kNeighbourPx; dx <= kNeighbourPx; ++dx) {
-      const int x = x0 + dx, y = y0 + dy;
-      if (x < 0 || y < 0 || x >= width_ || y >= height_) continue;
-      const PixelEvents& pixel = on_pixel_[pixel_index(polarity, x, y)];
+  const int dx_lo = std::max(-kNeighbourPx, -x0), dx_hi = std::min(kNeighbourPx, width_ - 1 - x0);
+  const int dy_lo = std::max(-kNeighbourPx, -y0), dy_hi = std::min(kNeighbourPx, height_ - 1 - y0);
+  for (int dy = dy_lo; dy <= dy_hi; ++dy) {
+    const PixelEvents* row = &on_pixel_[pixel_index(polarity, x0, y0 + dy)];
+    for (int dx = dx_lo; dx <= dx_hi; ++dx) {
+      const PixelEvents& pixel = row[dx];
+      if (pixel.count == 0) continue;  // most of a window: an edge is a line through it
       const std::int64_t count = pixel.count, times = pixel.time_sum;
       m += count, sx += dx * count, sy += dy * count, sxx += dx * dx * count, syy += dy * dy * count, sxy += dx * dy * count;
       st += times, sxt += dx * times, syt += dy * times;
