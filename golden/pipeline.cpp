@@ -192,7 +192,9 @@ void Pipeline::close_packet(OutputSink& out) {
                                                     ? tracker_->confirmed_predictions(supported[supported.size() / 2].t)
                                                     : std::vector<TrackPrediction>{};
     std::vector<Eigen::Vector2d> meeting_points;
-    for (const TrackPrediction& track : tracks) meeting_points.push_back(track.position);
+    for (const TrackPrediction& track : tracks) {
+      if (track.matched) meeting_points.push_back(track.position);
+    }
     const PacketClusters clusters = clusterer_.cluster(supported, features, modes_, spreads_, meeting_points);
     modes_ = clusters.modes;
     spreads_ = clusters.spreads;

@@ -17,18 +17,26 @@ MotionMeasure::MotionMeasure(const Params& params, SensorSize sensor)
 
 void MotionMeasure::measure(std::span<const Event> events, std::span<const int> cluster_of, std::span<const TrackPrediction> tracks,
                             std::vector<Measurement>& measurements) {
-  // Each cluster's fast track, if any.
+  // Each cluster's fast track, if any, when another track lies in its box too.
   std::vector<const TrackPrediction*> track_of(measurements.size(), nullptr);
   bool any = false;
   for (size_t c = 0; c < measurements.size(); ++c) {
     const Measurement& m = measurements[c];
-    double nearest = INFINITY;
-    for (const TrackPrediction& track : tracks) {
+    const auto in_box = [&](const TrackPrediction& track) {
       const Eigen::Vector2d& p = track.position;
-      if (track.velocity.norm() < least_speed_) continue;
-      if (p.x() < m.x_min - kTrackInBoxMarginPx || p.x() > m.x_max + kTrackInBoxMarginPx || p.y() < m.y_min - kTrackInBoxMarginPx || p.y() > m.y_max + kTrackInBoxMarginPx) continue;
-      const double d = std::hypot(p.x() - m.x, p.y() - m.y);
-      if (d < nearest) nearest = d, track_of[c] = &track, any = true;
+      return p.x() >= m.x_min - kTrackInBoxMarginPx && p.x() <= m.x_max + kTrackInBoxMarginPx && p.y() >= m.y_min - kTrackInBoxMarginPx &&
+             p.y() <= m.y_max + kTrackInBoxMarginPx;
+    };
+    double nearest = INFINITY;
+    const TrackPrediction* fast = nullptr;
+    for (const TrackPrediction& track : tracks) {
+      if (!track.matched || track.velocity.norm() < least_speed_ || !in_box(track)) continue;
+      const double d = std::hypot(track.position.x() - m.x, track.position.y() - m.y);
+      if (d < nearest) nearest = d, fast = &track;
+    }
+    if (!fast) continue;
+    for (const TrackPrediction& track : tracks) {
+      if (&track != fast && in_box(track)) track_of[c] = fast, any = true;
     }
   }
   if (!any) return;

@@ -66,6 +66,7 @@ struct Measurement {
 // A track's predicted position (px) and its velocity (px/s).
 struct TrackPrediction {
   Eigen::Vector2d position, velocity;
+  bool matched = true;  // measured in the last packet; false: coasting
 };
 
 // What every identity rule does with a packet's measurements.
@@ -78,9 +79,9 @@ class Tracker {
                                          std::vector<TrackUpdate>& updates) = 0;
   virtual std::int32_t tracks_started() const = 0;
   virtual std::int64_t unassigned_clusters() const { return 0; }
-  // The confirmed tracks measured in the last packet, predicted to t (where Params::motion_split
-  // looks for two tracks meeting, and Params::motion_measure for a fast one); none for a rule
-  // without a filter.
+  // The confirmed tracks, coasting ones too, predicted to t (where Params::motion_split looks for
+  // two tracks meeting, and Params::motion_measure for a fast one beside another); none for a
+  // rule without a filter.
   virtual std::vector<TrackPrediction> confirmed_predictions(TimeUs /*t*/) const { return {}; }
 };
 

@@ -3,8 +3,9 @@
 //
 // A cluster whose bounding box, grown by 2 px, holds the prediction of a confirmed track that
 // was matched in the packet before and moves at least motion_speed (of those, the one nearest
-// the cluster's measurement, squared distances in kPosFrac units, ties to the lower slot) is
-// measured at the mean of the pixels of its events whose time-surface slopes that track's
+// the cluster's measurement, squared distances in kPosFrac units, ties to the lower slot), and
+// the prediction of another confirmed track (coasting or not, at any speed), is measured at the
+// mean of the pixels of its events whose time-surface slopes that track's
 // velocity explains (hls/cluster/time_surface_slopes.h), each pixel once, when those are at
 // least half of its pixels (each counted for the packet's first event of such a cluster on it).
 // The tracks are predicted to the packet's middle event, as golden's are. The mean is one exact
@@ -37,8 +38,19 @@ class MotionMeasure {
   // event of the packet ev[0..n), its cluster or -1.
   void measure(const PacketEvents<S>& ev, int n, const std::int8_t cluster_of[S::kPacketMax], int clusters, const Tracker<S>& tracker,
                const Config& cfg, Measurement z[S::kClustersMax]) {
-    TrackPoint fast[S::kTracksMax];
-    const int tracks = tracker.fast_tracks(ev.t[n / 2], cfg, fast);
+    TrackPoint confirmed[S::kTracksMax];
+    const int tracks = tracker.confirmed_tracks(ev.t[n / 2], cfg, confirmed);
+    bool fast[S::kTracksMax];
+    const std::uint64_t least2 = std::uint64_t{cfg.motion_speed} * cfg.motion_speed;
+  speeds:
+    for (int k = 0; k < S::kTracksMax; ++k) {
+#pragma HLS PIPELINE II = 1
+      if (k >= tracks) break;
+      // Squares of 32-bit words: their sum fits 64 unsigned bits.
+      const std::uint64_t vx = static_cast<std::uint64_t>(confirmed[k].vx < 0 ? -std::int64_t{confirmed[k].vx} : confirmed[k].vx);
+      const std::uint64_t vy = static_cast<std::uint64_t>(confirmed[k].vy < 0 ? -std::int64_t{confirmed[k].vy} : confirmed[k].vy);
+      fast[k] = confirmed[k].matched && vx * vx + vy * vy >= least2;
+    }
     std::int16_t track_of[S::kClustersMax];
     bool any = false;
   nearest:
@@ -50,14 +62,27 @@ class MotionMeasure {
       const std::int64_t x_hi = (std::int64_t{z[c].x_max} + kTrackInBoxMarginPx) * (std::int64_t{1} << S::kPosFrac);
       const std::int64_t y_lo = (std::int64_t{z[c].y_min} - kTrackInBoxMarginPx) * (std::int64_t{1} << S::kPosFrac);
       const std::int64_t y_hi = (std::int64_t{z[c].y_max} + kTrackInBoxMarginPx) * (std::int64_t{1} << S::kPosFrac);
+      bool in_box[S::kTracksMax];
+    fast_in_box:
       for (int k = 0; k < S::kTracksMax; ++k) {
 #pragma HLS PIPELINE II = 1
         if (k >= tracks) break;
-        if (fast[k].x < x_lo || fast[k].x > x_hi || fast[k].y < y_lo || fast[k].y > y_hi) continue;
-        const std::int64_t dx = std::int64_t{fast[k].x} - z[c].x, dy = std::int64_t{fast[k].y} - z[c].y;
+        const TrackPoint& track = confirmed[k];
+        in_box[k] = track.x >= x_lo && track.x <= x_hi && track.y >= y_lo && track.y <= y_hi;
+        if (!fast[k] || !in_box[k]) continue;
+        const std::int64_t dx = std::int64_t{track.x} - z[c].x, dy = std::int64_t{track.y} - z[c].y;
         const std::int64_t d2 = dx * dx + dy * dy;
-        if (track_of[c] < 0 || d2 < nearest2) track_of[c] = static_cast<std::int16_t>(k), nearest2 = d2, any = true;
+        if (track_of[c] < 0 || d2 < nearest2) track_of[c] = static_cast<std::int16_t>(k), nearest2 = d2;
       }
+      bool beside_another = false;
+    another_in_box:
+      for (int k = 0; k < S::kTracksMax; ++k) {
+#pragma HLS PIPELINE II = 1
+        if (k >= tracks) break;
+        if (k != track_of[c] && in_box[k]) beside_another = true;
+      }
+      if (!beside_another) track_of[c] = -1;
+      any = any || track_of[c] >= 0;
     }
     if (!any) return;
     slopes_.add(ev, n);
@@ -70,7 +95,7 @@ class MotionMeasure {
       std::uint8_t& marks = pixel_marks_[pixel(ev.x[i], ev.y[i])];
       if (!(marks & kCounted)) marks |= kCounted, ++pixels[c];
       if (marks & kKept) continue;
-      const TrackPoint& track = fast[track_of[c]];
+      const TrackPoint& track = confirmed[track_of[c]];
       if (!slopes_.explains(ev.p[i], ev.x[i], ev.y[i], track.vx, track.vy, cfg)) continue;
       marks |= kKept;
       kept_x[c] += ev.x[i], kept_y[c] += ev.y[i], ++kept[c];

@@ -41,10 +41,11 @@ struct TrackerTrace {
   int evict_scans = 0;  // births that found no free slot and looked for one to evict
 };
 
-// A track's predicted position (kPosFrac fraction bits, px) and its velocity (kPosFrac fraction
-// bits, px per tick).
+// A track's predicted position (kPosFrac fraction bits, px), its velocity (kPosFrac fraction
+// bits, px per tick), and whether it was matched in the last step.
 struct TrackPoint {
   std::int32_t x = 0, y = 0, vx = 0, vy = 0;
+  bool matched = false;
 };
 
 // A measurement's bounding box, px (inclusive).
@@ -200,24 +201,18 @@ class Tracker {
     }
   }
 
-  // The confirmed tracks matched in the last step that move at least cfg.motion_speed (px per
-  // tick, kPosFrac bits), in slot order, predicted to time t: golden's confirmed_predictions(t)
-  // with the speed test of golden/track/motion_measure.h. Returns how many it wrote.
-  int fast_tracks(std::uint32_t t, const Config& cfg, TrackPoint out[S::kTracksMax]) const {
+  // The confirmed tracks, coasting ones too, in slot order, predicted to time t: golden's
+  // confirmed_predictions(t). Returns how many it wrote.
+  int confirmed_tracks(std::uint32_t t, const Config& cfg, TrackPoint out[S::kTracksMax]) const {
     int count = 0;
-    const std::uint64_t least2 = std::uint64_t{cfg.motion_speed} * cfg.motion_speed;
-  fast:
+  confirmed:
     for (int s = 0; s < S::kTracksMax; ++s) {
 #pragma HLS PIPELINE II = 1
       const Slot& slot = slot_[s];
-      if (!slot.valid || !slot.confirmed || slot.missed != 0 || s >= cfg.max_tracks) continue;
-      // Squares of 32-bit words: their sum fits 64 unsigned bits.
-      const std::uint64_t vx = static_cast<std::uint64_t>(slot.ax.vel < 0 ? -std::int64_t{slot.ax.vel} : slot.ax.vel);
-      const std::uint64_t vy = static_cast<std::uint64_t>(slot.ay.vel < 0 ? -std::int64_t{slot.ay.vel} : slot.ay.vel);
-      if (vx * vx + vy * vy < least2) continue;
+      if (!slot.valid || !slot.confirmed || s >= cfg.max_tracks) continue;
       const std::int32_t dt_raw = static_cast<std::int32_t>(t - slot.t_last);
       const std::uint32_t dt = dt_raw > 0 ? static_cast<std::uint32_t>(dt_raw) : 0;
-      out[count++] = {Axis::predicted(slot.ax, dt), Axis::predicted(slot.ay, dt), slot.ax.vel, slot.ay.vel};
+      out[count++] = {Axis::predicted(slot.ax, dt), Axis::predicted(slot.ay, dt), slot.ax.vel, slot.ay.vel, slot.missed == 0};
     }
     return count;
   }

@@ -94,6 +94,9 @@ MeasuredPacket fast_beside_slow() {
   return p;
 }
 
+// The slow edge's own track, coasting in the box beside the fast one.
+const TrackPrediction kSlowTrack{{132, 60}, {100, 0}, false};
+
 Params measuring_fast(double speed) {
   Params p;
   p.motion_measure = speed;
@@ -102,15 +105,18 @@ Params measuring_fast(double speed) {
 
 TEST(MotionMeasure, AFastTracksClusterIsMeasuredFromThePixelsItsVelocityExplains) {
   MeasuredPacket p = fast_beside_slow();
-  const std::vector<TrackPrediction> tracks = {{{110, 60}, {2000, 0}}};
+  const std::vector<TrackPrediction> tracks = {{{110, 60}, {2000, 0}}, kSlowTrack};
   MotionMeasure(measuring_fast(1000), kSensor).measure(p.events, p.cluster_of, tracks, p.measurements);
   EXPECT_NEAR(p.measurements[0].x, 109.5, 1e-9);  // the fast edge's pixels alone
   EXPECT_NEAR(p.measurements[0].y, 59.5, 1e-9);
 }
 
-TEST(MotionMeasure, ASlowTrackOrNoTrackInTheBoxLeavesThePixelCentre) {
-  for (const std::vector<TrackPrediction>& tracks : {std::vector<TrackPrediction>{{{110, 60}, {900, 0}}},  // slower than asked
-                                                     std::vector<TrackPrediction>{{{180, 60}, {2000, 0}}},  // outside the box
+TEST(MotionMeasure, ASlowTrackOrNoTrackInTheBoxOrAFastTrackAloneLeavesThePixelCentre) {
+  for (const std::vector<TrackPrediction>& tracks : {std::vector<TrackPrediction>{{{110, 60}, {900, 0}}, kSlowTrack},  // slower than asked
+                                                     std::vector<TrackPrediction>{{{180, 60}, {2000, 0}}, kSlowTrack},  // outside the box
+                                                     std::vector<TrackPrediction>{{{110, 60}, {2000, 0}, false}, kSlowTrack},  // coasting
+                                                     std::vector<TrackPrediction>{{{110, 60}, {2000, 0}}},  // no other track beside it
+                                                     std::vector<TrackPrediction>{{{110, 60}, {2000, 0}}, {{180, 60}, {100, 0}}},  // nor in the box
                                                      std::vector<TrackPrediction>{}}) {
     MeasuredPacket p = fast_beside_slow();
     MotionMeasure(measuring_fast(1000), kSensor).measure(p.events, p.cluster_of, tracks, p.measurements);
@@ -121,14 +127,14 @@ TEST(MotionMeasure, ASlowTrackOrNoTrackInTheBoxLeavesThePixelCentre) {
 TEST(MotionMeasure, FewerThanHalfThePixelsExplainedLeavesThePixelCentre) {
   // The track's velocity explains neither edge (it moves along y): no pixels kept.
   MeasuredPacket p = fast_beside_slow();
-  MotionMeasure(measuring_fast(1000), kSensor).measure(p.events, p.cluster_of, {{{{110, 60}, {0, 2000}}}}, p.measurements);
+  MotionMeasure(measuring_fast(1000), kSensor).measure(p.events, p.cluster_of, {{{{110, 60}, {0, 2000}}, kSlowTrack}}, p.measurements);
   EXPECT_DOUBLE_EQ(p.measurements[0].x, (109.5 + 131.5) / 2);
   // A slow edge three times the fast one's pixels: the fast edge's are a quarter of the cluster's.
   MeasuredPacket wide = fast_beside_slow();
   wide.events = test::concat(edge_at_velocity(100, 120, 50, 70, 2000, 0), edge_at_velocity(122, 182, 50, 70, 100, 0));
   wide.cluster_of.assign(wide.events.size(), 0);
   wide.measurements[0].x_max = 181, wide.measurements[0].x = 140;
-  MotionMeasure(measuring_fast(1000), kSensor).measure(wide.events, wide.cluster_of, {{{{110, 60}, {2000, 0}}}}, wide.measurements);
+  MotionMeasure(measuring_fast(1000), kSensor).measure(wide.events, wide.cluster_of, {{{{110, 60}, {2000, 0}}, kSlowTrack}}, wide.measurements);
   EXPECT_DOUBLE_EQ(wide.measurements[0].x, 140);
 }
 
