@@ -4,6 +4,7 @@
 // tracker gives it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -48,6 +49,15 @@ std::vector<Event> jittered_edge(std::mt19937& rng, double vx, double vy) {
   return events;
 }
 
+// The events as the core holds a packet of them.
+std::unique_ptr<hls::PacketEvents<HostShape>> packet_of(const std::vector<Event>& events) {
+  auto ev = std::make_unique<hls::PacketEvents<HostShape>>();
+  for (size_t i = 0; i < events.size(); ++i) {
+    ev->x[i] = events[i].x, ev->y[i] = events[i].y, ev->p[i] = events[i].p, ev->t[i] = static_cast<std::uint32_t>(events[i].t);
+  }
+  return ev;
+}
+
 TEST(TimeSurfaceSlopesInFixedPoint, TheVerdictIsGoldensWhereverGoldensMisfitIsNotWithinRoundingOfTheBound) {
   // Bound: the verdicts are equal wherever golden has a slope whose misfit is more than 1e-9 from
   // 1/2, and wherever golden has none (the fixed verdict is then false).
@@ -62,10 +72,7 @@ TEST(TimeSurfaceSlopesInFixedPoint, TheVerdictIsGoldensWhereverGoldensMisfitIsNo
   for (int packet = 0; packet < 60; ++packet) {
     const double angle = 2 * M_PI * unit(rng), speed = 100 * std::pow(60.0, unit(rng));  // 100-6,000 px/s
     const std::vector<Event> events = jittered_edge(rng, speed * std::cos(angle), speed * std::sin(angle));
-    auto ev = std::make_unique<hls::PacketEvents<HostShape>>();
-    for (size_t i = 0; i < events.size(); ++i) {
-      ev->x[i] = events[i].x, ev->y[i] = events[i].y, ev->p[i] = events[i].p, ev->t[i] = static_cast<std::uint32_t>(events[i].t);
-    }
+    const auto ev = packet_of(events);
     const int n = static_cast<int>(events.size());
     slopes->add(*ev, n);
     reference.add(events);
@@ -106,10 +113,7 @@ TEST(TimeSurfaceSlopesInFixedPoint, ClearLeavesEveryPixelAsResetDid) {
   hls::Config cfg;
   cfg.sensor_width = kSlopeSensor.width, cfg.sensor_height = kSlopeSensor.height;
   const std::vector<Event> events = jittered_edge(rng, 800, 300);
-  auto ev = std::make_unique<hls::PacketEvents<HostShape>>();
-  for (size_t i = 0; i < events.size(); ++i) {
-    ev->x[i] = events[i].x, ev->y[i] = events[i].y, ev->p[i] = events[i].p, ev->t[i] = static_cast<std::uint32_t>(events[i].t);
-  }
+  const auto ev = packet_of(events);
   const std::int32_t wx = static_cast<std::int32_t>(std::lround(800 / speed_of_word(1)));
   const std::int32_t wy = static_cast<std::int32_t>(std::lround(300 / speed_of_word(1)));
   slopes->add(*ev, static_cast<int>(events.size()));
