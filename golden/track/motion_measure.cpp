@@ -1,5 +1,6 @@
 #include "golden/track/motion_measure.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace evms::golden {
@@ -34,9 +35,8 @@ void MotionMeasure::measure(std::span<const Event> events, std::span<const int> 
       const double d = std::hypot(track.position.x() - m.x, track.position.y() - m.y);
       if (d < nearest) nearest = d, fast = &track;
     }
-    if (!fast) continue;
-    for (const TrackPrediction& track : tracks) {
-      if (&track != fast && in_box(track)) track_of[c] = fast, any = true;
+    if (fast && std::any_of(tracks.begin(), tracks.end(), [&](const TrackPrediction& t) { return &t != fast && in_box(t); })) {
+      track_of[c] = fast, any = true;
     }
   }
   if (!any) return;
