@@ -201,13 +201,17 @@ void Pipeline::close_packet(OutputSink& out) {
     stats_.cluster_ns += clock.lap();
 
     // A cluster's measurement: the centre of mass of its events (or the midpoint of its two
-    // polarities' centres of mass, or the mean of its pixels), timed at their mean timestamp, with
-    // their count, spread (about the centre of mass) and bounding box.
+    // polarities' centres of mass), timed at their mean timestamp, or the mean of its pixels, timed
+    // at the mean timestamp of the events that placed them (time_by_pixels: each pixel's first of
+    // the packet, as an edge that fires a burst on a pixel was at the pixel when the burst began,
+    // and a busy pixel's later events would time the measurement after its position); with their
+    // count, spread (about the centre of mass) and bounding box.
     std::vector<Measurement> measurements(static_cast<size_t>(clusters.count));
     std::vector<double> sum_t(measurements.size(), 0.0), sum_r2(measurements.size(), 0.0);
     std::vector<double> on_x(measurements.size(), 0.0), on_y(measurements.size(), 0.0);
     std::vector<int> on_events(measurements.size(), 0);
     std::vector<double> pixel_x(measurements.size(), 0.0), pixel_y(measurements.size(), 0.0);
+    std::vector<double> pixel_t(measurements.size(), 0.0);
     std::vector<int> pixels(measurements.size(), 0);
     const TimeUs t0 = packet_.front().t;
     const auto pixel_of = [&](const Event& e) { return static_cast<size_t>(e.y) * static_cast<size_t>(sensor_.width) + e.x; };
@@ -231,6 +235,7 @@ void Pipeline::close_packet(OutputSink& out) {
         if (!(pixel_taken_[pixel / 64] & bit)) {
           pixel_taken_[pixel / 64] |= bit;
           pixel_x[static_cast<size_t>(c)] += e.x, pixel_y[static_cast<size_t>(c)] += e.y, ++pixels[static_cast<size_t>(c)];
+          pixel_t[static_cast<size_t>(c)] += static_cast<double>(e.t - t0);
         }
       }
     }
@@ -253,8 +258,9 @@ void Pipeline::close_packet(OutputSink& out) {
       if (midpoint) m.x = mid_x, m.y = mid_y;
       // A cluster whose every pixel an earlier cluster's event took (only where clusters share
       // pixels, as without links) keeps its centre of mass.
-      if (params_.measure == Measure::kPixelCentre && pixels[c] > 0) m.x = pixel_x[c] / pixels[c], m.y = pixel_y[c] / pixels[c];
-      m.t = t0 + static_cast<TimeUs>(sum_t[c] / m.events + 0.5);
+      const bool by_pixels = params_.measure == Measure::kPixelCentre && pixels[c] > 0;
+      if (by_pixels) m.x = pixel_x[c] / pixels[c], m.y = pixel_y[c] / pixels[c];
+      m.t = t0 + static_cast<TimeUs>((by_pixels && params_.time_by_pixels ? pixel_t[c] / pixels[c] : sum_t[c] / m.events) + 0.5);
     }
 
     if (motion_measure_) motion_measure_->measure(supported, clusters.cluster_of, tracks, measurements);

@@ -41,7 +41,7 @@ enum class TrackState : std::uint8_t { kTentative, kConfirmed };
 // The filtered Kalman estimate of one track after a measurement update, and the cluster that
 // measured it.
 struct TrackUpdate {
-  TimeUs t = 0;            // time of the measurement (mean timestamp of the cluster's events)
+  TimeUs t = 0;            // time of the measurement (mean timestamp of the events it was measured from)
   std::int32_t id = 0;     // persistent track ID, never reused
   double x = 0, y = 0;     // px
   double vx = 0, vy = 0;   // px/s

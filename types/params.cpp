@@ -161,6 +161,10 @@ const std::array kTable = {
     ParamInfo{"midpoint-min-events", "events", "with --measure polarity-midpoint, the events each polarity needs; "
               "with fewer, the cluster's position is the centroid of its events",
               &Params::midpoint_min_events, 1, 65535},
+    ParamInfo{"time-by-pixels", "", "with --measure pixel-centre, a cluster is timed at the mean timestamp of the events "
+              "that placed its pixels (each pixel's first of the packet), not of all its events: an edge fires a burst on "
+              "each pixel it crosses, and the pixel is where the edge was at the burst's first event (false: golden only)",
+              &Params::time_by_pixels, 0, 1},
     ParamInfo{"association", "", "cluster IDs across packets: kalman (one-to-one against each track's "
               "Kalman prediction), last-measurement (one-to-one against each track's last cluster centre) or "
               "nearest-centre (the previous packet's nearest cluster, as the authors' code)",

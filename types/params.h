@@ -117,6 +117,8 @@ struct Params {
   // --- tracker --------------------------------------------------------------------------
   Measure measure = Measure::kPixelCentre;
   int midpoint_min_events = 16;      // polarity midpoint: events each polarity needs
+  bool time_by_pixels = true;        // pixel centre: timed at the mean timestamp of the events that
+                                     // placed its pixels (each pixel's first of the packet), not of all
   Association association = Association::kLastMeasurement;
   double gate_px = 20.0;             // association gate around the predicted position
   double gate_spread = 0.0;          // ... widened to this many times the cluster's spread

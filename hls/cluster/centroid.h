@@ -14,8 +14,9 @@
 // measured at the mean of its pixels, each pixel once: the sums and the count of its events that
 // are the first of the packet on their pixel (hls/cluster/link.h marks them). An edge moving
 // across its normal fires several events on each pixel it crosses, one moving along it few, and
-// where the outline is is where its pixels are, not where most events fire. A cluster without
-// such an event (none, with the links on) keeps its centre of mass.
+// where the outline is is where its pixels are, not where most events fire. It is timed at the
+// rounded mean timestamp of those same events, the time its pixels were where they are. A cluster
+// without such an event (none, with the links on) keeps its centre of mass and its time.
 #pragma once
 
 #include <cstdint>
@@ -43,7 +44,7 @@ void centroids(const PacketEvents<S>& ev, int n, const std::int8_t cluster_of[S:
   std::uint32_t sx[S::kClustersMax] = {}, sy[S::kClustersMax] = {}, count[S::kClustersMax] = {};
   std::uint32_t sx_on[S::kClustersMax] = {}, sy_on[S::kClustersMax] = {}, count_on[S::kClustersMax] = {};
   std::uint32_t sx_px[S::kClustersMax] = {}, sy_px[S::kClustersMax] = {}, count_px[S::kClustersMax] = {};
-  std::uint64_t st[S::kClustersMax] = {}, s2[S::kClustersMax] = {};
+  std::uint64_t st[S::kClustersMax] = {}, st_px[S::kClustersMax] = {}, s2[S::kClustersMax] = {};
   std::uint16_t x0[S::kClustersMax], y0[S::kClustersMax], x1[S::kClustersMax], y1[S::kClustersMax];
   const std::uint32_t t0 = ev.t[0];
 accumulate:
@@ -58,7 +59,7 @@ accumulate:
     sx[c] += ev.x[i];
     sy[c] += ev.y[i];
     if (ev.p[i]) sx_on[c] += ev.x[i], sy_on[c] += ev.y[i], ++count_on[c];
-    if (first_on_pixel != nullptr && first_on_pixel[i]) sx_px[c] += ev.x[i], sy_px[c] += ev.y[i], ++count_px[c];
+    if (first_on_pixel != nullptr && first_on_pixel[i]) sx_px[c] += ev.x[i], sy_px[c] += ev.y[i], st_px[c] += ev.t[i] - t0, ++count_px[c];
     s2[c] += std::uint64_t{ev.x[i]} * ev.x[i] + std::uint64_t{ev.y[i]} * ev.y[i];
     st[c] += ev.t[i] - t0;
     ++count[c];
@@ -70,8 +71,11 @@ divide:
       const std::uint64_t n = count[c], n_on = count_on[c], n_off = n - n_on;
       // The x and y quotients' numerators (before the kPosFrac shift) and denominator.
       std::uint64_t num_x = sx[c], num_y = sy[c], den = n;
+      // The time's numerator and denominator.
+      std::uint64_t num_t = st[c], den_t = n;
       if (first_on_pixel != nullptr && count_px[c] > 0) {
         num_x = sx_px[c], num_y = sy_px[c], den = count_px[c];
+        num_t = st_px[c], den_t = count_px[c];
       } else if (midpoint_min > 0 && n_on >= midpoint_min && n_off >= midpoint_min) {
         num_x = std::uint64_t{sx_on[c]} * n_off + std::uint64_t{sx[c] - sx_on[c]} * n_on;
         num_y = std::uint64_t{sy_on[c]} * n_off + std::uint64_t{sy[c] - sy_on[c]} * n_on;
@@ -79,7 +83,7 @@ divide:
       }
       out[c].x = static_cast<std::int32_t>(((num_x << (S::kPosFrac + 1)) + den) / (2 * den));
       out[c].y = static_cast<std::int32_t>(((num_y << (S::kPosFrac + 1)) + den) / (2 * den));
-      out[c].t = t0 + static_cast<std::uint32_t>((2 * st[c] + n) / (2 * n));
+      out[c].t = t0 + static_cast<std::uint32_t>((2 * num_t + den_t) / (2 * den_t));
     } else {
       out[c].x = static_cast<std::int32_t>(Tables<S>::recip.template divide<S::kPosFrac>(sx[c], count[c]));
       out[c].y = static_cast<std::int32_t>(Tables<S>::recip.template divide<S::kPosFrac>(sy[c], count[c]));

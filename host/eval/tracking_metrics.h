@@ -3,7 +3,7 @@
 //  - the centre of mass of the events the generator labelled as the object's in the window of
 //    `event_window_us` centred on the estimate's time (the paper's ground truth: "the
 //    ground-truth labeled cluster center"). Centred, because an estimate is timed at the mean
-//    timestamp of its cluster's events: a window that ended there would trail a moving object
+//    timestamp of the events its cluster was measured from: a window that ended there would trail a moving object
 //    by half of what it moves in the window.
 // They differ where some edges of a shape fire more events than others (the paper, section V,
 // explains its rectangle and hexagon by this); the first includes that offset, the second

@@ -186,6 +186,7 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   expect_refused("--backend fixed --packet-span-edge-px 5", "does not implement --packet-span-edge-px 5 (only --packet-span-edge-px 0)");
   expect_refused("--backend fixed --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
   expect_refused("--backend rtl --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
+  expect_refused("--backend fixed --time-by-pixels false", "does not implement --time-by-pixels false (only --time-by-pixels true)");
   // The fixed-point core holds the motion measure; no RTL build and no board's core does.
   expect_runs("--backend fixed --motion-measure 1000");
   expect_refused("--backend rtl --motion-measure 1000", "does not implement --motion-measure 1000 (add --motion-measure 0)");

@@ -124,6 +124,43 @@ TEST(Pipeline, ThePolarityMidpointAndThePixelCentreDoNotLeanToTheBusierEdge) {
   EXPECT_NEAR(measured_x(Measure::kPolarityMidpoint, 100000 / 3), 102.0, 0.1);
 }
 
+// A vertical bar (x .. x + 2, y 80..100) moving right at 1,000 px/s: each pixel fires when the
+// bar's leading edge reaches it and twice more over the next millisecond, as a pixel under a
+// strong edge fires a burst. The pixel centre is timed at its pixels' first events, so each
+// measurement lies on the edge's trajectory; timed at the mean of all its events
+// (--time-by-pixels false), it trails it by about 0.5 ms, half a pixel.
+TEST(Pipeline, ThePixelCentreIsTimedWhenItsPixelsFired) {
+  constexpr double kSpeed = 1000e-6;  // px/us
+  std::vector<Event> events;
+  for (int x = 20; x < 200; ++x) {
+    for (int burst = 0; burst < 3; ++burst) {
+      for (int y = 80; y <= 100; ++y) {
+        const TimeUs t = static_cast<TimeUs>(x / kSpeed) + 500 * burst + (y - 80);
+        events.push_back({t, static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), 1});
+      }
+    }
+  }
+  std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) { return a.t < b.t; });
+  Params p;
+  p.packet_size = 1000;
+  p.filter_window_us = 0;
+  const CollectingSink out = run(events, p);
+  ASSERT_GT(out.tracks.size(), 5u);
+  double off = 0;
+  for (const TrackUpdate& u : out.tracks) {
+    // The pixels of column x fired first at x / speed (+ 10 us on average along the column).
+    off += std::abs(u.zx - kSpeed * (static_cast<double>(u.t) - 10));
+  }
+  // A packet's first pixels may be a burst's later events (its first fell in the packet before).
+  EXPECT_LT(off / static_cast<double>(out.tracks.size()), 0.1) << "the measurements lie on the edge's trajectory";
+  p.time_by_pixels = false;  // timed at the mean of all its events
+  double lag = 0;
+  const CollectingSink by_events = run(events, p);
+  ASSERT_GT(by_events.tracks.size(), 5u);
+  for (const TrackUpdate& u : by_events.tracks) lag += kSpeed * (static_cast<double>(u.t) - 10) - u.zx;
+  EXPECT_GT(lag / static_cast<double>(by_events.tracks.size()), 0.3) << "a burst's later events time the pixels later";
+}
+
 TEST(Pipeline, IsolatedNoiseIsLabelledNoise) {
   // Scattered single events, far apart in space or time: none has a recent neighbour.
   std::vector<Event> events;
