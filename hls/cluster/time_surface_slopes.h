@@ -2,7 +2,11 @@
 // fixed-point form of golden/cluster/time_surface_slopes.h and its misfit(), exact in integers.
 //
 // Per polarity and pixel the packet's events there are summed: their count and their times after
-// the packet's first event. The plane t = a x + b y + c fitted by least squares to the sums on
+// the packet's first event, in a table of the packet's own pixels (twice as many slots as a packet
+// holds events, open addressing by a multiplicative hash of the pixel, each event's slot kept so
+// that clear() empties exactly the slots the packet took) rather than one word per pixel of the
+// largest sensor: a packet touches at most kPacketMax of a 1280x720 sensor's 1.8 M pixel words.
+// The plane t = a x + b y + c fitted by least squares to the sums on
 // the 5x5 pixels around an event (at least 6 events, the fit not degenerate) has the gradient
 //   g = (Cyy Tx - Cxy Ty, Cxx Ty - Cxy Tx) / D  us/px,   D = Cxx Cyy - Cxy^2,
 // with m the events, Cxx = m Sxx - Sx^2, Cxy = m Sxy - Sx Sy, Tx = m Sxt - Sx St (the offsets'
@@ -22,6 +26,7 @@
 
 #include "hls/cluster/features.h"
 #include "hls/core/config.h"
+#include "hls/math/round.h"
 
 namespace evms::hls {
 
@@ -33,34 +38,42 @@ class TimeSurfaceSlopes {
   using Wide = __int128;
   static constexpr int kNeighbourPx = 2;      // the plane: 5x5 pixels
   static constexpr int kLeastNeighbours = 6;  // events on the plane, the event's own among them
-  // A sensor's pixels twice (both polarities) in a build that holds the motion measure, else one
-  // word: the memories cost nothing where the core never reads them.
-  static constexpr int kWords = S::kHasMotionMeasure ? 2 * S::kMaxWidth * S::kMaxHeight : 1;
+  // The table's slots: at least twice a packet's events (a power of two), so that a probe finds
+  // its pixel or an empty slot within a few steps; one slot in a build without the measure, whose
+  // memories the core never reads.
+  static constexpr int kSlotsLog2 = S::kHasMotionMeasure ? ceil_log2(S::kPacketMax) + 1 : 0;
+  static constexpr int kSlots = 1 << kSlotsLog2;
 
-  // Every pixel's sums are zero after reset(), and again after clear() with a packet's events.
+  // Every slot is empty after reset(), and again after clear() with a packet's events.
   void reset() {
-  zero:
-    for (int i = 0; i < kWords; ++i) count_[i] = 0, time_sum_[i] = 0;
+  empty:
+    for (int i = 0; i < kSlots; ++i) {
+#pragma HLS PIPELINE II = 1
+      key_[i] = kEmpty, count_[i] = 0, time_sum_[i] = 0;
+    }
   }
 
   void add(const PacketEvents<S>& ev, int n) {
   sum:
     for (int i = 0; i < S::kPacketMax; ++i) {
-#pragma HLS PIPELINE II = 1
       if (i >= n) break;
-      const int w = word(ev.p[i], ev.x[i], ev.y[i]);
-      ++count_[w];
-      time_sum_[w] += ev.t[i] - ev.t[0];
+      const std::int32_t w = word(ev.p[i], ev.x[i], ev.y[i]);
+      const int slot = find(w);
+      key_[slot] = w;
+      ++count_[slot];
+      time_sum_[slot] += ev.t[i] - ev.t[0];
+      slot_of_[i] = static_cast<std::uint16_t>(slot);
     }
   }
 
   void clear(const PacketEvents<S>& ev, int n) {
+    (void)ev;
   unsum:
     for (int i = 0; i < S::kPacketMax; ++i) {
 #pragma HLS PIPELINE II = 1
       if (i >= n) break;
-      const int w = word(ev.p[i], ev.x[i], ev.y[i]);
-      count_[w] = 0, time_sum_[w] = 0;
+      const int slot = slot_of_[i];
+      key_[slot] = kEmpty, count_[slot] = 0, time_sum_[slot] = 0;
     }
   }
 
@@ -75,8 +88,8 @@ class TimeSurfaceSlopes {
 #pragma HLS PIPELINE II = 1
         const int x = x0 + dx, y = y0 + dy;
         if (x < 0 || y < 0 || x >= cfg.sensor_width || y >= cfg.sensor_height) continue;
-        const int w = word(p, x, y);
-        const std::int64_t count = count_[w], times = static_cast<std::int64_t>(time_sum_[w]);
+        const int slot = find(word(p, x, y));  // an empty slot: no events there, zero sums
+        const std::int64_t count = count_[slot], times = static_cast<std::int64_t>(time_sum_[slot]);
         m += count, sx += dx * count, sy += dy * count;
         sxx += dx * dx * count, syy += dy * dy * count, sxy += dx * dy * count;
         st += times, sxt += dx * times, syt += dy * times;
@@ -94,12 +107,31 @@ class TimeSurfaceSlopes {
   }
 
  private:
-  static int word(std::uint8_t p, int x, int y) {
-    return S::kHasMotionMeasure ? ((p != 0 ? S::kMaxHeight : 0) + y) * S::kMaxWidth + x : 0;
+  static constexpr std::int32_t kEmpty = -1;
+
+  static std::int32_t word(std::uint8_t p, int x, int y) { return ((p != 0 ? S::kMaxHeight : 0) + y) * S::kMaxWidth + x; }
+
+  // The slot that holds word w, or the empty slot where it would go: the probe starts at the
+  // hash's top kSlotsLog2 bits (Fibonacci hashing) and steps by one. The table is never more than
+  // half full, so the probe ends.
+  int find(std::int32_t w) const {
+    if constexpr (kSlotsLog2 == 0) {
+      return 0;
+    } else {
+      int slot = static_cast<int>((static_cast<std::uint32_t>(w) * 2654435769u) >> (32 - kSlotsLog2));
+    probe:
+      for (int step = 0; step < kSlots; ++step) {
+        if (key_[slot] == w || key_[slot] == kEmpty) break;
+        slot = (slot + 1) & (kSlots - 1);
+      }
+      return slot;
+    }
   }
 
-  std::uint16_t count_[kWords];
-  std::uint64_t time_sum_[kWords];  // us after the packet's first event, summed
+  std::int32_t key_[kSlots];        // the slot's polarity and pixel word, or kEmpty
+  std::uint16_t count_[kSlots];
+  std::uint64_t time_sum_[kSlots];  // us after the packet's first event, summed
+  std::uint16_t slot_of_[S::kPacketMax];  // each event's slot, for clear()
 };
 
 }  // namespace evms::hls

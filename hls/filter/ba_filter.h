@@ -43,6 +43,7 @@
 
 #include "hls/core/config.h"
 #include "hls/core/words.h"
+#include "hls/math/round.h"
 
 namespace evms::hls {
 
@@ -117,12 +118,6 @@ class BackgroundActivityFilter {
   static_assert(S::kTimestampBits == 16 || S::kTimestampBits == 32, "timestamp memory words are 16 or 32 bits");
   using Stamp = std::conditional_t<S::kTimestampBits == 16, std::uint16_t, std::uint32_t>;
   static constexpr Stamp kHalfWrap = static_cast<Stamp>(Stamp{1} << (S::kTimestampBits - 1));
-  // $clog2 of SystemVerilog, at compile time.
-  static constexpr int ceil_log2(int n) {
-    int bits = 0;
-    while ((1 << bits) < n) ++bits;
-    return bits;
-  }
   static constexpr int kScrubPerEvent = 2;
   static constexpr std::uint32_t kIntervalMask = (std::uint32_t{1} << (32 - S::kNoiseIntervalLog2)) - 1;
   static constexpr std::uint32_t kCountMax = (std::uint32_t{1} << 24) - 1;

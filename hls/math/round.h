@@ -13,6 +13,13 @@ constexpr std::int64_t shr_rnd(std::int64_t v, int s) {
 // A mean of `count` pixel coordinates from their sum, in 1/16 px, rounded half up (count > 0).
 constexpr std::int64_t mean_sixteenths(std::int64_t sum, int count) { return (32 * sum + count) / (2 * std::int64_t{count}); }
 
+// $clog2 of SystemVerilog, at compile time: the bits that index n entries (n > 0).
+constexpr int ceil_log2(int n) {
+  int bits = 0;
+  while ((1 << bits) < n) ++bits;
+  return bits;
+}
+
 constexpr std::int64_t clamp_sym(std::int64_t v, std::int64_t bound) {
   return v > bound ? bound : (v < -bound ? -bound : v);
 }

@@ -58,9 +58,39 @@ std::unique_ptr<hls::PacketEvents<HostShape>> packet_of(const std::vector<Event>
   return ev;
 }
 
+// The verdicts of `slopes` and `reference`, holding the same packet, at every event for velocities
+// about (speed, angle) and about where their misfit crosses 1/2. Bound: they are equal wherever
+// golden has a slope whose misfit is more than 1e-9 from 1/2, and wherever golden has none (the
+// fixed verdict is then false).
+struct VerdictCounts {
+  int explained = 0, unexplained = 0, compared = 0;
+};
+void expect_golden_verdicts(const hls::TimeSurfaceSlopes<HostShape>& slopes, golden::TimeSurfaceSlopes& reference,
+                            const std::vector<Event>& events, double speed, double angle, const hls::Config& cfg,
+                            VerdictCounts& counts) {
+  for (const Event& e : events) {
+    const std::optional<Eigen::Vector2d> g = reference.at(e);
+    for (double factor : {0.5, 0.66, 0.67, 0.9, 1.0, 1.1, 1.49, 1.5, 1.51, 2.0}) {
+      for (double turn : {0.0, 0.3, -0.6}) {
+        const double vx = factor * speed * std::cos(angle + turn), vy = factor * speed * std::sin(angle + turn);
+        const std::int32_t wx = static_cast<std::int32_t>(std::lround(vx / speed_of_word(1)));
+        const std::int32_t wy = static_cast<std::int32_t>(std::lround(vy / speed_of_word(1)));
+        const bool fixed = slopes.explains(e.p, e.x, e.y, wx, wy, cfg);
+        if (!g) {
+          EXPECT_FALSE(fixed) << "no slope under (" << e.x << ", " << e.y << ")";
+          continue;
+        }
+        const double misfit = golden::misfit(*g, Eigen::Vector2d(speed_of_word(wx), speed_of_word(wy)));
+        if (std::abs(misfit - 0.5) <= 1e-9) continue;
+        ++counts.compared;
+        EXPECT_EQ(fixed, misfit <= 0.5) << "misfit " << misfit << " at (" << e.x << ", " << e.y << ")";
+        (fixed ? counts.explained : counts.unexplained) += 1;
+      }
+    }
+  }
+}
+
 TEST(TimeSurfaceSlopesInFixedPoint, TheVerdictIsGoldensWhereverGoldensMisfitIsNotWithinRoundingOfTheBound) {
-  // Bound: the verdicts are equal wherever golden has a slope whose misfit is more than 1e-9 from
-  // 1/2, and wherever golden has none (the fixed verdict is then false).
   std::mt19937 rng(20261206);
   std::uniform_real_distribution<double> unit(0, 1);
   auto slopes = std::make_unique<hls::TimeSurfaceSlopes<HostShape>>();
@@ -68,7 +98,7 @@ TEST(TimeSurfaceSlopesInFixedPoint, TheVerdictIsGoldensWhereverGoldensMisfitIsNo
   hls::Config cfg;
   cfg.sensor_width = kSlopeSensor.width, cfg.sensor_height = kSlopeSensor.height;
   golden::TimeSurfaceSlopes reference(kSlopeSensor);
-  int explained = 0, unexplained = 0, compared = 0;
+  VerdictCounts counts;
   for (int packet = 0; packet < 60; ++packet) {
     const double angle = 2 * M_PI * unit(rng), speed = 100 * std::pow(60.0, unit(rng));  // 100-6,000 px/s
     const std::vector<Event> events = jittered_edge(rng, speed * std::cos(angle), speed * std::sin(angle));
@@ -76,34 +106,53 @@ TEST(TimeSurfaceSlopesInFixedPoint, TheVerdictIsGoldensWhereverGoldensMisfitIsNo
     const int n = static_cast<int>(events.size());
     slopes->add(*ev, n);
     reference.add(events);
-    for (const Event& e : events) {
-      const std::optional<Eigen::Vector2d> g = reference.at(e);
-      // Velocities about the edge's own, and about where its misfit crosses 1/2.
-      for (double factor : {0.5, 0.66, 0.67, 0.9, 1.0, 1.1, 1.49, 1.5, 1.51, 2.0}) {
-        for (double turn : {0.0, 0.3, -0.6}) {
-          const double vx = factor * speed * std::cos(angle + turn), vy = factor * speed * std::sin(angle + turn);
-          const std::int32_t wx = static_cast<std::int32_t>(std::lround(vx / speed_of_word(1)));
-          const std::int32_t wy = static_cast<std::int32_t>(std::lround(vy / speed_of_word(1)));
-          const bool fixed = slopes->explains(e.p, e.x, e.y, wx, wy, cfg);
-          if (!g) {
-            EXPECT_FALSE(fixed) << "no slope under (" << e.x << ", " << e.y << ")";
-            continue;
-          }
-          const double misfit = golden::misfit(*g, Eigen::Vector2d(speed_of_word(wx), speed_of_word(wy)));
-          if (std::abs(misfit - 0.5) <= 1e-9) continue;
-          ++compared;
-          EXPECT_EQ(fixed, misfit <= 0.5) << "misfit " << misfit << " at (" << e.x << ", " << e.y << ")";
-          (fixed ? explained : unexplained) += 1;
-        }
-      }
-    }
+    expect_golden_verdicts(*slopes, reference, events, speed, angle, cfg, counts);
     slopes->clear(*ev, n);
     reference.clear(events);
   }
   // Both verdicts, many times: the test sees the bound from both sides.
-  EXPECT_GE(explained, 20000);
-  EXPECT_GE(unexplained, 20000);
-  EXPECT_GE(compared, 100000);
+  EXPECT_GE(counts.explained, 20000);
+  EXPECT_GE(counts.unexplained, 20000);
+  EXPECT_GE(counts.compared, 100000);
+}
+
+// A full packet of distinct pixels and polarities (a 64x32 block of both, an edge crossing it with
+// jittered times) fills half the table of the packet's pixels, where its probes collide most; then
+// a second packet over the same block after clear(): every verdict is still golden's.
+TEST(TimeSurfaceSlopesInFixedPoint, AFullPacketOfDistinctPixelsKeepsGoldensVerdicts) {
+  static_assert(HostShape::kPacketMax == 2 * 64 * 32, "the block's pixels, twice, are a full packet");
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> jitter(-300, 300);
+  auto slopes = std::make_unique<hls::TimeSurfaceSlopes<HostShape>>();
+  slopes->reset();
+  const SensorSize sensor{1280, 720};
+  hls::Config cfg;
+  cfg.sensor_width = sensor.width, cfg.sensor_height = sensor.height;
+  golden::TimeSurfaceSlopes reference(sensor);
+  VerdictCounts counts;
+  for (const double angle : {0.4, 2.2}) {
+    const double speed = 900, vx = speed * std::cos(angle), vy = speed * std::sin(angle);
+    std::vector<Event> events;
+    for (int y = 600; y < 632; ++y) {
+      for (int x = 1200; x < 1264; ++x) {
+        for (std::uint8_t p : {0, 1}) {
+          const double s = ((x - 1200) * vx + (y - 600) * vy) / (speed * speed);
+          events.push_back({200000 + std::lround(s * 1e6) + jitter(rng), static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), p});
+        }
+      }
+    }
+    std::sort(events.begin(), events.end(), [](const Event& a, const Event& b) { return a.t < b.t; });
+    const auto ev = packet_of(events);
+    const int n = static_cast<int>(events.size());
+    ASSERT_EQ(n, HostShape::kPacketMax);
+    slopes->add(*ev, n);
+    reference.add(events);
+    expect_golden_verdicts(*slopes, reference, events, speed, angle, cfg, counts);
+    slopes->clear(*ev, n);
+    reference.clear(events);
+  }
+  EXPECT_GE(counts.explained, 10000);
+  EXPECT_GE(counts.unexplained, 10000);
 }
 
 TEST(TimeSurfaceSlopesInFixedPoint, ClearLeavesEveryPixelAsResetDid) {
