@@ -44,7 +44,7 @@ class TimeSurfaceSlopes {
   static constexpr int kSlotsLog2 = S::kHasMotionMeasure ? ceil_log2(S::kPacketMax) + 1 : 0;
   static constexpr int kSlots = 1 << kSlotsLog2;
 
-  // Every slot is empty after reset(), and again after clear() with a packet's events.
+  // Every slot is empty after reset(), and again after clear() with the packet's event count.
   void reset() {
   empty:
     for (int i = 0; i < kSlots; ++i) {
@@ -66,8 +66,8 @@ class TimeSurfaceSlopes {
     }
   }
 
-  void clear(const PacketEvents<S>& ev, int n) {
-    (void)ev;
+  // Empties the slots the packet's n events took in add().
+  void clear(int n) {
   unsum:
     for (int i = 0; i < S::kPacketMax; ++i) {
 #pragma HLS PIPELINE II = 1

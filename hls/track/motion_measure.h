@@ -106,7 +106,7 @@ class MotionMeasure {
       if (i >= n) break;
       pixel_marks_[pixel(ev.x[i], ev.y[i])] = 0;
     }
-    slopes_.clear(ev, n);
+    slopes_.clear(n);
   replace:
     for (int c = 0; c < S::kClustersMax; ++c) {
       if (c >= clusters) break;

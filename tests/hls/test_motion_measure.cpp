@@ -107,7 +107,7 @@ TEST(TimeSurfaceSlopesInFixedPoint, TheVerdictIsGoldensWhereverGoldensMisfitIsNo
     slopes->add(*ev, n);
     reference.add(events);
     expect_golden_verdicts(*slopes, reference, events, speed, angle, cfg, counts);
-    slopes->clear(*ev, n);
+    slopes->clear(n);
     reference.clear(events);
   }
   // Both verdicts, many times: the test sees the bound from both sides.
@@ -148,7 +148,7 @@ TEST(TimeSurfaceSlopesInFixedPoint, AFullPacketOfDistinctPixelsKeepsGoldensVerdi
     slopes->add(*ev, n);
     reference.add(events);
     expect_golden_verdicts(*slopes, reference, events, speed, angle, cfg, counts);
-    slopes->clear(*ev, n);
+    slopes->clear(n);
     reference.clear(events);
   }
   EXPECT_GE(counts.explained, 10000);
@@ -167,7 +167,7 @@ TEST(TimeSurfaceSlopesInFixedPoint, ClearLeavesEveryPixelAsResetDid) {
   const std::int32_t wy = static_cast<std::int32_t>(std::lround(300 / speed_of_word(1)));
   slopes->add(*ev, static_cast<int>(events.size()));
   EXPECT_TRUE(slopes->explains(1, 30, 24, wx, wy, cfg)) << "the edge's own velocity explains its slope";
-  slopes->clear(*ev, static_cast<int>(events.size()));
+  slopes->clear(static_cast<int>(events.size()));
   for (int y = 0; y < kSlopeSensor.height; ++y) {
     for (int x = 0; x < kSlopeSensor.width; ++x) {
       ASSERT_FALSE(slopes->explains(1, x, y, wx, wy, cfg) || slopes->explains(0, x, y, wx, wy, cfg)) << x << ", " << y;
