@@ -163,7 +163,8 @@ const std::array kTable = {
               &Params::midpoint_min_events, 1, 65535},
     ParamInfo{"time-by-pixels", "", "with --measure pixel-centre, a cluster is timed at the mean timestamp of the events "
               "that placed its pixels (each pixel's first of the packet), not of all its events: an edge fires a burst on "
-              "each pixel it crosses, and the pixel is where the edge was at the burst's first event (false: golden only)",
+              "each pixel it crosses, and the pixel is where the edge was at the burst's first event (golden and the fixed-point core; "
+              "the RTL builds: false)",
               &Params::time_by_pixels, 0, 1},
     ParamInfo{"association", "", "cluster IDs across packets: kalman (one-to-one against each track's "
               "Kalman prediction), last-measurement (one-to-one against each track's last cluster centre) or "

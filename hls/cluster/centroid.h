@@ -14,9 +14,11 @@
 // measured at the mean of its pixels, each pixel once: the sums and the count of its events that
 // are the first of the packet on their pixel (hls/cluster/link.h marks them). An edge moving
 // across its normal fires several events on each pixel it crosses, one moving along it few, and
-// where the outline is is where its pixels are, not where most events fire. It is timed at the
-// rounded mean timestamp of those same events, the time its pixels were where they are. A cluster
-// without such an event (none, with the links on) keeps its centre of mass and its time.
+// where the outline is is where its pixels are, not where most events fire. With
+// `time_by_pixels` (Config::pixel_time, a build with HasPixelTime; no RTL build holds it) it is
+// timed at the rounded mean timestamp of those same events, the time its pixels were where they
+// are. A cluster without such an event (none, with the links on) keeps its centre of mass and
+// its time.
 #pragma once
 
 #include <cstdint>
@@ -40,7 +42,7 @@ struct Measurement {
 template <class S>
 void centroids(const PacketEvents<S>& ev, int n, const std::int8_t cluster_of[S::kPacketMax], int clusters,
                Measurement out[S::kClustersMax], bool exact = false, std::uint16_t midpoint_min = 0,
-               const bool* first_on_pixel = nullptr) {
+               const bool* first_on_pixel = nullptr, bool time_by_pixels = false) {
   std::uint32_t sx[S::kClustersMax] = {}, sy[S::kClustersMax] = {}, count[S::kClustersMax] = {};
   std::uint32_t sx_on[S::kClustersMax] = {}, sy_on[S::kClustersMax] = {}, count_on[S::kClustersMax] = {};
   std::uint32_t sx_px[S::kClustersMax] = {}, sy_px[S::kClustersMax] = {}, count_px[S::kClustersMax] = {};
@@ -75,7 +77,7 @@ divide:
       std::uint64_t num_t = st[c], den_t = n;
       if (first_on_pixel != nullptr && count_px[c] > 0) {
         num_x = sx_px[c], num_y = sy_px[c], den = count_px[c];
-        num_t = st_px[c], den_t = count_px[c];
+        if (time_by_pixels) num_t = st_px[c], den_t = count_px[c];
       } else if (midpoint_min > 0 && n_on >= midpoint_min && n_off >= midpoint_min) {
         num_x = std::uint64_t{sx_on[c]} * n_off + std::uint64_t{sx[c] - sx_on[c]} * n_on;
         num_y = std::uint64_t{sy_on[c]} * n_off + std::uint64_t{sy[c] - sy_on[c]} * n_on;

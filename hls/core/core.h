@@ -195,7 +195,8 @@ class Core {
       }
       Measurement z[S::kClustersMax];
       centroids(packet_, n_, cluster_of, clusters, z, cfg_.seeded, cfg_.midpoint_min,
-                cfg_.seeded && cfg_.pixel_centre && cfg_.link2 != 0 ? first_on_pixel : nullptr);  // the links mark the pixels
+                cfg_.seeded && cfg_.pixel_centre && cfg_.link2 != 0 ? first_on_pixel : nullptr,  // the links mark the pixels
+                S::kHasPixelTime && cfg_.pixel_time != 0);
       if (S::kHasMotionMeasure && cfg_.motion_speed != 0) motion_.measure(packet_, n_, cluster_of, clusters, tracker_, cfg_, z);
       std::int32_t ids[S::kClustersMax];
       tracker_.step(packet_.t[n_ - 1], z, clusters, cfg_, ids, tracks);

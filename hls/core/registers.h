@@ -83,4 +83,5 @@
   X(gate_spread2, std::uint32_t, 32, 0, "widening of the gate by the spread of the cluster, squared, kSpreadFrac bits") \
   X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never") \
   X(rescue_reach, std::uint8_t, 8, 0, "an event the filter dropped takes the label of the nearest labelled event of its packet within this many px (at most kRescueMax; a build with HasRescue); 0: off") \
+  X(pixel_time, std::uint8_t, 1, 0, "the pixel centre is timed at the mean timestamp of its pixels' first events, not of all its events (hls/cluster/centroid.h; a build with HasPixelTime)") \
   X(motion_speed, std::uint32_t, 32, 0, "a cluster that holds a confirmed track at least this fast (px per tick, kPosFrac bits) and another confirmed track is measured from the pixels whose time-surface slopes the fast one's velocity explains (hls/track/motion_measure.h; a build with HasMotionMeasure; the host sets it with pixel_centre only); 0: off")

@@ -48,7 +48,7 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 // where S does not hold them (Shape::kHasPolaritySplit, kHasPolarityMidpoint, kHasPixelCentre,
 // kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes, kHasDensityAfterLinks: the board builds),
 // without the dropped events' labels and the motion measure where S does not hold them
-// (kHasRescue, kHasMotionMeasure: every RTL build), and without warm seeds where S starts without them (kHasWarmSeeds), each
+// (kHasRescue, kHasMotionMeasure, kHasPixelTime: every RTL build), and without warm seeds where S starts without them (kHasWarmSeeds), each
 // unless `kept(name)` says the command line set it, for the backend to refuse what S cannot run.
 template <class S, class Kept>
 Params within_build(Params p, Kept kept) {
@@ -70,6 +70,7 @@ Params within_build(Params p, Kept kept) {
   if (!S::kHasWarmSeeds && !kept("warm-start")) p.warm_start = false;
   if (!S::kHasRescue && !kept("rescue-px")) p.rescue_px = 0;
   if (!S::kHasMotionMeasure && !kept("motion-measure")) p.motion_measure = 0;
+  if (!S::kHasPixelTime && !kept("time-by-pixels")) p.time_by_pixels = false;
   return p;
 }
 
@@ -137,7 +138,7 @@ inline std::string core_unsupported(const Params& p) {
   if (seeded && p.labelling != Labelling::kFirst) return "the fixed-point core labels an event by the first climb that reached it, not " + detail::setting(p, "labelling");
   const Params off = preset("gaussian");
   if (const char* name = detail::first_difference(p, off, {"filter-look-ahead-us", "packet-support", "join-boxes", "warm-reach",
-                                                               "packet-span-edge-px", "motion-split", "time-by-pixels"})) {
+                                                               "packet-span-edge-px", "motion-split"})) {
     return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
   }
   if (p.measure == Measure::kBoxCentre || (!seeded && p.measure != Measure::kCentroid)) {
@@ -163,7 +164,8 @@ inline std::string core_unsupported(const Params& p) {
 // and the least density on the linked sets where it holds them (kHasGateBoxes, kHasDensityAfterLinks)
 // and the tracker's other policies but the gate's widening by
 // the spread and coasting by packets. No build labels the events the filter dropped (--rescue-px)
-// or measures a fast track's cluster by its motion (--motion-measure).
+// or measures a fast track's cluster by its motion (--motion-measure), and every build times the
+// pixel centre by all its events (--time-by-pixels false).
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
   bool gaussian_path = false, seeded_path = false, polarity_split = false, edge_join = false, polarity_midpoint = false,
@@ -187,6 +189,9 @@ inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   const Params rtl = preset("gaussian");
   if (const char* name = detail::first_difference(p, rtl, {"filter-support", "gate-spread", "coast-packets", "rescue-px", "motion-measure"})) {
     return "the RTL core does not implement " + detail::setting(p, name) + " (add --" + name + " " + param_text(rtl, *find_param(name)) + ")";
+  }
+  if (p.measure == Measure::kPixelCentre && p.time_by_pixels) {
+    return "the RTL core times the pixel centre by all its events, not " + detail::setting(p, "time-by-pixels") + " (add --time-by-pixels false)";
   }
   if (!polarity_split && seeded && p.split_balance != 0) {
     return "the RTL build '" + build + "' does not hold the polarity split, not " + detail::setting(p, "split-balance") + " (add --split-balance 0)";
@@ -262,6 +267,8 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   need(p.filter_support <= 8, "--filter-support is at most 8");
   need(p.rescue_px == 0 || S::kHasRescue, "this build's core does not label the events its filter dropped, not " + detail::setting(p, "rescue-px") + " (add --rescue-px 0)");
   need(p.rescue_px <= S::kRescueMax, "the core labels dropped events from at most " + std::to_string(S::kRescueMax) + " px away (--rescue-px)");
+  need(p.measure != Measure::kPixelCentre || !p.time_by_pixels || S::kHasPixelTime,
+       "this build's core times the pixel centre by all its events, not " + detail::setting(p, "time-by-pixels") + " (add --time-by-pixels false)");
   need(p.motion_measure == 0 || S::kHasMotionMeasure,
        "this build's core does not measure a fast track's cluster by its motion, not " + detail::setting(p, "motion-measure") + " (add --motion-measure 0)");
   need(filter_noise_count(p, sensor) < (std::int64_t{1} << 24), "--filter-noise-hz is too large for the core's 24-bit count");
@@ -328,6 +335,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   // it is with the pixel centre only, as golden's (golden/pipeline.cpp).
   const double motion_speed = p.motion_measure * tick_s * std::ldexp(1.0, S::kPosFrac);
   need(motion_speed < 4294967295.0, "--motion-measure is too large for the core's 32-bit speed");
+  c.pixel_time = p.time_by_pixels && p.measure == Measure::kPixelCentre && S::kHasPixelTime ? 1 : 0;
   c.motion_speed = p.motion_measure > 0 && p.measure == Measure::kPixelCentre ? static_cast<std::uint32_t>(std::max<std::int64_t>(1, rnd(motion_speed))) : 0;
   const double least_per_event = least_support_per_event(p, sensor);
   need(!seeded || least_per_event < 256, "--min-density is too large for the core's 32-bit density");

@@ -17,8 +17,8 @@
 // With HasPixelCentre and cfg_pixel_centre, the exact path measures a cluster at the mean of its
 // pixels, each pixel once: the sums and the count of its events that are the first of the packet
 // on their pixel (ev_first, from cluster/evms_mode_links.sv), a fourth memory beside the sums
-// (cluster/evms_cluster_subset_sums.sv), timed at the mean age of those events; a
-// cluster with none keeps its centre of mass and its time. It takes the place of the midpoint.
+// (cluster/evms_cluster_subset_sums.sv); a
+// cluster with none keeps its centre of mass. It takes the place of the midpoint.
 //
 // With HasSpreadNoise and cfg_meas_from_spread, each cluster also takes its measurement
 // variance, as hls/track/measurement_variance.h: its spread squared, (n S2 - Sx^2 - Sy^2) / n^2
@@ -305,18 +305,15 @@ module evms_centroid #(
   logic div_done;
   logic [ExactBits-1:0] div_num, div_quotient, num_x, num_y, mid_num_x, mid_num_y;
   logic [DenBits-1:0] den_xy, mid_den_xy;   // mid_*: the centre of mass or the midpoint
-  logic [ExactBits-1:0] num_t;              // the time's numerator (the sum of ages) and denominator
-  logic [DenBits-1:0] den_t;
   logic [ExactBits-1:0] mass_num_x, mass_num_y;  // the centre of mass's numerators
   assign mass_num_x = ExactBits'(sx) << PosFrac;
   assign mass_num_y = ExactBits'(sy) << PosFrac;
   if (HasPolarityMidpoint) begin : g_midpoint
     logic [31:0] sx_on, sy_on;
     logic [15:0] count_on;
-    logic [63:0] unused_on_st;   // the ON events' ages are not summed; waived in cluster/evms_cluster.vlt
     evms_cluster_subset_sums #(.ClustersMax(ClustersMax)) u_on_sums (
-      .clk, .valid(sums_valid_q), .c(sum_c), .adding, .in_subset(ev_p), .x(ev_x), .y(ev_y), .age, .sx(sx_on), .sy(sy_on),
-      .count(count_on), .st(unused_on_st));
+      .clk, .valid(sums_valid_q), .c(sum_c), .adding, .in_subset(ev_p), .x(ev_x), .y(ev_y), .sx(sx_on), .sy(sy_on),
+      .count(count_on));
     logic [15:0] count_off;
     logic use_midpoint;
     assign count_off = 16'(count) - count_on;
@@ -339,30 +336,25 @@ module evms_centroid #(
   if (HasPixelCentre) begin : g_pixel_centre
     logic [31:0] sx_px, sy_px;
     logic [15:0] count_px;
-    logic [63:0] st_px;
-    evms_cluster_subset_sums #(.ClustersMax(ClustersMax), .HasAge(1'b1)) u_pixel_sums (
-      .clk, .valid(sums_valid_q), .c(sum_c), .adding, .in_subset(ev_first), .x(ev_x), .y(ev_y), .age, .sx(sx_px),
-      .sy(sy_px), .count(count_px), .st(st_px));
+    evms_cluster_subset_sums #(.ClustersMax(ClustersMax)) u_pixel_sums (
+      .clk, .valid(sums_valid_q), .c(sum_c), .adding, .in_subset(ev_first), .x(ev_x), .y(ev_y), .sx(sx_px), .sy(sy_px),
+      .count(count_px));
     logic use_pixels;
     assign use_pixels = cfg_pixel_centre && count_px != 0;
     assign num_x = use_pixels ? ExactBits'(sx_px) << PosFrac : mid_num_x;
     assign num_y = use_pixels ? ExactBits'(sy_px) << PosFrac : mid_num_y;
     assign den_xy = use_pixels ? DenBits'(count_px) : mid_den_xy;
-    assign num_t = use_pixels ? ExactBits'(st_px) : ExactBits'(st);
-    assign den_t = use_pixels ? DenBits'(count_px) : DenBits'(count);
   end else begin : g_no_pixel_centre
     assign num_x = mid_num_x;
     assign num_y = mid_num_y;
     assign den_xy = mid_den_xy;
-    assign num_t = ExactBits'(st);
-    assign den_t = DenBits'(count);
     logic unused_pixel_centre;   // waived in cluster/evms_cluster.vlt
     assign unused_pixel_centre = ^{cfg_pixel_centre, ev_first};
   end
-  assign div_num = state_q == StExactX ? num_x : (state_q == StExactY ? num_y : num_t);
+  assign div_num = state_q == StExactX ? num_x : (state_q == StExactY ? num_y : ExactBits'(st));
   if (HasExact) begin : g_exact
     evms_divide_rounded #(.NumBits(ExactBits), .DenBits(DenBits)) u_divide (
-      .clk, .rst_n, .start(div_start_q), .num(div_num), .den(state_q == StExactT ? den_t : den_xy), .done(div_done),
+      .clk, .rst_n, .start(div_start_q), .num(div_num), .den(state_q == StExactT ? DenBits'(count) : den_xy), .done(div_done),
       .quotient(div_quotient));
   end else begin : g_no_exact
     assign div_done = 1'b0;

@@ -186,7 +186,9 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   expect_refused("--backend fixed --packet-span-edge-px 5", "does not implement --packet-span-edge-px 5 (only --packet-span-edge-px 0)");
   expect_refused("--backend fixed --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
   expect_refused("--backend rtl --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
-  expect_refused("--backend fixed --time-by-pixels false", "does not implement --time-by-pixels false (only --time-by-pixels true)");
+  // The fixed-point core times the pixel centre either way; no RTL build by its pixels.
+  expect_runs("--backend fixed --time-by-pixels false");
+  expect_refused("--backend rtl --time-by-pixels true", "times the pixel centre by all its events, not --time-by-pixels true (add --time-by-pixels false)");
   // The fixed-point core holds the motion measure; no RTL build and no board's core does.
   expect_runs("--backend fixed --motion-measure 1000");
   expect_refused("--backend rtl --motion-measure 1000", "does not implement --motion-measure 1000 (add --motion-measure 0)");
@@ -224,9 +226,9 @@ TEST(MethodOutputs, TheRtlRunsTheDefaultMethodAsTheFixedCore) {
     EXPECT_EQ(r.exit_code, 0) << backend << extra << ": " << r.err;
     return out;
   };
-  // No RTL build labels the events its filter dropped (--rescue-px), which the RTL backend leaves
-  // out of its default method.
-  const std::string rtl = run("rtl", "rtl", ""), fixed = run("fixed", "fixed", " --rescue-px 0");
+  // No RTL build labels the events its filter dropped (--rescue-px) or times the pixel centre by
+  // its pixels (--time-by-pixels), which the RTL backend leaves out of its default method.
+  const std::string rtl = run("rtl", "rtl", ""), fixed = run("fixed", "fixed", " --rescue-px 0 --time-by-pixels false");
   const std::string unsplit = run("unsplit", "rtl", " --split-balance 0");
   const std::string unjoined = run("unjoined", "rtl", " --edge-join 0");
   const std::string one_noise = run("one_noise", "rtl", " --meas-noise-from-spread false");
