@@ -189,14 +189,36 @@ TEST(RealtimeReplay, KeepsThePaceOfTheTimestampsTimesTheSpeed) {
   EXPECT_GE(wall, 0.09) << "the replay ran ahead of the timestamps";
 }
 
+TEST(RealtimeReplay, StartsItsPaceWhenItsReaderFirstAsksNotWhenOpened) {
+  SourceOptions o;
+  o.realtime = true;
+  o.live_buffer_events = 4096;
+  // 0.2 s of scene time at 1x, far more events than the buffer holds: a replay that ran while
+  // its reader was still being built would have dropped most of them by the first read.
+  auto source = open_source("gen://translation?duration-s=0.2&seed=3", o);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // a backend being built
+  EXPECT_EQ(source->dropped(), 0);
+  const auto start = std::chrono::steady_clock::now();
+  const size_t got = drain(*source);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  SourceOptions plain;
+  auto reference = open_source("gen://translation?duration-s=0.2&seed=3", plain);
+  const size_t all = drain(*reference, nullptr, false);
+  ASSERT_GT(all, 4 * o.live_buffer_events);
+  EXPECT_EQ(got + static_cast<size_t>(source->dropped()), all);
+  EXPECT_GE(wall, 0.19) << "the replay's pace did not start at the first read";
+}
+
 TEST(RealtimeReplay, ABackendThatFallsBehindLosesCountedEvents) {
   SourceOptions o;
   o.realtime = true;
   o.speed = 1000;
   o.live_buffer_events = 64;
   auto source = open_source("gen://rotation?duration-s=0.5&seed=4", o);
+  std::vector<Event> first(1);
+  size_t got = source->read(first);  // the replay starts
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // a backend stalled while the replay ran
-  const size_t got = drain(*source);
+  got += drain(*source);
   SourceOptions plain;
   auto reference = open_source("gen://rotation?duration-s=0.5&seed=4", plain);
   const size_t all = drain(*reference, nullptr, false);

@@ -59,8 +59,18 @@ void LiveBuffer::fail(const std::string& message) {
   ready_.notify_all();
 }
 
+bool LiveBuffer::wait_for_consumer(const std::stop_token& stop) {
+  std::unique_lock lock(mutex_);
+  // Polled, as a stop request and end_live_sources() notify no one.
+  while (!ready_.wait_for(lock, std::chrono::milliseconds(10), [&] { return consumer_asked_; })) {
+    if (stop.stop_requested() || g_end_requested.load()) return false;
+  }
+  return true;
+}
+
 size_t LiveBuffer::pop(std::span<Event> out, std::span<std::int64_t> arrival_ns) {
   std::unique_lock lock(mutex_);
+  if (!consumer_asked_) consumer_asked_ = true, ready_.notify_all();
   // A signal handler cannot notify a condition variable, so waits poll for end_live_sources().
   while (!ready_.wait_for(lock, std::chrono::milliseconds(100), [&] { return size_ > 0 || closed_; })) {
     if (g_end_requested.load()) return 0;
@@ -79,6 +89,7 @@ size_t LiveBuffer::pop(std::span<Event> out, std::span<std::int64_t> arrival_ns)
 
 bool LiveBuffer::ready_within(int wait_ms) {
   std::unique_lock lock(mutex_);
+  if (!consumer_asked_) consumer_asked_ = true, ready_.notify_all();
   return ready_.wait_for(lock, std::chrono::milliseconds(wait_ms), [&] { return size_ > 0 || closed_ || g_end_requested.load(); });
 }
 
@@ -159,9 +170,11 @@ class RealtimeReplay final : public LiveSource, public PlaybackControl {
 
   // Hands events over in slices of at most 100 us of sensor time, each when the wall clock
   // reaches its last timestamp (scaled by the speed). A pause or a change of speed restarts the
-  // pacing from where the replay is.
+  // pacing from where the replay is. The pacing starts when the reader first asks for events, so
+  // that what the reader does before (build a backend, open a window) does not count against it.
   void produce(std::stop_token stop) override {
     using clock = std::chrono::steady_clock;
+    if (!buffer_.wait_for_consumer(stop)) return;
     std::vector<Event> batch(4096);
     bool started = false;
     TimeUs t0 = 0;

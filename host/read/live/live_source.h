@@ -37,6 +37,9 @@ class LiveBuffer {
   void push(std::span<const Event> events, std::int64_t arrival_ns);
   void close();                          // no more events will come
   void fail(const std::string& message); // the producer failed; read() reports it
+  // Waits until the consumer first asks for events (pop or ready_within), or `stop`, or the
+  // sources' end; whether the consumer asked.
+  bool wait_for_consumer(const std::stop_token& stop);
 
   // Consumer side. Waits for at least one event (or the end) and takes up to out.size();
   // returns 0 only at the end. Throws InputError with the producer's message when it failed.
@@ -53,6 +56,7 @@ class LiveBuffer {
   std::vector<std::int64_t> arrival_;
   size_t head_ = 0, size_ = 0;
   bool closed_ = false;
+  bool consumer_asked_ = false;
   std::string error_;
   std::int64_t dropped_ = 0;
 };
