@@ -157,7 +157,7 @@ void MotionSplit::split(std::span<const Event> events, const FeatureMatrix& feat
     modes[c] = sum[0] / count[0];
     modes.push_back(sum[1] / count[1]);
   }
-  slopes_->clear(events);
+  slopes_->clear();
 }
 
 }  // namespace evms::golden

@@ -10,8 +10,7 @@ constexpr int kLeastNeighbours = 6;  // events on the plane, the event's own amo
 
 }  // namespace
 
-TimeSurfaceSlopes::TimeSurfaceSlopes(SensorSize sensor)
-    : width_(sensor.width), height_(sensor.height), on_pixel_(2 * static_cast<size_t>(sensor.width) * sensor.height) {}
+TimeSurfaceSlopes::TimeSurfaceSlopes(SensorSize sensor) : width_(sensor.width), height_(sensor.height) {}
 
 void TimeSurfaceSlopes::add(std::span<const Event> events) {
   if (events.empty()) return;
@@ -22,8 +21,8 @@ void TimeSurfaceSlopes::add(std::span<const Event> events) {
   }
 }
 
-void TimeSurfaceSlopes::clear(std::span<const Event> events) {
-  for (const Event& e : events) on_pixel_[pixel_index(e.p, e.x, e.y)] = {};
+void TimeSurfaceSlopes::clear() {
+  on_pixel_.clear();
   slopes_.clear();
 }
 
@@ -45,11 +44,10 @@ std::optional<Eigen::Vector2d> TimeSurfaceSlopes::fit(std::uint8_t polarity, int
   const int dx_lo = std::max(-kNeighbourPx, -x0), dx_hi = std::min(kNeighbourPx, width_ - 1 - x0);
   const int dy_lo = std::max(-kNeighbourPx, -y0), dy_hi = std::min(kNeighbourPx, height_ - 1 - y0);
   for (int dy = dy_lo; dy <= dy_hi; ++dy) {
-    const PixelEvents* row = &on_pixel_[pixel_index(polarity, x0, y0 + dy)];
     for (int dx = dx_lo; dx <= dx_hi; ++dx) {
-      const PixelEvents& pixel = row[dx];
-      if (pixel.count == 0) continue;  // most of a window: an edge is a line through it
-      const std::int64_t count = pixel.count, times = pixel.time_sum;
+      const auto pixel = on_pixel_.find(pixel_index(polarity, x0 + dx, y0 + dy));
+      if (pixel == on_pixel_.end()) continue;  // most of a window: an edge is a line through it
+      const std::int64_t count = pixel->second.count, times = pixel->second.time_sum;
       m += count, sx += dx * count, sy += dy * count, sxx += dx * dx * count, syy += dy * dy * count, sxy += dx * dy * count;
       st += times, sxt += dx * times, syt += dy * times;
     }

@@ -5,14 +5,16 @@
 // fit not degenerate). An edge moving at velocity v fires so that slope · v = 1, whatever its
 // orientation. The fit takes sums of each pixel's event count and summed times, exact in
 // integers; the plane's gradient does not depend on where its time starts, so the events of one
-// pixel and polarity share one slope, computed once a packet. The splits and measurements by
-// motion (motion_split.h, motion_measure.h) read it.
+// pixel and polarity share one slope, computed once a packet. The sums are kept for the packet's
+// own pixels alone (a hash map), so the memory does not grow with the sensor. The split and the
+// measurement by motion (motion_split.h, golden/track/motion_measure.h) read it.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,14 +31,16 @@ class TimeSurfaceSlopes {
  public:
   explicit TimeSurfaceSlopes(SensorSize sensor);
 
-  // Takes a packet's events; clear() with the same events before the next packet.
+  // Takes a packet's events; clear() before the next packet.
   void add(std::span<const Event> events);
-  void clear(std::span<const Event> events);
+  void clear();
   // The slope under event e (one of the packet's), when its neighbours give one.
   std::optional<Eigen::Vector2d> at(const Event& e);
 
  private:
-  size_t pixel_index(std::uint8_t polarity, int x, int y) const { return (static_cast<size_t>(polarity != 0) * height_ + y) * width_ + x; }
+  std::uint64_t pixel_index(std::uint8_t polarity, int x, int y) const {
+    return (static_cast<std::uint64_t>(polarity != 0) * height_ + static_cast<std::uint64_t>(y)) * width_ + static_cast<std::uint64_t>(x);
+  }
   std::optional<Eigen::Vector2d> fit(std::uint8_t polarity, int x, int y) const;
 
   int width_, height_;
@@ -49,7 +53,7 @@ class TimeSurfaceSlopes {
     int slope = kSlopeUnknown;
     std::int64_t time_sum = 0;
   };
-  std::vector<PixelEvents> on_pixel_;
+  std::unordered_map<std::uint64_t, PixelEvents> on_pixel_;
   std::vector<Eigen::Vector2d> slopes_;
 };
 

@@ -58,7 +58,7 @@ void MotionMeasure::measure(std::span<const Event> events, std::span<const int> 
     kept_x[static_cast<size_t>(c)] += events[i].x, kept_y[static_cast<size_t>(c)] += events[i].y, ++kept[static_cast<size_t>(c)];
   }
   for (size_t i = 0; i < events.size(); ++i) pixel_taken_[pixel_of(events[i])] = 0;
-  slopes_.clear(events);
+  slopes_.clear();
   for (size_t c = 0; c < measurements.size(); ++c) {
     if (kept[c] > 0 && kept[c] >= kLeastSharePixelsKept * pixels[c]) measurements[c].x = kept_x[c] / kept[c], measurements[c].y = kept_y[c] / kept[c];
   }

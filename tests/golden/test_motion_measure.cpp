@@ -42,7 +42,7 @@ TEST(TimeSurfaceSlopes, AnEdgeAtVelocityVHasSlopeVOverItsSpeedSquared) {
       ASSERT_TRUE(g.has_value()) << angle << " " << speed;
       EXPECT_NEAR(misfit(*g, {vx, vy}), 0.0, 1e-6 * speed) << angle << " " << speed;
       EXPECT_NEAR(g->x() * vy - g->y() * vx, 0.0, 1e-6 * speed) << angle << " " << speed;
-      slopes.clear(events);
+      slopes.clear();
     }
   }
 }
@@ -52,11 +52,11 @@ TEST(TimeSurfaceSlopes, OneLineOfPixelsOrTooFewEventsGiveNoSlope) {
   const std::vector<Event> row = edge_at_velocity(10, 30, 50, 51, 500, 0);  // one row: the slope across it unknown
   slopes.add(row);
   EXPECT_FALSE(slopes.at(row[10]).has_value());
-  slopes.clear(row);
+  slopes.clear();
   const std::vector<Event> five = edge_at_velocity(10, 15, 50, 51, 500, 0);
   slopes.add(five);
   EXPECT_FALSE(slopes.at(five[2]).has_value());
-  slopes.clear(five);
+  slopes.clear();
   // Cleared: the next packet's events alone count.
   const std::vector<Event> square = edge_at_velocity(10, 20, 50, 60, 500, 0);
   slopes.add(square);

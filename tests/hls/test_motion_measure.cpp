@@ -108,7 +108,7 @@ TEST(TimeSurfaceSlopesInFixedPoint, TheVerdictIsGoldensWhereverGoldensMisfitIsNo
     reference.add(events);
     expect_golden_verdicts(*slopes, reference, events, speed, angle, cfg, counts);
     slopes->clear(n);
-    reference.clear(events);
+    reference.clear();
   }
   // Both verdicts, many times: the test sees the bound from both sides.
   EXPECT_GE(counts.explained, 20000);
@@ -149,7 +149,7 @@ TEST(TimeSurfaceSlopesInFixedPoint, AFullPacketOfDistinctPixelsKeepsGoldensVerdi
     reference.add(events);
     expect_golden_verdicts(*slopes, reference, events, speed, angle, cfg, counts);
     slopes->clear(n);
-    reference.clear(events);
+    reference.clear();
   }
   EXPECT_GE(counts.explained, 10000);
   EXPECT_GE(counts.unexplained, 10000);
