@@ -102,8 +102,8 @@ class PlaybackControl {
 };
 
 // Replays `inner` at `speed` times the pace of its timestamps, from a thread of its own, into
-// a buffer of `capacity` events: the paper's speed-factor runs. Events the consumer has no
-// room for are dropped and counted.
+// a buffer of `capacity` events: the paper's speed-factor runs. The pace starts at the
+// consumer's first read. Events the consumer has no room for are dropped and counted.
 std::unique_ptr<EventSource> replay_in_real_time(std::unique_ptr<EventSource> inner, double speed, size_t capacity);
 
 }  // namespace evms::read
