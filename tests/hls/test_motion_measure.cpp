@@ -58,16 +58,20 @@ std::unique_ptr<hls::PacketEvents<HostShape>> packet_of(const std::vector<Event>
   return ev;
 }
 
-// The verdicts of `slopes` and `reference`, holding the same packet, at every event for velocities
-// about (speed, angle) and about where their misfit crosses 1/2. Bound: they are equal wherever
-// golden has a slope whose misfit is more than 1e-9 from 1/2, and wherever golden has none (the
-// fixed verdict is then false).
+// The verdicts of `slopes` and `reference`, both given the packet `events` and cleared after, at
+// every event for velocities about (speed, angle) and about where their misfit crosses 1/2.
+// Bound: they are equal wherever golden has a slope whose misfit is more than 1e-9 from 1/2, and
+// wherever golden has none (the fixed verdict is then false).
 struct VerdictCounts {
   int explained = 0, unexplained = 0, compared = 0;
 };
-void expect_golden_verdicts(const hls::TimeSurfaceSlopes<HostShape>& slopes, golden::TimeSurfaceSlopes& reference,
+void expect_golden_verdicts(hls::TimeSurfaceSlopes<HostShape>& slopes, golden::TimeSurfaceSlopes& reference,
                             const std::vector<Event>& events, double speed, double angle, const hls::Config& cfg,
                             VerdictCounts& counts) {
+  const auto ev = packet_of(events);
+  const int n = static_cast<int>(events.size());
+  slopes.add(*ev, n);
+  reference.add(events);
   for (const Event& e : events) {
     const std::optional<Eigen::Vector2d> g = reference.at(e);
     for (double factor : {0.5, 0.66, 0.67, 0.9, 1.0, 1.1, 1.49, 1.5, 1.51, 2.0}) {
@@ -88,6 +92,8 @@ void expect_golden_verdicts(const hls::TimeSurfaceSlopes<HostShape>& slopes, gol
       }
     }
   }
+  slopes.clear(n);
+  reference.clear();
 }
 
 TEST(TimeSurfaceSlopesInFixedPoint, TheVerdictIsGoldensWhereverGoldensMisfitIsNotWithinRoundingOfTheBound) {
@@ -102,13 +108,7 @@ TEST(TimeSurfaceSlopesInFixedPoint, TheVerdictIsGoldensWhereverGoldensMisfitIsNo
   for (int packet = 0; packet < 60; ++packet) {
     const double angle = 2 * M_PI * unit(rng), speed = 100 * std::pow(60.0, unit(rng));  // 100-6,000 px/s
     const std::vector<Event> events = jittered_edge(rng, speed * std::cos(angle), speed * std::sin(angle));
-    const auto ev = packet_of(events);
-    const int n = static_cast<int>(events.size());
-    slopes->add(*ev, n);
-    reference.add(events);
     expect_golden_verdicts(*slopes, reference, events, speed, angle, cfg, counts);
-    slopes->clear(n);
-    reference.clear();
   }
   // Both verdicts, many times: the test sees the bound from both sides.
   EXPECT_GE(counts.explained, 20000);
@@ -142,14 +142,8 @@ TEST(TimeSurfaceSlopesInFixedPoint, AFullPacketOfDistinctPixelsKeepsGoldensVerdi
       }
     }
     std::sort(events.begin(), events.end(), [](const Event& a, const Event& b) { return a.t < b.t; });
-    const auto ev = packet_of(events);
-    const int n = static_cast<int>(events.size());
-    ASSERT_EQ(n, HostShape::kPacketMax);
-    slopes->add(*ev, n);
-    reference.add(events);
+    ASSERT_EQ(static_cast<int>(events.size()), HostShape::kPacketMax);
     expect_golden_verdicts(*slopes, reference, events, speed, angle, cfg, counts);
-    slopes->clear(n);
-    reference.clear();
   }
   EXPECT_GE(counts.explained, 10000);
   EXPECT_GE(counts.unexplained, 10000);
