@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Dense>
 
@@ -16,6 +17,14 @@ constexpr double kNoSlopeResidual = 0.5;
 constexpr int kRounds = 8;
 constexpr int kLeastPartEvents = 64;
 constexpr double kLeastVelocityDifference = 0.3;  // times the faster part's speed
+
+// The parts, velocities and residual of the best round so far.
+struct Best {
+  double two_residual = 0;
+  std::vector<int> part;
+  Eigen::Vector2d velocity[2];
+  int sloped_in[2] = {0, 0};
+};
 
 // How well velocity v (px/s) explains an event of slope g (s/px), capped.
 double residual(const Eigen::Vector2d& g, const Eigen::Vector2d& v) { return std::min(1.0, misfit(g, v)); }
@@ -54,22 +63,37 @@ bool MotionSplit::parts_of(std::span<const Event> events, std::span<const int> m
   double one_residual = 0;
   for (int i : sloped) one_residual += residual(slope_[i], one);
 
-  // The first cut: across the principal axis of the events' pixels.
-  double sxx = 0, syy = 0, sxy = 0;
+  // The first cut: across the principal axis of the events' pixels, from their second moments
+  // times m^2, exact in integers (cxx = m sum x^2 - (sum x)^2, ...). With d = cxx - cyy and
+  // r = |(d, 2 cxy)|, the axis at half the angle of (d, 2 cxy) is along (r + d, 2 cxy), or along
+  // y when that vanishes (cxy = 0, cxx < cyy).
+  const auto m = static_cast<std::int64_t>(members.size());
+  std::int64_t sum_x = 0, sum_y = 0, sum_xx = 0, sum_yy = 0, sum_xy = 0;
   for (int i : members) {
-    const double dx = events[i].x - mx, dy = events[i].y - my;
-    sxx += dx * dx, syy += dy * dy, sxy += dx * dy;
+    const std::int64_t x = events[i].x, y = events[i].y;
+    sum_x += x, sum_y += y, sum_xx += x * x, sum_yy += y * y, sum_xy += x * y;
   }
-  const double radius = std::sqrt((sxx + syy) / static_cast<double>(members.size())) + 1e-9;
-  const double angle = 0.5 * std::atan2(2 * sxy, sxx - syy);
-  const double ax = std::cos(angle), ay = std::sin(angle);
+  const std::int64_t cxx = m * sum_xx - sum_x * sum_x, cyy = m * sum_yy - sum_y * sum_y, cxy = m * sum_xy - sum_x * sum_y;
+  const auto d = static_cast<double>(cxx - cyy), r = std::hypot(d, 2.0 * static_cast<double>(cxy));
+  const bool along_y = cxy == 0 && cxx < cyy;
+  const double ax = along_y ? 0 : (r == 0 ? 1 : r + d), ay = along_y ? 1 : 2.0 * static_cast<double>(cxy);
+  // The events' mean Chebyshev distance from their centre: the scale of the distance term.
+  double radius = 0;
+  for (int i : members) radius += std::max(std::abs(events[i].x - mx), std::abs(events[i].y - my));
+  radius = radius / static_cast<double>(m) + 1e-9;
   part.resize(members.size());
-  for (size_t k = 0; k < members.size(); ++k) part[k] = ((events[members[k]].x - mx) * ax + (events[members[k]].y - my) * ay) > 0;
+  for (size_t k = 0; k < members.size(); ++k) {
+    const Event& e = events[members[k]];
+    part[k] = static_cast<double>(m * e.x - sum_x) * ax + static_cast<double>(m * e.y - sum_y) * ay > 0;
+  }
 
   Eigen::Vector2d velocity[2], centre[2];
   double two_residual = 0;
   int sloped_in[2] = {0, 0};
   std::vector<int> sloped_of[2];
+  // The rounds need not settle, and their residual need not fall each round: the round of the
+  // least residual is kept, its parts and the velocities that gave them.
+  Best best;
   for (int round = 0; round < kRounds; ++round) {
     sloped_of[0].clear(), sloped_of[1].clear();
     centre[0] = centre[1] = Eigen::Vector2d::Zero();
@@ -91,15 +115,23 @@ bool MotionSplit::parts_of(std::span<const Event> events, std::span<const int> m
       double best = 1e300;
       int best_part = 0;
       for (int q = 0; q < 2; ++q) {
-        const double cost = (has_slope_[i] ? residual(slope_[i], velocity[q]) : kNoSlopeResidual) + kDistanceWeight * (at - centre[q]).norm() / radius;
+        const Eigen::Vector2d away = at - centre[q];
+        const double cost = (has_slope_[i] ? residual(slope_[i], velocity[q]) : kNoSlopeResidual) +
+                            kDistanceWeight * std::max(std::abs(away.x()), std::abs(away.y())) / radius;
         if (cost < best) best = cost, best_part = q;
       }
       moved = moved || best_part != part[k];
       part[k] = best_part;
       if (has_slope_[i]) two_residual += residual(slope_[i], velocity[part[k]]), ++sloped_in[part[k]];
     }
+    if (round == 0 || two_residual < best.two_residual) {
+      best.two_residual = two_residual, best.part = part, best.velocity[0] = velocity[0], best.velocity[1] = velocity[1];
+      best.sloped_in[0] = sloped_in[0], best.sloped_in[1] = sloped_in[1];
+    }
     if (!moved) break;  // the next round would fit the same parts again
   }
+  two_residual = best.two_residual, part = best.part, velocity[0] = best.velocity[0], velocity[1] = best.velocity[1];
+  sloped_in[0] = best.sloped_in[0], sloped_in[1] = best.sloped_in[1];
   const double faster = std::max(velocity[0].norm(), velocity[1].norm());
   if (two_residual > gain_ * one_residual) return false;
   if (static_cast<size_t>(std::min(sloped_in[0], sloped_in[1])) * 5 < sloped.size()) return false;

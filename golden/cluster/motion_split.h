@@ -10,20 +10,23 @@
 // (the tracker's predictions of its confirmed tracks matched in the packet before, at the
 // packet's middle event): the only place where two objects can share a cluster and be tracked
 // apart. Its events are cut in two across the principal axis of their pixels, then each event
-// goes to the part whose velocity explains it better, plus 0.5 times its distance from the
-// part's centre over the cluster's RMS radius (an event without a slope counts 0.5 for the
-// velocity); up to 8 such rounds, each part's velocity and centre fitted anew, until no event
-// changes part. The cluster splits when the two velocities explain its sloped events with at
-// most motion_split times the residual of one velocity fitted to them all, the velocities differ
-// by at least 0.3 times the faster one's speed, and each part holds a fifth of the sloped events
-// and 64 events. The second part becomes a
-// new cluster, appended to the modes; each part takes the mean of its events' features as its
-// mode.
+// goes to the part whose velocity explains it better, plus 0.5 times its Chebyshev distance from
+// the part's centre over the events' mean Chebyshev distance from the cluster's centre (an event
+// without a slope counts 0.5 for the velocity); up to 8 such rounds, each part's velocity and
+// centre fitted anew, until no event changes part, and the round whose parts the velocities
+// explain with the least summed residual is kept. The cluster splits when the two velocities
+// explain its sloped events with at most motion_split times the residual of one velocity fitted
+// to them all, the velocities differ by at least 0.3 times the faster one's speed, and each part
+// holds a fifth of the sloped events and 64 events. The second part becomes a new cluster,
+// appended to the modes; each part takes the mean of its events' features as its mode.
 //
 // Why: a fast object crossing a slow one joins it in one cluster for as long as their outlines
 // touch, and no rule on positions alone (polarity_split.h, the links' distance) can part them.
-// docs/sweep.md ("Splitting a cluster by its events' motion") has the measurements. Golden
-// only: the fixed-point core refuses it (host/backend/core_config.h).
+// docs/sweep.md ("Splitting a cluster by its events' motion") has the measurements. The distances
+// are Chebyshev and the axis is found without an angle so that the fixed-point core
+// (hls/cluster/motion_split.h) needs no square root but one and no trigonometry; the rounds
+// need not settle, and keeping the best of them keeps the core's parts golden's where a rounding
+// moves a later round.
 #pragma once
 
 #include <optional>
