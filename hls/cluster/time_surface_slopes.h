@@ -77,9 +77,9 @@ class TimeSurfaceSlopes {
     }
   }
 
-  // Whether velocity (vx, vy) explains the slope under an event of polarity p at (x0, y0); false
-  // when its neighbours give no slope.
-  bool explains(std::uint8_t p, int x0, int y0, std::int32_t vx, std::int32_t vy, const Config& cfg) const {
+  // The slope under an event of polarity p at (x0, y0) as g = (nx, ny) / d us/px, d > 0; false
+  // when its neighbours give no slope (fewer than kLeastNeighbours events, or all along a line).
+  bool gradient(std::uint8_t p, int x0, int y0, const Config& cfg, Wide& nx, Wide& ny, Wide& d) const {
     std::int64_t m = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, st = 0, sxt = 0, syt = 0;
   rows:
     for (int dy = -kNeighbourPx; dy <= kNeighbourPx; ++dy) {
@@ -98,9 +98,18 @@ class TimeSurfaceSlopes {
     if (m < kLeastNeighbours) return false;
     const Wide cxx = Wide{m} * sxx - Wide{sx} * sx, cyy = Wide{m} * syy - Wide{sy} * sy, cxy = Wide{m} * sxy - Wide{sx} * sy;
     const Wide tx = Wide{m} * sxt - Wide{sx} * st, ty = Wide{m} * syt - Wide{sy} * st;
-    const Wide d = cxx * cyy - cxy * cxy;
+    d = cxx * cyy - cxy * cxy;
     if (d <= 0 || d * 1000000 < (cxx + cyy) * (cxx + cyy)) return false;
-    const Wide nv = (cyy * tx - cxy * ty) * vx + (cxx * ty - cxy * tx) * vy;
+    nx = cyy * tx - cxy * ty, ny = cxx * ty - cxy * tx;
+    return true;
+  }
+
+  // Whether velocity (vx, vy) explains the slope under an event of polarity p at (x0, y0); false
+  // when its neighbours give no slope.
+  bool explains(std::uint8_t p, int x0, int y0, std::int32_t vx, std::int32_t vy, const Config& cfg) const {
+    Wide nx = 0, ny = 0, d = 0;
+    if (!gradient(p, x0, y0, cfg, nx, ny, d)) return false;
+    const Wide nv = nx * vx + ny * vy;
     constexpr int kHalfOneLog2 = S::kPosFrac + S::kTickLog2 - 1;  // 1/2 in the units of N . v / D
     const Wide half = d * (Wide{1} << kHalfOneLog2);
     return nv >= half && nv <= 3 * half;

@@ -1,5 +1,6 @@
 // The evms core: filter -> packets -> features -> hybrid mean shift -> mode merging (or seeded
-// climbs -> links -> polarity split -> edge join) -> centroids (a fast track's by its motion) ->
+// climbs -> links -> polarity split -> split by motion where tracks meet -> edge join) ->
+// centroids (a fast track's by its motion) ->
 // tracking -> labels,
 // bit-accurate, for one Shape. rtl/ implements all of it, and sim/ checks every output word
 // against it.
@@ -19,6 +20,7 @@
 
 #include "hls/cluster/centroid.h"
 #include "hls/cluster/edge_join.h"
+#include "hls/cluster/motion_split.h"
 #include "hls/cluster/features.h"
 #include "hls/cluster/link.h"
 #include "hls/cluster/mean_shift.h"
@@ -71,7 +73,7 @@ class Core {
     tracker_.reset();
     links_.reset();
     split_.reset();
-    if (S::kHasMotionMeasure) motion_.reset();
+    if (S::kHasMotionMeasure) motion_.reset(), motion_split_.reset();
     warm_.count = 0;
     n_ = 0;
     pending_n_ = 0;
@@ -184,6 +186,7 @@ class Core {
         links_.run(packet_, n_, modes.count, cfg_, mode_of, first_on_pixel);
         if (cfg_.min_density != 0 && cfg_.density_after_links) drop_sparse_sets(climbs_, links_, n_, modes.count, cfg_, mode_of);
         trace.splits_left_whole = split_.run(packet_, phi, n_, cfg_, mode_of, modes);
+        if (S::kHasMotionMeasure && cfg_.motion_split_gain != 0) motion_split_.run(packet_, phi, n_, cfg_, tracker_, mode_of, modes);
         trace.edges_joined = edges_.run(packet_, n_, cfg_, modes.count, mode_of);
         clusters = keep_clusters<S>(mode_of, n_, modes, cfg_, cluster_of, warm_);
         warm_balls<S>(phi, n_, cluster_of, cfg_, warm_);
@@ -278,6 +281,7 @@ class Core {
   PolaritySplit<S> split_;
   EdgeJoin<S> edges_;
   MotionMeasure<S> motion_;
+  MotionSplit<S> motion_split_;
   Modes<S> warm_;                // the previous packet's cluster modes
   PacketEvents<S> packet_;
   int n_ = 0;

@@ -75,8 +75,9 @@
   X(pixel_centre, bool, 1, false, "seeded: a cluster is measured at the mean of the pixels its events fall on, each pixel once (marked by the links, so link2 != 0); false: at the centre of mass or midpoint (the only setting of a build without HasPixelCentre)")
 
 // Registers of the C++ core only: the filter's support count, the gate's widening by a
-// cluster's spread, coasting by packets, the labels of the filter's dropped events and the
-// measurement of a fast track's cluster by its motion. The RTL refuses a setting that needs them
+// cluster's spread, coasting by packets, the labels of the filter's dropped events, the
+// measurement of a fast track's cluster by its motion and the split of a cluster by its events'
+// motions. The RTL refuses a setting that needs them
 // (host/backend/core_config.h).
 #define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
   X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
@@ -84,4 +85,5 @@
   X(coast_packets, std::uint32_t, 32, 0, "a confirmed track also ends after missing this many packets; 0: never") \
   X(rescue_reach, std::uint8_t, 8, 0, "an event the filter dropped takes the label of the nearest labelled event of its packet within this many px (at most kRescueMax; a build with HasRescue); 0: off") \
   X(pixel_time, std::uint8_t, 1, 0, "the pixel centre is timed at the mean timestamp of its pixels' first events, not of all its events (hls/cluster/centroid.h; a build with HasPixelTime)") \
-  X(motion_speed, std::uint32_t, 32, 0, "a cluster that holds a confirmed track at least this fast (px per tick, kPosFrac bits) and another confirmed track is measured from the pixels whose time-surface slopes the fast one's velocity explains (hls/track/motion_measure.h; a build with HasMotionMeasure; the host sets it with pixel_centre only); 0: off")
+  X(motion_speed, std::uint32_t, 32, 0, "a cluster that holds a confirmed track at least this fast (px per tick, kPosFrac bits) and another confirmed track is measured from the pixels whose time-surface slopes the fast one's velocity explains (hls/track/motion_measure.h; a build with HasMotionMeasure; the host sets it with pixel_centre only); 0: off") \
+  X(motion_split_gain, std::uint16_t, 16, 0, "seeded: a cluster of 200 events or more whose box holds the predictions of two matched confirmed tracks splits in two when two velocities leave at most this share of one velocity's residual of its time-surface slopes (hls/cluster/motion_split.h, kMotionGainFrac fraction bits; a build with HasMotionMeasure); 0: off")

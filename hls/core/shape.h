@@ -26,6 +26,8 @@ inline constexpr int kDensityFrac = 24;
 // (x * scale) >> kSplitCellFrac; balance and share carry kSplitFractionFrac fraction bits.
 inline constexpr int kSplitCellFrac = 16;
 inline constexpr int kSplitFractionFrac = 8;
+// Fraction bits of the split by motion's gain, Config::motion_split_gain (hls/cluster/motion_split.h).
+inline constexpr int kMotionGainFrac = 8;
 // The edge join's size ratio (hls/cluster/edge_join.h): neither of two joined modes holds more
 // than this many times the other's events.
 inline constexpr int kEdgeSizeRatio = 4;

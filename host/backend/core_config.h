@@ -47,7 +47,7 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 // measurement noise from the spread, the gate's boxes and the least density on the linked sets
 // where S does not hold them (Shape::kHasPolaritySplit, kHasPolarityMidpoint, kHasPixelCentre,
 // kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes, kHasDensityAfterLinks: the board builds),
-// without the dropped events' labels and the motion measure where S does not hold them
+// without the dropped events' labels, the motion measure and the split by motion where S does not hold them
 // (kHasRescue, kHasMotionMeasure, kHasPixelTime: every RTL build), and without warm seeds where S starts without them (kHasWarmSeeds), each
 // unless `kept(name)` says the command line set it, for the backend to refuse what S cannot run.
 template <class S, class Kept>
@@ -70,6 +70,7 @@ Params within_build(Params p, Kept kept) {
   if (!S::kHasWarmSeeds && !kept("warm-start")) p.warm_start = false;
   if (!S::kHasRescue && !kept("rescue-px")) p.rescue_px = 0;
   if (!S::kHasMotionMeasure && !kept("motion-measure")) p.motion_measure = 0;
+  if (!S::kHasMotionMeasure && !kept("motion-split")) p.motion_split = 0;
   if (!S::kHasPixelTime && !kept("time-by-pixels")) p.time_by_pixels = false;
   return p;
 }
@@ -138,7 +139,7 @@ inline std::string core_unsupported(const Params& p) {
   if (seeded && p.labelling != Labelling::kFirst) return "the fixed-point core labels an event by the first climb that reached it, not " + detail::setting(p, "labelling");
   const Params off = preset("gaussian");
   if (const char* name = detail::first_difference(p, off, {"filter-look-ahead-us", "packet-support", "join-boxes", "warm-reach",
-                                                               "packet-span-edge-px", "motion-split"})) {
+                                                               "packet-span-edge-px"})) {
     return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
   }
   if (p.measure == Measure::kBoxCentre || (!seeded && p.measure != Measure::kCentroid)) {
@@ -271,6 +272,9 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
        "this build's core times the pixel centre by all its events, not " + detail::setting(p, "time-by-pixels") + " (add --time-by-pixels false)");
   need(p.motion_measure == 0 || S::kHasMotionMeasure,
        "this build's core does not measure a fast track's cluster by its motion, not " + detail::setting(p, "motion-measure") + " (add --motion-measure 0)");
+  need(p.motion_split == 0 || S::kHasMotionMeasure,
+       "this build's core does not split a cluster by its events' motions, not " + detail::setting(p, "motion-split") + " (add --motion-split 0)");
+  need(p.motion_split * (1 << hls::kMotionGainFrac) < 65535.5, "--motion-split is too large for the core's 16-bit gain");
   need(filter_noise_count(p, sensor) < (std::int64_t{1} << 24), "--filter-noise-hz is too large for the core's 24-bit count");
   need(filter_quiet_count(p, sensor) < (std::int64_t{1} << 24), "--filter-quiet-hz is too large for the core's 24-bit count");
   // hls/filter/ba_filter.h clears every pixel's time after a gap of a quarter of the timestamps'
@@ -337,6 +341,8 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   need(motion_speed < 4294967295.0, "--motion-measure is too large for the core's 32-bit speed");
   c.pixel_time = p.time_by_pixels && p.measure == Measure::kPixelCentre && S::kHasPixelTime ? 1 : 0;
   c.motion_speed = p.motion_measure > 0 && p.measure == Measure::kPixelCentre ? static_cast<std::uint32_t>(std::max<std::int64_t>(1, rnd(motion_speed))) : 0;
+  // The share to kMotionGainFrac bits; at least 1 when on, which it is with seeded climbs only, as golden's.
+  c.motion_split_gain = p.motion_split > 0 && seeded ? static_cast<std::uint16_t>(std::max<std::int64_t>(1, rnd(std::ldexp(p.motion_split, hls::kMotionGainFrac)))) : 0;
   const double least_per_event = least_support_per_event(p, sensor);
   need(!seeded || least_per_event < 256, "--min-density is too large for the core's 32-bit density");
   c.min_density = seeded ? static_cast<std::uint32_t>(rnd(least_per_event * std::ldexp(1.0, hls::kDensityFrac))) : 0;

@@ -184,8 +184,11 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   expect_refused("--backend fixed --filter-look-ahead-us 10000", "does not implement --filter-look-ahead-us 10000 (only --filter-look-ahead-us 0)");
   expect_refused("--backend rtl --warm-reach 1.5", "does not implement --warm-reach 1.5 (only --warm-reach 0)");
   expect_refused("--backend fixed --packet-span-edge-px 5", "does not implement --packet-span-edge-px 5 (only --packet-span-edge-px 0)");
-  expect_refused("--backend fixed --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
-  expect_refused("--backend rtl --motion-split 0.6", "does not implement --motion-split 0.6 (only --motion-split 0)");
+  // The fixed-point core holds the split by motion; no RTL build and no board's core does.
+  expect_runs("--backend fixed --motion-split 0.6");
+  expect_refused("--backend rtl --motion-split 0.6", "does not split a cluster by its events' motions, not --motion-split 0.6 (add --motion-split 0)");
+  expect_refused("--backend fixed --core arty --motion-split 0.6",
+                 "this build's core does not split a cluster by its events' motions, not --motion-split 0.6 (add --motion-split 0)");
   // The fixed-point core times the pixel centre either way; no RTL build by its pixels.
   expect_runs("--backend fixed --time-by-pixels false");
   expect_refused("--backend rtl --time-by-pixels true", "times the pixel centre by all its events, not --time-by-pixels true (add --time-by-pixels false)");

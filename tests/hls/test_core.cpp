@@ -417,6 +417,31 @@ TEST(CoreAgreesWithGolden, TheFastTracksMeasuredByTheirMotion) {
   expect_runs_agree(scene, golden, fixed);
 }
 
+// The split of a cluster by its events' motions where two tracks meet (--motion-split, on by
+// default), as golden splits: two crossing members where it acts, a 346x260 tuning member of
+// 119 k events and a 240x180 validation member of 200 k. The rule must change golden's labels and
+// the fixed core's, and the two must still agree chunk by chunk.
+TEST(CoreAgreesWithGolden, TheSplitByMotionWhereTracksMeet) {
+  const Params p;
+  ASSERT_GT(p.motion_split, 0);
+  Params off = p;
+  off.motion_split = 0;
+  for (const std::uint64_t seed : {std::uint64_t{1}, gen::split_seed(gen::Split::kValidation, 3)}) {
+    const eval::Scene scene = eval::generate_scene(gen::family_scene("crossing", seed));
+    SCOPED_TRACE("crossing " + std::to_string(seed));
+    const auto golden = eval::run_backend("golden", p, scene.sensor, scene.events);
+    const auto golden_off = eval::run_backend("golden", off, scene.sensor, scene.events);
+    const auto fixed = eval::run_backend("fixed", p, scene.sensor, scene.events);
+    const auto fixed_off = eval::run_backend("fixed", off, scene.sensor, scene.events);
+    auto relabelled = [](const eval::RunResult& with, const eval::RunResult& without) {
+      return 1 - eval::score(with.labels, without.labels).ari;
+    };
+    EXPECT_GT(relabelled(golden, golden_off), 0.01) << "the split no longer acts on golden's clusters here";
+    EXPECT_GT(relabelled(fixed, fixed_off), 0.01) << "the split no longer acts on the fixed core's clusters here";
+    expect_runs_agree(scene, golden, fixed);
+  }
+}
+
 constexpr const char* kRealRecordings[] = {"dvxplorer_indoor.aedat4", "gen3_moving_blob.evt2.raw", "gen41_dense_scene.evt3.raw",
                                            "atis_ncars_sample.dat"};
 

@@ -11,6 +11,7 @@
 #include "hls/fixed/stream.h"
 #include "hls/math/cexp.h"
 #include "hls/math/exp_table.h"
+#include "hls/math/isqrt.h"
 #include "hls/math/reciprocal.h"
 #include "hls/math/round.h"
 
@@ -106,6 +107,26 @@ TEST(Reciprocal, DivisionRoundsToWithinOneUnit) {
     const double exact = static_cast<double>(num) * 2048.0 / static_cast<double>(x);
     const double got = static_cast<double>(recip.divide<11>(num, x));
     ASSERT_LE(std::abs(got - exact), 1.0 + exact * std::ldexp(1.0, -17)) << num << " / " << x;
+  }
+}
+
+// floor(sqrt(v)): r^2 <= v < (r + 1)^2, every v below 2^20 and random v of every width to 2^126.
+TEST(Isqrt, FloorOfTheRootExhaustiveBelow2To20AndRandomToEveryWidth) {
+  auto check = [](__int128 v) {
+    const __int128 r = isqrt(v);
+    ASSERT_LE(r * r, v) << static_cast<double>(v);
+    ASSERT_GT((r + 1) * (r + 1), v) << static_cast<double>(v);
+  };
+  for (__int128 v = 0; v < (__int128{1} << 20); ++v) check(v);
+  std::mt19937_64 rng(20261207);
+  for (int bits = 21; bits <= 126; ++bits) {
+    for (int k = 0; k < 2000; ++k) {
+      const __int128 v = ((__int128{rng()} << 64) | rng()) & ((__int128{1} << bits) - 1);
+      check(v);
+      check(v | (__int128{1} << (bits - 1)));  // the full width
+    }
+    const __int128 top = (__int128{1} << bits) - 1, root = isqrt(top);
+    check(top), check(root * root), check(root * root - 1);  // around a square
   }
 }
 

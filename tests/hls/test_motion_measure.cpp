@@ -1,7 +1,8 @@
-// The motion measure in fixed point (hls/cluster/time_surface_slopes.h, hls/track/motion_measure.h)
-// against golden's (golden/cluster/time_surface_slopes.h, golden/track/motion_measure.h): the
-// slope verdict dense over edges, directions, speeds and jittered times, and the fast tracks the
-// tracker gives it.
+// The rules on the time surface's slopes in fixed point against golden's: the motion measure
+// (hls/cluster/time_surface_slopes.h, hls/track/motion_measure.h; golden/cluster/time_surface_slopes.h,
+// golden/track/motion_measure.h), its slope verdict dense over edges, directions, speeds and
+// jittered times, and the fast tracks the tracker gives it; and the split by motion's slope and
+// velocity words (hls/cluster/motion_split.h) against golden's doubles.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "golden/cluster/time_surface_slopes.h"
+#include "hls/cluster/motion_split.h"
 #include "hls/cluster/time_surface_slopes.h"
 #include "hls/core/configs.h"
 #include "host/backend/core_config.h"
@@ -179,6 +181,104 @@ TEST(MotionMeasureInFixedPoint, TheSpeedRegisterIsTheTrackersVelocityWord) {
   EXPECT_EQ(backend::core_config<HostShape>(p, {640, 480}).motion_speed, 1u);
   p.motion_measure = 0;
   EXPECT_EQ(backend::core_config<HostShape>(p, {640, 480}).motion_speed, 0u);
+}
+
+using Split = hls::MotionSplit<HostShape>;
+
+// The split's slope words (kSlopeFrac bits of us/px) against golden's slopes, dense over jittered
+// edges at 100-6,000 px/s. Bound: within half a unit and a relative 1e-9 of golden's slope (one
+// rounding of the exact quotient of the sums golden divides in doubles), wherever golden has a
+// slope, the words are within kSlopeMax and golden's |g| is not within 1e-6 us/px of the least,
+// 0.1 us/px; and no slope where golden has none.
+TEST(MotionSplitInFixedPoint, TheSlopeWordsAreGoldensSlopesRounded) {
+  std::mt19937 rng(20261207);
+  std::uniform_real_distribution<double> unit(0, 1);
+  auto slopes = std::make_unique<hls::TimeSurfaceSlopes<HostShape>>();
+  slopes->reset();
+  hls::Config cfg;
+  cfg.sensor_width = kSlopeSensor.width, cfg.sensor_height = kSlopeSensor.height;
+  golden::TimeSurfaceSlopes reference(kSlopeSensor);
+  const double unit_us = std::ldexp(1.0, -Split::kSlopeFrac);
+  int compared = 0;
+  for (int packet = 0; packet < 60; ++packet) {
+    const double angle = 2 * M_PI * unit(rng), speed = 100 * std::pow(60.0, unit(rng));
+    const std::vector<Event> events = jittered_edge(rng, speed * std::cos(angle), speed * std::sin(angle));
+    const auto ev = packet_of(events);
+    const int n = static_cast<int>(events.size());
+    slopes->add(*ev, n);
+    reference.add(events);
+    for (const Event& e : events) {
+      const std::optional<Eigen::Vector2d> g = reference.at(e);
+      Split::Wide nx = 0, ny = 0, d = 0;
+      std::int64_t gx = 0, gy = 0;
+      const bool has = slopes->gradient(e.p, e.x, e.y, cfg, nx, ny, d) && Split::slope_words(nx, ny, d, gx, gy);
+      if (!g) {
+        EXPECT_FALSE(has) << "no slope under (" << e.x << ", " << e.y << ")";
+        continue;
+      }
+      const Eigen::Vector2d g_us = *g * 1e6;
+      if (std::abs(g_us.norm() - 0.1) < 1e-6 || std::max(std::abs(g_us.x()), std::abs(g_us.y())) / unit_us >= Split::kSlopeMax) continue;
+      ASSERT_TRUE(has) << "golden's slope " << g_us.transpose() << " us/px at (" << e.x << ", " << e.y << ")";
+      EXPECT_LE(std::abs(gx * unit_us - g_us.x()), unit_us / 2 + 1e-9 * std::abs(g_us.x()));
+      EXPECT_LE(std::abs(gy * unit_us - g_us.y()), unit_us / 2 + 1e-9 * std::abs(g_us.y()));
+      ++compared;
+    }
+    slopes->clear(n);
+    reference.clear();
+  }
+  EXPECT_GE(compared, 5000);
+}
+
+// The least-squares velocity of slope words against the exact solution (long double) of the same
+// normal equations, dense over slope sets of 3 to a packet's events from velocities of 10 to
+// 100,000 px/s with noise, and sets whose slopes all lie along one line. Bound: within half a
+// unit (2^-kVelocityFrac px/us) and a relative 1e-12 (the long double's own rounding).
+TEST(MotionSplitInFixedPoint, TheVelocityIsTheLeastSquaresSolutionRounded) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::normal_distribution<double> noise(0, 1);
+  const long double scale = std::ldexp(1.0L, Split::kSlopeFrac + Split::kVelocityFrac);
+  int rank_one = 0;
+  for (int set = 0; set < 3000; ++set) {
+    const double angle = 2 * M_PI * unit(rng), speed = 10 * std::pow(1e4, unit(rng));  // px/s
+    const double vx = speed * std::cos(angle) * 1e-6, vy = speed * std::sin(angle) * 1e-6;  // px/us
+    const int n = 3 + static_cast<int>(unit(rng) * (HostShape::kPacketMax - 3));
+    const bool along_one_line = set % 10 == 0;
+    // Sets along one line: multiples of one small integer direction, so that A is singular exactly.
+    const std::int64_t ux = std::llround(8 * std::cos(angle)), uy = std::llround(8 * std::sin(angle));
+    Split::SlopeSums sums;
+    for (int k = 0; k < n; ++k) {
+      // An edge's normal near the motion, and its slope's length 1 / (normal speed) with noise.
+      const double normal = along_one_line ? angle : angle + 0.8 * noise(rng);
+      const double normal_speed = std::max(1e-7, std::abs(vx * std::cos(normal) + vy * std::sin(normal)));
+      const double length = std::ldexp(1.0, Split::kSlopeFrac) / normal_speed * (1 + 0.2 * noise(rng));
+      std::int64_t gx = std::llround(length * std::cos(normal)), gy = std::llround(length * std::sin(normal));
+      if (along_one_line) {
+        const std::int64_t times = std::llround(length / std::hypot(static_cast<double>(ux), static_cast<double>(uy)));
+        gx = times * ux, gy = times * uy;
+      }
+      sums.add(std::clamp(gx, -Split::kSlopeMax, Split::kSlopeMax), std::clamp(gy, -Split::kSlopeMax, Split::kSlopeMax));
+    }
+    std::int64_t got_x = 0, got_y = 0;
+    Split::velocity(sums, got_x, got_y);
+    // The exact numerators and denominators in 128 bits, divided in long double.
+    auto ld = [](Split::Wide v) { return static_cast<long double>(v); };
+    const Split::Wide det = sums.a11 * sums.a22 - sums.a12 * sums.a12;
+    long double want_x = 0, want_y = 0;
+    if (det != 0) {
+      want_x = ld(sums.a22 * sums.b1 - sums.a12 * sums.b2) * scale / ld(det);
+      want_y = ld(sums.a11 * sums.b2 - sums.a12 * sums.b1) * scale / ld(det);
+    } else {
+      ++rank_one;
+      const long double trace2 = ld(sums.a11 + sums.a22) * ld(sums.a11 + sums.a22);
+      want_x = ld(sums.a11 * sums.b1 + sums.a12 * sums.b2) * scale / trace2;
+      want_y = ld(sums.a12 * sums.b1 + sums.a22 * sums.b2) * scale / trace2;
+    }
+    if (std::max(std::abs(want_x), std::abs(want_y)) >= static_cast<long double>(Split::kVelocityMax)) continue;
+    EXPECT_LE(std::abs(got_x - want_x), 0.5L + 1e-12L * std::abs(want_x)) << "set " << set;
+    EXPECT_LE(std::abs(got_y - want_y), 0.5L + 1e-12L * std::abs(want_y)) << "set " << set;
+  }
+  EXPECT_GE(rank_one, 100) << "the sets along one line must reach the pseudo-inverse";
 }
 
 }  // namespace
