@@ -140,7 +140,7 @@ const std::array kTable = {
     ParamInfo{"motion-split", "1", "with seeded climbs, a cluster of 200 events or more whose bounding box holds the "
               "predictions of two confirmed tracks is split in two by its events' motion (the slopes of their local time "
               "surfaces) when two velocities explain them with at most this share of the residual one velocity leaves: a "
-              "fast object crossing a slow one (golden only); 0 = off", &Params::motion_split, 0, 1},
+              "fast object crossing a slow one (golden and the fixed-point core); 0 = off", &Params::motion_split, 0, 1},
     ParamInfo{"edge-join", "h", "with seeded climbs, a cluster of mostly ON events and a cluster of mostly OFF events "
               "whose centres lie within this many bandwidths of the sensor's larger side, each the other's nearest such and neither more than four "
               "times the other's events, become one: the leading and trailing edges of an outline too large for one "

@@ -104,10 +104,10 @@ struct Params {
   bool split_partial = true;         // ... and each part that holds both polarities leaves a cluster whose
                                      // other large parts hold one, which stay one cluster; false: a cluster
                                      // splits only when every large part holds both
-  double motion_split = 0;           // seeded climbs: a cluster where two confirmed tracks meet is split
+  double motion_split = 0.4;         // seeded climbs: a cluster where two confirmed tracks meet is split
                                      // by its events' motion when two velocities leave at most this
                                      // share of one velocity's residual (golden/cluster/motion_split.h,
-                                     // golden only); 0 = off
+                                     // hls/cluster/motion_split.h); 0 = off
   double edge_join = 5;              // seeded climbs: a cluster of mostly ON events and one of mostly OFF
                                      // events whose centres lie within this many bandwidths of the larger
                                      // side, each the other's nearest, become one (golden/cluster/edge_join.h); 0 = off
