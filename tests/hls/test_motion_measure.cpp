@@ -60,6 +60,30 @@ std::unique_ptr<hls::PacketEvents<HostShape>> packet_of(const std::vector<Event>
   return ev;
 }
 
+// The fixed-point slopes table and golden's, both on kSlopeSensor.
+struct SlopesOnSmallSensor {
+  std::unique_ptr<hls::TimeSurfaceSlopes<HostShape>> fixed = std::make_unique<hls::TimeSurfaceSlopes<HostShape>>();
+  hls::Config cfg;
+  golden::TimeSurfaceSlopes reference{kSlopeSensor};
+  SlopesOnSmallSensor() {
+    fixed->reset();
+    cfg.sensor_width = kSlopeSensor.width, cfg.sensor_height = kSlopeSensor.height;
+  }
+};
+
+// A jittered edge packet in a random direction at 100-6,000 px/s.
+struct RandomEdge {
+  double speed = 0, angle = 0;
+  std::vector<Event> events;
+};
+RandomEdge random_edge(std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  RandomEdge edge;
+  edge.angle = 2 * M_PI * unit(rng), edge.speed = 100 * std::pow(60.0, unit(rng));
+  edge.events = jittered_edge(rng, edge.speed * std::cos(edge.angle), edge.speed * std::sin(edge.angle));
+  return edge;
+}
+
 // The verdicts of `slopes` and `reference`, both given the packet `events` and cleared after, at
 // every event for velocities about (speed, angle) and about where their misfit crosses 1/2.
 // Bound: they are equal wherever golden has a slope whose misfit is more than 1e-9 from 1/2, and
@@ -100,17 +124,11 @@ void expect_golden_verdicts(hls::TimeSurfaceSlopes<HostShape>& slopes, golden::T
 
 TEST(TimeSurfaceSlopesInFixedPoint, TheVerdictIsGoldensWhereverGoldensMisfitIsNotWithinRoundingOfTheBound) {
   std::mt19937 rng(20261206);
-  std::uniform_real_distribution<double> unit(0, 1);
-  auto slopes = std::make_unique<hls::TimeSurfaceSlopes<HostShape>>();
-  slopes->reset();
-  hls::Config cfg;
-  cfg.sensor_width = kSlopeSensor.width, cfg.sensor_height = kSlopeSensor.height;
-  golden::TimeSurfaceSlopes reference(kSlopeSensor);
+  SlopesOnSmallSensor tables;
   VerdictCounts counts;
   for (int packet = 0; packet < 60; ++packet) {
-    const double angle = 2 * M_PI * unit(rng), speed = 100 * std::pow(60.0, unit(rng));  // 100-6,000 px/s
-    const std::vector<Event> events = jittered_edge(rng, speed * std::cos(angle), speed * std::sin(angle));
-    expect_golden_verdicts(*slopes, reference, events, speed, angle, cfg, counts);
+    const RandomEdge edge = random_edge(rng);
+    expect_golden_verdicts(*tables.fixed, tables.reference, edge.events, edge.speed, edge.angle, tables.cfg, counts);
   }
   // Both verdicts, many times: the test sees the bound from both sides.
   EXPECT_GE(counts.explained, 20000);
@@ -192,17 +210,14 @@ using Split = hls::MotionSplit<HostShape>;
 // 0.1 us/px; and no slope where golden has none.
 TEST(MotionSplitInFixedPoint, TheSlopeWordsAreGoldensSlopesRounded) {
   std::mt19937 rng(20261207);
-  std::uniform_real_distribution<double> unit(0, 1);
-  auto slopes = std::make_unique<hls::TimeSurfaceSlopes<HostShape>>();
-  slopes->reset();
-  hls::Config cfg;
-  cfg.sensor_width = kSlopeSensor.width, cfg.sensor_height = kSlopeSensor.height;
-  golden::TimeSurfaceSlopes reference(kSlopeSensor);
+  SlopesOnSmallSensor tables;
+  auto& slopes = tables.fixed;
+  auto& reference = tables.reference;
+  const hls::Config& cfg = tables.cfg;
   const double unit_us = std::ldexp(1.0, -Split::kSlopeFrac);
   int compared = 0;
   for (int packet = 0; packet < 60; ++packet) {
-    const double angle = 2 * M_PI * unit(rng), speed = 100 * std::pow(60.0, unit(rng));
-    const std::vector<Event> events = jittered_edge(rng, speed * std::cos(angle), speed * std::sin(angle));
+    const std::vector<Event> events = random_edge(rng).events;
     const auto ev = packet_of(events);
     const int n = static_cast<int>(events.size());
     slopes->add(*ev, n);
