@@ -164,9 +164,10 @@ inline std::string core_unsupported(const Params& p) {
 // kHasPolarityMidpoint, kHasSpreadNoise), the pixel centre (kHasPixelCentre), the gate's boxes
 // and the least density on the linked sets where it holds them (kHasGateBoxes, kHasDensityAfterLinks)
 // and the tracker's other policies but the gate's widening by
-// the spread and coasting by packets. No build labels the events the filter dropped (--rescue-px)
-// or measures a fast track's cluster by its motion (--motion-measure), and every build times the
-// pixel centre by all its events (--time-by-pixels false).
+// the spread and coasting by packets. No build labels the events the filter dropped (--rescue-px),
+// measures a fast track's cluster by its motion (--motion-measure) or splits a cluster by its
+// events' motions (--motion-split), and every build times the pixel centre by all its events
+// (--time-by-pixels false).
 inline std::string rtl_unsupported(const Params& p, const std::string& build) {
   if (std::string unsupported = core_unsupported(p); !unsupported.empty()) return unsupported;
   bool gaussian_path = false, seeded_path = false, polarity_split = false, edge_join = false, polarity_midpoint = false,
