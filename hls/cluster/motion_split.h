@@ -131,17 +131,12 @@ class MotionSplit {
       if (c >= clusters) break;
       looked_at[c] = false;
       if (events_[c] < kLeastClusterEvents) continue;
-      const std::int64_t x_lo = (std::int64_t{x_min_[c]} - kBoxMarginPx) * (std::int64_t{1} << S::kPosFrac);
-      const std::int64_t x_hi = (std::int64_t{x_max_[c]} + kBoxMarginPx) * (std::int64_t{1} << S::kPosFrac);
-      const std::int64_t y_lo = (std::int64_t{y_min_[c]} - kBoxMarginPx) * (std::int64_t{1} << S::kPosFrac);
-      const std::int64_t y_hi = (std::int64_t{y_max_[c]} + kBoxMarginPx) * (std::int64_t{1} << S::kPosFrac);
       int held = 0;
     points:
       for (int k = 0; k < S::kTracksMax; ++k) {
 #pragma HLS PIPELINE II = 1
         if (k >= tracks) break;
-        const TrackPoint& q = confirmed[k];
-        held += q.matched && q.x >= x_lo && q.x <= x_hi && q.y >= y_lo && q.y <= y_hi;
+        held += confirmed[k].matched && in_grown_box<S::kPosFrac>(confirmed[k], x_min_[c], y_min_[c], x_max_[c], y_max_[c], kBoxMarginPx);
       }
       looked_at[c] = held >= kMeetingPoints;
       any = any || looked_at[c];

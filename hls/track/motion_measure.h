@@ -58,17 +58,13 @@ class MotionMeasure {
       if (c >= clusters) break;
       track_of[c] = -1;
       std::int64_t nearest2 = 0;
-      const std::int64_t x_lo = (std::int64_t{z[c].x_min} - kTrackInBoxMarginPx) * (std::int64_t{1} << S::kPosFrac);
-      const std::int64_t x_hi = (std::int64_t{z[c].x_max} + kTrackInBoxMarginPx) * (std::int64_t{1} << S::kPosFrac);
-      const std::int64_t y_lo = (std::int64_t{z[c].y_min} - kTrackInBoxMarginPx) * (std::int64_t{1} << S::kPosFrac);
-      const std::int64_t y_hi = (std::int64_t{z[c].y_max} + kTrackInBoxMarginPx) * (std::int64_t{1} << S::kPosFrac);
       bool in_box[S::kTracksMax];
     fast_in_box:
       for (int k = 0; k < S::kTracksMax; ++k) {
 #pragma HLS PIPELINE II = 1
         if (k >= tracks) break;
         const TrackPoint& track = confirmed[k];
-        in_box[k] = track.x >= x_lo && track.x <= x_hi && track.y >= y_lo && track.y <= y_hi;
+        in_box[k] = in_grown_box<S::kPosFrac>(track, z[c].x_min, z[c].y_min, z[c].x_max, z[c].y_max, kTrackInBoxMarginPx);
         if (!fast[k] || !in_box[k]) continue;
         const std::int64_t dx = std::int64_t{track.x} - z[c].x, dy = std::int64_t{track.y} - z[c].y;
         const std::int64_t d2 = dx * dx + dy * dy;

@@ -48,6 +48,16 @@ struct TrackPoint {
   bool matched = false;
 };
 
+// Whether track point q lies in the box [x_min, x_max] x [y_min, y_max] px grown by margin px on
+// every side, compared in PosFrac fraction bits: where the motion measure and the split by motion
+// look for the tracks a cluster holds.
+template <int PosFrac>
+bool in_grown_box(const TrackPoint& q, int x_min, int y_min, int x_max, int y_max, int margin) {
+  const std::int64_t unit = std::int64_t{1} << PosFrac;
+  return q.x >= (std::int64_t{x_min} - margin) * unit && q.x <= (std::int64_t{x_max} + margin) * unit &&
+         q.y >= (std::int64_t{y_min} - margin) * unit && q.y <= (std::int64_t{y_max} + margin) * unit;
+}
+
 // A measurement's bounding box, px (inclusive).
 struct Box {
   std::uint16_t x_min = 0, y_min = 0, x_max = 0, y_max = 0;
