@@ -137,6 +137,9 @@ const std::array kTable = {
     ParamInfo{"split-partial", "", "with --split-balance, each large part that holds both polarities becomes a cluster of its "
               "own even when other large parts hold one polarity, and those stay one cluster (the two edges of one outline); "
               "false: a cluster splits only when every large part holds both", &Params::split_partial, 0, 1},
+    ParamInfo{"split-concentric", "", "with --split-balance, two groups of a cluster's parts stay one cluster when each "
+              "group's centre lies in the middle half of the other's bounding box: the two circles of a ring, about one "
+              "centre, not two objects side by side (golden and fixed)", &Params::split_concentric, 0, 1},
     ParamInfo{"motion-split", "1", "with seeded climbs, a cluster of 200 events or more whose bounding box holds the "
               "predictions of two confirmed tracks is split in two by its events' motion (the slopes of their local time "
               "surfaces) when two velocities explain them with at most this share of the residual one velocity leaves: a "
@@ -297,6 +300,7 @@ SplitRule split_rule(const Params& p, SensorSize sensor) {
   rule.share = fraction(p.split_share);
   rule.min_events = static_cast<std::uint32_t>(std::max(p.split_min_events, p.min_cluster_size));
   rule.partial = p.split_partial;
+  rule.concentric = p.split_concentric;
   return rule;
 }
 

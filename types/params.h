@@ -104,6 +104,9 @@ struct Params {
   bool split_partial = true;         // ... and each part that holds both polarities leaves a cluster whose
                                      // other large parts hold one, which stay one cluster; false: a cluster
                                      // splits only when every large part holds both
+  bool split_concentric = true;      // ... and two of its groups stay one cluster when each one's centre
+                                     // lies in the middle half of the other's bounding box (a ring's two
+                                     // circles, about one centre)
   double motion_split = 0.4;         // seeded climbs: a cluster where two confirmed tracks meet is split
                                      // by its events' motion when two velocities leave at most this
                                      // share of one velocity's residual (golden/cluster/motion_split.h,
@@ -234,6 +237,7 @@ struct SplitRule {
   std::uint32_t balance = 0, share = 0;              // split_balance, split_share: kSplitFractionFrac fraction bits
   std::uint32_t min_events = 0;                      // the larger of split_min_events and min_cluster_size
   bool partial = false;                              // split_partial
+  bool concentric = false;                           // split_concentric
 };
 SplitRule split_rule(const Params& p, SensorSize sensor);
 

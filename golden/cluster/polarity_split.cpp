@@ -72,6 +72,8 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
       const Event& e = events[static_cast<size_t>(i)];
       Part& q = part_[static_cast<size_t>(part_of_[static_cast<size_t>(i)])];
       ++q.events, q.on += e.p > 0, q.x += e.x, q.y += e.y;
+      q.x_min = std::min<int>(q.x_min, e.x), q.x_max = std::max<int>(q.x_max, e.x);
+      q.y_min = std::min<int>(q.y_min, e.y), q.y_max = std::max<int>(q.y_max, e.y);
     }
     const auto size = static_cast<std::int64_t>(in.size());
     large_.clear();
@@ -95,6 +97,7 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
       }
     }
     if (!rule_.partial && !every_large_part_balanced) groups = 1;
+    if (rule_.concentric && groups >= 2) groups = join_concentric_groups(groups);
     if (large_.size() >= 2 && groups >= 2) {
       // Group k becomes cluster c (k = 0) or a new one; each takes its events' mean as its mode.
       std::vector<Eigen::Vector4d> sum(static_cast<size_t>(groups), Eigen::Vector4d::Zero());
@@ -122,6 +125,50 @@ void PolaritySplit::split(std::span<const Event> events, const FeatureMatrix& fe
     }
     for (const int i : in) part_[static_cast<size_t>(i)] = Part{};
   }
+}
+
+int PolaritySplit::join_concentric_groups(int groups) {
+  struct Group {
+    std::int64_t events = 0, x = 0, y = 0;
+    int x_min = std::numeric_limits<int>::max(), y_min = std::numeric_limits<int>::max(), x_max = -1, y_max = -1;
+  };
+  std::vector<Group> group(static_cast<size_t>(groups));
+  for (size_t k = 0; k < large_.size(); ++k) {
+    const Part& q = part_[static_cast<size_t>(large_[k])];
+    Group& g = group[static_cast<size_t>(group_of_large_[k])];
+    g.events += q.events, g.x += q.x, g.y += q.y;
+    g.x_min = std::min(g.x_min, q.x_min), g.x_max = std::max(g.x_max, q.x_max);
+    g.y_min = std::min(g.y_min, q.y_min), g.y_max = std::max(g.y_max, q.y_max);
+  }
+  // a's centre sum / events within a quarter of b's box's side of its middle (min + max) / 2,
+  // on each axis, cleared of the divisions: |2 sum - events (min + max)| <= events (max - min + 1) / 2.
+  const auto centre_in_middle_half = [](std::int64_t sum, std::int64_t events, int lo, int hi) {
+    return 2 * std::abs(2 * sum - events * (lo + hi)) <= events * (hi - lo + 1);
+  };
+  const auto concentric = [&](const Group& a, const Group& b) {
+    return centre_in_middle_half(a.x, a.events, b.x_min, b.x_max) && centre_in_middle_half(a.y, a.events, b.y_min, b.y_max) &&
+           centre_in_middle_half(b.x, b.events, a.x_min, a.x_max) && centre_in_middle_half(b.y, b.events, a.y_min, a.y_max);
+  };
+  std::vector<int> joins(static_cast<size_t>(groups));
+  for (int k = 0; k < groups; ++k) {
+    joins[static_cast<size_t>(k)] = k;
+    for (int j = 0; j < k; ++j) {
+      if (joins[static_cast<size_t>(j)] == j && concentric(group[static_cast<size_t>(k)], group[static_cast<size_t>(j)])) {
+        joins[static_cast<size_t>(k)] = j;
+        break;
+      }
+    }
+  }
+  // Numbered again in the order of their first large parts (a joined group's first large part
+  // comes after the one it joined).
+  std::vector<int> number(static_cast<size_t>(groups), -1);
+  int left = 0;
+  for (int& k : group_of_large_) {
+    int& n = number[static_cast<size_t>(joins[static_cast<size_t>(k)])];
+    if (n < 0) n = left++;
+    k = n;
+  }
+  return left;
 }
 
 }  // namespace evms::golden

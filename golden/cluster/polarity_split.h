@@ -11,7 +11,11 @@
 // cluster with any such part keeps one group). A cluster of two or more groups becomes one
 // cluster per group, numbered in the order of their first large parts; each small part joins
 // the group of the large part whose centre is nearest (centres in 1/16 px, rounded; ties: the
-// part whose first event came first). The cells and thresholds are integers (SplitRule,
+// part whose first event came first). With split_concentric, before that, two groups stay one
+// group when each one's centre (the mean of its large parts' events) lies in the middle half of
+// the other's bounding box (the box of its large parts' events), along x and along y: each later
+// group joins the first earlier group it is concentric with, and the groups are numbered again in
+// the order of their first large parts. The cells and thresholds are integers (SplitRule,
 // types/params.h), so the fixed-point core (hls/cluster/polarity_split.h) finds the same parts.
 //
 // Why polarity: an object moving over its background fires its leading edge in one polarity and
@@ -20,10 +24,14 @@
 // the links rightly keep as one cluster. Two objects that the warm ball holds together after
 // they touched are two parts of both polarities each. A warm ball that holds a translating
 // outline's two edges can hold a small object beside them too: the object, balanced, leaves, and
-// the edges stay together. docs/sweep.md ("Splitting two objects by their polarities") has the
-// measurements.
+// the edges stay together. Concentric groups: a ring moving across its width fires each of its
+// two circles as a part (or the outer as two arcs of one polarity each, which form a group, and
+// the inner, whose sides fire too, as a balanced part), and those parts share one centre, which
+// two objects side by side do not. docs/sweep.md ("Splitting two objects by their polarities",
+// "A ring's two circles about one centre") has the measurements.
 #pragma once
 
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -50,6 +58,8 @@ class PolaritySplit {
   // The parts of one cluster's events `members`: afterwards part_of_[i] is the smallest member of
   // i's part, for each member i.
   void find_parts(std::span<const Event> events, std::span<const int> members);
+  // Joins concentric groups (split_concentric) in group_of_large_; returns the groups left.
+  int join_concentric_groups(int groups);
 
   SplitRule rule_;
   int cells_x_ = 0, cells_y_ = 0;
@@ -60,6 +70,7 @@ class PolaritySplit {
   struct Part {
     int events = 0, on = 0;
     std::int64_t x = 0, y = 0;  // sums of the events' pixel coordinates
+    int x_min = std::numeric_limits<int>::max(), y_min = std::numeric_limits<int>::max(), x_max = -1, y_max = -1;
     int large = -1;  // the large part its events go to: its own index among them, or the nearest one's
   };
   std::vector<Part> part_;          // per event: the sums of the part it is the smallest member of

@@ -13,6 +13,10 @@
 //   part centre       1/16 px, (32 sum + events) / (2 events); nearest by squared distance, ties to
 //                     the part whose first event came first
 //   split mode        the mean of the group's climb features, rounded half up
+//   concentric        (Config::split_concentric, a build with HasConcentricGroups) group sums and
+//                     boxes over their large parts; a's centre in the middle half of b's box on
+//                     an axis: 2 |2 sum_a - events_a (min_b + max_b)| <= events_a (max_b - min_b + 1);
+//                     each later group joins the first earlier group concentric with it both ways
 // Groups are numbered in the order of their first large parts' first events; the first keeps the
 // cluster's mode, the others open modes after the existing ones. A cluster whose groups (or large
 // parts) would not fit in the mode table (kModesMax) stays whole, and is counted (golden has no
@@ -150,6 +154,8 @@ class PolaritySplit {
       const int j = members_[first + k];
       events_[j] = on_[j] = 0;
       sum_x_[j] = sum_y_[j] = 0;
+      x_min_[j] = y_min_[j] = 0xFFFF;
+      x_max_[j] = y_max_[j] = 0;
       large_of_[j] = -1;
     }
   sums:
@@ -162,6 +168,10 @@ class PolaritySplit {
       on_[r] += ev.p[j] != 0;
       sum_x_[r] += ev.x[j];
       sum_y_[r] += ev.y[j];
+      if (ev.x[j] < x_min_[r]) x_min_[r] = ev.x[j];
+      if (ev.x[j] > x_max_[r]) x_max_[r] = ev.x[j];
+      if (ev.y[j] < y_min_[r]) y_min_[r] = ev.y[j];
+      if (ev.y[j] > y_max_[r]) y_max_[r] = ev.y[j];
     }
     int large = 0, one_polarity_group = -1;
     bool balanced = true;
@@ -189,7 +199,67 @@ class PolaritySplit {
       }
     }
     if (!cfg.split_partial && !balanced) groups_ = 1;
+    if (S::kHasConcentricGroups && cfg.split_concentric && groups_ >= 2) join_concentric_groups(large);
     return large;
+  }
+
+  // a's centre (sum / events) within a quarter of the box [lo, hi]'s side of its middle.
+  static bool centre_in_middle_half(std::int64_t sum, std::int64_t events, int lo, int hi) {
+    const std::int64_t off = 2 * sum - events * (lo + hi);
+    return 2 * (off < 0 ? -off : off) <= events * (hi - lo + 1);
+  }
+
+  bool concentric(int a, int b) const {
+    return centre_in_middle_half(group_x_[a], group_events_[a], group_x_min_[b], group_x_max_[b]) &&
+           centre_in_middle_half(group_y_[a], group_events_[a], group_y_min_[b], group_y_max_[b]) &&
+           centre_in_middle_half(group_x_[b], group_events_[b], group_x_min_[a], group_x_max_[a]) &&
+           centre_in_middle_half(group_y_[b], group_events_[b], group_y_min_[a], group_y_max_[a]);
+  }
+
+  // Each later group joins the first earlier group concentric with it (an earlier group that has
+  // not joined another); the groups are numbered again in the order of their first large parts.
+  void join_concentric_groups(int large) {
+  group_clear:
+    for (int g = 0; g < S::kPacketMax; ++g) {
+#pragma HLS PIPELINE II = 1
+      if (g >= groups_) break;
+      group_events_[g] = group_x_[g] = group_y_[g] = 0;
+      group_x_min_[g] = group_y_min_[g] = 0xFFFF;
+      group_x_max_[g] = group_y_max_[g] = 0;
+      number_[g] = -1;
+    }
+  group_sums:
+    for (int l = 0; l < S::kPacketMax; ++l) {
+#pragma HLS PIPELINE II = 1
+      if (l >= large) break;
+      const int r = large_root_[l], g = group_of_[l];
+      group_events_[g] += events_[r], group_x_[g] += sum_x_[r], group_y_[g] += sum_y_[r];
+      if (x_min_[r] < group_x_min_[g]) group_x_min_[g] = x_min_[r];
+      if (x_max_[r] > group_x_max_[g]) group_x_max_[g] = x_max_[r];
+      if (y_min_[r] < group_y_min_[g]) group_y_min_[g] = y_min_[r];
+      if (y_max_[r] > group_y_max_[g]) group_y_max_[g] = y_max_[r];
+    }
+  joins:
+    for (int k = 0; k < S::kPacketMax; ++k) {
+      if (k >= groups_) break;
+      joins_[k] = static_cast<std::int16_t>(k);
+    earlier:
+      for (int j = 0; j < S::kPacketMax; ++j) {
+#pragma HLS PIPELINE II = 1
+        if (j >= k) break;
+        if (joins_[k] == k && joins_[j] == j && concentric(k, j)) joins_[k] = static_cast<std::int16_t>(j);
+      }
+    }
+    int left = 0;
+  renumber:
+    for (int l = 0; l < S::kPacketMax; ++l) {
+#pragma HLS PIPELINE II = 1
+      if (l >= large) break;
+      const int root = joins_[group_of_[l]];
+      if (number_[root] < 0) number_[root] = static_cast<std::int16_t>(left++);
+      group_of_[l] = number_[root];
+    }
+    groups_ = left;
   }
 
   // Group g takes mode c (g = 0) or mode modes.count + g - 1; a large part its group's, a small
@@ -248,9 +318,15 @@ class PolaritySplit {
   std::int64_t sum_x_[S::kPacketMax], sum_y_[S::kPacketMax];
   std::int16_t part_of_[S::kPacketMax];   // per member: its part's root
   std::int16_t large_of_[S::kPacketMax];  // per root: the large part its events go to (its own index, or the nearest one's), or -1
+  std::uint16_t x_min_[S::kPacketMax], x_max_[S::kPacketMax], y_min_[S::kPacketMax], y_max_[S::kPacketMax];  // per root: its box
   std::int16_t large_root_[S::kPacketMax];
   std::int16_t group_of_[S::kPacketMax];   // per large part: its group
   int groups_ = 0;
+  // Per group, while the concentric groups join: its large parts' events, coordinate sums and box,
+  // the earlier group it joins (itself if none) and its number after the joins.
+  std::int64_t group_events_[S::kPacketMax], group_x_[S::kPacketMax], group_y_[S::kPacketMax];
+  std::uint16_t group_x_min_[S::kPacketMax], group_x_max_[S::kPacketMax], group_y_min_[S::kPacketMax], group_y_max_[S::kPacketMax];
+  std::int16_t joins_[S::kPacketMax], number_[S::kPacketMax];
   std::int64_t mean_x_[S::kPacketMax], mean_y_[S::kPacketMax];  // per group: its features' sums
   std::int32_t count_[S::kPacketMax];
 };

@@ -76,8 +76,8 @@
 
 // Registers of the C++ core only: the filter's support count, the gate's widening by a
 // cluster's spread, coasting by packets, the labels of the filter's dropped events, the
-// measurement of a fast track's cluster by its motion and the split of a cluster by its events'
-// motions. The RTL refuses a setting that needs them
+// measurement of a fast track's cluster by its motion, the split of a cluster by its events'
+// motions and the polarity split's concentric groups. The RTL refuses a setting that needs them
 // (host/backend/core_config.h).
 #define EVMS_CORE_HLS_REGISTERS(X)                                                                                      \
   X(filter_support, std::uint8_t, 8, 1, "neighbours that must have fired within the filter window")                     \
@@ -86,4 +86,5 @@
   X(rescue_reach, std::uint8_t, 8, 0, "an event the filter dropped takes the label of the nearest labelled event of its packet within this many px (at most kRescueMax; a build with HasRescue); 0: off") \
   X(pixel_time, std::uint8_t, 1, 0, "the pixel centre is timed at the mean timestamp of its pixels' first events, not of all its events (hls/cluster/centroid.h; a build with HasPixelTime)") \
   X(motion_speed, std::uint32_t, 32, 0, "a cluster that holds a confirmed track at least this fast (px per tick, kPosFrac bits) and another confirmed track is measured from the pixels whose time-surface slopes the fast one's velocity explains (hls/track/motion_measure.h; a build with HasMotionMeasure; the host sets it with pixel_centre only); 0: off") \
-  X(motion_split_gain, std::uint16_t, 16, 0, "seeded: a cluster of 200 events or more whose box holds the predictions of two matched confirmed tracks splits in two when two velocities leave at most this share of one velocity's residual of its time-surface slopes (hls/cluster/motion_split.h, kMotionGainFrac fraction bits; a build with HasMotionMeasure); 0: off")
+  X(motion_split_gain, std::uint16_t, 16, 0, "seeded: a cluster of 200 events or more whose box holds the predictions of two matched confirmed tracks splits in two when two velocities leave at most this share of one velocity's residual of its time-surface slopes (hls/cluster/motion_split.h, kMotionGainFrac fraction bits; a build with HasMotionMeasure); 0: off")                                                                                                       \
+  X(split_concentric, bool, 1, false, "seeded, with the polarity split: two groups of a cluster's parts stay one cluster when each one's centre lies in the middle half of the other's bounding box (hls/cluster/polarity_split.h; a build with HasConcentricGroups)")

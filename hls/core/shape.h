@@ -38,7 +38,7 @@ template <int MaxWidth, int MaxHeight, int PacketMax, int Lanes, int IterationsM
           int GridSide = 32, int ReachMax = 8, int HasGaussianPath = 1, int HasSeededPath = 0, int HasPolaritySplit = 0,
           int HasPolarityMidpoint = 0, int HasEdgeJoin = 0, int HasSpreadNoise = 0, int HasGateBoxes = 0,
           int HasPixelCentre = 0, int HasDensityAfterLinks = 0, int HasWarmSeeds = 1, int HasRescue = 0,
-          int HasMotionMeasure = 0, int HasPixelTime = 0>
+          int HasMotionMeasure = 0, int HasPixelTime = 0, int HasConcentricGroups = 0>
 struct Shape {
   // Sensor and memories.
   static constexpr int kMaxWidth = MaxWidth;
@@ -118,6 +118,10 @@ struct Shape {
   // The pixel centre timed at the mean timestamp of its pixels' first events
   // (Config::pixel_time, hls/cluster/centroid.h), not of all the cluster's events: the C++ builds only.
   static constexpr int kHasPixelTime = HasPixelTime;
+  // Whether the build's polarity split keeps concentric groups one cluster
+  // (Config::split_concentric, hls/cluster/polarity_split.h); a build without it splits them, and
+  // the host refuses --split-concentric true for it. Not an RTL parameter: no RTL core holds it.
+  static constexpr int kHasConcentricGroups = HasConcentricGroups;
   // Mean-shift words.
   static constexpr int kFeatInt = 5;
   static constexpr int kFeatFrac = FeatFrac;
@@ -232,7 +236,7 @@ using DefaultShape = Shape<240, 180, 256, 8, 8, 16, 16>;
 // noise, say) never close a packet early, as golden never does, and every step of the method.
 template <int W, int H, int TimestampBits, int TimestampShift>
 using HostCoreShape = Shape<W, H, 4096, 8, 8, 128, 128, TimestampBits, TimestampShift, 64 * 4096, 13, 16, 10, 12, 64, 4096, 8, 32, 8, 1, 0, 1, 1,
-                            1, 1, 1, 1, 1, 1, 1, 1, 1>;
+                            1, 1, 1, 1, 1, 1, 1, 1, 1, 1>;
 // The host's fixed-point backend: room for every recording evms reads (up to 1280x720), and
 // exact 32-bit microsecond timestamps per pixel (its filter decides exactly as golden's).
 using HostShape = HostCoreShape<1280, 720, 32, 0>;

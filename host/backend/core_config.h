@@ -47,8 +47,9 @@ constexpr BoardOfBuild board_of(std::string_view build) {
 // measurement noise from the spread, the gate's boxes and the least density on the linked sets
 // where S does not hold them (Shape::kHasPolaritySplit, kHasPolarityMidpoint, kHasPixelCentre,
 // kHasEdgeJoin, kHasSpreadNoise, kHasGateBoxes, kHasDensityAfterLinks: the board builds),
-// without the dropped events' labels, the motion measure and the split by motion where S does not hold them
-// (kHasRescue, kHasMotionMeasure, kHasPixelTime: every RTL build), and without warm seeds where S starts without them (kHasWarmSeeds), each
+// without the dropped events' labels, the motion measure, the split by motion and the polarity
+// split's concentric groups where S does not hold them (kHasRescue, kHasMotionMeasure,
+// kHasPixelTime, kHasConcentricGroups: every RTL build), and without warm seeds where S starts without them (kHasWarmSeeds), each
 // unless `kept(name)` says the command line set it, for the backend to refuse what S cannot run.
 template <class S, class Kept>
 Params within_build(Params p, Kept kept) {
@@ -71,6 +72,7 @@ Params within_build(Params p, Kept kept) {
   if (!S::kHasRescue && !kept("rescue-px")) p.rescue_px = 0;
   if (!S::kHasMotionMeasure && !kept("motion-measure")) p.motion_measure = 0;
   if (!S::kHasMotionMeasure && !kept("motion-split")) p.motion_split = 0;
+  if (!S::kHasConcentricGroups && !kept("split-concentric")) p.split_concentric = false;
   if (!S::kHasPixelTime && !kept("time-by-pixels")) p.time_by_pixels = false;
   return p;
 }
@@ -276,6 +278,8 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   need(p.motion_split == 0 || S::kHasMotionMeasure,
        "this build's core does not split a cluster by its events' motions, not " + detail::setting(p, "motion-split") + " (add --motion-split 0)");
   need(p.motion_split * (1 << hls::kMotionGainFrac) < 65535.5, "--motion-split is too large for the core's 16-bit gain");
+  need(!p.split_concentric || p.split_balance == 0 || S::kHasConcentricGroups,
+       "this build's core splits a cluster's concentric groups of parts, not " + detail::setting(p, "split-concentric") + " (add --split-concentric false)");
   need(filter_noise_count(p, sensor) < (std::int64_t{1} << 24), "--filter-noise-hz is too large for the core's 24-bit count");
   need(filter_quiet_count(p, sensor) < (std::int64_t{1} << 24), "--filter-quiet-hz is too large for the core's 24-bit count");
   // hls/filter/ba_filter.h clears every pixel's time after a gap of a quarter of the timestamps'
@@ -357,6 +361,7 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   c.split_cell_scale_x = split.cell_scale_x;
   c.split_cell_scale_y = split.cell_scale_y;
   c.split_partial = split.partial;
+  c.split_concentric = split.concentric && S::kHasConcentricGroups;
   static_assert(hls::kEdgeSizeRatio == kEdgeSizeRatio);
   const EdgeRule edge = seeded ? edge_rule(p, sensor) : EdgeRule{};  // golden joins the seeded path's clusters only
   c.edge_radius2 = edge.radius2;

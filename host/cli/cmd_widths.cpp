@@ -21,7 +21,7 @@ namespace {
 template <int TimestampBits = 32, int TimestampShift = 0, int FeatFrac = 13, int WeightFrac = 16, int ExpTableLog2 = 10,
           int PosFrac = 12>
 using HostVariant = hls::Shape<1280, 720, 4096, 8, 8, 128, 128, TimestampBits, TimestampShift, 64 * 4096, FeatFrac,
-                               WeightFrac, ExpTableLog2, PosFrac, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1>;
+                               WeightFrac, ExpTableLog2, PosFrac, 64, 4096, 8, 32, 8, 1, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1>;
 static_assert(std::is_same_v<HostVariant<>, hls::HostShape>, "HostVariant<> is the host core");
 // The host core with the words of the board build B: its sizes stay the host's, so that it
 // runs the method's own packets and counts.

@@ -189,6 +189,10 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   expect_refused("--backend rtl --motion-split 0.6", "does not split a cluster by its events' motions, not --motion-split 0.6 (add --motion-split 0)");
   expect_refused("--backend fixed --core arty --motion-split 0.6",
                  "this build's core does not split a cluster by its events' motions, not --motion-split 0.6 (add --motion-split 0)");
+  // The fixed-point core keeps a cluster's concentric groups whole or not; no RTL build keeps them whole.
+  expect_runs("--backend fixed --split-concentric false");
+  expect_refused("--backend rtl --split-concentric true",
+                 "splits a cluster's concentric groups of parts, not --split-concentric true (add --split-concentric false)");
   // The fixed-point core times the pixel centre either way; no RTL build by its pixels.
   expect_runs("--backend fixed --time-by-pixels false");
   expect_refused("--backend rtl --time-by-pixels true", "times the pixel centre by all its events, not --time-by-pixels true (add --time-by-pixels false)");

@@ -2,6 +2,7 @@
 // each case a packet small enough to work out by hand.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "golden/cluster/clustering.h"
@@ -163,6 +164,40 @@ TEST(PolaritySplit, CellsAreNoFinerThanTwoPixels) {
   PolaritySplit(p, kLarge).split(events, features, modes, cluster_of);
   EXPECT_EQ(modes.size(), 2u);
   EXPECT_NE(cluster_of.front(), cluster_of.back());
+}
+
+// Events on the circle of `radius` px about (cx, cy), one a degree from `from` to `to` degrees,
+// their polarity from the degree.
+template <class Polarity>
+std::vector<Event> arc(double cx, double cy, double radius, int from, int to, Polarity polarity) {
+  std::vector<Event> e;
+  for (int degree = from; degree <= to; ++degree) {
+    const double a = degree * M_PI / 180;
+    e.push_back({0, static_cast<std::uint16_t>(std::lround(cx + radius * std::cos(a))),
+                 static_cast<std::uint16_t>(std::lround(cy + radius * std::sin(a))), polarity(degree, 0)});
+  }
+  return e;
+}
+
+TEST(PolaritySplit, ARingsTwoCirclesAboutOneCentreStayOneCluster) {
+  // A ring moving along y: its outer circle fires as two arcs of one polarity each (its sides,
+  // along the motion, fire nothing), its inner circle all round in both polarities. The arcs
+  // form one group and the inner circle, balanced, another; their centres coincide.
+  const auto inner = arc(100, 90, 15, 0, 359, kChecker);
+  const auto events = concat(inner, concat(arc(100, 90, 30, 20, 160, kOff), arc(100, 90, 30, 200, 340, kOn)));
+  const Split s = split_one_cluster(events, splitting());
+  EXPECT_EQ(s.modes.size(), 1u);
+  EXPECT_EQ(std::set<int>(s.cluster_of.begin(), s.cluster_of.end()), std::set<int>{0});
+  Params apart = splitting();
+  apart.split_concentric = false;
+  const Split two = split_one_cluster(events, apart);
+  ASSERT_EQ(two.modes.size(), 2u);
+  for (size_t i = 0; i < inner.size(); ++i) EXPECT_EQ(two.cluster_of[i], 0) << "the inner circle, balanced";
+  for (size_t i = inner.size(); i < events.size(); ++i) EXPECT_EQ(two.cluster_of[i], 1) << "the outer arcs, one group";
+  // A balanced circle 22 px off the centre of arcs whose box is 81 px wide (a quarter: 20.25 px) is
+  // another object, and splits.
+  const auto off_centre = concat(arc(122, 90, 10, 0, 359, kChecker), concat(arc(100, 90, 40, 20, 160, kOff), arc(100, 90, 40, 200, 340, kOn)));
+  EXPECT_EQ(split_one_cluster(off_centre, splitting()).modes.size(), 2u);
 }
 
 TEST(PolaritySplit, TheClustererSplitsWhatTheWarmBallHeldTogether) {

@@ -1,6 +1,7 @@
 // The core's polarity split (hls/cluster/polarity_split.h) against golden's
 // (golden/cluster/polarity_split.h): the same events in the same clusters, numbered the same, on
-// dense random packets over the rule's settings and sensors, and the split modes within a unit of
+// dense random packets over the rule's settings and sensors (blobs about one centre among them, for
+// the concentric groups), and the split modes within a unit of
 // the climbs' features of golden's means.
 #include <gtest/gtest.h>
 
@@ -39,13 +40,21 @@ Case random_case(gen::Random& rng) {
   c.params.min_cluster_size = static_cast<int>(std::array{4, 8, 16}[rng.below(3)]);
   c.params.split_min_events = static_cast<int>(std::array{1, 8, 32, 64, 128}[rng.below(5)]);
   c.params.split_partial = rng.below(3) != 0;
+  c.params.split_concentric = rng.below(3) != 0;
   c.modes = 1 + static_cast<int>(rng.below(4));
   const int blobs = 2 + static_cast<int>(rng.below(6));
+  double centre_x = 0, centre_y = 0, last_radius = 0;
+  int last_cluster = 0;
   for (int b = 0; b < blobs; ++b) {
-    const double cx = rng.uniform(5, c.sensor.width - 5), cy = rng.uniform(5, c.sensor.height - 5);
-    const double radius = rng.uniform(1, 25), on_share = std::array{0.5, 0.45, 0.9, 0.05}[rng.below(4)];
-    const bool ring = rng.uniform() < 0.3;
-    const int cluster = static_cast<int>(rng.below(static_cast<std::uint64_t>(c.modes)));
+    // Half of the later blobs are rings about the previous blob's centre, wider than it, in its
+    // cluster: a ring's circles.
+    const bool concentric = b > 0 && rng.uniform() < 0.5;
+    const double cx = concentric ? centre_x : rng.uniform(5, c.sensor.width - 5), cy = concentric ? centre_y : rng.uniform(5, c.sensor.height - 5);
+    const double radius = concentric ? last_radius + rng.uniform(4, 20) : rng.uniform(1, 25);
+    const double on_share = std::array{0.5, 0.45, 0.9, 0.05}[rng.below(4)];
+    const bool ring = concentric || rng.uniform() < 0.3;
+    const int cluster = concentric ? last_cluster : static_cast<int>(rng.below(static_cast<std::uint64_t>(c.modes)));
+    centre_x = cx, centre_y = cy, last_radius = radius, last_cluster = cluster;
     const int n = 5 + static_cast<int>(rng.below(300));
     for (int i = 0; i < n; ++i) {
       const double r = ring ? radius : rng.uniform(0, radius), a = rng.uniform(0, 2 * M_PI);
@@ -89,11 +98,19 @@ Packet core_packet(const Case& c, const Config& cfg) {
   return k;
 }
 
+// Golden's clusters of case c's events after its split with parameters p.
+std::vector<int> golden_clusters(const Case& c, const golden::FeatureMatrix& f, const Params& p) {
+  std::vector<Eigen::Vector4d> modes(static_cast<size_t>(c.modes), Eigen::Vector4d::Zero());
+  std::vector<int> cluster_of = c.cluster_of;
+  golden::PolaritySplit(p, c.sensor).split(c.events, f, modes, cluster_of);
+  return cluster_of;
+}
+
 TEST(PolaritySplitFixed, TheSameClustersAndModesAsGoldenOnRandomPackets) {
   gen::Random rng(11);
   auto split = std::make_unique<PolaritySplit<S>>();
   split->reset();
-  int trials_split = 0, trials_whole = 0, trials_partial = 0;
+  int trials_split = 0, trials_whole = 0, trials_partial = 0, trials_concentric = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const Case c = random_case(rng);
     SCOPED_TRACE("trial " + std::to_string(trial));
@@ -122,16 +139,20 @@ TEST(PolaritySplitFixed, TheSameClustersAndModesAsGoldenOnRandomPackets) {
     if (c.params.split_partial) {
       Params whole = c.params;
       whole.split_partial = false;
-      std::vector<Eigen::Vector4d> whole_modes(static_cast<size_t>(c.modes), Eigen::Vector4d::Zero());
-      std::vector<int> whole_of = c.cluster_of;
-      golden::PolaritySplit(whole, c.sensor).split(c.events, f, whole_modes, whole_of);
-      trials_partial += whole_of != want;
+      trials_partial += golden_clusters(c, f, whole) != want;
+    }
+    // A split that only split_concentric keeps whole.
+    if (c.params.split_concentric) {
+      Params apart = c.params;
+      apart.split_concentric = false;
+      trials_concentric += golden_clusters(c, f, apart) != want;
     }
   }
   // Both outcomes, many times: the cases reach the rule's every branch.
   EXPECT_GT(trials_split, 50);
   EXPECT_GT(trials_whole, 50);
   EXPECT_GT(trials_partial, 10);
+  EXPECT_GT(trials_concentric, 10);
 }
 
 TEST(PolaritySplitFixed, AClusterWhosePartsFindNoRoomInTheModeTableStaysWhole) {
