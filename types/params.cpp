@@ -142,8 +142,8 @@ const std::array kTable = {
               "centre, not two objects side by side (golden and fixed)", &Params::split_concentric, 0, 1},
     ParamInfo{"motion-split", "1", "with seeded climbs, a cluster of 200 events or more whose bounding box holds the "
               "predictions of two confirmed tracks is split in two by its events' motion (the slopes of their local time "
-              "surfaces) when two velocities explain them with at most this share of the residual one velocity leaves: a "
-              "fast object crossing a slow one (golden and the fixed-point core); 0 = off", &Params::motion_split, 0, 1},
+              "surfaces) when two velocities explain them with at most this share of the residual one velocity leaves, "
+              "taken in steps of 1/256: a fast object crossing a slow one (golden and the fixed-point core); 0 = off", &Params::motion_split, 0, 1},
     ParamInfo{"edge-join", "h", "with seeded climbs, a cluster of mostly ON events and a cluster of mostly OFF events "
               "whose centres lie within this many bandwidths of the sensor's larger side, each the other's nearest such and neither more than four "
               "times the other's events, become one: the leading and trailing edges of an outline too large for one "
@@ -302,6 +302,11 @@ SplitRule split_rule(const Params& p, SensorSize sensor) {
   rule.partial = p.split_partial;
   rule.concentric = p.split_concentric;
   return rule;
+}
+
+std::uint32_t motion_split_gain(const Params& p) {
+  if (p.motion_split <= 0) return 0;
+  return std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::lround(std::ldexp(p.motion_split, kMotionGainFrac))));
 }
 
 EdgeRule edge_rule(const Params& p, SensorSize sensor) {

@@ -241,6 +241,14 @@ struct SplitRule {
 };
 SplitRule split_rule(const Params& p, SensorSize sensor);
 
+// The split by motion's gain in integers, which golden (golden/cluster/motion_split.h) and the
+// fixed-point core (hls/cluster/motion_split.h) share so that they split at the same share: a
+// cluster splits when its two velocities' summed residual << kMotionGainFrac <= gain times one
+// velocity's. The share is motion_split rounded to kMotionGainFrac fraction bits, at least 1 when
+// on; 0 = off.
+inline constexpr int kMotionGainFrac = 8;
+std::uint32_t motion_split_gain(const Params& p);
+
 // The edge join's rule in integers (golden/cluster/edge_join.h, hls/cluster/edge_join.h): two
 // centres (1/16 px) lie within reach when dx^2 + dy^2 <= radius2.
 inline constexpr int kEdgeSizeRatio = 4;  // neither cluster of a pair holds more than this many times the other's events

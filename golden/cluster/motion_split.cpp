@@ -47,7 +47,7 @@ Eigen::Vector2d fit_velocity(std::span<const Eigen::Vector2d> slope, std::span<c
 }  // namespace
 
 MotionSplit::MotionSplit(const Params& params, SensorSize sensor)
-    : gain_(params.motion_split), width_(sensor.width), height_(sensor.height),
+    : gain_(motion_split_gain(params)), width_(sensor.width), height_(sensor.height),
       slopes_(params.motion_split > 0 ? std::optional<TimeSurfaceSlopes>(sensor) : std::nullopt) {}
 
 bool MotionSplit::parts_of(std::span<const Event> events, std::span<const int> members, std::vector<int>& part) const {
@@ -133,7 +133,7 @@ bool MotionSplit::parts_of(std::span<const Event> events, std::span<const int> m
   two_residual = best.two_residual, part = best.part, velocity[0] = best.velocity[0], velocity[1] = best.velocity[1];
   sloped_in[0] = best.sloped_in[0], sloped_in[1] = best.sloped_in[1];
   const double faster = std::max(velocity[0].norm(), velocity[1].norm());
-  if (two_residual > gain_ * one_residual) return false;
+  if (std::ldexp(two_residual, kMotionGainFrac) > gain_ * one_residual) return false;
   if (static_cast<size_t>(std::min(sloped_in[0], sloped_in[1])) * 5 < sloped.size()) return false;
   if ((velocity[0] - velocity[1]).norm() < kLeastVelocityDifference * faster) return false;
   const auto in_second = static_cast<int>(std::count(part.begin(), part.end(), 1));

@@ -16,7 +16,7 @@
 // centre fitted anew, until no event changes part, and the round whose parts the velocities
 // explain with the least summed residual is kept. The cluster splits when the two velocities
 // explain its sloped events with at most motion_split times the residual of one velocity fitted
-// to them all, the velocities differ by at least 0.3 times the faster one's speed, and each part
+// to them all (the share in the core's steps of 1/256: types/params.h, motion_split_gain), the velocities differ by at least 0.3 times the faster one's speed, and each part
 // holds a fifth of the sloped events and 64 events. The second part becomes a new cluster,
 // appended to the modes; each part takes the mean of its events' features as its mode.
 //
@@ -29,6 +29,7 @@
 // moves a later round.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <vector>
@@ -56,7 +57,7 @@ class MotionSplit {
   // The part (0 or 1) of each of `members`, or false when the cluster stays whole.
   bool parts_of(std::span<const Event> events, std::span<const int> members, std::vector<int>& part) const;
 
-  double gain_;
+  std::uint32_t gain_;  // motion_split_gain (types/params.h): the share to kMotionGainFrac fraction bits
   int width_, height_;
   std::optional<TimeSurfaceSlopes> slopes_;  // none with the split off
   std::vector<Eigen::Vector2d> slope_;  // per event of the clusters looked at

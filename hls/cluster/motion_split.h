@@ -297,7 +297,7 @@ class MotionSplit {
         ++count[q];
         if (has_slope_[i]) two_residual += fit[q], ++sloped_in[q];
       }
-        if (round == 0 || two_residual < best_residual) {
+      if (round == 0 || two_residual < best_residual) {
         best_residual = two_residual;
       keep:
         for (int i = 0; i < S::kPacketMax; ++i) {

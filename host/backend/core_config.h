@@ -277,7 +277,6 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
        "this build's core does not measure a fast track's cluster by its motion, not " + detail::setting(p, "motion-measure") + " (add --motion-measure 0)");
   need(p.motion_split == 0 || S::kHasMotionMeasure,
        "this build's core does not split a cluster by its events' motions, not " + detail::setting(p, "motion-split") + " (add --motion-split 0)");
-  need(p.motion_split * (1 << hls::kMotionGainFrac) < 65535.5, "--motion-split is too large for the core's 16-bit gain");
   need(!p.split_concentric || p.split_balance == 0 || S::kHasConcentricGroups,
        "this build's core splits a cluster's concentric groups of parts, not " + detail::setting(p, "split-concentric") + " (add --split-concentric false)");
   need(filter_noise_count(p, sensor) < (std::int64_t{1} << 24), "--filter-noise-hz is too large for the core's 24-bit count");
@@ -346,8 +345,9 @@ hls::Config core_config(const Params& p, SensorSize sensor) {
   need(motion_speed < 4294967295.0, "--motion-measure is too large for the core's 32-bit speed");
   c.pixel_time = p.time_by_pixels && p.measure == Measure::kPixelCentre && S::kHasPixelTime ? 1 : 0;
   c.motion_speed = p.motion_measure > 0 && p.measure == Measure::kPixelCentre ? static_cast<std::uint32_t>(std::max<std::int64_t>(1, rnd(motion_speed))) : 0;
-  // The share to kMotionGainFrac bits; at least 1 when on, which it is with seeded climbs only, as golden's.
-  c.motion_split_gain = p.motion_split > 0 && seeded ? static_cast<std::uint16_t>(std::max<std::int64_t>(1, rnd(std::ldexp(p.motion_split, hls::kMotionGainFrac)))) : 0;
+  // Golden's gain (types/params.h); on with seeded climbs only, as golden's.
+  static_assert(hls::kMotionGainFrac == kMotionGainFrac);
+  c.motion_split_gain = seeded ? static_cast<std::uint16_t>(motion_split_gain(p)) : 0;
   const double least_per_event = least_support_per_event(p, sensor);
   need(!seeded || least_per_event < 256, "--min-density is too large for the core's 32-bit density");
   c.min_density = seeded ? static_cast<std::uint32_t>(rnd(least_per_event * std::ldexp(1.0, hls::kDensityFrac))) : 0;

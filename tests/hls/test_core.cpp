@@ -418,15 +418,18 @@ TEST(CoreAgreesWithGolden, TheFastTracksMeasuredByTheirMotion) {
 }
 
 // The split of a cluster by its events' motions where two tracks meet (--motion-split, on by
-// default), as golden splits: two crossing members where it acts, a 346x260 tuning member of
-// 119 k events and a 240x180 validation member of 200 k. The rule must change golden's labels and
-// the fixed core's, and the two must still agree chunk by chunk.
+// default), as golden splits: three crossing members where it acts: a 346x260 tuning member of
+// 119 k events and two 240x180 validation members. The rule must change golden's labels and the
+// fixed core's, and the two must still agree chunk by chunk. On validation member 31 one cluster
+// (at 303 ms) leaves two velocities 0.3996 of one velocity's residual, between the default share
+// 0.4 and the 102/256 it takes in steps of 1/256: golden and the core must compare with the same
+// share (motion_split_gain, types/params.h).
 TEST(CoreAgreesWithGolden, TheSplitByMotionWhereTracksMeet) {
   const Params p;
   ASSERT_GT(p.motion_split, 0);
   Params off = p;
   off.motion_split = 0;
-  for (const std::uint64_t seed : {std::uint64_t{1}, gen::split_seed(gen::Split::kValidation, 3)}) {
+  for (const std::uint64_t seed : {std::uint64_t{1}, gen::split_seed(gen::Split::kValidation, 3), gen::split_seed(gen::Split::kValidation, 31)}) {
     const eval::Scene scene = eval::generate_scene(gen::family_scene("crossing", seed));
     SCOPED_TRACE("crossing " + std::to_string(seed));
     const auto golden = eval::run_backend("golden", p, scene.sensor, scene.events);
@@ -436,8 +439,8 @@ TEST(CoreAgreesWithGolden, TheSplitByMotionWhereTracksMeet) {
     auto relabelled = [](const eval::RunResult& with, const eval::RunResult& without) {
       return 1 - eval::score(with.labels, without.labels).ari;
     };
-    EXPECT_GT(relabelled(golden, golden_off), 0.01) << "the split no longer acts on golden's clusters here";
-    EXPECT_GT(relabelled(fixed, fixed_off), 0.01) << "the split no longer acts on the fixed core's clusters here";
+    EXPECT_GT(relabelled(golden, golden_off), 0.005) << "the split no longer acts on golden's clusters here";
+    EXPECT_GT(relabelled(fixed, fixed_off), 0.005) << "the split no longer acts on the fixed core's clusters here";
     expect_runs_agree(scene, golden, fixed);
   }
 }
