@@ -6,7 +6,9 @@
 // estimate (the paper's ground truth), each estimate scored against the object its track's
 // events came from (host/eval/tracking_metrics.h), as `evms sweep` scores them. With
 // `--touching-px R`, a last line scores the truth itself with the objects that touch in each
-// chunk merged (host/eval/touching_objects.h): how far a clustering by position can get.
+// chunk merged (host/eval/touching_objects.h): how far a clustering by position can get. With
+// `--least`, a last line names the chunk of the least ARI: what two backends' agreement is
+// judged by (one run's events.csv as the truth, the other's as the prediction).
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -28,6 +30,7 @@ struct MetricsOptions {
   std::string truth, pred, tracks;
   std::int64_t chunk_events = 0, chunk_us = 0;
   double touching_px = -1;  // < 0: no touching line
+  bool least = false;
 };
 
 // The identity and tracking lines of `--tracks`. Object labels may be any non-negative
@@ -66,9 +69,16 @@ void metrics(const MetricsOptions& o) {
   std::vector<std::int32_t> all_truth, all_pred;
   TimeUs window_end = 0;
   bool first = true;
+  // With --least: the chunk of the least ARI, its scores, first event's time and truth line.
+  eval::ClusteringScores least;
+  TimeUs chunk_t = 0, least_t = 0;
+  std::int64_t chunk_line = 0, least_line = 0;
+  bool any_least = false;
   auto flush = [&] {
     if (t_labels.size() >= 2) {
-      average.add(eval::score(t_labels, p_labels));
+      const eval::ClusteringScores chunk_scores = eval::score(t_labels, p_labels);
+      average.add(chunk_scores);
+      if (!any_least || chunk_scores.ari < least.ari) least = chunk_scores, least_t = chunk_t, least_line = chunk_line, any_least = true;
       if (o.touching_px >= 0) touching.add(eval::score(t_labels, eval::merge_touching_objects(chunk, t_labels, o.touching_px)));
     }
     t_labels.clear();
@@ -101,6 +111,7 @@ void metrics(const MetricsOptions& o) {
       all_events.push_back(a.event), all_truth.push_back(a.label), all_pred.push_back(b.label);
     }
     first = false;
+    if (t_labels.empty()) chunk_t = a.event.t, chunk_line = static_cast<std::int64_t>(truth.line());
     t_labels.push_back(a.label);
     p_labels.push_back(b.label);
     if (o.touching_px >= 0) chunk.push_back(a.event);
@@ -115,6 +126,10 @@ void metrics(const MetricsOptions& o) {
     const auto c = touching.mean();
     std::printf("touching-merged %.6f %.6f %.6f %.6f %.6f (the truth with objects within %g px of each other in a chunk merged)\n", c.ari,
                 c.nmi, c.precision, c.recall, c.f, o.touching_px);
+  }
+  if (o.least) {
+    std::printf("least-chunk %.6f %.6f %.6f %.6f %.6f (the chunk of the least ARI, from t_us %lld, line %lld of %s)\n", least.ari, least.nmi,
+                least.precision, least.recall, least.f, static_cast<long long>(least_t), static_cast<long long>(least_line), o.truth.c_str());
   }
 }
 
@@ -132,6 +147,8 @@ void register_metrics(CLI::App& app) {
   cmd->add_option("--touching-px", o->touching_px, "also score the truth with the objects whose events come within R px of each other in a "
                  "chunk merged: what a clustering that holds touching objects together scores at best (a last line)")
       ->check(finite_in(0.0, 1000.0));
+  cmd->add_flag("--least", o->least, "also print the scores of the chunk of the least ARI, and where it starts (a last line): with one "
+                "backend's events.csv as the truth and another's as the prediction, how far the two part");
   cmd->callback([o] { metrics(*o); });
 }
 

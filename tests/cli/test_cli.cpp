@@ -697,6 +697,46 @@ TEST(Cli, MetricsScoresTheTruthWithTouchingObjectsMerged) {
   EXPECT_NE(negative.exit_code, 0);
 }
 
+// evms metrics --least adds a line: the scores of the chunk of the least ARI, and where it
+// starts. Two objects in two 10 ms chunks; the prediction holds them apart in the first and as
+// one in the second, so the second is the least (ARI 0), from its first event's time and line.
+TEST(Cli, MetricsNamesTheChunkOfTheLeastAri) {
+  TempDir dir;
+  std::string truth = "t_us,x,y,p,label\n", pred = truth;
+  for (int chunk = 0; chunk < 2; ++chunk) {
+    for (int i = 0; i < 8; ++i) {
+      const std::string row = std::to_string(chunk * 10000 + 100 + i) + "," + std::to_string(i < 4 ? 10 : 40) + ",20,1,";
+      truth += row + (i < 4 ? "1\n" : "2\n");
+      pred += row + (chunk == 1 || i < 4 ? "5\n" : "6\n");
+    }
+  }
+  const std::string files = " --truth " + dir.write("truth.csv", truth) + " --pred " + dir.write("pred.csv", pred);
+  const auto r = run_command(evms_binary() + " metrics --chunk-us 10000 --least" + files);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const size_t at = r.out.find("least-chunk ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  double ari = -1, nmi = -1, p = -1, rc = -1, f = -1;
+  long long t = -1, line = -1;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + at, "least-chunk %lf %lf %lf %lf %lf (the chunk of the least ARI, from t_us %lld, line %lld", &ari,
+                        &nmi, &p, &rc, &f, &t, &line),
+            7)
+      << r.out;
+  EXPECT_NEAR(ari, 0, 1e-6);
+  EXPECT_NEAR(rc, 1, 1e-6);
+  EXPECT_LT(p, 1);
+  EXPECT_EQ(t, 10100);
+  EXPECT_EQ(line, 10);  // the header, 8 rows of the first chunk, then the second's first
+  double mean_ari = -1;
+  ASSERT_EQ(std::sscanf(r.out.c_str(), "%lf", &mean_ari), 1);
+  EXPECT_NEAR(mean_ari, 0.5, 1e-6);  // the first chunk agrees (1), the second not (0)
+  const auto same = run_command(evms_binary() + " metrics --chunk-us 10000 --least --truth " + dir.path("truth.csv") + " --pred " +
+                                dir.path("truth.csv"));
+  ASSERT_EQ(same.exit_code, 0) << same.err;
+  EXPECT_NE(same.out.find("least-chunk 1.000000"), std::string::npos) << same.out;
+  const auto plain = run_command(evms_binary() + " metrics --chunk-us 10000" + files);
+  EXPECT_EQ(plain.out.find("least-chunk"), std::string::npos) << plain.out;
+}
+
 // evms metrics --tracks scores identity and the confirmed tracks against the labelled events'
 // centre. Object 7 fires at x = 10 and x = 30 in turn (its centre x = 20, y = 50) for 60 ms,
 // labelled track 3; the confirmed updates stand 1 px right of that centre, and a tentative one
