@@ -29,9 +29,8 @@ using Ice40Shape = Shape<128, 128, 256, 1, 8, 8, 8, 16, 7, 2 * 256, 10, 15, 8, 1
 // on the host, as the host core holds them (the dropped events' labels, the motion measure and the pixel centre's own time
 // among them). This is the ice40 build's fixed core:
 // `--backend fixed --core ice40`, and the board backend's rest of an iCEBreaker
-// (host/backend/board_backend.cpp), which gives the same words. On the family's validation
-// members at 128x128 its method scores mean F 0.933 and 1.67 px against the whole method's 0.941
-// and 0.90 px and the ice40 RTL core's method's 0.923 and 2.01 px (docs/rtl.md, "Builds").
+// (host/backend/board_backend.cpp), which gives the same words. Its method's scores at 128x128,
+// beside the whole method's and the ice40 RTL core's method's, are in docs/rtl.md ("Builds").
 using Ice40ClimbsShape = Shape<128, 128, 1024, 1, 8, 128, 128, 16, 7, 4 * 1024, 6, 15, 8, 12, 64, 64, 4, 32, 8, 0, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1, 1>;
 using ArtyShape = Shape<240, 180, 512, 8, 8, 16, 16, 16, 7, 2 * 512, 11, 16, 9, 12, 64, 64, 4, 32, 8, 0, 1>;
 
