@@ -22,7 +22,8 @@
 //   rounds            up to kRounds, until no event changes part; the round of the least summed
 //                     residual is kept (the first of equals)
 //   the split         two parts' summed residual <= gain times one velocity's
-//                     (kMotionGainFrac fraction bits); each part a fifth of the sloped events and
+//                     (kMotionGainFrac fraction bits, the share golden compares with too:
+//                     types/params.h, motion_split_gain); each part a fifth of the sloped events and
 //                     kLeastPartEvents events; |v0 - v1|^2 >= 0.09 max(|v0|, |v1|)^2
 // The second part opens a mode after the existing ones (a cluster stays whole when the mode table
 // is full); each part's mode is the mean of its climb features, rounded half up. Golden computes
