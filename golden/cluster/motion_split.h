@@ -16,9 +16,10 @@
 // centre fitted anew, until no event changes part, and the round whose parts the velocities
 // explain with the least summed residual is kept. The cluster splits when the two velocities
 // explain its sloped events with at most motion_split times the residual of one velocity fitted
-// to them all (the share in the core's steps of 1/256: types/params.h, motion_split_gain), the velocities differ by at least 0.3 times the faster one's speed, and each part
-// holds a fifth of the sloped events and 64 events. The second part becomes a new cluster,
-// appended to the modes; each part takes the mean of its events' features as its mode.
+// to them all (the share in the core's steps of 1/256: types/params.h, motion_split_gain), the
+// velocities differ by at least 0.3 times the faster one's speed, and each part holds a fifth of
+// the sloped events and 64 events. The second part becomes a new cluster, appended to the modes;
+// each part takes the mean of its events' features as its mode.
 //
 // Why: a fast object crossing a slow one joins it in one cluster for as long as their outlines
 // touch, and no rule on positions alone (polarity_split.h, the links' distance) can part them.

@@ -13,6 +13,7 @@ status 1 when any does.
 """
 import argparse
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -38,7 +39,7 @@ def member(job):
     least = next(line for line in scores.splitlines() if line.startswith("least-chunk "))
     fields = least.split()
     ari, start = float(fields[1]), fields[fields.index("t_us") + 1].rstrip(",")
-    subprocess.run(["rm", "-rf", folder], check=True)
+    shutil.rmtree(folder)
     return scene_type, seed, ari, start
 
 
