@@ -4,8 +4,6 @@
 #include <cmath>
 #include <cstdint>
 
-#include <Eigen/Dense>
-
 namespace evms::golden {
 namespace {
 
@@ -26,24 +24,6 @@ struct Best {
   int sloped_in[2] = {0, 0};
 };
 
-// How well velocity v (px/s) explains an event of slope g (s/px), capped.
-double residual(const Eigen::Vector2d& g, const Eigen::Vector2d& v) { return std::min(1.0, misfit(g, v)); }
-
-// The velocity that explains the slopes of `sloped` best: least squares on slope · v = 1. Slopes
-// that all point one way (a straight edge) fix only the velocity along them: the least-norm
-// solution.
-Eigen::Vector2d fit_velocity(std::span<const Eigen::Vector2d> slope, std::span<const int> sloped) {
-  Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
-  Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
-  for (int i : sloped) normal += slope[i] * slope[i].transpose(), rhs += slope[i];
-  if (std::abs(normal.determinant()) < 1e-30) {
-    // Rank one, normal = s u u^T with s its trace: its pseudo-inverse is normal / s^2.
-    const double trace = normal.trace();
-    return trace > 0 ? Eigen::Vector2d(normal * rhs / (trace * trace)) : Eigen::Vector2d::Zero();
-  }
-  return normal.ldlt().solve(rhs);
-}
-
 }  // namespace
 
 MotionSplit::MotionSplit(const Params& params, SensorSize sensor)
@@ -61,7 +41,7 @@ bool MotionSplit::parts_of(std::span<const Event> events, std::span<const int> m
   mx /= static_cast<double>(members.size()), my /= static_cast<double>(members.size());
   const Eigen::Vector2d one = fit_velocity(slope_, sloped);
   double one_residual = 0;
-  for (int i : sloped) one_residual += residual(slope_[i], one);
+  for (int i : sloped) one_residual += capped_misfit(slope_[i], one);
 
   // The first cut: across the principal axis of the events' pixels, from their second moments
   // times m^2, exact in integers (cxx = m sum x^2 - (sum x)^2, ...). With d = cxx - cyy and
@@ -116,13 +96,13 @@ bool MotionSplit::parts_of(std::span<const Event> events, std::span<const int> m
       int best_part = 0;
       for (int q = 0; q < 2; ++q) {
         const Eigen::Vector2d away = at - centre[q];
-        const double cost = (has_slope_[i] ? residual(slope_[i], velocity[q]) : kNoSlopeResidual) +
+        const double cost = (has_slope_[i] ? capped_misfit(slope_[i], velocity[q]) : kNoSlopeResidual) +
                             kDistanceWeight * std::max(std::abs(away.x()), std::abs(away.y())) / radius;
         if (cost < best) best = cost, best_part = q;
       }
       moved = moved || best_part != part[k];
       part[k] = best_part;
-      if (has_slope_[i]) two_residual += residual(slope_[i], velocity[part[k]]), ++sloped_in[part[k]];
+      if (has_slope_[i]) two_residual += capped_misfit(slope_[i], velocity[part[k]]), ++sloped_in[part[k]];
     }
     if (round == 0 || two_residual < best.two_residual) {
       best.two_residual = two_residual, best.part = part, best.velocity[0] = velocity[0], best.velocity[1] = velocity[1];

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <Eigen/Dense>
+
 namespace evms::golden {
 namespace {
 
@@ -9,6 +11,18 @@ constexpr int kNeighbourPx = 2;      // the plane: 5x5 pixels
 constexpr int kLeastNeighbours = 6;  // events on the plane, the event's own among them
 
 }  // namespace
+
+Eigen::Vector2d fit_velocity(std::span<const Eigen::Vector2d> slope, std::span<const int> sloped) {
+  Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
+  for (int i : sloped) normal += slope[static_cast<size_t>(i)] * slope[static_cast<size_t>(i)].transpose(), rhs += slope[static_cast<size_t>(i)];
+  if (std::abs(normal.determinant()) < 1e-30) {
+    // Rank one, normal = s u u^T with s its trace: its pseudo-inverse is normal / s^2.
+    const double trace = normal.trace();
+    return trace > 0 ? Eigen::Vector2d(normal * rhs / (trace * trace)) : Eigen::Vector2d::Zero();
+  }
+  return normal.ldlt().solve(rhs);
+}
 
 TimeSurfaceSlopes::TimeSurfaceSlopes(SensorSize sensor) : width_(sensor.width), height_(sensor.height) {}
 

@@ -10,6 +10,7 @@
 // measurement by motion (motion_split.h, golden/track/motion_measure.h) read it.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -26,6 +27,14 @@ namespace evms::golden {
 // How far velocity v (px/s) is from explaining slope g (s/px): 0 when an edge moving at v fires
 // it.
 inline double misfit(const Eigen::Vector2d& g, const Eigen::Vector2d& v) { return std::abs(g.dot(v) - 1.0); }
+
+// The same, capped at 1: one event that no velocity near v explains weighs no more than that.
+inline double capped_misfit(const Eigen::Vector2d& g, const Eigen::Vector2d& v) { return std::min(1.0, misfit(g, v)); }
+
+// The velocity that explains the slopes slope[i], i in `sloped`, best: least squares on
+// slope · v = 1. Slopes that all point one way (a straight edge) fix only the velocity along
+// them: the least-norm solution.
+Eigen::Vector2d fit_velocity(std::span<const Eigen::Vector2d> slope, std::span<const int> sloped);
 
 class TimeSurfaceSlopes {
  public:

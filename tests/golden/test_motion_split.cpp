@@ -11,43 +11,14 @@ namespace evms::golden {
 namespace {
 
 using test::kSensor;
+using test::swept_edge;
+using test::swept_packet;
+using test::SweptPacket;
 
 Params motion_splitting() {
   Params p;
   p.motion_split = 0.6;
   return p;
-}
-
-// An edge swept over the pixels [x0, x1) x [y0, y1) at (vx, vy) px/s, one of vx and vy zero: each
-// pixel fires once, when the edge reaches it.
-std::vector<Event> swept_edge(int x0, int x1, int y0, int y1, double vx, double vy) {
-  std::vector<Event> e;
-  for (int y = y0; y < y1; ++y) {
-    for (int x = x0; x < x1; ++x) {
-      const double s = vx != 0 ? (vx > 0 ? x - x0 : x1 - 1 - x) / std::abs(vx) : (vy > 0 ? y - y0 : y1 - 1 - y) / std::abs(vy);
-      e.push_back({static_cast<TimeUs>(std::lround(s * 1e6)), static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), 1});
-    }
-  }
-  return e;
-}
-
-struct SweptPacket {
-  std::vector<Event> events;
-  std::vector<int> object;  // per event: which edge fired it
-};
-
-// The events of `edges`, in time order.
-SweptPacket swept_packet(const std::vector<std::vector<Event>>& edges) {
-  SweptPacket p;
-  for (size_t k = 0; k < edges.size(); ++k) {
-    for (const Event& e : edges[k]) p.events.push_back(e), p.object.push_back(static_cast<int>(k));
-  }
-  std::vector<size_t> order(p.events.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return p.events[a].t < p.events[b].t; });
-  SweptPacket sorted;
-  for (size_t i : order) sorted.events.push_back(p.events[i]), sorted.object.push_back(p.object[i]);
-  return sorted;
 }
 
 struct MotionParts {
