@@ -40,6 +40,7 @@ Pipeline::Pipeline(const Params& params, SensorSize sensor)
     pixel_taken_.assign((static_cast<size_t>(sensor.width) * static_cast<size_t>(sensor.height) + 63) / 64, 0);
     if (params.motion_measure > 0) motion_measure_.emplace(params, sensor);
   }
+  if (params.outline_split_us > 0) outline_split_.emplace(params, sensor);
 }
 
 void Pipeline::push(const Event& e, OutputSink& out) {
@@ -188,14 +189,15 @@ void Pipeline::close_packet(OutputSink& out) {
     const FeatureMatrix features = packet_features(supported, sensor_, params_);
     // The tracks as they stand before this packet, at its middle event: where the splits and
     // measurements by motion look for them.
-    const std::vector<TrackPrediction> tracks = (params_.motion_split > 0 || motion_measure_) && !supported.empty()
+    const std::vector<TrackPrediction> tracks = (params_.motion_split > 0 || motion_measure_ || outline_split_) && !supported.empty()
                                                     ? tracker_->confirmed_predictions(supported[supported.size() / 2].t)
                                                     : std::vector<TrackPrediction>{};
     std::vector<Eigen::Vector2d> meeting_points;
     for (const TrackPrediction& track : tracks) {
       if (track.matched) meeting_points.push_back(track.position);
     }
-    const PacketClusters clusters = clusterer_.cluster(supported, features, modes_, spreads_, meeting_points);
+    PacketClusters clusters = clusterer_.cluster(supported, features, modes_, spreads_, meeting_points);
+    if (outline_split_) outline_split_->split(supported, features, tracks, clusters);
     modes_ = clusters.modes;
     spreads_ = clusters.spreads;
     stats_.cluster_ns += clock.lap();
@@ -271,6 +273,11 @@ void Pipeline::close_packet(OutputSink& out) {
     for (size_t i = 0; i < supported.size(); ++i) {
       const int c = clusters.cluster_of[i];
       if (c >= 0) label_of_packet_event[packet_index(i)] = ids[static_cast<size_t>(c)];
+    }
+    if (outline_split_) {
+      supported_labels_.resize(supported.size());
+      for (size_t i = 0; i < supported.size(); ++i) supported_labels_[i] = label_of_packet_event[packet_index(i)];
+      outline_split_->remember(supported, supported_labels_);
     }
     stats_.track_ns += clock.lap();
 

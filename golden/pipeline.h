@@ -14,6 +14,10 @@
 // up to 4 times packet_max_span_us. A slow edge fires its pixels far apart in time, and a packet
 // of the usual span holds too few of them to keep a large outline in one cluster
 // (docs/sweep.md, "Away from the simulator's settings").
+//
+// With outline_split_us, a cluster where two tracks meet is parted by where each track's own
+// events fell before it is measured (golden/track/outline_split.h), and every packet's labelled
+// events are remembered for the next.
 #pragma once
 
 #include <memory>
@@ -28,6 +32,7 @@
 #include "types/output.h"
 #include "types/params.h"
 #include "golden/track/motion_measure.h"
+#include "golden/track/outline_split.h"
 #include "golden/track/tracker.h"
 
 namespace evms::golden {
@@ -96,10 +101,12 @@ class Pipeline {
   std::vector<std::int32_t> label_of_packet_event_;
   std::vector<Event> supported_;
   std::vector<int> index_of_;
+  std::vector<std::int32_t> supported_labels_;  // --outline-split-us: the labels of `supported`, in its order
   // --measure pixel-centre: one bit a pixel, set where the packet's clustered events fell and
   // cleared again after the packet, so the map stays small enough for the cache (115 kB at 1280x720).
   std::vector<std::uint64_t> pixel_taken_;
   std::optional<MotionMeasure> motion_measure_;  // with params.motion_measure and the pixel centre
+  std::optional<OutlineSplit> outline_split_;    // with params.outline_split_us
   // --rescue-px: the label of the packet's last labelled event on each pixel, or kNoiseLabel;
   // cleared again after the packet.
   std::vector<std::int32_t> label_at_pixel_;

@@ -7,7 +7,8 @@
 // integers; the plane's gradient does not depend on where its time starts, so the events of one
 // pixel and polarity share one slope, computed once a packet. The sums are kept for the packet's
 // own pixels alone (a hash map), so their memory does not grow with the sensor. The split and the
-// measurement by motion (motion_split.h, golden/track/motion_measure.h) read it.
+// measurement by motion (motion_split.h, golden/track/motion_measure.h) and the outline split
+// (golden/track/outline_split.h) read it.
 #pragma once
 
 #include <algorithm>

@@ -26,7 +26,7 @@ int MultiTargetTracker::live_tracks() const {
 std::vector<TrackPrediction> MultiTargetTracker::confirmed_predictions(TimeUs t) const {
   std::vector<TrackPrediction> at;
   for (const auto& s : slots_) {
-    if (s && s->confirmed) at.push_back({s->filter.predicted_position(t), s->filter.state().tail<2>(), s->missed == 0});
+    if (s && s->confirmed) at.push_back({s->filter.predicted_position(t), s->filter.state().tail<2>(), s->missed == 0, s->id});
   }
   return at;
 }

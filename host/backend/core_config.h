@@ -141,7 +141,7 @@ inline std::string core_unsupported(const Params& p) {
   if (seeded && p.labelling != Labelling::kFirst) return "the fixed-point core labels an event by the first climb that reached it, not " + detail::setting(p, "labelling");
   const Params off = preset("gaussian");
   if (const char* name = detail::first_difference(p, off, {"filter-look-ahead-us", "packet-support", "join-boxes", "warm-reach",
-                                                               "packet-span-edge-px"})) {
+                                                               "packet-span-edge-px", "outline-split-us"})) {
     return "the fixed-point core does not implement " + detail::setting(p, name) + " (only " + detail::setting(off, name) + ")";
   }
   if (p.measure == Measure::kBoxCentre || (!seeded && p.measure != Measure::kCentroid)) {

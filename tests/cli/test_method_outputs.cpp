@@ -184,6 +184,7 @@ TEST(MethodOutputs, TheRtlRefusesTheMethodItLacksInOneLine) {
   expect_refused("--backend fixed --filter-look-ahead-us 10000", "does not implement --filter-look-ahead-us 10000 (only --filter-look-ahead-us 0)");
   expect_refused("--backend rtl --warm-reach 1.5", "does not implement --warm-reach 1.5 (only --warm-reach 0)");
   expect_refused("--backend fixed --packet-span-edge-px 5", "does not implement --packet-span-edge-px 5 (only --packet-span-edge-px 0)");
+  expect_refused("--backend fixed --outline-split-us 30000", "does not implement --outline-split-us 30000 (only --outline-split-us 0)");
   // The fixed-point core holds the split by motion; no RTL build and no board's core does.
   expect_runs("--backend fixed --motion-split 0.6");
   expect_refused("--backend rtl --motion-split 0.6", "does not split a cluster by its events' motions, not --motion-split 0.6 (add --motion-split 0)");

@@ -359,6 +359,15 @@ TEST(Evaluation, TheMotionSplitPartsFastShapesFromTheSlowOnesTheyCross) {
   EXPECT_LT(parted.tracking.all_kalman.mean, whole.tracking.all_kalman.mean);
 }
 
+TEST(Evaluation, TheOutlineSplitPartsShapesWhereTheyCrossByTheirOwnOutlines) {
+  // A tuning member where three shapes cross still ones (128x128, 6 shapes): where two tracks
+  // meet in one cluster, each takes back the events its own recent outline explains
+  // (golden/track/outline_split.h), and the tracks stay on their shapes.
+  const auto [whole, parted] = crossing_member_with(7, [](Params&) {}, [](Params& p) { p.outline_split_us = 30000; });
+  EXPECT_GT(parted.scores.f, whole.scores.f + 0.015);
+  EXPECT_GT(parted.tracking.all_kalman.within, whole.tracking.all_kalman.within);
+}
+
 TEST(Evaluation, TheMotionMeasureTracksAFastShapeWithoutTheSlowOnesItPasses) {
   // A tuning member (640x480, 219 k events) where a fast shape passes slow ones: measured from the
   // pixels its own motion explains, its track stays nearer its centre (golden/track/motion_measure.h).
