@@ -14,8 +14,6 @@ namespace {
 
 using test::kSensor;
 using test::swept_edge;
-using test::swept_packet;
-using test::SweptPacket;
 
 constexpr TimeUs kHistoryUs = 30000;
 constexpr int kRow0 = 20, kRow1 = 80;  // the rows the edges sweep
@@ -42,14 +40,14 @@ struct Edge {
 };
 
 struct Parted {
-  SweptPacket packet;
+  test::SweptPacket packet;
   PacketClusters clusters;
 };
 
 // Two edges sweeping right over rows kRow0 to kRow1 - 1 in one cluster, each one's track predicted in its box;
 // each edge's sweep just before remembered under its track when `remember` is set.
 Parted split_edges(const Edge& a, const Edge& b, bool remember, const Params& p = outline_splitting()) {
-  Parted s{swept_packet({swept_edge(a.x0, a.x1, kRow0, kRow1, a.vx, 0), swept_edge(b.x0, b.x1, kRow0, kRow1, b.vx, 0)}), {}};
+  Parted s{test::swept_packet({swept_edge(a.x0, a.x1, kRow0, kRow1, a.vx, 0), swept_edge(b.x0, b.x1, kRow0, kRow1, b.vx, 0)}), {}};
   OutlineSplit split(p, kSensor);
   if (remember) {
     for (const Edge& edge : {a, b}) {
