@@ -177,7 +177,7 @@ const std::array kTable = {
               "confirmed track moving at least this fast is measured from the pixels of its events whose time-surface slopes "
               "that track's velocity explains, when they are half its pixels or more: a fast object without the slow shapes "
               "it passes over (golden and the fixed-point core; other measures leave it off); 0 = off", &Params::motion_measure, 0, 1e6},
-    ParamInfo{"outline-split-us", "us", "with seeded climbs, a cluster of 128 events or more whose bounding box holds the "
+    ParamInfo{"outline-split-us", "us", "a cluster of 128 events or more whose bounding box holds the "
               "predictions of two confirmed tracks gives each event to the track whose own events of the event's polarity, "
               "over the last this long and moved on by the track's velocity, fell within 3 px of it; the cluster splits, one "
               "cluster a track that took 64 events, when the parts' motions (their time-surface slopes) differ: two objects "

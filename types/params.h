@@ -151,8 +151,8 @@ struct Params {
                                      // least this fast (px/s) is measured from the pixels whose slopes
                                      // its velocity explains (golden/track/motion_measure.h); other
                                      // measures leave it off; 0 = off
-  double outline_split_us = 0;       // with seeded climbs: a cluster where two confirmed tracks meet is
-                                     // parted by where each track's events fell over this long
+  double outline_split_us = 0;       // a cluster where two confirmed tracks meet is parted by where
+                                     // each track's events fell over this long
                                      // (golden/track/outline_split.h; golden only); 0 = off
 
   // --- labels -----------------------------------------------------------------------------

@@ -66,8 +66,8 @@ struct Measurement {
 // A track's predicted position (px) and its velocity (px/s).
 struct TrackPrediction {
   Eigen::Vector2d position, velocity;
-  bool matched = true;
-  std::int32_t id = -1;  // measured in the last packet; false: coasting
+  bool matched = true;   // measured in the last packet; false: coasting
+  std::int32_t id = -1;  // the ID its events are labelled with
 };
 
 // What every identity rule does with a packet's measurements.
