@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace evms::golden {
 
@@ -63,9 +64,9 @@ bool OutlineSplit::parts_of(std::span<const Event> events, std::span<const int> 
   for (size_t k = 0; k < members.size(); ++k) {
     const Event& e = events[static_cast<size_t>(members[k])];
     double nearest = kReachPx * kReachPx;
+    const double back_s = static_cast<double>(e.t - first) * 1e-6;
     for (size_t q = 0; q < near.size(); ++q) {
       const std::uint8_t* map = map_of(q, e.p);
-      const double back_s = static_cast<double>(e.t - first) * 1e-6;
       const double ex = e.x - near[q]->velocity.x() * back_s - gx0, ey = e.y - near[q]->velocity.y() * back_s - gy0;
       const auto cx = static_cast<int>(std::lround(ex)), cy = static_cast<int>(std::lround(ey));
       for (int my = std::max(0, cy - reach); my <= std::min(map_h - 1, cy + reach); ++my) {
