@@ -22,22 +22,17 @@ void OutlineSplit::remember(std::span<const Event> events, std::span<const std::
   }
 }
 
-bool OutlineSplit::parts_of(std::span<const Event> events, std::span<const int> members, std::span<const TrackPrediction* const> near,
-                            std::vector<int>& part) {
+bool OutlineSplit::parts_of(std::span<const Event> events, std::span<const int> members, const Box& box,
+                            std::span<const TrackPrediction* const> near, std::vector<int>& part) {
   // An event e and a remembered pixel m of track q are |e - (m + v_q (e.t - m.t))| apart: the
   // distance between the two moved on with v_q to any common time. So each near track's
   // remembered pixels are moved on once, to the cluster's first event's time, onto a map of the
   // cluster's box grown by kMostSearchPx (to the nearest pixel); each event, moved back to that
   // time with each track's velocity, looks for the nearest marked pixel of the map within kReachPx.
-  int x0 = width_, y0 = height_, x1 = -1, y1 = -1;
   TimeUs first = events[static_cast<size_t>(members[0])].t;
-  for (int i : members) {
-    const Event& e = events[static_cast<size_t>(i)];
-    x0 = std::min<int>(x0, e.x), x1 = std::max<int>(x1, e.x), y0 = std::min<int>(y0, e.y), y1 = std::max<int>(y1, e.y);
-    first = std::min(first, e.t);
-  }
-  const int gx0 = std::max(0, x0 - kMostSearchPx), gy0 = std::max(0, y0 - kMostSearchPx);
-  const int gx1 = std::min(width_ - 1, x1 + kMostSearchPx), gy1 = std::min(height_ - 1, y1 + kMostSearchPx);
+  for (int i : members) first = std::min(first, events[static_cast<size_t>(i)].t);
+  const int gx0 = std::max(0, box.x0 - kMostSearchPx), gy0 = std::max(0, box.y0 - kMostSearchPx);
+  const int gx1 = std::min(width_ - 1, box.x1 + kMostSearchPx), gy1 = std::min(height_ - 1, box.y1 + kMostSearchPx);
   const int map_w = gx1 - gx0 + 1, map_h = gy1 - gy0 + 1;
   const size_t map_size = static_cast<size_t>(map_w) * static_cast<size_t>(map_h);
   // Per near track and polarity, a map of where its remembered pixels lie, moved on to `first`.
@@ -84,10 +79,10 @@ bool OutlineSplit::parts_of(std::span<const Event> events, std::span<const int> 
     if (q < 0) q = most, ++taken[static_cast<size_t>(most)];
   }
   // A track that took too few events gives them to the one that took the most.
-  int parts = 0;
   for (int& q : part) {
     if (taken[static_cast<size_t>(q)] < kLeastPartEvents) q = most;
   }
+  int parts = 0;
   for (int count : taken) parts += count >= kLeastPartEvents;
   if (parts < kMeetingTracks) return false;
   // Number the parts 0.. in the order of the tracks.
@@ -141,19 +136,20 @@ void OutlineSplit::split(std::span<const Event> events, const FeatureMatrix& fea
   std::vector<int> part;
   for (size_t c = 0; c < members.size(); ++c) {
     if (members[c].size() < static_cast<size_t>(kLeastClusterEvents)) continue;
-    int x0 = width_, y0 = height_, x1 = -1, y1 = -1;
+    Box box{width_, height_, -1, -1};
     for (int i : members[c]) {
       const Event& e = events[static_cast<size_t>(i)];
-      x0 = std::min<int>(x0, e.x), x1 = std::max<int>(x1, e.x), y0 = std::min<int>(y0, e.y), y1 = std::max<int>(y1, e.y);
+      box.x0 = std::min<int>(box.x0, e.x), box.x1 = std::max<int>(box.x1, e.x), box.y0 = std::min<int>(box.y0, e.y), box.y1 = std::max<int>(box.y1, e.y);
     }
     near.clear();
     for (const TrackPrediction& track : tracks) {
       const Eigen::Vector2d& q = track.position;
-      if (track.matched && q.x() >= x0 - kBoxMarginPx && q.x() <= x1 + kBoxMarginPx && q.y() >= y0 - kBoxMarginPx && q.y() <= y1 + kBoxMarginPx) {
+      if (track.matched && q.x() >= box.x0 - kBoxMarginPx && q.x() <= box.x1 + kBoxMarginPx && q.y() >= box.y0 - kBoxMarginPx &&
+          q.y() <= box.y1 + kBoxMarginPx) {
         near.push_back(&track);
       }
     }
-    if (near.size() < static_cast<size_t>(kMeetingTracks) || !parts_of(events, members[c], near, part)) continue;
+    if (near.size() < static_cast<size_t>(kMeetingTracks) || !parts_of(events, members[c], box, near, part)) continue;
     const int parts = *std::max_element(part.begin(), part.end()) + 1;
     if (clusters.count + parts - 1 > max_clusters_) continue;
     // Part 0 keeps the cluster's index; the others are appended.

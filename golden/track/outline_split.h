@@ -65,9 +65,12 @@ class OutlineSplit {
     TimeUs t = 0;
     std::int32_t track = -1;
   };
-  // The tracks of `near` (indices into the caller's tracks) each of `members` goes to, by index
-  // into `near`, or false when the cluster stays whole.
-  bool parts_of(std::span<const Event> events, std::span<const int> members, std::span<const TrackPrediction* const> near,
+  struct Box {
+    int x0, y0, x1, y1;  // inclusive, px
+  };
+  // The tracks of `near` (indices into the caller's tracks) each of `members` (whose pixels span
+  // `box`) goes to, by index into `near`, or false when the cluster stays whole.
+  bool parts_of(std::span<const Event> events, std::span<const int> members, const Box& box, std::span<const TrackPrediction* const> near,
                 std::vector<int>& part);
   // Whether the parts move apart: their velocities, one a part, explain the sloped events with at
   // most kMotionShare of the residual of one velocity, and two of them differ by at least
